@@ -1,0 +1,108 @@
+// Shared declarations: GPU structs (mirrored by src/gpu/layout.rs), bindings, constants.
+
+struct Frame {
+    camera_position: vec3f,
+    tan_half_fov_y: f32,
+    camera_right: vec3f,
+    aspect: f32,
+    camera_up: vec3f,
+    width: u32,
+    camera_forward: vec3f,
+    height: u32,
+    sky_color: vec3f,
+    max_bounces: u32,
+    sample_base: u32,
+    samples_per_dispatch: u32,
+    seed: u32,
+    tlas_root: u32,
+}
+
+// A BVH2 node holding both children's boxes, so that one fetch decides where to go.
+// count == 0: `link` is the child node's index; count > 0: a leaf of `count`
+// primitives starting at `link`. An empty child has count 0 and link EMPTY_LINK.
+struct BvhNode {
+    a_min: vec3f,
+    a_link: u32,
+    a_max: vec3f,
+    a_count: u32,
+    b_min: vec3f,
+    b_link: u32,
+    b_max: vec3f,
+    b_count: u32,
+}
+
+struct Triangle {
+    v0: vec3f,
+    material: u32,
+    v1: vec3f,
+    _pad1: u32,
+    v2: vec3f,
+    _pad2: u32,
+}
+
+// Per-vertex shading normals of one triangle (the geometric normal when the mesh has none).
+struct TriangleShading {
+    n0: vec3f,
+    _pad0: u32,
+    n1: vec3f,
+    _pad1: u32,
+    n2: vec3f,
+    _pad2: u32,
+}
+
+struct Instance {
+    world_to_object: array<vec4f, 3>,
+    object_to_world: array<vec4f, 3>,
+    node_offset: u32,
+    triangle_offset: u32,
+    material_base: u32,
+    material_override: u32,
+}
+
+struct Sphere {
+    center: vec3f,
+    radius: f32,
+    material: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+
+struct Material {
+    base_color: vec3f,
+    diffuse: f32,
+    emission: vec3f,
+    specular: f32,
+    absorption: vec3f,
+    reflection: f32,
+    volume_emission: vec3f,
+    transmission: f32,
+    ior: f32,
+    roughness: f32,
+    _pad0: u32,
+    _pad1: u32,
+}
+
+const EMPTY_LINK: u32 = 0xffffffffu;
+const NO_MATERIAL: u32 = 0xffffffffu;
+// Top-level leaves hold instances and spheres; the top bit says which.
+const SPHERE_BIT: u32 = 0x80000000u;
+const INFINITY: f32 = 3.402823466e38;
+const PI: f32 = 3.14159265358979;
+
+// Counters in the statistics buffer.
+const STAT_STACK_OVERFLOW: u32 = 0u;
+const STAT_NON_FINITE: u32 = 1u;
+
+// Depth of the traversal stacks; a push beyond it is counted, never silent.
+const STACK_SIZE: u32 = 32u;
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<storage, read> nodes: array<BvhNode>;
+@group(0) @binding(2) var<storage, read> triangles: array<Triangle>;
+@group(0) @binding(3) var<storage, read> shading: array<TriangleShading>;
+@group(0) @binding(4) var<storage, read> instances: array<Instance>;
+@group(0) @binding(5) var<storage, read> tlas_primitives: array<u32>;
+@group(0) @binding(6) var<storage, read> spheres: array<Sphere>;
+@group(0) @binding(7) var<storage, read> materials: array<Material>;
+@group(0) @binding(8) var<storage, read_write> stats: array<atomic<u32>>;

@@ -1,0 +1,84 @@
+// Traversal alone, for throughput benchmarks and for checking traversal
+// against a CPU reference: one ray in, its closest hit out.
+
+struct TraceRay {
+    origin: vec3f,
+    t_max: f32,
+    direction: vec3f,
+    _pad: u32,
+}
+
+struct TraceHit {
+    t: f32,
+    // Triangle index, or sphere index | SPHERE_BIT, or EMPTY_LINK for a miss.
+    primitive: u32,
+    instance: u32,
+    overflowed: u32,
+}
+
+@group(1) @binding(0) var<storage, read_write> trace_rays: array<TraceRay>;
+@group(1) @binding(1) var<storage, read_write> trace_hits: array<TraceHit>;
+
+fn trace_one(i: u32) {
+    let r = trace_rays[i];
+    let hit = trace_scene(r.origin, r.direction, r.t_max);
+    var primitive = EMPTY_LINK;
+    if hit.kind == HIT_TRIANGLE {
+        primitive = hit.primitive;
+    } else if hit.kind == HIT_SPHERE {
+        primitive = hit.primitive | SPHERE_BIT;
+    }
+    trace_hits[i] = TraceHit(select(INFINITY, hit.t, hit.kind != HIT_NONE), primitive, hit.instance, u32(stack_overflowed));
+}
+
+// Launches over 65535 workgroups spill into y.
+fn ray_index(id: vec3u, groups: vec3u) -> u32 {
+    return id.x + id.y * groups.x * 64u;
+}
+
+@compute @workgroup_size(64)
+fn trace(@builtin(global_invocation_id) id: vec3u, @builtin(num_workgroups) groups: vec3u) {
+    let i = ray_index(id, groups);
+    if i < arrayLength(&trace_rays) {
+        trace_one(i);
+    }
+}
+
+// Camera rays for the throughput benchmark, one per pixel, written as TraceRays.
+@compute @workgroup_size(64)
+fn generate_camera_rays(@builtin(global_invocation_id) id: vec3u, @builtin(num_workgroups) groups: vec3u) {
+    let i = ray_index(id, groups);
+    if i >= frame.width * frame.height || i >= arrayLength(&trace_rays) {
+        return;
+    }
+    let pixel = vec2u(i % frame.width, i / frame.width);
+    var rng = rng_for_sample(i, frame.sample_base, frame.seed);
+    let d = camera_ray_direction(pixel, vec2f(rng_next(&rng), rng_next(&rng)));
+    trace_rays[i] = TraceRay(frame.camera_position, INFINITY, d, 0u);
+}
+
+// Turns each ray with a hit into a cosine-distributed diffuse bounce from that
+// hit: the incoherent rays a path tracer mostly traces. Misses become rays
+// with t_max = 0, which cost a root visit and nothing else.
+@compute @workgroup_size(64)
+fn generate_diffuse_rays(@builtin(global_invocation_id) id: vec3u, @builtin(num_workgroups) groups: vec3u) {
+    let i = ray_index(id, groups);
+    if i >= arrayLength(&trace_rays) {
+        return;
+    }
+    let r = trace_rays[i];
+    let h = trace_hits[i];
+    if h.primitive == EMPTY_LINK {
+        trace_rays[i] = TraceRay(r.origin, 0.0, r.direction, 0u);
+        return;
+    }
+    let kind = select(HIT_TRIANGLE, HIT_SPHERE, (h.primitive & SPHERE_BIT) != 0u);
+    let hit = Hit(h.t, kind, h.primitive & ~SPHERE_BIT, h.instance, 0.0, 0.0);
+    let surface = surface_at(hit, r.origin, r.direction);
+    // The hit point from t; the barycentrics are not kept in a TraceHit.
+    let p = r.origin + h.t * r.direction;
+    let n = select(surface.geometric_normal, -surface.geometric_normal, dot(surface.geometric_normal, r.direction) > 0.0);
+    var rng = rng_for_sample(i, frame.sample_base + 1u, frame.seed);
+    let d = tangent_frame(n) * sample_cosine_hemisphere(vec2f(rng_next(&rng), rng_next(&rng)));
+    trace_rays[i] = TraceRay(offset_ray_origin(p, n), INFINITY, d, 0u);
+}

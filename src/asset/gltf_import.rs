@@ -1,0 +1,463 @@
+//! glTF 2.0 (`.gltf` with external or embedded buffers, `.glb`) import.
+//!
+//! Materials map onto rt's lobe weights as below; every absent field takes its glTF
+//! default, because glTF writers (Blender's among them) leave default values out.
+//! `m` is metallic, `t` transmission.
+//!
+//! | glTF                                                   | default   | rt material                          |
+//! |--------------------------------------------------------|-----------|--------------------------------------|
+//! | `baseColorFactor` rgb                                  | 1, 1, 1   | `base_color`                         |
+//! | `metallicFactor` `m`                                   | 1         | `reflection = m`                     |
+//! | `KHR_materials_transmission.transmissionFactor` `t`    | 0         | `transmission = (1 - m) t`           |
+//! | (the rest of the dielectric)                           |           | `diffuse = (1 - m)(1 - t)`           |
+//! | `roughnessFactor`                                      | 1         | `roughness`                          |
+//! | `KHR_materials_ior.ior`                                | 1.5       | `ior`                                |
+//! | `emissiveFactor` × `KHR_materials_emissive_strength`   | 0 × 1     | `emission`                           |
+//! | `KHR_materials_specular.specularFactor`                | extension absent: 0 | `specular = (1 - m) specularFactor` |
+//! | `KHR_materials_volume` colour `c`, distance `d`        | 1, ∞      | `absorption = -ln(c) / d` per channel (`d = ∞` → 0) |
+//! | `extras.rt_volume_emission` `[r, g, b]`                | 0, 0, 0   | `volume_emission`                    |
+//!
+//! Metal is a layer over the dielectric in glTF, so transmission and specular only
+//! apply to the `1 - m` that is not metal; the weights then never sum past one.
+//! `c` is clamped to (0, 1] so that a black attenuation colour stays finite.
+//!
+//! A primitive without a material gets [`Material::default`] (white diffuse), not glTF's
+//! default material (a rough white metal): rt treats a material-less mesh as plain
+//! geometry, the same as an OBJ without a `.mtl` and a scene material left at defaults.
+
+use super::{AssetError, MeshData};
+use crate::scene::Material;
+use glam::{Mat3, Mat4, Vec3};
+use gltf::json::Value;
+use gltf::mesh::{Mode, Semantic};
+use std::path::Path;
+
+/// Loads the default scene (else the first, else every root node) of a glTF file,
+/// with node transforms applied. A file with no meshes yields its materials only.
+pub fn load(path: &Path) -> Result<MeshData, AssetError> {
+    let err = |message: String| AssetError::new(path, message);
+    let gltf::Gltf { document, blob } =
+        gltf::Gltf::open(path).map_err(|e| err(format!("cannot read glTF: {e}")))?;
+    // Only buffers: materials use factors, not textures, so images are never decoded
+    // (a missing or exotic texture must not stop a mesh from loading).
+    let buffers = gltf::import_buffers(&document, path.parent(), blob)
+        .map_err(|e| err(format!("cannot load buffers: {e}")))?;
+
+    let mut mesh = MeshData::default();
+    for (i, m) in document.materials().enumerate() {
+        let name = m
+            .name()
+            .map_or_else(|| format!("material_{i}"), str::to_owned);
+        let material = map_material(&m).map_err(|e| err(format!("material `{name}`: {e}")))?;
+        mesh.materials.push((name, material));
+    }
+
+    let roots: Vec<gltf::Node> = match document
+        .default_scene()
+        .or_else(|| document.scenes().next())
+    {
+        Some(scene) => scene.nodes().collect(),
+        None => {
+            let mut is_child = vec![false; document.nodes().len()];
+            for child in document.nodes().flat_map(|n| n.children()) {
+                is_child[child.index()] = true;
+            }
+            document.nodes().filter(|n| !is_child[n.index()]).collect()
+        }
+    };
+
+    let mut walk = Walk {
+        buffers: &buffers,
+        node_count: document.nodes().len(),
+        mesh,
+        normals: Vec::new(),
+        uvs: Vec::new(),
+        all_normals: true,
+        all_uvs: true,
+        default_material: None,
+    };
+    for root in &roots {
+        walk.visit(root, Mat4::IDENTITY, 0).map_err(err)?;
+    }
+    let mut mesh = walk.mesh;
+    if (!walk.all_normals && !walk.normals.is_empty()) || (!walk.all_uvs && !walk.uvs.is_empty()) {
+        log::warn!(
+            "{}: NORMAL or TEXCOORD_0 is missing on some primitives; dropped them all",
+            path.display()
+        );
+    }
+    if !mesh.positions.is_empty() {
+        mesh.normals = walk.all_normals.then_some(walk.normals);
+        mesh.uvs = walk.all_uvs.then_some(walk.uvs);
+    }
+    Ok(mesh)
+}
+
+/// State of the depth-first walk over the node hierarchy.
+struct Walk<'a> {
+    buffers: &'a [gltf::buffer::Data],
+    node_count: usize,
+    mesh: MeshData,
+    normals: Vec<[f32; 3]>,
+    uvs: Vec<[f32; 2]>,
+    /// Shading attributes are kept only if every primitive has them.
+    all_normals: bool,
+    all_uvs: bool,
+    default_material: Option<u32>,
+}
+
+impl Walk<'_> {
+    fn visit(&mut self, node: &gltf::Node, parent: Mat4, depth: usize) -> Result<(), String> {
+        // A path longer than the node count must revisit a node.
+        if depth > self.node_count {
+            return Err("the node hierarchy has a cycle".into());
+        }
+        let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+        if let Some(mesh) = node.mesh() {
+            self.add_mesh(&mesh, node.index(), world)?;
+        }
+        for child in node.children() {
+            self.visit(&child, world, depth + 1)?;
+        }
+        Ok(())
+    }
+
+    fn add_mesh(&mut self, mesh: &gltf::Mesh, node: usize, world: Mat4) -> Result<(), String> {
+        let det = world.determinant();
+        if !det.is_finite() {
+            return Err(format!("node {node} has a non-finite transform"));
+        }
+        if det == 0.0 {
+            // Every triangle would have zero area; zero scale is how animators hide things.
+            log::warn!(
+                "node {node} scales mesh {} to nothing; skipped",
+                mesh.index()
+            );
+            return Ok(());
+        }
+        let normal_matrix = Mat3::from_mat4(world).inverse().transpose();
+        // A mirroring transform turns counter-clockwise triangles clockwise.
+        let flip = det < 0.0;
+
+        for prim in mesh.primitives() {
+            let at = format!("mesh {} primitive {}", mesh.index(), prim.index());
+            if prim.mode() != Mode::Triangles {
+                log::warn!("{at}: mode {:?} is not triangles; skipped", prim.mode());
+                continue;
+            }
+            if prim.get(&Semantic::Positions).is_none() {
+                log::warn!("{at}: no POSITION attribute; skipped");
+                continue;
+            }
+            let unreadable =
+                |what: &str| format!("{at}: cannot read {what} (accessor outside its buffer?)");
+            let reader = prim.reader(|b| self.buffers.get(b.index()).map(|d| &d.0[..]));
+            let positions: Vec<[f32; 3]> = reader
+                .read_positions()
+                .ok_or_else(|| unreadable("POSITION"))?
+                .map(|p| world.transform_point3(Vec3::from(p)).to_array())
+                .collect();
+            let count = positions.len();
+            if u32::try_from(self.mesh.positions.len() + count).is_err() {
+                return Err(format!("{at}: more than 2^32 vertices in all"));
+            }
+            let base = self.mesh.positions.len() as u32;
+
+            // Read even once incomplete, so that the final warning knows what was dropped.
+            if prim.get(&Semantic::Normals).is_none() {
+                self.all_normals = false;
+            } else {
+                let normals = reader.read_normals().ok_or_else(|| unreadable("NORMAL"))?;
+                let start = self.normals.len();
+                self.normals.extend(normals.map(|n| {
+                    (normal_matrix * Vec3::from(n))
+                        .normalize_or_zero()
+                        .to_array()
+                }));
+                if self.normals.len() - start != count {
+                    return Err(format!("{at}: NORMAL and POSITION counts differ"));
+                }
+            }
+            if prim.get(&Semantic::TexCoords(0)).is_none() {
+                self.all_uvs = false;
+            } else {
+                let uvs = reader
+                    .read_tex_coords(0)
+                    .ok_or_else(|| unreadable("TEXCOORD_0"))?;
+                let start = self.uvs.len();
+                self.uvs.extend(uvs.into_f32().map(|[u, v]| [u, 1.0 - v]));
+                if self.uvs.len() - start != count {
+                    return Err(format!("{at}: TEXCOORD_0 and POSITION counts differ"));
+                }
+            }
+
+            let indices: Vec<u32> = match prim.indices() {
+                Some(_) => reader
+                    .read_indices()
+                    .ok_or_else(|| unreadable("indices"))?
+                    .into_u32()
+                    .collect(),
+                None => (0..count as u32).collect(),
+            };
+            if !indices.len().is_multiple_of(3) {
+                return Err(format!(
+                    "{at}: {} indices is not a whole number of triangles",
+                    indices.len()
+                ));
+            }
+            // Checked here, per primitive: once offset, an index past this primitive's
+            // vertices could land in the next one and pass the final validation.
+            if let Some(&bad) = indices.iter().find(|&&i| i as usize >= count) {
+                return Err(format!(
+                    "{at}: index {bad} but the primitive has only {count} vertices"
+                ));
+            }
+
+            let material = match prim.material().index() {
+                Some(i) => i as u32,
+                None => *self.default_material.get_or_insert_with(|| {
+                    self.mesh
+                        .materials
+                        .push(("default".into(), Material::default()));
+                    (self.mesh.materials.len() - 1) as u32
+                }),
+            };
+            self.mesh.positions.extend(positions);
+            for tri in indices.chunks_exact(3) {
+                let [a, b, c] = [tri[0] + base, tri[1] + base, tri[2] + base];
+                self.mesh
+                    .indices
+                    .push(if flip { [a, c, b] } else { [a, b, c] });
+                self.mesh.material_ids.push(material);
+            }
+        }
+        Ok(())
+    }
+}
+
+fn map_material(m: &gltf::Material) -> Result<Material, String> {
+    let pbr = m.pbr_metallic_roughness();
+    let [r, g, b, _] = pbr.base_color_factor();
+    let metallic = pbr.metallic_factor().clamp(0.0, 1.0);
+    let dielectric = 1.0 - metallic;
+    let transmission = m
+        .transmission()
+        .map_or(0.0, |t| t.transmission_factor())
+        .clamp(0.0, 1.0);
+    let strength = m.emissive_strength().unwrap_or(1.0);
+    Ok(Material {
+        base_color: [r, g, b],
+        diffuse: dielectric * (1.0 - transmission),
+        specular: m
+            .specular()
+            .map_or(0.0, |s| dielectric * s.specular_factor()),
+        reflection: metallic,
+        transmission: dielectric * transmission,
+        ior: m.ior().unwrap_or(1.5),
+        roughness: pbr.roughness_factor(),
+        emission: m.emissive_factor().map(|e| e * strength),
+        absorption: m.volume().map_or([0.0; 3], |v| {
+            absorption(v.attenuation_color(), v.attenuation_distance())
+        }),
+        volume_emission: volume_emission(m.extras())?,
+        ..Material::default()
+    })
+}
+
+/// Beer–Lambert: white light keeps fraction `c` after distance `d`.
+fn absorption(color: [f32; 3], distance: f32) -> [f32; 3] {
+    if !(distance.is_finite() && distance > 0.0) {
+        return [0.0; 3];
+    }
+    color.map(|c| -c.clamp(f32::MIN_POSITIVE, 1.0).ln() / distance)
+}
+
+/// `extras.rt_volume_emission`: glTF has no field for light emitted inside a medium.
+/// Other tools' extras may hold anything, so only our own key is checked.
+fn volume_emission(extras: &gltf::json::Extras) -> Result<[f32; 3], String> {
+    let Some(raw) = extras else {
+        return Ok([0.0; 3]);
+    };
+    let value: Value = gltf::json::deserialize::from_str(raw.get())
+        .map_err(|e| format!("extras are not JSON: {e}"))?;
+    match value.get("rt_volume_emission") {
+        None => Ok([0.0; 3]),
+        Some(v) => gltf::json::deserialize::from_value(v.clone())
+            .map_err(|e| format!("extras.rt_volume_emission must be [r, g, b]: {e}")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::asset::fixture::TempDir;
+    use crate::asset::load_mesh;
+    use crate::scene::Material;
+    use glam::{Mat3, Vec3};
+
+    const POSITIONS: [[f32; 3]; 3] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    const NORMAL: [f32; 3] = [0.48, 0.6, 0.64];
+
+    fn base64(bytes: &[u8]) -> String {
+        const ALPHABET: &[u8; 64] =
+            b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+        let mut out = String::new();
+        for chunk in bytes.chunks(3) {
+            let n = chunk
+                .iter()
+                .enumerate()
+                .fold(0u32, |n, (i, &b)| n | (b as u32) << (16 - 8 * i));
+            for i in 0..=chunk.len() {
+                out.push(ALPHABET[(n >> (18 - 6 * i) & 63) as usize] as char);
+            }
+            out.push_str(&"=".repeat(3 - chunk.len()));
+        }
+        out
+    }
+
+    /// One indexed triangle with normals under a parent node translated by [1, 2, 3]
+    /// and a child scaled by [-1, 2, 1]; `material` is the JSON of its only material.
+    fn triangle_gltf(material: Option<&str>) -> String {
+        let mut bytes = Vec::new();
+        let floats = POSITIONS
+            .iter()
+            .flatten()
+            .chain([NORMAL; 3].iter().flatten());
+        floats.for_each(|f| bytes.extend(f.to_le_bytes()));
+        [0u32, 1, 2]
+            .iter()
+            .for_each(|i| bytes.extend(i.to_le_bytes()));
+        let (materials, use_material) = match material {
+            Some(json) => (format!(r#""materials": [{json}],"#), r#", "material": 0"#),
+            None => (String::new(), ""),
+        };
+        format!(
+            r#"{{
+  "asset": {{ "version": "2.0" }},
+  "scene": 0,
+  "scenes": [{{ "nodes": [0] }}],
+  "nodes": [
+    {{ "translation": [1, 2, 3], "children": [1] }},
+    {{ "scale": [-1, 2, 1], "mesh": 0 }}
+  ],
+  "meshes": [{{ "primitives": [{{
+    "attributes": {{ "POSITION": 0, "NORMAL": 1 }}, "indices": 2{use_material}
+  }}] }}],
+  {materials}
+  "buffers": [{{ "byteLength": {len}, "uri": "data:application/octet-stream;base64,{data}" }}],
+  "bufferViews": [
+    {{ "buffer": 0, "byteOffset": 0, "byteLength": 36 }},
+    {{ "buffer": 0, "byteOffset": 36, "byteLength": 36 }},
+    {{ "buffer": 0, "byteOffset": 72, "byteLength": 12 }}
+  ],
+  "accessors": [
+    {{ "bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+       "min": [0, 0, 0], "max": [1, 1, 0] }},
+    {{ "bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3" }},
+    {{ "bufferView": 2, "componentType": 5125, "count": 3, "type": "SCALAR" }}
+  ]
+}}"#,
+            len = bytes.len(),
+            data = base64(&bytes),
+        )
+    }
+
+    #[test]
+    fn gltf_node_transforms_and_material_mapping() {
+        let material = r#"{
+          "name": "glass",
+          "pbrMetallicRoughness": { "baseColorFactor": [0.8, 0.9, 1.0, 1.0],
+                                    "metallicFactor": 0.0, "roughnessFactor": 0.1 },
+          "emissiveFactor": [1.0, 0.5, 0.0],
+          "extensions": {
+            "KHR_materials_transmission": { "transmissionFactor": 1.0 },
+            "KHR_materials_ior": { "ior": 1.33 },
+            "KHR_materials_emissive_strength": { "emissiveStrength": 4.0 },
+            "KHR_materials_volume": { "thicknessFactor": 0.1, "attenuationDistance": 2.0,
+                                      "attenuationColor": [0.5, 0.25, 1.0] }
+          },
+          "extras": { "rt_volume_emission": [0.1, 0.2, 0.3], "other_tool": "x" }
+        }"#;
+        let dir = TempDir::new("gltf_transforms_material");
+        let mesh =
+            load_mesh(&dir.write("tri.gltf", &triangle_gltf(Some(material)))).expect("loads");
+
+        // Parent × child: x' = 1 - x, y' = 2 + 2y, z' = 3 + z.
+        assert_eq!(
+            mesh.positions,
+            [[1.0, 2.0, 3.0], [0.0, 2.0, 3.0], [1.0, 4.0, 3.0]]
+        );
+        // The mirror flips the winding, so the face still points the same side as its normals.
+        assert_eq!(mesh.indices, [[0, 2, 1]]);
+        let expected =
+            (Mat3::from_diagonal(Vec3::new(-1.0, 0.5, 1.0)) * Vec3::from(NORMAL)).normalize();
+        for n in mesh.normals.as_ref().expect("normals") {
+            assert!(Vec3::from(*n).abs_diff_eq(expected, 1e-6), "{n:?}");
+        }
+        assert!(mesh.uvs.is_none());
+
+        assert_eq!(mesh.material_ids, [0]);
+        let (name, m) = &mesh.materials[0];
+        assert_eq!(name, "glass");
+        let ln2 = std::f32::consts::LN_2;
+        assert_eq!(
+            m,
+            &Material {
+                base_color: [0.8, 0.9, 1.0],
+                diffuse: 0.0,
+                specular: 0.0,
+                reflection: 0.0,
+                transmission: 1.0,
+                ior: 1.33,
+                roughness: 0.1,
+                hardness: None,
+                emission: [4.0, 2.0, 0.0],
+                absorption: [ln2 / 2.0, 2.0 * ln2 / 2.0, 0.0],
+                volume_emission: [0.1, 0.2, 0.3],
+            }
+        );
+    }
+
+    #[test]
+    fn gltf_absent_fields_take_gltf_defaults() {
+        let dir = TempDir::new("gltf_defaults");
+        let path = dir.write("tri.gltf", &triangle_gltf(Some(r#"{ "name": "plain" }"#)));
+        let m = &load_mesh(&path).expect("loads").materials[0].1;
+        // glTF's defaults: metallic 1, roughness 1, white.
+        assert_eq!((m.reflection, m.diffuse, m.transmission), (1.0, 0.0, 0.0));
+        assert_eq!((m.roughness, m.ior, m.base_color), (1.0, 1.5, [1.0; 3]));
+        assert_eq!((m.emission, m.absorption), ([0.0; 3], [0.0; 3]));
+    }
+
+    #[test]
+    fn gltf_without_material_gets_white_diffuse() {
+        let dir = TempDir::new("gltf_no_material");
+        let mesh = load_mesh(&dir.write("tri.gltf", &triangle_gltf(None))).expect("loads");
+        assert_eq!(
+            mesh.materials,
+            [("default".to_string(), Material::default())]
+        );
+        assert_eq!(mesh.material_ids, [0]);
+    }
+
+    #[test]
+    fn gltf_materials_only_has_no_triangles() {
+        let dir = TempDir::new("gltf_materials_only");
+        let json =
+            r#"{ "asset": { "version": "2.0" }, "materials": [{ "name": "a" }, { "name": "b" }] }"#;
+        let path = dir.write("mats.gltf", json);
+        let mesh = super::load(&path).expect("materials-only glTF is valid");
+        assert!(mesh.positions.is_empty() && mesh.normals.is_none());
+        assert_eq!(mesh.materials.len(), 2);
+        let message = load_mesh(&path).expect_err("no geometry").to_string();
+        assert!(message.contains("contains no triangles"), "{message}");
+    }
+
+    #[test]
+    fn gltf_malformed_is_an_error() {
+        let dir = TempDir::new("gltf_malformed");
+        let message = load_mesh(&dir.write("bad.glb", "not a glb"))
+            .expect_err("bad")
+            .to_string();
+        assert!(message.contains("bad.glb: cannot read glTF"), "{message}");
+    }
+}

@@ -1,0 +1,281 @@
+//! Mesh import: OBJ (tobj) and glTF/GLB (gltf), each mapped to rt materials,
+//! plus the meshes embedded in the binary for the built-in default scene.
+
+pub mod builtin;
+pub mod gltf_import;
+pub mod obj_import;
+
+use crate::scene::Material;
+use std::path::{Path, PathBuf};
+
+/// A triangle mesh in object space (metres, Y up), ready for BVH building.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MeshData {
+    pub positions: Vec<[f32; 3]>,
+    /// Per-vertex shading normals, if the source had them.
+    pub normals: Option<Vec<[f32; 3]>>,
+    /// Per-vertex texture coordinates with the origin at the bottom left (the OBJ and
+    /// Blender convention); glTF's top-left ones are flipped on import.
+    pub uvs: Option<Vec<[f32; 2]>>,
+    pub indices: Vec<[u32; 3]>,
+    /// Index into `materials` for each triangle.
+    pub material_ids: Vec<u32>,
+    /// The asset's own materials (at least one whenever there are triangles).
+    pub materials: Vec<(String, Material)>,
+}
+
+/// An import failure, naming the file and what is wrong with it.
+#[derive(Debug, thiserror::Error)]
+#[error("{}: {message}", path.display())]
+pub struct AssetError {
+    pub path: PathBuf,
+    pub message: String,
+}
+
+impl AssetError {
+    pub fn new(path: &Path, message: impl Into<String>) -> Self {
+        Self {
+            path: path.to_path_buf(),
+            message: message.into(),
+        }
+    }
+}
+
+/// Loads a mesh asset: a `.obj`, `.gltf` or `.glb` file, or a built-in one
+/// (a path under [`builtin::BUILTIN_PREFIX`]).
+pub fn load_mesh(path: &Path) -> Result<MeshData, AssetError> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let mesh = match (builtin::lookup(path), ext.as_deref()) {
+        (Some(bytes), Some("obj")) => obj_import::load_builtin(path, bytes)?,
+        (Some(_), _) => {
+            return Err(AssetError::new(
+                path,
+                "built-in assets can only be OBJ files",
+            ));
+        }
+        (None, Some("obj")) => obj_import::load(path)?,
+        (None, Some("gltf" | "glb")) => gltf_import::load(path)?,
+        (None, _) => {
+            return Err(AssetError::new(
+                path,
+                "unsupported asset type (expected .obj, .gltf or .glb)",
+            ));
+        }
+    };
+    mesh.validate(path)?;
+    Ok(mesh)
+}
+
+impl MeshData {
+    /// Checks what the GPU relies on: finite positions, indices in range, one material per
+    /// triangle. The shaders trust these, so a bad file must stop here rather than
+    /// become NaNs or out-of-bounds reads on the GPU.
+    pub fn validate(&self, path: &Path) -> Result<(), AssetError> {
+        let fail = |message: String| Err(AssetError::new(path, message));
+        let vertex_count = self.positions.len();
+
+        if let Some((i, bad)) = first_non_finite(&self.positions) {
+            return fail(format!("vertex {i} has a non-finite position ({bad:?})"));
+        }
+        if let Some(normals) = &self.normals {
+            if normals.len() != vertex_count {
+                return fail(format!(
+                    "{} normals for {vertex_count} vertices",
+                    normals.len()
+                ));
+            }
+            if let Some((i, bad)) = first_non_finite(normals) {
+                return fail(format!("vertex {i} has a non-finite normal ({bad:?})"));
+            }
+        }
+        if let Some(uvs) = &self.uvs {
+            if uvs.len() != vertex_count {
+                return fail(format!(
+                    "{} texture coordinates for {vertex_count} vertices",
+                    uvs.len()
+                ));
+            }
+            if let Some((i, bad)) = first_non_finite(uvs) {
+                return fail(format!(
+                    "vertex {i} has a non-finite texture coordinate ({bad:?})"
+                ));
+            }
+        }
+
+        if self.indices.is_empty() {
+            return fail("contains no triangles".into());
+        }
+        for (t, tri) in self.indices.iter().enumerate() {
+            if let Some(&v) = tri.iter().find(|&&v| v as usize >= vertex_count) {
+                return fail(format!(
+                    "triangle {t} refers to vertex {v} but there are only {vertex_count} vertices"
+                ));
+            }
+        }
+
+        if self.material_ids.len() != self.indices.len() {
+            return fail(format!(
+                "{} material indices for {} triangles",
+                self.material_ids.len(),
+                self.indices.len()
+            ));
+        }
+        let material_count = self.materials.len();
+        if let Some((t, m)) = self
+            .material_ids
+            .iter()
+            .enumerate()
+            .find(|&(_, &m)| m as usize >= material_count)
+        {
+            return fail(format!(
+                "triangle {t} uses material {m} but there are only {material_count} materials"
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The index and value of the first non-finite component, if any.
+fn first_non_finite<const N: usize>(items: &[[f32; N]]) -> Option<(usize, f32)> {
+    items
+        .iter()
+        .enumerate()
+        .find_map(|(i, item)| item.iter().find(|c| !c.is_finite()).map(|&c| (i, c)))
+}
+
+/// Fixture files for the importers' tests.
+#[cfg(test)]
+pub(crate) mod fixture {
+    use std::path::PathBuf;
+
+    /// A fresh directory under the system temporary directory, removed on drop.
+    /// Named after the test so that tests running in parallel never share one.
+    pub struct TempDir(PathBuf);
+
+    impl TempDir {
+        pub fn new(test: &str) -> Self {
+            let dir = std::env::temp_dir().join(format!("rt-asset-{}-{test}", std::process::id()));
+            // A leftover from a crashed run must not leak stale files into this one.
+            let _ = std::fs::remove_dir_all(&dir);
+            std::fs::create_dir_all(&dir).expect("create temp dir");
+            Self(dir)
+        }
+
+        pub fn write(&self, name: &str, contents: &str) -> PathBuf {
+            let path = self.0.join(name);
+            std::fs::write(&path, contents).expect("write fixture");
+            path
+        }
+    }
+
+    impl Drop for TempDir {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fixture::TempDir;
+    use super::*;
+
+    fn triangle() -> MeshData {
+        MeshData {
+            positions: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+            indices: vec![[0, 1, 2]],
+            material_ids: vec![0],
+            materials: vec![("default".into(), Material::default())],
+            ..Default::default()
+        }
+    }
+
+    fn validate_error(mesh: &MeshData) -> String {
+        mesh.validate(Path::new("m.obj"))
+            .expect_err("invalid mesh")
+            .to_string()
+    }
+
+    #[test]
+    fn validate_accepts_a_triangle() {
+        triangle().validate(Path::new("m.obj")).expect("valid");
+    }
+
+    #[test]
+    fn validate_names_what_is_wrong() {
+        let mut mesh = triangle();
+        mesh.indices.push([0, 2, 9]);
+        mesh.material_ids.push(0);
+        assert_eq!(
+            validate_error(&mesh),
+            "m.obj: triangle 1 refers to vertex 9 but there are only 3 vertices"
+        );
+
+        let mut mesh = triangle();
+        mesh.material_ids[0] = 1;
+        assert!(validate_error(&mesh).contains("triangle 0 uses material 1"));
+
+        let mut mesh = triangle();
+        mesh.normals = Some(vec![[0.0, 0.0, 1.0]; 2]);
+        assert!(validate_error(&mesh).contains("2 normals for 3 vertices"));
+
+        let mut mesh = triangle();
+        mesh.uvs = Some(vec![[0.0, 0.0], [1.0, f32::INFINITY], [0.0, 1.0]]);
+        assert!(validate_error(&mesh).contains("vertex 1 has a non-finite texture coordinate"));
+
+        let mut mesh = triangle();
+        mesh.indices.clear();
+        mesh.material_ids.clear();
+        assert!(validate_error(&mesh).contains("contains no triangles"));
+    }
+
+    #[test]
+    fn obj_index_out_of_range_is_an_error() {
+        let dir = TempDir::new("obj_index_out_of_range");
+        let path = dir.write("oob.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99\n");
+        let message = load_mesh(&path).expect_err("index 99 of 3").to_string();
+        assert!(message.contains("oob.obj"), "{message}");
+        assert!(
+            message.contains("line 4: triangle refers to vertex 99"),
+            "{message}"
+        );
+        assert!(message.contains("only 3 vertices"), "{message}");
+    }
+
+    #[test]
+    fn obj_nan_vertex_is_an_error() {
+        let dir = TempDir::new("obj_nan_vertex");
+        let path = dir.write("nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+        let message = load_mesh(&path).expect_err("NaN vertex").to_string();
+        assert!(message.contains("nan.obj"), "{message}");
+        assert!(
+            message.contains("vertex 0 has a non-finite position (NaN)"),
+            "{message}"
+        );
+    }
+
+    #[test]
+    fn unknown_extension_is_an_error() {
+        let dir = TempDir::new("unknown_extension");
+        let path = dir.write("mesh.stl", "solid x\nendsolid x\n");
+        let message = load_mesh(&path).expect_err("unsupported type").to_string();
+        assert!(
+            message.contains("mesh.stl") && message.contains("unsupported"),
+            "{message}"
+        );
+    }
+
+    #[test]
+    fn missing_file_is_an_error() {
+        let message = load_mesh(Path::new("/nonexistent/rt/a.obj"))
+            .expect_err("no file")
+            .to_string();
+        assert!(
+            message.starts_with("/nonexistent/rt/a.obj: cannot read"),
+            "{message}"
+        );
+    }
+}

@@ -1,0 +1,5 @@
+//! Benchmarks: speed measured on the real pipeline, never in tests.
+
+mod throughput;
+
+pub use throughput::throughput;

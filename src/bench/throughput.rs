@@ -1,0 +1,87 @@
+//! `rt bench throughput`: rays/s through the BVH alone (camera rays, then
+//! diffuse bounces from their hits) and paths/s of the whole integrator.
+
+use crate::bvh::BuildQuality;
+use crate::gpu::layout::{EMPTY_LINK, GpuTraceHit, GpuTraceRay};
+use crate::gpu::{GpuContext, GpuTimer, read_buffer};
+use crate::render::{Accumulation, RenderRequest, Renderer, TraceBuffers, human};
+use crate::scene::Scene;
+use anyhow::Result;
+use indicatif::ProgressBar;
+use std::time::Duration;
+
+fn median(mut v: Vec<Duration>) -> Duration {
+    v.sort();
+    v[v.len() / 2]
+}
+
+pub fn throughput(scene: Scene, (width, height): (u32, u32), runs: u32, spp: u32, adapter: Option<&str>) -> Result<()> {
+    let runs = runs.max(1);
+    let ctx = GpuContext::new(adapter)?;
+    let mut renderer = Renderer::new(&ctx, scene, BuildQuality::default())?;
+    let timer = GpuTimer::new(&ctx);
+    println!("GPU       {}", ctx.describe());
+    println!("scene     {} [{}]", renderer.scene.origin, renderer.geometry.features);
+    println!("size      {width}x{height}, median of {runs} runs after a warm-up, timed by {}", timer.method());
+
+    let mut request = RenderRequest::from_scene(&renderer.scene);
+    (request.width, request.height) = (width, height);
+    let frame = renderer.frame(&request);
+    let trace = renderer.trace_pipelines()?;
+    let n = width * height;
+    let io = TraceBuffers::new(&ctx, &renderer.pipelines.trace_layout, &vec![GpuTraceRay::default(); n as usize]);
+    let bar = ProgressBar::new(3 * (runs as u64 + 1));
+
+    let mut camera_times = Vec::new();
+    let mut diffuse_times = Vec::new();
+    let mut diffuse_rays = 0u64;
+    for run in 0..=runs {
+        let f = crate::gpu::layout::GpuFrame { sample_base: 2 * run, ..frame };
+        renderer.buffers.write_frame(&ctx, &f);
+        timer.time(&ctx, |e, w| io.encode(e, &trace, &renderer.buffers, "generate_camera_rays", w))?;
+        let camera = timer.time(&ctx, |e, w| io.encode(e, &trace, &renderer.buffers, "trace", w))?;
+        let hits: Vec<GpuTraceHit> = read_buffer(&ctx, &io.hits)?;
+        let with_hit = hits.iter().filter(|h| h.primitive != EMPTY_LINK).count() as u64;
+        timer.time(&ctx, |e, w| io.encode(e, &trace, &renderer.buffers, "generate_diffuse_rays", w))?;
+        let diffuse = timer.time(&ctx, |e, w| io.encode(e, &trace, &renderer.buffers, "trace", w))?;
+        // Run 0 warms caches and compiles lazily built state; it is not counted.
+        if run > 0 {
+            camera_times.push(camera);
+            diffuse_times.push(diffuse);
+            diffuse_rays = with_hit;
+        }
+        bar.inc(2);
+    }
+    let integrator = renderer.pipelines.get(&ctx, crate::gpu::shader::Program::Integrator, renderer.geometry.features)?;
+    let mut acc = Accumulation::new(&ctx, &renderer.pipelines.accumulation_layout, width, height);
+    let mut path_times = Vec::new();
+    for run in 0..=runs {
+        let took = timer.time(&ctx, |e, w| acc.encode(&ctx, e, &integrator, &renderer.buffers, &frame, spp, w))?;
+        if run > 0 {
+            path_times.push(took);
+        }
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+
+    let camera = median(camera_times);
+    let diffuse = median(diffuse_times);
+    let paths = median(path_times);
+    println!("camera    {}rays/s ({n} rays in {:.3} ms)", human(n as f64 / camera.as_secs_f64()), ms(camera));
+    println!(
+        "diffuse   {}rays/s ({diffuse_rays} bounce rays from camera hits in {:.3} ms)",
+        human(diffuse_rays as f64 / diffuse.as_secs_f64()),
+        ms(diffuse)
+    );
+    println!(
+        "paths     {}paths/s ({spp} spp x {n} pixels in {:.3} ms, up to {} bounces)",
+        human(spp as f64 * n as f64 / paths.as_secs_f64()),
+        ms(paths),
+        request.max_bounces
+    );
+    Ok(())
+}
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}

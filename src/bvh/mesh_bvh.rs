@@ -1,0 +1,96 @@
+//! One bottom-level BVH per mesh, with its triangles reordered for the GPU.
+
+use super::node::{BvhStats, convert_bvh2, stats};
+use crate::asset::MeshData;
+use crate::gpu::layout::{GpuBvhNode, GpuTriangle, GpuTriangleShading};
+use glam::{Vec3, Vec3A};
+use obvhs::{BvhBuildParams, bvh2::builder::build_bvh2_from_tris, triangle::Triangle};
+use std::time::{Duration, Instant};
+
+/// obvhs's build presets, from fastest build to fastest traversal.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
+pub enum BuildQuality {
+    Fastest,
+    #[default]
+    Medium,
+    Slow,
+    VerySlow,
+}
+
+impl BuildQuality {
+    fn params(self) -> BvhBuildParams {
+        match self {
+            BuildQuality::Fastest => BvhBuildParams::fastest_build(),
+            BuildQuality::Medium => BvhBuildParams::medium_build(),
+            BuildQuality::Slow => BvhBuildParams::slow_build(),
+            BuildQuality::VerySlow => BvhBuildParams::very_slow_build(),
+        }
+    }
+}
+
+/// A mesh ready for upload: nodes (root first), and triangles in leaf order.
+#[derive(Clone, Debug)]
+pub struct MeshBvh {
+    pub nodes: Vec<GpuBvhNode>,
+    pub triangles: Vec<GpuTriangle>,
+    pub shading: Vec<GpuTriangleShading>,
+    pub bounds_min: Vec3,
+    pub bounds_max: Vec3,
+    pub stats: BvhStats,
+    pub build_time: Duration,
+}
+
+impl MeshBvh {
+    pub fn build(mesh: &MeshData, quality: BuildQuality) -> Self {
+        let start = Instant::now();
+        let p = |i: u32| Vec3A::from_array(mesh.positions[i as usize]);
+        let tris: Vec<Triangle> = mesh.indices.iter().map(|t| Triangle { v0: p(t[0]), v1: p(t[1]), v2: p(t[2]) }).collect();
+        let nodes;
+        let order: Vec<u32>;
+        if tris.is_empty() {
+            nodes = convert_bvh2(&obvhs::bvh2::Bvh2::default());
+            order = Vec::new();
+        } else {
+            let bvh = build_bvh2_from_tris(&tris, quality.params(), &mut Duration::default());
+            nodes = convert_bvh2(&bvh);
+            // With spatial splits a triangle may appear in several leaves; each gets its copy.
+            order = bvh.primitive_indices.clone();
+        }
+        let triangles = order
+            .iter()
+            .map(|&i| {
+                let t = mesh.indices[i as usize];
+                let v = t.map(|k| mesh.positions[k as usize]);
+                GpuTriangle { v0: v[0], material: mesh.material_ids[i as usize], v1: v[1], v2: v[2], ..Default::default() }
+            })
+            .collect();
+        let shading = order.iter().map(|&i| triangle_shading(mesh, i as usize)).collect();
+        let (bounds_min, bounds_max) = bounds(&mesh.positions);
+        let stats = stats(&nodes);
+        Self { nodes, triangles, shading, bounds_min, bounds_max, stats, build_time: start.elapsed() }
+    }
+}
+
+fn triangle_shading(mesh: &MeshData, triangle: usize) -> GpuTriangleShading {
+    let t = mesh.indices[triangle];
+    let n = match &mesh.normals {
+        Some(normals) => t.map(|k| normals[k as usize]),
+        None => {
+            let p = t.map(|k| Vec3::from_array(mesh.positions[k as usize]));
+            // Unnormalised is fine: the shader normalises after interpolating.
+            let g = (p[1] - p[0]).cross(p[2] - p[0]).to_array();
+            [g; 3]
+        }
+    };
+    GpuTriangleShading { n0: n[0], n1: n[1], n2: n[2], ..Default::default() }
+}
+
+fn bounds(points: &[[f32; 3]]) -> (Vec3, Vec3) {
+    let mut lo = Vec3::splat(f32::MAX);
+    let mut hi = Vec3::splat(f32::MIN);
+    for p in points {
+        lo = lo.min(Vec3::from_array(*p));
+        hi = hi.max(Vec3::from_array(*p));
+    }
+    (lo, hi)
+}

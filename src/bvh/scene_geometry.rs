@@ -1,0 +1,179 @@
+//! Everything a scene puts on the GPU: the meshes' bottom-level BVHs, a top
+//! level over instances and spheres, and the material table.
+
+use super::mesh_bvh::{BuildQuality, MeshBvh};
+use super::node::{BvhStats, convert_bvh2, stats};
+use crate::asset::{self, MeshData};
+use crate::gpu::layout::*;
+use crate::scene::{FeatureSet, Material, Scene};
+use anyhow::{Result, bail};
+use glam::{Mat4, Vec3, Vec3A};
+use obvhs::{BvhBuildParams, aabb::Aabb, bvh2::builder::build_bvh2};
+use std::collections::HashMap;
+use std::path::PathBuf;
+use std::time::Duration;
+
+/// One distinct asset, however many instances place it.
+pub struct LoadedMesh {
+    pub path: PathBuf,
+    pub data: MeshData,
+    pub bvh: MeshBvh,
+}
+
+pub struct SceneGeometry {
+    /// Bottom levels of every mesh, then the top level (from `tlas_root`).
+    pub nodes: Vec<GpuBvhNode>,
+    pub triangles: Vec<GpuTriangle>,
+    pub shading: Vec<GpuTriangleShading>,
+    pub instances: Vec<GpuInstance>,
+    pub tlas_primitives: Vec<u32>,
+    pub spheres: Vec<GpuSphere>,
+    /// The default material first, then the scene's, then each mesh's own.
+    pub materials: Vec<GpuMaterial>,
+    pub tlas_root: u32,
+    pub tlas_stats: BvhStats,
+    pub meshes: Vec<LoadedMesh>,
+    pub features: FeatureSet,
+    pub bounds_min: Vec3,
+    pub bounds_max: Vec3,
+}
+
+impl SceneGeometry {
+    /// Loads every asset once, builds its BVH, and places instances and spheres.
+    pub fn build(scene: &Scene, quality: BuildQuality) -> Result<Self> {
+        let mut meshes: Vec<LoadedMesh> = Vec::new();
+        let mut mesh_of_path: HashMap<PathBuf, usize> = HashMap::new();
+        for m in &scene.meshes {
+            if !mesh_of_path.contains_key(&m.asset) {
+                let data = asset::load_mesh(&m.asset)?;
+                let bvh = MeshBvh::build(&data, quality);
+                log::info!("{}: {} triangles, BVH in {:.1?}", m.asset.display(), data.indices.len(), bvh.build_time);
+                mesh_of_path.insert(m.asset.clone(), meshes.len());
+                meshes.push(LoadedMesh { path: m.asset.clone(), data, bvh });
+            }
+        }
+
+        let mut materials: Vec<Material> = vec![Material::default()];
+        materials.extend(scene.materials.iter().map(|(_, m)| m.clone()));
+        let scene_material = |name: &Option<String>| -> Result<u32> {
+            match name {
+                None => Ok(0),
+                Some(n) => match scene.material_index(n) {
+                    Some(i) => Ok(1 + i as u32),
+                    None => bail!("{}: no material named {n:?}", scene.origin),
+                },
+            }
+        };
+
+        let mut nodes = Vec::new();
+        let mut triangles = Vec::new();
+        let mut shading = Vec::new();
+        // (node offset, triangle offset, material base) of each mesh.
+        let mut placed = Vec::new();
+        for mesh in &meshes {
+            placed.push((nodes.len() as u32, triangles.len() as u32, materials.len() as u32));
+            nodes.extend_from_slice(&mesh.bvh.nodes);
+            triangles.extend_from_slice(&mesh.bvh.triangles);
+            shading.extend_from_slice(&mesh.bvh.shading);
+            materials.extend(mesh.data.materials.iter().map(|(_, m)| m.clone()));
+        }
+
+        let mut in_use = vec![false; materials.len()];
+        let mut instances = Vec::new();
+        let mut boxes = Vec::new();
+        // Top-level primitive of each box: instance index, or sphere index | SPHERE_BIT.
+        let mut entries = Vec::new();
+        for m in &scene.meshes {
+            let mesh_index = mesh_of_path[&m.asset];
+            let mesh = &meshes[mesh_index];
+            if mesh.data.indices.is_empty() {
+                continue;
+            }
+            let (node_offset, triangle_offset, material_base) = placed[mesh_index];
+            let material_override = match &m.material {
+                Some(_) => scene_material(&m.material)?,
+                None => NO_MATERIAL,
+            };
+            if material_override == NO_MATERIAL {
+                for i in 0..mesh.data.materials.len() {
+                    in_use[material_base as usize + i] = true;
+                }
+            } else {
+                in_use[material_override as usize] = true;
+            }
+            entries.push(instances.len() as u32);
+            boxes.push(transformed_box(&m.object_to_world, mesh.bvh.bounds_min, mesh.bvh.bounds_max));
+            instances.push(GpuInstance {
+                world_to_object: affine_rows(&m.object_to_world.inverse()),
+                object_to_world: affine_rows(&m.object_to_world),
+                node_offset,
+                triangle_offset,
+                material_base,
+                material_override,
+            });
+        }
+        let mut spheres = Vec::new();
+        for s in &scene.spheres {
+            let material = scene_material(&s.material)?;
+            in_use[material as usize] = true;
+            entries.push(spheres.len() as u32 | SPHERE_BIT);
+            let r = Vec3A::splat(s.radius);
+            let c = Vec3A::from(s.center);
+            boxes.push(Aabb::new(c - r, c + r));
+            spheres.push(GpuSphere { center: s.center.to_array(), radius: s.radius, material, _pad: [0; 3] });
+        }
+
+        let used: Vec<&Material> = materials.iter().zip(&in_use).filter(|(_, u)| **u).map(|(m, _)| m).collect();
+        let features = FeatureSet::analyse(!instances.is_empty(), !spheres.is_empty(), &used, &scene.sky);
+
+        let (tlas_nodes, tlas_primitives) = if boxes.is_empty() {
+            (convert_bvh2(&obvhs::bvh2::Bvh2::default()), Vec::new())
+        } else {
+            let bvh = build_bvh2(&boxes, BvhBuildParams::medium_build(), &mut Duration::default());
+            let prims = bvh.primitive_indices.iter().map(|&i| entries[i as usize]).collect();
+            (convert_bvh2(&bvh), prims)
+        };
+        let tlas_root = nodes.len() as u32;
+        let tlas_stats = stats(&tlas_nodes);
+        nodes.extend_from_slice(&tlas_nodes);
+        let (bounds_min, bounds_max) = boxes.iter().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), b| {
+            (lo.min(b.min.into()), hi.max(b.max.into()))
+        });
+
+        Ok(Self {
+            nodes,
+            triangles,
+            shading,
+            instances,
+            tlas_primitives,
+            spheres,
+            materials: materials.iter().map(GpuMaterial::from).collect(),
+            tlas_root,
+            tlas_stats,
+            meshes,
+            features,
+            bounds_min,
+            bounds_max,
+        })
+    }
+}
+
+fn affine_rows(m: &Mat4) -> [[f32; 4]; 3] {
+    [m.row(0).to_array(), m.row(1).to_array(), m.row(2).to_array()]
+}
+
+fn transformed_box(m: &Mat4, lo: Vec3, hi: Vec3) -> Aabb {
+    let mut b = Aabb::empty();
+    for i in 0..8 {
+        let corner = Vec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        );
+        b.extend(m.transform_point3(corner).into());
+    }
+    // The GPU transforms rays with its own rounding; a margin of a few ULPs of
+    // the box's magnitude keeps the box conservative for them.
+    let margin = (b.min.abs().max(b.max.abs())).max_element() * 4.0 * f32::EPSILON;
+    Aabb::new(b.min - Vec3A::splat(margin), b.max + Vec3A::splat(margin))
+}

@@ -1,0 +1,195 @@
+//! Host mirrors of the GPU structs in `shaders/common.wgsl`. A test checks
+//! every size and field offset against naga's layout of the WGSL.
+
+use bytemuck::{Pod, Zeroable};
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct GpuFrame {
+    pub camera_position: [f32; 3],
+    pub tan_half_fov_y: f32,
+    pub camera_right: [f32; 3],
+    pub aspect: f32,
+    pub camera_up: [f32; 3],
+    pub width: u32,
+    pub camera_forward: [f32; 3],
+    pub height: u32,
+    pub sky_color: [f32; 3],
+    pub max_bounces: u32,
+    pub sample_base: u32,
+    pub samples_per_dispatch: u32,
+    pub seed: u32,
+    pub tlas_root: u32,
+}
+
+/// A BVH2 node with both children's boxes (see `shaders/common.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuBvhNode {
+    pub a_min: [f32; 3],
+    pub a_link: u32,
+    pub a_max: [f32; 3],
+    pub a_count: u32,
+    pub b_min: [f32; 3],
+    pub b_link: u32,
+    pub b_max: [f32; 3],
+    pub b_count: u32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuTriangle {
+    pub v0: [f32; 3],
+    pub material: u32,
+    pub v1: [f32; 3],
+    pub _pad1: u32,
+    pub v2: [f32; 3],
+    pub _pad2: u32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuTriangleShading {
+    pub n0: [f32; 3],
+    pub _pad0: u32,
+    pub n1: [f32; 3],
+    pub _pad1: u32,
+    pub n2: [f32; 3],
+    pub _pad2: u32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuInstance {
+    /// Rows of the affine 3×4 matrix.
+    pub world_to_object: [[f32; 4]; 3],
+    pub object_to_world: [[f32; 4]; 3],
+    pub node_offset: u32,
+    pub triangle_offset: u32,
+    pub material_base: u32,
+    /// `NO_MATERIAL` unless the scene overrides the asset's materials.
+    pub material_override: u32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuSphere {
+    pub center: [f32; 3],
+    pub radius: f32,
+    pub material: u32,
+    pub _pad: [u32; 3],
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuMaterial {
+    pub base_color: [f32; 3],
+    pub diffuse: f32,
+    pub emission: [f32; 3],
+    pub specular: f32,
+    pub absorption: [f32; 3],
+    pub reflection: f32,
+    pub volume_emission: [f32; 3],
+    pub transmission: f32,
+    pub ior: f32,
+    pub roughness: f32,
+    pub _pad: [u32; 2],
+}
+
+/// Input of the trace kernel (`shaders/trace_kernel.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuTraceRay {
+    pub origin: [f32; 3],
+    pub t_max: f32,
+    pub direction: [f32; 3],
+    pub _pad: u32,
+}
+
+/// Output of the trace kernel.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuTraceHit {
+    pub t: f32,
+    /// Triangle index, sphere index | `SPHERE_BIT`, or `EMPTY_LINK` for a miss.
+    pub primitive: u32,
+    pub instance: u32,
+    pub overflowed: u32,
+}
+
+pub const EMPTY_LINK: u32 = u32::MAX;
+pub const NO_MATERIAL: u32 = u32::MAX;
+pub const SPHERE_BIT: u32 = 0x8000_0000;
+
+impl From<&crate::scene::Material> for GpuMaterial {
+    fn from(m: &crate::scene::Material) -> Self {
+        Self {
+            base_color: m.base_color,
+            diffuse: m.diffuse,
+            emission: m.emission,
+            specular: m.specular,
+            absorption: m.absorption,
+            reflection: m.reflection,
+            volume_emission: m.volume_emission,
+            transmission: m.transmission,
+            ior: m.ior,
+            roughness: m.roughness,
+            _pad: [0; 2],
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::mem::{offset_of, size_of};
+
+    /// (name, size, [(field, offset)]) of a host struct.
+    type HostLayout = (&'static str, usize, Vec<(&'static str, usize)>);
+
+    macro_rules! host_layout {
+        ($wgsl:literal, $t:ty, [$($field:ident),*]) => {
+            ($wgsl, size_of::<$t>(), vec![$((stringify!($field), offset_of!($t, $field))),*])
+        };
+    }
+
+    fn wgsl_layouts() -> std::collections::HashMap<String, (u32, Vec<(String, u32)>)> {
+        let source = crate::gpu::shader::full_source_for_layout_checks();
+        let module = wgpu::naga::front::wgsl::parse_str(&source).expect("WGSL parses");
+        let mut layouter = wgpu::naga::proc::Layouter::default();
+        layouter.update(module.to_ctx()).expect("layout");
+        let mut out = std::collections::HashMap::new();
+        for (handle, ty) in module.types.iter() {
+            if let (Some(name), wgpu::naga::TypeInner::Struct { members, span }) = (&ty.name, &ty.inner) {
+                let fields = members.iter().map(|m| (m.name.clone().unwrap_or_default(), m.offset)).collect();
+                assert_eq!(layouter[handle].size, *span);
+                out.insert(name.clone(), (*span, fields));
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn host_structs_match_wgsl_layouts() {
+        let hosts: Vec<HostLayout> = vec![
+            host_layout!("Frame", GpuFrame, [camera_position, tan_half_fov_y, camera_right, aspect, camera_up, width, camera_forward, height, sky_color, max_bounces, sample_base, samples_per_dispatch, seed, tlas_root]),
+            host_layout!("BvhNode", GpuBvhNode, [a_min, a_link, a_max, a_count, b_min, b_link, b_max, b_count]),
+            host_layout!("Triangle", GpuTriangle, [v0, material, v1, v2]),
+            host_layout!("TriangleShading", GpuTriangleShading, [n0, n1, n2]),
+            host_layout!("Instance", GpuInstance, [world_to_object, object_to_world, node_offset, triangle_offset, material_base, material_override]),
+            host_layout!("Sphere", GpuSphere, [center, radius, material]),
+            host_layout!("Material", GpuMaterial, [base_color, diffuse, emission, specular, absorption, reflection, volume_emission, transmission, ior, roughness]),
+            host_layout!("TraceRay", GpuTraceRay, [origin, t_max, direction]),
+            host_layout!("TraceHit", GpuTraceHit, [t, primitive, instance, overflowed]),
+        ];
+        let wgsl = wgsl_layouts();
+        for (name, size, fields) in hosts {
+            let (wgsl_size, wgsl_fields) = wgsl.get(name).unwrap_or_else(|| panic!("no WGSL struct {name}"));
+            assert_eq!(size as u32, *wgsl_size, "size of {name}");
+            for (field, offset) in fields {
+                let wgsl_offset = wgsl_fields.iter().find(|(f, _)| f == field).map(|(_, o)| *o);
+                assert_eq!(Some(offset as u32), wgsl_offset, "offset of {name}.{field}");
+            }
+        }
+    }
+}

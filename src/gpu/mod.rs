@@ -1,0 +1,14 @@
+//! The GPU side: device setup, host mirrors of GPU structs, shader assembly
+//! per feature set, scene buffers and the pipelines that use them.
+
+mod buffers;
+mod context;
+pub mod layout;
+mod pipelines;
+pub mod shader;
+mod timer;
+
+pub use buffers::{STAT_NON_FINITE, STAT_STACK_OVERFLOW, SceneBuffers, read_buffer};
+pub use context::GpuContext;
+pub use pipelines::{PipelineCache, Pipelines};
+pub use timer::GpuTimer;

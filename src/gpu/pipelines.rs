@@ -1,0 +1,80 @@
+//! Compute pipelines, built per feature set from the assembled WGSL and cached.
+
+use super::GpuContext;
+use super::buffers::{io_bind_group_layout, scene_bind_group_layout};
+use super::shader::{Program, assemble};
+use crate::scene::FeatureSet;
+use anyhow::{Result, anyhow};
+use std::collections::HashMap;
+use std::rc::Rc;
+
+/// The pipelines of one program specialised to one feature set.
+pub struct Pipelines {
+    pub features: FeatureSet,
+    /// Entry point name → pipeline.
+    pub entries: HashMap<&'static str, wgpu::ComputePipeline>,
+}
+
+impl Pipelines {
+    pub fn entry(&self, name: &str) -> &wgpu::ComputePipeline {
+        &self.entries[name]
+    }
+}
+
+pub struct PipelineCache {
+    pub scene_layout: wgpu::BindGroupLayout,
+    pub accumulation_layout: wgpu::BindGroupLayout,
+    pub trace_layout: wgpu::BindGroupLayout,
+    built: HashMap<(Program, FeatureSet), Rc<Pipelines>>,
+}
+
+impl PipelineCache {
+    pub fn new(ctx: &GpuContext) -> Self {
+        Self {
+            scene_layout: scene_bind_group_layout(&ctx.device),
+            accumulation_layout: io_bind_group_layout(&ctx.device, 1),
+            trace_layout: io_bind_group_layout(&ctx.device, 2),
+            built: HashMap::new(),
+        }
+    }
+
+    pub fn get(&mut self, ctx: &GpuContext, program: Program, features: FeatureSet) -> Result<Rc<Pipelines>> {
+        if let Some(p) = self.built.get(&(program, features)) {
+            return Ok(p.clone());
+        }
+        let (io_layout, entry_names): (&wgpu::BindGroupLayout, &[&'static str]) = match program {
+            Program::Integrator => (&self.accumulation_layout, &["render"]),
+            Program::Trace => (&self.trace_layout, &["trace", "generate_camera_rays", "generate_diffuse_rays"]),
+        };
+        let source = assemble(program, &features);
+        let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let module = ctx.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("rt"),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let layout = ctx.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("rt"),
+            bind_group_layouts: &[Some(&self.scene_layout), Some(io_layout)],
+            immediate_size: 0,
+        });
+        let mut entries = HashMap::new();
+        for &name in entry_names {
+            let pipeline = ctx.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(name),
+                layout: Some(&layout),
+                module: &module,
+                entry_point: Some(name),
+                compilation_options: Default::default(),
+                cache: None,
+            });
+            entries.insert(name, pipeline);
+        }
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            return Err(anyhow!("building the {program:?} pipeline for [{features}] failed: {e}"));
+        }
+        log::debug!("built the {program:?} pipeline for [{features}]");
+        let p = Rc::new(Pipelines { features, entries });
+        self.built.insert((program, features), p.clone());
+        Ok(p)
+    }
+}

@@ -1,0 +1,14 @@
+//! rt: a physically based GPU path tracer for scenes made in Blender.
+//!
+//! The pipeline flows down through these modules: `scene` reads the scene file,
+//! `asset` imports meshes, `bvh` builds acceleration structures, `gpu` owns the
+//! device and the specialised pipelines, `render` drives progressive rendering
+//! and writes images, `bench` measures.
+
+pub mod asset;
+pub mod bench;
+pub mod bvh;
+pub mod gpu;
+pub mod info;
+pub mod render;
+pub mod scene;

@@ -1,0 +1,154 @@
+//! The `rt` command line: parses arguments, calls the library, maps errors to exit codes.
+
+use anyhow::{Result, bail};
+use clap::{Args, Parser, Subcommand};
+use rt::bvh::BuildQuality;
+use rt::gpu::GpuContext;
+use rt::render::{RenderRequest, Renderer, human, write_image};
+use rt::scene::{self, Scene};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "rt", version, about = "A physically based GPU path tracer for scenes made in Blender")]
+struct Cli {
+    /// GPU adapter to use: part of its name, as printed by `rt info`.
+    #[arg(long, global = true, env = "RT_ADAPTER")]
+    adapter: Option<String>,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a scene to a PNG (tone-mapped sRGB) or EXR (linear radiance).
+    Render(RenderArgs),
+    /// Print what a scene contains: counts, bounds, BVH statistics, feature set, GPU.
+    Info {
+        /// Scene file; the built-in Cornell box when omitted.
+        scene: Option<PathBuf>,
+        #[arg(long, value_enum, default_value_t)]
+        quality: BuildQuality,
+    },
+    /// Measure performance.
+    #[command(subcommand)]
+    Bench(BenchCommand),
+}
+
+#[derive(Args)]
+struct RenderArgs {
+    /// Scene file; the built-in Cornell box when omitted.
+    scene: Option<PathBuf>,
+    /// Output image: .png or .exr.
+    #[arg(short, long, default_value = "render.png")]
+    output: PathBuf,
+    /// Samples per pixel [default: the scene's].
+    #[arg(long)]
+    spp: Option<u32>,
+    /// Image size as WIDTHxHEIGHT [default: the scene's].
+    #[arg(long, value_parser = parse_size)]
+    size: Option<(u32, u32)>,
+    /// Seed of the random numbers: the same seed gives the same image.
+    #[arg(long, default_value_t = 0)]
+    seed: u32,
+    #[arg(long)]
+    max_bounces: Option<u32>,
+    /// Exposure in EV for PNG output [default: the scene's].
+    #[arg(long, allow_hyphen_values = true)]
+    exposure: Option<f32>,
+    /// BVH build quality.
+    #[arg(long, value_enum, default_value_t)]
+    quality: BuildQuality,
+}
+
+#[derive(Subcommand)]
+enum BenchCommand {
+    /// Rays/s of camera and diffuse-bounce rays through the BVH alone, and paths/s of the integrator.
+    Throughput {
+        /// Scene file; the built-in Cornell box when omitted.
+        scene: Option<PathBuf>,
+        #[arg(long, value_parser = parse_size, default_value = "1024x720")]
+        size: (u32, u32),
+        /// Timed repetitions of each measurement (the median is reported).
+        #[arg(long, default_value_t = 5)]
+        runs: u32,
+        /// Samples per pixel per integrator dispatch.
+        #[arg(long, default_value_t = 4)]
+        spp: u32,
+    },
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s.split_once(['x', 'X']).ok_or("expected WIDTHxHEIGHT, e.g. 640x480")?;
+    let parse = |v: &str| v.trim().parse::<u32>().ok().filter(|&n| (1..=16384).contains(&n));
+    match (parse(w), parse(h)) {
+        (Some(w), Some(h)) => Ok((w, h)),
+        _ => Err("width and height must be whole numbers from 1 to 16384".into()),
+    }
+}
+
+fn load_scene(path: Option<&Path>) -> Result<Scene> {
+    Ok(match path {
+        Some(p) => scene::load(p)?,
+        None => scene::default_scene()?,
+    })
+}
+
+fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
+    let scene = load_scene(args.scene.as_deref())?;
+    let mut request = RenderRequest::from_scene(&scene);
+    if let Some((w, h)) = args.size {
+        (request.width, request.height) = (w, h);
+    }
+    request.spp = args.spp.unwrap_or(request.spp);
+    if request.spp == 0 {
+        bail!("--spp must be at least 1");
+    }
+    request.max_bounces = args.max_bounces.unwrap_or(request.max_bounces);
+    request.seed = args.seed;
+    request.progress = true;
+    let exposure = args.exposure.unwrap_or(scene.render.exposure);
+    let ctx = GpuContext::new(adapter)?;
+    eprintln!("GPU: {}", ctx.describe());
+    let origin = scene.origin.clone();
+    let mut renderer = Renderer::new(&ctx, scene, args.quality)?;
+    eprintln!("{origin}: features [{}]", renderer.geometry.features);
+    let (image, report) = renderer.render(&request)?;
+    write_image(&image, &args.output, exposure)?;
+    eprintln!(
+        "wrote {} ({}x{}, {} spp) in {:.2} s: {}samples/s",
+        args.output.display(),
+        request.width,
+        request.height,
+        report.samples_per_pixel,
+        report.elapsed.as_secs_f64(),
+        human(report.samples_per_second)
+    );
+    if report.stack_overflows > 0 {
+        eprintln!("warning: {} rays overflowed the BVH traversal stack; their hits may be wrong", report.stack_overflows);
+    }
+    if report.non_finite_samples > 0 {
+        eprintln!("warning: {} non-finite samples were dropped", report.non_finite_samples);
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
+    let cli = Cli::parse();
+    let adapter = cli.adapter.as_deref();
+    let result = match cli.command {
+        Command::Render(args) => render(args, adapter),
+        Command::Info { scene, quality } => load_scene(scene.as_deref())
+            .and_then(|s| rt::info::print_info(s, quality, adapter)),
+        Command::Bench(BenchCommand::Throughput { scene, size, runs, spp }) => load_scene(scene.as_deref())
+            .and_then(|s| rt::bench::throughput(s, size, runs, spp, adapter)),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,155 @@
+//! Headless rendering: from a scene to an image, progressively, on the GPU.
+
+mod camera;
+mod image_out;
+mod progressive;
+mod trace;
+pub mod tonemap;
+
+pub use camera::set_camera;
+pub use image_out::write_image;
+pub use progressive::Accumulation;
+pub use trace::TraceBuffers;
+
+use crate::bvh::{BuildQuality, SceneGeometry};
+use crate::gpu::layout::GpuFrame;
+use crate::gpu::shader::Program;
+use crate::gpu::{GpuContext, PipelineCache, SceneBuffers};
+use crate::scene::{FeatureSet, Scene, Sky, SkyFeature};
+use anyhow::{Result, bail};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::time::{Duration, Instant};
+
+/// Mean radiance per pixel (linear, rows from the top), with the standard
+/// error of each pixel's luminance.
+#[derive(Clone, Debug)]
+pub struct Image {
+    pub width: u32,
+    pub height: u32,
+    pub samples: u32,
+    pub pixels: Vec<[f32; 3]>,
+    pub std_error: Vec<f32>,
+}
+
+/// What `rt render` was asked for; the scene's `[render]` gives the defaults.
+#[derive(Clone, Debug)]
+pub struct RenderRequest {
+    pub width: u32,
+    pub height: u32,
+    pub spp: u32,
+    pub max_bounces: u32,
+    pub seed: u32,
+    /// Run this feature set's pipeline instead of the scene's own (it must include it).
+    pub features: Option<FeatureSet>,
+    pub progress: bool,
+}
+
+impl RenderRequest {
+    pub fn from_scene(scene: &Scene) -> Self {
+        let r = &scene.render;
+        Self {
+            width: r.width,
+            height: r.height,
+            spp: r.spp,
+            max_bounces: r.max_bounces,
+            seed: 0,
+            features: None,
+            progress: false,
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct RenderReport {
+    pub samples_per_pixel: u32,
+    pub elapsed: Duration,
+    /// Camera paths per second.
+    pub samples_per_second: f64,
+    pub stack_overflows: u32,
+    pub non_finite_samples: u32,
+    pub features: FeatureSet,
+}
+
+/// A scene on the GPU, ready to render any number of times.
+pub struct Renderer<'a> {
+    pub ctx: &'a GpuContext,
+    pub scene: Scene,
+    pub geometry: SceneGeometry,
+    pub buffers: SceneBuffers,
+    pub pipelines: PipelineCache,
+}
+
+impl<'a> Renderer<'a> {
+    pub fn new(ctx: &'a GpuContext, scene: Scene, quality: BuildQuality) -> Result<Self> {
+        let geometry = SceneGeometry::build(&scene, quality)?;
+        if geometry.features.sky == SkyFeature::Atmosphere {
+            bail!("{}: sky kind \"atmosphere\" is not rendered by this version of rt yet", scene.origin);
+        }
+        if scene.sun.is_some() {
+            log::warn!("{}: [sun] is parsed but not rendered by this version of rt yet", scene.origin);
+        }
+        let pipelines = PipelineCache::new(ctx);
+        let buffers = SceneBuffers::new(ctx, &geometry, &pipelines.scene_layout)?;
+        Ok(Self { ctx, scene, geometry, buffers, pipelines })
+    }
+
+    /// The frame constants of a request, before per-dispatch fields.
+    pub fn frame(&self, request: &RenderRequest) -> GpuFrame {
+        let mut frame = GpuFrame {
+            max_bounces: request.max_bounces,
+            seed: request.seed,
+            tlas_root: self.geometry.tlas_root,
+            ..Default::default()
+        };
+        set_camera(&mut frame, &self.scene.camera, request.width, request.height);
+        if let Sky::Uniform { color } = self.scene.sky {
+            frame.sky_color = color.to_array();
+        }
+        frame
+    }
+
+    pub fn render(&mut self, request: &RenderRequest) -> Result<(Image, RenderReport)> {
+        let features = request.features.unwrap_or(self.geometry.features);
+        let pipelines = self.pipelines.get(self.ctx, Program::Integrator, features)?;
+        let frame = self.frame(request);
+        let mut acc = Accumulation::new(self.ctx, &self.pipelines.accumulation_layout, request.width, request.height);
+        self.buffers.take_stats(self.ctx)?;
+        let bar = if request.progress { ProgressBar::new(request.spp as u64) } else { ProgressBar::hidden() };
+        bar.set_style(
+            ProgressStyle::with_template("{bar:40} {pos}/{len} spp  {msg}  ETA {eta}")
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        let start = Instant::now();
+        let pixels = request.width as f64 * request.height as f64;
+        while acc.samples < request.spp {
+            acc.dispatch(self.ctx, &pipelines, &self.buffers, &frame, request.spp - acc.samples)?;
+            let rate = acc.samples as f64 * pixels / start.elapsed().as_secs_f64();
+            bar.set_position(acc.samples as u64);
+            bar.set_message(format!("{} samples/s", human(rate)));
+        }
+        bar.finish_and_clear();
+        let elapsed = start.elapsed();
+        let stats = self.buffers.take_stats(self.ctx)?;
+        let image = acc.image(self.ctx)?;
+        let report = RenderReport {
+            samples_per_pixel: acc.samples,
+            elapsed,
+            samples_per_second: acc.samples as f64 * pixels / elapsed.as_secs_f64(),
+            stack_overflows: stats[crate::gpu::STAT_STACK_OVERFLOW],
+            non_finite_samples: stats[crate::gpu::STAT_NON_FINITE],
+            features,
+        };
+        Ok((image, report))
+    }
+}
+
+/// 12.3 M, 4.56 G: rates at a glance.
+pub fn human(v: f64) -> String {
+    let (scale, unit) = match v {
+        v if v >= 1e9 => (1e9, " G"),
+        v if v >= 1e6 => (1e6, " M"),
+        v if v >= 1e3 => (1e3, " k"),
+        _ => (1.0, " "),
+    };
+    format!("{:.3}{unit}", v / scale).replace("  ", " ")
+}

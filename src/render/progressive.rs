@@ -1,0 +1,100 @@
+//! Progressive accumulation: dispatches of several samples per pixel added to
+//! running sums, sized so that each dispatch stays far below a GPU watchdog.
+
+use super::Image;
+use crate::gpu::layout::GpuFrame;
+use crate::gpu::{GpuContext, Pipelines, SceneBuffers, read_buffer};
+use anyhow::Result;
+use std::time::{Duration, Instant};
+
+/// Time one dispatch should take: long enough to keep the GPU busy, far
+/// below the ~2 s after which drivers reset a GPU that does not answer.
+const DISPATCH_TARGET: Duration = Duration::from_millis(80);
+const MAX_SAMPLES_PER_DISPATCH: u32 = 256;
+
+pub struct Accumulation {
+    pub width: u32,
+    pub height: u32,
+    pub samples: u32,
+    sums: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
+    samples_per_dispatch: u32,
+}
+
+impl Accumulation {
+    pub fn new(ctx: &GpuContext, layout: &wgpu::BindGroupLayout, width: u32, height: u32) -> Self {
+        let sums = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("accumulation"),
+            size: width as u64 * height as u64 * 16,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("accumulation"),
+            layout,
+            entries: &[wgpu::BindGroupEntry { binding: 0, resource: sums.as_entire_binding() }],
+        });
+        Self { width, height, samples: 0, sums, bind_group, samples_per_dispatch: 1 }
+    }
+
+    /// Adds up to `max_samples` samples per pixel in one dispatch and waits for it;
+    /// returns how many it added. The next dispatch's size follows this one's time.
+    pub fn dispatch(
+        &mut self,
+        ctx: &GpuContext,
+        pipelines: &Pipelines,
+        scene: &SceneBuffers,
+        frame: &GpuFrame,
+        max_samples: u32,
+    ) -> Result<u32> {
+        let n = self.samples_per_dispatch.min(max_samples).max(1);
+        let start = Instant::now();
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        self.encode(ctx, &mut encoder, pipelines, scene, frame, n, None);
+        ctx.queue.submit([encoder.finish()]);
+        ctx.wait()?;
+        let took = start.elapsed().max(Duration::from_micros(100));
+        // Grow or shrink towards the target, by at most 2× a step so a slow frame cannot overshoot.
+        let ratio = (DISPATCH_TARGET.as_secs_f64() / took.as_secs_f64()).clamp(0.5, 2.0);
+        self.samples_per_dispatch = ((n as f64 * ratio) as u32).clamp(1, MAX_SAMPLES_PER_DISPATCH);
+        Ok(n)
+    }
+
+    /// Records one dispatch of `n` samples per pixel (and counts them as taken).
+    #[allow(clippy::too_many_arguments)]
+    pub fn encode(
+        &mut self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        pipelines: &Pipelines,
+        scene: &SceneBuffers,
+        frame: &GpuFrame,
+        n: u32,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites>,
+    ) {
+        let frame = GpuFrame { sample_base: self.samples, samples_per_dispatch: n, ..*frame };
+        scene.write_frame(ctx, &frame);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("render"), timestamp_writes });
+        pass.set_pipeline(pipelines.entry("render"));
+        pass.set_bind_group(0, &scene.bind_group, &[]);
+        pass.set_bind_group(1, &self.bind_group, &[]);
+        pass.dispatch_workgroups(self.width.div_ceil(8), self.height.div_ceil(8), 1);
+        self.samples += n;
+    }
+
+    /// The mean radiance per pixel and the standard error of each pixel's mean luminance.
+    pub fn image(&self, ctx: &GpuContext) -> Result<Image> {
+        let sums: Vec<[f32; 4]> = read_buffer(ctx, &self.sums)?;
+        let n = self.samples.max(1) as f64;
+        let mut pixels = Vec::with_capacity(sums.len());
+        let mut std_error = Vec::with_capacity(sums.len());
+        for s in &sums {
+            let mean = [s[0], s[1], s[2]].map(|v| (v as f64 / n) as f32);
+            let y = 0.2126 * mean[0] as f64 + 0.7152 * mean[1] as f64 + 0.0722 * mean[2] as f64;
+            let variance = ((s[3] as f64 / n - y * y) * n / (n - 1.0).max(1.0)).max(0.0);
+            pixels.push(mean);
+            std_error.push((variance / n).sqrt() as f32);
+        }
+        Ok(Image { width: self.width, height: self.height, samples: self.samples, pixels, std_error })
+    }
+}

@@ -1,0 +1,111 @@
+//! The scene file as serde reads it (contract 3), before validation.
+//!
+//! Every struct denies unknown keys so that a typo is an error, not a silent default.
+
+use super::{Material, RenderSettings};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct File {
+    #[serde(default)]
+    pub render: RenderSettings,
+    #[serde(default)]
+    pub camera: Camera,
+    pub sky: Option<Sky>,
+    pub sun: Option<Sun>,
+    /// File order is lost here; `parse` restores it from the document's spans.
+    #[serde(default)]
+    pub materials: BTreeMap<String, Material>,
+    #[serde(default)]
+    pub mesh: Vec<Mesh>,
+    #[serde(default)]
+    pub sphere: Vec<Sphere>,
+}
+
+/// Each key may be left out, and so may the whole `[camera]` table.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub(super) struct Camera {
+    pub position: [f32; 3],
+    pub look_at: [f32; 3],
+    pub fov_y_deg: f32,
+}
+
+impl Default for Camera {
+    /// A person's eye height, looking at the origin from 5 m down +Z.
+    fn default() -> Self {
+        Self {
+            position: [0.0, 1.0, 5.0],
+            look_at: [0.0, 1.0, 0.0],
+            fov_y_deg: 40.0,
+        }
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct Sky {
+    pub kind: SkyKind,
+    /// Only for `kind = "uniform"`; white when left out.
+    pub color: Option<[f32; 3]>,
+}
+
+#[derive(Clone, Copy, PartialEq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum SkyKind {
+    Black,
+    Uniform,
+    Atmosphere,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct Sun {
+    pub elevation_deg: f32,
+    pub azimuth_deg: f32,
+    #[serde(default = "real_sun_diameter")]
+    pub angular_diameter_deg: f32,
+    pub radiance: Option<[f32; 3]>,
+}
+
+fn real_sun_diameter() -> f32 {
+    0.53
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct Mesh {
+    pub asset: String,
+    pub material: Option<String>,
+    pub rotate_deg: Option<[f32; 3]>,
+    pub translate: Option<[f32; 3]>,
+    pub scale: Option<Scale>,
+    /// Row-major; excludes `rotate_deg`, `translate` and `scale`.
+    pub matrix: Option<[f32; 16]>,
+}
+
+#[derive(Clone, Copy, Deserialize)]
+#[serde(untagged, expecting = "expected a number or an array [x, y, z]")]
+pub(super) enum Scale {
+    Uniform(f32),
+    Axes([f32; 3]),
+}
+
+impl Scale {
+    pub fn axes(self) -> [f32; 3] {
+        match self {
+            Scale::Uniform(s) => [s; 3],
+            Scale::Axes(a) => a,
+        }
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct Sphere {
+    pub center: [f32; 3],
+    pub radius: f32,
+    pub material: Option<String>,
+}

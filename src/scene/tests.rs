@@ -1,0 +1,276 @@
+use super::*;
+use glam::{Mat4, Vec3};
+use std::path::Path;
+
+fn parse_ok(text: &str) -> Scene {
+    parse(text, "scene.toml", Path::new("/scenes")).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The full error text, `scene.toml:line:column: message`.
+fn error(text: &str) -> String {
+    match parse(text, "scene.toml", Path::new("/scenes")) {
+        Ok(_) => panic!("accepted:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+const EXAMPLE: &str = r#"
+[render]
+width = 320
+height = 200
+spp = 64
+max_bounces = 8
+exposure = -1.5
+
+[camera]
+position = [0.0, 1.5, 6.0]
+look_at  = [0.0, 1.0, 0.0]
+fov_y_deg = 40.0
+
+[sky]
+kind = "atmosphere"
+[sun]
+elevation_deg = 12.0
+azimuth_deg = 140.0
+radiance = [1.0, 2.0, 3.0]
+
+[materials.mirror]
+reflection = 1.0
+hardness = 50
+
+[materials.blue_glass]
+base_color = [1.0, 1.0, 1.0]
+diffuse = 0.0
+transmission = 1.0
+ior = 1.3
+roughness = 0.03
+emission = [0.01, 0.03, 0.05]
+absorption = [0.02, 0.02, 0.015]
+volume_emission = [0.0, 0.0, 0.0]
+
+[[mesh]]
+asset = "../assets/dragon"
+material = "blue_glass"
+rotate_deg = [-90.0, 0.0, 0.0]
+translate = [-4.0, 0.0, -6.0]
+scale = 1.0
+
+[[sphere]]
+center = [3.0, 1.0, 0.0]
+radius = 1.0
+material = "mirror"
+"#;
+
+#[test]
+fn full_example_parses() {
+    let s = parse_ok(EXAMPLE);
+    assert_eq!(s.origin, "scene.toml");
+    let render = RenderSettings {
+        width: 320,
+        height: 200,
+        spp: 64,
+        max_bounces: 8,
+        exposure: -1.5,
+    };
+    assert_eq!(s.render, render);
+    let camera = Camera {
+        position: Vec3::new(0.0, 1.5, 6.0),
+        look_at: Vec3::Y,
+        fov_y_deg: 40.0,
+    };
+    assert_eq!(s.camera, camera);
+    assert_eq!(s.sky, Sky::Atmosphere);
+    let radiance = Some(Vec3::new(1.0, 2.0, 3.0));
+    let sun = Sun {
+        elevation_deg: 12.0,
+        azimuth_deg: 140.0,
+        angular_diameter_deg: 0.53,
+        radiance,
+    };
+    assert_eq!(s.sun, Some(sun));
+    // File order, which is not alphabetical order here.
+    let names: Vec<&str> = s.materials.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["mirror", "blue_glass"]);
+    let glass = &s.materials[1].1;
+    assert_eq!(
+        (glass.diffuse, glass.transmission, glass.ior),
+        (0.0, 1.0, 1.3)
+    );
+    assert_eq!(glass.absorption, [0.02, 0.02, 0.015]);
+    let mirror = &s.materials[0].1;
+    assert_eq!(
+        (mirror.reflection, mirror.hardness, mirror.diffuse),
+        (1.0, Some(50.0), 1.0)
+    );
+    assert_eq!(s.meshes.len(), 1);
+    let mesh = &s.meshes[0];
+    assert_eq!(mesh.asset, Path::new("/scenes/../assets/dragon"));
+    assert_eq!(mesh.material.as_deref(), Some("blue_glass"));
+    // -90° about X takes +Y to -Z, then the translation applies.
+    let p = mesh.object_to_world.transform_point3(Vec3::Y);
+    assert!(p.abs_diff_eq(Vec3::new(-4.0, 0.0, -7.0), 1e-6), "{p}");
+    let sphere = Sphere {
+        center: Vec3::new(3.0, 1.0, 0.0),
+        radius: 1.0,
+        material: Some("mirror".into()),
+    };
+    assert_eq!(s.spheres, [sphere]);
+}
+
+#[test]
+fn empty_file_gives_defaults() {
+    let s = parse_ok("");
+    assert_eq!(s.render, RenderSettings::default());
+    let camera = Camera {
+        position: Vec3::new(0.0, 1.0, 5.0),
+        look_at: Vec3::Y,
+        fov_y_deg: 40.0,
+    };
+    assert_eq!(s.camera, camera);
+    assert_eq!((s.sky, s.sun), (Sky::Black, None));
+    assert_eq!(
+        parse_ok("[sky]\nkind = \"uniform\"\n").sky,
+        Sky::Uniform { color: Vec3::ONE }
+    );
+}
+
+/// One case a line: the scene with `|` between its lines, ` => `, then the
+/// error after `scene.toml:`.
+fn assert_errors(cases: &str) {
+    for case in cases.lines().map(str::trim).filter(|c| !c.is_empty()) {
+        let (text, expected) = case.split_once(" => ").expect("a case has ` => `");
+        let text = text
+            .split('|')
+            .map(str::trim)
+            .collect::<Vec<_>>()
+            .join("\n");
+        assert_eq!(error(&text), format!("scene.toml:{expected}"), "{text}");
+    }
+}
+
+#[test]
+fn negative_radius_is_located() {
+    assert_errors(
+        r#"
+        [[sphere]] | center = [0.0, 0.0, 0.0] | radius = 1.0 | | [materials.a] | | | | | | [[sphere]] | radius = -1 | center = [1, 2, 3] => 12:10: sphere 2: radius must be positive, got -1
+    "#,
+    );
+}
+
+#[test]
+fn unknown_keys_suggest_in_every_table() {
+    assert_errors(
+        r#"
+        [render] | widht = 1 => 2:1: unknown key `widht` in [render]; did you mean `width`?
+        [camera] | fov_deg = 1 => 2:1: unknown key `fov_deg` in [camera]; did you mean `fov_y_deg`?
+        [sky] | kind = "uniform" | colr = [1, 1, 1] => 3:1: unknown key `colr` in [sky]; did you mean `color`?
+        [sun] | elevation = 1 => 2:1: unknown key `elevation` in [sun]; did you mean `elevation_deg`?
+        [materials.m] | | rougness = 0.5 => 3:1: unknown key `rougness` in [materials.m]; did you mean `roughness`?
+        [[mesh]] | asset = "a" | [[mesh]] | asset = "b" | materal = "m" => 5:1: unknown key `materal` in mesh 2; did you mean `material`?
+        [[sphere]] | radious = 1 => 2:1: unknown key `radious` in sphere 1; did you mean `radius`?
+        | meshes = [] => 2:1: unknown key `meshes` in the top-level table; did you mean `mesh`?
+        [sky] | kind = "uniform" | hue = 1 => 3:1: unknown key `hue` in [sky]; expected one of `kind`, `color`
+        sky = { kind = "black", colour = [1, 1, 1] } => 1:25: unknown key `colour` in [sky]; did you mean `color`?
+        [sky] | kind = "atmosfere" => 2:8: [sky]: unknown kind `atmosfere`; did you mean `atmosphere`?
+        [sky] | kind = "grey" => 2:8: [sky]: unknown kind `grey`; expected one of `black`, `uniform`, `atmosphere`
+    "#,
+    );
+}
+
+#[test]
+fn undefined_material_suggests() {
+    assert_errors(
+        r#"
+        [materials.mirror] | [materials.glass] | [[sphere]] | center = [0, 0, 0] | radius = 1 | material = "mirorr" => 6:12: sphere 1: material `mirorr` names no [materials.*] table; did you mean `mirror`?
+        [[mesh]] | asset = "a" | material = "gold" => 3:12: mesh 1: material `gold` names no [materials.*] table
+    "#,
+    );
+}
+
+#[test]
+fn non_finite_numbers_are_rejected() {
+    assert_errors(
+        r#"
+        [camera] | fov_y_deg = nan => 2:13: [camera]: fov_y_deg must be finite, got NaN
+        [render] | exposure = -inf => 2:12: [render]: exposure must be finite, got -inf
+        [[sphere]] | center = [0, nan, 0] | radius = 1 => 2:10: sphere 1: center must be finite, got NaN
+        [[mesh]] | asset = "a" | translate = [inf, 0, 0] => 3:13: mesh 1: translate must be finite, got inf
+        [materials.m] | ior = nan => 2:7: [materials.m]: ior must be finite, got NaN
+    "#,
+    );
+}
+
+#[test]
+fn out_of_range_values_are_located() {
+    assert_errors(
+        r#"
+        [render] | width = 0 => 2:9: [render]: width must be in 1..=16384, got 0
+        [render] | height = 16385 => 2:10: [render]: height must be in 1..=16384, got 16385
+        [render] | spp = 0 => 2:7: [render]: spp must be at least 1, got 0
+        [camera] | fov_y_deg = 180 => 2:13: [camera]: fov_y_deg must be in (0, 180), got 180
+        [camera] | position = [0, 1, 0] => 1:1: [camera]: look_at must differ from position
+        [sky] | kind = "black" | color = [1, 1, 1] => 3:9: [sky]: color only applies to kind = "uniform"
+        [sky] | kind = "uniform" | color = [1, -1, 1] => 3:9: [sky]: color must be non-negative, got -1
+        [sun] | elevation_deg = 91 | azimuth_deg = 0 => 2:17: [sun]: elevation_deg must be in [-90, 90], got 91
+        [sun] | elevation_deg = 1 | azimuth_deg = 0 | angular_diameter_deg = 0 => 4:24: [sun]: angular_diameter_deg must be in (0, 90), got 0
+        [materials.m] | base_color = [1, 0.5, -0.2] => 2:14: [materials.m]: base_color must be non-negative, got -0.2
+        [materials.m] | transmission = -1 => 2:16: [materials.m]: transmission must be non-negative, got -1
+        [materials.m] | ior = 0.9 => 2:7: [materials.m]: ior must be at least 1, got 0.9
+        [materials.m] | roughness = 1.5 => 2:13: [materials.m]: roughness must be in [0, 1], got 1.5
+        [materials.m] | hardness = 0 => 2:12: [materials.m]: hardness must be positive, got 0
+        [materials.m] | volume_emission = [0, 0, -1] => 2:19: [materials.m]: volume_emission must be non-negative, got -1
+        [[mesh]] | asset = "" => 2:9: mesh 1: asset must name a file or folder, got ""
+        [[mesh]] | asset = "a" | scale = [1, 0, 1] => 3:9: mesh 1: scale must be non-zero, got 0
+        [[mesh]] | asset = "a" | scale = 2 | matrix = [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1] => 4:10: mesh 1: matrix excludes rotate_deg, translate and scale
+        [[mesh]] | asset = "a" | matrix = [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,1,1] => 3:10: mesh 1: matrix last row must be [0, 0, 0, 1], got [0.0, 0.0, 1.0, 1.0]
+        [[mesh]] | asset = "a" | matrix = [1,0,0,0, 2,0,0,0, 0,0,1,0, 0,0,0,1] => 3:10: mesh 1: matrix must be invertible
+    "#,
+    );
+}
+
+#[test]
+fn type_and_syntax_errors_are_located() {
+    assert_errors(
+        r#"
+        [render] | width = 1.5 => 2:9: [render]: width: invalid type: floating point `1.5`, expected u32
+        [render] | width = -1 => 2:9: [render]: width: invalid value: integer `-1`, expected u32
+        [[sphere]] | center = [0, 0] | radius = 1 => 2:10: sphere 1: center: invalid length 2, expected an array of length 3
+        [[mesh]] | asset = "a" | scale = "big" => 3:9: mesh 1: scale: expected a number or an array [x, y, z]
+        [[mesh]] | rotate_deg = [0, 0, 0] => 1:1: mesh 1: missing field `asset`
+        [sky => 1:5: unclosed table, expected `]`
+        [render] | width = = 1 => 2:9: extra `=`, expected nothing
+    "#,
+    );
+}
+
+#[test]
+fn row_major_matrix_equals_rotate_translate_scale() {
+    let trs = "[[mesh]]\nasset = \"a\"\nrotate_deg = [30, 45, 60]\ntranslate = [1, 2, 3]\nscale = [2, 3, 4]\n";
+    let trs = parse_ok(trs).meshes[0].object_to_world;
+    let (x, y, z) = (30f32.to_radians(), 45f32.to_radians(), 60f32.to_radians());
+    let rotation = Mat4::from_rotation_z(z) * Mat4::from_rotation_y(y) * Mat4::from_rotation_x(x);
+    let expected = Mat4::from_translation(Vec3::new(1.0, 2.0, 3.0))
+        * rotation
+        * Mat4::from_scale(Vec3::new(2.0, 3.0, 4.0));
+    assert!(trs.abs_diff_eq(expected, 1e-6));
+    let rows = trs
+        .transpose()
+        .to_cols_array()
+        .map(|v| v.to_string())
+        .join(", ");
+    let matrix = parse_ok(&format!("[[mesh]]\nasset = \"a\"\nmatrix = [{rows}]\n")).meshes[0]
+        .object_to_world;
+    assert_eq!(matrix, trs);
+    assert_eq!(matrix.w_axis.truncate(), Vec3::new(1.0, 2.0, 3.0));
+}
+
+#[test]
+fn load_names_an_unreadable_file() {
+    let e = load(Path::new("/nonexistent/scene.toml")).expect_err("no such file");
+    assert!(
+        e.to_string()
+            .starts_with("/nonexistent/scene.toml: cannot read: "),
+        "{e}"
+    );
+    assert_eq!((e.line(), e.column()), (None, None));
+}

@@ -1,0 +1,203 @@
+//! Semantic checks on the deserialized file, and its conversion into a [`Scene`].
+
+use super::parse::{SceneError, Seg, Seg::*, Source, hint};
+use super::schema::{self, File, Scale, SkyKind};
+use super::{Camera, Material, MeshInstance, Scene, Sky, Sphere, Sun};
+use glam::{Mat3, Mat4, Vec3};
+use std::path::Path;
+
+const MAX_SIZE: u32 = 16384;
+
+pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, SceneError> {
+    let render = file.render;
+    let p = [Key("render")];
+    for (field, size) in [("width", render.width), ("height", render.height)] {
+        if !(1..=MAX_SIZE).contains(&size) {
+            return Err(src.error(&p, field, format!("must be in 1..={MAX_SIZE}, got {size}")));
+        }
+    }
+    if render.spp == 0 {
+        return Err(src.error(&p, "spp", "must be at least 1, got 0"));
+    }
+    src.finite(&p, "exposure", &[render.exposure])?;
+
+    let mut materials: Vec<(String, Material)> = file.materials.into_iter().collect();
+    materials.sort_by_key(|(name, _)| src.locate(&[Key("materials"), Key(name)]).map(|s| s.start));
+    for (name, m) in &materials {
+        material(src, &[Key("materials"), Key(name)], m)?;
+    }
+    let material_ref = |p: &[_], name: Option<String>| match name {
+        Some(n) if !materials.iter().any(|(m, _)| *m == n) => {
+            let names = hint(&n, materials.iter().map(|(m, _)| m.as_str()));
+            Err(src.error(
+                p,
+                "material",
+                format!("`{n}` names no [materials.*] table{names}"),
+            ))
+        }
+        _ => Ok(name),
+    };
+
+    let mut meshes = Vec::new();
+    for (i, m) in file.mesh.into_iter().enumerate() {
+        let p = [Key("mesh"), Index(i)];
+        if m.asset.is_empty() {
+            return Err(src.error(&p, "asset", "must name a file or folder, got \"\""));
+        }
+        meshes.push(MeshInstance {
+            object_to_world: transform(src, &p, &m)?,
+            asset: base_dir.join(&m.asset),
+            material: material_ref(&p, m.material)?,
+        });
+    }
+    let mut spheres = Vec::new();
+    for (i, s) in file.sphere.into_iter().enumerate() {
+        let p = [Key("sphere"), Index(i)];
+        src.finite(&p, "center", &s.center)?;
+        src.check(&p, "radius", &[s.radius], "positive", |r| r > 0.0)?;
+        let material = material_ref(&p, s.material)?;
+        spheres.push(Sphere {
+            center: s.center.into(),
+            radius: s.radius,
+            material,
+        });
+    }
+
+    Ok(Scene {
+        origin: src.origin.to_owned(),
+        render,
+        camera: camera(src, file.camera)?,
+        sky: sky(src, file.sky)?,
+        sun: file.sun.map(|s| sun(src, s)).transpose()?,
+        materials,
+        meshes,
+        spheres,
+    })
+}
+
+fn camera(src: &Source, c: schema::Camera) -> Result<Camera, SceneError> {
+    let p = [Key("camera")];
+    src.finite(&p, "position", &c.position)?;
+    src.finite(&p, "look_at", &c.look_at)?;
+    src.check(&p, "fov_y_deg", &[c.fov_y_deg], "in (0, 180)", |f| {
+        f > 0.0 && f < 180.0
+    })?;
+    if c.position == c.look_at {
+        return Err(src.error(&p, "look_at", "must differ from position"));
+    }
+    Ok(Camera {
+        position: c.position.into(),
+        look_at: c.look_at.into(),
+        fov_y_deg: c.fov_y_deg,
+    })
+}
+
+fn sky(src: &Source, sky: Option<schema::Sky>) -> Result<Sky, SceneError> {
+    let p = [Key("sky")];
+    let Some(sky) = sky else {
+        return Ok(Sky::Black);
+    };
+    if sky.kind != SkyKind::Uniform && sky.color.is_some() {
+        return Err(src.error(&p, "color", "only applies to kind = \"uniform\""));
+    }
+    Ok(match sky.kind {
+        SkyKind::Black => Sky::Black,
+        SkyKind::Atmosphere => Sky::Atmosphere,
+        SkyKind::Uniform => {
+            let color = sky.color.unwrap_or([1.0; 3]);
+            src.check(&p, "color", &color, "non-negative", |c| c >= 0.0)?;
+            Sky::Uniform {
+                color: color.into(),
+            }
+        }
+    })
+}
+
+fn sun(src: &Source, s: schema::Sun) -> Result<Sun, SceneError> {
+    let p = [Key("sun")];
+    src.check(
+        &p,
+        "elevation_deg",
+        &[s.elevation_deg],
+        "in [-90, 90]",
+        |e| e.abs() <= 90.0,
+    )?;
+    src.finite(&p, "azimuth_deg", &[s.azimuth_deg])?;
+    let d = s.angular_diameter_deg;
+    src.check(&p, "angular_diameter_deg", &[d], "in (0, 90)", |d| {
+        d > 0.0 && d < 90.0
+    })?;
+    if let Some(r) = &s.radiance {
+        src.check(&p, "radiance", r, "non-negative", |c| c >= 0.0)?;
+    }
+    Ok(Sun {
+        elevation_deg: s.elevation_deg,
+        azimuth_deg: s.azimuth_deg,
+        angular_diameter_deg: d,
+        radiance: s.radiance.map(Vec3::from),
+    })
+}
+
+fn material(src: &Source, p: &[Seg], m: &Material) -> Result<(), SceneError> {
+    let non_negative: [(&str, &[f32]); 8] = [
+        ("base_color", &m.base_color),
+        ("diffuse", &[m.diffuse]),
+        ("specular", &[m.specular]),
+        ("reflection", &[m.reflection]),
+        ("transmission", &[m.transmission]),
+        ("emission", &m.emission),
+        ("absorption", &m.absorption),
+        ("volume_emission", &m.volume_emission),
+    ];
+    for (field, values) in non_negative {
+        src.check(p, field, values, "non-negative", |v| v >= 0.0)?;
+    }
+    src.check(p, "ior", &[m.ior], "at least 1", |ior| ior >= 1.0)?;
+    src.check(p, "roughness", &[m.roughness], "in [0, 1]", |r| {
+        (0.0..=1.0).contains(&r)
+    })?;
+    if let Some(h) = m.hardness {
+        src.check(p, "hardness", &[h], "positive", |h| h > 0.0)?;
+    }
+    Ok(())
+}
+
+/// Object to world: either `matrix` (row-major), or
+/// `T(translate) * Rz * Ry * Rx * S(scale)` — scale first, then rotate about X, then Y,
+/// then Z (each by `rotate_deg` in degrees, right-handed), then translate.
+fn transform(src: &Source, p: &[Seg], m: &schema::Mesh) -> Result<Mat4, SceneError> {
+    if let Some(rows) = &m.matrix {
+        if m.rotate_deg.is_some() || m.translate.is_some() || m.scale.is_some() {
+            return Err(src.error(p, "matrix", "excludes rotate_deg, translate and scale"));
+        }
+        src.finite(p, "matrix", rows)?;
+        if rows[12..] != [0.0, 0.0, 0.0, 1.0] {
+            let last = &rows[12..];
+            return Err(src.error(
+                p,
+                "matrix",
+                format!("last row must be [0, 0, 0, 1], got {last:?}"),
+            ));
+        }
+        let matrix = Mat4::from_cols_array(rows).transpose();
+        let [a, b, c] = [matrix.x_axis, matrix.y_axis, matrix.z_axis].map(|v| v.truncate());
+        // Relative to the largest determinant columns of these lengths can have, so that
+        // a uniform millimetre scale passes and a nearly flat matrix does not.
+        let det = Mat3::from_cols(a, b, c).determinant().abs();
+        if det <= 1e-6 * a.length() * b.length() * c.length() {
+            return Err(src.error(p, "matrix", "must be invertible"));
+        }
+        return Ok(matrix);
+    }
+    let r = m.rotate_deg.unwrap_or_default();
+    let t = m.translate.unwrap_or_default();
+    let s = m.scale.map_or([1.0; 3], Scale::axes);
+    src.finite(p, "rotate_deg", &r)?;
+    src.finite(p, "translate", &t)?;
+    src.check(p, "scale", &s, "non-zero", |s| s != 0.0)?;
+    Ok(Mat4::from_translation(t.into())
+        * Mat4::from_rotation_z(r[2].to_radians())
+        * Mat4::from_rotation_y(r[1].to_radians())
+        * Mat4::from_rotation_x(r[0].to_radians())
+        * Mat4::from_scale(s.into()))
+}

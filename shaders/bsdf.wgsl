@@ -32,9 +32,14 @@ fn sample_cosine_hemisphere(u: vec2f) -> vec3f {
 fn sample_bsdf(m: Material, n_shading: vec3f, n_geometric: vec3f, rng: ptr<function, Rng>) -> BsdfSample {
     let albedo = m.base_color * (m.diffuse / lobe_weight_sum(m));
     let u = vec2f(rng_next(rng), rng_next(rng));
-    let direction = tangent_frame(n_shading) * sample_cosine_hemisphere(u);
-    // A shading normal can send a "reflected" ray under the true surface; such a
-    // ray would leak through it, so the path ends there.
-    let valid = dot(direction, n_geometric) > 0.0 && any(albedo > vec3f(0.0));
-    return BsdfSample(direction, albedo, valid);
+    var direction = tangent_frame(n_shading) * sample_cosine_hemisphere(u);
+    // An interpolated shading normal can send a reflected ray under the true
+    // surface, where it would leak through. Ending the path there loses energy
+    // (a white furnace turns grey); mirroring the ray about the true surface
+    // keeps every sample's weight, so reflectance stays exactly the albedo.
+    let below = dot(direction, n_geometric);
+    if below <= 0.0 {
+        direction = normalize(direction - 2.0 * below * n_geometric);
+    }
+    return BsdfSample(direction, albedo, any(albedo > vec3f(0.0)));
 }

@@ -4,7 +4,7 @@ use anyhow::{Result, bail};
 use clap::{Args, Parser, Subcommand};
 use rt::bvh::BuildQuality;
 use rt::gpu::GpuContext;
-use rt::render::{RenderRequest, Renderer, human, write_image};
+use rt::render::{RenderRequest, Renderer, human, image_format, write_image};
 use rt::scene::{self, Scene};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -95,6 +95,7 @@ fn load_scene(path: Option<&Path>) -> Result<Scene> {
 }
 
 fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
+    image_format(&args.output)?;
     let scene = load_scene(args.scene.as_deref())?;
     let mut request = RenderRequest::from_scene(&scene);
     if let Some((w, h)) = args.size {
@@ -125,7 +126,10 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
         human(report.samples_per_second)
     );
     if report.stack_overflows > 0 {
-        eprintln!("warning: {} rays overflowed the BVH traversal stack; their hits may be wrong", report.stack_overflows);
+        eprintln!(
+            "warning: {} rays overflowed the BVH traversal stack; their hits may be wrong",
+            report.stack_overflows
+        );
     }
     if report.non_finite_samples > 0 {
         eprintln!("warning: {} non-finite samples were dropped", report.non_finite_samples);
@@ -139,10 +143,12 @@ fn main() -> ExitCode {
     let adapter = cli.adapter.as_deref();
     let result = match cli.command {
         Command::Render(args) => render(args, adapter),
-        Command::Info { scene, quality } => load_scene(scene.as_deref())
-            .and_then(|s| rt::info::print_info(s, quality, adapter)),
-        Command::Bench(BenchCommand::Throughput { scene, size, runs, spp }) => load_scene(scene.as_deref())
-            .and_then(|s| rt::bench::throughput(s, size, runs, spp, adapter)),
+        Command::Info { scene, quality } => {
+            load_scene(scene.as_deref()).and_then(|s| rt::info::print_info(s, quality, adapter))
+        }
+        Command::Bench(BenchCommand::Throughput { scene, size, runs, spp }) => {
+            load_scene(scene.as_deref()).and_then(|s| rt::bench::throughput(s, size, runs, spp, adapter))
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

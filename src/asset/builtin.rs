@@ -1,25 +1,46 @@
 //! Meshes compiled into the binary, so the built-in default scene renders with no
 //! files beside the executable.
 
-use std::path::Path;
+use std::borrow::Cow;
+use std::path::{Component, Path, PathBuf};
 
 /// Asset paths under this prefix name embedded files instead of files on disk.
 pub const BUILTIN_PREFIX: &str = "<built-in>";
 
-/// Embedded files, by their path under `assets/` (and under [`BUILTIN_PREFIX`]).
-const FILES: &[(&str, &[u8])] = &[(
-    "bunny/bunny.obj",
-    include_bytes!("../../assets/bunny/bunny.obj"),
-)];
+/// Embedded files, by their path in the repository (under [`BUILTIN_PREFIX`]).
+const FILES: &[(&str, &[u8])] = &[
+    ("assets/bunny/bunny.obj", include_bytes!("../../assets/bunny/bunny.obj")),
+    ("assets/cornell_box/cornell_box.obj", include_bytes!("../../assets/cornell_box/cornell_box.obj")),
+    ("assets/cornell_box/cornell_box.mtl", include_bytes!("../../assets/cornell_box/cornell_box.mtl")),
+];
 
-/// The contents of a built-in asset such as `<built-in>/bunny/bunny.obj`, or `None`
+/// The contents of a built-in file such as `<built-in>/assets/bunny/bunny.obj`
+/// (`..` resolved, as the built-in scene's relative paths produce), or `None`
 /// if `path` does not name one.
 pub fn lookup(path: &Path) -> Option<&'static [u8]> {
     let rest = path.strip_prefix(BUILTIN_PREFIX).ok()?;
-    FILES
-        .iter()
-        .find(|(name, _)| Path::new(name) == rest)
-        .map(|&(_, bytes)| bytes)
+    let mut parts: Vec<&std::ffi::OsStr> = Vec::new();
+    for c in rest.components() {
+        match c {
+            Component::Normal(p) => parts.push(p),
+            Component::ParentDir => {
+                parts.pop()?;
+            }
+            _ => {}
+        }
+    }
+    let wanted: PathBuf = parts.iter().collect();
+    FILES.iter().find(|(name, _)| Path::new(name) == wanted).map(|&(_, bytes)| bytes)
+}
+
+/// Reads a file from disk, or from the binary for a built-in path.
+pub fn read(path: &Path) -> std::io::Result<Cow<'static, [u8]>> {
+    if path.starts_with(BUILTIN_PREFIX) {
+        return lookup(path)
+            .map(Cow::Borrowed)
+            .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::NotFound, "no such built-in file"));
+    }
+    std::fs::read(path).map(Cow::Owned)
 }
 
 #[cfg(test)]
@@ -29,14 +50,14 @@ mod tests {
 
     #[test]
     fn builtin_lookup_needs_the_prefix() {
-        assert!(lookup(Path::new("<built-in>/bunny/bunny.obj")).is_some());
-        assert!(lookup(Path::new("bunny/bunny.obj")).is_none());
-        assert!(lookup(Path::new("<built-in>/bunny/missing.obj")).is_none());
+        assert!(lookup(Path::new("<built-in>/scenes/../assets/bunny/bunny.obj")).is_some());
+        assert!(lookup(Path::new("assets/bunny/bunny.obj")).is_none());
+        assert!(lookup(Path::new("<built-in>/assets/bunny/missing.obj")).is_none());
     }
 
     #[test]
     fn builtin_bunny_loads_normalised() {
-        let mesh = load_mesh(Path::new("<built-in>/bunny/bunny.obj")).expect("bunny loads");
+        let mesh = load_mesh(Path::new("<built-in>/assets/bunny/bunny.obj")).expect("bunny loads");
         assert_eq!(mesh.indices.len(), 3674);
         assert_eq!(mesh.positions.len(), 1839);
         assert_eq!(mesh.normals.as_ref().map(Vec::len), Some(1839));

@@ -2,23 +2,22 @@
 //!
 //! Materials map onto rt's lobe weights as below; every absent field takes its glTF
 //! default, because glTF writers (Blender's among them) leave default values out.
-//! `m` is metallic, `t` transmission.
 //!
-//! | glTF                                                   | default   | rt material                          |
-//! |--------------------------------------------------------|-----------|--------------------------------------|
-//! | `baseColorFactor` rgb                                  | 1, 1, 1   | `base_color`                         |
-//! | `metallicFactor` `m`                                   | 1         | `reflection = m`                     |
-//! | `KHR_materials_transmission.transmissionFactor` `t`    | 0         | `transmission = (1 - m) t`           |
-//! | (the rest of the dielectric)                           |           | `diffuse = (1 - m)(1 - t)`           |
-//! | `roughnessFactor`                                      | 1         | `roughness`                          |
-//! | `KHR_materials_ior.ior`                                | 1.5       | `ior`                                |
-//! | `emissiveFactor` × `KHR_materials_emissive_strength`   | 0 × 1     | `emission`                           |
-//! | `KHR_materials_specular.specularFactor`                | extension absent: 0 | `specular = (1 - m) specularFactor` |
-//! | `KHR_materials_volume` colour `c`, distance `d`        | 1, ∞      | `absorption = -ln(c) / d` per channel (`d = ∞` → 0) |
-//! | `extras.rt_volume_emission` `[r, g, b]`                | 0, 0, 0   | `volume_emission`                    |
+//! | glTF (default when absent)                                | rt material                    |
+//! |-----------------------------------------------------------|--------------------------------|
+//! | `baseColorFactor` rgb (1, 1, 1)                           | `base_color`                   |
+//! | `metallicFactor` `m` (1)                                  | `reflection = m`               |
+//! | `KHR_materials_transmission` factor `t` (0)               | `transmission = (1 - m) t`     |
+//! | (the rest)                                                | `diffuse = (1 - m)(1 - t)`     |
+//! | `roughnessFactor` (1)                                     | `roughness`                    |
+//! | `KHR_materials_ior` (1.5)                                 | `ior`                          |
+//! | `emissiveFactor` (0) × `KHR_materials_emissive_strength` (1) | `emission`                  |
+//! | `KHR_materials_specular` factor `s` (1; no extension: 0)  | `specular = (1 - m) s`         |
+//! | `KHR_materials_volume` colour `c` (1), distance `d` (∞)   | `absorption = -ln(c) / d`; 0 if `d = ∞` |
+//! | `extras.rt_volume_emission` `[r, g, b]` (0)               | `volume_emission`              |
 //!
-//! Metal is a layer over the dielectric in glTF, so transmission and specular only
-//! apply to the `1 - m` that is not metal; the weights then never sum past one.
+//! Metal is a layer over the dielectric in glTF, so transmission and specular apply
+//! only to the `1 - m` that is not metal.
 //! `c` is clamped to (0, 1] so that a black attenuation colour stays finite.
 //!
 //! A primitive without a material gets [`Material::default`] (white diffuse), not glTF's
@@ -36,26 +35,20 @@ use std::path::Path;
 /// with node transforms applied. A file with no meshes yields its materials only.
 pub fn load(path: &Path) -> Result<MeshData, AssetError> {
     let err = |message: String| AssetError::new(path, message);
-    let gltf::Gltf { document, blob } =
-        gltf::Gltf::open(path).map_err(|e| err(format!("cannot read glTF: {e}")))?;
+    let gltf::Gltf { document, blob } = gltf::Gltf::open(path).map_err(|e| err(format!("cannot read glTF: {e}")))?;
     // Only buffers: materials use factors, not textures, so images are never decoded
     // (a missing or exotic texture must not stop a mesh from loading).
-    let buffers = gltf::import_buffers(&document, path.parent(), blob)
-        .map_err(|e| err(format!("cannot load buffers: {e}")))?;
+    let buffers =
+        gltf::import_buffers(&document, path.parent(), blob).map_err(|e| err(format!("cannot load buffers: {e}")))?;
 
     let mut mesh = MeshData::default();
     for (i, m) in document.materials().enumerate() {
-        let name = m
-            .name()
-            .map_or_else(|| format!("material_{i}"), str::to_owned);
+        let name = m.name().map_or_else(|| format!("material_{i}"), str::to_owned);
         let material = map_material(&m).map_err(|e| err(format!("material `{name}`: {e}")))?;
         mesh.materials.push((name, material));
     }
 
-    let roots: Vec<gltf::Node> = match document
-        .default_scene()
-        .or_else(|| document.scenes().next())
-    {
+    let roots: Vec<gltf::Node> = match document.default_scene().or_else(|| document.scenes().next()) {
         Some(scene) => scene.nodes().collect(),
         None => {
             let mut is_child = vec![false; document.nodes().len()];
@@ -81,10 +74,7 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
     }
     let mut mesh = walk.mesh;
     if (!walk.all_normals && !walk.normals.is_empty()) || (!walk.all_uvs && !walk.uvs.is_empty()) {
-        log::warn!(
-            "{}: NORMAL or TEXCOORD_0 is missing on some primitives; dropped them all",
-            path.display()
-        );
+        log::warn!("{}: NORMAL or TEXCOORD_0 is missing on some primitives; dropped them all", path.display());
     }
     if !mesh.positions.is_empty() {
         mesh.normals = walk.all_normals.then_some(walk.normals);
@@ -129,10 +119,7 @@ impl Walk<'_> {
         }
         if det == 0.0 {
             // Every triangle would have zero area; zero scale is how animators hide things.
-            log::warn!(
-                "node {node} scales mesh {} to nothing; skipped",
-                mesh.index()
-            );
+            log::warn!("node {node} scales mesh {} to nothing; skipped", mesh.index());
             return Ok(());
         }
         let normal_matrix = Mat3::from_mat4(world).inverse().transpose();
@@ -149,8 +136,7 @@ impl Walk<'_> {
                 log::warn!("{at}: no POSITION attribute; skipped");
                 continue;
             }
-            let unreadable =
-                |what: &str| format!("{at}: cannot read {what} (accessor outside its buffer?)");
+            let unreadable = |what: &str| format!("{at}: cannot read {what} (accessor outside its buffer?)");
             let reader = prim.reader(|b| self.buffers.get(b.index()).map(|d| &d.0[..]));
             let positions: Vec<[f32; 3]> = reader
                 .read_positions()
@@ -169,11 +155,7 @@ impl Walk<'_> {
             } else {
                 let normals = reader.read_normals().ok_or_else(|| unreadable("NORMAL"))?;
                 let start = self.normals.len();
-                self.normals.extend(normals.map(|n| {
-                    (normal_matrix * Vec3::from(n))
-                        .normalize_or_zero()
-                        .to_array()
-                }));
+                self.normals.extend(normals.map(|n| (normal_matrix * Vec3::from(n)).normalize_or_zero().to_array()));
                 if self.normals.len() - start != count {
                     return Err(format!("{at}: NORMAL and POSITION counts differ"));
                 }
@@ -181,9 +163,7 @@ impl Walk<'_> {
             if prim.get(&Semantic::TexCoords(0)).is_none() {
                 self.all_uvs = false;
             } else {
-                let uvs = reader
-                    .read_tex_coords(0)
-                    .ok_or_else(|| unreadable("TEXCOORD_0"))?;
+                let uvs = reader.read_tex_coords(0).ok_or_else(|| unreadable("TEXCOORD_0"))?;
                 let start = self.uvs.len();
                 self.uvs.extend(uvs.into_f32().map(|[u, v]| [u, 1.0 - v]));
                 if self.uvs.len() - start != count {
@@ -192,42 +172,29 @@ impl Walk<'_> {
             }
 
             let indices: Vec<u32> = match prim.indices() {
-                Some(_) => reader
-                    .read_indices()
-                    .ok_or_else(|| unreadable("indices"))?
-                    .into_u32()
-                    .collect(),
+                Some(_) => reader.read_indices().ok_or_else(|| unreadable("indices"))?.into_u32().collect(),
                 None => (0..count as u32).collect(),
             };
             if !indices.len().is_multiple_of(3) {
-                return Err(format!(
-                    "{at}: {} indices is not a whole number of triangles",
-                    indices.len()
-                ));
+                return Err(format!("{at}: {} indices is not a whole number of triangles", indices.len()));
             }
             // Checked here, per primitive: once offset, an index past this primitive's
             // vertices could land in the next one and pass the final validation.
             if let Some(&bad) = indices.iter().find(|&&i| i as usize >= count) {
-                return Err(format!(
-                    "{at}: index {bad} but the primitive has only {count} vertices"
-                ));
+                return Err(format!("{at}: index {bad} but the primitive has only {count} vertices"));
             }
 
             let material = match prim.material().index() {
                 Some(i) => i as u32,
                 None => *self.default_material.get_or_insert_with(|| {
-                    self.mesh
-                        .materials
-                        .push(("default".into(), Material::default()));
+                    self.mesh.materials.push(("default".into(), Material::default()));
                     (self.mesh.materials.len() - 1) as u32
                 }),
             };
             self.mesh.positions.extend(positions);
             for tri in indices.chunks_exact(3) {
                 let [a, b, c] = [tri[0] + base, tri[1] + base, tri[2] + base];
-                self.mesh
-                    .indices
-                    .push(if flip { [a, c, b] } else { [a, b, c] });
+                self.mesh.indices.push(if flip { [a, c, b] } else { [a, b, c] });
                 self.mesh.material_ids.push(material);
             }
         }
@@ -240,25 +207,18 @@ fn map_material(m: &gltf::Material) -> Result<Material, String> {
     let [r, g, b, _] = pbr.base_color_factor();
     let metallic = pbr.metallic_factor().clamp(0.0, 1.0);
     let dielectric = 1.0 - metallic;
-    let transmission = m
-        .transmission()
-        .map_or(0.0, |t| t.transmission_factor())
-        .clamp(0.0, 1.0);
+    let transmission = m.transmission().map_or(0.0, |t| t.transmission_factor()).clamp(0.0, 1.0);
     let strength = m.emissive_strength().unwrap_or(1.0);
     Ok(Material {
         base_color: [r, g, b],
         diffuse: dielectric * (1.0 - transmission),
-        specular: m
-            .specular()
-            .map_or(0.0, |s| dielectric * s.specular_factor()),
+        specular: m.specular().map_or(0.0, |s| dielectric * s.specular_factor()),
         reflection: metallic,
         transmission: dielectric * transmission,
         ior: m.ior().unwrap_or(1.5),
         roughness: pbr.roughness_factor(),
         emission: m.emissive_factor().map(|e| e * strength),
-        absorption: m.volume().map_or([0.0; 3], |v| {
-            absorption(v.attenuation_color(), v.attenuation_distance())
-        }),
+        absorption: m.volume().map_or([0.0; 3], |v| absorption(v.attenuation_color(), v.attenuation_distance())),
         volume_emission: volume_emission(m.extras())?,
         ..Material::default()
     })
@@ -278,8 +238,7 @@ fn volume_emission(extras: &gltf::json::Extras) -> Result<[f32; 3], String> {
     let Some(raw) = extras else {
         return Ok([0.0; 3]);
     };
-    let value: Value = gltf::json::deserialize::from_str(raw.get())
-        .map_err(|e| format!("extras are not JSON: {e}"))?;
+    let value: Value = gltf::json::deserialize::from_str(raw.get()).map_err(|e| format!("extras are not JSON: {e}"))?;
     match value.get("rt_volume_emission") {
         None => Ok([0.0; 3]),
         Some(v) => gltf::json::deserialize::from_value(v.clone())
@@ -289,7 +248,7 @@ fn volume_emission(extras: &gltf::json::Extras) -> Result<[f32; 3], String> {
 
 #[cfg(test)]
 mod tests {
-    use crate::asset::fixture::TempDir;
+    use crate::asset::fixture::{TempDir, base64};
     use crate::asset::load_mesh;
     use crate::scene::Material;
     use glam::{Mat3, Vec3};
@@ -297,64 +256,33 @@ mod tests {
     const POSITIONS: [[f32; 3]; 3] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
     const NORMAL: [f32; 3] = [0.48, 0.6, 0.64];
 
-    fn base64(bytes: &[u8]) -> String {
-        const ALPHABET: &[u8; 64] =
-            b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-        let mut out = String::new();
-        for chunk in bytes.chunks(3) {
-            let n = chunk
-                .iter()
-                .enumerate()
-                .fold(0u32, |n, (i, &b)| n | (b as u32) << (16 - 8 * i));
-            for i in 0..=chunk.len() {
-                out.push(ALPHABET[(n >> (18 - 6 * i) & 63) as usize] as char);
-            }
-            out.push_str(&"=".repeat(3 - chunk.len()));
-        }
-        out
-    }
-
     /// One indexed triangle with normals under a parent node translated by [1, 2, 3]
     /// and a child scaled by [-1, 2, 1]; `material` is the JSON of its only material.
     fn triangle_gltf(material: Option<&str>) -> String {
         let mut bytes = Vec::new();
-        let floats = POSITIONS
-            .iter()
-            .flatten()
-            .chain([NORMAL; 3].iter().flatten());
+        let floats = POSITIONS.iter().flatten().chain([NORMAL; 3].iter().flatten());
         floats.for_each(|f| bytes.extend(f.to_le_bytes()));
-        [0u32, 1, 2]
-            .iter()
-            .for_each(|i| bytes.extend(i.to_le_bytes()));
+        [0u32, 1, 2].iter().for_each(|i| bytes.extend(i.to_le_bytes()));
         let (materials, use_material) = match material {
             Some(json) => (format!(r#""materials": [{json}],"#), r#", "material": 0"#),
             None => (String::new(), ""),
         };
         format!(
             r#"{{
-  "asset": {{ "version": "2.0" }},
-  "scene": 0,
-  "scenes": [{{ "nodes": [0] }}],
-  "nodes": [
-    {{ "translation": [1, 2, 3], "children": [1] }},
-    {{ "scale": [-1, 2, 1], "mesh": 0 }}
-  ],
+  "asset": {{ "version": "2.0" }}, "scene": 0, "scenes": [{{ "nodes": [0] }}],
+  "nodes": [{{ "translation": [1, 2, 3], "children": [1] }}, {{ "scale": [-1, 2, 1], "mesh": 0 }}],
   "meshes": [{{ "primitives": [{{
-    "attributes": {{ "POSITION": 0, "NORMAL": 1 }}, "indices": 2{use_material}
-  }}] }}],
+    "attributes": {{ "POSITION": 0, "NORMAL": 1 }}, "indices": 2{use_material} }}] }}],
   {materials}
   "buffers": [{{ "byteLength": {len}, "uri": "data:application/octet-stream;base64,{data}" }}],
-  "bufferViews": [
-    {{ "buffer": 0, "byteOffset": 0, "byteLength": 36 }},
+  "bufferViews": [{{ "buffer": 0, "byteLength": 36 }},
     {{ "buffer": 0, "byteOffset": 36, "byteLength": 36 }},
-    {{ "buffer": 0, "byteOffset": 72, "byteLength": 12 }}
-  ],
+    {{ "buffer": 0, "byteOffset": 72, "byteLength": 12 }}],
   "accessors": [
     {{ "bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
        "min": [0, 0, 0], "max": [1, 1, 0] }},
     {{ "bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3" }},
-    {{ "bufferView": 2, "componentType": 5125, "count": 3, "type": "SCALAR" }}
-  ]
+    {{ "bufferView": 2, "componentType": 5125, "count": 3, "type": "SCALAR" }}]
 }}"#,
             len = bytes.len(),
             data = base64(&bytes),
@@ -378,18 +306,13 @@ mod tests {
           "extras": { "rt_volume_emission": [0.1, 0.2, 0.3], "other_tool": "x" }
         }"#;
         let dir = TempDir::new("gltf_transforms_material");
-        let mesh =
-            load_mesh(&dir.write("tri.gltf", &triangle_gltf(Some(material)))).expect("loads");
+        let mesh = load_mesh(&dir.write("tri.gltf", &triangle_gltf(Some(material)))).expect("loads");
 
         // Parent × child: x' = 1 - x, y' = 2 + 2y, z' = 3 + z.
-        assert_eq!(
-            mesh.positions,
-            [[1.0, 2.0, 3.0], [0.0, 2.0, 3.0], [1.0, 4.0, 3.0]]
-        );
+        assert_eq!(mesh.positions, [[1.0, 2.0, 3.0], [0.0, 2.0, 3.0], [1.0, 4.0, 3.0]]);
         // The mirror flips the winding, so the face still points the same side as its normals.
         assert_eq!(mesh.indices, [[0, 2, 1]]);
-        let expected =
-            (Mat3::from_diagonal(Vec3::new(-1.0, 0.5, 1.0)) * Vec3::from(NORMAL)).normalize();
+        let expected = (Mat3::from_diagonal(Vec3::new(-1.0, 0.5, 1.0)) * Vec3::from(NORMAL)).normalize();
         for n in mesh.normals.as_ref().expect("normals") {
             assert!(Vec3::from(*n).abs_diff_eq(expected, 1e-6), "{n:?}");
         }
@@ -432,18 +355,14 @@ mod tests {
     fn gltf_without_material_gets_white_diffuse() {
         let dir = TempDir::new("gltf_no_material");
         let mesh = load_mesh(&dir.write("tri.gltf", &triangle_gltf(None))).expect("loads");
-        assert_eq!(
-            mesh.materials,
-            [("default".to_string(), Material::default())]
-        );
+        assert_eq!(mesh.materials, [("default".to_string(), Material::default())]);
         assert_eq!(mesh.material_ids, [0]);
     }
 
     #[test]
     fn gltf_materials_only_has_no_triangles() {
         let dir = TempDir::new("gltf_materials_only");
-        let json =
-            r#"{ "asset": { "version": "2.0" }, "materials": [{ "name": "a" }, { "name": "b" }] }"#;
+        let json = r#"{ "asset": { "version": "2.0" }, "materials": [{ "name": "a" }, { "name": "b" }] }"#;
         let path = dir.write("mats.gltf", json);
         let mesh = super::load(&path).expect("materials-only glTF is valid");
         assert!(mesh.positions.is_empty() && mesh.normals.is_none());
@@ -455,9 +374,7 @@ mod tests {
     #[test]
     fn gltf_malformed_is_an_error() {
         let dir = TempDir::new("gltf_malformed");
-        let message = load_mesh(&dir.write("bad.glb", "not a glb"))
-            .expect_err("bad")
-            .to_string();
+        let message = load_mesh(&dir.write("bad.glb", "not a glb")).expect_err("bad").to_string();
         assert!(message.contains("bad.glb: cannot read glTF"), "{message}");
     }
 }

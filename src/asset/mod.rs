@@ -34,36 +34,19 @@ pub struct AssetError {
 
 impl AssetError {
     pub fn new(path: &Path, message: impl Into<String>) -> Self {
-        Self {
-            path: path.to_path_buf(),
-            message: message.into(),
-        }
+        Self { path: path.to_path_buf(), message: message.into() }
     }
 }
 
 /// Loads a mesh asset: a `.obj`, `.gltf` or `.glb` file, or a built-in one
 /// (a path under [`builtin::BUILTIN_PREFIX`]).
 pub fn load_mesh(path: &Path) -> Result<MeshData, AssetError> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    let mesh = match (builtin::lookup(path), ext.as_deref()) {
-        (Some(bytes), Some("obj")) => obj_import::load_builtin(path, bytes)?,
-        (Some(_), _) => {
-            return Err(AssetError::new(
-                path,
-                "built-in assets can only be OBJ files",
-            ));
-        }
-        (None, Some("obj")) => obj_import::load(path)?,
-        (None, Some("gltf" | "glb")) => gltf_import::load(path)?,
-        (None, _) => {
-            return Err(AssetError::new(
-                path,
-                "unsupported asset type (expected .obj, .gltf or .glb)",
-            ));
-        }
+    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    let mesh = match ext.as_deref() {
+        Some("obj") => obj_import::load(path)?,
+        // Built-in assets are OBJ only; glTF reads from disk.
+        Some("gltf" | "glb") if !path.starts_with(builtin::BUILTIN_PREFIX) => gltf_import::load(path)?,
+        _ => return Err(AssetError::new(path, "unsupported asset type (expected .obj, .gltf or .glb)")),
     };
     mesh.validate(path)?;
     Ok(mesh)
@@ -82,10 +65,7 @@ impl MeshData {
         }
         if let Some(normals) = &self.normals {
             if normals.len() != vertex_count {
-                return fail(format!(
-                    "{} normals for {vertex_count} vertices",
-                    normals.len()
-                ));
+                return fail(format!("{} normals for {vertex_count} vertices", normals.len()));
             }
             if let Some((i, bad)) = first_non_finite(normals) {
                 return fail(format!("vertex {i} has a non-finite normal ({bad:?})"));
@@ -93,15 +73,10 @@ impl MeshData {
         }
         if let Some(uvs) = &self.uvs {
             if uvs.len() != vertex_count {
-                return fail(format!(
-                    "{} texture coordinates for {vertex_count} vertices",
-                    uvs.len()
-                ));
+                return fail(format!("{} texture coordinates for {vertex_count} vertices", uvs.len()));
             }
             if let Some((i, bad)) = first_non_finite(uvs) {
-                return fail(format!(
-                    "vertex {i} has a non-finite texture coordinate ({bad:?})"
-                ));
+                return fail(format!("vertex {i} has a non-finite texture coordinate ({bad:?})"));
             }
         }
 
@@ -110,29 +85,16 @@ impl MeshData {
         }
         for (t, tri) in self.indices.iter().enumerate() {
             if let Some(&v) = tri.iter().find(|&&v| v as usize >= vertex_count) {
-                return fail(format!(
-                    "triangle {t} refers to vertex {v} but there are only {vertex_count} vertices"
-                ));
+                return fail(format!("triangle {t} refers to vertex {v} but there are only {vertex_count} vertices"));
             }
         }
 
         if self.material_ids.len() != self.indices.len() {
-            return fail(format!(
-                "{} material indices for {} triangles",
-                self.material_ids.len(),
-                self.indices.len()
-            ));
+            return fail(format!("{} material indices for {} triangles", self.material_ids.len(), self.indices.len()));
         }
         let material_count = self.materials.len();
-        if let Some((t, m)) = self
-            .material_ids
-            .iter()
-            .enumerate()
-            .find(|&(_, &m)| m as usize >= material_count)
-        {
-            return fail(format!(
-                "triangle {t} uses material {m} but there are only {material_count} materials"
-            ));
+        if let Some((t, m)) = self.material_ids.iter().enumerate().find(|&(_, &m)| m as usize >= material_count) {
+            return fail(format!("triangle {t} uses material {m} but there are only {material_count} materials"));
         }
         Ok(())
     }
@@ -140,10 +102,7 @@ impl MeshData {
 
 /// The index and value of the first non-finite component, if any.
 fn first_non_finite<const N: usize>(items: &[[f32; N]]) -> Option<(usize, f32)> {
-    items
-        .iter()
-        .enumerate()
-        .find_map(|(i, item)| item.iter().find(|c| !c.is_finite()).map(|&c| (i, c)))
+    items.iter().enumerate().find_map(|(i, item)| item.iter().find(|c| !c.is_finite()).map(|&c| (i, c)))
 }
 
 /// Fixture files for the importers' tests.
@@ -176,6 +135,20 @@ pub(crate) mod fixture {
             let _ = std::fs::remove_dir_all(&self.0);
         }
     }
+
+    /// Standard base64, for glTF data URIs.
+    pub fn base64(bytes: &[u8]) -> String {
+        const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+        let mut out = String::new();
+        for chunk in bytes.chunks(3) {
+            let n = chunk.iter().enumerate().fold(0u32, |n, (i, &b)| n | (b as u32) << (16 - 8 * i));
+            for i in 0..=chunk.len() {
+                out.push(ALPHABET[(n >> (18 - 6 * i) & 63) as usize] as char);
+            }
+            out.push_str(&"=".repeat(3 - chunk.len()));
+        }
+        out
+    }
 }
 
 #[cfg(test)]
@@ -194,9 +167,7 @@ mod tests {
     }
 
     fn validate_error(mesh: &MeshData) -> String {
-        mesh.validate(Path::new("m.obj"))
-            .expect_err("invalid mesh")
-            .to_string()
+        mesh.validate(Path::new("m.obj")).expect_err("invalid mesh").to_string()
     }
 
     #[test]
@@ -209,10 +180,7 @@ mod tests {
         let mut mesh = triangle();
         mesh.indices.push([0, 2, 9]);
         mesh.material_ids.push(0);
-        assert_eq!(
-            validate_error(&mesh),
-            "m.obj: triangle 1 refers to vertex 9 but there are only 3 vertices"
-        );
+        assert_eq!(validate_error(&mesh), "m.obj: triangle 1 refers to vertex 9 but there are only 3 vertices");
 
         let mut mesh = triangle();
         mesh.material_ids[0] = 1;
@@ -238,10 +206,7 @@ mod tests {
         let path = dir.write("oob.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99\n");
         let message = load_mesh(&path).expect_err("index 99 of 3").to_string();
         assert!(message.contains("oob.obj"), "{message}");
-        assert!(
-            message.contains("line 4: triangle refers to vertex 99"),
-            "{message}"
-        );
+        assert!(message.contains("line 4: triangle refers to vertex 99"), "{message}");
         assert!(message.contains("only 3 vertices"), "{message}");
     }
 
@@ -251,10 +216,7 @@ mod tests {
         let path = dir.write("nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
         let message = load_mesh(&path).expect_err("NaN vertex").to_string();
         assert!(message.contains("nan.obj"), "{message}");
-        assert!(
-            message.contains("vertex 0 has a non-finite position (NaN)"),
-            "{message}"
-        );
+        assert!(message.contains("vertex 0 has a non-finite position (NaN)"), "{message}");
     }
 
     #[test]
@@ -262,20 +224,12 @@ mod tests {
         let dir = TempDir::new("unknown_extension");
         let path = dir.write("mesh.stl", "solid x\nendsolid x\n");
         let message = load_mesh(&path).expect_err("unsupported type").to_string();
-        assert!(
-            message.contains("mesh.stl") && message.contains("unsupported"),
-            "{message}"
-        );
+        assert!(message.contains("mesh.stl") && message.contains("unsupported"), "{message}");
     }
 
     #[test]
     fn missing_file_is_an_error() {
-        let message = load_mesh(Path::new("/nonexistent/rt/a.obj"))
-            .expect_err("no file")
-            .to_string();
-        assert!(
-            message.starts_with("/nonexistent/rt/a.obj: cannot read"),
-            "{message}"
-        );
+        let message = load_mesh(Path::new("/nonexistent/rt/a.obj")).expect_err("no file").to_string();
+        assert!(message.starts_with("/nonexistent/rt/a.obj: cannot read"), "{message}");
     }
 }

@@ -9,7 +9,7 @@
 //!
 //! Anything else keeps [`Material::default`]'s value (white diffuse).
 
-use super::{AssetError, MeshData};
+use super::{AssetError, MeshData, builtin};
 use crate::scene::Material;
 use std::cell::RefCell;
 use std::io::BufRead;
@@ -17,16 +17,15 @@ use std::path::Path;
 
 /// Loads an OBJ file and the material libraries (`mtllib`) it names.
 pub fn load(path: &Path) -> Result<MeshData, AssetError> {
-    let bytes =
-        std::fs::read(path).map_err(|e| AssetError::new(path, format!("cannot read: {e}")))?;
+    let bytes = builtin::read(path).map_err(|e| AssetError::new(path, format!("cannot read: {e}")))?;
     let dir = path.parent().unwrap_or(Path::new(""));
     // tobj's loader callback can only return its own error codes, so the
     // precise message waits here.
     let mtl_error = RefCell::new(None);
     let mesh = parse(path, &bytes, |mtl: &Path| {
         let mtl_path = dir.join(mtl);
-        let text = match std::fs::read_to_string(&mtl_path) {
-            Ok(text) => text,
+        let text = match builtin::read(&mtl_path) {
+            Ok(bytes) => String::from_utf8_lossy(&bytes).into_owned(),
             Err(e) => {
                 log::warn!(
                     "{}: cannot read material library {}: {e}; using a default material",
@@ -38,8 +37,7 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
         };
         check_colours(&text)
             .and_then(|()| {
-                tobj::load_mtl_buf(&mut text.as_bytes())
-                    .map_err(|e| format!("cannot parse material library: {e}"))
+                tobj::load_mtl_buf(&mut text.as_bytes()).map_err(|e| format!("cannot parse material library: {e}"))
             })
             .map_err(|message| {
                 mtl_error.replace(Some(AssetError::new(&mtl_path, message)));
@@ -50,11 +48,6 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
         Some(e) => Err(e),
         None => mesh,
     }
-}
-
-/// Loads an embedded OBJ; built-in assets carry no material libraries.
-pub fn load_builtin(path: &Path, bytes: &[u8]) -> Result<MeshData, AssetError> {
-    parse(path, bytes, |_| Ok(Default::default()))
 }
 
 /// tobj panics on a colour with fewer than three numbers; refuse those first.
@@ -75,11 +68,7 @@ fn parse(
     bytes: &[u8],
     material_loader: impl Fn(&Path) -> tobj::MTLLoadResult,
 ) -> Result<MeshData, AssetError> {
-    let options = tobj::LoadOptions {
-        triangulate: true,
-        single_index: true,
-        ..Default::default()
-    };
+    let options = tobj::LoadOptions { triangulate: true, single_index: true, ..Default::default() };
     let mut reader = bytes;
     let (models, materials) = tobj::load_obj_buf(&mut reader, &options, material_loader)
         .map_err(|e| AssetError::new(path, describe_load_error(bytes, e)))?;
@@ -87,16 +76,9 @@ fn parse(
     // the default material below.
     let materials = materials.unwrap_or_default();
 
-    let mut mesh = MeshData {
-        normals: Some(Vec::new()),
-        uvs: Some(Vec::new()),
-        ..Default::default()
-    };
+    let mut mesh = MeshData { normals: Some(Vec::new()), uvs: Some(Vec::new()), ..Default::default() };
     for m in &materials {
-        mesh.materials.push((
-            m.name.clone(),
-            map_material(m).map_err(|e| AssetError::new(path, e))?,
-        ));
+        mesh.materials.push((m.name.clone(), map_material(m).map_err(|e| AssetError::new(path, e))?));
     }
 
     let mut default_id = None;
@@ -105,8 +87,7 @@ fn parse(
         let m = &model.mesh;
         let base = mesh.positions.len() as u32;
         let vertex_count = m.positions.len() / 3;
-        mesh.positions
-            .extend(m.positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]));
+        mesh.positions.extend(m.positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]));
         if u32::try_from(mesh.positions.len()).is_err() {
             return Err(AssetError::new(path, "more than 2^32 vertices"));
         }
@@ -137,22 +118,15 @@ fn parse(
             }),
         };
         for tri in m.indices.chunks_exact(3) {
-            mesh.indices
-                .push([base + tri[0], base + tri[1], base + tri[2]]);
+            mesh.indices.push([base + tri[0], base + tri[1], base + tri[2]]);
             mesh.material_ids.push(material);
         }
     }
     if (mesh.normals.is_none() && any_normals) || (mesh.uvs.is_none() && any_uvs) {
-        log::warn!(
-            "{}: normals or texture coordinates are missing on some faces; dropped them all",
-            path.display()
-        );
+        log::warn!("{}: normals or texture coordinates are missing on some faces; dropped them all", path.display());
     }
     if default_id.is_some() && !materials.is_empty() {
-        log::warn!(
-            "{}: some faces have no known material; using a default one",
-            path.display()
-        );
+        log::warn!("{}: some faces have no known material; using a default one", path.display());
     }
     Ok(mesh)
 }
@@ -161,10 +135,9 @@ fn map_material(m: &tobj::Material) -> Result<Material, String> {
     let defaults = Material::default();
     let transparency = match (m.dissolve, m.unknown_param.get("Tr")) {
         (Some(d), _) => 1.0 - d,
-        (None, Some(tr)) => tr
-            .trim()
-            .parse::<f32>()
-            .map_err(|_| format!("material `{}`: `Tr {tr}` is not a number", m.name))?,
+        (None, Some(tr)) => {
+            tr.trim().parse::<f32>().map_err(|_| format!("material `{}`: `Tr {tr}` is not a number", m.name))?
+        }
         (None, None) => 0.0,
     };
     let transmission = transparency.clamp(0.0, 1.0);
@@ -182,17 +155,11 @@ fn map_material(m: &tobj::Material) -> Result<Material, String> {
 /// find the first face that refers past the end of its vertex data.
 fn describe_load_error(bytes: &[u8], e: tobj::LoadError) -> String {
     use tobj::LoadError::{FaceNormalOutOfBounds, FaceTexCoordOutOfBounds, FaceVertexOutOfBounds};
-    if !matches!(
-        e,
-        FaceVertexOutOfBounds | FaceTexCoordOutOfBounds | FaceNormalOutOfBounds
-    ) {
+    if !matches!(e, FaceVertexOutOfBounds | FaceTexCoordOutOfBounds | FaceNormalOutOfBounds) {
         return format!("cannot parse OBJ: {e}");
     }
-    const KINDS: [(&str, &str, &str); 3] = [
-        ("v", "vertex", "vertices"),
-        ("vt", "texture coordinate", "texture coordinates"),
-        ("vn", "normal", "normals"),
-    ];
+    const KINDS: [(&str, &str, &str); 3] =
+        [("v", "vertex", "vertices"), ("vt", "texture coordinate", "texture coordinates"), ("vn", "normal", "normals")];
     let lines: Vec<String> = bytes.lines().map_while(Result::ok).collect();
     let mut totals = [0i64; 3];
     for line in &lines {
@@ -214,11 +181,7 @@ fn describe_load_error(bytes: &[u8], e: tobj::LoadError) -> String {
             }
         }
         let corners: Vec<&str> = words.collect();
-        let face = if corners.len() == 3 {
-            "triangle"
-        } else {
-            "polygon"
-        };
+        let face = if corners.len() == 3 { "triangle" } else { "polygon" };
         for corner in &corners {
             for (k, field) in corner.split('/').enumerate().take(3) {
                 let Ok(index) = field.parse::<i64>() else {
@@ -226,11 +189,7 @@ fn describe_load_error(bytes: &[u8], e: tobj::LoadError) -> String {
                 };
                 // Negative indices count back from the latest element, positive ones
                 // from the first; 0 is never valid.
-                let resolved = if index < 0 {
-                    seen[k] + index + 1
-                } else {
-                    index
-                };
+                let resolved = if index < 0 { seen[k] + index + 1 } else { index };
                 if resolved < 1 || resolved > totals[k] {
                     let (_, one, many) = KINDS[k];
                     return format!(
@@ -296,19 +255,10 @@ Tr 0.75
         assert_eq!([count(0), count(1), count(2), count(3)], [6, 2, 2, 2]);
 
         let [red, lamp, glass, default] = [0, 1, 2, 3].map(|i| &mesh.materials[i].1);
-        assert_eq!(
-            red,
-            &Material {
-                base_color: [0.8, 0.1, 0.1],
-                ..Material::default()
-            }
-        );
+        assert_eq!(red, &Material { base_color: [0.8, 0.1, 0.1], ..Material::default() });
         assert_eq!(lamp.emission, [10.0, 9.0, 8.0]);
         assert_eq!(lamp.base_color, [0.5; 3]);
-        assert_eq!(
-            (glass.transmission, glass.diffuse, glass.ior),
-            (0.75, 0.25, 1.45)
-        );
+        assert_eq!((glass.transmission, glass.diffuse, glass.ior), (0.75, 0.25, 1.45));
         assert_eq!(default, &Material::default());
     }
 
@@ -316,10 +266,7 @@ Tr 0.75
     fn obj_missing_mtl_uses_a_default_material() {
         let dir = TempDir::new("obj_missing_mtl");
         let mesh = load_mesh(&dir.write("cube.obj", CUBE)).expect("loads without its .mtl");
-        assert_eq!(
-            mesh.materials,
-            [("default".to_string(), Material::default())]
-        );
+        assert_eq!(mesh.materials, [("default".to_string(), Material::default())]);
         assert!(mesh.material_ids.iter().all(|&m| m == 0));
     }
 
@@ -327,20 +274,14 @@ Tr 0.75
     fn obj_bad_mtl_names_the_mtl_and_line() {
         let dir = TempDir::new("obj_bad_mtl");
         dir.write("cube.mtl", "newmtl red\nKd 0.8\n");
-        let message = load_mesh(&dir.write("cube.obj", CUBE))
-            .expect_err("short Kd")
-            .to_string();
-        assert!(
-            message.contains("cube.mtl: line 2: `Kd` needs three numbers"),
-            "{message}"
-        );
+        let message = load_mesh(&dir.write("cube.obj", CUBE)).expect_err("short Kd").to_string();
+        assert!(message.contains("cube.mtl: line 2: `Kd` needs three numbers"), "{message}");
     }
 
     #[test]
     fn obj_keeps_normals_and_uvs() {
         let dir = TempDir::new("obj_normals_uvs");
-        let obj =
-            "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1\n";
+        let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1\n";
         let mesh = load_mesh(&dir.write("tri.obj", obj)).expect("loads");
         assert_eq!(mesh.normals, Some(vec![[0.0, 0.0, 1.0]; 3]));
         assert_eq!(mesh.uvs, Some(vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]));

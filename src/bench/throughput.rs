@@ -52,7 +52,8 @@ pub fn throughput(scene: Scene, (width, height): (u32, u32), runs: u32, spp: u32
         }
         bar.inc(2);
     }
-    let integrator = renderer.pipelines.get(&ctx, crate::gpu::shader::Program::Integrator, renderer.geometry.features)?;
+    let integrator =
+        renderer.pipelines.get(&ctx, crate::gpu::shader::Program::Integrator, renderer.geometry.features)?;
     let mut acc = Accumulation::new(&ctx, &renderer.pipelines.accumulation_layout, width, height);
     let mut path_times = Vec::new();
     for run in 0..=runs {

@@ -44,7 +44,8 @@ impl MeshBvh {
     pub fn build(mesh: &MeshData, quality: BuildQuality) -> Self {
         let start = Instant::now();
         let p = |i: u32| Vec3A::from_array(mesh.positions[i as usize]);
-        let tris: Vec<Triangle> = mesh.indices.iter().map(|t| Triangle { v0: p(t[0]), v1: p(t[1]), v2: p(t[2]) }).collect();
+        let tris: Vec<Triangle> =
+            mesh.indices.iter().map(|t| Triangle { v0: p(t[0]), v1: p(t[1]), v2: p(t[2]) }).collect();
         let nodes;
         let order: Vec<u32>;
         if tris.is_empty() {
@@ -61,7 +62,13 @@ impl MeshBvh {
             .map(|&i| {
                 let t = mesh.indices[i as usize];
                 let v = t.map(|k| mesh.positions[k as usize]);
-                GpuTriangle { v0: v[0], material: mesh.material_ids[i as usize], v1: v[1], v2: v[2], ..Default::default() }
+                GpuTriangle {
+                    v0: v[0],
+                    material: mesh.material_ids[i as usize],
+                    v1: v[1],
+                    v2: v[2],
+                    ..Default::default()
+                }
             })
             .collect();
         let shading = order.iter().map(|&i| triangle_shading(mesh, i as usize)).collect();

@@ -101,7 +101,9 @@ pub fn stats(nodes: &[GpuBvhNode]) -> BvhStats {
     let mut work = vec![(0usize, 1usize)];
     while let Some((i, depth)) = work.pop() {
         let n = &nodes[i];
-        for (min, max, link, count) in [(n.a_min, n.a_max, n.a_link, n.a_count), (n.b_min, n.b_max, n.b_link, n.b_count)] {
+        for (min, max, link, count) in
+            [(n.a_min, n.a_max, n.a_link, n.a_count), (n.b_min, n.b_max, n.b_link, n.b_count)]
+        {
             if link == EMPTY_LINK {
                 continue;
             }

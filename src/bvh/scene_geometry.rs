@@ -136,9 +136,10 @@ impl SceneGeometry {
         let tlas_root = nodes.len() as u32;
         let tlas_stats = stats(&tlas_nodes);
         nodes.extend_from_slice(&tlas_nodes);
-        let (bounds_min, bounds_max) = boxes.iter().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), b| {
-            (lo.min(b.min.into()), hi.max(b.max.into()))
-        });
+        let (bounds_min, bounds_max) =
+            boxes.iter().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), b| {
+                (lo.min(b.min.into()), hi.max(b.max.into()))
+            });
 
         Ok(Self {
             nodes,

@@ -62,7 +62,7 @@ pub fn io_bind_group_layout(device: &wgpu::Device, count: u32) -> wgpu::BindGrou
 
 impl SceneBuffers {
     pub fn new(ctx: &GpuContext, geometry: &SceneGeometry, layout: &wgpu::BindGroupLayout) -> Result<Self> {
-        let max = ctx.device.limits().max_storage_buffer_binding_size as u64;
+        let max = ctx.device.limits().max_storage_buffer_binding_size;
         let sizes = [
             ("BVH nodes", std::mem::size_of_val(geometry.nodes.as_slice())),
             ("triangles", std::mem::size_of_val(geometry.triangles.as_slice())),
@@ -89,14 +89,19 @@ impl SceneBuffers {
         let tlas = storage(ctx, "tlas primitives", &geometry.tlas_primitives, none);
         let spheres = storage(ctx, "spheres", &geometry.spheres, none);
         let materials = storage(ctx, "materials", &geometry.materials, none);
-        let stats = storage(ctx, "stats", &[0u32; STAT_COUNT], wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST);
+        let stats =
+            storage(ctx, "stats", &[0u32; STAT_COUNT], wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST);
         let buffers = [&frame, &nodes, &triangles, &shading, &instances, &tlas, &spheres, &materials, &stats];
         let entries: Vec<_> = buffers
             .iter()
             .enumerate()
             .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
             .collect();
-        let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor { label: Some("scene"), layout, entries: &entries });
+        let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("scene"),
+            layout,
+            entries: &entries,
+        });
         Ok(Self { frame, stats, bind_group })
     }
 

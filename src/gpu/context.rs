@@ -88,9 +88,6 @@ impl GpuContext {
     }
 
     pub fn wait(&self) -> Result<()> {
-        self.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map(|_| ())
-            .map_err(|e| anyhow!("GPU wait failed: {e}"))
+        self.device.poll(wgpu::PollType::wait_indefinitely()).map(|_| ()).map_err(|e| anyhow!("GPU wait failed: {e}"))
     }
 }

@@ -172,13 +172,51 @@ mod tests {
     #[test]
     fn host_structs_match_wgsl_layouts() {
         let hosts: Vec<HostLayout> = vec![
-            host_layout!("Frame", GpuFrame, [camera_position, tan_half_fov_y, camera_right, aspect, camera_up, width, camera_forward, height, sky_color, max_bounces, sample_base, samples_per_dispatch, seed, tlas_root]),
+            host_layout!(
+                "Frame",
+                GpuFrame,
+                [
+                    camera_position,
+                    tan_half_fov_y,
+                    camera_right,
+                    aspect,
+                    camera_up,
+                    width,
+                    camera_forward,
+                    height,
+                    sky_color,
+                    max_bounces,
+                    sample_base,
+                    samples_per_dispatch,
+                    seed,
+                    tlas_root
+                ]
+            ),
             host_layout!("BvhNode", GpuBvhNode, [a_min, a_link, a_max, a_count, b_min, b_link, b_max, b_count]),
             host_layout!("Triangle", GpuTriangle, [v0, material, v1, v2]),
             host_layout!("TriangleShading", GpuTriangleShading, [n0, n1, n2]),
-            host_layout!("Instance", GpuInstance, [world_to_object, object_to_world, node_offset, triangle_offset, material_base, material_override]),
+            host_layout!(
+                "Instance",
+                GpuInstance,
+                [world_to_object, object_to_world, node_offset, triangle_offset, material_base, material_override]
+            ),
             host_layout!("Sphere", GpuSphere, [center, radius, material]),
-            host_layout!("Material", GpuMaterial, [base_color, diffuse, emission, specular, absorption, reflection, volume_emission, transmission, ior, roughness]),
+            host_layout!(
+                "Material",
+                GpuMaterial,
+                [
+                    base_color,
+                    diffuse,
+                    emission,
+                    specular,
+                    absorption,
+                    reflection,
+                    volume_emission,
+                    transmission,
+                    ior,
+                    roughness
+                ]
+            ),
             host_layout!("TraceRay", GpuTraceRay, [origin, t_max, direction]),
             host_layout!("TraceHit", GpuTraceHit, [t, primitive, instance, overflowed]),
         ];

@@ -98,7 +98,12 @@ mod tests {
         let mut sets = Vec::new();
         for bits in 0..8u32 {
             for sky in [SkyFeature::Black, SkyFeature::Uniform] {
-                sets.push(FeatureSet { triangles: bits & 1 != 0, spheres: bits & 2 != 0, emission: bits & 4 != 0, sky });
+                sets.push(FeatureSet {
+                    triangles: bits & 1 != 0,
+                    spheres: bits & 2 != 0,
+                    emission: bits & 4 != 0,
+                    sky,
+                });
             }
         }
         sets

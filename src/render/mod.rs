@@ -3,11 +3,11 @@
 mod camera;
 mod image_out;
 mod progressive;
-mod trace;
 pub mod tonemap;
+mod trace;
 
 pub use camera::set_camera;
-pub use image_out::write_image;
+pub use image_out::{ImageFormat, image_format, write_image};
 pub use progressive::Accumulation;
 pub use trace::TraceBuffers;
 

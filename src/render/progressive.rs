@@ -74,7 +74,8 @@ impl Accumulation {
     ) {
         let frame = GpuFrame { sample_base: self.samples, samples_per_dispatch: n, ..*frame };
         scene.write_frame(ctx, &frame);
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("render"), timestamp_writes });
+        let mut pass =
+            encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("render"), timestamp_writes });
         pass.set_pipeline(pipelines.entry("render"));
         pass.set_bind_group(0, &scene.bind_group, &[]);
         pass.set_bind_group(1, &self.bind_group, &[]);

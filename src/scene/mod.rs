@@ -34,13 +34,7 @@ pub struct RenderSettings {
 
 impl Default for RenderSettings {
     fn default() -> Self {
-        Self {
-            width: 640,
-            height: 480,
-            spp: 256,
-            max_bounces: 12,
-            exposure: 0.0,
-        }
+        Self { width: 640, height: 480, spp: 256, max_bounces: 12, exposure: 0.0 }
     }
 }
 

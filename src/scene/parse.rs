@@ -62,11 +62,7 @@ pub fn parse(text: &str, origin: &str, base_dir: &Path) -> Result<Scene, SceneEr
     let syntax = |e: toml::de::Error| located(origin, text, e.span(), e.message().to_owned());
     let root = DeTable::parse(text).map_err(syntax)?;
     let file = File::deserialize(Deserializer::from(root.clone()));
-    let src = Source {
-        origin,
-        text,
-        root: DeValue::Table(root.into_inner()),
-    };
+    let src = Source { origin, text, root: DeValue::Table(root.into_inner()) };
     let file = file.map_err(|e| src.serde_error(&e))?;
     validate::scene(file, &src, base_dir)
 }
@@ -108,9 +104,7 @@ impl Source<'_> {
         ok: impl Fn(f32) -> bool,
     ) -> Result<(), SceneError> {
         match values.iter().find(|v| !v.is_finite() || !ok(**v)) {
-            Some(v) if !v.is_finite() => {
-                Err(self.error(base, field, format!("must be finite, got {v}")))
-            }
+            Some(v) if !v.is_finite() => Err(self.error(base, field, format!("must be finite, got {v}"))),
             Some(v) => Err(self.error(base, field, format!("must be {what}, got {v}"))),
             None => Ok(()),
         }
@@ -147,16 +141,10 @@ impl Source<'_> {
         let quoted: Vec<&str> = msg.split('`').skip(1).step_by(2).collect();
         let message = match quoted.split_first() {
             Some((name, known)) if msg.starts_with("unknown field") => {
-                format!(
-                    "unknown key `{name}` in {item}{}",
-                    hint(name, known.iter().copied())
-                )
+                format!("unknown key `{name}` in {item}{}", hint(name, known.iter().copied()))
             }
             Some((name, known)) if msg.starts_with("unknown variant") => {
-                format!(
-                    "{item}: unknown {field} `{name}`{}",
-                    hint(name, known.iter().copied())
-                )
+                format!("{item}: unknown {field} `{name}`{}", hint(name, known.iter().copied()))
             }
             _ if field.is_empty() => format!("{item}: {msg}"),
             _ => format!("{item}: {field}: {msg}"),
@@ -170,22 +158,15 @@ fn find<'a>(node: &'a DeValue<'_>, span: &Range<usize>, path: &mut Vec<Seg<'a>>)
     let mut visit = |seg, key_span: Option<Range<usize>>, child: &'a toml::Spanned<DeValue<'_>>| {
         path.push(seg);
         // Deepest first: a lone [[mesh]] table shares its span with the array.
-        let hit = find(child.get_ref(), span, path)
-            || key_span.as_ref() == Some(span)
-            || child.span() == *span;
+        let hit = find(child.get_ref(), span, path) || key_span.as_ref() == Some(span) || child.span() == *span;
         if !hit {
             path.pop();
         }
         hit
     };
     match node {
-        DeValue::Table(t) => t
-            .iter()
-            .any(|(k, v)| visit(Seg::Key(k.get_ref()), Some(k.span()), v)),
-        DeValue::Array(a) => a
-            .iter()
-            .enumerate()
-            .any(|(i, v)| visit(Seg::Index(i), None, v)),
+        DeValue::Table(t) => t.iter().any(|(k, v)| visit(Seg::Key(k.get_ref()), Some(k.span()), v)),
+        DeValue::Array(a) => a.iter().enumerate().any(|(i, v)| visit(Seg::Index(i), None, v)),
         _ => false,
     }
 }
@@ -228,9 +209,7 @@ fn levenshtein(a: &str, b: &str) -> usize {
         let mut diagonal = row[0];
         row[0] = i + 1;
         for (j, &cb) in b.iter().enumerate() {
-            let best = (diagonal + usize::from(ca != cb))
-                .min(row[j] + 1)
-                .min(row[j + 1] + 1);
+            let best = (diagonal + usize::from(ca != cb)).min(row[j] + 1).min(row[j + 1] + 1);
             diagonal = row[j + 1];
             row[j + 1] = best;
         }
@@ -247,9 +226,5 @@ fn located(origin: &str, text: &str, span: Option<Range<usize>>, message: String
         (before.matches('\n').count() + 1, column)
     });
     let origin = origin.to_owned();
-    SceneError {
-        origin,
-        line_col,
-        message,
-    }
+    SceneError { origin, line_col, message }
 }

@@ -36,11 +36,7 @@ pub(super) struct Camera {
 impl Default for Camera {
     /// A person's eye height, looking at the origin from 5 m down +Z.
     fn default() -> Self {
-        Self {
-            position: [0.0, 1.0, 5.0],
-            look_at: [0.0, 1.0, 0.0],
-            fov_y_deg: 40.0,
-        }
+        Self { position: [0.0, 1.0, 5.0], look_at: [0.0, 1.0, 0.0], fov_y_deg: 40.0 }
     }
 }
 

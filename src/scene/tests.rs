@@ -65,43 +65,22 @@ material = "mirror"
 fn full_example_parses() {
     let s = parse_ok(EXAMPLE);
     assert_eq!(s.origin, "scene.toml");
-    let render = RenderSettings {
-        width: 320,
-        height: 200,
-        spp: 64,
-        max_bounces: 8,
-        exposure: -1.5,
-    };
+    let render = RenderSettings { width: 320, height: 200, spp: 64, max_bounces: 8, exposure: -1.5 };
     assert_eq!(s.render, render);
-    let camera = Camera {
-        position: Vec3::new(0.0, 1.5, 6.0),
-        look_at: Vec3::Y,
-        fov_y_deg: 40.0,
-    };
+    let camera = Camera { position: Vec3::new(0.0, 1.5, 6.0), look_at: Vec3::Y, fov_y_deg: 40.0 };
     assert_eq!(s.camera, camera);
     assert_eq!(s.sky, Sky::Atmosphere);
     let radiance = Some(Vec3::new(1.0, 2.0, 3.0));
-    let sun = Sun {
-        elevation_deg: 12.0,
-        azimuth_deg: 140.0,
-        angular_diameter_deg: 0.53,
-        radiance,
-    };
+    let sun = Sun { elevation_deg: 12.0, azimuth_deg: 140.0, angular_diameter_deg: 0.53, radiance };
     assert_eq!(s.sun, Some(sun));
     // File order, which is not alphabetical order here.
     let names: Vec<&str> = s.materials.iter().map(|(n, _)| n.as_str()).collect();
     assert_eq!(names, ["mirror", "blue_glass"]);
     let glass = &s.materials[1].1;
-    assert_eq!(
-        (glass.diffuse, glass.transmission, glass.ior),
-        (0.0, 1.0, 1.3)
-    );
+    assert_eq!((glass.diffuse, glass.transmission, glass.ior), (0.0, 1.0, 1.3));
     assert_eq!(glass.absorption, [0.02, 0.02, 0.015]);
     let mirror = &s.materials[0].1;
-    assert_eq!(
-        (mirror.reflection, mirror.hardness, mirror.diffuse),
-        (1.0, Some(50.0), 1.0)
-    );
+    assert_eq!((mirror.reflection, mirror.hardness, mirror.diffuse), (1.0, Some(50.0), 1.0));
     assert_eq!(s.meshes.len(), 1);
     let mesh = &s.meshes[0];
     assert_eq!(mesh.asset, Path::new("/scenes/../assets/dragon"));
@@ -109,11 +88,7 @@ fn full_example_parses() {
     // -90° about X takes +Y to -Z, then the translation applies.
     let p = mesh.object_to_world.transform_point3(Vec3::Y);
     assert!(p.abs_diff_eq(Vec3::new(-4.0, 0.0, -7.0), 1e-6), "{p}");
-    let sphere = Sphere {
-        center: Vec3::new(3.0, 1.0, 0.0),
-        radius: 1.0,
-        material: Some("mirror".into()),
-    };
+    let sphere = Sphere { center: Vec3::new(3.0, 1.0, 0.0), radius: 1.0, material: Some("mirror".into()) };
     assert_eq!(s.spheres, [sphere]);
 }
 
@@ -121,17 +96,10 @@ fn full_example_parses() {
 fn empty_file_gives_defaults() {
     let s = parse_ok("");
     assert_eq!(s.render, RenderSettings::default());
-    let camera = Camera {
-        position: Vec3::new(0.0, 1.0, 5.0),
-        look_at: Vec3::Y,
-        fov_y_deg: 40.0,
-    };
+    let camera = Camera { position: Vec3::new(0.0, 1.0, 5.0), look_at: Vec3::Y, fov_y_deg: 40.0 };
     assert_eq!(s.camera, camera);
     assert_eq!((s.sky, s.sun), (Sky::Black, None));
-    assert_eq!(
-        parse_ok("[sky]\nkind = \"uniform\"\n").sky,
-        Sky::Uniform { color: Vec3::ONE }
-    );
+    assert_eq!(parse_ok("[sky]\nkind = \"uniform\"\n").sky, Sky::Uniform { color: Vec3::ONE });
 }
 
 /// One case a line: the scene with `|` between its lines, ` => `, then the
@@ -139,11 +107,7 @@ fn empty_file_gives_defaults() {
 fn assert_errors(cases: &str) {
     for case in cases.lines().map(str::trim).filter(|c| !c.is_empty()) {
         let (text, expected) = case.split_once(" => ").expect("a case has ` => `");
-        let text = text
-            .split('|')
-            .map(str::trim)
-            .collect::<Vec<_>>()
-            .join("\n");
+        let text = text.split('|').map(str::trim).collect::<Vec<_>>().join("\n");
         assert_eq!(error(&text), format!("scene.toml:{expected}"), "{text}");
     }
 }
@@ -249,17 +213,11 @@ fn row_major_matrix_equals_rotate_translate_scale() {
     let trs = parse_ok(trs).meshes[0].object_to_world;
     let (x, y, z) = (30f32.to_radians(), 45f32.to_radians(), 60f32.to_radians());
     let rotation = Mat4::from_rotation_z(z) * Mat4::from_rotation_y(y) * Mat4::from_rotation_x(x);
-    let expected = Mat4::from_translation(Vec3::new(1.0, 2.0, 3.0))
-        * rotation
-        * Mat4::from_scale(Vec3::new(2.0, 3.0, 4.0));
+    let expected =
+        Mat4::from_translation(Vec3::new(1.0, 2.0, 3.0)) * rotation * Mat4::from_scale(Vec3::new(2.0, 3.0, 4.0));
     assert!(trs.abs_diff_eq(expected, 1e-6));
-    let rows = trs
-        .transpose()
-        .to_cols_array()
-        .map(|v| v.to_string())
-        .join(", ");
-    let matrix = parse_ok(&format!("[[mesh]]\nasset = \"a\"\nmatrix = [{rows}]\n")).meshes[0]
-        .object_to_world;
+    let rows = trs.transpose().to_cols_array().map(|v| v.to_string()).join(", ");
+    let matrix = parse_ok(&format!("[[mesh]]\nasset = \"a\"\nmatrix = [{rows}]\n")).meshes[0].object_to_world;
     assert_eq!(matrix, trs);
     assert_eq!(matrix.w_axis.truncate(), Vec3::new(1.0, 2.0, 3.0));
 }
@@ -267,10 +225,6 @@ fn row_major_matrix_equals_rotate_translate_scale() {
 #[test]
 fn load_names_an_unreadable_file() {
     let e = load(Path::new("/nonexistent/scene.toml")).expect_err("no such file");
-    assert!(
-        e.to_string()
-            .starts_with("/nonexistent/scene.toml: cannot read: "),
-        "{e}"
-    );
+    assert!(e.to_string().starts_with("/nonexistent/scene.toml: cannot read: "), "{e}");
     assert_eq!((e.line(), e.column()), (None, None));
 }

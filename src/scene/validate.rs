@@ -29,11 +29,7 @@ pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, 
     let material_ref = |p: &[_], name: Option<String>| match name {
         Some(n) if !materials.iter().any(|(m, _)| *m == n) => {
             let names = hint(&n, materials.iter().map(|(m, _)| m.as_str()));
-            Err(src.error(
-                p,
-                "material",
-                format!("`{n}` names no [materials.*] table{names}"),
-            ))
+            Err(src.error(p, "material", format!("`{n}` names no [materials.*] table{names}")))
         }
         _ => Ok(name),
     };
@@ -56,11 +52,7 @@ pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, 
         src.finite(&p, "center", &s.center)?;
         src.check(&p, "radius", &[s.radius], "positive", |r| r > 0.0)?;
         let material = material_ref(&p, s.material)?;
-        spheres.push(Sphere {
-            center: s.center.into(),
-            radius: s.radius,
-            material,
-        });
+        spheres.push(Sphere { center: s.center.into(), radius: s.radius, material });
     }
 
     Ok(Scene {
@@ -79,17 +71,11 @@ fn camera(src: &Source, c: schema::Camera) -> Result<Camera, SceneError> {
     let p = [Key("camera")];
     src.finite(&p, "position", &c.position)?;
     src.finite(&p, "look_at", &c.look_at)?;
-    src.check(&p, "fov_y_deg", &[c.fov_y_deg], "in (0, 180)", |f| {
-        f > 0.0 && f < 180.0
-    })?;
+    src.check(&p, "fov_y_deg", &[c.fov_y_deg], "in (0, 180)", |f| f > 0.0 && f < 180.0)?;
     if c.position == c.look_at {
         return Err(src.error(&p, "look_at", "must differ from position"));
     }
-    Ok(Camera {
-        position: c.position.into(),
-        look_at: c.look_at.into(),
-        fov_y_deg: c.fov_y_deg,
-    })
+    Ok(Camera { position: c.position.into(), look_at: c.look_at.into(), fov_y_deg: c.fov_y_deg })
 }
 
 fn sky(src: &Source, sky: Option<schema::Sky>) -> Result<Sky, SceneError> {
@@ -106,27 +92,17 @@ fn sky(src: &Source, sky: Option<schema::Sky>) -> Result<Sky, SceneError> {
         SkyKind::Uniform => {
             let color = sky.color.unwrap_or([1.0; 3]);
             src.check(&p, "color", &color, "non-negative", |c| c >= 0.0)?;
-            Sky::Uniform {
-                color: color.into(),
-            }
+            Sky::Uniform { color: color.into() }
         }
     })
 }
 
 fn sun(src: &Source, s: schema::Sun) -> Result<Sun, SceneError> {
     let p = [Key("sun")];
-    src.check(
-        &p,
-        "elevation_deg",
-        &[s.elevation_deg],
-        "in [-90, 90]",
-        |e| e.abs() <= 90.0,
-    )?;
+    src.check(&p, "elevation_deg", &[s.elevation_deg], "in [-90, 90]", |e| e.abs() <= 90.0)?;
     src.finite(&p, "azimuth_deg", &[s.azimuth_deg])?;
     let d = s.angular_diameter_deg;
-    src.check(&p, "angular_diameter_deg", &[d], "in (0, 90)", |d| {
-        d > 0.0 && d < 90.0
-    })?;
+    src.check(&p, "angular_diameter_deg", &[d], "in (0, 90)", |d| d > 0.0 && d < 90.0)?;
     if let Some(r) = &s.radiance {
         src.check(&p, "radiance", r, "non-negative", |c| c >= 0.0)?;
     }
@@ -153,9 +129,7 @@ fn material(src: &Source, p: &[Seg], m: &Material) -> Result<(), SceneError> {
         src.check(p, field, values, "non-negative", |v| v >= 0.0)?;
     }
     src.check(p, "ior", &[m.ior], "at least 1", |ior| ior >= 1.0)?;
-    src.check(p, "roughness", &[m.roughness], "in [0, 1]", |r| {
-        (0.0..=1.0).contains(&r)
-    })?;
+    src.check(p, "roughness", &[m.roughness], "in [0, 1]", |r| (0.0..=1.0).contains(&r))?;
     if let Some(h) = m.hardness {
         src.check(p, "hardness", &[h], "positive", |h| h > 0.0)?;
     }
@@ -173,11 +147,7 @@ fn transform(src: &Source, p: &[Seg], m: &schema::Mesh) -> Result<Mat4, SceneErr
         src.finite(p, "matrix", rows)?;
         if rows[12..] != [0.0, 0.0, 0.0, 1.0] {
             let last = &rows[12..];
-            return Err(src.error(
-                p,
-                "matrix",
-                format!("last row must be [0, 0, 0, 1], got {last:?}"),
-            ));
+            return Err(src.error(p, "matrix", format!("last row must be [0, 0, 0, 1], got {last:?}")));
         }
         let matrix = Mat4::from_cols_array(rows).transpose();
         let [a, b, c] = [matrix.x_axis, matrix.y_axis, matrix.z_axis].map(|v| v.truncate());

@@ -1,0 +1,105 @@
+//! Bad input gives a clear error naming the file, a non-zero exit, and no panic.
+
+mod common;
+
+use common::{temp_dir, write};
+use std::path::Path;
+use std::process::Command;
+
+/// Runs `rt render SCENE` and returns (exit code, stderr).
+fn render(scene: &Path) -> (i32, String) {
+    let out_png = scene.with_extension("png");
+    let out = Command::new(env!("CARGO_BIN_EXE_rt"))
+        .args(["render", "--size", "8x8", "--spp", "1", "-o"])
+        .arg(&out_png)
+        .arg(scene)
+        .output()
+        .expect("run rt");
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(!stderr.contains("panicked"), "rt panicked:\n{stderr}");
+    assert!(!out_png.exists() || out.status.success(), "a failed render left an image");
+    (out.status.code().unwrap_or(-1), stderr)
+}
+
+fn expect_error(name: &str, files: &[(&str, &str)], needles: &[&str]) {
+    let dir = temp_dir(&format!("bad-{name}"));
+    for (file, text) in files {
+        write(&dir.join(file), text);
+    }
+    let scene = dir.join("scene.toml");
+    let (code, stderr) = render(&scene);
+    assert_eq!(code, 1, "{name}: exit code {code}, stderr:\n{stderr}");
+    for needle in needles {
+        let needle = needle.replace("{dir}", &dir.display().to_string());
+        assert!(stderr.contains(&needle), "{name}: {needle:?} missing from:\n{stderr}");
+    }
+}
+
+const CAMERA: &str = "[camera]\nposition = [0.0, 0.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\n";
+
+#[test]
+fn malformed_toml_names_file_and_line() {
+    expect_error("malformed", &[("scene.toml", "[camera]\nposition = [0.0, 0.0\n")], &["{dir}/scene.toml:2:"]);
+}
+
+#[test]
+fn unknown_key_suggests_the_right_one() {
+    expect_error(
+        "unknown-key",
+        &[("scene.toml", "[camera]\nposition = [0.0, 0.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y_dg = 40.0\n")],
+        &["{dir}/scene.toml:4:1:", "fov_y_dg", "did you mean `fov_y_deg`"],
+    );
+}
+
+#[test]
+fn negative_radius_names_the_line() {
+    expect_error(
+        "radius",
+        &[("scene.toml", &format!("{CAMERA}[[sphere]]\ncenter = [0.0, 0.0, 0.0]\nradius = -1.0\n"))],
+        &["{dir}/scene.toml:6:", "radius"],
+    );
+}
+
+#[test]
+fn missing_asset_names_the_file() {
+    expect_error(
+        "missing",
+        &[("scene.toml", &format!("{CAMERA}[[mesh]]\nasset = \"nowhere/ghost.obj\"\n"))],
+        &["{dir}/nowhere/ghost.obj"],
+    );
+}
+
+#[test]
+fn obj_with_out_of_range_index_names_the_file() {
+    expect_error(
+        "obj-index",
+        &[
+            ("scene.toml", &format!("{CAMERA}[[mesh]]\nasset = \"bad.obj\"\n")),
+            ("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99\n"),
+        ],
+        &["{dir}/bad.obj"],
+    );
+}
+
+#[test]
+fn obj_with_nan_vertex_names_the_file() {
+    expect_error(
+        "obj-nan",
+        &[
+            ("scene.toml", &format!("{CAMERA}[[mesh]]\nasset = \"nan.obj\"\n")),
+            ("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"),
+        ],
+        &["{dir}/nan.obj", "vertex 1"],
+    );
+}
+
+#[test]
+fn unknown_output_type_is_refused_before_rendering() {
+    let out = Command::new(env!("CARGO_BIN_EXE_rt"))
+        .args(["render", "--size", "8x8", "--spp", "1", "-o", "picture.jpg"])
+        .output()
+        .expect("run rt");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("picture.jpg"), "{stderr}");
+}

@@ -1,0 +1,141 @@
+//! Shared by the GPU integration tests: one device per test binary, and scene helpers.
+#![allow(dead_code)]
+
+use rt::bvh::BuildQuality;
+use rt::gpu::GpuContext;
+use rt::render::{Image, RenderRequest, Renderer};
+use rt::scene::Scene;
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+pub fn gpu() -> &'static GpuContext {
+    static GPU: OnceLock<GpuContext> = OnceLock::new();
+    GPU.get_or_init(|| {
+        GpuContext::new(std::env::var("RT_ADAPTER").ok().as_deref()).expect("a Vulkan adapter (lavapipe in CI)")
+    })
+}
+
+pub fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A scene from TOML text whose relative paths resolve against the repository root.
+pub fn scene_from(text: &str) -> Scene {
+    rt::scene::parse(text, "test.toml", &repo()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+pub fn render(scene: Scene, width: u32, height: u32, spp: u32, max_bounces: u32) -> Image {
+    let mut renderer = Renderer::new(gpu(), scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
+    let mut request = RenderRequest::from_scene(&renderer.scene);
+    (request.width, request.height, request.spp, request.max_bounces) = (width, height, spp, max_bounces);
+    let (image, report) = renderer.render(&request).unwrap_or_else(|e| panic!("{e:#}"));
+    assert_eq!(report.stack_overflows, 0, "traversal stack overflowed");
+    assert_eq!(report.non_finite_samples, 0, "non-finite samples");
+    image
+}
+
+pub fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("rt-test-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+/// A closed, subdivided icosahedron of unit radius as OBJ text.
+pub fn icosphere_obj(subdivisions: u32) -> (String, Vec<[f64; 3]>, Vec<[usize; 3]>) {
+    let t = (1.0 + 5f64.sqrt()) / 2.0;
+    let mut v: Vec<[f64; 3]> = vec![
+        [-1.0, t, 0.0],
+        [1.0, t, 0.0],
+        [-1.0, -t, 0.0],
+        [1.0, -t, 0.0],
+        [0.0, -1.0, t],
+        [0.0, 1.0, t],
+        [0.0, -1.0, -t],
+        [0.0, 1.0, -t],
+        [t, 0.0, -1.0],
+        [t, 0.0, 1.0],
+        [-t, 0.0, -1.0],
+        [-t, 0.0, 1.0],
+    ];
+    let mut f: Vec<[usize; 3]> = vec![
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    let normalise = |p: [f64; 3]| {
+        let l = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        [p[0] / l, p[1] / l, p[2] / l]
+    };
+    for p in v.iter_mut() {
+        *p = normalise(*p);
+    }
+    for _ in 0..subdivisions {
+        let mut midpoint = std::collections::HashMap::new();
+        let mut next = Vec::new();
+        for tri in &f {
+            let mut mid = |a: usize, b: usize| {
+                *midpoint.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                    let p =
+                        normalise([(v[a][0] + v[b][0]) / 2.0, (v[a][1] + v[b][1]) / 2.0, (v[a][2] + v[b][2]) / 2.0]);
+                    v.push(p);
+                    v.len() - 1
+                })
+            };
+            let (a, b, c) = (tri[0], tri[1], tri[2]);
+            let (ab, bc, ca) = (mid(a, b), mid(b, c), mid(c, a));
+            next.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
+        }
+        f = next;
+    }
+    // Positions as f32 so that the CPU reference sees exactly what the GPU does.
+    let v: Vec<[f64; 3]> = v.iter().map(|p| p.map(|c| c as f32 as f64)).collect();
+    let mut text = String::new();
+    for p in &v {
+        text.push_str(&format!("v {} {} {}\n", p[0] as f32, p[1] as f32, p[2] as f32));
+    }
+    for t in &f {
+        text.push_str(&format!("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1));
+    }
+    (text, v, f)
+}
+
+pub fn write(path: &Path, text: &str) {
+    std::fs::write(path, text).expect("write test file");
+}
+
+/// A small deterministic generator for test inputs (SplitMix64).
+pub struct TestRng(pub u64);
+
+impl TestRng {
+    pub fn next_f64(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    pub fn unit_vector(&mut self) -> [f64; 3] {
+        let z = 2.0 * self.next_f64() - 1.0;
+        let phi = 2.0 * std::f64::consts::PI * self.next_f64();
+        let r = (1.0 - z * z).sqrt();
+        [r * phi.cos(), r * phi.sin(), z]
+    }
+}

@@ -1,0 +1,67 @@
+//! White furnace tests: under a uniform sky of radiance 1, a white Lambertian
+//! object reflects all it receives, so the image is 1 everywhere (in expectation).
+
+mod common;
+
+use common::{render, scene_from};
+
+const SKY_ONE: &str = "[sky]\nkind = \"uniform\"\ncolor = [1.0, 1.0, 1.0]\n";
+
+/// Mean of all pixels' luminance and the standard error of that mean.
+fn global_mean(image: &rt::render::Image) -> (f64, f64) {
+    let n = image.pixels.len() as f64;
+    let mean =
+        image.pixels.iter().map(|p| 0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64).sum::<f64>()
+            / n;
+    let var_of_sum: f64 = image.std_error.iter().map(|e| (*e as f64).powi(2)).sum();
+    (mean, var_of_sum.sqrt() / n)
+}
+
+#[test]
+fn white_sphere_in_white_sky_is_one_everywhere() {
+    let scene = scene_from(&format!(
+        "{SKY_ONE}[camera]\nposition = [0.0, 0.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y_deg = 45.0\n\
+         [[sphere]]\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\n"
+    ));
+    let image = render(scene, 64, 64, 16, 64);
+    for (i, (p, e)) in image.pixels.iter().zip(&image.std_error).enumerate() {
+        for c in p {
+            // A convex white sphere scatters every ray straight to the sky: every
+            // sample is 1 up to rounding, and the bound is the noise plus that rounding.
+            assert!((c - 1.0).abs() <= 4.0 * e + 1e-5, "pixel {i}: {c} (standard error {e})");
+        }
+    }
+    let (mean, se) = global_mean(&image);
+    println!("sphere furnace: mean {mean:.7}, standard error {se:.2e}");
+    assert!((mean - 1.0).abs() <= 4.0 * se + 1e-6);
+}
+
+#[test]
+fn white_bunny_in_white_sky_is_one_on_average() {
+    // Non-convex: paths bounce inside the ears' concavities and end by Russian
+    // roulette, so single samples vary while their expectation stays 1.
+    let scene = scene_from(&format!(
+        "{SKY_ONE}[camera]\nposition = [0.0, 0.5, 1.6]\nlook_at = [0.0, 0.45, 0.0]\nfov_y_deg = 40.0\n\
+         [[mesh]]\nasset = \"assets/bunny/bunny.obj\"\n"
+    ));
+    let image = render(scene, 64, 64, 32, 256);
+    let (mean, se) = global_mean(&image);
+    println!("bunny furnace: mean {mean:.6}, standard error {se:.2e}");
+    assert!(se > 0.0, "Russian roulette must make the estimate noisy");
+    assert!((mean - 1.0).abs() <= 4.0 * se, "mean {mean} is {:.1} standard errors from 1", (mean - 1.0).abs() / se);
+}
+
+#[test]
+fn grey_sphere_reflects_its_albedo_once() {
+    // A convex sphere of albedo a under sky 1 shows exactly a (one bounce, then the sky).
+    let scene = scene_from(&format!(
+        "{SKY_ONE}[camera]\nposition = [0.0, 0.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y_deg = 20.0\n\
+         [materials.grey]\nbase_color = [0.25, 0.5, 0.75]\n\
+         [[sphere]]\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\nmaterial = \"grey\"\n"
+    ));
+    let image = render(scene, 16, 16, 4, 8);
+    let centre = image.pixels[8 * 16 + 8];
+    for (c, want) in centre.iter().zip([0.25, 0.5, 0.75]) {
+        assert!((c - want).abs() < 1e-5, "{centre:?}");
+    }
+}

@@ -15,6 +15,20 @@ struct Frame {
     samples_per_dispatch: u32,
     seed: u32,
     tlas_root: u32,
+    // Unit vector towards the sun's centre.
+    sun_direction: vec3f,
+    // 1 − cos of the sun's angular radius, computed in f64 on the host: in f32,
+    // 1 − cos(0.265°) would keep only two digits.
+    sun_one_minus_cos: f32,
+    // Disk radiance above any atmosphere.
+    sun_radiance: vec3f,
+    // Probability that next-event estimation samples the sun rather than an emitter.
+    sun_select_probability: f32,
+    emitter_count: u32,
+    // Sum of the emitters' powers (area × luminance of emission).
+    emitter_total_power: f32,
+    ris_candidates: u32,
+    _pad0: u32,
 }
 
 // A BVH2 node holding both children's boxes, so that one fetch decides where to go.
@@ -68,6 +82,7 @@ struct Sphere {
     _pad2: u32,
 }
 
+// Lobe weights are normalised on the host so that they sum to at most 1.
 struct Material {
     base_color: vec3f,
     diffuse: f32,
@@ -78,9 +93,21 @@ struct Material {
     volume_emission: vec3f,
     transmission: f32,
     ior: f32,
-    roughness: f32,
+    // GGX α of the specular, reflection and transmission lobes (from roughness or hardness).
+    alpha: f32,
+    // Luminance of `emission`, for light selection probabilities.
+    emission_luminance: f32,
     _pad0: u32,
-    _pad1: u32,
+}
+
+// An emissive triangle (of one instance) or sphere, for next-event estimation.
+struct Emitter {
+    // Triangle index, or sphere index | SPHERE_BIT.
+    primitive: u32,
+    instance: u32,
+    // Cumulative selection probability up to and including this emitter.
+    cdf: f32,
+    _pad0: u32,
 }
 
 const EMPTY_LINK: u32 = 0xffffffffu;
@@ -106,3 +133,4 @@ const STACK_SIZE: u32 = 32u;
 @group(0) @binding(6) var<storage, read> spheres: array<Sphere>;
 @group(0) @binding(7) var<storage, read> materials: array<Material>;
 @group(0) @binding(8) var<storage, read_write> stats: array<atomic<u32>>;
+@group(0) @binding(9) var<storage, read> emitters: array<Emitter>;

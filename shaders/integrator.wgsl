@@ -14,38 +14,106 @@ fn all_finite(v: vec3f) -> bool {
     return all(exponent != vec3u(0x7f800000u));
 }
 
-fn luminance(c: vec3f) -> f32 {
-    return dot(c, vec3f(0.2126, 0.7152, 0.0722));
+//#if emission
+// Emission of the surface hit, MIS-weighted against light sampling when the
+// bounce that found it could also have been found by next-event estimation.
+fn emission_seen(m: Material, hit: Hit, surface: Surface, origin: vec3f, direction: vec3f, bsdf_pdf: f32) -> vec3f {
+    var weight = 1.0;
+    //#if nee
+    if bsdf_pdf > 0.0 {
+        var light_pdf = 0.0;
+        if hit.kind == HIT_SPHERE {
+            //#if spheres
+            light_pdf = sphere_emitter_pdf(origin, spheres[hit.primitive], m.emission_luminance);
+            //#endif
+        } else {
+            light_pdf = triangle_emitter_pdf(m.emission_luminance, hit.t, abs(dot(surface.geometric_normal, direction)));
+        }
+        weight = power_heuristic(bsdf_pdf, light_pdf);
+    }
+    //#endif
+    return m.emission * weight;
 }
+//#endif
+
+//#if sun
+// The sun's disk seen by a ray that leaves the scene.
+fn sun_seen(origin: vec3f, direction: vec3f, bsdf_pdf: f32) -> vec3f {
+    if !in_sun_disk(direction) {
+        return vec3f(0.0);
+    }
+    var weight = 1.0;
+    //#if nee
+    if bsdf_pdf > 0.0 {
+        weight = power_heuristic(bsdf_pdf, frame.sun_select_probability / sun_solid_angle());
+    }
+    //#endif
+    return sun_radiance_at(origin, direction) * weight;
+}
+//#endif
 
 fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
     var origin = frame.camera_position;
     var direction = camera_ray_direction(pixel, vec2f(rng_next(rng), rng_next(rng)));
     var radiance = vec3f(0.0);
     var throughput = vec3f(1.0);
+    // Density of the last BSDF sample, for MIS; 0 after the camera and after delta lobes.
+    var bsdf_pdf = 0.0;
+    // The medium the path travels in: absorption and emission per metre.
+    var medium_absorption = vec3f(0.0);
+    var medium_emission = vec3f(0.0);
     for (var bounce = 0u; ; bounce++) {
         let hit = trace_scene(origin, direction, INFINITY);
         if stack_overflowed {
             atomicAdd(&stats[STAT_STACK_OVERFLOW], 1u);
         }
+        //#if media
+        let segment = integrate_segment(medium_absorption, medium_emission, hit.t);
+        radiance += throughput * segment.radiance;
+        throughput *= segment.transmittance;
+        //#endif
         if hit.kind == HIT_NONE {
-            radiance += throughput * sky_radiance(direction);
+            radiance += throughput * sky_radiance(origin, direction);
+            //#if sun
+            radiance += throughput * sun_seen(origin, direction, bsdf_pdf);
+            //#endif
             break;
         }
+        //#if sky_atmosphere
+        let air = atmosphere_segment(origin, direction, hit.t);
+        radiance += throughput * air.radiance;
+        throughput *= air.transmittance;
+        //#endif
         let surface = surface_at(hit, origin, direction);
         let m = materials[surface.material];
-        radiance += throughput * surface_emission(m);
+        //#if emission
+        radiance += throughput * emission_seen(m, hit, surface, origin, direction, bsdf_pdf);
+        //#endif
         if bounce >= frame.max_bounces {
             break;
         }
-        // Both normals face the incoming ray, so every lobe works on one side.
-        let n_geometric = select(surface.geometric_normal, -surface.geometric_normal, dot(surface.geometric_normal, direction) > 0.0);
-        let n_shading = select(surface.shading_normal, -surface.shading_normal, dot(surface.shading_normal, n_geometric) < 0.0);
-        let s = sample_bsdf(m, n_shading, n_geometric, rng);
+        // The viewer is outside when the ray meets the outward normal head on.
+        let entering = dot(surface.geometric_normal, direction) < 0.0;
+        let n_geometric = select(-surface.geometric_normal, surface.geometric_normal, entering);
+        let n_shading = select(-surface.shading_normal, surface.shading_normal, entering);
+        let ctx = shading_context(m, n_shading, n_geometric, -direction, entering);
+        //#if nee
+        radiance += throughput * direct_light(ctx, surface.position, n_geometric, medium_absorption, rng);
+        //#endif
+        let s = bsdf_sample(ctx, rng);
         if !s.valid {
             break;
         }
         throughput *= s.weight;
+        bsdf_pdf = s.pdf;
+        //#if media
+        // Crossing into a material adds its medium, leaving subtracts it: nested media add up.
+        if s.transmitted {
+            let sign = select(-1.0, 1.0, entering);
+            medium_absorption = max(medium_absorption + sign * m.absorption, vec3f(0.0));
+            medium_emission = max(medium_emission + sign * m.volume_emission, vec3f(0.0));
+        }
+        //#endif
         if bounce >= ROULETTE_START {
             let survival = min(max(throughput.x, max(throughput.y, throughput.z)), 0.95);
             if rng_next(rng) >= survival {
@@ -53,7 +121,7 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
             }
             throughput /= survival;
         }
-        origin = offset_ray_origin(surface.position, n_geometric);
+        origin = offset_ray_origin(surface.position, select(-n_geometric, n_geometric, dot(s.direction, n_geometric) > 0.0));
         direction = s.direction;
     }
     return radiance;

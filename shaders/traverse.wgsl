@@ -85,9 +85,13 @@ fn next_node(node: BvhNode, t_a: f32, t_b: f32, stack: ptr<function, array<u32, 
 
 fn test_top_level_primitive(entry: u32, origin: vec3f, direction: vec3f, hit: ptr<function, Hit>) {
     if (entry & SPHERE_BIT) != 0u {
+        //#if spheres
         test_sphere(entry & ~SPHERE_BIT, origin, direction, hit);
+        //#endif
     } else {
+        //#if triangles
         trace_instance(entry, origin, direction, hit);
+        //#endif
     }
 }
 

@@ -30,6 +30,10 @@ pub struct SceneGeometry {
     pub spheres: Vec<GpuSphere>,
     /// The default material first, then the scene's, then each mesh's own.
     pub materials: Vec<GpuMaterial>,
+    /// Emissive triangles and spheres with their cumulative selection probabilities.
+    pub emitters: Vec<GpuEmitter>,
+    /// Sum of the emitters' powers (area × luminance of emission).
+    pub emitter_total_power: f32,
     pub tlas_root: u32,
     pub tlas_stats: BvhStats,
     pub meshes: Vec<LoadedMesh>,
@@ -80,6 +84,8 @@ impl SceneGeometry {
 
         let mut in_use = vec![false; materials.len()];
         let mut instances = Vec::new();
+        // (first triangle, triangle count) of each instance's mesh.
+        let mut instance_triangles = Vec::new();
         let mut boxes = Vec::new();
         // Top-level primitive of each box: instance index, or sphere index | SPHERE_BIT.
         let mut entries = Vec::new();
@@ -102,6 +108,7 @@ impl SceneGeometry {
                 in_use[material_override as usize] = true;
             }
             entries.push(instances.len() as u32);
+            instance_triangles.push(triangle_offset..triangle_offset + mesh.bvh.triangles.len() as u32);
             boxes.push(transformed_box(&m.object_to_world, mesh.bvh.bounds_min, mesh.bvh.bounds_max));
             instances.push(GpuInstance {
                 world_to_object: affine_rows(&m.object_to_world.inverse()),
@@ -124,7 +131,15 @@ impl SceneGeometry {
         }
 
         let used: Vec<&Material> = materials.iter().zip(&in_use).filter(|(_, u)| **u).map(|(m, _)| m).collect();
-        let features = FeatureSet::analyse(!instances.is_empty(), !spheres.is_empty(), &used, &scene.sky);
+        let features = FeatureSet::analyse(
+            !instances.is_empty(),
+            !spheres.is_empty(),
+            &used,
+            &scene.sky,
+            scene.sun.is_some(),
+            &scene.render,
+        );
+        let (emitters, emitter_total_power) = emitter_table(&instances, &instance_triangles, &triangles, &spheres, &materials);
 
         let (tlas_nodes, tlas_primitives) = if boxes.is_empty() {
             (convert_bvh2(&obvhs::bvh2::Bvh2::default()), Vec::new())
@@ -149,6 +164,8 @@ impl SceneGeometry {
             tlas_primitives,
             spheres,
             materials: materials.iter().map(GpuMaterial::from).collect(),
+            emitters,
+            emitter_total_power,
             tlas_root,
             tlas_stats,
             meshes,
@@ -157,6 +174,65 @@ impl SceneGeometry {
             bounds_max,
         })
     }
+}
+
+/// Every emissive triangle of every instance, and every emissive sphere, with
+/// selection probabilities in proportion to power: world area × luminance of
+/// emission (the GPU's light pdfs assume exactly this).
+fn emitter_table(
+    instances: &[GpuInstance],
+    instance_triangles: &[std::ops::Range<u32>],
+    triangles: &[GpuTriangle],
+    spheres: &[GpuSphere],
+    materials: &[Material],
+) -> (Vec<GpuEmitter>, f32) {
+    let mut entries: Vec<(GpuEmitter, f64)> = Vec::new();
+    for (index, (inst, range)) in instances.iter().zip(instance_triangles).enumerate() {
+        let to_world = |v: [f32; 3]| {
+            let p = glam::DVec3::from(v.map(f64::from));
+            let r = inst.object_to_world.map(|row| glam::DVec4::from(row.map(f64::from)));
+            glam::DVec3::new(r[0].truncate().dot(p) + r[0].w, r[1].truncate().dot(p) + r[1].w, r[2].truncate().dot(p) + r[2].w)
+        };
+        for t in range.clone() {
+            let tri = &triangles[t as usize];
+            let material = if inst.material_override == NO_MATERIAL {
+                inst.material_base + tri.material
+            } else {
+                inst.material_override
+            };
+            let lum = crate::scene::luminance(materials[material as usize].emission) as f64;
+            if lum <= 0.0 {
+                continue;
+            }
+            let (a, b, c) = (to_world(tri.v0), to_world(tri.v1), to_world(tri.v2));
+            let area = 0.5 * (b - a).cross(c - a).length();
+            if area > 0.0 {
+                entries.push((GpuEmitter { primitive: t, instance: index as u32, cdf: 0.0, _pad0: 0 }, area * lum));
+            }
+        }
+    }
+    for (index, s) in spheres.iter().enumerate() {
+        let lum = crate::scene::luminance(materials[s.material as usize].emission) as f64;
+        if lum > 0.0 {
+            let area = 4.0 * std::f64::consts::PI * (s.radius as f64).powi(2);
+            entries.push((GpuEmitter { primitive: index as u32 | SPHERE_BIT, instance: 0, cdf: 0.0, _pad0: 0 }, area * lum));
+        }
+    }
+    let total: f64 = entries.iter().map(|(_, p)| p).sum();
+    let mut running = 0.0;
+    let mut emitters: Vec<GpuEmitter> = entries
+        .into_iter()
+        .map(|(mut e, p)| {
+            running += p;
+            e.cdf = (running / total) as f32;
+            e
+        })
+        .collect();
+    // Rounding must not leave u ∈ [cdf_last, 1) without an emitter.
+    if let Some(last) = emitters.last_mut() {
+        last.cdf = 1.0;
+    }
+    (emitters, total as f32)
 }
 
 fn affine_rows(m: &Mat4) -> [[f32; 4]; 3] {

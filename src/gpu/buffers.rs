@@ -40,6 +40,7 @@ pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     let mut entries = vec![entry(0, wgpu::BufferBindingType::Uniform)];
     entries.extend((1..=7).map(|b| entry(b, read)));
     entries.push(entry(8, wgpu::BufferBindingType::Storage { read_only: false }));
+    entries.push(entry(9, read));
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some("scene"), entries: &entries })
 }
 
@@ -91,7 +92,8 @@ impl SceneBuffers {
         let materials = storage(ctx, "materials", &geometry.materials, none);
         let stats =
             storage(ctx, "stats", &[0u32; STAT_COUNT], wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST);
-        let buffers = [&frame, &nodes, &triangles, &shading, &instances, &tlas, &spheres, &materials, &stats];
+        let emitters = storage(ctx, "emitters", &geometry.emitters, none);
+        let buffers = [&frame, &nodes, &triangles, &shading, &instances, &tlas, &spheres, &materials, &stats, &emitters];
         let entries: Vec<_> = buffers
             .iter()
             .enumerate()

@@ -20,6 +20,14 @@ pub struct GpuFrame {
     pub samples_per_dispatch: u32,
     pub seed: u32,
     pub tlas_root: u32,
+    pub sun_direction: [f32; 3],
+    pub sun_one_minus_cos: f32,
+    pub sun_radiance: [f32; 3],
+    pub sun_select_probability: f32,
+    pub emitter_count: u32,
+    pub emitter_total_power: f32,
+    pub ris_candidates: u32,
+    pub _pad0: u32,
 }
 
 /// A BVH2 node with both children's boxes (see `shaders/common.wgsl`).
@@ -92,8 +100,21 @@ pub struct GpuMaterial {
     pub volume_emission: [f32; 3],
     pub transmission: f32,
     pub ior: f32,
-    pub roughness: f32,
-    pub _pad: [u32; 2],
+    pub alpha: f32,
+    pub emission_luminance: f32,
+    pub _pad0: u32,
+}
+
+/// An emissive triangle or sphere, for next-event estimation.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuEmitter {
+    /// Triangle index, or sphere index | `SPHERE_BIT`.
+    pub primitive: u32,
+    pub instance: u32,
+    /// Cumulative selection probability up to and including this emitter.
+    pub cdf: f32,
+    pub _pad0: u32,
 }
 
 /// Input of the trace kernel (`shaders/trace_kernel.wgsl`).
@@ -123,18 +144,20 @@ pub const SPHERE_BIT: u32 = 0x8000_0000;
 
 impl From<&crate::scene::Material> for GpuMaterial {
     fn from(m: &crate::scene::Material) -> Self {
+        let [diffuse, specular, reflection, transmission] = m.lobe_weights();
         Self {
             base_color: m.base_color,
-            diffuse: m.diffuse,
+            diffuse,
             emission: m.emission,
-            specular: m.specular,
+            specular,
             absorption: m.absorption,
-            reflection: m.reflection,
+            reflection,
             volume_emission: m.volume_emission,
-            transmission: m.transmission,
+            transmission,
             ior: m.ior,
-            roughness: m.roughness,
-            _pad: [0; 2],
+            alpha: m.alpha(),
+            emission_luminance: crate::scene::luminance(m.emission),
+            _pad0: 0,
         }
     }
 }
@@ -154,16 +177,17 @@ mod tests {
     }
 
     fn wgsl_layouts() -> std::collections::HashMap<String, (u32, Vec<(String, u32)>)> {
-        let source = crate::gpu::shader::full_source_for_layout_checks();
-        let module = wgpu::naga::front::wgsl::parse_str(&source).expect("WGSL parses");
-        let mut layouter = wgpu::naga::proc::Layouter::default();
-        layouter.update(module.to_ctx()).expect("layout");
         let mut out = std::collections::HashMap::new();
-        for (handle, ty) in module.types.iter() {
-            if let (Some(name), wgpu::naga::TypeInner::Struct { members, span }) = (&ty.name, &ty.inner) {
-                let fields = members.iter().map(|m| (m.name.clone().unwrap_or_default(), m.offset)).collect();
-                assert_eq!(layouter[handle].size, *span);
-                out.insert(name.clone(), (*span, fields));
+        for source in crate::gpu::shader::full_sources_for_layout_checks() {
+            let module = wgpu::naga::front::wgsl::parse_str(&source).expect("WGSL parses");
+            let mut layouter = wgpu::naga::proc::Layouter::default();
+            layouter.update(module.to_ctx()).expect("layout");
+            for (handle, ty) in module.types.iter() {
+                if let (Some(name), wgpu::naga::TypeInner::Struct { members, span }) = (&ty.name, &ty.inner) {
+                    let fields = members.iter().map(|m| (m.name.clone().unwrap_or_default(), m.offset)).collect();
+                    assert_eq!(layouter[handle].size, *span);
+                    out.insert(name.clone(), (*span, fields));
+                }
             }
         }
         out
@@ -189,7 +213,14 @@ mod tests {
                     sample_base,
                     samples_per_dispatch,
                     seed,
-                    tlas_root
+                    tlas_root,
+                    sun_direction,
+                    sun_one_minus_cos,
+                    sun_radiance,
+                    sun_select_probability,
+                    emitter_count,
+                    emitter_total_power,
+                    ris_candidates
                 ]
             ),
             host_layout!("BvhNode", GpuBvhNode, [a_min, a_link, a_max, a_count, b_min, b_link, b_max, b_count]),
@@ -214,9 +245,11 @@ mod tests {
                     volume_emission,
                     transmission,
                     ior,
-                    roughness
+                    alpha,
+                    emission_luminance
                 ]
             ),
+            host_layout!("Emitter", GpuEmitter, [primitive, instance, cdf]),
             host_layout!("TraceRay", GpuTraceRay, [origin, t_max, direction]),
             host_layout!("TraceHit", GpuTraceHit, [t, primitive, instance, overflowed]),
         ];

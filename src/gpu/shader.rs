@@ -1,7 +1,11 @@
-//! WGSL assembly: the pipeline for a feature set is built from the shader
-//! files that set needs, and from stand-ins that do nothing for the effects it lacks.
+//! WGSL assembly: the module for a feature set is built from the shader files
+//! that set needs, with the lines of absent effects removed.
+//!
+//! Inside a file, `//#if NAME`, `//#if !NAME`, `//#else` and `//#endif` (on
+//! lines of their own, nestable) keep or drop lines by the feature flags of
+//! [`FeatureSet::flag`]. Being comments, they leave every file valid WGSL.
 
-use crate::scene::{FeatureSet, SkyFeature};
+use crate::scene::{FeatureSet, SkyFeature, Transmission};
 
 macro_rules! shader {
     ($name:literal) => {
@@ -19,17 +23,42 @@ const SPHERE: Part = shader!("sphere.wgsl");
 const TRAVERSE: Part = shader!("traverse.wgsl");
 const SURFACE: Part = shader!("surface.wgsl");
 const BOTTOM_LEVEL: Part = shader!("bottom_level.wgsl");
-const BOTTOM_LEVEL_ABSENT: Part = shader!("bottom_level_absent.wgsl");
 const SPHERE_TEST: Part = shader!("sphere_test.wgsl");
-const SPHERE_ABSENT: Part = shader!("sphere_absent.wgsl");
 const CAMERA: Part = shader!("camera.wgsl");
-const SKY_BLACK: Part = shader!("sky_black.wgsl");
-const SKY_UNIFORM: Part = shader!("sky_uniform.wgsl");
-const EMISSION: Part = shader!("emission.wgsl");
-const EMISSION_ABSENT: Part = shader!("emission_absent.wgsl");
+const SKY: Part = shader!("sky.wgsl");
+const MICROFACET: Part = shader!("microfacet.wgsl");
 const BSDF: Part = shader!("bsdf.wgsl");
+const DIELECTRIC: Part = shader!("dielectric.wgsl");
+const SAMPLING: Part = shader!("sampling.wgsl");
+const SUN: Part = shader!("sun.wgsl");
+const LIGHTS: Part = shader!("lights.wgsl");
+const SEGMENT: Part = shader!("segment.wgsl");
 const INTEGRATOR: Part = shader!("integrator.wgsl");
 const TRACE_KERNEL: Part = shader!("trace_kernel.wgsl");
+
+/// Every shader file, for checks that must see them all.
+pub const ALL_PARTS: &[Part] = &[
+    COMMON,
+    RNG,
+    RAY,
+    TRIANGLE,
+    SPHERE,
+    TRAVERSE,
+    SURFACE,
+    BOTTOM_LEVEL,
+    SPHERE_TEST,
+    CAMERA,
+    SKY,
+    MICROFACET,
+    BSDF,
+    DIELECTRIC,
+    SAMPLING,
+    SUN,
+    LIGHTS,
+    SEGMENT,
+    INTEGRATOR,
+    TRACE_KERNEL,
+];
 
 /// Which entry points a module carries.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -40,95 +69,168 @@ pub enum Program {
     Trace,
 }
 
-fn geometry_parts(features: &FeatureSet) -> Vec<Part> {
-    let mut parts = vec![COMMON, RNG, RAY, TRAVERSE, SURFACE, CAMERA];
-    parts.push(if features.triangles { BOTTOM_LEVEL } else { BOTTOM_LEVEL_ABSENT });
-    if features.triangles {
-        parts.push(TRIANGLE);
+fn parts(program: Program, f: &FeatureSet) -> Vec<Part> {
+    let mut parts = vec![COMMON, RNG, RAY, TRAVERSE, SURFACE, CAMERA, SKY];
+    if f.triangles {
+        parts.extend([TRIANGLE, BOTTOM_LEVEL]);
     }
-    if features.spheres {
+    if f.spheres {
         parts.extend([SPHERE, SPHERE_TEST]);
-    } else {
-        parts.push(SPHERE_ABSENT);
     }
+    if f.glossy || f.transmission != Transmission::None {
+        parts.push(MICROFACET);
+    }
+    parts.extend([BSDF, SAMPLING]);
+    if f.transmission != Transmission::None {
+        parts.push(DIELECTRIC);
+    }
+    if f.sun {
+        parts.push(SUN);
+    }
+    if f.flag("nee") == Some(true) {
+        parts.push(LIGHTS);
+    }
+    if f.media || f.sky == SkyFeature::Atmosphere {
+        parts.push(SEGMENT);
+    }
+    parts.push(match program {
+        Program::Integrator => INTEGRATOR,
+        Program::Trace => TRACE_KERNEL,
+    });
     parts
 }
 
 /// The WGSL source of `program` specialised to `features`.
 pub fn assemble(program: Program, features: &FeatureSet) -> String {
-    let mut parts = geometry_parts(features);
-    match program {
-        Program::Integrator => {
-            parts.push(match features.sky {
-                SkyFeature::Black => SKY_BLACK,
-                // The atmosphere has no shader yet; `render` refuses such scenes before this.
-                SkyFeature::Uniform | SkyFeature::Atmosphere => SKY_UNIFORM,
-            });
-            parts.push(if features.emission { EMISSION } else { EMISSION_ABSENT });
-            parts.extend([BSDF, INTEGRATOR]);
-        }
-        Program::Trace => parts.extend([BSDF, TRACE_KERNEL]),
-    }
-    join(&parts)
-}
-
-fn join(parts: &[Part]) -> String {
     let mut source = String::new();
-    for (name, text) in parts {
+    for (name, text) in parts(program, features) {
         source.push_str(&format!("// ---- shaders/{name}\n"));
-        source.push_str(text);
-        source.push('\n');
+        source.push_str(&preprocess(name, text, &|flag| features.flag(flag)));
     }
     source
 }
 
-/// Every shader file in one module, for the struct layout test.
+/// Applies the `//#if` directives of one file.
+///
+/// # Panics
+/// On an unknown flag or unbalanced directives: both are mistakes in the
+/// shaders themselves, which the tests catch for every file.
+pub fn preprocess(file: &str, text: &str, flag: &dyn Fn(&str) -> Option<bool>) -> String {
+    let mut out = String::new();
+    // For each open `#if`: (its branch is taken, the enclosing lines are kept).
+    let mut stack: Vec<(bool, bool)> = Vec::new();
+    let keeping = |stack: &[(bool, bool)]| stack.last().is_none_or(|&(taken, outer)| taken && outer);
+    for (n, line) in text.lines().enumerate() {
+        let directive = line.trim_start();
+        if let Some(cond) = directive.strip_prefix("//#if ") {
+            let cond = cond.trim();
+            let (negated, name) = cond.strip_prefix('!').map_or((false, cond), |n| (true, n));
+            let value = flag(name).unwrap_or_else(|| panic!("shaders/{file}:{}: unknown flag `{name}`", n + 1));
+            let outer = keeping(&stack);
+            stack.push((value != negated, outer));
+        } else if directive.starts_with("//#else") {
+            let top = stack.last_mut().unwrap_or_else(|| panic!("shaders/{file}:{}: #else without #if", n + 1));
+            top.0 = !top.0;
+        } else if directive.starts_with("//#endif") {
+            stack.pop().unwrap_or_else(|| panic!("shaders/{file}:{}: #endif without #if", n + 1));
+        } else if keeping(&stack) {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    assert!(stack.is_empty(), "shaders/{file}: unclosed #if");
+    out
+}
+
+/// Both programs with every flag on, for the struct layout test.
 #[cfg(test)]
-pub fn full_source_for_layout_checks() -> String {
-    let mut parts = geometry_parts(&FeatureSet::all());
-    parts.extend([SKY_UNIFORM, EMISSION, BSDF, INTEGRATOR, TRACE_KERNEL]);
-    join(&parts)
+pub fn full_sources_for_layout_checks() -> [String; 2] {
+    use crate::scene::{RoughTransmission, Sampling};
+    let all = FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx);
+    [assemble(Program::Integrator, &all), assemble(Program::Trace, &all)]
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::{RoughTransmission, Sampling};
 
-    fn all_feature_sets() -> Vec<FeatureSet> {
+    /// A spread of feature sets: each flag on and off, in many combinations.
+    fn feature_sets() -> Vec<FeatureSet> {
         let mut sets = Vec::new();
-        for bits in 0..8u32 {
-            for sky in [SkyFeature::Black, SkyFeature::Uniform] {
-                sets.push(FeatureSet {
-                    triangles: bits & 1 != 0,
-                    spheres: bits & 2 != 0,
-                    emission: bits & 4 != 0,
-                    sky,
-                });
-            }
+        for bits in 0..256u32 {
+            let on = |b: u32| bits & (1 << b) != 0;
+            let transmission = match bits % 4 {
+                0 => Transmission::None,
+                1 => Transmission::Smooth,
+                2 => Transmission::Rough(RoughTransmission::Ggx),
+                _ => Transmission::Rough(RoughTransmission::Cone),
+            };
+            sets.push(FeatureSet {
+                triangles: on(2) || !on(3),
+                spheres: on(3),
+                emission: on(4),
+                sky: if on(5) { SkyFeature::Uniform } else { SkyFeature::Black },
+                sun: on(6),
+                glossy: on(7),
+                transmission,
+                media: on(1) && transmission != Transmission::None,
+                sampling: if on(0) { Sampling::Nee } else { Sampling::Seed },
+            });
         }
         sets
     }
 
+    fn validate(source: &str, what: &str) {
+        let module = wgpu::naga::front::wgsl::parse_str(source)
+            .unwrap_or_else(|e| panic!("{what}: {}", e.emit_to_string(source)));
+        wgpu::naga::valid::Validator::new(Default::default(), wgpu::naga::valid::Capabilities::all())
+            .validate(&module)
+            .unwrap_or_else(|e| panic!("{what}: {}", e.emit_to_string(source)));
+    }
+
     #[test]
     fn every_feature_set_assembles_to_valid_wgsl() {
-        for features in all_feature_sets() {
+        for features in feature_sets() {
             for program in [Program::Integrator, Program::Trace] {
-                let source = assemble(program, &features);
-                let module = wgpu::naga::front::wgsl::parse_str(&source)
-                    .unwrap_or_else(|e| panic!("{features} {program:?}: {}", e.emit_to_string(&source)));
-                wgpu::naga::valid::Validator::new(Default::default(), wgpu::naga::valid::Capabilities::all())
-                    .validate(&module)
-                    .unwrap_or_else(|e| panic!("{features} {program:?}: {}", e.emit_to_string(&source)));
+                validate(&assemble(program, &features), &format!("[{features}] {program:?}"));
             }
+        }
+    }
+
+    #[test]
+    fn every_directive_names_a_known_flag() {
+        let any = FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx);
+        for (name, text) in ALL_PARTS {
+            preprocess(name, text, &|flag| any.flag(flag));
         }
     }
 
     #[test]
     fn absent_effects_leave_no_code() {
-        let plain = FeatureSet { triangles: true, spheres: false, emission: false, sky: SkyFeature::Black };
+        let plain = FeatureSet {
+            triangles: true,
+            spheres: false,
+            emission: false,
+            sky: SkyFeature::Black,
+            sun: false,
+            glossy: false,
+            transmission: Transmission::None,
+            media: false,
+            sampling: Sampling::Nee,
+        };
         let source = assemble(Program::Integrator, &plain);
-        assert!(!source.contains("fn intersect_sphere"));
-        assert!(!source.contains("return m.emission"));
-        assert!(!source.contains("frame.sky_color"));
+        for absent in ["fn intersect_sphere", "m.emission *", "frame.sky_color", "fn ggx_d", "fn refract_direction", "fn fresnel_dielectric", "fn sample_sun", "fn integrate_segment"] {
+            assert!(!source.contains(absent), "{absent:?} is in the plain pipeline");
+        }
+    }
+
+    #[test]
+    fn preprocessor_nests_and_negates() {
+        let text = "a\n//#if x\nb\n//#if !y\nc\n//#else\nd\n//#endif\n//#else\ne\n//#endif\nf\n";
+        let run = |x: bool, y: bool| preprocess("t", text, &|n| Some(if n == "x" { x } else { y }));
+        assert_eq!(run(true, false), "a\nb\nc\nf\n");
+        assert_eq!(run(true, true), "a\nb\nd\nf\n");
+        assert_eq!(run(false, false), "a\ne\nf\n");
     }
 }

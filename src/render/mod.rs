@@ -3,12 +3,14 @@
 mod camera;
 mod image_out;
 mod progressive;
+mod sun;
 pub mod tonemap;
 mod trace;
 
 pub use camera::set_camera;
 pub use image_out::{ImageFormat, image_format, write_image};
 pub use progressive::Accumulation;
+pub use sun::{default_sun_radiance, sun_direction, sun_one_minus_cos};
 pub use trace::TraceBuffers;
 
 use crate::bvh::{BuildQuality, SceneGeometry};
@@ -39,6 +41,8 @@ pub struct RenderRequest {
     pub spp: u32,
     pub max_bounces: u32,
     pub seed: u32,
+    /// Candidates per resampled direction in `seed` sampling.
+    pub ris_candidates: u32,
     /// Run this feature set's pipeline instead of the scene's own (it must include it).
     pub features: Option<FeatureSet>,
     pub progress: bool,
@@ -53,6 +57,7 @@ impl RenderRequest {
             spp: r.spp,
             max_bounces: r.max_bounces,
             seed: 0,
+            ris_candidates: r.ris_candidates,
             features: None,
             progress: false,
         }
@@ -85,9 +90,6 @@ impl<'a> Renderer<'a> {
         if geometry.features.sky == SkyFeature::Atmosphere {
             bail!("{}: sky kind \"atmosphere\" is not rendered by this version of rt yet", scene.origin);
         }
-        if scene.sun.is_some() {
-            log::warn!("{}: [sun] is parsed but not rendered by this version of rt yet", scene.origin);
-        }
         let pipelines = PipelineCache::new(ctx);
         let buffers = SceneBuffers::new(ctx, &geometry, &pipelines.scene_layout)?;
         Ok(Self { ctx, scene, geometry, buffers, pipelines })
@@ -105,6 +107,10 @@ impl<'a> Renderer<'a> {
         if let Sky::Uniform { color } = self.scene.sky {
             frame.sky_color = color.to_array();
         }
+        sun::set_sun(&mut frame, self.scene.sun.as_ref(), !self.geometry.emitters.is_empty());
+        frame.emitter_count = self.geometry.emitters.len() as u32;
+        frame.emitter_total_power = self.geometry.emitter_total_power;
+        frame.ris_candidates = request.ris_candidates;
         frame
     }
 

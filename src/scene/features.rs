@@ -1,6 +1,6 @@
 //! Feature analysis: which effects a scene needs, so that the GPU runs only their code.
 
-use super::{Material, Sky};
+use super::{Material, RenderSettings, RoughTransmission, Sampling, Sky};
 use std::fmt;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -8,6 +8,16 @@ pub enum SkyFeature {
     Black,
     Uniform,
     Atmosphere,
+}
+
+/// What refraction the scene's materials need.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Transmission {
+    None,
+    /// Only perfectly smooth interfaces.
+    Smooth,
+    /// At least one rough interface, with this model (smooth ones are handled too).
+    Rough(RoughTransmission),
 }
 
 /// The effects a scene calls for. Each one selects shader code; an absent
@@ -18,12 +28,38 @@ pub struct FeatureSet {
     pub spheres: bool,
     pub emission: bool,
     pub sky: SkyFeature,
+    pub sun: bool,
+    /// GGX reflection: a rough `specular` or `reflection` lobe.
+    pub glossy: bool,
+    pub transmission: Transmission,
+    /// Absorption or emission inside transmissive materials.
+    pub media: bool,
+    pub sampling: Sampling,
 }
+
+/// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
+pub const ALPHA_DELTA: f32 = 1e-3;
 
 impl FeatureSet {
     /// Derives the set from what the scene really contains, after its assets
-    /// are loaded (an asset's own materials may emit).
-    pub fn analyse(has_triangles: bool, has_spheres: bool, materials_in_use: &[&Material], sky: &Sky) -> Self {
+    /// are loaded (an asset's own materials may emit or refract).
+    pub fn analyse(
+        has_triangles: bool,
+        has_spheres: bool,
+        materials_in_use: &[&Material],
+        sky: &Sky,
+        has_sun: bool,
+        settings: &RenderSettings,
+    ) -> Self {
+        let rough = |m: &&Material| m.alpha() >= ALPHA_DELTA;
+        let transmissive: Vec<&&Material> = materials_in_use.iter().filter(|m| m.transmission > 0.0).collect();
+        let transmission = if transmissive.is_empty() {
+            Transmission::None
+        } else if transmissive.iter().any(|m| rough(m)) {
+            Transmission::Rough(settings.rough_transmission)
+        } else {
+            Transmission::Smooth
+        };
         Self {
             triangles: has_triangles,
             spheres: has_spheres,
@@ -33,32 +69,73 @@ impl FeatureSet {
                 Sky::Uniform { .. } => SkyFeature::Uniform,
                 Sky::Atmosphere => SkyFeature::Atmosphere,
             },
+            sun: has_sun,
+            glossy: materials_in_use.iter().any(|m| (m.specular > 0.0 || m.reflection > 0.0) && rough(m)),
+            transmission,
+            media: transmissive.iter().any(|m| m.has_medium()),
+            sampling: settings.sampling,
         }
     }
 
     /// Every effect on: the pipeline a scene would run without specialisation.
-    pub fn all() -> Self {
-        Self { triangles: true, spheres: true, emission: true, sky: SkyFeature::Uniform }
+    pub fn all(sky: SkyFeature, sampling: Sampling, rough: RoughTransmission) -> Self {
+        Self {
+            triangles: true,
+            spheres: true,
+            emission: true,
+            sky,
+            sun: true,
+            glossy: true,
+            transmission: Transmission::Rough(rough),
+            media: true,
+            sampling,
+        }
+    }
+
+    /// Whether the preprocessor flag `name` (as in `//#if name` in `shaders/`) is on.
+    pub fn flag(&self, name: &str) -> Option<bool> {
+        Some(match name {
+            "triangles" => self.triangles,
+            "spheres" => self.spheres,
+            "emission" => self.emission,
+            "sky_black" => self.sky == SkyFeature::Black,
+            "sky_uniform" => self.sky == SkyFeature::Uniform,
+            "sky_atmosphere" => self.sky == SkyFeature::Atmosphere,
+            "sun" => self.sun,
+            "glossy" => self.glossy,
+            "glass" => self.transmission != Transmission::None,
+            "rough_glass_ggx" => self.transmission == Transmission::Rough(RoughTransmission::Ggx),
+            "rough_glass_cone" => self.transmission == Transmission::Rough(RoughTransmission::Cone),
+            "media" => self.media,
+            "nee" => self.sampling == Sampling::Nee,
+            _ => return None,
+        })
     }
 }
 
 impl fmt::Display for FeatureSet {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let mut parts = Vec::new();
-        if self.triangles {
-            parts.push("triangles");
+        for (on, name) in [
+            (self.triangles, "triangles"),
+            (self.spheres, "spheres"),
+            (self.emission, "emission"),
+            (self.sun, "sun"),
+            (self.glossy, "glossy"),
+            (self.media, "media"),
+        ] {
+            if on {
+                parts.push(name.to_string());
+            }
         }
-        if self.spheres {
-            parts.push("spheres");
+        match self.transmission {
+            Transmission::None => {}
+            Transmission::Smooth => parts.push("glass".into()),
+            Transmission::Rough(RoughTransmission::Ggx) => parts.push("rough-glass=ggx".into()),
+            Transmission::Rough(RoughTransmission::Cone) => parts.push("rough-glass=cone".into()),
         }
-        if self.emission {
-            parts.push("emission");
-        }
-        parts.push(match self.sky {
-            SkyFeature::Black => "sky=black",
-            SkyFeature::Uniform => "sky=uniform",
-            SkyFeature::Atmosphere => "sky=atmosphere",
-        });
+        parts.push(format!("sky={}", format!("{:?}", self.sky).to_lowercase()));
+        parts.push(format!("sampling={}", format!("{:?}", self.sampling).to_lowercase()));
         f.write_str(&parts.join(" "))
     }
 }

@@ -43,4 +43,32 @@ impl Material {
     pub fn is_emissive(&self) -> bool {
         self.emission.iter().any(|&e| e > 0.0)
     }
+
+    /// Absorbs or emits inside (only meaningful with `transmission`).
+    pub fn has_medium(&self) -> bool {
+        self.absorption.iter().chain(&self.volume_emission).any(|&v| v > 0.0)
+    }
+
+    /// The GGX α of the rough lobes. `roughness` is perceptual (α = roughness², as in
+    /// Blender and glTF). The seed's Phong-like `hardness` n, when given, wins and maps
+    /// through the Beckmann–Phong correspondence α = √(2 / (n + 2)) (Walter et al. 2007).
+    pub fn alpha(&self) -> f32 {
+        match self.hardness {
+            Some(n) => (2.0 / (n + 2.0)).sqrt(),
+            None => self.roughness * self.roughness,
+        }
+    }
+
+    /// Lobe weights (diffuse, specular, reflection, transmission), scaled down
+    /// if they sum above 1 so that the material never reflects more than it receives.
+    pub fn lobe_weights(&self) -> [f32; 4] {
+        let w = [self.diffuse, self.specular, self.reflection, self.transmission];
+        let sum: f32 = w.iter().sum();
+        if sum > 1.0 { w.map(|v| v / sum) } else { w }
+    }
+}
+
+/// Luminance of linear Rec. 709 RGB.
+pub fn luminance(c: [f32; 3]) -> f32 {
+    0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
 }

@@ -11,8 +11,8 @@ mod tests;
 mod validate;
 
 pub use builtin::default_scene;
-pub use features::{FeatureSet, SkyFeature};
-pub use material::Material;
+pub use features::{ALPHA_DELTA, FeatureSet, SkyFeature, Transmission};
+pub use material::{Material, luminance};
 pub use parse::{SceneError, load, parse};
 
 use glam::{Mat4, Vec3};
@@ -30,12 +30,49 @@ pub struct RenderSettings {
     pub max_bounces: u32,
     /// Exposure in EV, applied before tone mapping (PNG only).
     pub exposure: f32,
+    pub sampling: Sampling,
+    /// Candidates per resampled direction in `seed` sampling.
+    pub ris_candidates: u32,
+    pub rough_transmission: RoughTransmission,
 }
 
 impl Default for RenderSettings {
     fn default() -> Self {
-        Self { width: 640, height: 480, spp: 256, max_bounces: 12, exposure: 0.0 }
+        Self {
+            width: 640,
+            height: 480,
+            spp: 256,
+            max_bounces: 12,
+            exposure: 0.0,
+            sampling: Sampling::Nee,
+            ris_candidates: 8,
+            rough_transmission: RoughTransmission::Ggx,
+        }
     }
+}
+
+/// How a path finds light.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum Sampling {
+    /// The seed renderer's: no light sampling; each bounce resamples (RIS) candidate
+    /// directions drawn from the BSDF and the sun disk, weighted by the BSDF.
+    Seed,
+    /// Next-event estimation towards emitters and the sun, combined with BSDF
+    /// sampling by multiple importance sampling (power heuristic).
+    #[default]
+    Nee,
+}
+
+/// The model of rough refraction.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum RoughTransmission {
+    /// GGX microfacet refraction (Walter et al. 2007).
+    #[default]
+    Ggx,
+    /// The seed's cheaper model: the refracted direction jittered in a cone.
+    Cone,
 }
 
 /// `[camera]`; when the table or a key is left out: at `[0, 1, 5]` looking at

@@ -20,6 +20,9 @@ pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, 
         return Err(src.error(&p, "spp", "must be at least 1, got 0"));
     }
     src.finite(&p, "exposure", &[render.exposure])?;
+    if !(1..=64).contains(&render.ris_candidates) {
+        return Err(src.error(&p, "ris_candidates", format!("must be in 1..=64, got {}", render.ris_candidates)));
+    }
 
     let mut materials: Vec<(String, Material)> = file.materials.into_iter().collect();
     materials.sort_by_key(|(name, _)| src.locate(&[Key("materials"), Key(name)]).map(|s| s.start));

@@ -1,0 +1,116 @@
+// The `transmission` lobe: a dielectric interface with exact Fresnel
+// reflectance and total internal reflection. Reflection is untinted, refraction
+// is tinted by `base_color`, and refracted radiance is scaled by 1/η² (radiance
+// is not conserved across a change of index).
+
+fn refraction_weight(ctx: ShadingContext) -> vec3f {
+    return ctx.m.base_color / (ctx.eta * ctx.eta);
+}
+
+// Perfectly smooth interface (α below ALPHA_DELTA), or the seed's cone model.
+fn smooth_dielectric_sample(ctx: ShadingContext, u: f32, rng: ptr<function, Rng>) -> BsdfSample {
+    let scale = ctx.m.transmission / ctx.lobe_probability.w;
+    let f = fresnel_dielectric(ctx.wo.z, ctx.eta);
+    if u < f {
+        let wi = fold_above(vec3f(-ctx.wo.xy, ctx.wo.z), ctx.n_geometric);
+        return BsdfSample(wi, vec3f(scale), 0.0, true, false);
+    }
+    var wi = refract_direction(ctx.wo, vec3f(0.0, 0.0, 1.0), ctx.eta);
+    //#if rough_glass_cone
+    wi = jitter_in_cone(wi, ctx, rng);
+    //#endif
+    if dot(wi, ctx.n_geometric) >= 0.0 {
+        return invalid_sample();
+    }
+    return BsdfSample(wi, scale * refraction_weight(ctx), 0.0, true, true);
+}
+
+//#if rough_glass_cone
+// The seed renderer's rough glass: the refracted direction is moved to a
+// random direction in a cone around it (half-angle √α·π/2, i.e. roughness·90°),
+// and flipped through the surface plane if that took it to the wrong side.
+// Cheap, and not a microfacet model: `rt bench` shows what it costs in accuracy.
+fn jitter_in_cone(w: vec3f, ctx: ShadingContext, rng: ptr<function, Rng>) -> vec3f {
+    let half_angle = sqrt(ctx.m.alpha) * 0.5 * PI;
+    let cos_max = cos(half_angle);
+    let cos_t = 1.0 - rng_next(rng) * (1.0 - cos_max);
+    let sin_t = sqrt(max(0.0, 1.0 - cos_t * cos_t));
+    let phi = 2.0 * PI * rng_next(rng);
+    let jittered = tangent_frame(w) * vec3f(sin_t * cos(phi), sin_t * sin(phi), cos_t);
+    return select(jittered, vec3f(jittered.xy, -jittered.z), jittered.z * w.z < 0.0);
+}
+//#endif
+
+//#if rough_glass_ggx
+// Rough dielectric after Walter et al. 2007, in the form of pbrt-v4's
+// DielectricBxDF: the generalised half vector, visible-normal sampling,
+// Fresnel at the microfacet. Single scattering: energy is lost at high α.
+
+// The microfacet normal relating wo and wi, facing the viewer; zero if none.
+fn dielectric_half_vector(ctx: ShadingContext, wi: vec3f) -> vec3f {
+    let reflect = wi.z > 0.0;
+    let etap = select(ctx.eta, 1.0, reflect);
+    let h = wi * etap + ctx.wo;
+    if wi.z == 0.0 || dot(h, h) == 0.0 {
+        return vec3f(0.0);
+    }
+    var m = normalize(h);
+    m = select(m, -m, m.z < 0.0);
+    // Microfacets seen from behind contribute nothing.
+    if dot(m, wi) * wi.z < 0.0 || dot(m, ctx.wo) < 0.0 {
+        return vec3f(0.0);
+    }
+    return m;
+}
+
+fn rough_dielectric_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
+    let reflect = wi.z > 0.0;
+    // Reflection must stay above the true surface, refraction below it.
+    if reflect != (dot(wi, ctx.n_geometric) > 0.0) {
+        return vec3f(0.0);
+    }
+    let m = dielectric_half_vector(ctx, wi);
+    if m.z == 0.0 {
+        return vec3f(0.0);
+    }
+    let a = ctx.m.alpha;
+    let f = fresnel_dielectric(dot(ctx.wo, m), ctx.eta);
+    let dg = ggx_d(m, a) * ggx_g2(ctx.wo, wi, a);
+    if reflect {
+        return vec3f(dg * f / (4.0 * ctx.wo.z));
+    }
+    let etap = ctx.eta;
+    let denom = dot(wi, m) + dot(ctx.wo, m) / etap;
+    let ft = (1.0 - f) * dg * abs(dot(wi, m) * dot(ctx.wo, m) / (ctx.wo.z * denom * denom));
+    return ft * ctx.m.base_color / (etap * etap);
+}
+
+fn rough_dielectric_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
+    let reflect = wi.z > 0.0;
+    if reflect != (dot(wi, ctx.n_geometric) > 0.0) {
+        return 0.0;
+    }
+    let m = dielectric_half_vector(ctx, wi);
+    if m.z == 0.0 {
+        return 0.0;
+    }
+    let f = fresnel_dielectric(dot(ctx.wo, m), ctx.eta);
+    let visible = ggx_visible_pdf(ctx.wo, m, ctx.m.alpha);
+    if reflect {
+        return visible / (4.0 * abs(dot(ctx.wo, m))) * f;
+    }
+    let denom = dot(wi, m) + dot(ctx.wo, m) / ctx.eta;
+    return visible * abs(dot(wi, m)) / (denom * denom) * (1.0 - f);
+}
+
+fn rough_dielectric_sample(ctx: ShadingContext, u: vec3f) -> vec3f {
+    let m = ggx_sample_visible_normal(ctx.wo, ctx.m.alpha, u.xy);
+    let f = fresnel_dielectric(dot(ctx.wo, m), ctx.eta);
+    if u.z < f {
+        let wi = reflect_local(ctx.wo, m);
+        return select(vec3f(0.0), wi, wi.z > 0.0);
+    }
+    let wi = refract_direction(ctx.wo, m, ctx.eta);
+    return select(vec3f(0.0), wi, wi.z < 0.0);
+}
+//#endif

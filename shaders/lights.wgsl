@@ -1,0 +1,150 @@
+// Next-event estimation: a light sample towards the sun or an emitter (picked
+// in proportion to power: area × luminance of emission), weighed against BSDF
+// sampling by the power heuristic (Veach 1997).
+
+struct LightSample {
+    direction: vec3f,
+    distance: f32,
+    radiance: vec3f,
+    // Solid-angle density, selection included.
+    pdf: f32,
+}
+
+fn power_heuristic(a: f32, b: f32) -> f32 {
+    let a2 = a * a;
+    return a2 / (a2 + b * b);
+}
+
+fn emitter_share() -> f32 {
+    return 1.0 - frame.sun_select_probability;
+}
+
+// 1 − cos of the half-angle under which a sphere is seen from `p`; < 0 from inside.
+fn sphere_cone_one_minus_cos(p: vec3f, s: Sphere) -> f32 {
+    let to_center = s.center - p;
+    let sin2 = s.radius * s.radius / dot(to_center, to_center);
+    if sin2 >= 1.0 {
+        return -1.0;
+    }
+    return sin2 / (1.0 + sqrt(1.0 - sin2));
+}
+
+// Density of reaching an emissive triangle at distance t along `direction` by light sampling.
+fn triangle_emitter_pdf(emission_luminance: f32, t: f32, cos_light: f32) -> f32 {
+    return emitter_share() * emission_luminance / frame.emitter_total_power * t * t / max(cos_light, 1e-12);
+}
+
+fn sphere_emitter_pdf(p: vec3f, s: Sphere, emission_luminance: f32) -> f32 {
+    let omc = sphere_cone_one_minus_cos(p, s);
+    if omc <= 0.0 {
+        return 0.0;
+    }
+    let power = 4.0 * PI * s.radius * s.radius * emission_luminance;
+    return emitter_share() * power / frame.emitter_total_power / (2.0 * PI * omc);
+}
+
+// First emitter whose cumulative probability exceeds u.
+fn find_emitter(u: f32) -> u32 {
+    var lo = 0u;
+    var hi = frame.emitter_count - 1u;
+    while lo < hi {
+        let mid = (lo + hi) / 2u;
+        if emitters[mid].cdf > u {
+            hi = mid;
+        } else {
+            lo = mid + 1u;
+        }
+    }
+    return lo;
+}
+
+fn sample_emitter(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
+    let none = LightSample(vec3f(0.0, 1.0, 0.0), 0.0, vec3f(0.0), 0.0);
+    let e = emitters[find_emitter(rng_next(rng))];
+    let u = vec2f(rng_next(rng), rng_next(rng));
+    if (e.primitive & SPHERE_BIT) != 0u {
+        //#if spheres
+        let s = spheres[e.primitive & ~SPHERE_BIT];
+        let omc = sphere_cone_one_minus_cos(p, s);
+        if omc <= 0.0 {
+            return none;
+        }
+        let one_minus_cos = u.x * omc;
+        let sin_t = sqrt(max(0.0, one_minus_cos * (2.0 - one_minus_cos)));
+        let phi = 2.0 * PI * u.y;
+        let axis = normalize(s.center - p);
+        let d = tangent_frame(axis) * vec3f(sin_t * cos(phi), sin_t * sin(phi), 1.0 - one_minus_cos);
+        let t = intersect_sphere(p, d, s.center, s.radius, INFINITY);
+        if t == INFINITY {
+            return none;
+        }
+        let m = materials[s.material];
+        return LightSample(d, t, m.emission, sphere_emitter_pdf(p, s, m.emission_luminance));
+        //#endif
+    }
+    //#if triangles
+    let inst = instances[e.instance];
+    let tri = triangles[e.primitive];
+    let v0 = transform_point(inst.object_to_world, tri.v0);
+    let v1 = transform_point(inst.object_to_world, tri.v1);
+    let v2 = transform_point(inst.object_to_world, tri.v2);
+    let su = sqrt(u.x);
+    let q = (1.0 - su) * v0 + su * (1.0 - u.y) * v1 + su * u.y * v2;
+    let to_light = q - p;
+    let t = length(to_light);
+    if t <= 0.0 {
+        return none;
+    }
+    let d = to_light / t;
+    let n = normalize(cross(v1 - v0, v2 - v0));
+    var material = inst.material_override;
+    if material == NO_MATERIAL {
+        material = inst.material_base + tri.material;
+    }
+    let m = materials[material];
+    return LightSample(d, t, m.emission, triangle_emitter_pdf(m.emission_luminance, t, abs(dot(n, d))));
+    //#else
+    return none;
+    //#endif
+}
+
+fn sample_light(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
+    //#if sun
+    if rng_next(rng) < frame.sun_select_probability {
+        let d = sample_sun_direction(vec2f(rng_next(rng), rng_next(rng)));
+        return LightSample(d, INFINITY, sun_radiance_at(p, d), frame.sun_select_probability / sun_solid_angle());
+    }
+    //#endif
+    if frame.emitter_count == 0u {
+        return LightSample(vec3f(0.0, 1.0, 0.0), 0.0, vec3f(0.0), 0.0);
+    }
+    return sample_emitter(p, rng);
+}
+
+// Light arriving directly at `p` from one light sample, through the BSDF,
+// weighted for MIS. `medium_absorption` is that of the medium `p` lies in.
+fn direct_light(ctx: ShadingContext, p: vec3f, n_geometric: vec3f, medium_absorption: vec3f, rng: ptr<function, Rng>) -> vec3f {
+    let light = sample_light(p, rng);
+    if light.pdf <= 0.0 || all(light.radiance == vec3f(0.0)) {
+        return vec3f(0.0);
+    }
+    let to_local = transpose(ctx.basis);
+    let wi = to_local * light.direction;
+    let f = bsdf_eval(ctx, wi);
+    if all(f == vec3f(0.0)) {
+        return vec3f(0.0);
+    }
+    let origin = offset_ray_origin(p, select(-n_geometric, n_geometric, dot(light.direction, n_geometric) > 0.0));
+    // Stop short of the light's own surface.
+    let t_max = select(light.distance * (1.0 - 1e-4), INFINITY, light.distance >= INFINITY);
+    let blocker = trace_scene(origin, light.direction, t_max);
+    if blocker.kind != HIT_NONE {
+        return vec3f(0.0);
+    }
+    var transmittance = vec3f(1.0);
+    //#if media
+    transmittance = integrate_segment(medium_absorption, vec3f(0.0), light.distance).transmittance;
+    //#endif
+    let weight = power_heuristic(light.pdf, bsdf_pdf(ctx, wi));
+    return f * light.radiance * transmittance * (weight / light.pdf);
+}

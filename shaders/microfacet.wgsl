@@ -1,0 +1,76 @@
+// GGX microfacet distribution (Trowbridge–Reitz; Walter et al., "Microfacet
+// Models for Refraction through Rough Surfaces", EGSR 2007) with the
+// height-correlated Smith masking–shadowing, sampled by its distribution of
+// visible normals (Heitz, "Sampling the GGX Distribution of Visible Normals", JCGT 2018).
+// Directions are in a local frame whose z axis is the shading normal.
+
+fn ggx_d(m: vec3f, alpha: f32) -> f32 {
+    let a2 = alpha * alpha;
+    let c2 = m.z * m.z;
+    let d = c2 * (a2 - 1.0) + 1.0;
+    return a2 / (PI * d * d);
+}
+
+fn ggx_lambda(w: vec3f, alpha: f32) -> f32 {
+    let c2 = w.z * w.z;
+    if c2 <= 0.0 {
+        return INFINITY;
+    }
+    let tan2 = max(0.0, 1.0 - c2) / c2;
+    return 0.5 * (sqrt(1.0 + alpha * alpha * tan2) - 1.0);
+}
+
+fn ggx_g1(w: vec3f, alpha: f32) -> f32 {
+    return 1.0 / (1.0 + ggx_lambda(w, alpha));
+}
+
+fn ggx_g2(wo: vec3f, wi: vec3f, alpha: f32) -> f32 {
+    return 1.0 / (1.0 + ggx_lambda(wo, alpha) + ggx_lambda(wi, alpha));
+}
+
+// Density of visible normal m seen from wo (wo.z > 0).
+fn ggx_visible_pdf(wo: vec3f, m: vec3f, alpha: f32) -> f32 {
+    return ggx_g1(wo, alpha) * max(0.0, dot(wo, m)) * ggx_d(m, alpha) / wo.z;
+}
+
+fn ggx_sample_visible_normal(wo: vec3f, alpha: f32, u: vec2f) -> vec3f {
+    let vh = normalize(vec3f(alpha * wo.x, alpha * wo.y, wo.z));
+    let len2 = vh.x * vh.x + vh.y * vh.y;
+    var t1 = vec3f(1.0, 0.0, 0.0);
+    if len2 > 0.0 {
+        t1 = vec3f(-vh.y, vh.x, 0.0) / sqrt(len2);
+    }
+    let t2 = cross(vh, t1);
+    let r = sqrt(u.x);
+    let phi = 2.0 * PI * u.y;
+    let p1 = r * cos(phi);
+    let s = 0.5 * (1.0 + vh.z);
+    let p2 = (1.0 - s) * sqrt(max(0.0, 1.0 - p1 * p1)) + s * r * sin(phi);
+    let nh = p1 * t1 + p2 * t2 + sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
+    return normalize(vec3f(alpha * nh.x, alpha * nh.y, max(1e-7, nh.z)));
+}
+
+// Unpolarised Fresnel reflectance of a dielectric interface; `eta` is the
+// index on the far side over the index on the near side, `cos_i` > 0.
+fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
+    let sin2_t = max(0.0, 1.0 - cos_i * cos_i) / (eta * eta);
+    if sin2_t >= 1.0 {
+        return 1.0;
+    }
+    let cos_t = sqrt(1.0 - sin2_t);
+    let r_parallel = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    let r_perpendicular = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    return 0.5 * (r_parallel * r_parallel + r_perpendicular * r_perpendicular);
+}
+
+// Refraction of wo (pointing away from the surface, on the side of m) through
+// the interface with normal m; `eta` as above. Returns a zero vector on total internal reflection.
+fn refract_direction(wo: vec3f, m: vec3f, eta: f32) -> vec3f {
+    let cos_i = dot(wo, m);
+    let sin2_t = max(0.0, 1.0 - cos_i * cos_i) / (eta * eta);
+    if sin2_t >= 1.0 {
+        return vec3f(0.0);
+    }
+    let cos_t = sqrt(1.0 - sin2_t);
+    return -wo / eta + (cos_i / eta - cos_t) * m;
+}

@@ -1,0 +1,13 @@
+// Radiance arriving from the sky along a ray that leaves the scene, the sun's disk excepted.
+
+fn sky_radiance(origin: vec3f, direction: vec3f) -> vec3f {
+    //#if sky_uniform
+    return frame.sky_color;
+    //#endif
+    //#if sky_atmosphere
+    return atmosphere_sky_radiance(origin, direction);
+    //#endif
+    //#if sky_black
+    return vec3f(0.0);
+    //#endif
+}

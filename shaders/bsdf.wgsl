@@ -4,7 +4,7 @@
 // viewer above (wo.z > 0).
 //
 // Lobes: Lambertian diffuse; `specular`, an untinted GGX reflection; `reflection`,
-// a conductor tinted by `base_color` (Schlick Fresnel); `transmission`, a
+// a conductor tinted by `base_color` (see `conductor_fresnel`); `transmission`, a
 // dielectric with exact Fresnel and total internal reflection, refraction tinted
 // by `base_color`. At α below ALPHA_DELTA a lobe is a perfect (delta) mirror or
 // interface.
@@ -62,10 +62,27 @@ fn sample_cosine_hemisphere(u: vec2f) -> vec3f {
     return vec3f(r * cos(phi), r * sin(phi), sqrt(max(0.0, 1.0 - u.x)));
 }
 
-fn schlick_fresnel(f0: vec3f, cos_i: f32) -> vec3f {
-    let c = clamp(1.0 - cos_i, 0.0, 1.0);
-    let c2 = c * c;
-    return f0 + (1.0 - f0) * (c2 * c2 * c);
+// Unpolarised Fresnel reflectance of a dielectric interface; `eta` is the
+// index on the far side over the index on the near side, `cos_i` > 0.
+fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
+    let sin2_t = max(0.0, 1.0 - cos_i * cos_i) / (eta * eta);
+    if sin2_t >= 1.0 {
+        return 1.0;
+    }
+    let cos_t = sqrt(1.0 - sin2_t);
+    let r_parallel = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    let r_perpendicular = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    return 0.5 * (r_parallel * r_parallel + r_perpendicular * r_perpendicular);
+}
+
+// Fresnel reflectance of the `reflection` lobe's conductor, per channel: the
+// exact Fresnel of a non-absorbing interface whose reflectance at normal
+// incidence is `f0` (index η = (1 + √f0)/(1 − √f0)), rising to 1 at grazing.
+// Mitsuba's `conductor` with that η and k = 0 is the same function.
+fn conductor_fresnel(f0: vec3f, cos_i: f32) -> vec3f {
+    let r = sqrt(clamp(f0, vec3f(0.0), vec3f(0.999999)));
+    let eta = (1.0 + r) / (1.0 - r);
+    return vec3f(fresnel_dielectric(cos_i, eta.x), fresnel_dielectric(cos_i, eta.y), fresnel_dielectric(cos_i, eta.z));
 }
 
 fn luminance(c: vec3f) -> f32 {
@@ -123,7 +140,7 @@ fn reflection_lobe_eval(ctx: ShadingContext, lobe: u32, wi: vec3f) -> vec3f {
     if lobe == LOBE_SPECULAR {
         return vec3f(ctx.m.specular * microfacet);
     }
-    return ctx.m.reflection * microfacet * schlick_fresnel(ctx.m.base_color, dot(ctx.wo, m));
+    return ctx.m.reflection * microfacet * conductor_fresnel(ctx.m.base_color, dot(ctx.wo, m));
     //#else
     return vec3f(0.0);
     //#endif
@@ -242,7 +259,7 @@ fn sample_delta_lobe(ctx: ShadingContext, lobe: u32, u: f32, rng: ptr<function, 
         return BsdfSample(mirror, vec3f(ctx.m.specular / p), 0.0, true, false);
     }
     if lobe == LOBE_REFLECTION {
-        return BsdfSample(mirror, ctx.m.reflection * schlick_fresnel(ctx.m.base_color, ctx.wo.z) / p, 0.0, true, false);
+        return BsdfSample(mirror, ctx.m.reflection * conductor_fresnel(ctx.m.base_color, ctx.wo.z) / p, 0.0, true, false);
     }
     //#if glass
     return smooth_dielectric_sample(ctx, u, rng);

@@ -1,6 +1,7 @@
 // GGX microfacet distribution (Trowbridge–Reitz; Walter et al., "Microfacet
-// Models for Refraction through Rough Surfaces", EGSR 2007) with the
-// height-correlated Smith masking–shadowing, sampled by its distribution of
+// Models for Refraction through Rough Surfaces", EGSR 2007) with Walter's
+// separable Smith masking–shadowing G1(wo)·G1(wi) (as Mitsuba 3 uses, so that
+// rt can be validated against it), sampled by its distribution of
 // visible normals (Heitz, "Sampling the GGX Distribution of Visible Normals", JCGT 2018).
 // Directions are in a local frame whose z axis is the shading normal.
 
@@ -25,7 +26,7 @@ fn ggx_g1(w: vec3f, alpha: f32) -> f32 {
 }
 
 fn ggx_g2(wo: vec3f, wi: vec3f, alpha: f32) -> f32 {
-    return 1.0 / (1.0 + ggx_lambda(wo, alpha) + ggx_lambda(wi, alpha));
+    return ggx_g1(wo, alpha) * ggx_g1(wi, alpha);
 }
 
 // Density of visible normal m seen from wo (wo.z > 0).
@@ -48,19 +49,6 @@ fn ggx_sample_visible_normal(wo: vec3f, alpha: f32, u: vec2f) -> vec3f {
     let p2 = (1.0 - s) * sqrt(max(0.0, 1.0 - p1 * p1)) + s * r * sin(phi);
     let nh = p1 * t1 + p2 * t2 + sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
     return normalize(vec3f(alpha * nh.x, alpha * nh.y, max(1e-7, nh.z)));
-}
-
-// Unpolarised Fresnel reflectance of a dielectric interface; `eta` is the
-// index on the far side over the index on the near side, `cos_i` > 0.
-fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
-    let sin2_t = max(0.0, 1.0 - cos_i * cos_i) / (eta * eta);
-    if sin2_t >= 1.0 {
-        return 1.0;
-    }
-    let cos_t = sqrt(1.0 - sin2_t);
-    let r_parallel = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    let r_perpendicular = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    return 0.5 * (r_parallel * r_parallel + r_perpendicular * r_perpendicular);
 }
 
 // Refraction of wo (pointing away from the surface, on the side of m) through

@@ -5,7 +5,7 @@ use clap::{Args, Parser, Subcommand};
 use rt::bvh::BuildQuality;
 use rt::gpu::GpuContext;
 use rt::render::{RenderRequest, Renderer, human, image_format, write_image};
-use rt::scene::{self, Scene};
+use rt::scene::{self, RoughTransmission, Sampling, Scene};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -59,6 +59,15 @@ struct RenderArgs {
     /// BVH build quality.
     #[arg(long, value_enum, default_value_t)]
     quality: BuildQuality,
+    /// How paths find light [default: the scene's].
+    #[arg(long, value_enum)]
+    sampling: Option<Sampling>,
+    /// Candidates per resampled direction with `--sampling seed` [default: the scene's].
+    #[arg(long)]
+    ris_candidates: Option<u32>,
+    /// Model of rough refraction [default: the scene's].
+    #[arg(long, value_enum)]
+    rough_transmission: Option<RoughTransmission>,
 }
 
 #[derive(Subcommand)]
@@ -96,7 +105,19 @@ fn load_scene(path: Option<&Path>) -> Result<Scene> {
 
 fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
     image_format(&args.output)?;
-    let scene = load_scene(args.scene.as_deref())?;
+    let mut scene = load_scene(args.scene.as_deref())?;
+    if let Some(s) = args.sampling {
+        scene.render.sampling = s;
+    }
+    if let Some(m) = args.ris_candidates {
+        if !(1..=64).contains(&m) {
+            bail!("--ris-candidates must be from 1 to 64");
+        }
+        scene.render.ris_candidates = m;
+    }
+    if let Some(r) = args.rough_transmission {
+        scene.render.rough_transmission = r;
+    }
     let mut request = RenderRequest::from_scene(&scene);
     if let Some((w, h)) = args.size {
         (request.width, request.height) = (w, h);

@@ -308,6 +308,11 @@ def export_object_mesh(obj, depsgraph):
     return rtmesh_bytes(arrays), gltf, len(arrays["indices"])
 
 
+def plain_instance(obj):
+    """No modifiers and no object-level materials: the object shows its mesh data as it is."""
+    return not obj.modifiers and all(slot.link == "DATA" for slot in obj.material_slots)
+
+
 class Export:
     """One export run: which folder each object's mesh went to."""
 
@@ -319,12 +324,12 @@ class Export:
         self.triangles = {}
 
     def add(self, obj, depsgraph):
-        shares_data = not obj.modifiers and all(s.link == "DATA" for s in obj.material_slots)
         base = sanitize(obj.data.name)
-        if shares_data:
+        if plain_instance(obj):
+            # Its evaluated mesh is its data's: any plain instance of that data already exported will do.
             for other, folder in self.folder_of.items():
-                o = bpy.data.objects[other]
-                if o.data == obj.data and not o.modifiers and all(s.link == "DATA" for s in o.material_slots):
+                o = bpy.data.objects.get(other)
+                if o is not None and o.data == obj.data and plain_instance(o):
                     self.folder_of[obj.name] = folder
                     return
         rtmesh, gltf, triangles = export_object_mesh(obj, depsgraph)

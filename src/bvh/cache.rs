@@ -302,11 +302,11 @@ fn check_header(header: &Header, len: u64) -> Result<(), CacheProblem> {
         let Some(section_end) = s.offset.checked_add(s.bytes) else {
             return invalid(format!("section {i} ends past 2^64 bytes"));
         };
-        if s.offset != end || s.bytes % size as u64 != 0 || section_end > len {
-            return invalid(format!(
-                "section {i} (offset {}, {} bytes) is misplaced, misaligned or past the end of the {len}-byte file",
-                s.offset, s.bytes
-            ));
+        if section_end > len {
+            return invalid(format!("truncated: section {i} ends at byte {section_end} but the file has {len}"));
+        }
+        if s.offset != end || s.bytes % size as u64 != 0 {
+            return invalid(format!("section {i} (offset {}, {} bytes) is misplaced or misaligned", s.offset, s.bytes));
         }
         end = align(section_end);
     }

@@ -73,3 +73,88 @@ pub(super) fn check_contents(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::cache::{self, CacheProblem, PackedMesh};
+    use super::super::{BuildQuality, MeshBvh};
+    use crate::asset::load_mesh;
+    use crate::gpu::layout::EMPTY_LINK;
+    use std::path::Path;
+
+    fn packed() -> PackedMesh {
+        let mesh = load_mesh(Path::new("<built-in>/assets/bunny/bunny.obj")).expect("bunny");
+        PackedMesh {
+            bvh: MeshBvh::build(&mesh, BuildQuality::Fastest),
+            vertex_count: mesh.positions.len() as u32,
+            triangle_count: mesh.indices.len() as u32,
+            materials: mesh.materials,
+        }
+    }
+
+    /// Written with a valid checksum, then read back.
+    fn read_back(test: &str, mesh: &PackedMesh) -> Result<PackedMesh, CacheProblem> {
+        let path = std::env::temp_dir().join(format!("rt-cache-{}-{test}.rtbvh", std::process::id()));
+        cache::write(&path, mesh, [1; 32], [2; 32]).expect("write");
+        let result = cache::read(&path, [1; 32], [2; 32]);
+        let _ = std::fs::remove_file(&path);
+        result
+    }
+
+    fn invalid(test: &str, mesh: &PackedMesh) -> String {
+        match read_back(test, mesh) {
+            Err(CacheProblem::Invalid(why)) => why,
+            other => panic!("{test}: expected an invalid cache, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn round_trip_keeps_every_array() {
+        let mesh = packed();
+        let back = read_back("round_trip", &mesh).expect("valid");
+        assert_eq!(back.bvh.nodes, mesh.bvh.nodes);
+        assert_eq!(back.bvh.triangles, mesh.bvh.triangles);
+        assert_eq!(back.bvh.shading, mesh.bvh.shading);
+        assert_eq!(back.bvh.stats, mesh.bvh.stats);
+        assert_eq!((back.bvh.bounds_min, back.bvh.bounds_max), (mesh.bvh.bounds_min, mesh.bvh.bounds_max));
+        assert_eq!(back.materials, mesh.materials);
+        assert_eq!((back.vertex_count, back.triangle_count), (1839, 3674));
+    }
+
+    #[test]
+    fn stale_hashes_are_reported_as_stale() {
+        let path = std::env::temp_dir().join(format!("rt-cache-{}-stale.rtbvh", std::process::id()));
+        cache::write(&path, &packed(), [1; 32], [2; 32]).expect("write");
+        assert!(matches!(cache::read(&path, [9; 32], [2; 32]), Err(CacheProblem::Stale(_))));
+        assert!(matches!(cache::read(&path, [1; 32], [9; 32]), Err(CacheProblem::Stale(_))));
+        let _ = std::fs::remove_file(&path);
+        assert!(matches!(cache::read(&path, [1; 32], [2; 32]), Err(CacheProblem::Missing)));
+    }
+
+    /// A writer with a bug produces a valid checksum over bad contents: still refused.
+    #[test]
+    fn out_of_range_contents_are_refused_despite_a_valid_checksum() {
+        let mut mesh = packed();
+        mesh.bvh.nodes[0].a_count = 0;
+        mesh.bvh.nodes[0].a_link = 0;
+        assert!(invalid("cycle", &mesh).contains("node 0 child a: link 0 with count 0 is out of range"));
+
+        let mut mesh = packed();
+        let leaf = mesh.bvh.nodes.iter().position(|n| n.b_count > 0).expect("a leaf");
+        mesh.bvh.nodes[leaf].b_link = mesh.bvh.triangles.len() as u32;
+        assert!(invalid("leaf", &mesh).contains("is out of range"));
+
+        let mut mesh = packed();
+        mesh.bvh.nodes[0].b_link = EMPTY_LINK;
+        mesh.bvh.nodes[0].b_count = 3;
+        assert!(invalid("empty", &mesh).contains("is out of range"));
+
+        let mut mesh = packed();
+        mesh.bvh.triangles[7].material = 1;
+        assert!(invalid("material", &mesh).contains("triangle 7 uses material 1 of 1"));
+
+        let mut mesh = packed();
+        mesh.bvh.shading[3].n1[2] = f32::NAN;
+        assert!(invalid("normal", &mesh).contains("triangle 3 has a non-finite shading normal"));
+    }
+}

@@ -13,6 +13,9 @@ Three ways to run it:
 Blender is Z-up, rt is Y-up: (x, y, z) in Blender is (x, z, -y) in rt, for positions,
 normals and object matrices (M_rt = C M_blender C^-1). Every file is written to a
 temporary name and renamed into place, and only when its bytes change.
+
+It is one file on purpose: Blender installs a single-file add-on and runs a single
+script with -P, with nothing else on its module path.
 """
 
 import argparse

@@ -98,6 +98,16 @@ pub enum CacheProblem {
     Invalid(String),
 }
 
+impl std::fmt::Display for CacheProblem {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            CacheProblem::Missing => write!(f, "no cache yet"),
+            CacheProblem::Stale(why) => write!(f, "stale: {why}"),
+            CacheProblem::Invalid(why) => write!(f, "invalid: {why}"),
+        }
+    }
+}
+
 /// BLAKE3 over the bytes of every source file of the asset, each preceded by its length
 /// (and a missing one marked as such), so that no two file sets hash alike.
 pub fn source_hash(files: &AssetFiles) -> Result<[u8; 32], AssetError> {

@@ -74,14 +74,6 @@ fn import_and_build(files: &AssetFiles, quality: BuildQuality) -> Result<PackedM
     })
 }
 
-fn describe(problem: &CacheProblem) -> String {
-    match problem {
-        CacheProblem::Missing => "no cache yet".into(),
-        CacheProblem::Stale(why) => format!("stale: {why}"),
-        CacheProblem::Invalid(why) => format!("invalid: {why}"),
-    }
-}
-
 /// The asset's BVH from its cache if that is fresh; else imported, built, and the cache
 /// rewritten (a cache that cannot be written costs a warning, not the render).
 pub fn load_or_pack(path: &Path, quality: BuildQuality) -> Result<LoadedMesh, AssetError> {
@@ -98,7 +90,7 @@ pub fn load_or_pack(path: &Path, quality: BuildQuality) -> Result<LoadedMesh, As
     };
     match problem {
         CacheProblem::Missing => log::info!("{}: no BVH cache yet; packing it", cache_path.display()),
-        _ => log::warn!("{}: {}; rebuilding it", cache_path.display(), describe(&problem)),
+        _ => log::warn!("{}: {problem}; rebuilding it", cache_path.display()),
     }
     let packed = import_and_build(&files, quality)?;
     let build_time = start.elapsed();
@@ -122,7 +114,7 @@ pub fn pack(path: &Path, quality: BuildQuality, force: bool) -> Result<PackRepor
         true => "forced".to_owned(),
         false => match cache::read(&cache_path, source_hash, params_hash) {
             Ok(_) => return Ok(report(PackOutcome::UpToDate)),
-            Err(problem) => describe(&problem),
+            Err(problem) => problem.to_string(),
         },
     };
     let start = Instant::now();

@@ -1,6 +1,6 @@
 //! `rt info`: what a scene contains and which effects it needs.
 
-use crate::bvh::{BuildQuality, SceneGeometry};
+use crate::bvh::{BuildQuality, Provenance, SceneGeometry};
 use crate::gpu::GpuContext;
 use crate::scene::Scene;
 use anyhow::Result;
@@ -14,21 +14,25 @@ pub fn print_info(scene: Scene, quality: BuildQuality, adapter: Option<&str>) ->
         g.instances.len(),
         g.meshes.len(),
         g.spheres.len(),
-        g.meshes.iter().map(|m| m.data.indices.len()).sum::<usize>(),
+        g.meshes.iter().map(|m| m.triangle_count).sum::<usize>(),
         g.materials.len()
     );
     println!("bounds     {:?} .. {:?}", g.bounds_min.to_array(), g.bounds_max.to_array());
     for m in &g.meshes {
         let s = m.bvh.stats;
+        let provenance = match m.provenance {
+            Provenance::Cache { load_time } => format!("loaded from its cache in {load_time:.1?}"),
+            Provenance::Packed { build_time } => format!("built and cached in {build_time:.1?}"),
+            Provenance::InMemory { build_time } => format!("built in {build_time:.1?}"),
+        };
         println!(
-            "mesh       {}: {} triangles, BVH {} nodes, {} leaves, depth {}, SAH cost {:.2}, built in {:.1?}",
+            "mesh       {}: {} triangles, BVH {} nodes, {} leaves, depth {}, SAH cost {:.2}, {provenance}",
             m.path.display(),
-            m.data.indices.len(),
+            m.triangle_count,
             s.nodes,
             s.leaves,
             s.depth,
             s.sah_cost,
-            m.bvh.build_time
         );
     }
     let t = g.tlas_stats;

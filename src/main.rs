@@ -2,7 +2,7 @@
 
 use anyhow::{Result, bail};
 use clap::{Args, Parser, Subcommand};
-use rt::bvh::BuildQuality;
+use rt::bvh::{BuildQuality, PackOutcome, PackReport};
 use rt::gpu::GpuContext;
 use rt::render::{RenderRequest, Renderer, human, image_format, write_image};
 use rt::scene::{self, RoughTransmission, Sampling, Scene};
@@ -21,6 +21,17 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Build the BVH caches (.rtbvh) of assets whose cache is missing or stale.
+    Pack {
+        /// Asset folders (searched recursively), .rtmesh, .gltf, .glb or .obj files.
+        #[arg(required = true)]
+        paths: Vec<PathBuf>,
+        #[arg(long, value_enum, default_value_t)]
+        quality: BuildQuality,
+        /// Rebuild even caches that are up to date.
+        #[arg(long)]
+        force: bool,
+    },
     /// Render a scene to a PNG (tone-mapped sRGB) or EXR (linear radiance).
     Render(RenderArgs),
     /// Print what a scene contains: counts, bounds, BVH statistics, feature set, GPU.
@@ -158,11 +169,42 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
     Ok(())
 }
 
+fn pack(paths: &[PathBuf], quality: BuildQuality, force: bool) -> Result<()> {
+    let assets = rt::bvh::pack::find_assets(paths)?;
+    if assets.is_empty() {
+        bail!("no assets (asset folders, .rtmesh, .gltf, .glb or .obj files) under the given paths");
+    }
+    let bar = rt::bvh::pack::asset_bar(assets.len(), "packing");
+    let results = rt::bvh::pack::parallel_map(&assets, &bar, |a| rt::bvh::pack::pack(a, quality, force));
+    bar.finish_and_clear();
+    let mut failures = 0;
+    for result in results {
+        match result {
+            Ok(PackReport { asset, outcome: PackOutcome::UpToDate, .. }) => println!("{}: up to date", asset.display()),
+            Ok(PackReport { asset, cache, outcome: PackOutcome::Packed { reason, triangles, time } }) => println!(
+                "{}: packed {triangles} triangles in {:.1?} into {} ({reason})",
+                asset.display(),
+                time,
+                cache.display()
+            ),
+            Err(e) => {
+                eprintln!("error: {e}");
+                failures += 1;
+            }
+        }
+    }
+    if failures > 0 {
+        bail!("{failures} of {} assets failed to pack", assets.len());
+    }
+    Ok(())
+}
+
 fn main() -> ExitCode {
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
     let cli = Cli::parse();
     let adapter = cli.adapter.as_deref();
     let result = match cli.command {
+        Command::Pack { paths, quality, force } => pack(&paths, quality, force),
         Command::Render(args) => render(args, adapter),
         Command::Info { scene, quality } => {
             load_scene(scene.as_deref()).and_then(|s| rt::info::print_info(s, quality, adapter))

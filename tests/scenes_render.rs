@@ -42,3 +42,25 @@ fn same_seed_same_image_whatever_the_dispatch_split() {
     let again = render(scene, 24, 24, 5, 3);
     assert_eq!(one.pixels, again.pixels);
 }
+
+#[test]
+fn dragon_mirror_spheres_is_the_seed_shot() {
+    let scene = rt::scene::load(&repo().join("scenes/dragon_mirror_spheres.toml")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.spheres.len(), 30);
+    assert!(scene.spheres.iter().all(|s| s.material.as_deref() == Some("mirror") && (2.0..=4.0).contains(&s.radius)));
+    let dragon = &scene.meshes[0];
+    assert!(dragon.asset.ends_with("assets/dragon") && dragon.material.as_deref() == Some("blue_glass"));
+    let (_, glass) = &scene.materials[scene.material_index("blue_glass").expect("blue_glass")];
+    assert_eq!((glass.transmission, glass.ior, glass.roughness), (1.0, 1.3, 0.03));
+    assert_eq!((glass.emission, glass.absorption), ([0.01, 0.03, 0.05], [0.02, 0.02, 0.015]));
+}
+
+#[test]
+fn showcase_places_every_exported_asset() {
+    let scene = rt::scene::load(&repo().join("scenes/showcase.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let names: Vec<_> = scene.meshes.iter().filter_map(|m| m.asset.file_name()?.to_str()).collect();
+    assert_eq!(names, ["dragon", "ground", "stanford_bunny", "suzanne", "teapot"]);
+    for m in &scene.meshes {
+        rt::asset::load_mesh(&m.asset).unwrap_or_else(|e| panic!("{e}"));
+    }
+}

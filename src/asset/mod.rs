@@ -1,9 +1,14 @@
-//! Mesh import: OBJ (tobj) and glTF/GLB (gltf), each mapped to rt materials,
-//! plus the meshes embedded in the binary for the built-in default scene.
+//! Mesh import: `.rtmesh` asset folders (the Blender exporter's), OBJ (tobj) and
+//! glTF/GLB (gltf), each mapped to rt materials, plus the meshes embedded in the
+//! binary for the built-in default scene.
 
 pub mod builtin;
 pub mod gltf_import;
 pub mod obj_import;
+pub mod rtmesh;
+mod source;
+
+pub use source::{AssetFiles, AssetKind};
 
 use crate::scene::Material;
 use std::path::{Path, PathBuf};
@@ -38,18 +43,51 @@ impl AssetError {
     }
 }
 
-/// Loads a mesh asset: a `.obj`, `.gltf` or `.glb` file, or a built-in one
-/// (a path under [`builtin::BUILTIN_PREFIX`]).
+/// Loads a mesh asset: an asset folder `NAME/` (with `NAME.rtmesh` and `NAME.gltf`), an
+/// `.rtmesh` file (with the `.gltf` of the same name beside it), a `.obj`, `.gltf` or
+/// `.glb` file, or a built-in one (a path under [`builtin::BUILTIN_PREFIX`]).
 pub fn load_mesh(path: &Path) -> Result<MeshData, AssetError> {
-    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-    let mesh = match ext.as_deref() {
-        Some("obj") => obj_import::load(path)?,
-        // Built-in assets are OBJ only; glTF reads from disk.
-        Some("gltf" | "glb") if !path.starts_with(builtin::BUILTIN_PREFIX) => gltf_import::load(path)?,
-        _ => return Err(AssetError::new(path, "unsupported asset type (expected .obj, .gltf or .glb)")),
+    let files = AssetFiles::resolve(path)?;
+    let mesh = match files.kind {
+        AssetKind::Obj => obj_import::load(&files.main)?,
+        AssetKind::Gltf => gltf_import::load(&files.main)?,
+        AssetKind::RtMesh { ref materials } => load_rtmesh(&files.main, materials)?,
     };
-    mesh.validate(path)?;
+    mesh.validate(&files.main)?;
     Ok(mesh)
+}
+
+/// An `.rtmesh`'s geometry with the materials of its sibling glTF, which holds no meshes.
+fn load_rtmesh(path: &Path, materials_path: &Path) -> Result<MeshData, AssetError> {
+    let geometry = rtmesh::read(path)?;
+    let mut materials = gltf_import::load(materials_path)?.materials;
+    // An object with no material slots is exported with material index 0 throughout.
+    if materials.is_empty() {
+        materials.push(("default".into(), Material::default()));
+    }
+    Ok(MeshData {
+        positions: geometry.positions,
+        normals: geometry.normals,
+        uvs: geometry.uvs,
+        indices: geometry.indices,
+        material_ids: geometry.material_ids,
+        materials,
+    })
+}
+
+/// Writes `bytes` to a temporary name beside `path` and renames it into place, so that
+/// a reader (a watcher, a parallel render) never sees half a file.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), AssetError> {
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    // Unique per process and thread: two packers of the same asset never share a temp file.
+    let thread = format!("{:?}", std::thread::current().id()).replace(|c: char| !c.is_ascii_digit(), "");
+    let temp = path.with_file_name(format!(".{name}.{}-{thread}.tmp", std::process::id()));
+    let result = std::fs::write(&temp, bytes).and_then(|()| std::fs::rename(&temp, path));
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&temp);
+        return Err(AssetError::new(path, format!("cannot write: {e}")));
+    }
+    Ok(())
 }
 
 impl MeshData {
@@ -125,6 +163,9 @@ pub(crate) mod fixture {
 
         pub fn write(&self, name: &str, contents: &str) -> PathBuf {
             let path = self.0.join(name);
+            if let Some(parent) = path.parent() {
+                std::fs::create_dir_all(parent).expect("create fixture folder");
+            }
             std::fs::write(&path, contents).expect("write fixture");
             path
         }

@@ -1,10 +1,15 @@
 //! Acceleration structures: a BVH per mesh (obvhs), converted to the GPU node
-//! layout, and a top level over instances and spheres.
+//! layout and cached in `.rtbvh` files, and a top level over instances and spheres.
 
+pub mod cache;
+mod cached_material;
+mod cache_check;
 mod mesh_bvh;
 mod node;
+pub mod pack;
 mod scene_geometry;
 
 pub use mesh_bvh::{BuildQuality, MeshBvh};
 pub use node::{BvhStats, NODE_LAYOUT, convert_bvh2, stats};
-pub use scene_geometry::{LoadedMesh, SceneGeometry};
+pub use pack::{LoadedMesh, PackOutcome, PackReport, Provenance};
+pub use scene_geometry::SceneGeometry;

@@ -1,9 +1,9 @@
 //! Everything a scene puts on the GPU: the meshes' bottom-level BVHs, a top
 //! level over instances and spheres, and the material table.
 
-use super::mesh_bvh::{BuildQuality, MeshBvh};
+use super::mesh_bvh::BuildQuality;
 use super::node::{BvhStats, convert_bvh2, stats};
-use crate::asset::{self, MeshData};
+use super::pack::{LoadedMesh, load_or_pack_all};
 use crate::gpu::layout::*;
 use crate::scene::{FeatureSet, Material, Scene};
 use anyhow::{Result, bail};
@@ -12,13 +12,6 @@ use obvhs::{BvhBuildParams, aabb::Aabb, bvh2::builder::build_bvh2};
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::time::Duration;
-
-/// One distinct asset, however many instances place it.
-pub struct LoadedMesh {
-    pub path: PathBuf,
-    pub data: MeshData,
-    pub bvh: MeshBvh,
-}
 
 pub struct SceneGeometry {
     /// Bottom levels of every mesh, then the top level (from `tlas_root`).
@@ -43,18 +36,20 @@ pub struct SceneGeometry {
 }
 
 impl SceneGeometry {
-    /// Loads every asset once, builds its BVH, and places instances and spheres.
+    /// Loads every asset's BVH once (from its cache, or packing it when the cache is
+    /// missing or stale), and places instances and spheres.
     pub fn build(scene: &Scene, quality: BuildQuality) -> Result<Self> {
-        let mut meshes: Vec<LoadedMesh> = Vec::new();
+        let mut paths: Vec<PathBuf> = Vec::new();
         let mut mesh_of_path: HashMap<PathBuf, usize> = HashMap::new();
         for m in &scene.meshes {
-            if !mesh_of_path.contains_key(&m.asset) {
-                let data = asset::load_mesh(&m.asset)?;
-                let bvh = MeshBvh::build(&data, quality);
-                log::info!("{}: {} triangles, BVH in {:.1?}", m.asset.display(), data.indices.len(), bvh.build_time);
-                mesh_of_path.insert(m.asset.clone(), meshes.len());
-                meshes.push(LoadedMesh { path: m.asset.clone(), data, bvh });
-            }
+            mesh_of_path.entry(m.asset.clone()).or_insert_with(|| {
+                paths.push(m.asset.clone());
+                paths.len() - 1
+            });
+        }
+        let meshes = load_or_pack_all(&paths, quality)?;
+        for mesh in &meshes {
+            log::info!("{}: {} triangles, {:?}", mesh.path.display(), mesh.triangle_count, mesh.provenance);
         }
 
         let mut materials: Vec<Material> = vec![Material::default()];
@@ -79,7 +74,7 @@ impl SceneGeometry {
             nodes.extend_from_slice(&mesh.bvh.nodes);
             triangles.extend_from_slice(&mesh.bvh.triangles);
             shading.extend_from_slice(&mesh.bvh.shading);
-            materials.extend(mesh.data.materials.iter().map(|(_, m)| m.clone()));
+            materials.extend(mesh.materials.iter().map(|(_, m)| m.clone()));
         }
 
         let mut in_use = vec![false; materials.len()];
@@ -92,7 +87,7 @@ impl SceneGeometry {
         for m in &scene.meshes {
             let mesh_index = mesh_of_path[&m.asset];
             let mesh = &meshes[mesh_index];
-            if mesh.data.indices.is_empty() {
+            if mesh.triangle_count == 0 {
                 continue;
             }
             let (node_offset, triangle_offset, material_base) = placed[mesh_index];
@@ -101,7 +96,7 @@ impl SceneGeometry {
                 None => NO_MATERIAL,
             };
             if material_override == NO_MATERIAL {
-                for i in 0..mesh.data.materials.len() {
+                for i in 0..mesh.materials.len() {
                     in_use[material_base as usize + i] = true;
                 }
             } else {

@@ -1,0 +1,658 @@
+"""Exports a Blender scene for rt: one asset folder per mesh (`NAME/NAME.rtmesh` with the
+evaluated geometry, `NAME/NAME.gltf` with its materials) and, optionally, a scene TOML
+that places them with the camera, the sun and the sky.
+
+Three ways to run it:
+
+  python blender/rt_export.py FILE.blend --out assets/ [--scene scenes/NAME.toml]
+      (with the `bpy` module from PyPI, bpy==5.0.1 on Python 3.11)
+  blender -b FILE.blend -P blender/rt_export.py -- --out assets/ [--scene ...]
+  as an add-on: File > Export > rt, and an "rt" tab in the 3D view's sidebar with
+      "Export now" and "Live export on save".
+
+Blender is Z-up, rt is Y-up: (x, y, z) in Blender is (x, z, -y) in rt, for positions,
+normals and object matrices (M_rt = C M_blender C^-1). Every file is written to a
+temporary name and renamed into place, and only when its bytes change.
+
+It is one file on purpose: Blender installs a single-file add-on and runs a single
+script with -P, with nothing else on its module path.
+"""
+
+import argparse
+import json
+import math
+import os
+import re
+import struct
+import sys
+
+import bpy
+import numpy as np
+from bpy.app.handlers import persistent
+from mathutils import Matrix, Vector
+
+bl_info = {
+    "name": "rt exporter",
+    "author": "rt",
+    "version": (1, 0, 0),
+    "blender": (4, 2, 0),
+    "location": "File > Export > rt; 3D View > Sidebar > rt",
+    "description": "Export meshes (.rtmesh + .gltf materials) and a scene TOML for the rt path tracer",
+    "category": "Import-Export",
+}
+
+RTMESH_MAGIC = b"RTMESH\0\0"
+RTMESH_VERSION = 1
+
+# Blender (Z up) to rt (Y up): a rotation of -90 degrees about X.
+TO_RT = Matrix(((1, 0, 0, 0), (0, 0, 1, 0), (0, -1, 0, 0), (0, 0, 0, 1)))
+FROM_RT = TO_RT.inverted()
+
+
+def log(message):
+    print(f"rt_export: {message}", file=sys.stderr)
+
+
+def write_if_changed(path, data):
+    """Atomically replaces `path` with `data` (bytes or str) unless it already holds it.
+    Returns whether it wrote."""
+    if isinstance(data, str):
+        data = data.encode("utf-8")
+    try:
+        with open(path, "rb") as f:
+            if f.read() == data:
+                return False
+    except OSError:
+        pass
+    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
+    temp = f"{os.path.join(os.path.dirname(path), '.' + os.path.basename(path))}.{os.getpid()}.tmp"
+    with open(temp, "wb") as f:
+        f.write(data)
+    os.replace(temp, path)
+    return True
+
+
+def sanitize(name):
+    clean = re.sub(r"[^A-Za-z0-9_-]+", "_", name).strip("_")
+    return clean or "mesh"
+
+
+# --- geometry ---------------------------------------------------------------------
+
+
+def to_rt(v):
+    """(x, y, z) Blender -> (x, z, -y) rt, for an (n, 3) array."""
+    return np.stack([v[:, 0], v[:, 2], -v[:, 1]], axis=1)
+
+
+def mesh_arrays(mesh, material_count):
+    """Positions, normals, uvs (per vertex, rt axes), triangle indices and material
+    indices of an evaluated mesh. Corners that share position, normal and uv share a vertex."""
+    mesh.calc_loop_triangles()
+    tri_count = len(mesh.loop_triangles)
+    corners = np.empty(tri_count * 3, np.int32)
+    mesh.loop_triangles.foreach_get("loops", corners)
+    materials = np.empty(tri_count, np.int32)
+    mesh.loop_triangles.foreach_get("material_index", materials)
+    materials = np.clip(materials, 0, max(material_count - 1, 0)).astype(np.uint32)
+
+    loop_count = len(mesh.loops)
+    corner_vertex = np.empty(loop_count, np.int32)
+    mesh.loops.foreach_get("vertex_index", corner_vertex)
+    co = np.empty(len(mesh.vertices) * 3, np.float32)
+    mesh.vertices.foreach_get("co", co)
+    normals = np.empty(loop_count * 3, np.float32)
+    mesh.corner_normals.foreach_get("vector", normals)
+
+    columns = [to_rt(co.reshape(-1, 3)[corner_vertex[corners]]), to_rt(normals.reshape(-1, 3)[corners])]
+    has_uvs = len(mesh.uv_layers) > 0
+    if has_uvs:
+        uvs = np.empty(loop_count * 2, np.float32)
+        mesh.uv_layers[0].uv.foreach_get("vector", uvs)
+        columns.append(uvs.reshape(-1, 2)[corners])
+    records = np.ascontiguousarray(np.concatenate(columns, axis=1), dtype=np.float32)
+    keys = records.view(np.dtype((np.void, records.itemsize * records.shape[1]))).ravel()
+    _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
+    # Vertices in order of first use, which keeps neighbours near each other in memory.
+    order = np.argsort(first)
+    rank = np.empty_like(order)
+    rank[order] = np.arange(len(order))
+    vertices = records[first[order]]
+    indices = rank[inverse.ravel()].astype(np.uint32).reshape(-1, 3)
+    return {
+        "positions": vertices[:, 0:3],
+        "normals": vertices[:, 3:6],
+        "uvs": vertices[:, 6:8] if has_uvs else None,
+        "indices": indices,
+        "materials": materials,
+    }
+
+
+def rtmesh_bytes(arrays):
+    """Contract 1: magic, version, flags, counts, then the sections, little-endian."""
+    flags = 1 | (2 if arrays["uvs"] is not None else 0)
+    header = RTMESH_MAGIC + struct.pack(
+        "<4I", RTMESH_VERSION, flags, len(arrays["positions"]), len(arrays["indices"])
+    )
+    sections = [arrays["positions"].astype("<f4"), arrays["normals"].astype("<f4")]
+    if arrays["uvs"] is not None:
+        sections.append(arrays["uvs"].astype("<f4"))
+    sections += [arrays["indices"].astype("<u4"), arrays["materials"].astype("<u4")]
+    return header + b"".join(np.ascontiguousarray(s).tobytes() for s in sections)
+
+
+# --- materials --------------------------------------------------------------------
+
+
+def linked_node(socket):
+    return socket.links[0].from_node if socket.is_linked else None
+
+
+def socket_value(node, name, default):
+    """A node input's value; a texture or other link stands for what it would give
+    on average, which rt cannot know, so the socket's own value is used and noted."""
+    socket = node.inputs.get(name)
+    if socket is None:
+        return default
+    source = linked_node(socket)
+    if source is not None:
+        if source.type in {"RGB", "VALUE"}:
+            return source.outputs[0].default_value
+        log(f"{node.id_data.name}: {node.name}.{name} is linked to {source.type}; using its own value")
+    return socket.default_value
+
+
+def rgb(value):
+    return [float(value[0]), float(value[1]), float(value[2])]
+
+
+def active_output(tree, kind):
+    outputs = [n for n in tree.nodes if n.type == kind]
+    for node in outputs:
+        if getattr(node, "is_active_output", False):
+            return node
+    return outputs[0] if outputs else None
+
+
+def cycles_absorption(volume):
+    """Cycles' absorption coefficient (per metre) of a volume shader node."""
+    density = float(socket_value(volume, "Density", 1.0))
+    color = np.array(rgb(socket_value(volume, "Color", (1, 1, 1))))
+    if volume.type == "VOLUME_ABSORPTION":
+        return density * np.maximum(1.0 - color, 0.0)
+    # Principled Volume: extinction = density (color + absorption), where the absorption
+    # part is (1 - color)(1 - sqrt(absorption color)); the scattering part (density * color)
+    # has no equivalent in rt and is left out.
+    absorption_color = np.array(rgb(socket_value(volume, "Absorption Color", (0, 0, 0))))
+    absorption = np.maximum(1.0 - color, 0.0) * np.maximum(1.0 - np.sqrt(np.maximum(absorption_color, 0.0)), 0.0)
+    if np.any(color > 0.0) and density > 0.0:
+        log(f"{volume.id_data.name}: volume scattering is not rendered by rt; only absorption is exported")
+    return density * absorption
+
+
+def volume_emission(volume):
+    if volume.type == "PRINCIPLED_VOLUME":
+        strength = float(socket_value(volume, "Emission Strength", 0.0))
+        return np.array(rgb(socket_value(volume, "Emission Color", (1, 1, 1)))) * strength
+    if volume.type == "EMISSION":
+        return np.array(rgb(socket_value(volume, "Color", (1, 1, 1)))) * float(socket_value(volume, "Strength", 1.0))
+    return np.zeros(3)
+
+
+def gltf_material(material, thickness):
+    """One glTF material (with KHR extensions) from a Blender material; every factor is
+    written, since rt's importer applies glTF's defaults to absent ones."""
+    name = material.name if material else "default"
+    base, metallic, roughness, ior, transmission = [0.8, 0.8, 0.8], 0.0, 0.5, 1.5, 0.0
+    emission, strength, specular_level = [0.0, 0.0, 0.0], 0.0, 0.5
+    output = active_output(material.node_tree, "OUTPUT_MATERIAL") if material and material.node_tree else None
+    surface = linked_node(output.inputs["Surface"]) if output else None
+    if surface is not None and surface.type != "BSDF_PRINCIPLED":
+        # A principled node anywhere upstream beats the viewport colour.
+        principled = [n for n in material.node_tree.nodes if n.type == "BSDF_PRINCIPLED"]
+        surface = principled[0] if principled and surface.type != "EMISSION" else surface
+    if surface is not None and surface.type == "BSDF_PRINCIPLED":
+        base = rgb(socket_value(surface, "Base Color", base))
+        metallic = float(socket_value(surface, "Metallic", metallic))
+        roughness = float(socket_value(surface, "Roughness", roughness))
+        ior = float(socket_value(surface, "IOR", ior))
+        transmission = float(socket_value(surface, "Transmission Weight", transmission))
+        emission = rgb(socket_value(surface, "Emission Color", emission))
+        strength = float(socket_value(surface, "Emission Strength", strength))
+        specular_level = float(socket_value(surface, "Specular IOR Level", specular_level))
+    elif surface is not None and surface.type == "EMISSION":
+        base, roughness = [0.0, 0.0, 0.0], 1.0
+        emission = rgb(socket_value(surface, "Color", (1, 1, 1)))
+        strength = float(socket_value(surface, "Strength", 1.0))
+    elif material is not None:
+        base = rgb(material.diffuse_color)
+        metallic, roughness = float(material.metallic), float(material.roughness)
+
+    out = {
+        "name": name,
+        "pbrMetallicRoughness": {
+            "baseColorFactor": base + [1.0],
+            "metallicFactor": metallic,
+            "roughnessFactor": roughness,
+        },
+    }
+    extensions = {
+        "KHR_materials_ior": {"ior": ior},
+        # Blender's level 0.5 is the unscaled F0 of the IOR, glTF's factor 1.
+        "KHR_materials_specular": {"specularFactor": min(max(2.0 * specular_level, 0.0), 1.0)},
+    }
+    if transmission > 0.0:
+        extensions["KHR_materials_transmission"] = {"transmissionFactor": transmission}
+    peak = max(emission)
+    if strength > 0.0 and peak > 0.0:
+        # glTF keeps emissiveFactor in [0, 1]; the rest goes into the strength.
+        out["emissiveFactor"] = [c / peak for c in emission]
+        extensions["KHR_materials_emissive_strength"] = {"emissiveStrength": strength * peak}
+
+    volume = linked_node(output.inputs["Volume"]) if output else None
+    if volume is not None:
+        absorption = cycles_absorption(volume) if volume.type in {"VOLUME_ABSORPTION", "PRINCIPLED_VOLUME"} else None
+        if absorption is not None and absorption.max() > 0.0:
+            # rt reads absorption = -ln(c) / d: with d = 1 / max, every channel of c lies in
+            # [1/e, 1], far from where float precision would suffer.
+            distance = 1.0 / float(absorption.max())
+            color = [math.exp(-a * distance) for a in absorption]
+            extensions["KHR_materials_volume"] = {
+                "thicknessFactor": thickness,
+                "attenuationDistance": distance,
+                "attenuationColor": color,
+            }
+        glow = volume_emission(volume)
+        if glow.max() > 0.0:
+            out["extras"] = {"rt_volume_emission": [float(g) for g in glow]}
+    out["extensions"] = extensions
+    return out
+
+
+def gltf_text(materials, thickness):
+    used = sorted({ext for m in materials for ext in m.get("extensions", {})})
+    document = {
+        "asset": {"version": "2.0", "generator": "rt_export.py"},
+        "extensionsUsed": used,
+        "materials": materials,
+    }
+    return json.dumps(document, indent=1, sort_keys=True) + "\n"
+
+
+# --- objects ----------------------------------------------------------------------
+
+
+def exported_objects(scene):
+    """Mesh objects that render, in name order."""
+    layer = bpy.context.view_layer if bpy.context.scene == scene else scene.view_layers[0]
+    visible = {o.name for o in layer.objects}
+    return sorted(
+        (o for o in scene.objects if o.type == "MESH" and not o.hide_render and o.name in visible),
+        key=lambda o: o.name,
+    )
+
+
+def object_slot_materials(obj):
+    return [slot.material for slot in obj.material_slots] or [None]
+
+
+def export_object_mesh(obj, depsgraph):
+    """(rtmesh bytes, gltf text, triangle count) of an object's evaluated mesh."""
+    evaluated = obj.evaluated_get(depsgraph)
+    mesh = evaluated.to_mesh()
+    try:
+        materials = object_slot_materials(obj)
+        arrays = mesh_arrays(mesh, len(materials))
+    finally:
+        evaluated.to_mesh_clear()
+    extent = arrays["positions"].max(axis=0) - arrays["positions"].min(axis=0) if len(arrays["positions"]) else [1]
+    thickness = float(max(min(extent), 1e-3))
+    gltf = gltf_text([gltf_material(m, thickness) for m in materials], thickness)
+    return rtmesh_bytes(arrays), gltf, len(arrays["indices"])
+
+
+def plain_instance(obj):
+    """No modifiers and no object-level materials: the object shows its mesh data as it is."""
+    return not obj.modifiers and all(slot.link == "DATA" for slot in obj.material_slots)
+
+
+class Export:
+    """One export run: which folder each object's mesh went to."""
+
+    def __init__(self, out_dir):
+        self.out_dir = os.path.abspath(out_dir)
+        self.folder_of = {}  # object name -> folder name
+        self.content = {}  # folder name -> (rtmesh bytes, gltf text)
+        self.written = []  # files actually rewritten
+        self.triangles = {}
+
+    def add(self, obj, depsgraph):
+        base = sanitize(obj.data.name)
+        if plain_instance(obj):
+            # Its evaluated mesh is its data's: any plain instance of that data already exported will do.
+            for other, folder in self.folder_of.items():
+                o = bpy.data.objects.get(other)
+                if o is not None and o.data == obj.data and plain_instance(o):
+                    self.folder_of[obj.name] = folder
+                    return
+        rtmesh, gltf, triangles = export_object_mesh(obj, depsgraph)
+        folder = base
+        suffix = 1
+        while folder in self.content and self.content[folder] != (rtmesh, gltf):
+            suffix += 1
+            folder = f"{base}_{suffix}"
+        self.folder_of[obj.name] = folder
+        if folder not in self.content:
+            self.content[folder] = (rtmesh, gltf)
+            self.triangles[folder] = triangles
+            self.write(folder)
+
+    def write(self, folder):
+        rtmesh, gltf = self.content[folder]
+        for ext, data in ((".rtmesh", rtmesh), (".gltf", gltf)):
+            path = os.path.join(self.out_dir, folder, folder + ext)
+            if write_if_changed(path, data):
+                self.written.append(path)
+
+
+# --- scene TOML -------------------------------------------------------------------
+
+
+def fmt(x):
+    x = float(x)
+    if not math.isfinite(x):
+        raise ValueError(f"non-finite value {x} in the scene")
+    text = f"{x:.9g}"
+    return text if any(c in text for c in ".en") else text + ".0"
+
+
+def vec(values):
+    return "[" + ", ".join(fmt(v) for v in values) + "]"
+
+
+def render_size(scene):
+    r = scene.render
+    return (
+        max(1, round(r.resolution_x * r.resolution_percentage / 100)),
+        max(1, round(r.resolution_y * r.resolution_percentage / 100)),
+    )
+
+
+def vertical_fov_deg(camera_data, aspect):
+    """Blender's sensor fit: AUTO fits the sensor width to the larger image side."""
+    lens = camera_data.lens
+    fit = camera_data.sensor_fit
+    if fit == "VERTICAL":
+        return math.degrees(2 * math.atan(camera_data.sensor_height / (2 * lens)))
+    half_width = camera_data.sensor_width / (2 * lens)
+    if fit == "HORIZONTAL" or aspect >= 1.0:
+        return math.degrees(2 * math.atan(half_width / aspect))
+    return math.degrees(2 * math.atan(half_width))
+
+
+def camera_toml(scene):
+    cam = scene.camera
+    if cam is None:
+        return ""
+    if cam.data.type != "PERSP":
+        log(f"camera {cam.name}: {cam.data.type} is exported as a perspective camera")
+    width, height = render_size(scene)
+    aspect = width * scene.render.pixel_aspect_x / (height * scene.render.pixel_aspect_y)
+    m = TO_RT @ cam.matrix_world
+    position = m.translation
+    forward = -(m.to_3x3() @ Vector((0, 0, 1))).normalized()
+    distance = cam.data.dof.focus_distance if cam.data.dof.focus_distance > 0 else 10.0
+    look_at = position + forward * distance
+    fov = vertical_fov_deg(cam.data, aspect)
+    return f"[camera]\nposition = {vec(position)}\nlook_at = {vec(look_at)}\nfov_y_deg = {fmt(fov)}\n\n"
+
+
+def sun_toml(scene):
+    suns = [o for o in scene.objects if o.type == "LIGHT" and o.data.type == "SUN" and not o.hide_render]
+    others = [o.name for o in scene.objects if o.type == "LIGHT" and o.data.type != "SUN"]
+    if others:
+        log(f"lights other than a sun are not exported (use emissive meshes): {', '.join(sorted(others))}")
+    if not suns:
+        return ""
+    sun = sorted(suns, key=lambda o: o.name)[0]
+    # A sun shines along its local -Z, so the sun itself lies along +Z.
+    to_sun = (TO_RT.to_3x3() @ sun.matrix_world.to_3x3() @ Vector((0, 0, 1))).normalized()
+    elevation = math.degrees(math.asin(max(-1.0, min(1.0, to_sun.y))))
+    azimuth = math.degrees(math.atan2(to_sun.x, to_sun.z))
+    diameter = min(max(math.degrees(sun.data.angle), 1e-3), 89.9)
+    return (
+        f"[sun]\nelevation_deg = {fmt(elevation)}\nazimuth_deg = {fmt(azimuth)}\n"
+        f"angular_diameter_deg = {fmt(diameter)}\n\n"
+    )
+
+
+def sky_toml(scene):
+    world = scene.world
+    if world is None:
+        return '[sky]\nkind = "black"\n\n'
+    tree = world.node_tree
+    output = active_output(tree, "OUTPUT_WORLD") if tree else None
+    background = linked_node(output.inputs["Surface"]) if output else None
+    if background is None or background.type != "BACKGROUND":
+        color = rgb(world.color)
+    else:
+        color_source = linked_node(background.inputs["Color"])
+        if color_source is not None and color_source.type == "TEX_SKY":
+            return '[sky]\nkind = "atmosphere"\n\n'
+        strength = float(socket_value(background, "Strength", 1.0))
+        color = [c * strength for c in rgb(socket_value(background, "Color", (0, 0, 0)))]
+    return f'[sky]\nkind = "uniform"\ncolor = {vec(max(c, 0.0) for c in color)}\n\n'
+
+
+def scene_toml(scene, export, scene_path, objects):
+    width, height = render_size(scene)
+    text = [
+        f"# Exported from Blender by blender/rt_export.py (scene {scene.name!r}).\n\n",
+        f"[render]\nwidth = {width}\nheight = {height}\n\n",
+        camera_toml(scene),
+        sky_toml(scene),
+        sun_toml(scene),
+    ]
+    scene_dir = os.path.dirname(os.path.abspath(scene_path))
+    for obj in objects:
+        folder = export.folder_of.get(obj.name)
+        if folder is None:
+            continue
+        m = TO_RT @ obj.matrix_world @ FROM_RT
+        if abs(m.to_3x3().determinant()) < 1e-12:
+            log(f"{obj.name}: scaled to nothing; left out of the scene")
+            continue
+        asset = os.path.relpath(os.path.join(export.out_dir, folder), scene_dir).replace(os.sep, "/")
+        rows = [m[r][c] for r in range(4) for c in range(4)]
+        rows[12:16] = [0.0, 0.0, 0.0, 1.0]
+        text.append(f"# {obj.name}\n[[mesh]]\nasset = {json.dumps(asset)}\nmatrix = {vec(rows)}\n\n")
+    return "".join(text).rstrip("\n") + "\n"
+
+
+# --- the export -------------------------------------------------------------------
+
+
+def export_scene(scene, out_dir, scene_path=None, only=None, previous=None):
+    """Exports every rendered mesh object of `scene` into `out_dir`, and the scene TOML
+    to `scene_path` if given. With `only` (a set of object names) and the `previous`
+    export, objects outside `only` keep the folder they had and are not evaluated."""
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    export = Export(out_dir)
+    objects = exported_objects(scene)
+    for obj in objects:
+        if only is not None and previous is not None and obj.name not in only and obj.name in previous.folder_of:
+            folder = previous.folder_of[obj.name]
+            export.folder_of[obj.name] = folder
+            export.content.setdefault(folder, previous.content[folder])
+            continue
+        export.add(obj, depsgraph)
+    if scene_path:
+        path = bpy.path.abspath(scene_path) if scene_path.startswith("//") else scene_path
+        if write_if_changed(path, scene_toml(scene, export, path, objects)):
+            export.written.append(path)
+    return export
+
+
+# --- add-on: live export on save -------------------------------------------------
+
+_changes = {"objects": set(), "meshes": set(), "materials": set()}
+_last_export = {}  # scene name -> Export
+
+
+@persistent
+def _collect_changes(scene, depsgraph):
+    for update in depsgraph.updates:
+        original = getattr(update.id, "original", update.id)
+        if isinstance(original, bpy.types.Object) and (update.is_updated_geometry or update.is_updated_shading):
+            _changes["objects"].add(original.name)
+        elif isinstance(original, bpy.types.Mesh):
+            _changes["meshes"].add(original.name)
+        elif isinstance(original, bpy.types.Material):
+            _changes["materials"].add(original.name)
+
+
+def changed_objects(scene):
+    """Objects whose exported mesh may differ since the last export."""
+    out = set()
+    for obj in exported_objects(scene):
+        materials = {m.name for m in object_slot_materials(obj) if m is not None}
+        if (
+            obj.name in _changes["objects"]
+            or obj.data.name in _changes["meshes"]
+            or materials & _changes["materials"]
+        ):
+            out.add(obj.name)
+    return out
+
+
+def live_export(scene):
+    settings = scene.rt_export
+    previous = _last_export.get(scene.name)
+    only = changed_objects(scene) if previous is not None else None
+    scene_path = settings.scene_file if settings.write_scene else None
+    export = export_scene(scene, bpy.path.abspath(settings.out_dir), scene_path, only, previous)
+    _last_export[scene.name] = export
+    for key in _changes:
+        _changes[key].clear()
+    return export
+
+
+@persistent
+def _export_on_save(_filepath):
+    for scene in bpy.data.scenes:
+        if scene.rt_export.live:
+            export = live_export(scene)
+            log(f"live export of {scene.name}: {len(export.written)} files written")
+
+
+class RtExportSettings(bpy.types.PropertyGroup):
+    out_dir: bpy.props.StringProperty(name="Assets", subtype="DIR_PATH", default="//assets/")
+    scene_file: bpy.props.StringProperty(name="Scene", subtype="FILE_PATH", default="//scenes/scene.toml")
+    write_scene: bpy.props.BoolProperty(name="Write scene file", default=True)
+    live: bpy.props.BoolProperty(
+        name="Live export on save",
+        description="On every save, export the meshes and materials that changed since the last export",
+        default=False,
+    )
+
+
+class RT_OT_export(bpy.types.Operator):
+    """Export meshes (.rtmesh + .gltf) and a scene TOML for rt"""
+
+    bl_idname = "export_scene.rt"
+    bl_label = "Export rt"
+    directory: bpy.props.StringProperty(subtype="DIR_PATH")
+
+    def invoke(self, context, _event):
+        context.window_manager.fileselect_add(self)
+        return {"RUNNING_MODAL"}
+
+    def execute(self, context):
+        settings = context.scene.rt_export
+        scene_path = settings.scene_file if settings.write_scene else None
+        export = export_scene(context.scene, self.directory, scene_path)
+        self.report({"INFO"}, f"rt: {len(export.content)} meshes, {len(export.written)} files written")
+        return {"FINISHED"}
+
+
+class RT_OT_export_now(bpy.types.Operator):
+    """Export to the folders set in the rt panel"""
+
+    bl_idname = "rt.export_now"
+    bl_label = "Export now"
+
+    def execute(self, context):
+        export = live_export(context.scene) if context.scene.rt_export.live else None
+        if export is None:
+            settings = context.scene.rt_export
+            scene_path = settings.scene_file if settings.write_scene else None
+            export = export_scene(context.scene, bpy.path.abspath(settings.out_dir), scene_path)
+        self.report({"INFO"}, f"rt: {len(export.content)} meshes, {len(export.written)} files written")
+        return {"FINISHED"}
+
+
+class RT_PT_panel(bpy.types.Panel):
+    bl_label = "rt"
+    bl_space_type = "VIEW_3D"
+    bl_region_type = "UI"
+    bl_category = "rt"
+
+    def draw(self, context):
+        settings = context.scene.rt_export
+        layout = self.layout
+        layout.prop(settings, "out_dir")
+        layout.prop(settings, "write_scene")
+        row = layout.row()
+        row.enabled = settings.write_scene
+        row.prop(settings, "scene_file")
+        layout.operator(RT_OT_export_now.bl_idname)
+        layout.prop(settings, "live")
+
+
+def _menu_entry(self, _context):
+    self.layout.operator(RT_OT_export.bl_idname, text="rt (.rtmesh + .gltf + scene)")
+
+
+CLASSES = (RtExportSettings, RT_OT_export, RT_OT_export_now, RT_PT_panel)
+
+
+def register():
+    for cls in CLASSES:
+        bpy.utils.register_class(cls)
+    bpy.types.Scene.rt_export = bpy.props.PointerProperty(type=RtExportSettings)
+    bpy.types.TOPBAR_MT_file_export.append(_menu_entry)
+    bpy.app.handlers.depsgraph_update_post.append(_collect_changes)
+    bpy.app.handlers.save_post.append(_export_on_save)
+
+
+def unregister():
+    bpy.app.handlers.save_post.remove(_export_on_save)
+    bpy.app.handlers.depsgraph_update_post.remove(_collect_changes)
+    bpy.types.TOPBAR_MT_file_export.remove(_menu_entry)
+    del bpy.types.Scene.rt_export
+    for cls in reversed(CLASSES):
+        bpy.utils.unregister_class(cls)
+
+
+# --- command line -----------------------------------------------------------------
+
+
+def main():
+    inside_blender = "--" in sys.argv
+    argv = sys.argv[sys.argv.index("--") + 1 :] if inside_blender else sys.argv[1:]
+    parser = argparse.ArgumentParser(prog="rt_export.py", description=__doc__.split("\n\n")[0])
+    if not inside_blender:
+        parser.add_argument("blend", help="the .blend file to export")
+    parser.add_argument("--out", required=True, help="folder that receives one asset folder per mesh")
+    parser.add_argument("--scene", help="scene TOML to write (asset paths relative to it)")
+    args = parser.parse_args(argv)
+    if not inside_blender:
+        bpy.ops.wm.open_mainfile(filepath=args.blend)
+    export = export_scene(bpy.context.scene, args.out, args.scene)
+    for folder in sorted(export.content):
+        log(f"{folder}: {export.triangles.get(folder, 0)} triangles")
+    log(f"{len(export.content)} meshes, {len(export.written)} files written")
+
+
+if __name__ == "__main__":
+    main()

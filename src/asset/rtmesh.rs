@@ -1,0 +1,192 @@
+//! `.rtmesh` (contract 1): the exporter's vertex/index binary.
+//!
+//! ```text
+//! bytes 0..8   magic b"RTMESH\0\0"
+//! u32 version (=1) · u32 flags (bit0 normals, bit1 uvs) · u32 vertex_count · u32 triangle_count
+//! f32[3] × vertex_count     positions (object space, metres, Y up)
+//! f32[3] × vertex_count     normals            (if bit0)
+//! f32[2] × vertex_count     uvs                (if bit1)
+//! u32[3] × triangle_count   indices
+//! u32    × triangle_count   material index into the sibling .gltf's `materials` array
+//! ```
+//!
+//! Little-endian, no padding. Sections are copied with bytemuck, which reads them as
+//! the host's byte order: rt runs on little-endian machines only (as wgpu's GPUs do).
+
+use super::{AssetError, MeshData, write_atomically};
+use std::path::Path;
+
+pub const MAGIC: [u8; 8] = *b"RTMESH\0\0";
+pub const VERSION: u32 = 1;
+const HEADER_BYTES: u64 = 24;
+const FLAG_NORMALS: u32 = 1;
+const FLAG_UVS: u32 = 2;
+
+/// Geometry read from a `.rtmesh`: everything but the materials, which live in the
+/// sibling `.gltf`.
+pub struct RtMesh {
+    pub positions: Vec<[f32; 3]>,
+    pub normals: Option<Vec<[f32; 3]>>,
+    pub uvs: Option<Vec<[f32; 2]>>,
+    pub indices: Vec<[u32; 3]>,
+    pub material_ids: Vec<u32>,
+}
+
+/// The size a header implies, in u64 so that no count can overflow it.
+fn implied_size(flags: u32, vertices: u32, triangles: u32) -> u64 {
+    let per_vertex = 12 + if flags & FLAG_NORMALS != 0 { 12 } else { 0 } + if flags & FLAG_UVS != 0 { 8 } else { 0 };
+    HEADER_BYTES + per_vertex * vertices as u64 + 16 * triangles as u64
+}
+
+fn u32_at(bytes: &[u8], offset: usize) -> u32 {
+    u32::from_le_bytes([bytes[offset], bytes[offset + 1], bytes[offset + 2], bytes[offset + 3]])
+}
+
+/// Parses and checks the structure of a `.rtmesh`: header, exact size, flags.
+/// Ranges of indices and finiteness are [`MeshData::validate`]'s job, once the
+/// materials are known.
+pub fn parse(path: &Path, bytes: &[u8]) -> Result<RtMesh, AssetError> {
+    let fail = |message: String| Err(AssetError::new(path, message));
+    if bytes.len() < HEADER_BYTES as usize {
+        return fail(format!("truncated: {} bytes is shorter than the 24-byte .rtmesh header", bytes.len()));
+    }
+    if bytes[..8] != MAGIC {
+        return fail("not an .rtmesh file (bad magic bytes)".into());
+    }
+    let [version, flags, vertex_count, triangle_count] = [8, 12, 16, 20].map(|o| u32_at(bytes, o));
+    if version != VERSION {
+        return fail(format!("unsupported .rtmesh version {version} (this rt reads version {VERSION})"));
+    }
+    if flags & !(FLAG_NORMALS | FLAG_UVS) != 0 {
+        return fail(format!("unknown flags {flags:#x} (known: bit 0 normals, bit 1 uvs)"));
+    }
+    // Checked before anything is allocated: a header cannot make rt reserve memory the
+    // file does not back.
+    let expected = implied_size(flags, vertex_count, triangle_count);
+    if bytes.len() as u64 != expected {
+        return fail(format!(
+            "size is {} bytes but its header ({vertex_count} vertices, {triangle_count} triangles, flags {flags:#x}) \
+             implies {expected} (truncated or corrupt)",
+            bytes.len()
+        ));
+    }
+
+    let mut rest = &bytes[HEADER_BYTES as usize..];
+    let mut take = |len: usize| {
+        let (section, tail) = rest.split_at(len);
+        rest = tail;
+        section
+    };
+    let (v, t) = (vertex_count as usize, triangle_count as usize);
+    let positions = bytemuck::pod_collect_to_vec(take(12 * v));
+    let normals = (flags & FLAG_NORMALS != 0).then(|| bytemuck::pod_collect_to_vec(take(12 * v)));
+    let uvs = (flags & FLAG_UVS != 0).then(|| bytemuck::pod_collect_to_vec(take(8 * v)));
+    let indices = bytemuck::pod_collect_to_vec(take(12 * t));
+    let material_ids = bytemuck::pod_collect_to_vec(take(4 * t));
+    Ok(RtMesh { positions, normals, uvs, indices, material_ids })
+}
+
+/// Reads a `.rtmesh` file's geometry; see [`parse`].
+pub fn read(path: &Path) -> Result<RtMesh, AssetError> {
+    let bytes = std::fs::read(path).map_err(|e| AssetError::new(path, format!("cannot read: {e}")))?;
+    parse(path, &bytes)
+}
+
+/// The bytes of `mesh`'s geometry as a `.rtmesh`.
+pub fn encode(mesh: &MeshData) -> Vec<u8> {
+    let flags = mesh.normals.as_ref().map_or(0, |_| FLAG_NORMALS) | mesh.uvs.as_ref().map_or(0, |_| FLAG_UVS);
+    let (v, t) = (mesh.positions.len() as u32, mesh.indices.len() as u32);
+    let mut out = Vec::with_capacity(implied_size(flags, v, t) as usize);
+    out.extend_from_slice(&MAGIC);
+    for word in [VERSION, flags, v, t] {
+        out.extend_from_slice(&word.to_le_bytes());
+    }
+    out.extend_from_slice(bytemuck::cast_slice(&mesh.positions));
+    if let Some(normals) = &mesh.normals {
+        out.extend_from_slice(bytemuck::cast_slice(normals));
+    }
+    if let Some(uvs) = &mesh.uvs {
+        out.extend_from_slice(bytemuck::cast_slice(uvs));
+    }
+    out.extend_from_slice(bytemuck::cast_slice(&mesh.indices));
+    out.extend_from_slice(bytemuck::cast_slice(&mesh.material_ids));
+    out
+}
+
+/// Writes `mesh`'s geometry (not its materials) as a `.rtmesh`, atomically.
+pub fn write(path: &Path, mesh: &MeshData) -> Result<(), AssetError> {
+    if u32::try_from(mesh.positions.len()).is_err() || u32::try_from(mesh.indices.len()).is_err() {
+        return Err(AssetError::new(path, "more than 2^32 vertices or triangles do not fit an .rtmesh"));
+    }
+    write_atomically(path, &encode(mesh))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Material;
+
+    fn quad() -> MeshData {
+        MeshData {
+            positions: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+            normals: Some(vec![[0.0, 0.0, 1.0]; 4]),
+            uvs: Some(vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]),
+            indices: vec![[0, 1, 2], [0, 2, 3]],
+            material_ids: vec![0, 1],
+            materials: vec![("a".into(), Material::default()), ("b".into(), Material::default())],
+        }
+    }
+
+    fn error(bytes: &[u8]) -> String {
+        parse(Path::new("m.rtmesh"), bytes).err().expect("invalid").to_string()
+    }
+
+    #[test]
+    fn round_trips_every_section() {
+        let mesh = quad();
+        let bytes = encode(&mesh);
+        assert_eq!(bytes.len(), 24 + 4 * 32 + 2 * 16);
+        let back = parse(Path::new("m.rtmesh"), &bytes).expect("parses");
+        assert_eq!(back.positions, mesh.positions);
+        assert_eq!(back.normals, mesh.normals);
+        assert_eq!(back.uvs, mesh.uvs);
+        assert_eq!(back.indices, mesh.indices);
+        assert_eq!(back.material_ids, mesh.material_ids);
+
+        let bare = MeshData { normals: None, uvs: None, ..quad() };
+        let back = parse(Path::new("m.rtmesh"), &encode(&bare)).expect("parses");
+        assert!(back.normals.is_none() && back.uvs.is_none());
+        assert_eq!(back.indices, bare.indices);
+    }
+
+    #[test]
+    fn header_that_lies_about_its_size_is_refused() {
+        let mut bytes = encode(&quad());
+        bytes.pop();
+        assert!(error(&bytes).contains("implies"), "{}", error(&bytes));
+
+        // Four billion vertices claimed by a 100-byte file: refused on the size alone.
+        let mut bytes = vec![0u8; 100];
+        bytes[..8].copy_from_slice(&MAGIC);
+        bytes[8..12].copy_from_slice(&1u32.to_le_bytes());
+        bytes[16..20].copy_from_slice(&4_000_000_000u32.to_le_bytes());
+        let message = error(&bytes);
+        assert!(message.starts_with("m.rtmesh: size is 100 bytes"), "{message}");
+        assert!(message.contains("4000000000 vertices"), "{message}");
+    }
+
+    #[test]
+    fn bad_magic_version_and_flags_are_named() {
+        assert!(error(b"short").contains("truncated"));
+        let good = encode(&quad());
+        let mut bytes = good.clone();
+        bytes[0] = b'X';
+        assert!(error(&bytes).contains("bad magic"));
+        let mut bytes = good.clone();
+        bytes[8] = 2;
+        assert!(error(&bytes).contains("unsupported .rtmesh version 2"));
+        let mut bytes = good;
+        bytes[12] = 7;
+        assert!(error(&bytes).contains("unknown flags 0x7"));
+    }
+}

@@ -1,0 +1,144 @@
+"""Blender side of tests/blender_roundtrip.rs (run with the bpy venv's python).
+
+    roundtrip.py build OUT     builds OUT/roundtrip.blend and writes OUT/expected.json
+                               with what rt must find (raw Blender values; the Rust test
+                               converts them itself), plus Blender's own glTF, GLB and OBJ
+                               exports of the `probe` object into OUT/formats/
+    roundtrip.py live OUT      the add-on: registers it, turns on live export, saves, edits
+                               one material, saves again; writes OUT/live.json
+"""
+
+import json
+import os
+import sys
+
+import bpy
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(REPO, "blender"))
+import rt_export  # noqa: E402
+
+
+def principled(name, **inputs):
+    material = bpy.data.materials.new(name)
+    node = material.node_tree.nodes["Principled BSDF"]
+    for key, value in inputs.items():
+        node.inputs[key.replace("_", " ")].default_value = value
+    return material
+
+
+def select_only(obj):
+    for o in bpy.context.scene.objects:
+        o.select_set(o == obj)
+    bpy.context.view_layer.objects.active = obj
+
+
+def build(out):
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.resolution_x, scene.render.resolution_y = 160, 90
+
+    bpy.ops.mesh.primitive_monkey_add(location=(0.5, 1.0, 1.2), rotation=(0.3, 0.0, 0.6))
+    suzanne = bpy.context.object
+    suzanne.name = suzanne.data.name = "suzanne"
+    suzanne.scale = (1.2, 1.2, 1.2)
+    suzanne.modifiers.new("subdivision", "SUBSURF").levels = 1
+    suzanne.data.materials.append(principled("glass", Transmission_Weight=1.0, IOR=1.45, Roughness=0.05))
+
+    bpy.ops.mesh.primitive_plane_add(size=8)
+    plane = bpy.context.object
+    plane.name = plane.data.name = "plane"
+    plane.data.materials.append(principled("floor", Base_Color=(0.5, 0.5, 0.5, 1)))
+    # A linked duplicate shares the mesh data: one asset folder, two [[mesh]] entries.
+    twin = plane.copy()
+    twin.name = "plane_twin"
+    twin.location = (0.0, 8.0, 0.0)
+    scene.collection.objects.link(twin)
+
+    bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=2, radius=0.5, location=(-1.5, 0.5, 1.0))
+    lamp = bpy.context.object
+    lamp.name = lamp.data.name = "lamp"
+    lamp.data.materials.append(principled("lamp", Emission_Color=(1.0, 0.5, 0.25, 1), Emission_Strength=5.0))
+
+    # Two materials on one mesh with a non-uniform transform, for the format comparison.
+    bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=2, location=(2.0, -1.0, 0.8), rotation=(0.3, 0.2, 0.1))
+    probe = bpy.context.object
+    probe.name = probe.data.name = "probe"
+    probe.scale = (1.0, 1.5, 0.8)
+    probe.data.materials.append(principled("red", Base_Color=(0.8, 0.1, 0.1, 1)))
+    probe.data.materials.append(principled("blue", Base_Color=(0.1, 0.1, 0.8, 1)))
+    for polygon in probe.data.polygons:
+        polygon.material_index = int(polygon.center.z > 0)
+
+    bpy.ops.object.camera_add(location=(0.0, -7.0, 2.5), rotation=(1.35, 0.0, 0.1))
+    camera = bpy.context.object
+    camera.data.lens = 35
+    scene.camera = camera
+    bpy.ops.object.light_add(type="SUN", rotation=(0.6, 0.0, 0.8))
+
+    world = bpy.data.worlds.new("sky")
+    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.4, 0.5, 0.6, 1)
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.5
+    scene.world = world
+    os.makedirs(out, exist_ok=True)
+    bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, "roundtrip.blend"))
+
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    expected = {"objects": {}}
+    for obj in (suzanne, plane, lamp, probe):
+        evaluated = obj.evaluated_get(depsgraph)
+        mesh = evaluated.to_mesh()
+        mesh.calc_loop_triangles()
+        world_positions = [list(obj.matrix_world @ v.co) for v in mesh.vertices]
+        expected["objects"][obj.name] = {
+            "triangles": len(mesh.loop_triangles),
+            "world_positions": world_positions,
+        }
+        evaluated.to_mesh_clear()
+    expected["camera"] = {
+        "matrix_world": [list(row) for row in camera.matrix_world],
+        "lens": camera.data.lens,
+        "sensor_width": camera.data.sensor_width,
+        "resolution": [scene.render.resolution_x, scene.render.resolution_y],
+    }
+    with open(os.path.join(out, "expected.json"), "w") as f:
+        json.dump(expected, f)
+
+    formats = os.path.join(out, "formats")
+    os.makedirs(formats, exist_ok=True)
+    select_only(probe)
+    for fmt, name in (("GLTF_SEPARATE", "probe.gltf"), ("GLB", "probe.glb")):
+        bpy.ops.export_scene.gltf(
+            filepath=os.path.join(formats, name), export_format=fmt, use_selection=True, export_apply=True
+        )
+    bpy.ops.wm.obj_export(
+        filepath=os.path.join(formats, "probe.obj"), export_selected_objects=True, apply_modifiers=True
+    )
+
+
+def live(out):
+    """Live export: the first save exports everything, the next only what changed."""
+    bpy.ops.wm.open_mainfile(filepath=os.path.join(out, "roundtrip.blend"))
+    rt_export.register()
+    settings = bpy.context.scene.rt_export
+    settings.out_dir = os.path.join(out, "live", "assets")
+    settings.scene_file = os.path.join(out, "live", "scene.toml")
+    settings.live = True
+    first = os.path.join(out, "live", "first.blend")
+    os.makedirs(os.path.dirname(first), exist_ok=True)
+    bpy.ops.wm.save_as_mainfile(filepath=first)
+    written_first = list(rt_export._last_export[bpy.context.scene.name].written)
+
+    floor = bpy.data.materials["floor"]
+    floor.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (0.9, 0.2, 0.2, 1)
+    bpy.context.view_layer.update()
+    evaluated = sorted(rt_export.changed_objects(bpy.context.scene))
+    bpy.ops.wm.save_as_mainfile(filepath=first)
+    written_second = list(rt_export._last_export[bpy.context.scene.name].written)
+    rt_export.unregister()
+    with open(os.path.join(out, "live.json"), "w") as f:
+        json.dump({"first": written_first, "changed": evaluated, "second": written_second}, f)
+
+
+if __name__ == "__main__":
+    {"build": build, "live": live}[sys.argv[1]](sys.argv[2])

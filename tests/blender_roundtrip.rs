@@ -1,0 +1,188 @@
+//! Blender → rt: a scene built with bpy, exported with blender/rt_export.py, packed and
+//! rendered. Needs RT_BPY_PYTHON, a Python with `bpy` (scripts/test sets one up).
+
+mod common;
+
+use common::{render, repo};
+use glam::{Mat4, Vec3};
+use rt::asset::{MeshData, load_mesh};
+use rt::bvh::{BuildQuality, Provenance, SceneGeometry};
+use rt::scene::Scene;
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn bpy_python() -> PathBuf {
+    let Some(python) = std::env::var_os("RT_BPY_PYTHON") else {
+        panic!(
+            "RT_BPY_PYTHON is not set: it must name a Python 3.11 with bpy==5.0.1 \
+             (scripts/test creates .venv-bpy and sets it)"
+        );
+    };
+    let python = PathBuf::from(python);
+    let python = if python.is_relative() { repo().join(python) } else { python };
+    let check = Command::new(&python).args(["-c", "import bpy"]).output();
+    match check {
+        Ok(out) if out.status.success() => python,
+        Ok(out) => {
+            panic!("RT_BPY_PYTHON={} cannot import bpy:\n{}", python.display(), String::from_utf8_lossy(&out.stderr))
+        }
+        Err(e) => panic!("RT_BPY_PYTHON={} does not run: {e}", python.display()),
+    }
+}
+
+/// Runs a command, failing the test with its output if it fails; returns stderr.
+fn run(command: &mut Command) -> String {
+    let out = command.output().unwrap_or_else(|e| panic!("cannot run {command:?}: {e}"));
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(out.status.success(), "{command:?} failed:\n{stdout}\n{stderr}");
+    stdout + &stderr
+}
+
+/// Blender's (x, y, z) is rt's (x, z, -y).
+fn y_up(v: &Value) -> Vec3 {
+    let c = |i: usize| v[i].as_f64().expect("number") as f32;
+    Vec3::new(c(0), c(2), -c(1))
+}
+
+fn instance_matrix(scene: &Scene, name: &str) -> Mat4 {
+    let m = scene.meshes.iter().find(|m| m.asset.ends_with(name)).unwrap_or_else(|| panic!("no [[mesh]] {name}"));
+    m.object_to_world
+}
+
+/// World-space triangles with their material's name.
+fn world_triangles(mesh: &MeshData, to_world: Mat4) -> Vec<([Vec3; 3], String)> {
+    let p = |i: u32| to_world.transform_point3(Vec3::from(mesh.positions[i as usize]));
+    let name = |t: usize| mesh.materials[mesh.material_ids[t] as usize].0.clone();
+    mesh.indices.iter().enumerate().map(|(t, tri)| (tri.map(p), name(t))).collect()
+}
+
+/// Every triangle of `a` has one in `b` with the same corners (in the same winding,
+/// from any starting corner) within `tolerance`, and the same material.
+fn assert_same_triangles(what: &str, a: &[([Vec3; 3], String)], b: &[([Vec3; 3], String)], tolerance: f32) {
+    assert_eq!(a.len(), b.len(), "{what}: triangle counts");
+    for (tri, material) in a {
+        let distance = |other: &[Vec3; 3]| {
+            (0..3)
+                .map(|r| (0..3).map(|k| tri[k].distance(other[(k + r) % 3])).fold(0.0, f32::max))
+                .fold(f32::MAX, f32::min)
+        };
+        let (best, best_material) =
+            b.iter().map(|(other, m)| (distance(other), m)).min_by(|x, y| x.0.total_cmp(&y.0)).expect("non-empty");
+        assert!(best < tolerance, "{what}: no triangle matches {tri:?} (nearest off by {best})");
+        assert_eq!(material, best_material, "{what}: material of {tri:?}");
+    }
+}
+
+#[test]
+fn blender_scene_exports_packs_and_renders() {
+    let python = bpy_python();
+    let out = std::env::temp_dir().join(format!("rt-test-{}-blender-roundtrip", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let script = repo().join("tests/blender/roundtrip.py");
+    run(Command::new(&python).arg(&script).arg("build").arg(&out));
+    let export = |what: &str| {
+        run(Command::new(&python)
+            .arg(repo().join("blender/rt_export.py"))
+            .arg(out.join("roundtrip.blend"))
+            .arg("--out")
+            .arg(out.join("assets"))
+            .arg("--scene")
+            .arg(out.join("scenes/roundtrip.toml")))
+        .lines()
+        .filter(|l| l.starts_with("rt_export:") && l.contains(what))
+        .count()
+    };
+    assert_eq!(export("9 files written"), 1, "the first export writes 4 meshes, 4 material files and the scene");
+    assert_eq!(export("0 files written"), 1, "exporting again changes nothing");
+    let packed = run(Command::new(env!("CARGO_BIN_EXE_rt")).arg("pack").arg(out.join("assets")));
+    assert_eq!(packed.matches("packed").count(), 4, "{packed}");
+
+    let expected: Value = serde_json::from_str(&std::fs::read_to_string(out.join("expected.json")).expect("json"))
+        .expect("expected.json parses");
+    let scene = rt::scene::load(&out.join("scenes/roundtrip.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let asset = |name: &str| load_mesh(&out.join("assets").join(name)).unwrap_or_else(|e| panic!("{e}"));
+
+    let instances_of = |name: &str| scene.meshes.iter().filter(|m| m.asset.ends_with(name)).count();
+    assert_eq!(scene.meshes.len(), 5, "one [[mesh]] per object");
+    assert_eq!(instances_of("plane"), 2, "both planes use the one plane asset");
+    for (name, object) in expected["objects"].as_object().expect("objects") {
+        let mesh = asset(name);
+        assert_eq!(mesh.indices.len() as u64, object["triangles"].as_u64().expect("count"), "{name}: triangles");
+    }
+
+    // The vertex farthest along a fixed direction lands where Blender has it, in Y-up.
+    let suzanne = asset("suzanne");
+    let to_world = instance_matrix(&scene, "suzanne");
+    let direction = Vec3::new(0.3, 0.5, 0.7);
+    let farthest = |points: &mut dyn Iterator<Item = Vec3>| {
+        points.max_by(|a, b| a.dot(direction).total_cmp(&b.dot(direction))).expect("vertices")
+    };
+    let ours = farthest(&mut suzanne.positions.iter().map(|p| to_world.transform_point3(Vec3::from(*p))));
+    let blender = expected["objects"]["suzanne"]["world_positions"].as_array().expect("positions");
+    let theirs = farthest(&mut blender.iter().map(y_up));
+    assert!(ours.distance(theirs) < 1e-4, "known vertex: rt {ours} vs Blender {theirs}");
+
+    let glass = &suzanne.materials[0].1;
+    assert_eq!((glass.transmission, glass.diffuse, glass.reflection), (1.0, 0.0, 0.0), "{glass:?}");
+    assert!((glass.ior - 1.45).abs() < 1e-6 && (glass.roughness - 0.05).abs() < 1e-6, "{glass:?}");
+    let lamp = &asset("lamp").materials[0].1;
+    for (got, want) in lamp.emission.iter().zip([5.0, 2.5, 1.25]) {
+        assert!((got - want).abs() < 1e-5, "lamp emission {:?}", lamp.emission);
+    }
+
+    let camera = &expected["camera"];
+    let m = camera["matrix_world"].as_array().expect("matrix");
+    let column = |c: usize| Value::from((0..3).map(|r| m[r][c].clone()).collect::<Vec<_>>());
+    let position = y_up(&column(3));
+    let forward = -y_up(&column(2)).normalize();
+    assert!(scene.camera.position.distance(position) < 1e-5, "camera at {}", scene.camera.position);
+    let looking = (scene.camera.look_at - scene.camera.position).normalize();
+    assert!(looking.distance(forward) < 1e-5, "camera looks along {looking}, Blender's along {forward}");
+    let f = |k: &str| camera[k].as_f64().expect("number");
+    let aspect = f64::from(scene.render.width) / f64::from(scene.render.height);
+    assert_eq!((scene.render.width, scene.render.height), (160, 90));
+    // Sensor fit AUTO on a landscape image fits the sensor width to the image width.
+    let fov = 2.0 * (f("sensor_width") / 2.0 / f("lens") / aspect).atan().to_degrees();
+    assert!((f64::from(scene.camera.fov_y_deg) - fov).abs() < 1e-4, "fov {} vs {fov}", scene.camera.fov_y_deg);
+    assert_eq!(scene.sky, rt::scene::Sky::Uniform { color: Vec3::new(0.2, 0.25, 0.3) });
+    assert!(scene.sun.is_some());
+
+    // The packed caches are what the renderer loads, with the same materials.
+    let geometry = SceneGeometry::build(&scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
+    for mesh in &geometry.meshes {
+        assert!(matches!(mesh.provenance, Provenance::Cache { .. }), "{}: {:?}", mesh.path.display(), mesh.provenance);
+        assert_eq!(mesh.materials, load_mesh(&mesh.path).expect("loads").materials);
+    }
+    let image = render(scene.clone(), 64, 64, 4, 4);
+    assert!(image.pixels.iter().flatten().all(|v| v.is_finite() && *v >= 0.0));
+    assert!(image.pixels.iter().flatten().sum::<f32>() > 0.0, "black image");
+
+    // Blender's own glTF, GLB and OBJ exports of `probe` agree with the .rtmesh.
+    let probe = world_triangles(&asset("probe"), instance_matrix(&scene, "probe"));
+    for format in ["probe.gltf", "probe.glb", "probe.obj"] {
+        let mesh = load_mesh(&out.join("formats").join(format)).unwrap_or_else(|e| panic!("{e}"));
+        assert_same_triangles(format, &probe, &world_triangles(&mesh, Mat4::IDENTITY), 1e-4);
+        let colour = |m: &MeshData, name: &str| m.materials.iter().find(|(n, _)| n == name).map(|(_, m)| m.base_color);
+        for name in ["red", "blue"] {
+            let (a, b) = (colour(&asset("probe"), name).expect("rtmesh"), colour(&mesh, name).expect(format));
+            assert!(Vec3::from(a).distance(Vec3::from(b)) < 1e-4, "{format}: {name} is {b:?}, not {a:?}");
+        }
+    }
+
+    live_export_writes_only_what_changed(&python, &script, &out);
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+fn live_export_writes_only_what_changed(python: &Path, script: &Path, out: &Path) {
+    run(Command::new(python).arg(script).arg("live").arg(out));
+    let live: Value = serde_json::from_str(&std::fs::read_to_string(out.join("live.json")).expect("live.json"))
+        .expect("live.json parses");
+    assert_eq!(live["first"].as_array().map(Vec::len), Some(9), "the first save exports everything: {live}");
+    // Both planes use the edited material; they share one asset, so one file changes.
+    assert_eq!(live["changed"], serde_json::json!(["plane", "plane_twin"]), "{live}");
+    let second = live["second"].as_array().expect("second");
+    assert_eq!(second.len(), 1, "after a material edit only its .gltf is rewritten: {live}");
+    assert!(second[0].as_str().is_some_and(|p| p.ends_with("plane/plane.gltf")), "{live}");
+}

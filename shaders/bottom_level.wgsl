@@ -22,6 +22,9 @@ fn trace_instance(instance_index: u32, world_origin: vec3f, world_direction: vec
             test_triangles(inst, instance_index, node.b_link, node.b_count, sheared, hit);
             t_b = INFINITY;
         }
+        if any_hit_only && (*hit).kind != HIT_NONE {
+            break;
+        }
         // Links are relative to the instance's mesh.
         let next = next_node(node, t_a, t_b, &stack, &depth);
         if next == EMPTY_LINK {

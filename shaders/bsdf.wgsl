@@ -46,6 +46,16 @@ fn invalid_sample() -> BsdfSample {
     return BsdfSample(vec3f(0.0, 0.0, 1.0), vec3f(0.0), 0.0, false, false);
 }
 
+// What produced a non-finite value first, recorded per pixel (see `integrator.wgsl`).
+const EVENT_NONE: u32 = 0u;
+const EVENT_EMISSION: u32 = 1u;
+const EVENT_SKY: u32 = 2u;
+const EVENT_LIGHT_SAMPLE: u32 = 3u;
+const EVENT_MEDIUM: u32 = 4u;
+const EVENT_AIR: u32 = 5u;
+// EVENT_LOBE + lobe index: the BSDF sample of that lobe.
+const EVENT_LOBE: u32 = 6u;
+
 // An orthonormal basis around n (Duff et al., "Building an Orthonormal Basis, Revisited", JCGT 2017).
 fn tangent_frame(n: vec3f) -> mat3x3f {
     let s = select(-1.0, 1.0, n.z >= 0.0);
@@ -235,12 +245,16 @@ fn pick_lobe(ctx: ShadingContext, u: ptr<function, f32>) -> u32 {
     return LOBE_TRANSMISSION;
 }
 
+// The lobe picked by the last `bsdf_sample`, for the non-finite sentinel.
+var<private> sampled_lobe: u32;
+
 fn bsdf_sample(ctx: ShadingContext, rng: ptr<function, Rng>) -> BsdfSample {
     if all(ctx.lobe_probability == vec4f(0.0)) {
         return invalid_sample();
     }
     var u = rng_next(rng);
     let lobe = pick_lobe(ctx, &u);
+    sampled_lobe = lobe;
     var s: BsdfSample;
     if ctx.smooth_lobe[lobe] > 0.0 {
         s = sample_smooth_part(ctx, lobe, rng);

@@ -28,7 +28,8 @@ struct Frame {
     // Sum of the emitters' powers (area × luminance of emission).
     emitter_total_power: f32,
     ris_candidates: u32,
-    _pad0: u32,
+    // Samples whose luminance exceeds this are scaled down to it (0: off). Biased: off by default.
+    clamp_luminance: f32,
 }
 
 // A BVH2 node holding both children's boxes, so that one fetch decides where to go.
@@ -119,7 +120,6 @@ const PI: f32 = 3.14159265358979;
 
 // Counters in the statistics buffer.
 const STAT_STACK_OVERFLOW: u32 = 0u;
-const STAT_NON_FINITE: u32 = 1u;
 
 // Depth of the traversal stacks; a push beyond it is counted, never silent.
 const STACK_SIZE: u32 = 32u;

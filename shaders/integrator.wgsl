@@ -2,8 +2,32 @@
 // samples to one pixel's running sums. Progressive: the host divides by the
 // total sample count.
 
-// rgb: sum of radiance; w: sum of squared luminance, for the standard error.
+// rgb: the running mean of radiance; w: the running sum of squared deviations
+// of luminance (Welford), for the standard error. Means rather than sums: a sum
+// of finite samples can overflow.
 @group(1) @binding(0) var<storage, read_write> accumulation: array<vec4f>;
+// Per pixel: dropped non-finite samples (low 24 bits) and the event that
+// produced the first one (top 8 bits).
+@group(1) @binding(1) var<storage, read_write> non_finite: array<u32>;
+
+// The first event of this sample that produced a non-finite value.
+var<private> first_bad_event: u32;
+
+// Adds a contribution to the path's radiance, noting the event if the sum stops being finite.
+fn gather(radiance: ptr<function, vec3f>, contribution: vec3f, event: u32) {
+    *radiance += contribution;
+    if first_bad_event == EVENT_NONE && !all_finite(*radiance) {
+        first_bad_event = event;
+    }
+}
+
+// Multiplies the throughput, noting the event if the result is not finite.
+fn attenuate(throughput: ptr<function, vec3f>, factor: vec3f, event: u32) {
+    *throughput *= factor;
+    if first_bad_event == EVENT_NONE && !all_finite(*throughput) {
+        first_bad_event = event;
+    }
+}
 
 // Bounces after which Russian roulette may end a path.
 const ROULETTE_START: u32 = 3u;
@@ -64,30 +88,27 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
     var medium_emission = vec3f(0.0);
     for (var bounce = 0u; ; bounce++) {
         let hit = trace_scene(origin, direction, INFINITY);
-        if stack_overflowed {
-            atomicAdd(&stats[STAT_STACK_OVERFLOW], 1u);
-        }
         //#if media
         let segment = integrate_segment(medium_absorption, medium_emission, hit.t);
-        radiance += throughput * segment.radiance;
-        throughput *= segment.transmittance;
+        gather(&radiance, throughput * segment.radiance, EVENT_MEDIUM);
+        attenuate(&throughput, segment.transmittance, EVENT_MEDIUM);
         //#endif
         if hit.kind == HIT_NONE {
-            radiance += throughput * sky_radiance(origin, direction);
+            gather(&radiance, throughput * sky_radiance(origin, direction), EVENT_SKY);
             //#if sun
-            radiance += throughput * sun_seen(origin, direction, bsdf_pdf);
+            gather(&radiance, throughput * sun_seen(origin, direction, bsdf_pdf), EVENT_SKY);
             //#endif
             break;
         }
         //#if sky_atmosphere
         let air = atmosphere_segment(origin, direction, hit.t);
-        radiance += throughput * air.radiance;
-        throughput *= air.transmittance;
+        gather(&radiance, throughput * air.radiance, EVENT_AIR);
+        attenuate(&throughput, air.transmittance, EVENT_AIR);
         //#endif
         let surface = surface_at(hit, origin, direction);
         let m = materials[surface.material];
         //#if emission
-        radiance += throughput * emission_seen(m, hit, surface, origin, direction, bsdf_pdf);
+        gather(&radiance, throughput * emission_seen(m, hit, surface, origin, direction, bsdf_pdf), EVENT_EMISSION);
         //#endif
         if bounce >= frame.max_bounces {
             break;
@@ -98,13 +119,13 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
         let n_shading = select(-surface.shading_normal, surface.shading_normal, entering);
         let ctx = shading_context(m, n_shading, n_geometric, -direction, entering);
         //#if nee
-        radiance += throughput * direct_light(ctx, surface.position, n_geometric, medium_absorption, rng);
+        gather(&radiance, throughput * direct_light(ctx, surface.position, n_geometric, medium_absorption, rng), EVENT_LIGHT_SAMPLE);
         //#endif
         let s = bsdf_sample(ctx, rng);
         if !s.valid {
             break;
         }
-        throughput *= s.weight;
+        attenuate(&throughput, s.weight, EVENT_LOBE + sampled_lobe);
         bsdf_pdf = s.pdf;
         //#if media
         // Crossing into a material adds its medium, leaving subtracts it: nested media add up.
@@ -133,18 +154,32 @@ fn render(@builtin(global_invocation_id) id: vec3u) {
         return;
     }
     let pixel_index = id.y * frame.width + id.x;
-    var sums = accumulation[pixel_index];
+    var acc = accumulation[pixel_index];
+    var bad = non_finite[pixel_index];
     for (var s = 0u; s < frame.samples_per_dispatch; s++) {
-        var rng = rng_for_sample(pixel_index, frame.sample_base + s, frame.seed);
-        let l = trace_path(id.xy, &rng);
-        // A non-finite sample would poison the pixel for good: drop it and count it.
+        let sample_index = frame.sample_base + s;
+        var rng = rng_for_sample(pixel_index, sample_index, frame.seed);
+        first_bad_event = EVENT_NONE;
+        var l = trace_path(id.xy, &rng);
+        // A non-finite sample would poison the pixel for good: drop it, count it, keep its cause.
         if !all_finite(l) {
-            atomicAdd(&stats[STAT_NON_FINITE], 1u);
+            if (bad & 0xffffffu) == 0u {
+                bad = first_bad_event << 24u;
+            }
+            bad = (bad & 0xff000000u) | min((bad & 0xffffffu) + 1u, 0xffffffu);
             continue;
         }
-        let y = luminance(l);
-        // Added one sample at a time, so the sums do not depend on how samples are split into dispatches.
-        sums += vec4f(l, y * y);
+        var y = luminance(l);
+        if frame.clamp_luminance > 0.0 && y > frame.clamp_luminance {
+            l *= frame.clamp_luminance / y;
+            y = frame.clamp_luminance;
+        }
+        // Updated one sample at a time, so the result does not depend on how samples are split into dispatches.
+        let n = f32(sample_index + 1u - (bad & 0xffffffu));
+        let y_before = luminance(acc.rgb);
+        let mean = acc.rgb + (l - acc.rgb) / n;
+        acc = vec4f(mean, acc.w + (y - y_before) * (y - luminance(mean)));
     }
-    accumulation[pixel_index] = sums;
+    accumulation[pixel_index] = acc;
+    non_finite[pixel_index] = bad;
 }

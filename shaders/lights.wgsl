@@ -137,8 +137,7 @@ fn direct_light(ctx: ShadingContext, p: vec3f, n_geometric: vec3f, medium_absorp
     let origin = offset_ray_origin(p, select(-n_geometric, n_geometric, dot(light.direction, n_geometric) > 0.0));
     // Stop short of the light's own surface.
     let t_max = select(light.distance * (1.0 - 1e-4), INFINITY, light.distance >= INFINITY);
-    let blocker = trace_scene(origin, light.direction, t_max);
-    if blocker.kind != HIT_NONE {
+    if occluded(origin, light.direction, t_max) {
         return vec3f(0.0);
     }
     var transmittance = vec3f(1.0);

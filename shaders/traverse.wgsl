@@ -15,10 +15,23 @@ struct Hit {
     b2: f32,
 }
 
-// Set when a stack was full and a subtree had to be dropped; the caller counts it.
+// Set when a stack was full and a subtree had to be dropped (and counted in `stats`).
 var<private> stack_overflowed: bool;
+// Shadow rays need any hit, not the closest: traversal stops at the first.
+var<private> any_hit_only: bool;
 
 fn trace_scene(origin: vec3f, direction: vec3f, t_max: f32) -> Hit {
+    any_hit_only = false;
+    return traverse_scene(origin, direction, t_max);
+}
+
+// Whether anything lies on the ray before t_max.
+fn occluded(origin: vec3f, direction: vec3f, t_max: f32) -> bool {
+    any_hit_only = true;
+    return traverse_scene(origin, direction, t_max).kind != HIT_NONE;
+}
+
+fn traverse_scene(origin: vec3f, direction: vec3f, t_max: f32) -> Hit {
     var hit = Hit(t_max, HIT_NONE, 0u, 0u, 0.0, 0.0);
     stack_overflowed = false;
     let ray = traversal_ray(origin, direction);
@@ -41,12 +54,18 @@ fn trace_scene(origin: vec3f, direction: vec3f, t_max: f32) -> Hit {
             }
             t_b = INFINITY;
         }
+        if any_hit_only && hit.kind != HIT_NONE {
+            break;
+        }
         // Links are relative to the top level's first node.
         let next = next_node(node, t_a, t_b, &stack, &depth);
         if next == EMPTY_LINK {
             break;
         }
         node_index = frame.tlas_root + next;
+    }
+    if stack_overflowed {
+        atomicAdd(&stats[STAT_STACK_OVERFLOW], 1u);
     }
     return hit;
 }

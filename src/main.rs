@@ -79,6 +79,13 @@ struct RenderArgs {
     /// Model of rough refraction [default: the scene's].
     #[arg(long, value_enum)]
     rough_transmission: Option<RoughTransmission>,
+    /// Scale every sample down to at most this luminance. Hides fireflies at the
+    /// price of bias (bright light goes missing); off by default.
+    #[arg(long)]
+    clamp: Option<f32>,
+    /// Fail (exit status 1) if any sample was non-finite or any ray overflowed the traversal stack.
+    #[arg(long)]
+    strict: bool,
 }
 
 #[derive(Subcommand)]
@@ -139,6 +146,12 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
     }
     request.max_bounces = args.max_bounces.unwrap_or(request.max_bounces);
     request.seed = args.seed;
+    if let Some(c) = args.clamp {
+        if !(c.is_finite() && c > 0.0) {
+            bail!("--clamp must be a positive luminance, got {c}");
+        }
+        request.clamp = Some(c);
+    }
     request.progress = true;
     let exposure = args.exposure.unwrap_or(scene.render.exposure);
     let ctx = GpuContext::new(adapter)?;
@@ -157,14 +170,11 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
         report.elapsed.as_secs_f64(),
         human(report.samples_per_second)
     );
-    if report.stack_overflows > 0 {
-        eprintln!(
-            "warning: {} rays overflowed the BVH traversal stack; their hits may be wrong",
-            report.stack_overflows
-        );
-    }
-    if report.non_finite_samples > 0 {
-        eprintln!("warning: {} non-finite samples were dropped", report.non_finite_samples);
+    if !report.sentinel.is_clean() {
+        eprintln!("warning: {}", report.sentinel);
+        if args.strict {
+            bail!("--strict: the render dropped samples or rays (see the warning above)");
+        }
     }
     Ok(())
 }

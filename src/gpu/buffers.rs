@@ -9,7 +9,6 @@ use wgpu::util::DeviceExt;
 
 /// Counters in the statistics buffer (see `shaders/common.wgsl`).
 pub const STAT_STACK_OVERFLOW: usize = 0;
-pub const STAT_NON_FINITE: usize = 1;
 const STAT_COUNT: usize = 4;
 
 pub struct SceneBuffers {
@@ -93,7 +92,8 @@ impl SceneBuffers {
         let stats =
             storage(ctx, "stats", &[0u32; STAT_COUNT], wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST);
         let emitters = storage(ctx, "emitters", &geometry.emitters, none);
-        let buffers = [&frame, &nodes, &triangles, &shading, &instances, &tlas, &spheres, &materials, &stats, &emitters];
+        let buffers =
+            [&frame, &nodes, &triangles, &shading, &instances, &tlas, &spheres, &materials, &stats, &emitters];
         let entries: Vec<_> = buffers
             .iter()
             .enumerate()

@@ -27,7 +27,7 @@ pub struct GpuFrame {
     pub emitter_count: u32,
     pub emitter_total_power: f32,
     pub ris_candidates: u32,
-    pub _pad0: u32,
+    pub clamp_luminance: f32,
 }
 
 /// A BVH2 node with both children's boxes (see `shaders/common.wgsl`).
@@ -220,7 +220,8 @@ mod tests {
                     sun_select_probability,
                     emitter_count,
                     emitter_total_power,
-                    ris_candidates
+                    ris_candidates,
+                    clamp_luminance
                 ]
             ),
             host_layout!("BvhNode", GpuBvhNode, [a_min, a_link, a_max, a_count, b_min, b_link, b_max, b_count]),

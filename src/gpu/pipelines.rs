@@ -32,7 +32,7 @@ impl PipelineCache {
     pub fn new(ctx: &GpuContext) -> Self {
         Self {
             scene_layout: scene_bind_group_layout(&ctx.device),
-            accumulation_layout: io_bind_group_layout(&ctx.device, 1),
+            accumulation_layout: io_bind_group_layout(&ctx.device, 2),
             trace_layout: io_bind_group_layout(&ctx.device, 2),
             built: HashMap::new(),
         }

@@ -3,6 +3,7 @@
 mod camera;
 mod image_out;
 mod progressive;
+mod sentinel;
 mod sun;
 pub mod tonemap;
 mod trace;
@@ -10,6 +11,7 @@ mod trace;
 pub use camera::set_camera;
 pub use image_out::{ImageFormat, image_format, write_image};
 pub use progressive::Accumulation;
+pub use sentinel::{NonFiniteCause, Sentinel};
 pub use sun::{default_sun_radiance, sun_direction, sun_one_minus_cos};
 pub use trace::TraceBuffers;
 
@@ -43,6 +45,8 @@ pub struct RenderRequest {
     pub seed: u32,
     /// Candidates per resampled direction in `seed` sampling.
     pub ris_candidates: u32,
+    /// Scale samples down to this luminance (biased; `None`: off).
+    pub clamp: Option<f32>,
     /// Run this feature set's pipeline instead of the scene's own (it must include it).
     pub features: Option<FeatureSet>,
     pub progress: bool,
@@ -58,6 +62,7 @@ impl RenderRequest {
             max_bounces: r.max_bounces,
             seed: 0,
             ris_candidates: r.ris_candidates,
+            clamp: None,
             features: None,
             progress: false,
         }
@@ -70,8 +75,7 @@ pub struct RenderReport {
     pub elapsed: Duration,
     /// Camera paths per second.
     pub samples_per_second: f64,
-    pub stack_overflows: u32,
-    pub non_finite_samples: u32,
+    pub sentinel: Sentinel,
     pub features: FeatureSet,
 }
 
@@ -111,6 +115,7 @@ impl<'a> Renderer<'a> {
         frame.emitter_count = self.geometry.emitters.len() as u32;
         frame.emitter_total_power = self.geometry.emitter_total_power;
         frame.ris_candidates = request.ris_candidates;
+        frame.clamp_luminance = request.clamp.unwrap_or(0.0);
         frame
     }
 
@@ -141,8 +146,7 @@ impl<'a> Renderer<'a> {
             samples_per_pixel: acc.samples,
             elapsed,
             samples_per_second: acc.samples as f64 * pixels / elapsed.as_secs_f64(),
-            stack_overflows: stats[crate::gpu::STAT_STACK_OVERFLOW],
-            non_finite_samples: stats[crate::gpu::STAT_NON_FINITE],
+            sentinel: Sentinel::from_pixels(&acc.non_finite(self.ctx)?, stats[crate::gpu::STAT_STACK_OVERFLOW]),
             features,
         };
         Ok((image, report))

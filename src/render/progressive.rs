@@ -1,7 +1,8 @@
 //! Progressive accumulation: dispatches of several samples per pixel added to
-//! running sums, sized so that each dispatch stays far below a GPU watchdog.
+//! running means, sized so that each dispatch stays far below a GPU watchdog.
 
 use super::Image;
+use super::sentinel::NonFiniteCause;
 use crate::gpu::layout::GpuFrame;
 use crate::gpu::{GpuContext, Pipelines, SceneBuffers, read_buffer};
 use anyhow::Result;
@@ -16,25 +17,35 @@ pub struct Accumulation {
     pub width: u32,
     pub height: u32,
     pub samples: u32,
-    sums: wgpu::Buffer,
+    means: wgpu::Buffer,
+    non_finite: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     samples_per_dispatch: u32,
 }
 
 impl Accumulation {
     pub fn new(ctx: &GpuContext, layout: &wgpu::BindGroupLayout, width: u32, height: u32) -> Self {
-        let sums = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        let means = ctx.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("accumulation"),
             size: width as u64 * height as u64 * 16,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let non_finite = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("non-finite samples"),
+            size: width as u64 * height as u64 * 4,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("accumulation"),
             layout,
-            entries: &[wgpu::BindGroupEntry { binding: 0, resource: sums.as_entire_binding() }],
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: means.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: non_finite.as_entire_binding() },
+            ],
         });
-        Self { width, height, samples: 0, sums, bind_group, samples_per_dispatch: 1 }
+        Self { width, height, samples: 0, means, non_finite, bind_group, samples_per_dispatch: 1 }
     }
 
     /// Adds up to `max_samples` samples per pixel in one dispatch and waits for it;
@@ -85,17 +96,23 @@ impl Accumulation {
 
     /// The mean radiance per pixel and the standard error of each pixel's mean luminance.
     pub fn image(&self, ctx: &GpuContext) -> Result<Image> {
-        let sums: Vec<[f32; 4]> = read_buffer(ctx, &self.sums)?;
-        let n = self.samples.max(1) as f64;
-        let mut pixels = Vec::with_capacity(sums.len());
-        let mut std_error = Vec::with_capacity(sums.len());
-        for s in &sums {
-            let mean = [s[0], s[1], s[2]].map(|v| (v as f64 / n) as f32);
-            let y = 0.2126 * mean[0] as f64 + 0.7152 * mean[1] as f64 + 0.0722 * mean[2] as f64;
-            let variance = ((s[3] as f64 / n - y * y) * n / (n - 1.0).max(1.0)).max(0.0);
-            pixels.push(mean);
+        let means: Vec<[f32; 4]> = read_buffer(ctx, &self.means)?;
+        let dropped = self.non_finite(ctx)?;
+        let mut pixels = Vec::with_capacity(means.len());
+        let mut std_error = Vec::with_capacity(means.len());
+        for (m, (bad, _)) in means.iter().zip(&dropped) {
+            // Dropped samples are not part of the mean: it is over the finite ones.
+            let n = self.samples.saturating_sub(*bad).max(1) as f64;
+            let variance = m[3].max(0.0) as f64 / (n - 1.0).max(1.0);
+            pixels.push([m[0], m[1], m[2]]);
             std_error.push((variance / n).sqrt() as f32);
         }
         Ok(Image { width: self.width, height: self.height, samples: self.samples, pixels, std_error })
+    }
+
+    /// Dropped non-finite samples: per pixel, (count, the event that produced the first).
+    pub fn non_finite(&self, ctx: &GpuContext) -> Result<Vec<(u32, NonFiniteCause)>> {
+        let words: Vec<u32> = read_buffer(ctx, &self.non_finite)?;
+        Ok(words.iter().map(|w| (w & 0xff_ffff, NonFiniteCause::from_code(w >> 24))).collect())
     }
 }

@@ -73,7 +73,7 @@ impl Sentinel {
             *causes.entry(cause).or_insert(0) += 1;
         }
         s.first_causes = causes.into_iter().collect();
-        s.first_causes.sort_by(|a, b| b.1.cmp(&a.1));
+        s.first_causes.sort_by_key(|&(_, n)| std::cmp::Reverse(n));
         s
     }
 

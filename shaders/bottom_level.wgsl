@@ -51,6 +51,7 @@ fn triangle_surface(hit: Hit) -> Surface {
     let b0 = 1.0 - hit.b1 - hit.b2;
     // Interpolating the vertices is more accurate than origin + t·direction.
     let p_object = b0 * tri.v0 + hit.b1 * tri.v1 + hit.b2 * tri.v2;
+    let error_object = gamma(7.0) * (abs(b0 * tri.v0) + abs(hit.b1 * tri.v1) + abs(hit.b2 * tri.v2));
     let n_geometric = transform_normal_to_world(inst.world_to_object, cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
     let sh = shading[hit.primitive];
     let n_shading = transform_normal_to_world(inst.world_to_object, b0 * sh.n0 + hit.b1 * sh.n1 + hit.b2 * sh.n2);
@@ -58,5 +59,18 @@ fn triangle_surface(hit: Hit) -> Surface {
     if material == NO_MATERIAL {
         material = inst.material_base + tri.material;
     }
-    return Surface(transform_point(inst.object_to_world, p_object), normalize(n_geometric), normalize(n_shading), material);
+    let m = inst.object_to_world;
+    let p = transform_point(m, p_object);
+    let error = transform_point_error(m, p_object, error_object);
+    return Surface(p, error, normalize(n_geometric), normalize(n_shading), material);
+}
+
+// Error bound of an affine transform of a point known within ±error (pbrt-v4 §6.8.5).
+fn transform_point_error(m: array<vec4f, 3>, p: vec3f, error: vec3f) -> vec3f {
+    let a0 = abs(m[0]);
+    let a1 = abs(m[1]);
+    let a2 = abs(m[2]);
+    let rounding = gamma(3.0) * vec3f(dot(a0.xyz, abs(p)) + a0.w, dot(a1.xyz, abs(p)) + a1.w, dot(a2.xyz, abs(p)) + a2.w);
+    let carried = (1.0 + gamma(3.0)) * vec3f(dot(a0.xyz, error), dot(a1.xyz, error), dot(a2.xyz, error));
+    return rounding + carried;
 }

@@ -78,9 +78,10 @@ struct Sphere {
     center: vec3f,
     radius: f32,
     material: u32,
+    // |center|² − radius², computed in f64 on the host (see `sphere_c`).
+    k: f32,
     _pad0: u32,
     _pad1: u32,
-    _pad2: u32,
 }
 
 // Lobe weights are normalised on the host so that they sum to at most 1.

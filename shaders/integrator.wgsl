@@ -119,7 +119,7 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
         let n_shading = select(-surface.shading_normal, surface.shading_normal, entering);
         let ctx = shading_context(m, n_shading, n_geometric, -direction, entering);
         //#if nee
-        gather(&radiance, throughput * direct_light(ctx, surface.position, n_geometric, medium_absorption, rng), EVENT_LIGHT_SAMPLE);
+        gather(&radiance, throughput * direct_light(ctx, surface, n_geometric, medium_absorption, rng), EVENT_LIGHT_SAMPLE);
         //#endif
         let s = bsdf_sample(ctx, rng);
         if !s.valid {
@@ -142,7 +142,7 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
             }
             throughput /= survival;
         }
-        origin = offset_ray_origin(surface.position, select(-n_geometric, n_geometric, dot(s.direction, n_geometric) > 0.0));
+        origin = offset_ray_origin(surface.position, surface.position_error, select(-n_geometric, n_geometric, dot(s.direction, n_geometric) > 0.0));
         direction = s.direction;
     }
     return radiance;

@@ -74,7 +74,7 @@ fn sample_emitter(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
         let phi = 2.0 * PI * u.y;
         let axis = normalize(s.center - p);
         let d = tangent_frame(axis) * vec3f(sin_t * cos(phi), sin_t * sin(phi), 1.0 - one_minus_cos);
-        let t = intersect_sphere(p, d, s.center, s.radius, INFINITY);
+        let t = intersect_sphere(p, d, s.center, s.radius, s.k, INFINITY);
         if t == INFINITY {
             return none;
         }
@@ -121,9 +121,10 @@ fn sample_light(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
     return sample_emitter(p, rng);
 }
 
-// Light arriving directly at `p` from one light sample, through the BSDF,
+// Light arriving directly at the surface point from one light sample, through the BSDF,
 // weighted for MIS. `medium_absorption` is that of the medium `p` lies in.
-fn direct_light(ctx: ShadingContext, p: vec3f, n_geometric: vec3f, medium_absorption: vec3f, rng: ptr<function, Rng>) -> vec3f {
+fn direct_light(ctx: ShadingContext, surface: Surface, n_geometric: vec3f, medium_absorption: vec3f, rng: ptr<function, Rng>) -> vec3f {
+    let p = surface.position;
     let light = sample_light(p, rng);
     if light.pdf <= 0.0 || all(light.radiance == vec3f(0.0)) {
         return vec3f(0.0);
@@ -134,7 +135,7 @@ fn direct_light(ctx: ShadingContext, p: vec3f, n_geometric: vec3f, medium_absorp
     if all(f == vec3f(0.0)) {
         return vec3f(0.0);
     }
-    let origin = offset_ray_origin(p, select(-n_geometric, n_geometric, dot(light.direction, n_geometric) > 0.0));
+    let origin = offset_ray_origin(p, surface.position_error, select(-n_geometric, n_geometric, dot(light.direction, n_geometric) > 0.0));
     // Stop short of the light's own surface.
     let t_max = select(light.distance * (1.0 - 1e-4), INFINITY, light.distance >= INFINITY);
     if occluded(origin, light.direction, t_max) {

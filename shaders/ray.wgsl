@@ -34,15 +34,37 @@ fn ray_box_entry(ray: TraversalRay, box_min: vec3f, box_max: vec3f, t_max: f32) 
     return select(INFINITY, t_near, t_near <= t_far);
 }
 
-// Moves a ray origin off the surface along the geometric normal by a few ULPs
-// of its own magnitude, so that no global epsilon is needed at any scale
-// (Wächter & Binder, "A Fast and Robust Method for Avoiding Self-Intersection",
-// Ray Tracing Gems, ch. 6). `n` points to the side the new ray leaves into.
-fn offset_ray_origin(p: vec3f, n: vec3f) -> vec3f {
-    let ORIGIN: f32 = 1.0 / 32.0;
-    let FLOAT_SCALE: f32 = 1.0 / 65536.0;
-    let INT_SCALE: f32 = 256.0;
-    let of_i = vec3i(INT_SCALE * n);
-    let p_i = bitcast<vec3f>(bitcast<vec3i>(p) + select(of_i, -of_i, p < vec3f(0.0)));
-    return select(p_i, p + FLOAT_SCALE * n, abs(p) < vec3f(ORIGIN));
+// γₙ = nε / (1 − nε), ε = 2⁻²⁴: the bound on the relative error of n
+// rounded f32 operations (Higham; pbrt-v4 §6.8).
+fn gamma(n: f32) -> f32 {
+    let e = n * 5.9604645e-8;
+    return e / (1.0 - e);
+}
+
+// The next f32 above v (below, with `up` false). Zero steps to the smallest
+// normal number, since GPUs flush denormals to zero.
+fn next_float(v: f32, up: bool) -> f32 {
+    if v == 0.0 {
+        return select(-1.1754944e-38, 1.1754944e-38, up);
+    }
+    let bits = bitcast<u32>(v);
+    return bitcast<f32>(select(bits - 1u, bits + 1u, (v > 0.0) == up));
+}
+
+// Moves a ray origin off the surface so that the new ray cannot hit the
+// surface it leaves: `p` lies within ±`error` (per component) of the true
+// surface point, so moving it by the error's extent along the normal, then one
+// more float away, puts it strictly on the side `n` points to. No epsilon, at
+// any scale (pbrt-v4's OffsetRayOrigin, §6.8.6). Wächter & Binder's fixed
+// 256-ULP offset (Ray Tracing Gems ch. 6) fails where a point's components
+// differ by orders of magnitude: an error of the large components projected on
+// the normal outgrows the offset of the small ones.
+fn offset_ray_origin(p: vec3f, error: vec3f, n: vec3f) -> vec3f {
+    let offset = dot(abs(n), error) * n;
+    let moved = p + offset;
+    return vec3f(
+        select(moved.x, next_float(moved.x, offset.x > 0.0), offset.x != 0.0),
+        select(moved.y, next_float(moved.y, offset.y > 0.0), offset.y != 0.0),
+        select(moved.z, next_float(moved.z, offset.z > 0.0), offset.z != 0.0),
+    );
 }

@@ -1,19 +1,40 @@
 // Numerically robust ray–sphere intersection (Haines, Günther & Akenine-Möller,
-// "Precision Improvements for Ray/Sphere Intersection", Ray Tracing Gems, ch. 7).
+// "Precision Improvements for Ray/Sphere Intersection", Ray Tracing Gems, ch. 7),
+// with c computed so that a ray from just above a planet-sized sphere keeps
+// the digits of its height (see `sphere_c`).
 // `direction` is unit length. Returns the nearest t in (0, t_max) or INFINITY.
-fn intersect_sphere(origin: vec3f, direction: vec3f, center: vec3f, radius: f32, t_max: f32) -> f32 {
+
+// c = |o − centre|² − r², the quantity whose cancellation ruins rays that
+// start near a large sphere: in f32, o − centre keeps only the digits of the
+// centre's magnitude (half a metre for a planet). Expanded as |o|² − 2 o·centre
+// + k, with k = |centre|² − r² computed exactly on the host, nothing large
+// cancels when the origin is near the world's origin; the direct form stays
+// better when it is near the sphere's centre. The form with the smaller
+// rounding bound is used.
+fn sphere_c(origin: vec3f, center: vec3f, radius: f32, k: f32) -> f32 {
+    let f = origin - center;
+    let direct = dot(f, f) - radius * radius;
+    let direct_error = dot(f, f) + length(f) * max(length(origin), length(center));
+    let expanded = dot(origin, origin) - 2.0 * dot(origin, center) + k;
+    let expanded_error = dot(origin, origin) + 2.0 * dot(abs(origin), abs(center)) + abs(k);
+    return select(direct, expanded, expanded_error < direct_error);
+}
+
+fn intersect_sphere(origin: vec3f, direction: vec3f, center: vec3f, radius: f32, k: f32, t_max: f32) -> f32 {
     let f = origin - center;
     let b = -dot(f, direction);
-    // Squared distance from the centre to the line, from a vector rather than
-    // from b² − c, which cancels catastrophically for far or large spheres.
-    let l = f + b * direction;
-    let discriminant = radius * radius - dot(l, l);
+    let c = sphere_c(origin, center, radius, k);
+    var discriminant: f32;
+    if dot(f, f) > 4.0 * radius * radius {
+        // From afar, b² − c cancels: use the squared distance from the centre to the line.
+        let l = f + b * direction;
+        discriminant = radius * radius - dot(l, l);
+    } else {
+        discriminant = b * b - c;
+    }
     if discriminant < 0.0 {
         return INFINITY;
     }
-    let len_f = length(f);
-    // |f|² − r² as a product, so that an origin on a planet-sized sphere keeps its digits.
-    let c = (len_f - radius) * (len_f + radius);
     let q = b + select(-1.0, 1.0, b >= 0.0) * sqrt(discriminant);
     var t0 = c / q;
     var t1 = q;

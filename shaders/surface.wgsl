@@ -2,6 +2,8 @@
 
 struct Surface {
     position: vec3f,
+    // Bound on the absolute error of each component of `position`.
+    position_error: vec3f,
     // Outward normals: the winding's for triangles, radial for spheres.
     geometric_normal: vec3f,
     shading_normal: vec3f,
@@ -17,6 +19,6 @@ fn surface_at(hit: Hit, origin: vec3f, direction: vec3f) -> Surface {
     //#if triangles
     return triangle_surface(hit);
     //#else
-    return Surface(vec3f(0.0), vec3f(0.0, 1.0, 0.0), vec3f(0.0, 1.0, 0.0), 0u);
+    return Surface(vec3f(0.0), vec3f(0.0), vec3f(0.0, 1.0, 0.0), vec3f(0.0, 1.0, 0.0), 0u);
     //#endif
 }

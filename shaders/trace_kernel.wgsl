@@ -14,6 +14,11 @@ struct TraceHit {
     primitive: u32,
     instance: u32,
     overflowed: u32,
+    // Barycentric weights of the triangle's second and third vertices.
+    b1: f32,
+    b2: f32,
+    _pad0: u32,
+    _pad1: u32,
 }
 
 @group(1) @binding(0) var<storage, read_write> trace_rays: array<TraceRay>;
@@ -28,7 +33,7 @@ fn trace_one(i: u32) {
     } else if hit.kind == HIT_SPHERE {
         primitive = hit.primitive | SPHERE_BIT;
     }
-    trace_hits[i] = TraceHit(select(INFINITY, hit.t, hit.kind != HIT_NONE), primitive, hit.instance, u32(stack_overflowed));
+    trace_hits[i] = TraceHit(select(INFINITY, hit.t, hit.kind != HIT_NONE), primitive, hit.instance, u32(stack_overflowed), hit.b1, hit.b2, 0u, 0u);
 }
 
 // Launches over 65535 workgroups spill into y.
@@ -57,15 +62,13 @@ fn generate_camera_rays(@builtin(global_invocation_id) id: vec3u, @builtin(num_w
     trace_rays[i] = TraceRay(frame.camera_position, INFINITY, d, 0u);
 }
 
-// Turns each ray with a hit into a cosine-distributed diffuse bounce from that
-// hit: the incoherent rays a path tracer mostly traces. Misses become rays
-// with t_max = 0, which cost a root visit and nothing else.
-@compute @workgroup_size(64)
-fn generate_diffuse_rays(@builtin(global_invocation_id) id: vec3u, @builtin(num_workgroups) groups: vec3u) {
-    let i = ray_index(id, groups);
-    if i >= arrayLength(&trace_rays) {
-        return;
-    }
+// Turns each ray with a hit into a new ray leaving that hit as a path would:
+// its origin the surface point the integrator computes, moved off the surface
+// by its error bound, and its direction cosine-distributed on the side the ray
+// came from (`side` = 1: diffuse bounces, the incoherent rays a path tracer
+// mostly traces) or the far side (`side` = −1: rays going through). Misses
+// become rays with t_max = 0, which cost a root visit and nothing else.
+fn spawn_ray(i: u32, side: f32) {
     let r = trace_rays[i];
     let h = trace_hits[i];
     if h.primitive == EMPTY_LINK {
@@ -73,12 +76,27 @@ fn generate_diffuse_rays(@builtin(global_invocation_id) id: vec3u, @builtin(num_
         return;
     }
     let kind = select(HIT_TRIANGLE, HIT_SPHERE, (h.primitive & SPHERE_BIT) != 0u);
-    let hit = Hit(h.t, kind, h.primitive & ~SPHERE_BIT, h.instance, 0.0, 0.0);
+    let hit = Hit(h.t, kind, h.primitive & ~SPHERE_BIT, h.instance, h.b1, h.b2);
     let surface = surface_at(hit, r.origin, r.direction);
-    // The hit point from t; the barycentrics are not kept in a TraceHit.
-    let p = r.origin + h.t * r.direction;
-    let n = select(surface.geometric_normal, -surface.geometric_normal, dot(surface.geometric_normal, r.direction) > 0.0);
+    let facing = select(surface.geometric_normal, -surface.geometric_normal, dot(surface.geometric_normal, r.direction) > 0.0);
+    let n = side * facing;
     var rng = rng_for_sample(i, frame.sample_base + 1u, frame.seed);
     let d = tangent_frame(n) * sample_cosine_hemisphere(vec2f(rng_next(&rng), rng_next(&rng)));
-    trace_rays[i] = TraceRay(offset_ray_origin(p, n), INFINITY, d, 0u);
+    trace_rays[i] = TraceRay(offset_ray_origin(surface.position, surface.position_error, n), INFINITY, d, 0u);
+}
+
+@compute @workgroup_size(64)
+fn generate_diffuse_rays(@builtin(global_invocation_id) id: vec3u, @builtin(num_workgroups) groups: vec3u) {
+    let i = ray_index(id, groups);
+    if i < arrayLength(&trace_rays) {
+        spawn_ray(i, 1.0);
+    }
+}
+
+@compute @workgroup_size(64)
+fn generate_through_rays(@builtin(global_invocation_id) id: vec3u, @builtin(num_workgroups) groups: vec3u) {
+    let i = ray_index(id, groups);
+    if i < arrayLength(&trace_rays) {
+        spawn_ray(i, -1.0);
+    }
 }

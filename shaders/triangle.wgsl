@@ -76,5 +76,21 @@ fn intersect_triangle(ray: ShearedRay, v0: vec3f, v1: vec3f, v2: vec3f, t_max: f
         return miss;
     }
     let inv_det = 1.0 / det;
-    return TriangleHit(t_scaled * inv_det, v * inv_det, w * inv_det);
+    let t = t_scaled * inv_det;
+    // t must exceed its own rounding error (pbrt-v4 §6.8.7): a ray leaving a
+    // point that lies exactly in the triangle's plane (the offset is zero
+    // along an axis on which the point is exact) must not hit at a t that is rounding noise.
+    let max_zt = max(abs(az), max(abs(bz), abs(cz)));
+    let max_xt = max(abs(ax), max(abs(bx), abs(cx)));
+    let max_yt = max(abs(ay), max(abs(by), abs(cy)));
+    let delta_z = gamma(3.0) * max_zt;
+    let delta_x = gamma(5.0) * (max_xt + max_zt);
+    let delta_y = gamma(5.0) * (max_yt + max_zt);
+    let delta_e = 2.0 * (gamma(2.0) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
+    let max_e = max(abs(u), max(abs(v), abs(w)));
+    let delta_t = 3.0 * (gamma(3.0) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * abs(inv_det);
+    if t <= delta_t {
+        return miss;
+    }
+    return TriangleHit(t, v * inv_det, w * inv_det);
 }

@@ -44,19 +44,24 @@ impl MeshBvh {
     pub fn build(mesh: &MeshData, quality: BuildQuality) -> Self {
         let start = Instant::now();
         let p = |i: u32| Vec3A::from_array(mesh.positions[i as usize]);
-        let tris: Vec<Triangle> =
-            mesh.indices.iter().map(|t| Triangle { v0: p(t[0]), v1: p(t[1]), v2: p(t[2]) }).collect();
-        let nodes;
-        let order: Vec<u32>;
-        if tris.is_empty() {
-            nodes = convert_bvh2(&obvhs::bvh2::Bvh2::default());
-            order = Vec::new();
+        // Zero-area triangles (repeated or exactly collinear vertices) reflect
+        // nothing, yet rounding in the intersection test can report hits on
+        // them with a meaningless distance and normal: they are left out.
+        let kept: Vec<u32> = (0..mesh.indices.len() as u32).filter(|&i| has_area(mesh, i as usize)).collect();
+        let tris: Vec<Triangle> = kept
+            .iter()
+            .map(|&i| {
+                let t = mesh.indices[i as usize];
+                Triangle { v0: p(t[0]), v1: p(t[1]), v2: p(t[2]) }
+            })
+            .collect();
+        let (nodes, order): (Vec<_>, Vec<u32>) = if tris.is_empty() {
+            (convert_bvh2(&obvhs::bvh2::Bvh2::default()), Vec::new())
         } else {
             let bvh = build_bvh2_from_tris(&tris, quality.params(), &mut Duration::default());
-            nodes = convert_bvh2(&bvh);
             // With spatial splits a triangle may appear in several leaves; each gets its copy.
-            order = bvh.primitive_indices.clone();
-        }
+            (convert_bvh2(&bvh), bvh.primitive_indices.iter().map(|&i| kept[i as usize]).collect())
+        };
         let triangles = order
             .iter()
             .map(|&i| {
@@ -76,6 +81,13 @@ impl MeshBvh {
         let stats = stats(&nodes);
         Self { nodes, triangles, shading, bounds_min, bounds_max, stats, build_time: start.elapsed() }
     }
+}
+
+/// Whether a triangle has non-zero area, computed exactly enough in f64 that
+/// only truly degenerate triangles are refused.
+fn has_area(mesh: &MeshData, triangle: usize) -> bool {
+    let p = mesh.indices[triangle].map(|k| glam::DVec3::from(mesh.positions[k as usize].map(f64::from)));
+    (p[1] - p[0]).cross(p[2] - p[0]).length_squared() > 0.0
 }
 
 fn triangle_shading(mesh: &MeshData, triangle: usize) -> GpuTriangleShading {

@@ -122,7 +122,14 @@ impl SceneGeometry {
             let r = Vec3A::splat(s.radius);
             let c = Vec3A::from(s.center);
             boxes.push(Aabb::new(c - r, c + r));
-            spheres.push(GpuSphere { center: s.center.to_array(), radius: s.radius, material, _pad: [0; 3] });
+            let k = s.center.as_dvec3().length_squared() - (s.radius as f64).powi(2);
+            spheres.push(GpuSphere {
+                center: s.center.to_array(),
+                radius: s.radius,
+                material,
+                k: k as f32,
+                _pad: [0; 2],
+            });
         }
 
         let used: Vec<&Material> = materials.iter().zip(&in_use).filter(|(_, u)| **u).map(|(m, _)| m).collect();

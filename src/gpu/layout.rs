@@ -85,7 +85,9 @@ pub struct GpuSphere {
     pub center: [f32; 3],
     pub radius: f32,
     pub material: u32,
-    pub _pad: [u32; 3],
+    /// |center|² − radius², in f64 before rounding (see `sphere_c` in `shaders/sphere.wgsl`).
+    pub k: f32,
+    pub _pad: [u32; 2],
 }
 
 #[repr(C)]
@@ -136,6 +138,10 @@ pub struct GpuTraceHit {
     pub primitive: u32,
     pub instance: u32,
     pub overflowed: u32,
+    /// Barycentric weights of the triangle's second and third vertices.
+    pub b1: f32,
+    pub b2: f32,
+    pub _pad: [u32; 2],
 }
 
 pub const EMPTY_LINK: u32 = u32::MAX;
@@ -232,7 +238,7 @@ mod tests {
                 GpuInstance,
                 [world_to_object, object_to_world, node_offset, triangle_offset, material_base, material_override]
             ),
-            host_layout!("Sphere", GpuSphere, [center, radius, material]),
+            host_layout!("Sphere", GpuSphere, [center, radius, material, k]),
             host_layout!(
                 "Material",
                 GpuMaterial,
@@ -252,7 +258,7 @@ mod tests {
             ),
             host_layout!("Emitter", GpuEmitter, [primitive, instance, cdf]),
             host_layout!("TraceRay", GpuTraceRay, [origin, t_max, direction]),
-            host_layout!("TraceHit", GpuTraceHit, [t, primitive, instance, overflowed]),
+            host_layout!("TraceHit", GpuTraceHit, [t, primitive, instance, overflowed, b1, b2]),
         ];
         let wgsl = wgsl_layouts();
         for (name, size, fields) in hosts {

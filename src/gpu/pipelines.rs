@@ -44,7 +44,10 @@ impl PipelineCache {
         }
         let (io_layout, entry_names): (&wgpu::BindGroupLayout, &[&'static str]) = match program {
             Program::Integrator => (&self.accumulation_layout, &["render"]),
-            Program::Trace => (&self.trace_layout, &["trace", "generate_camera_rays", "generate_diffuse_rays"]),
+            Program::Trace => (
+                &self.trace_layout,
+                &["trace", "generate_camera_rays", "generate_diffuse_rays", "generate_through_rays"],
+            ),
         };
         let source = assemble(program, &features);
         let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);

@@ -65,7 +65,7 @@ pub const ALL_PARTS: &[Part] = &[
 pub enum Program {
     /// `render`: the path-tracing megakernel.
     Integrator,
-    /// `trace`, `generate_camera_rays`, `generate_diffuse_rays`.
+    /// `trace`, `generate_camera_rays`, `generate_diffuse_rays`, `generate_through_rays`.
     Trace,
 }
 

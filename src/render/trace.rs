@@ -41,7 +41,7 @@ impl TraceBuffers {
         Self { count: rays.len() as u32, rays: rays_buffer, hits, bind_group }
     }
 
-    /// Records one pass of `entry` ("trace", "generate_camera_rays", "generate_diffuse_rays") over all rays.
+    /// Records one pass of an entry point of the trace program over all rays.
     pub fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -76,5 +76,29 @@ impl Renderer<'_> {
         io.encode(&mut encoder, &pipelines, &self.buffers, "trace", None);
         self.ctx.queue.submit([encoder.finish()]);
         read_buffer(self.ctx, &io.hits)
+    }
+
+    /// Traces `rays`, spawns from each hit a ray as a path would (on the side
+    /// the ray came from when `through` is false, else through the surface),
+    /// and traces those: (first hits, spawned rays, their hits).
+    pub fn trace_and_spawn(
+        &mut self,
+        rays: &[GpuTraceRay],
+        through: bool,
+    ) -> Result<(Vec<GpuTraceHit>, Vec<GpuTraceRay>, Vec<GpuTraceHit>)> {
+        let pipelines = self.trace_pipelines()?;
+        let frame = self.frame(&super::RenderRequest::from_scene(&self.scene));
+        self.buffers.write_frame(self.ctx, &frame);
+        let io = TraceBuffers::new(self.ctx, &self.pipelines.trace_layout, rays);
+        let run = |entry: &str| {
+            let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
+            io.encode(&mut encoder, &pipelines, &self.buffers, entry, None);
+            self.ctx.queue.submit([encoder.finish()]);
+        };
+        run("trace");
+        let first = read_buffer(self.ctx, &io.hits)?;
+        run(if through { "generate_through_rays" } else { "generate_diffuse_rays" });
+        run("trace");
+        Ok((first, read_buffer(self.ctx, &io.rays)?, read_buffer(self.ctx, &io.hits)?))
     }
 }

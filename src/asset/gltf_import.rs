@@ -35,7 +35,13 @@ use std::path::Path;
 /// with node transforms applied. A file with no meshes yields its materials only.
 pub fn load(path: &Path) -> Result<MeshData, AssetError> {
     let err = |message: String| AssetError::new(path, message);
-    let gltf::Gltf { document, blob } = gltf::Gltf::open(path).map_err(|e| err(format!("cannot read glTF: {e}")))?;
+    let bytes = std::fs::read(path).map_err(|e| err(format!("cannot read: {e}")))?;
+    let unchecked =
+        gltf::Gltf::from_slice_without_validation(&bytes).map_err(|e| err(format!("cannot read glTF: {e}")))?;
+    let json = unchecked.document.into_json();
+    check_primitive_accessors(&json).map_err(err)?;
+    let document = gltf::Document::from_json(json).map_err(|e| err(format!("invalid glTF: {e}")))?;
+    let blob = unchecked.blob;
     // Only buffers: materials use factors, not textures, so images are never decoded
     // (a missing or exotic texture must not stop a mesh from loading).
     let buffers =
@@ -137,6 +143,21 @@ impl Walk<'_> {
                 continue;
             }
             let unreadable = |what: &str| format!("{at}: cannot read {what} (accessor outside its buffer?)");
+            // gltf's readers assume the types the specification requires, and panic otherwise.
+            use gltf::accessor::{DataType as T, Dimensions as D};
+            let attributes = [
+                (Semantic::Positions, "POSITION", &[T::F32][..], D::Vec3),
+                (Semantic::Normals, "NORMAL", &[T::F32][..], D::Vec3),
+                (Semantic::TexCoords(0), "TEXCOORD_0", &[T::F32, T::U8, T::U16][..], D::Vec2),
+            ];
+            for (semantic, name, types, dimensions) in attributes {
+                if let Some(a) = prim.get(&semantic) {
+                    check_accessor(&at, name, &a, types, dimensions)?;
+                }
+            }
+            if let Some(a) = prim.indices() {
+                check_accessor(&at, "indices", &a, &[T::U8, T::U16, T::U32], D::Scalar)?;
+            }
             let reader = prim.reader(|b| self.buffers.get(b.index()).map(|d| &d.0[..]));
             let positions: Vec<[f32; 3]> = reader
                 .read_positions()
@@ -244,6 +265,35 @@ fn volume_emission(extras: &gltf::json::Extras) -> Result<[f32; 3], String> {
         Some(v) => gltf::json::deserialize::from_value(v.clone())
             .map_err(|e| format!("extras.rt_volume_emission must be [r, g, b]: {e}")),
     }
+}
+
+/// gltf's own validation indexes a primitive's accessors before it checks
+/// that they exist, and panics on a dangling one: those are refused first.
+fn check_primitive_accessors(json: &gltf::json::Root) -> Result<(), String> {
+    let count = json.accessors.len();
+    for (m, mesh) in json.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            let used = prim.attributes.values().chain(prim.indices.as_ref());
+            if let Some(bad) = used.map(|a| a.value()).find(|&a| a >= count) {
+                return Err(format!("mesh {m} primitive {p}: accessor {bad} does not exist ({count} accessors)"));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Refuses an accessor whose component type or shape the specification does not allow for `name`.
+fn check_accessor(
+    at: &str,
+    name: &str,
+    a: &gltf::Accessor,
+    types: &[gltf::accessor::DataType],
+    dimensions: gltf::accessor::Dimensions,
+) -> Result<(), String> {
+    if !types.contains(&a.data_type()) || a.dimensions() != dimensions {
+        return Err(format!("{at}: {name} is {:?} {:?}, which glTF does not allow", a.data_type(), a.dimensions()));
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -14,10 +14,17 @@
 fn sphere_c(origin: vec3f, center: vec3f, radius: f32, k: f32) -> f32 {
     let f = origin - center;
     let direct = dot(f, f) - radius * radius;
-    let direct_error = dot(f, f) + length(f) * max(length(origin), length(center));
     let expanded = dot(origin, origin) - 2.0 * dot(origin, center) + k;
-    let expanded_error = dot(origin, origin) + 2.0 * dot(abs(origin), abs(center)) + abs(k);
+    // Rounding bounds up to constant factors, in max-norms to spare square roots.
+    let o = max_component(abs(origin));
+    let c = max_component(abs(center));
+    let direct_error = max_component(abs(f)) * max(o, c);
+    let expanded_error = o * (o + 2.0 * c) + abs(k);
     return select(direct, expanded, expanded_error < direct_error);
+}
+
+fn max_component(v: vec3f) -> f32 {
+    return max(v.x, max(v.y, v.z));
 }
 
 fn intersect_sphere(origin: vec3f, direction: vec3f, center: vec3f, radius: f32, k: f32, t_max: f32) -> f32 {

@@ -164,3 +164,32 @@ fn hard_materials_stay_finite() {
         }
     }
 }
+
+#[test]
+fn inverted_shading_normals_and_suns_at_and_below_the_horizon_stay_finite() {
+    // A quad whose vertex normals point against its winding, and one whose normals
+    // lie almost in its plane: shading normals facing away from the viewer.
+    let dir = temp_dir("odd-normals");
+    write(&dir.join("inverted.obj"), "v -1 0 -1\nv -1 0 1\nv 1 0 1\nv 1 0 -1\nvn 0 -1 0\nf 1//1 2//1 3//1 4//1\n");
+    write(
+        &dir.join("grazing.obj"),
+        "v -1 0.5 -1\nv -1 0.5 1\nv 1 0.5 1\nv 1 0.5 -1\nvn 0.9999 0.01 0\nf 1//1 2//1 3//1 4//1\n",
+    );
+    for elevation in [0.0, -0.1, -5.0, 90.0] {
+        for sampling in ["nee", "seed"] {
+            let scene = scene_from(&format!(
+                "[render]\nsampling = \"{sampling}\"\n{SKY_ONE}\
+                 [camera]\nposition = [0.3, 2.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\n\
+                 [sun]\nelevation_deg = {elevation}\nazimuth_deg = 30.0\n\
+                 [materials.glossy]\ndiffuse = 0.5\nspecular = 0.5\nroughness = 0.2\n\
+                 [materials.glass]\ndiffuse = 0.0\ntransmission = 1.0\nroughness = 0.3\n\
+                 [[mesh]]\nasset = {:?}\nmaterial = \"glossy\"\n[[mesh]]\nasset = {:?}\nmaterial = \"glass\"\n",
+                dir.join("inverted.obj").display().to_string(),
+                dir.join("grazing.obj").display().to_string()
+            ));
+            // `render` asserts that no sample was non-finite.
+            let image = render(scene, 16, 16, 8, 8);
+            assert!(image.pixels.iter().flatten().all(|v| v.is_finite() && *v >= 0.0), "sun at {elevation}°");
+        }
+    }
+}

@@ -76,6 +76,9 @@ fn sun_seen(origin: vec3f, direction: vec3f, bsdf_pdf: f32) -> vec3f {
 }
 //#endif
 
+// One path. Each turn of the loop traces exactly one ray, the path's next ray
+// or a pending shadow ray, through the loop's single call of the traversal: the
+// traversal code is then in the kernel once, not once per kind of ray.
 fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
     var origin = frame.camera_position;
     var direction = camera_ray_direction(pixel, vec2f(rng_next(rng), rng_next(rng)));
@@ -86,8 +89,38 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
     // The medium the path travels in: absorption and emission per metre.
     var medium_absorption = vec3f(0.0);
     var medium_emission = vec3f(0.0);
-    for (var bounce = 0u; ; bounce++) {
-        let hit = trace_scene(origin, direction, INFINITY);
+    var bounce = 0u;
+    // A light sample waiting for its shadow ray, weighted by the throughput it was taken with.
+    //#if nee
+    var shadow: ShadowRay;
+    //#endif
+    var shadow_pending = false;
+    var path_ended = false;
+    loop {
+        var ray_origin = origin;
+        var ray_direction = direction;
+        var ray_t_max = INFINITY;
+        //#if nee
+        if shadow_pending {
+            ray_origin = shadow.origin;
+            ray_direction = shadow.direction;
+            ray_t_max = shadow.t_max;
+        }
+        //#endif
+        any_hit_only = shadow_pending;
+        let hit = traverse_scene(ray_origin, ray_direction, ray_t_max);
+        //#if nee
+        if shadow_pending {
+            shadow_pending = false;
+            if hit.kind == HIT_NONE {
+                gather(&radiance, shadow.contribution, EVENT_LIGHT_SAMPLE);
+            }
+            if path_ended {
+                break;
+            }
+            continue;
+        }
+        //#endif
         //#if media
         let segment = integrate_segment(medium_absorption, medium_emission, hit.t);
         gather(&radiance, throughput * segment.radiance, EVENT_MEDIUM);
@@ -113,37 +146,45 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
         if bounce >= frame.max_bounces {
             break;
         }
+        bounce++;
         // The viewer is outside when the ray meets the outward normal head on.
         let entering = dot(surface.geometric_normal, direction) < 0.0;
         let n_geometric = select(-surface.geometric_normal, surface.geometric_normal, entering);
         let n_shading = select(-surface.shading_normal, surface.shading_normal, entering);
         let ctx = shading_context(m, n_shading, n_geometric, -direction, entering);
         //#if nee
-        gather(&radiance, throughput * direct_light(ctx, surface, n_geometric, medium_absorption, rng), EVENT_LIGHT_SAMPLE);
+        shadow = direct_light(ctx, surface, n_geometric, medium_absorption, rng);
+        shadow.contribution *= throughput;
+        shadow_pending = any(shadow.contribution != vec3f(0.0));
         //#endif
         let s = bsdf_sample(ctx, rng);
         if !s.valid {
+            path_ended = true;
+        } else {
+            attenuate(&throughput, s.weight, EVENT_LOBE + sampled_lobe);
+            bsdf_pdf = s.pdf;
+            //#if media
+            // Crossing into a material adds its medium, leaving subtracts it: nested media add up.
+            if s.transmitted {
+                let sign = select(-1.0, 1.0, entering);
+                medium_absorption = max(medium_absorption + sign * m.absorption, vec3f(0.0));
+                medium_emission = max(medium_emission + sign * m.volume_emission, vec3f(0.0));
+            }
+            //#endif
+            if bounce > ROULETTE_START {
+                let survival = min(max(throughput.x, max(throughput.y, throughput.z)), 0.95);
+                if rng_next(rng) >= survival {
+                    path_ended = true;
+                }
+                throughput /= survival;
+            }
+            origin = offset_ray_origin(surface.position, surface.position_error, select(-n_geometric, n_geometric, dot(s.direction, n_geometric) > 0.0));
+            direction = s.direction;
+        }
+        // The pending shadow ray, if any, is traced before the path ends.
+        if path_ended && !shadow_pending {
             break;
         }
-        attenuate(&throughput, s.weight, EVENT_LOBE + sampled_lobe);
-        bsdf_pdf = s.pdf;
-        //#if media
-        // Crossing into a material adds its medium, leaving subtracts it: nested media add up.
-        if s.transmitted {
-            let sign = select(-1.0, 1.0, entering);
-            medium_absorption = max(medium_absorption + sign * m.absorption, vec3f(0.0));
-            medium_emission = max(medium_emission + sign * m.volume_emission, vec3f(0.0));
-        }
-        //#endif
-        if bounce >= ROULETTE_START {
-            let survival = min(max(throughput.x, max(throughput.y, throughput.z)), 0.95);
-            if rng_next(rng) >= survival {
-                break;
-            }
-            throughput /= survival;
-        }
-        origin = offset_ray_origin(surface.position, surface.position_error, select(-n_geometric, n_geometric, dot(s.direction, n_geometric) > 0.0));
-        direction = s.direction;
     }
     return radiance;
 }

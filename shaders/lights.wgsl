@@ -121,30 +121,39 @@ fn sample_light(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
     return sample_emitter(p, rng);
 }
 
-// Light arriving directly at the surface point from one light sample, through the BSDF,
-// weighted for MIS. `medium_absorption` is that of the medium `p` lies in.
-fn direct_light(ctx: ShadingContext, surface: Surface, n_geometric: vec3f, medium_absorption: vec3f, rng: ptr<function, Rng>) -> vec3f {
+// A light sample's contribution and the shadow ray that decides it.
+struct ShadowRay {
+    origin: vec3f,
+    t_max: f32,
+    direction: vec3f,
+    // Unoccluded, the sample adds this (BSDF, MIS weight and the medium's transmittance included).
+    contribution: vec3f,
+}
+
+// Light arriving directly at the surface point from one light sample, through
+// the BSDF, weighted for MIS, if nothing blocks the returned shadow ray. The ray
+// is traced by the caller once the shading context is no longer needed, so that
+// little is live during its traversal. `medium_absorption` is that of the
+// medium the point lies in.
+fn direct_light(ctx: ShadingContext, surface: Surface, n_geometric: vec3f, medium_absorption: vec3f, rng: ptr<function, Rng>) -> ShadowRay {
+    let none = ShadowRay(vec3f(0.0), 0.0, vec3f(0.0, 1.0, 0.0), vec3f(0.0));
     let p = surface.position;
     let light = sample_light(p, rng);
     if light.pdf <= 0.0 || all(light.radiance == vec3f(0.0)) {
-        return vec3f(0.0);
+        return none;
     }
-    let to_local = transpose(ctx.basis);
-    let wi = to_local * light.direction;
+    let wi = transpose(ctx.basis) * light.direction;
     let f = bsdf_eval(ctx, wi);
     if all(f == vec3f(0.0)) {
-        return vec3f(0.0);
+        return none;
     }
     let origin = offset_ray_origin(p, surface.position_error, select(-n_geometric, n_geometric, dot(light.direction, n_geometric) > 0.0));
     // Stop short of the light's own surface.
     let t_max = select(light.distance * (1.0 - 1e-4), INFINITY, light.distance >= INFINITY);
-    if occluded(origin, light.direction, t_max) {
-        return vec3f(0.0);
-    }
     var transmittance = vec3f(1.0);
     //#if media
     transmittance = integrate_segment(medium_absorption, vec3f(0.0), light.distance).transmittance;
     //#endif
     let weight = power_heuristic(light.pdf, bsdf_pdf(ctx, wi));
-    return f * light.radiance * transmittance * (weight / light.pdf);
+    return ShadowRay(origin, t_max, light.direction, f * light.radiance * transmittance * (weight / light.pdf));
 }

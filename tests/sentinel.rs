@@ -14,7 +14,7 @@ const OVERFLOWING: &str = "[sky]\nkind = \"black\"\n\
     [camera]\nposition = [0.0, 0.0, 4.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y_deg = 30.0\n\
     [materials.blinding]\nemission = [3.4e38, 3.4e38, 3.4e38]\n\
     [[sphere]]\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\nmaterial = \"blinding\"\n\
-    [[sphere]]\ncenter = [0.0, 0.0, -3.0]\nradius = 1.9\nmaterial = \"blinding\"\n";
+    [[sphere]]\ncenter = [2.5, 0.0, 1.0]\nradius = 1.2\nmaterial = \"blinding\"\n";
 
 #[test]
 fn overflowing_samples_are_dropped_counted_and_attributed() {

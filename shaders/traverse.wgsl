@@ -18,17 +18,12 @@ struct Hit {
 // Set when a stack was full and a subtree had to be dropped (and counted in `stats`).
 var<private> stack_overflowed: bool;
 // Shadow rays need any hit, not the closest: traversal stops at the first.
+// Set by the caller before `traverse_scene`.
 var<private> any_hit_only: bool;
 
 fn trace_scene(origin: vec3f, direction: vec3f, t_max: f32) -> Hit {
     any_hit_only = false;
     return traverse_scene(origin, direction, t_max);
-}
-
-// Whether anything lies on the ray before t_max.
-fn occluded(origin: vec3f, direction: vec3f, t_max: f32) -> bool {
-    any_hit_only = true;
-    return traverse_scene(origin, direction, t_max).kind != HIT_NONE;
 }
 
 fn traverse_scene(origin: vec3f, direction: vec3f, t_max: f32) -> Hit {

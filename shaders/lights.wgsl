@@ -145,6 +145,12 @@ fn direct_light(ctx: ShadingContext, p: vec3f, n_geometric: vec3f, medium_absorp
     //#if media
     transmittance = integrate_segment(medium_absorption, vec3f(0.0), light.distance).transmittance;
     //#endif
+    //#if sky_atmosphere
+    // The air on the way to an emitter, as a path that hits it sees it (the sun's is in its radiance).
+    if light.distance < INFINITY {
+        transmittance *= atmosphere_transmittance_along(origin, light.direction, light.distance);
+    }
+    //#endif
     let weight = power_heuristic(light.pdf, bsdf_pdf(ctx, wi));
     return f * light.radiance * transmittance * (weight / light.pdf);
 }

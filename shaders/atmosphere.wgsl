@@ -26,8 +26,8 @@ struct Atmosphere {
     ground_altitude: f32,
     // March steps per ray.
     steps: u32,
-    // Entries of the tables in `atmosphere_luts`: transmittance, then the L₂ and
-    // c planes of the multiple scattering table, then the ground's table.
+    // Entries of the tables in `atmosphere_luts`: transmittance, then the planes
+    // of the multiple scattering table, then the ground's rows.
     transmittance_size: vec2u,
     scattering_size: vec2u,
     scattering_offset: u32,

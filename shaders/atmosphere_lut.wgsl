@@ -56,37 +56,29 @@ fn scattering_coords(h: f32, mu_s: f32) -> vec2f {
     return vec2f(0.5 + 0.5 * x, sqrt(clamp(h / atmosphere.top_altitude, 0.0, 1.0)));
 }
 
-// The seed's closure Σᵢ≥₂ Lᵢ ≈ L₂ / (1 − c) at one entry of the table.
-fn closure_at(index: u32) -> vec3f {
-    let plane = atmosphere.scattering_size.x * atmosphere.scattering_size.y;
-    let l2 = atmosphere_luts[atmosphere.scattering_offset + index].rgb;
-    let c = atmosphere_luts[atmosphere.scattering_offset + plane + index].rgb;
-    return l2 / (1.0 - min(c, vec3f(0.999)));
+// Plane `plane` of the multiple scattering table (atmosphere_scattering.wgsl), bilinearly.
+fn scattering_plane(plane: u32, h: f32, mu_s: f32) -> vec3f {
+    let size = atmosphere.scattering_size;
+    let offset = atmosphere.scattering_offset + plane * size.x * size.y;
+    return table_bilinear(offset, size, scattering_coords(h, mu_s)).rgb;
+}
+
+// Row `row` of the ground's table, linearly in μs.
+fn ground_row(row: u32, mu_s: f32) -> vec3f {
+    let width = atmosphere.scattering_size.x;
+    let p = scattering_coords(0.0, mu_s).x * f32(width - 1u);
+    let i = min(u32(p), width - 2u);
+    let at = atmosphere.ground_offset + row * width + i;
+    return mix(atmosphere_luts[at], atmosphere_luts[at + 1u], p - f32(i)).rgb;
 }
 
 // Ψ: isotropic in-scattered radiance of all orders ≥ 2 per unit scattering
 // coefficient and unit solar irradiance, at altitude h and sun zenith cosine μs.
 fn multiple_scattering(h: f32, mu_s: f32) -> vec3f {
-    let size = atmosphere.scattering_size;
-    let p = scattering_coords(h, mu_s) * vec2f(size - 1u);
-    let i = min(vec2u(p), size - 2u);
-    let f = p - vec2f(i);
-    let row0 = i.y * size.x + i.x;
-    let row1 = row0 + size.x;
-    let lower = mix(closure_at(row0), closure_at(row0 + 1u), f.x);
-    let upper = mix(closure_at(row1), closure_at(row1 + 1u), f.x);
-    return mix(lower, upper, f.y) * atmosphere.multiple_scattering;
+    return scattering_plane(3u, h, mu_s) * atmosphere.multiple_scattering;
 }
 
-// Irradiance of the ground by the sky (its sun excepted) per unit solar
-// irradiance: single scattering from the table, higher orders as Ψ times the
-// ground's transfer G from an isotropic in-scattered radiance.
+// Irradiance of the ground by the sky (its sun excepted) per unit solar irradiance.
 fn ground_sky_irradiance(mu_s: f32) -> vec3f {
-    let width = atmosphere.scattering_size.x;
-    let p = scattering_coords(0.0, mu_s).x * f32(width - 1u);
-    let i = min(u32(p), width - 2u);
-    let base = atmosphere.ground_offset;
-    let single = mix(atmosphere_luts[base + i], atmosphere_luts[base + i + 1u], p - f32(i)).rgb;
-    let transfer = atmosphere_luts[base + width].rgb;
-    return single + transfer * multiple_scattering(0.0, mu_s);
+    return ground_row(0u, mu_s) + ground_row(3u, mu_s) * atmosphere.multiple_scattering;
 }

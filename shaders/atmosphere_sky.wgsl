@@ -72,8 +72,11 @@ fn atmosphere_march(ray: PlanetRay, t_max: f32, jitter: f32, lit: bool) -> Segme
 // in-scattering, and the ground where the ray meets the planet. The sun's disk is
 // not included (sun_radiance_at gives it).
 fn atmosphere_sky_radiance(origin: vec3f, direction: vec3f) -> vec3f {
-    let ray = world_ray(origin, direction);
-    let air = atmosphere_march(ray, INFINITY, march_jitter(origin, direction), true);
+    return atmosphere_sky(world_ray(origin, direction), march_jitter(origin, direction));
+}
+
+fn atmosphere_sky(ray: PlanetRay, jitter: f32) -> vec3f {
+    let air = atmosphere_march(ray, INFINITY, jitter, true);
     var radiance = air.radiance;
     if ray.hits_ground {
         let mu_s = sun_cosine_along(ray, ray.t_end, 0.0);

@@ -3,8 +3,8 @@
 // functions of the sun's zenith angle at a point, per unit solar irradiance, and
 // the march scales them by the sun of the frame.
 //
-// Passes, in order: build_transmittance, build_ground_transfer,
-// build_multiple_scattering (atmosphere_scattering.wgsl).
+// Passes, in order: build_transmittance, then in atmosphere_scattering.wgsl
+// build_second_order, build_third_order, build_fourth_order, build_closure.
 
 const PI: f32 = 3.14159265358979;
 

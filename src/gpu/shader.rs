@@ -132,7 +132,8 @@ pub fn assemble(program: Program, features: &FeatureSet) -> String {
 }
 
 /// The program that builds the atmosphere's tables (entry points
-/// `build_transmittance`, `build_ground_transfer`, `build_multiple_scattering`).
+/// `build_transmittance`, `build_second_order`, `build_third_order`,
+/// `build_fourth_order`, `build_closure`).
 /// Its files take no directives.
 pub fn atmosphere_tables_source() -> String {
     let mut source = String::new();

@@ -23,10 +23,10 @@ pub const OZONE_HALF_WIDTH_M: f32 = 15_000.0;
 pub struct TableLayout {
     pub transmittance: [u32; 2],
     pub scattering: [u32; 2],
-    /// Start of the L₂ plane; the c plane follows it.
+    /// Start of the multiple scattering table's planes: L₂, L₃, L₄, Ψ.
     pub scattering_offset: u32,
-    /// Start of the ground's table: single-scattered sky irradiance per sun
-    /// zenith entry, then the ground's transfer G.
+    /// Start of the ground's rows, per sun zenith entry: its irradiance by the
+    /// sky's light of orders 1, 2, 3, and ≥ 2.
     pub ground_offset: u32,
     pub entries: u32,
 }
@@ -36,13 +36,13 @@ impl TableLayout {
         let [tw, th] = a.transmittance_lut;
         let [sw, sh] = a.multiple_scattering_lut;
         let scattering_offset = tw * th;
-        let ground_offset = scattering_offset + 2 * sw * sh;
+        let ground_offset = scattering_offset + 4 * sw * sh;
         Self {
             transmittance: a.transmittance_lut,
             scattering: a.multiple_scattering_lut,
             scattering_offset,
             ground_offset,
-            entries: ground_offset + sw + 1,
+            entries: ground_offset + 4 * sw,
         }
     }
 }

@@ -10,7 +10,7 @@ use anyhow::{Result, anyhow};
 use std::time::Duration;
 use wgpu::util::DeviceExt;
 
-/// The transmittance pass's workgroups are 8×8.
+/// The transmittance and closure passes' workgroups are 8×8.
 const TILE: u32 = 8;
 
 pub struct AtmosphereTables {
@@ -30,8 +30,10 @@ pub struct AtmosphereTables {
 struct Passes {
     layout: wgpu::BindGroupLayout,
     transmittance: wgpu::ComputePipeline,
-    ground_transfer: wgpu::ComputePipeline,
-    multiple_scattering: wgpu::ComputePipeline,
+    second_order: wgpu::ComputePipeline,
+    third_order: wgpu::ComputePipeline,
+    fourth_order: wgpu::ComputePipeline,
+    closure: wgpu::ComputePipeline,
 }
 
 impl Passes {
@@ -59,8 +61,10 @@ impl Passes {
         };
         let passes = Self {
             transmittance: pipeline("build_transmittance"),
-            ground_transfer: pipeline("build_ground_transfer"),
-            multiple_scattering: pipeline("build_multiple_scattering"),
+            second_order: pipeline("build_second_order"),
+            third_order: pipeline("build_third_order"),
+            fourth_order: pipeline("build_fourth_order"),
+            closure: pipeline("build_closure"),
             layout,
         };
         if let Some(e) = pollster::block_on(scope.pop()) {
@@ -82,15 +86,20 @@ impl AtmosphereTables {
         Ok(built)
     }
 
-    /// Rebuilds the tables if `params` differ from those they were built for;
-    /// returns whether it did.
+    /// Takes new parameters: the tables are rebuilt only if they depend on what
+    /// changed (not the march's steps, the ground's altitude or the switch of
+    /// multiple scattering). Returns whether they were.
     pub fn update(
         &mut self,
         ctx: &GpuContext,
         render_layout: &wgpu::BindGroupLayout,
         params: &Atmosphere,
     ) -> Result<bool> {
-        if *params == self.params {
+        let march_only =
+            |a: &Atmosphere| Atmosphere { steps: 0, ground_altitude_m: 0.0, multiple_scattering: false, ..a.clone() };
+        if march_only(params) == march_only(&self.params) {
+            ctx.queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&gpu_atmosphere(params)));
+            self.params = params.clone();
             return Ok(false);
         }
         (self.uniform, self.tables, self.bind_group) = Self::buffers(ctx, render_layout, params)?;
@@ -120,7 +129,7 @@ impl AtmosphereTables {
         let uniform = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("atmosphere"),
             contents: bytemuck::bytes_of(&gpu_atmosphere(params)),
-            usage: wgpu::BufferUsages::UNIFORM,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let tables = ctx.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("atmosphere tables"),
@@ -140,13 +149,15 @@ impl AtmosphereTables {
         let [sw, sh] = layout.scattering;
         let passes = [
             (&self.passes.transmittance, [tw.div_ceil(TILE), th.div_ceil(TILE)]),
-            (&self.passes.ground_transfer, [1, 1]),
-            (&self.passes.multiple_scattering, [sw, sh]),
+            (&self.passes.second_order, [sw, sh]),
+            (&self.passes.third_order, [sw, sh]),
+            (&self.passes.fourth_order, [sw, sh]),
+            (&self.passes.closure, [sw.div_ceil(TILE), sh.div_ceil(TILE)]),
         ];
         let timer = GpuTimer::new(ctx);
         let mut total = Duration::ZERO;
         for (pipeline, [x, y]) in passes {
-            total += timer.time(ctx, |encoder, timestamp_writes| {
+            let took = timer.time(ctx, |encoder, timestamp_writes| {
                 let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                     label: Some("atmosphere tables"),
                     timestamp_writes,
@@ -155,6 +166,7 @@ impl AtmosphereTables {
                 pass.set_bind_group(0, &group, &[]);
                 pass.dispatch_workgroups(x, y, 1);
             })?;
+            total += took;
         }
         self.build_time = total;
         log::info!("atmosphere tables ({} entries) built in {:.2?}", layout.entries, total);

@@ -39,7 +39,7 @@ fn finite_and_in_range_for_every_sun_and_altitude() {
             mus.extend([mh + d, mh - d]);
         }
         for mu in mus {
-            for phi in [0.0f64, 1.0, 3.14159] {
+            for phi in [0.0f64, 1.0, std::f64::consts::PI] {
                 let d = direction(mu.clamp(-1.0, 1.0), phi);
                 queries.push(Query::new(Kind::SkyHook, origin, d, 0.0));
                 queries.push(Query::new(Kind::TransmittanceHook, origin, d, 0.0));
@@ -207,7 +207,7 @@ fn a_segment_and_the_sky_beyond_it_make_the_sky() {
 fn limb_darkening_keeps_the_irradiance() {
     let mut probe = Probe::new("", &[]);
     probe.set_sun(60.0);
-    let s = to_dvec(probe.frame.sun_direction.map(|v| v as f32));
+    let s = to_dvec(probe.frame.sun_direction);
     let radius = (1.0 - probe.frame.sun_one_minus_cos as f64).acos();
     let (u, v) = (s.cross(DVec3::Z).normalize(), s.cross(s.cross(DVec3::Z)).normalize());
     // The disk by rings of equal area, each at 16 azimuths.

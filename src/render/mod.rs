@@ -105,6 +105,19 @@ impl<'a> Renderer<'a> {
         Ok(Self { ctx, scene, geometry, buffers, pipelines, sky })
     }
 
+    /// Takes new atmosphere parameters: the tables are rebuilt only if they
+    /// depend on what changed (the sun may move freely: nothing in them depends
+    /// on it). Returns whether they were.
+    pub fn set_atmosphere(&mut self, params: &crate::scene::Atmosphere) -> Result<bool> {
+        let Some(tables) = self.sky.as_mut() else {
+            anyhow::bail!("{}: the sky is not an atmosphere", self.scene.origin);
+        };
+        let rebuilt = tables.update(self.ctx, &self.pipelines.sky_layout, params)?;
+        self.buffers.sky_bind_group = Some(tables.bind_group.clone());
+        self.scene.sky = Sky::Atmosphere(params.clone());
+        Ok(rebuilt)
+    }
+
     /// The frame constants of a request, before per-dispatch fields.
     pub fn frame(&self, request: &RenderRequest) -> GpuFrame {
         let mut frame = GpuFrame {

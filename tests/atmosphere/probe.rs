@@ -237,9 +237,7 @@ impl Probe {
     pub fn set_steps(&mut self, steps: u32) {
         let rt::scene::Sky::Atmosphere(mut params) = self.renderer.scene.sky.clone() else { panic!("an atmosphere") };
         params.steps = steps;
-        let layout = &self.renderer.pipelines.sky_layout;
-        let tables = self.renderer.sky.as_mut().expect("an atmosphere");
-        let rebuilt = tables.update(crate::common::gpu(), layout, &params).expect("update");
+        let rebuilt = self.renderer.set_atmosphere(&params).unwrap_or_else(|e| panic!("{e:#}"));
         assert!(!rebuilt, "the step count rebuilt the tables");
     }
 

@@ -154,6 +154,12 @@ fn direct_light(ctx: ShadingContext, surface: Surface, n_geometric: vec3f, mediu
     //#if media
     transmittance = integrate_segment(medium_absorption, vec3f(0.0), light.distance).transmittance;
     //#endif
+    //#if sky_atmosphere
+    // The air on the way to an emitter, as a path that hits it sees it (the sun's is in its radiance).
+    if light.distance < INFINITY {
+        transmittance *= atmosphere_transmittance_along(origin, light.direction, light.distance);
+    }
+    //#endif
     let weight = power_heuristic(light.pdf, bsdf_pdf(ctx, wi));
     return ShadowRay(origin, t_max, light.direction, f * light.radiance * transmittance * (weight / light.pdf));
 }

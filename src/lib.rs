@@ -2,8 +2,8 @@
 //!
 //! The pipeline flows down through these modules: `scene` reads the scene file,
 //! `asset` imports meshes, `bvh` builds acceleration structures, `gpu` owns the
-//! device and the specialised pipelines, `render` drives progressive rendering
-//! and writes images, `bench` measures.
+//! device and the specialised pipelines, `sky` builds the atmosphere's tables,
+//! `render` drives progressive rendering and writes images, `bench` measures.
 
 pub mod asset;
 pub mod bench;
@@ -12,3 +12,4 @@ pub mod gpu;
 pub mod info;
 pub mod render;
 pub mod scene;
+pub mod sky;

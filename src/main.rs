@@ -103,6 +103,16 @@ enum BenchCommand {
         #[arg(long, default_value_t = 4)]
         spp: u32,
     },
+    /// Error and time of the atmosphere's march steps and table sizes, against
+    /// far finer settings, on a scene whose sky is an atmosphere.
+    Sky {
+        scene: PathBuf,
+        #[arg(long, value_parser = parse_size, default_value = "160x90")]
+        size: (u32, u32),
+        /// Samples per pixel of each render.
+        #[arg(long, default_value_t = 4)]
+        spp: u32,
+    },
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -159,6 +169,9 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
     let origin = scene.origin.clone();
     let mut renderer = Renderer::new(&ctx, scene, args.quality)?;
     eprintln!("{origin}: features [{}]", renderer.geometry.features);
+    if let Some(tables) = &renderer.sky {
+        eprintln!("atmosphere tables built in {:.1} ms", tables.build_time.as_secs_f64() * 1e3);
+    }
     let (image, report) = renderer.render(&request)?;
     write_image(&image, &args.output, exposure)?;
     eprintln!(
@@ -221,6 +234,9 @@ fn main() -> ExitCode {
         }
         Command::Bench(BenchCommand::Throughput { scene, size, runs, spp }) => {
             load_scene(scene.as_deref()).and_then(|s| rt::bench::throughput(s, size, runs, spp, adapter))
+        }
+        Command::Bench(BenchCommand::Sky { scene, size, spp }) => {
+            load_scene(Some(&scene)).and_then(|s| rt::bench::sky(s, size, spp, adapter))
         }
     };
     match result {

@@ -15,6 +15,9 @@ pub struct SceneBuffers {
     pub frame: wgpu::Buffer,
     pub stats: wgpu::Buffer,
     pub bind_group: wgpu::BindGroup,
+    /// Group 2 of the integrator when the sky is an atmosphere: its parameters and
+    /// tables (see `crate::sky`).
+    pub sky_bind_group: Option<wgpu::BindGroup>,
 }
 
 /// A storage buffer from a slice; never empty, since bindings must have a size.
@@ -41,6 +44,22 @@ pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     entries.push(entry(8, wgpu::BufferBindingType::Storage { read_only: false }));
     entries.push(entry(9, read));
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some("scene"), entries: &entries })
+}
+
+/// Layout of the atmosphere's group: its parameters (uniform) and its tables
+/// (storage, read-only to render, written by the table passes).
+pub fn sky_bind_group_layout(device: &wgpu::Device, tables_writable: bool) -> wgpu::BindGroupLayout {
+    let entry = |binding: u32, ty: wgpu::BufferBindingType| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer { ty, has_dynamic_offset: false, min_binding_size: None },
+        count: None,
+    };
+    let tables = wgpu::BufferBindingType::Storage { read_only: !tables_writable };
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("sky"),
+        entries: &[entry(0, wgpu::BufferBindingType::Uniform), entry(1, tables)],
+    })
 }
 
 /// Layout of group 1: `count` read-write storage buffers (accumulation, or trace rays and hits).
@@ -104,7 +123,7 @@ impl SceneBuffers {
             layout,
             entries: &entries,
         });
-        Ok(Self { frame, stats, bind_group })
+        Ok(Self { frame, stats, bind_group, sky_bind_group: None })
     }
 
     pub fn write_frame(&self, ctx: &GpuContext, frame: &GpuFrame) {

@@ -11,7 +11,7 @@ pub struct GpuContext {
 }
 
 /// Storage buffers the integrator binds in one stage (see `shaders/common.wgsl`).
-const STORAGE_BUFFERS_NEEDED: u32 = 12;
+const STORAGE_BUFFERS_NEEDED: u32 = 16;
 
 const NO_ADAPTER_HELP: &str = "no GPU adapter found. rt needs Vulkan; on a machine without a GPU, \
 install Mesa's CPU driver (lavapipe): `sudo apt-get install mesa-vulkan-drivers`";

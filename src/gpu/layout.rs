@@ -119,6 +119,33 @@ pub struct GpuEmitter {
     pub _pad0: u32,
 }
 
+/// The atmosphere's parameters (`shaders/atmosphere.wgsl`), group 2 of the
+/// integrator and group 0 of the table passes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuAtmosphere {
+    pub rayleigh_scattering: [f32; 3],
+    pub bottom_radius: f32,
+    pub mie_scattering: [f32; 3],
+    pub top_altitude: f32,
+    pub mie_absorption: [f32; 3],
+    pub rayleigh_scale_height: f32,
+    pub ozone_absorption: [f32; 3],
+    pub mie_scale_height: f32,
+    pub ground_albedo: [f32; 3],
+    pub mie_g: f32,
+    pub ozone_center: f32,
+    pub ozone_half_width: f32,
+    pub ground_altitude: f32,
+    pub steps: u32,
+    pub transmittance_size: [u32; 2],
+    pub scattering_size: [u32; 2],
+    pub scattering_offset: u32,
+    pub ground_offset: u32,
+    pub multiple_scattering: f32,
+    pub _pad0: u32,
+}
+
 /// Input of the trace kernel (`shaders/trace_kernel.wgsl`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
@@ -257,6 +284,31 @@ mod tests {
                 ]
             ),
             host_layout!("Emitter", GpuEmitter, [primitive, instance, cdf]),
+            host_layout!(
+                "Atmosphere",
+                GpuAtmosphere,
+                [
+                    rayleigh_scattering,
+                    bottom_radius,
+                    mie_scattering,
+                    top_altitude,
+                    mie_absorption,
+                    rayleigh_scale_height,
+                    ozone_absorption,
+                    mie_scale_height,
+                    ground_albedo,
+                    mie_g,
+                    ozone_center,
+                    ozone_half_width,
+                    ground_altitude,
+                    steps,
+                    transmittance_size,
+                    scattering_size,
+                    scattering_offset,
+                    ground_offset,
+                    multiple_scattering
+                ]
+            ),
             host_layout!("TraceRay", GpuTraceRay, [origin, t_max, direction]),
             host_layout!("TraceHit", GpuTraceHit, [t, primitive, instance, overflowed, b1, b2]),
         ];

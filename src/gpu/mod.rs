@@ -8,7 +8,7 @@ mod pipelines;
 pub mod shader;
 mod timer;
 
-pub use buffers::{STAT_STACK_OVERFLOW, SceneBuffers, read_buffer};
+pub use buffers::{STAT_STACK_OVERFLOW, SceneBuffers, read_buffer, sky_bind_group_layout};
 pub use context::GpuContext;
 pub use pipelines::{PipelineCache, Pipelines};
 pub use timer::GpuTimer;

@@ -1,9 +1,9 @@
 //! Compute pipelines, built per feature set from the assembled WGSL and cached.
 
 use super::GpuContext;
-use super::buffers::{io_bind_group_layout, scene_bind_group_layout};
+use super::buffers::{io_bind_group_layout, scene_bind_group_layout, sky_bind_group_layout};
 use super::shader::{Program, assemble};
-use crate::scene::FeatureSet;
+use crate::scene::{FeatureSet, SkyFeature};
 use anyhow::{Result, anyhow};
 use std::collections::HashMap;
 use std::rc::Rc;
@@ -25,6 +25,8 @@ pub struct PipelineCache {
     pub scene_layout: wgpu::BindGroupLayout,
     pub accumulation_layout: wgpu::BindGroupLayout,
     pub trace_layout: wgpu::BindGroupLayout,
+    /// Group 2 of the integrator under an atmosphere.
+    pub sky_layout: wgpu::BindGroupLayout,
     built: HashMap<(Program, FeatureSet), Rc<Pipelines>>,
 }
 
@@ -34,6 +36,7 @@ impl PipelineCache {
             scene_layout: scene_bind_group_layout(&ctx.device),
             accumulation_layout: io_bind_group_layout(&ctx.device, 2),
             trace_layout: io_bind_group_layout(&ctx.device, 2),
+            sky_layout: sky_bind_group_layout(&ctx.device, false),
             built: HashMap::new(),
         }
     }
@@ -55,9 +58,14 @@ impl PipelineCache {
             label: Some("rt"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
         });
+        // Only the integrator reads the atmosphere; the trace program never calls the sky.
+        let mut groups = vec![Some(&self.scene_layout), Some(io_layout)];
+        if program == Program::Integrator && features.sky == SkyFeature::Atmosphere {
+            groups.push(Some(&self.sky_layout));
+        }
         let layout = ctx.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("rt"),
-            bind_group_layouts: &[Some(&self.scene_layout), Some(io_layout)],
+            bind_group_layouts: &groups,
             immediate_size: 0,
         });
         let mut entries = HashMap::new();

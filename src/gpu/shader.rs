@@ -35,6 +35,16 @@ const LIGHTS: Part = shader!("lights.wgsl");
 const SEGMENT: Part = shader!("segment.wgsl");
 const INTEGRATOR: Part = shader!("integrator.wgsl");
 const TRACE_KERNEL: Part = shader!("trace_kernel.wgsl");
+const ATMOSPHERE: Part = shader!("atmosphere.wgsl");
+const ATMOSPHERE_PATH: Part = shader!("atmosphere_path.wgsl");
+const ATMOSPHERE_STEPS: Part = shader!("atmosphere_steps.wgsl");
+const ATMOSPHERE_LUT: Part = shader!("atmosphere_lut.wgsl");
+const ATMOSPHERE_SKY: Part = shader!("atmosphere_sky.wgsl");
+const ATMOSPHERE_TABLES: Part = shader!("atmosphere_tables.wgsl");
+const ATMOSPHERE_SCATTERING: Part = shader!("atmosphere_scattering.wgsl");
+
+/// The atmosphere's model, shared by the render programs and the table passes.
+const ATMOSPHERE_MODEL: [Part; 4] = [ATMOSPHERE, ATMOSPHERE_PATH, ATMOSPHERE_STEPS, ATMOSPHERE_LUT];
 
 /// Every shader file, for checks that must see them all.
 pub const ALL_PARTS: &[Part] = &[
@@ -58,6 +68,13 @@ pub const ALL_PARTS: &[Part] = &[
     SEGMENT,
     INTEGRATOR,
     TRACE_KERNEL,
+    ATMOSPHERE,
+    ATMOSPHERE_PATH,
+    ATMOSPHERE_STEPS,
+    ATMOSPHERE_LUT,
+    ATMOSPHERE_SKY,
+    ATMOSPHERE_TABLES,
+    ATMOSPHERE_SCATTERING,
 ];
 
 /// Which entry points a module carries.
@@ -93,6 +110,10 @@ fn parts(program: Program, f: &FeatureSet) -> Vec<Part> {
     if f.media || f.sky == SkyFeature::Atmosphere {
         parts.push(SEGMENT);
     }
+    if f.sky == SkyFeature::Atmosphere {
+        parts.extend(ATMOSPHERE_MODEL);
+        parts.push(ATMOSPHERE_SKY);
+    }
     parts.push(match program {
         Program::Integrator => INTEGRATOR,
         Program::Trace => TRACE_KERNEL,
@@ -106,6 +127,19 @@ pub fn assemble(program: Program, features: &FeatureSet) -> String {
     for (name, text) in parts(program, features) {
         source.push_str(&format!("// ---- shaders/{name}\n"));
         source.push_str(&preprocess(name, text, &|flag| features.flag(flag)));
+    }
+    source
+}
+
+/// The program that builds the atmosphere's tables (entry points
+/// `build_transmittance`, `build_second_order`, `build_third_order`,
+/// `build_fourth_order`, `build_closure`).
+/// Its files take no directives.
+pub fn atmosphere_tables_source() -> String {
+    let mut source = String::new();
+    for (name, text) in [ATMOSPHERE_TABLES, ATMOSPHERE_SCATTERING, SEGMENT].iter().chain(&ATMOSPHERE_MODEL) {
+        source.push_str(&format!("// ---- shaders/{name}\n"));
+        source.push_str(&preprocess(name, text, &|_| None));
     }
     source
 }
@@ -142,12 +176,19 @@ pub fn preprocess(file: &str, text: &str, flag: &dyn Fn(&str) -> Option<bool>) -
     out
 }
 
-/// Both programs with every flag on, for the struct layout test.
+/// Both programs with every flag on, under each sky that brings structs of its
+/// own, and the atmosphere's tables program: for the struct layout test.
 #[cfg(test)]
-pub fn full_sources_for_layout_checks() -> [String; 2] {
+pub fn full_sources_for_layout_checks() -> [String; 4] {
     use crate::scene::{RoughTransmission, Sampling};
     let all = FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx);
-    [assemble(Program::Integrator, &all), assemble(Program::Trace, &all)]
+    let atmosphere = FeatureSet { sky: SkyFeature::Atmosphere, ..all };
+    [
+        assemble(Program::Integrator, &all),
+        assemble(Program::Trace, &all),
+        assemble(Program::Integrator, &atmosphere),
+        atmosphere_tables_source(),
+    ]
 }
 
 #[cfg(test)]
@@ -170,7 +211,11 @@ mod tests {
                 triangles: on(2) || !on(3),
                 spheres: on(3),
                 emission: on(4),
-                sky: if on(5) { SkyFeature::Uniform } else { SkyFeature::Black },
+                sky: match (on(5), on(2)) {
+                    (true, _) => SkyFeature::Uniform,
+                    (false, true) => SkyFeature::Atmosphere,
+                    (false, false) => SkyFeature::Black,
+                },
                 sun: on(6),
                 glossy: on(7),
                 transmission,
@@ -196,6 +241,11 @@ mod tests {
                 validate(&assemble(program, &features), &format!("[{features}] {program:?}"));
             }
         }
+    }
+
+    #[test]
+    fn atmosphere_tables_program_is_valid_wgsl() {
+        validate(&atmosphere_tables_source(), "atmosphere tables");
     }
 
     #[test]
@@ -228,8 +278,17 @@ mod tests {
             "fn refract_direction",
             "fn sample_sun",
             "fn integrate_segment",
+            "atmosphere_",
+            "var<uniform> atmosphere",
+            "fn sun_limb_darkening",
+            "@group(2)",
         ] {
             assert!(!source.contains(absent), "{absent:?} is in the plain pipeline");
+        }
+        let uniform_sun = FeatureSet { sky: SkyFeature::Uniform, sun: true, ..plain };
+        for program in [Program::Integrator, Program::Trace] {
+            let source = assemble(program, &uniform_sun);
+            assert!(!source.contains("atmosphere_"), "the atmosphere is in a uniform sky's {program:?} pipeline");
         }
     }
 

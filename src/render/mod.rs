@@ -19,8 +19,9 @@ use crate::bvh::{BuildQuality, SceneGeometry};
 use crate::gpu::layout::GpuFrame;
 use crate::gpu::shader::Program;
 use crate::gpu::{GpuContext, PipelineCache, SceneBuffers};
-use crate::scene::{FeatureSet, Scene, Sky, SkyFeature};
-use anyhow::{Result, bail};
+use crate::scene::{FeatureSet, Scene, Sky};
+use crate::sky::AtmosphereTables;
+use anyhow::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::time::{Duration, Instant};
 
@@ -86,17 +87,39 @@ pub struct Renderer<'a> {
     pub geometry: SceneGeometry,
     pub buffers: SceneBuffers,
     pub pipelines: PipelineCache,
+    /// The atmosphere's parameters and tables, when the sky is one.
+    pub sky: Option<AtmosphereTables>,
 }
 
 impl<'a> Renderer<'a> {
     pub fn new(ctx: &'a GpuContext, scene: Scene, quality: BuildQuality) -> Result<Self> {
         let geometry = SceneGeometry::build(&scene, quality)?;
-        if geometry.features.sky == SkyFeature::Atmosphere {
-            bail!("{}: sky kind \"atmosphere\" is not rendered by this version of rt yet", scene.origin);
-        }
         let pipelines = PipelineCache::new(ctx);
-        let buffers = SceneBuffers::new(ctx, &geometry, &pipelines.scene_layout)?;
-        Ok(Self { ctx, scene, geometry, buffers, pipelines })
+        let mut buffers = SceneBuffers::new(ctx, &geometry, &pipelines.scene_layout)?;
+        let sky = match &scene.sky {
+            Sky::Atmosphere(params) => {
+                if scene.sun.is_none() {
+                    log::warn!("{}: the atmosphere has no [sun] to light it: only its extinction shows", scene.origin);
+                }
+                Some(AtmosphereTables::new(ctx, &pipelines.sky_layout, params)?)
+            }
+            _ => None,
+        };
+        buffers.sky_bind_group = sky.as_ref().map(|t| t.bind_group.clone());
+        Ok(Self { ctx, scene, geometry, buffers, pipelines, sky })
+    }
+
+    /// Takes new atmosphere parameters: the tables are rebuilt only if they
+    /// depend on what changed (the sun may move freely: nothing in them depends
+    /// on it). Returns whether they were.
+    pub fn set_atmosphere(&mut self, params: &crate::scene::Atmosphere) -> Result<bool> {
+        let Some(tables) = self.sky.as_mut() else {
+            anyhow::bail!("{}: the sky is not an atmosphere", self.scene.origin);
+        };
+        let rebuilt = tables.update(self.ctx, &self.pipelines.sky_layout, params)?;
+        self.buffers.sky_bind_group = Some(tables.bind_group.clone());
+        self.scene.sky = Sky::Atmosphere(params.clone());
+        Ok(rebuilt)
     }
 
     /// The frame constants of a request, before per-dispatch fields.

@@ -90,6 +90,9 @@ impl Accumulation {
         pass.set_pipeline(pipelines.entry("render"));
         pass.set_bind_group(0, &scene.bind_group, &[]);
         pass.set_bind_group(1, &self.bind_group, &[]);
+        if let Some(sky) = &scene.sky_bind_group {
+            pass.set_bind_group(2, sky, &[]);
+        }
         pass.dispatch_workgroups(self.width.div_ceil(8), self.height.div_ceil(8), 1);
         self.samples += n;
     }

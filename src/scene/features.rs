@@ -67,7 +67,7 @@ impl FeatureSet {
             sky: match sky {
                 Sky::Black => SkyFeature::Black,
                 Sky::Uniform { .. } => SkyFeature::Uniform,
-                Sky::Atmosphere => SkyFeature::Atmosphere,
+                Sky::Atmosphere(_) => SkyFeature::Atmosphere,
             },
             sun: has_sun,
             glossy: materials_in_use.iter().any(|m| (m.specular > 0.0 || m.reflection > 0.0) && rough(m)),

@@ -1,6 +1,7 @@
 //! Scene files (contract 3): schema, parsing with located errors, validation,
 //! and the feature analysis that picks a specialised GPU pipeline.
 
+mod atmosphere;
 mod builtin;
 mod features;
 mod material;
@@ -10,6 +11,7 @@ mod schema;
 mod tests;
 mod validate;
 
+pub use atmosphere::Atmosphere;
 pub use builtin::default_scene;
 pub use features::{ALPHA_DELTA, FeatureSet, SkyFeature, Transmission};
 pub use material::{Material, luminance};
@@ -89,7 +91,7 @@ pub struct Camera {
 pub enum Sky {
     Black,
     Uniform { color: Vec3 },
-    Atmosphere,
+    Atmosphere(Atmosphere),
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -46,6 +46,35 @@ pub(super) struct Sky {
     pub kind: SkyKind,
     /// Only for `kind = "uniform"`; white when left out.
     pub color: Option<[f32; 3]>,
+    // Only for `kind = "atmosphere"` (see `scene::Atmosphere`); its defaults when left out.
+    pub turbidity: Option<f32>,
+    pub rayleigh_scale: Option<f32>,
+    pub mie_g: Option<f32>,
+    pub mie_absorption: Option<bool>,
+    pub ozone: Option<bool>,
+    pub ground_albedo: Option<Color>,
+    pub ground_altitude_m: Option<f32>,
+    pub multiple_scattering: Option<bool>,
+    pub steps: Option<u32>,
+    pub transmittance_lut: Option<[u32; 2]>,
+    pub multiple_scattering_lut: Option<[u32; 2]>,
+}
+
+/// A grey level or an RGB triple.
+#[derive(Clone, Copy, Deserialize)]
+#[serde(untagged, expecting = "expected a number or an array [r, g, b]")]
+pub(super) enum Color {
+    Grey(f32),
+    Rgb([f32; 3]),
+}
+
+impl Color {
+    pub fn rgb(self) -> [f32; 3] {
+        match self {
+            Color::Grey(v) => [v; 3],
+            Color::Rgb(c) => c,
+        }
+    }
 }
 
 #[derive(Clone, Copy, PartialEq, Deserialize)]

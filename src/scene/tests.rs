@@ -70,7 +70,7 @@ fn full_example_parses() {
     assert_eq!(s.render, render);
     let camera = Camera { position: Vec3::new(0.0, 1.5, 6.0), look_at: Vec3::Y, fov_y_deg: 40.0 };
     assert_eq!(s.camera, camera);
-    assert_eq!(s.sky, Sky::Atmosphere);
+    assert_eq!(s.sky, Sky::Atmosphere(Atmosphere::default()));
     let radiance = Some(Vec3::new(1.0, 2.0, 3.0));
     let sun = Sun { elevation_deg: 12.0, azimuth_deg: 140.0, angular_diameter_deg: 0.53, radiance };
     assert_eq!(s.sun, Some(sun));
@@ -91,6 +91,32 @@ fn full_example_parses() {
     assert!(p.abs_diff_eq(Vec3::new(-4.0, 0.0, -7.0), 1e-6), "{p}");
     let sphere = Sphere { center: Vec3::new(3.0, 1.0, 0.0), radius: 1.0, material: Some("mirror".into()) };
     assert_eq!(s.spheres, [sphere]);
+}
+
+#[test]
+fn atmosphere_keys_parse() {
+    let s = parse_ok(
+        "[sky]\nkind = \"atmosphere\"\nturbidity = 2.5\nrayleigh_scale = 0.5\nmie_g = 0.7\nmie_absorption = false\n\
+         ozone = false\nground_albedo = [0.1, 0.2, 0.3]\nground_altitude_m = 1500\nmultiple_scattering = false\n\
+         steps = 12\ntransmittance_lut = [128, 32]\nmultiple_scattering_lut = [16, 8]\n",
+    );
+    let expected = Atmosphere {
+        turbidity: 2.5,
+        rayleigh_scale: 0.5,
+        mie_g: 0.7,
+        mie_absorption: false,
+        ozone: false,
+        ground_albedo: Vec3::new(0.1, 0.2, 0.3),
+        ground_altitude_m: 1500.0,
+        multiple_scattering: false,
+        steps: 12,
+        transmittance_lut: [128, 32],
+        multiple_scattering_lut: [16, 8],
+    };
+    assert_eq!(s.sky, Sky::Atmosphere(expected));
+    let grey = parse_ok("[sky]\nkind = \"atmosphere\"\nground_albedo = 0.5\n");
+    let Sky::Atmosphere(a) = grey.sky else { panic!("not an atmosphere") };
+    assert_eq!(a.ground_albedo, Vec3::splat(0.5));
 }
 
 #[test]
@@ -134,7 +160,9 @@ fn unknown_keys_suggest_in_every_table() {
         [[mesh]] | asset = "a" | [[mesh]] | asset = "b" | materal = "m" => 5:1: unknown key `materal` in mesh 2; did you mean `material`?
         [[sphere]] | radious = 1 => 2:1: unknown key `radious` in sphere 1; did you mean `radius`?
         | meshes = [] => 2:1: unknown key `meshes` in the top-level table; did you mean `mesh`?
-        [sky] | kind = "uniform" | hue = 1 => 3:1: unknown key `hue` in [sky]; expected one of `kind`, `color`
+        [sky] | kind = "uniform" | hue = 1 => 3:1: unknown key `hue` in [sky]; expected one of `kind`, `color`, `turbidity`, `rayleigh_scale`, `mie_g`, `mie_absorption`, `ozone`, `ground_albedo`, `ground_altitude_m`, `multiple_scattering`, `steps`, `transmittance_lut`, `multiple_scattering_lut`
+        [sky] | kind = "atmosphere" | turbidty = 2 => 3:1: unknown key `turbidty` in [sky]; did you mean `turbidity`?
+        [sky] | kind = "atmosphere" | ground_albeda = 0.2 => 3:1: unknown key `ground_albeda` in [sky]; did you mean `ground_albedo`?
         sky = { kind = "black", colour = [1, 1, 1] } => 1:25: unknown key `colour` in [sky]; did you mean `color`?
         [sky] | kind = "atmosfere" => 2:8: [sky]: unknown kind `atmosfere`; did you mean `atmosphere`?
         [sky] | kind = "grey" => 2:8: [sky]: unknown kind `grey`; expected one of `black`, `uniform`, `atmosphere`
@@ -175,6 +203,15 @@ fn out_of_range_values_are_located() {
         [camera] | fov_y_deg = 180 => 2:13: [camera]: fov_y_deg must be in (0, 180), got 180
         [camera] | position = [0, 1, 0] => 1:1: [camera]: look_at must differ from position
         [sky] | kind = "black" | color = [1, 1, 1] => 3:9: [sky]: color only applies to kind = "uniform"
+        [sky] | kind = "uniform" | turbidity = 2 => 3:13: [sky]: turbidity only applies to kind = "atmosphere"
+        [sky] | kind = "atmosphere" | turbidity = -1 => 3:13: [sky]: turbidity must be in [0, 100], got -1
+        [sky] | kind = "atmosphere" | rayleigh_scale = nan => 3:18: [sky]: rayleigh_scale must be finite, got NaN
+        [sky] | kind = "atmosphere" | mie_g = 1 => 3:9: [sky]: mie_g must be in (-1, 1), got 1
+        [sky] | kind = "atmosphere" | ground_albedo = [0.2, 1.5, 0.2] => 3:17: [sky]: ground_albedo must be in [0, 1], got 1.5
+        [sky] | kind = "atmosphere" | ground_altitude_m = -5 => 3:21: [sky]: ground_altitude_m must be in [0, 1000000], got -5
+        [sky] | kind = "atmosphere" | steps = 1 => 3:9: [sky]: steps must be in 2..=256, got 1
+        [sky] | kind = "atmosphere" | transmittance_lut = [256, 2] => 3:21: [sky]: transmittance_lut entries must be in 4..=1024, got 2
+        [sky] | kind = "atmosphere" | multiple_scattering_lut = [512, 32] => 3:27: [sky]: multiple_scattering_lut entries must be in 4..=256, got 512
         [sky] | kind = "uniform" | color = [1, -1, 1] => 3:9: [sky]: color must be non-negative, got -1
         [sun] | elevation_deg = 91 | azimuth_deg = 0 => 2:17: [sun]: elevation_deg must be in [-90, 90], got 91
         [sun] | elevation_deg = 1 | azimuth_deg = 0 | angular_diameter_deg = 0 => 4:24: [sun]: angular_diameter_deg must be in (0, 90), got 0

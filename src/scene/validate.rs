@@ -1,5 +1,6 @@
 //! Semantic checks on the deserialized file, and its conversion into a [`Scene`].
 
+use super::atmosphere;
 use super::parse::{SceneError, Seg, Seg::*, Source, hint};
 use super::schema::{self, File, Scale, SkyKind};
 use super::{Camera, Material, MeshInstance, Scene, Sky, Sphere, Sun};
@@ -89,9 +90,14 @@ fn sky(src: &Source, sky: Option<schema::Sky>) -> Result<Sky, SceneError> {
     if sky.kind != SkyKind::Uniform && sky.color.is_some() {
         return Err(src.error(&p, "color", "only applies to kind = \"uniform\""));
     }
+    if sky.kind != SkyKind::Atmosphere
+        && let Some(key) = atmosphere::keys_present(&sky)
+    {
+        return Err(src.error(&p, key, "only applies to kind = \"atmosphere\""));
+    }
     Ok(match sky.kind {
         SkyKind::Black => Sky::Black,
-        SkyKind::Atmosphere => Sky::Atmosphere,
+        SkyKind::Atmosphere => Sky::Atmosphere(atmosphere::validate(src, &p, &sky)?),
         SkyKind::Uniform => {
             let color = sky.color.unwrap_or([1.0; 3]);
             src.check(&p, "color", &color, "non-negative", |c| c >= 0.0)?;

@@ -2,7 +2,7 @@
 
 use super::GpuContext;
 use super::buffers::{io_bind_group_layout, scene_bind_group_layout};
-use super::shader::{Program, assemble};
+use super::shader::{Program, ShaderFiles, assemble_from};
 use crate::scene::FeatureSet;
 use anyhow::{Result, anyhow};
 use std::collections::HashMap;
@@ -25,6 +25,7 @@ pub struct PipelineCache {
     pub scene_layout: wgpu::BindGroupLayout,
     pub accumulation_layout: wgpu::BindGroupLayout,
     pub trace_layout: wgpu::BindGroupLayout,
+    files: ShaderFiles,
     built: HashMap<(Program, FeatureSet), Rc<Pipelines>>,
 }
 
@@ -34,19 +35,37 @@ impl PipelineCache {
             scene_layout: scene_bind_group_layout(&ctx.device),
             accumulation_layout: io_bind_group_layout(&ctx.device, 1),
             trace_layout: io_bind_group_layout(&ctx.device, 2),
+            files: ShaderFiles::BuiltIn,
             built: HashMap::new(),
         }
+    }
+
+    /// Reads the shaders from `files` from now on, rebuilding every pipeline that was
+    /// built. Atomic: if any fails to build, nothing changes and the error says why.
+    pub fn reload_shaders(&mut self, ctx: &GpuContext, files: ShaderFiles) -> Result<()> {
+        let mut built = HashMap::new();
+        for &(program, features) in self.built.keys() {
+            built.insert((program, features), Rc::new(self.build(ctx, &files, program, features)?));
+        }
+        (self.files, self.built) = (files, built);
+        Ok(())
     }
 
     pub fn get(&mut self, ctx: &GpuContext, program: Program, features: FeatureSet) -> Result<Rc<Pipelines>> {
         if let Some(p) = self.built.get(&(program, features)) {
             return Ok(p.clone());
         }
+        let p = Rc::new(self.build(ctx, &self.files, program, features)?);
+        self.built.insert((program, features), p.clone());
+        Ok(p)
+    }
+
+    fn build(&self, ctx: &GpuContext, files: &ShaderFiles, program: Program, features: FeatureSet) -> Result<Pipelines> {
         let (io_layout, entry_names): (&wgpu::BindGroupLayout, &[&'static str]) = match program {
             Program::Integrator => (&self.accumulation_layout, &["render"]),
             Program::Trace => (&self.trace_layout, &["trace", "generate_camera_rays", "generate_diffuse_rays"]),
         };
-        let source = assemble(program, &features);
+        let source = assemble_from(files, program, &features).map_err(|e| anyhow!(e))?;
         let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let module = ctx.device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("rt"),
@@ -73,8 +92,6 @@ impl PipelineCache {
             return Err(anyhow!("building the {program:?} pipeline for [{features}] failed: {e}"));
         }
         log::debug!("built the {program:?} pipeline for [{features}]");
-        let p = Rc::new(Pipelines { features, entries });
-        self.built.insert((program, features), p.clone());
-        Ok(p)
+        Ok(Pipelines { features, entries })
     }
 }

@@ -6,6 +6,7 @@
 //! [`FeatureSet::flag`]. Being comments, they leave every file valid WGSL.
 
 use crate::scene::{FeatureSet, SkyFeature, Transmission};
+use std::path::PathBuf;
 
 macro_rules! shader {
     ($name:literal) => {
@@ -100,46 +101,77 @@ fn parts(program: Program, f: &FeatureSet) -> Vec<Part> {
     parts
 }
 
-/// The WGSL source of `program` specialised to `features`.
-pub fn assemble(program: Program, features: &FeatureSet) -> String {
-    let mut source = String::new();
-    for (name, text) in parts(program, features) {
-        source.push_str(&format!("// ---- shaders/{name}\n"));
-        source.push_str(&preprocess(name, text, &|flag| features.flag(flag)));
-    }
-    source
+/// Where the shader files are read from.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub enum ShaderFiles {
+    /// The copies compiled into the binary.
+    #[default]
+    BuiltIn,
+    /// A `shaders/` folder on disk, read at every assembly: `rt watch --dev` edits shaders live.
+    Dir(PathBuf),
 }
 
-/// Applies the `//#if` directives of one file.
-///
-/// # Panics
-/// On an unknown flag or unbalanced directives: both are mistakes in the
-/// shaders themselves, which the tests catch for every file.
-pub fn preprocess(file: &str, text: &str, flag: &dyn Fn(&str) -> Option<bool>) -> String {
+impl ShaderFiles {
+    /// The text of one shader file.
+    fn read(&self, (name, built_in): Part) -> Result<String, String> {
+        match self {
+            ShaderFiles::BuiltIn => Ok(built_in.to_owned()),
+            ShaderFiles::Dir(dir) => {
+                let path = dir.join(name);
+                std::fs::read_to_string(&path).map_err(|e| format!("{}: cannot read: {e}", path.display()))
+            }
+        }
+    }
+}
+
+/// The WGSL source of `program` specialised to `features`, from the built-in shaders.
+pub fn assemble(program: Program, features: &FeatureSet) -> String {
+    // The built-in files are checked by the tests for every feature set.
+    assemble_from(&ShaderFiles::BuiltIn, program, features).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The WGSL source of `program` specialised to `features`, from `files`; an error names
+/// the file that cannot be read or whose directives are wrong.
+pub fn assemble_from(files: &ShaderFiles, program: Program, features: &FeatureSet) -> Result<String, String> {
+    let mut source = String::new();
+    for part in parts(program, features) {
+        let text = files.read(part)?;
+        source.push_str(&format!("// ---- shaders/{}\n", part.0));
+        source.push_str(&preprocess(part.0, &text, &|flag| features.flag(flag))?);
+    }
+    Ok(source)
+}
+
+/// Applies the `//#if` directives of one file; a mistake in them (an unknown flag,
+/// unbalanced directives) is an error naming the file and line.
+pub fn preprocess(file: &str, text: &str, flag: &dyn Fn(&str) -> Option<bool>) -> Result<String, String> {
     let mut out = String::new();
     // For each open `#if`: (its branch is taken, the enclosing lines are kept).
     let mut stack: Vec<(bool, bool)> = Vec::new();
     let keeping = |stack: &[(bool, bool)]| stack.last().is_none_or(|&(taken, outer)| taken && outer);
     for (n, line) in text.lines().enumerate() {
+        let at = || format!("shaders/{file}:{}", n + 1);
         let directive = line.trim_start();
         if let Some(cond) = directive.strip_prefix("//#if ") {
             let cond = cond.trim();
             let (negated, name) = cond.strip_prefix('!').map_or((false, cond), |n| (true, n));
-            let value = flag(name).unwrap_or_else(|| panic!("shaders/{file}:{}: unknown flag `{name}`", n + 1));
+            let value = flag(name).ok_or_else(|| format!("{}: unknown flag `{name}`", at()))?;
             let outer = keeping(&stack);
             stack.push((value != negated, outer));
         } else if directive.starts_with("//#else") {
-            let top = stack.last_mut().unwrap_or_else(|| panic!("shaders/{file}:{}: #else without #if", n + 1));
+            let top = stack.last_mut().ok_or_else(|| format!("{}: #else without #if", at()))?;
             top.0 = !top.0;
         } else if directive.starts_with("//#endif") {
-            stack.pop().unwrap_or_else(|| panic!("shaders/{file}:{}: #endif without #if", n + 1));
+            stack.pop().ok_or_else(|| format!("{}: #endif without #if", at()))?;
         } else if keeping(&stack) {
             out.push_str(line);
             out.push('\n');
         }
     }
-    assert!(stack.is_empty(), "shaders/{file}: unclosed #if");
-    out
+    if !stack.is_empty() {
+        return Err(format!("shaders/{file}: unclosed #if"));
+    }
+    Ok(out)
 }
 
 /// Both programs with every flag on, for the struct layout test.
@@ -202,7 +234,7 @@ mod tests {
     fn every_directive_names_a_known_flag() {
         let any = FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx);
         for (name, text) in ALL_PARTS {
-            preprocess(name, text, &|flag| any.flag(flag));
+            preprocess(name, text, &|flag| any.flag(flag)).unwrap_or_else(|e| panic!("{e}"));
         }
     }
 
@@ -228,7 +260,7 @@ mod tests {
     #[test]
     fn preprocessor_nests_and_negates() {
         let text = "a\n//#if x\nb\n//#if !y\nc\n//#else\nd\n//#endif\n//#else\ne\n//#endif\nf\n";
-        let run = |x: bool, y: bool| preprocess("t", text, &|n| Some(if n == "x" { x } else { y }));
+        let run = |x: bool, y: bool| preprocess("t", text, &|n| Some(if n == "x" { x } else { y })).expect("balanced");
         assert_eq!(run(true, false), "a\nb\nc\nf\n");
         assert_eq!(run(true, true), "a\nb\nd\nf\n");
         assert_eq!(run(false, false), "a\ne\nf\n");

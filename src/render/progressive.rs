@@ -37,6 +37,17 @@ impl Accumulation {
         Self { width, height, samples: 0, sums, bind_group, samples_per_dispatch: 1 }
     }
 
+    /// The running sums per pixel (RGB, luminance²), rows from the top: what a display pass reads.
+    pub fn sums(&self) -> &wgpu::Buffer {
+        &self.sums
+    }
+
+    /// Records zeroing the sums: the samples taken so far are dropped.
+    pub fn clear(&mut self, encoder: &mut wgpu::CommandEncoder) {
+        encoder.clear_buffer(&self.sums, 0, None);
+        self.samples = 0;
+    }
+
     /// Adds up to `max_samples` samples per pixel in one dispatch and waits for it;
     /// returns how many it added. The next dispatch's size follows this one's time.
     pub fn dispatch(

@@ -12,3 +12,4 @@ pub mod gpu;
 pub mod info;
 pub mod render;
 pub mod scene;
+pub mod watch;

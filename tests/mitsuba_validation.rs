@@ -21,7 +21,8 @@ struct Comparison {
 }
 
 fn compare(name: &str) -> Comparison {
-    let scene = rt::scene::load(&repo().join(format!("tests/refs/scenes/{name}.toml"))).unwrap_or_else(|e| panic!("{e}"));
+    let scene =
+        rt::scene::load(&repo().join(format!("tests/refs/scenes/{name}.toml"))).unwrap_or_else(|e| panic!("{e}"));
     let (w, h, spp, bounces) = (scene.render.width, scene.render.height, scene.render.spp, scene.render.max_bounces);
     let reference = image::open(repo().join(format!("tests/refs/{name}.exr")))
         .unwrap_or_else(|e| panic!("{name}.exr: {e}"))
@@ -56,7 +57,13 @@ fn compare(name: &str) -> Comparison {
             let sigma = var.sqrt() / count * noise_scale;
             let diff = (a - b).abs() / count;
             // Blocks with no noise at all (background, emitters seen directly) must match to rounding.
-            let z = if sigma > 0.0 { diff / sigma } else if diff < 1e-5 { 0.0 } else { f64::INFINITY };
+            let z = if sigma > 0.0 {
+                diff / sigma
+            } else if diff < 1e-5 {
+                0.0
+            } else {
+                f64::INFINITY
+            };
             if z > worst_block_z {
                 worst_block_z = z;
                 worst_block = (bx, by, a / count, b / count);

@@ -23,10 +23,10 @@
 //! sources and parameters give the same bytes.
 
 use super::cache_check::check_contents;
+use super::cached_material::CachedMaterial;
 use super::mesh_bvh::{BuildQuality, MeshBvh};
 use super::node::{BvhStats, NODE_LAYOUT};
 use crate::asset::{AssetError, AssetFiles, write_atomically};
-use super::cached_material::CachedMaterial;
 use crate::gpu::layout::{GpuBvhNode, GpuTriangle, GpuTriangleShading};
 use crate::scene::Material;
 use bytemuck::{Pod, Zeroable};

@@ -62,7 +62,8 @@ impl From<&CachedMaterial> for Material {
 impl CachedMaterial {
     pub fn all_finite(&self) -> bool {
         let vectors = [self.base_color, self.emission, self.absorption, self.volume_emission];
-        let scalars = [self.diffuse, self.specular, self.reflection, self.transmission, self.ior, self.roughness, self.hardness];
+        let scalars =
+            [self.diffuse, self.specular, self.reflection, self.transmission, self.ior, self.roughness, self.hardness];
         vectors.into_iter().flatten().chain(scalars).all(f32::is_finite)
     }
 }

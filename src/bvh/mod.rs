@@ -2,8 +2,8 @@
 //! layout and cached in `.rtbvh` files, and a top level over instances and spheres.
 
 pub mod cache;
-mod cached_material;
 mod cache_check;
+mod cached_material;
 mod mesh_bvh;
 mod node;
 pub mod pack;

@@ -138,7 +138,8 @@ impl SceneGeometry {
             scene.sun.is_some(),
             &scene.render,
         );
-        let (emitters, emitter_total_power) = emitter_table(&instances, &instance_triangles, &triangles, &spheres, &materials);
+        let (emitters, emitter_total_power) =
+            emitter_table(&instances, &instance_triangles, &triangles, &spheres, &materials);
 
         let (tlas_nodes, tlas_primitives) = if boxes.is_empty() {
             (convert_bvh2(&obvhs::bvh2::Bvh2::default()), Vec::new())
@@ -196,7 +197,11 @@ fn emitter_table(
         let to_world = |v: [f32; 3]| {
             let p = glam::DVec3::from(v.map(f64::from));
             let r = inst.object_to_world.map(|row| glam::DVec4::from(row.map(f64::from)));
-            glam::DVec3::new(r[0].truncate().dot(p) + r[0].w, r[1].truncate().dot(p) + r[1].w, r[2].truncate().dot(p) + r[2].w)
+            glam::DVec3::new(
+                r[0].truncate().dot(p) + r[0].w,
+                r[1].truncate().dot(p) + r[1].w,
+                r[2].truncate().dot(p) + r[2].w,
+            )
         };
         for t in range.clone() {
             let tri = &triangles[t as usize];
@@ -220,7 +225,10 @@ fn emitter_table(
         let lum = crate::scene::luminance(materials[s.material as usize].emission) as f64;
         if lum > 0.0 {
             let area = 4.0 * std::f64::consts::PI * (s.radius as f64).powi(2);
-            entries.push((GpuEmitter { primitive: index as u32 | SPHERE_BIT, instance: 0, cdf: 0.0, _pad0: 0 }, area * lum));
+            entries.push((
+                GpuEmitter { primitive: index as u32 | SPHERE_BIT, instance: 0, cdf: 0.0, _pad0: 0 },
+                area * lum,
+            ));
         }
     }
     let total: f64 = entries.iter().map(|(_, p)| p).sum();

@@ -60,7 +60,13 @@ impl PipelineCache {
         Ok(p)
     }
 
-    fn build(&self, ctx: &GpuContext, files: &ShaderFiles, program: Program, features: FeatureSet) -> Result<Pipelines> {
+    fn build(
+        &self,
+        ctx: &GpuContext,
+        files: &ShaderFiles,
+        program: Program,
+        features: FeatureSet,
+    ) -> Result<Pipelines> {
         let (io_layout, entry_names): (&wgpu::BindGroupLayout, &[&'static str]) = match program {
             Program::Integrator => (&self.accumulation_layout, &["render"]),
             Program::Trace => (&self.trace_layout, &["trace", "generate_camera_rays", "generate_diffuse_rays"]),

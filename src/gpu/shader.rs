@@ -252,7 +252,15 @@ mod tests {
             sampling: Sampling::Nee,
         };
         let source = assemble(Program::Integrator, &plain);
-        for absent in ["fn intersect_sphere", "m.emission *", "frame.sky_color", "fn ggx_d", "fn refract_direction", "fn sample_sun", "fn integrate_segment"] {
+        for absent in [
+            "fn intersect_sphere",
+            "m.emission *",
+            "frame.sky_color",
+            "fn ggx_d",
+            "fn refract_direction",
+            "fn sample_sun",
+            "fn integrate_segment",
+        ] {
             assert!(!source.contains(absent), "{absent:?} is in the plain pipeline");
         }
     }

@@ -65,7 +65,8 @@ material = "mirror"
 fn full_example_parses() {
     let s = parse_ok(EXAMPLE);
     assert_eq!(s.origin, "scene.toml");
-    let render = RenderSettings { width: 320, height: 200, spp: 64, max_bounces: 8, exposure: -1.5, ..Default::default() };
+    let render =
+        RenderSettings { width: 320, height: 200, spp: 64, max_bounces: 8, exposure: -1.5, ..Default::default() };
     assert_eq!(s.render, render);
     let camera = Camera { position: Vec3::new(0.0, 1.5, 6.0), look_at: Vec3::Y, fov_y_deg: 40.0 };
     assert_eq!(s.camera, camera);

@@ -136,6 +136,18 @@ enum BenchCommand {
         #[arg(long, default_value_t = 4)]
         spp: u32,
     },
+    /// `rt watch` latency: file written → first frame of the new state, for a camera move,
+    /// a material change and a re-export of a mesh.
+    WatchLatency {
+        /// The asset folder to re-export (copied to a temporary folder first).
+        #[arg(long, default_value = "assets/dragon")]
+        asset: PathBuf,
+        #[arg(long, value_parser = parse_size, default_value = "320x240")]
+        size: (u32, u32),
+        /// Edits of each kind (the median is reported).
+        #[arg(long, default_value_t = 3)]
+        runs: u32,
+    },
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -279,6 +291,9 @@ fn main() -> ExitCode {
         }
         Command::Bench(BenchCommand::Throughput { scene, size, runs, spp }) => {
             load_scene(scene.as_deref()).and_then(|s| rt::bench::throughput(s, size, runs, spp, adapter))
+        }
+        Command::Bench(BenchCommand::WatchLatency { asset, size, runs }) => {
+            rt::bench::watch_latency(&asset, size, runs, adapter)
         }
     };
     match result {

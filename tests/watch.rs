@@ -65,9 +65,10 @@ struct Watcher {
 }
 
 impl Watcher {
-    fn start(scene: &Path, frames: &Path) -> Self {
+    fn start(scene: &Path, frames: &Path, extra: &[&std::ffi::OsStr]) -> Self {
         let child = Command::new(env!("CARGO_BIN_EXE_rt"))
             .args(["watch", "--headless", "--format", "exr", "--spp", &SPP.to_string()])
+            .args(extra)
             .args(["--size", &format!("{SIZE}x{SIZE}"), "--frames-dir"])
             .arg(frames)
             .arg(scene)
@@ -144,7 +145,7 @@ fn project(name: &str) -> (PathBuf, PathBuf, PathBuf) {
 fn each_edit_is_one_reload_of_the_right_kind() {
     let (dir, scene, frames) = project("watch-edits");
     let asset = dir.join("assets/ball.obj");
-    let mut watch = Watcher::start(&scene, &frames);
+    let mut watch = Watcher::start(&scene, &frames, &[]);
     watch.wait_for("frame #0 ");
 
     save_by_rename(&scene, &scene_text(1.0, [0.8, 0.8, 0.8]));
@@ -197,13 +198,17 @@ fn each_edit_is_one_reload_of_the_right_kind() {
 #[test]
 fn a_burst_of_saves_is_coalesced_and_ends_on_the_last_state() {
     let (_dir, scene, frames) = project("watch-burst");
-    let mut watch = Watcher::start(&scene, &frames);
+    let mut watch = Watcher::start(&scene, &frames, &[]);
     watch.wait_for("frame #0 ");
     let saves = 200;
     let start = Instant::now();
     for i in 1..=saves {
         let text = scene_text(i as f32 * 0.01, [0.8, 0.8, 0.8]);
-        if i % 2 == 0 { save_by_rename(&scene, &text) } else { std::fs::write(&scene, &text).expect("save") }
+        if i % 2 == 0 {
+            save_by_rename(&scene, &text)
+        } else {
+            std::fs::write(&scene, &text).expect("save")
+        }
         std::thread::sleep(Duration::from_millis(10));
     }
     assert!(start.elapsed() < Duration::from_secs(4), "the saves took {:?}", start.elapsed());
@@ -243,6 +248,29 @@ fn a_burst_of_saves_is_coalesced_and_ends_on_the_last_state() {
 }
 
 #[test]
+fn dev_mode_reloads_shaders_and_survives_a_broken_one() {
+    let (dir, scene, frames) = project("watch-dev");
+    let shaders = dir.join("shaders");
+    std::fs::create_dir_all(&shaders).expect("shaders folder");
+    for entry in std::fs::read_dir(common::repo().join("shaders")).expect("shaders/") {
+        let path = entry.expect("entry").path();
+        std::fs::copy(&path, shaders.join(path.file_name().expect("name"))).expect("copy shader");
+    }
+    let mut watch = Watcher::start(&scene, &frames, &["--dev".as_ref(), shaders.as_os_str()]);
+    watch.wait_for("frame #0 ");
+    let integrator = shaders.join("integrator.wgsl");
+    let good = std::fs::read_to_string(&integrator).expect("integrator.wgsl");
+    save_by_rename(&integrator, &format!("{good}\nfn broken( {{\n"));
+    let error = watch.wait_for("error ");
+    assert!(error.contains("shaders/integrator.wgsl"), "the error names the shader: {error}");
+    save_by_rename(&integrator, &format!("{good}\n// a comment changes nothing\n"));
+    assert!(watch.wait_for("reload #1 ").contains("kind=shaders cause=integrator.wgsl"));
+    watch.wait_for("frame #1 ");
+    assert_eq!(watch.frame(0), watch.frame(1), "the same shader code renders the same image");
+    watch.stop();
+}
+
+#[test]
 fn the_window_shows_what_a_headless_render_writes() {
     let xvfb = ["/usr/bin/xvfb-run", "/usr/local/bin/xvfb-run"].into_iter().find(|p| Path::new(p).exists());
     let xvfb = xvfb.expect("xvfb-run is needed for the window test (scripts/test installs the xvfb package)");
@@ -271,8 +299,8 @@ fn the_window_shows_what_a_headless_render_writes() {
     let mut worst = 0;
     for (shown, linear) in shown.pixels().zip(&headless.pixels) {
         let expected = display_pixel(*linear, exposure);
-        for c in 0..3 {
-            worst = worst.max((shown.0[c] as i32 - expected[c] as i32).abs());
+        for (a, b) in shown.0.iter().zip(expected) {
+            worst = worst.max((*a as i32 - b as i32).abs());
         }
     }
     assert!(worst <= 1, "the window's pixels differ from the headless render's by up to {worst}/255");

@@ -58,20 +58,26 @@ fn median(mut v: Vec<Duration>) -> Duration {
 }
 
 pub fn watch_latency(asset: &Path, (width, height): (u32, u32), runs: u32, adapter: Option<&str>) -> Result<()> {
-    let name = asset.file_name().and_then(|n| n.to_str()).ok_or_else(|| anyhow!("{}: not an asset folder", asset.display()))?;
+    let name = asset
+        .file_name()
+        .and_then(|n| n.to_str())
+        .ok_or_else(|| anyhow!("{}: not an asset folder", asset.display()))?;
     let mesh_name = format!("{name}.rtmesh");
     let dir = std::env::temp_dir().join(format!("rt-watch-latency-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let copy = dir.join(name);
     std::fs::create_dir_all(&copy).with_context(|| format!("cannot create {}", copy.display()))?;
     for file in [mesh_name.clone(), format!("{name}.gltf")] {
-        std::fs::copy(asset.join(&file), copy.join(&file)).with_context(|| format!("cannot copy {}", asset.join(&file).display()))?;
+        std::fs::copy(asset.join(&file), copy.join(&file))
+            .with_context(|| format!("cannot copy {}", asset.join(&file).display()))?;
     }
     let scene = dir.join("scene.toml");
     std::fs::write(&scene, scene_text(name, 0.0, 0.8))?;
     let ctx = GpuContext::new(adapter)?;
     println!("GPU       {}", ctx.describe());
-    println!("scene     {name} at {width}x{height}, median of {runs} edits of each kind; each time includes debouncing");
+    println!(
+        "scene     {name} at {width}x{height}, median of {runs} edits of each kind; each time includes debouncing"
+    );
 
     let options = WatchOptions {
         scene: scene.clone(),
@@ -106,7 +112,13 @@ pub fn watch_latency(asset: &Path, (width, height): (u32, u32), runs: u32, adapt
 
 /// Makes `runs` edits of each kind, each after the last one's first frame; returns the
 /// latencies of camera moves, material changes and re-exports.
-fn edit(first_frames: &Receiver<(u32, Instant)>, scene: &Path, asset: &str, mesh: &Path, runs: u32) -> Result<[Vec<Duration>; 3]> {
+fn edit(
+    first_frames: &Receiver<(u32, Instant)>,
+    scene: &Path,
+    asset: &str,
+    mesh: &Path,
+    runs: u32,
+) -> Result<[Vec<Duration>; 3]> {
     let timeout = Duration::from_secs(600);
     let wait = |after: u32| -> Result<(u32, Instant)> {
         loop {

@@ -139,7 +139,22 @@ pub fn assemble_from(files: &ShaderFiles, program: Program, features: &FeatureSe
         source.push_str(&format!("// ---- shaders/{}\n", part.0));
         source.push_str(&preprocess(part.0, &text, &|flag| features.flag(flag))?);
     }
+    if let ShaderFiles::Dir(_) = files {
+        check_syntax(&source)?;
+    }
     Ok(source)
+}
+
+/// A WGSL syntax error in an assembled module, named by the file it is in and the line's
+/// text: wgpu's own message counts lines of the whole module, which no file has.
+fn check_syntax(source: &str) -> Result<(), String> {
+    let Err(e) = wgpu::naga::front::wgsl::parse_str(source) else { return Ok(()) };
+    let Some(at) = e.location(source) else { return Err(e.message().to_owned()) };
+    let lines: Vec<&str> = source.lines().collect();
+    let line = (at.line_number as usize).clamp(1, lines.len().max(1)) - 1;
+    let file = lines.iter().take(line + 1).rev().find_map(|l| l.strip_prefix("// ---- ")).unwrap_or("shaders");
+    let text = lines.get(line).map_or("", |l| l.trim());
+    Err(format!("{file}: {}: `{text}`", e.message()))
 }
 
 /// Applies the `//#if` directives of one file; a mistake in them (an unknown flag,
@@ -263,6 +278,29 @@ mod tests {
         ] {
             assert!(!source.contains(absent), "{absent:?} is in the plain pipeline");
         }
+    }
+
+    #[test]
+    fn shaders_on_disk_assemble_like_the_built_in_ones_and_errors_name_the_file() {
+        let all = FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx);
+        let disk = ShaderFiles::Dir(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("shaders"));
+        assert_eq!(assemble_from(&disk, Program::Integrator, &all), Ok(assemble(Program::Integrator, &all)));
+        let missing = ShaderFiles::Dir(PathBuf::from("/nonexistent/shaders"));
+        let error = assemble_from(&missing, Program::Trace, &all).expect_err("no files");
+        assert!(error.starts_with("/nonexistent/shaders/common.wgsl: cannot read"), "{error}");
+        let broken = std::env::temp_dir().join(format!("rt-broken-shaders-{}", std::process::id()));
+        std::fs::create_dir_all(&broken).expect("temp folder");
+        for (name, text) in ALL_PARTS {
+            let text = if *name == "sky.wgsl" { format!("{text}\nfn oops( {{\n") } else { text.to_string() };
+            std::fs::write(broken.join(name), text).expect("shader copy");
+        }
+        let error = assemble_from(&ShaderFiles::Dir(broken.clone()), Program::Integrator, &all).expect_err("broken");
+        assert!(error.starts_with("shaders/sky.wgsl: ") && error.contains("oops"), "{error}");
+        let _ = std::fs::remove_dir_all(&broken);
+        let unbalanced = preprocess("bsdf.wgsl", "a\n//#if glossy\nb\n", &|f| all.flag(f)).expect_err("unclosed");
+        assert_eq!(unbalanced, "shaders/bsdf.wgsl: unclosed #if");
+        let unknown = preprocess("bsdf.wgsl", "//#if shiny\n//#endif\n", &|f| all.flag(f)).expect_err("unknown");
+        assert_eq!(unknown, "shaders/bsdf.wgsl:1: unknown flag `shiny`");
     }
 
     #[test]

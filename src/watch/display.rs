@@ -230,3 +230,40 @@ fn pipelines(
     }
     Ok(pipelines)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gpu::PipelineCache;
+    use crate::render::tonemap::display_pixel;
+
+    /// The display shader and `render::tonemap` agree to within rounding on the
+    /// whole range: shadows, mid-tones, saturated colours and compressed highlights.
+    #[test]
+    fn display_shader_matches_the_png_tone_mapping() {
+        let ctx = GpuContext::new(std::env::var("RT_ADAPTER").ok().as_deref()).expect("a Vulkan adapter");
+        let (width, height, samples) = (64u32, 16u32, 3u32);
+        let radiance: Vec<[f32; 3]> = (0..width * height)
+            .map(|i| {
+                let level = 1e-4 * 1e6f32.powf(i as f32 / (width * height) as f32);
+                let tint = [[1.0, 1.0, 1.0], [1.0, 0.2, 0.05], [0.1, 0.9, 0.3], [0.02, 0.05, 1.0]][i as usize % 4];
+                tint.map(|t| t * level)
+            })
+            .collect();
+        let pipelines = PipelineCache::new(&ctx);
+        let mut acc = Accumulation::new(&ctx, &pipelines.accumulation_layout, width, height);
+        let sums: Vec<[f32; 4]> =
+            radiance.iter().map(|c| [c[0], c[1], c[2], 0.0].map(|v| v * samples as f32)).collect();
+        ctx.queue.write_buffer(acc.sums(), 0, bytemuck::cast_slice(&sums));
+        acc.samples = samples;
+        let display = Display::new(&ctx, wgpu::TextureFormat::Bgra8Unorm, None).expect("display pipelines");
+        for exposure in [0.0, -2.0, 1.5] {
+            let shown = display.screenshot(&ctx, &acc, exposure).expect("screenshot");
+            for (i, (shown, linear)) in shown.iter().zip(&radiance).enumerate() {
+                let expected = display_pixel(*linear, exposure);
+                let worst = shown.iter().zip(expected).map(|(a, b)| (*a as i32 - b as i32).abs()).max();
+                assert!(worst <= Some(1), "pixel {i} {linear:?} at {exposure} EV: {shown:?} vs {expected:?}");
+            }
+        }
+    }
+}

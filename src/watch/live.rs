@@ -142,8 +142,9 @@ impl<'a> LiveScene<'a> {
         let new_scene = scene::load(&self.scene_path)?;
         let new_assets = asset_prints(&new_scene);
         let reload = plan(&self.file_scene, &new_scene, &self.assets, &new_assets, shaders_changed);
-        if let Some((path, Err(message))) = new_assets.iter().find(|(_, print)| print.is_err()) {
-            bail!("{message} (asset {})", path.display());
+        // The message names the asset's file.
+        if let Some(Err(message)) = new_assets.values().find(|print| print.is_err()) {
+            bail!("{message}");
         }
 
         let geometry = if reload.reassembles() { Some(self.assemble(&new_scene, &reload)?) } else { None };

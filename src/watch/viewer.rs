@@ -189,7 +189,7 @@ impl Viewer<'_> {
         let render = &self.live.scene().render;
         let (width, height) = self.options.size.unwrap_or((render.width, render.height));
         let attributes = Window::default_attributes()
-            .with_title(format!("rt watch — {}", self.options.scene.display()))
+            .with_title(format!("rt watch - {}", self.options.scene.display()))
             .with_inner_size(PhysicalSize::new(width, height));
         let window = Arc::new(event_loop.create_window(attributes).context("cannot open a window")?);
         let surface = self.ctx.instance.create_surface(window.clone()).context("cannot draw into the window")?;
@@ -410,15 +410,16 @@ impl Viewer<'_> {
 fn title(scene: &Path, refine: &Refinement, last_reload: &str, error: Option<&str>) -> String {
     let name = sources::names(&[scene.to_path_buf()]);
     if let Some(error) = error {
-        return format!("rt watch — {name} — ERROR: {error}");
+        return format!("rt watch - {name} - ERROR: {error}");
     }
+    // ASCII only: some window managers draw titles in Latin-1 fonts.
     format!(
-        "rt watch — {name} — {}/{} spp · {}samples/s · {:.1} ms/frame{}{last_reload}",
+        "rt watch - {name} - {}/{} spp | {}samples/s | {:.1} ms/frame{}{last_reload}",
         refine.acc.samples,
         refine.target_spp,
         human(refine.samples_per_second),
         ms(refine.last_frame),
-        if last_reload.is_empty() { "" } else { " · " },
+        if last_reload.is_empty() { "" } else { " | " },
     )
 }
 

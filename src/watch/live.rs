@@ -127,11 +127,6 @@ impl<'a> LiveScene<'a> {
         scene
     }
 
-    /// The file's camera and sun, and its exposure.
-    pub fn file_scene(&self) -> &Scene {
-        &self.file_scene
-    }
-
     /// Reads the scene and its assets again after `changed` files changed, and brings the
     /// GPU to them with the least work. On an error nothing changes.
     pub fn reload(&mut self, changed: &[PathBuf]) -> Result<ReloadReport> {

@@ -14,6 +14,7 @@ mod refine;
 pub mod reload_log;
 mod sources;
 mod viewer;
+mod viewer_controls;
 
 pub use headless::{HeadlessOptions, STOP_FILE};
 pub use live::LiveScene;

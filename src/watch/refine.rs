@@ -17,8 +17,6 @@ pub struct Refinement {
     budget: Duration,
     /// Samples per pixel the image stops at.
     pub target_spp: u32,
-    /// Frames since the accumulation was last reset.
-    pub frames_since_reset: u64,
     /// Samples per second over the last frame, for the window's title.
     pub samples_per_second: f64,
     pub last_frame: Duration,
@@ -32,7 +30,6 @@ impl Refinement {
             samples_per_frame: 1,
             budget,
             target_spp,
-            frames_since_reset: 0,
             samples_per_second: 0.0,
             last_frame: Duration::ZERO,
         }
@@ -46,7 +43,6 @@ impl Refinement {
     pub fn reset(&mut self, encoder: &mut wgpu::CommandEncoder) {
         self.acc.clear(encoder);
         self.samples_per_frame = 1;
-        self.frames_since_reset = 0;
     }
 
     /// A fresh accumulation at a new size.
@@ -54,7 +50,6 @@ impl Refinement {
         let ctx = live.renderer.ctx;
         self.acc = Accumulation::new(ctx, &live.renderer.pipelines.accumulation_layout, width, height);
         self.samples_per_frame = 1;
-        self.frames_since_reset = 0;
     }
 
     /// Records this frame's samples into `encoder` (none once converged); returns how many.
@@ -79,7 +74,6 @@ impl Refinement {
         if samples == 0 {
             return;
         }
-        self.frames_since_reset += 1;
         let pixels = self.acc.width as f64 * self.acc.height as f64;
         self.samples_per_second = samples as f64 * pixels / took.as_secs_f64();
         // Grow or shrink towards the budget, by at most 2× a frame, so one slow frame cannot overshoot.

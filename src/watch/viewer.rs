@@ -4,12 +4,12 @@
 //! it also writes each state's display as `frame-NNNN.png` once it reaches `--spp`,
 //! and stops on `DIR/stop` or `--max-reloads`, like headless mode.
 
-use super::camera_control::{dolly, fly, look, orbit, pan, turn_sun};
+use super::camera_control::dolly;
 use super::display::Display;
 use super::fs_watch::{Batch, FileWatcher};
 use super::headless::STOP_FILE;
 use super::input::{Action, Drag, HELP, action, drag, fly_direction};
-use super::live::{LiveScene, Overrides};
+use super::live::LiveScene;
 use super::refine::Refinement;
 use super::reload_log::{ReloadLog, ms};
 use super::{WatchOptions, sources};
@@ -70,10 +70,10 @@ pub fn run(adapter: Option<&str>, options: WatchOptions) -> Result<()> {
 }
 
 /// What exists once the window does.
-struct WindowParts {
+pub(super) struct WindowParts {
     window: Arc<Window>,
     surface: wgpu::Surface<'static>,
-    config: wgpu::SurfaceConfiguration,
+    pub(super) config: wgpu::SurfaceConfiguration,
     display: Display,
     refine: Refinement,
 }
@@ -86,23 +86,23 @@ struct State {
     written: bool,
 }
 
-struct Viewer<'a> {
+pub(super) struct Viewer<'a> {
     ctx: &'a GpuContext,
-    live: LiveScene<'a>,
+    pub(super) live: LiveScene<'a>,
     watcher: FileWatcher,
     options: WatchOptions,
-    log: ReloadLog,
-    window: Option<WindowParts>,
+    pub(super) log: ReloadLog,
+    pub(super) window: Option<WindowParts>,
     state: State,
     /// The last reload's error, shown until a reload succeeds.
     error: Option<String>,
     last_reload: String,
-    held: Vec<KeyCode>,
-    shift: bool,
+    pub(super) held: Vec<KeyCode>,
+    pub(super) shift: bool,
     dragging: Option<Drag>,
     cursor: Option<(f64, f64)>,
-    pending_reset: bool,
-    last_tick: Instant,
+    pub(super) pending_reset: bool,
+    pub(super) last_tick: Instant,
     presented: u64,
     screenshots: u32,
     /// Why the window closed on its own, if it did.
@@ -213,7 +213,7 @@ impl Viewer<'_> {
         Ok(())
     }
 
-    fn request_redraw(&self) {
+    pub(super) fn request_redraw(&self) {
         if let Some(w) = &self.window {
             w.window.request_redraw();
         }
@@ -258,78 +258,9 @@ impl Viewer<'_> {
         self.watcher.watch(&self.live.watched_files());
     }
 
-    fn fail(&mut self, cause: &[PathBuf], error: &anyhow::Error) {
+    pub(super) fn fail(&mut self, cause: &[PathBuf], error: &anyhow::Error) {
         self.log.error(cause, error);
         self.error = Some(format!("{error:#}"));
-    }
-
-    fn key(&mut self, event_loop: &ActiveEventLoop, key: KeyCode) {
-        let Some(action) = action(key) else { return };
-        let mut overrides = self.live.overrides().clone();
-        match action {
-            Action::Sun { elevation, azimuth } => {
-                let Some(sun) = &self.live.scene().sun else {
-                    self.log.write("the scene has no [sun] to turn");
-                    return;
-                };
-                overrides.sun = Some(turn_sun(sun, elevation, azimuth));
-                self.pending_reset = true;
-            }
-            Action::Exposure(ev) => overrides.exposure = Some(self.live.scene().render.exposure + ev),
-            Action::Reset => {
-                self.pending_reset |= overrides.camera.is_some() || overrides.sun.is_some();
-                overrides = Overrides::default();
-            }
-            Action::ScreenshotPng | Action::ScreenshotExr => {
-                if let Err(e) = self.screenshot(action == Action::ScreenshotExr) {
-                    self.fail(&[], &e);
-                }
-                return;
-            }
-            Action::Help => {
-                self.log.write(HELP);
-                return;
-            }
-            Action::Quit => {
-                event_loop.exit();
-                return;
-            }
-        }
-        self.live.set_overrides(overrides);
-        self.request_redraw();
-    }
-
-    fn drag(&mut self, mode: Drag, dx: f32, dy: f32) {
-        let height = self.window.as_ref().map_or(1, |w| w.config.height);
-        match mode {
-            Drag::Orbit => self.move_camera(|c| orbit(c, dx, dy)),
-            Drag::Look => self.move_camera(|c| look(c, dx, dy)),
-            Drag::Pan => self.move_camera(|c| pan(c, dx, dy, height)),
-        }
-    }
-
-    fn move_camera(&mut self, to: impl FnOnce(&crate::scene::Camera) -> crate::scene::Camera) {
-        let mut overrides = self.live.overrides().clone();
-        overrides.camera = Some(to(&self.live.scene().camera));
-        self.live.set_overrides(overrides);
-        self.pending_reset = true;
-        self.request_redraw();
-    }
-
-    /// Moves by the fly keys held, at a speed that crosses the scene in about 4 s.
-    fn fly_step(&mut self) {
-        let now = Instant::now();
-        let dt = (now - self.last_tick).as_secs_f32().min(0.1);
-        self.last_tick = now;
-        let direction = fly_direction(&self.held);
-        if direction == glam::Vec3::ZERO {
-            return;
-        }
-        let g = &self.live.renderer.geometry;
-        let size = (g.bounds_max - g.bounds_min).length();
-        let speed = if size.is_finite() && size > 0.0 { size / 4.0 } else { 1.0 };
-        let boost = if self.shift { 5.0 } else { 1.0 };
-        self.move_camera(|c| fly(c, direction * speed * boost * dt));
     }
 
     fn frame(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
@@ -390,7 +321,7 @@ impl Viewer<'_> {
         Ok(())
     }
 
-    fn screenshot(&mut self, exr: bool) -> Result<()> {
+    pub(super) fn screenshot(&mut self, exr: bool) -> Result<()> {
         let Some(w) = &self.window else { return Ok(()) };
         let dir = self.options.frames_dir.clone().unwrap_or_else(|| PathBuf::from("."));
         self.screenshots += 1;

@@ -3,12 +3,14 @@
 //! what a headless render writes.
 
 mod common;
+mod watch_harness;
 
 use common::{icosphere_obj, render, temp_dir};
 use rt::render::tonemap::display_pixel;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
+use std::process::Command;
 use std::time::{Duration, Instant};
+use watch_harness::Watcher;
 
 const SIZE: u32 = 32;
 const SPP: u32 = 2;
@@ -58,69 +60,6 @@ fn ball(radius: f64) -> String {
     text
 }
 
-/// A running `rt watch --headless`, stopped through its stop file when dropped.
-struct Watcher {
-    child: Child,
-    frames: PathBuf,
-}
-
-impl Watcher {
-    fn start(scene: &Path, frames: &Path, extra: &[&std::ffi::OsStr]) -> Self {
-        let child = Command::new(env!("CARGO_BIN_EXE_rt"))
-            .args(["watch", "--headless", "--format", "exr", "--spp", &SPP.to_string()])
-            .args(extra)
-            .args(["--size", &format!("{SIZE}x{SIZE}"), "--frames-dir"])
-            .arg(frames)
-            .arg(scene)
-            .stdout(Stdio::null())
-            .spawn()
-            .expect("start rt watch");
-        Self { child, frames: frames.to_path_buf() }
-    }
-
-    fn log(&self) -> Vec<String> {
-        std::fs::read_to_string(self.frames.join(rt::watch::LOG_FILE))
-            .unwrap_or_default()
-            .lines()
-            .map(str::to_owned)
-            .collect()
-    }
-
-    /// Waits until a log line starts with `prefix`; returns it.
-    fn wait_for(&mut self, prefix: &str) -> String {
-        let deadline = Instant::now() + Duration::from_secs(120);
-        loop {
-            if let Some(line) = self.log().into_iter().find(|l| l.starts_with(prefix)) {
-                return line;
-            }
-            if let Ok(Some(status)) = self.child.try_wait() {
-                panic!("rt watch exited ({status}) before {prefix:?}; log:\n{}", self.log().join("\n"));
-            }
-            assert!(Instant::now() < deadline, "no {prefix:?} after 120 s; log:\n{}", self.log().join("\n"));
-            std::thread::sleep(Duration::from_millis(20));
-        }
-    }
-
-    fn frame(&self, number: u32) -> Vec<[f32; 3]> {
-        let path = self.frames.join(format!("frame-{number:04}.exr"));
-        let image = image::open(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display())).into_rgb32f();
-        image.pixels().map(|p| p.0).collect()
-    }
-
-    fn stop(mut self) {
-        std::fs::write(self.frames.join(rt::watch::STOP_FILE), "").expect("stop file");
-        let status = self.child.wait().expect("wait for rt watch");
-        assert!(status.success(), "rt watch: {status}");
-    }
-}
-
-impl Drop for Watcher {
-    fn drop(&mut self) {
-        let _ = std::fs::write(self.frames.join(rt::watch::STOP_FILE), "");
-        let _ = self.child.kill();
-    }
-}
-
 fn mean(pixels: &[[f32; 3]]) -> [f32; 3] {
     let n = pixels.len() as f32;
     pixels.iter().fold([0.0; 3], |a, p| [a[0] + p[0] / n, a[1] + p[1] / n, a[2] + p[2] / n])
@@ -145,13 +84,13 @@ fn project(name: &str) -> (PathBuf, PathBuf, PathBuf) {
 fn each_edit_is_one_reload_of_the_right_kind() {
     let (dir, scene, frames) = project("watch-edits");
     let asset = dir.join("assets/ball.obj");
-    let mut watch = Watcher::start(&scene, &frames, &[]);
+    let mut watch = Watcher::start(&scene, &frames, SPP, SIZE, &[]);
     watch.wait_for("frame #0 ");
 
     save_by_rename(&scene, &scene_text(1.0, [0.8, 0.8, 0.8]));
     assert!(watch.wait_for("reload #1 ").contains("kind=camera cause=scene.toml"));
     watch.wait_for("frame #1 ");
-    assert_ne!(watch.frame(0), watch.frame(1), "the camera moved");
+    assert!(watch.frame(0) != watch.frame(1), "the camera moved, the image did not");
 
     // Truncated and rewritten in place, as many editors save.
     std::fs::write(&scene, scene_text(1.0, [0.9, 0.1, 0.1])).expect("rewrite scene");
@@ -163,7 +102,7 @@ fn each_edit_is_one_reload_of_the_right_kind() {
     save_by_rename(&asset, &ball(0.5));
     assert!(watch.wait_for("reload #3 ").contains("kind=asset cause=ball.obj"));
     watch.wait_for("frame #3 ");
-    assert_ne!(watch.frame(2), watch.frame(3), "the ball shrank");
+    assert!(watch.frame(2) != watch.frame(3), "the ball shrank, the image did not change");
 
     let good = std::fs::read_to_string(&scene).expect("scene");
     std::fs::write(&scene, "[camera\nposition = [").expect("broken scene");
@@ -172,7 +111,7 @@ fn each_edit_is_one_reload_of_the_right_kind() {
     save_by_rename(&scene, &good);
     assert!(watch.wait_for("reload #4 ").contains("kind=none"), "the fix restores the last good scene");
     watch.wait_for("frame #4 ");
-    assert_eq!(watch.frame(3), watch.frame(4), "the last good image stayed");
+    assert!(watch.frame(3) == watch.frame(4), "the last good image did not stay");
 
     std::fs::remove_file(&asset).expect("delete the asset");
     let errors = || watch.log().iter().filter(|l| l.starts_with("error ")).count();
@@ -186,7 +125,7 @@ fn each_edit_is_one_reload_of_the_right_kind() {
     std::fs::write(&asset, ball(1.0)).expect("recreate the asset");
     assert!(watch.wait_for("reload #5 ").contains("kind=asset"));
     watch.wait_for("frame #5 ");
-    assert_eq!(watch.frame(5), watch.frame(2), "the first ball is back, red");
+    assert!(watch.frame(5) == watch.frame(2), "the first ball is back, red: the image should be frame 2's");
 
     let log = watch.log();
     let kinds: Vec<&str> =
@@ -198,7 +137,7 @@ fn each_edit_is_one_reload_of_the_right_kind() {
 #[test]
 fn a_burst_of_saves_is_coalesced_and_ends_on_the_last_state() {
     let (_dir, scene, frames) = project("watch-burst");
-    let mut watch = Watcher::start(&scene, &frames, &[]);
+    let mut watch = Watcher::start(&scene, &frames, SPP, SIZE, &[]);
     watch.wait_for("frame #0 ");
     let saves = 200;
     let start = Instant::now();
@@ -243,7 +182,7 @@ fn a_burst_of_saves_is_coalesced_and_ends_on_the_last_state() {
         SPP,
         3,
     );
-    assert_eq!(watch.frame(last), expected.pixels, "the last frame is the last save's image");
+    assert!(watch.frame(last) == expected.pixels, "the last frame is not the last save's image");
     watch.stop();
 }
 
@@ -256,7 +195,7 @@ fn dev_mode_reloads_shaders_and_survives_a_broken_one() {
         let path = entry.expect("entry").path();
         std::fs::copy(&path, shaders.join(path.file_name().expect("name"))).expect("copy shader");
     }
-    let mut watch = Watcher::start(&scene, &frames, &["--dev".as_ref(), shaders.as_os_str()]);
+    let mut watch = Watcher::start(&scene, &frames, SPP, SIZE, &["--dev".as_ref(), shaders.as_os_str()]);
     watch.wait_for("frame #0 ");
     let integrator = shaders.join("integrator.wgsl");
     let good = std::fs::read_to_string(&integrator).expect("integrator.wgsl");
@@ -266,7 +205,7 @@ fn dev_mode_reloads_shaders_and_survives_a_broken_one() {
     save_by_rename(&integrator, &format!("{good}\n// a comment changes nothing\n"));
     assert!(watch.wait_for("reload #1 ").contains("kind=shaders cause=integrator.wgsl"));
     watch.wait_for("frame #1 ");
-    assert_eq!(watch.frame(0), watch.frame(1), "the same shader code renders the same image");
+    assert!(watch.frame(0) == watch.frame(1), "the same shader code rendered another image");
     watch.stop();
 }
 

@@ -143,7 +143,6 @@ fn debounce(rx: &mpsc::Receiver<(Vec<PathBuf>, Instant)>, sink: &dyn Fn(Batch)) 
                 Err(RecvTimeoutError::Disconnected) => return,
             }
         }
-        batch.merge(Batch { paths: Vec::new(), first_event });
         sink(batch);
     }
 }

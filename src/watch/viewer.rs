@@ -129,6 +129,8 @@ impl ApplicationHandler<Batch> for Viewer<'_> {
             WindowEvent::CloseRequested => event_loop.exit(),
             WindowEvent::Resized(size) => self.resize(size),
             WindowEvent::ModifiersChanged(m) => self.shift = m.state().shift_key(),
+            // Keys released while another window has the focus are never reported.
+            WindowEvent::Focused(false) => self.held.clear(),
             WindowEvent::KeyboardInput { event, .. } => {
                 let PhysicalKey::Code(key) = event.physical_key else { return };
                 self.held.retain(|&k| k != key);

@@ -13,3 +13,4 @@ pub mod info;
 pub mod render;
 pub mod scene;
 pub mod sky;
+pub mod watch;

@@ -4,7 +4,7 @@ use anyhow::{Result, bail};
 use clap::{Args, Parser, Subcommand};
 use rt::bvh::{BuildQuality, PackOutcome, PackReport};
 use rt::gpu::GpuContext;
-use rt::render::{RenderRequest, Renderer, human, image_format, write_image};
+use rt::render::{ImageFormat, RenderRequest, Renderer, human, image_format, write_image};
 use rt::scene::{self, RoughTransmission, Sampling, Scene};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -34,6 +34,8 @@ enum Command {
     },
     /// Render a scene to a PNG (tone-mapped sRGB) or EXR (linear radiance).
     Render(RenderArgs),
+    /// Show a scene in a window that re-renders as its files change (or, headless, write frames).
+    Watch(WatchArgs),
     /// Print what a scene contains: counts, bounds, BVH statistics, feature set, GPU.
     Info {
         /// Scene file; the built-in Cornell box when omitted.
@@ -88,6 +90,44 @@ struct RenderArgs {
     strict: bool,
 }
 
+#[derive(Args)]
+struct WatchArgs {
+    /// Scene file.
+    scene: PathBuf,
+    /// No window: refine each state of the scene to --spp and write it to --frames-dir
+    /// as frame-NNNN.png (NNNN: the reload's number); stops when FRAMES_DIR/stop appears.
+    #[arg(long, requires = "frames_dir")]
+    headless: bool,
+    /// Where frames (headless), screenshots and watch.log go.
+    #[arg(long)]
+    frames_dir: Option<PathBuf>,
+    /// Samples per pixel each state is refined to [default: the scene's].
+    #[arg(long)]
+    spp: Option<u32>,
+    /// Image size as WIDTHxHEIGHT (headless), or the window's first size [default: the scene's].
+    #[arg(long, value_parser = parse_size)]
+    size: Option<(u32, u32)>,
+    #[arg(long, default_value_t = 0)]
+    seed: u32,
+    /// Format of headless frames: png (tone-mapped) or exr (linear).
+    #[arg(long, value_enum, default_value = "png")]
+    format: FrameFormat,
+    /// Stop once the frame of this reload is written (0: the first state's).
+    #[arg(long)]
+    max_reloads: Option<u32>,
+    /// Read shaders from this folder and reload them when they change.
+    #[arg(long, value_name = "SHADERS_DIR", num_args = 0..=1, default_missing_value = "shaders")]
+    dev: Option<PathBuf>,
+    #[arg(long, value_enum, default_value_t)]
+    quality: BuildQuality,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum FrameFormat {
+    Png,
+    Exr,
+}
+
 #[derive(Subcommand)]
 enum BenchCommand {
     /// Rays/s of camera and diffuse-bounce rays through the BVH alone, and paths/s of the integrator.
@@ -112,6 +152,18 @@ enum BenchCommand {
         /// Samples per pixel of each render.
         #[arg(long, default_value_t = 4)]
         spp: u32,
+    },
+    /// `rt watch` latency: file written → first frame of the new state, for a camera move,
+    /// a material change and a re-export of a mesh.
+    WatchLatency {
+        /// The asset folder to re-export (copied to a temporary folder first).
+        #[arg(long, default_value = "assets/dragon")]
+        asset: PathBuf,
+        #[arg(long, value_parser = parse_size, default_value = "320x240")]
+        size: (u32, u32),
+        /// Edits of each kind (the median is reported).
+        #[arg(long, default_value_t = 3)]
+        runs: u32,
     },
 }
 
@@ -192,6 +244,33 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
     Ok(())
 }
 
+fn watch(args: WatchArgs, adapter: Option<&str>) -> Result<()> {
+    if args.spp == Some(0) {
+        bail!("--spp must be at least 1");
+    }
+    let options = rt::watch::WatchOptions {
+        scene: args.scene,
+        quality: args.quality,
+        shader_dir: args.dev,
+        frames_dir: args.frames_dir,
+        spp: args.spp,
+        size: args.size,
+        seed: args.seed,
+        format: match args.format {
+            FrameFormat::Png => ImageFormat::Png,
+            FrameFormat::Exr => ImageFormat::Exr,
+        },
+        max_reloads: args.max_reloads,
+    };
+    if args.headless {
+        let ctx = GpuContext::new(adapter)?;
+        eprintln!("GPU: {}", ctx.describe());
+        rt::watch::run_headless(&ctx, &options, None)
+    } else {
+        rt::watch::run_window(adapter, options)
+    }
+}
+
 fn pack(paths: &[PathBuf], quality: BuildQuality, force: bool) -> Result<()> {
     let assets = rt::bvh::pack::find_assets(paths)?;
     if assets.is_empty() {
@@ -229,6 +308,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Pack { paths, quality, force } => pack(&paths, quality, force),
         Command::Render(args) => render(args, adapter),
+        Command::Watch(args) => watch(args, adapter),
         Command::Info { scene, quality } => {
             load_scene(scene.as_deref()).and_then(|s| rt::info::print_info(s, quality, adapter))
         }
@@ -237,6 +317,9 @@ fn main() -> ExitCode {
         }
         Command::Bench(BenchCommand::Sky { scene, size, spp }) => {
             load_scene(Some(&scene)).and_then(|s| rt::bench::sky(s, size, spp, adapter))
+        }
+        Command::Bench(BenchCommand::WatchLatency { asset, size, runs }) => {
+            rt::bench::watch_latency(&asset, size, runs, adapter)
         }
     };
     match result {

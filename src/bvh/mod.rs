@@ -12,4 +12,4 @@ mod scene_geometry;
 pub use mesh_bvh::{BuildQuality, MeshBvh};
 pub use node::{BvhStats, NODE_LAYOUT, convert_bvh2, stats};
 pub use pack::{LoadedMesh, PackOutcome, PackReport, Provenance};
-pub use scene_geometry::SceneGeometry;
+pub use scene_geometry::{SceneGeometry, asset_paths};

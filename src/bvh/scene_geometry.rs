@@ -39,17 +39,21 @@ impl SceneGeometry {
     /// Loads every asset's BVH once (from its cache, or packing it when the cache is
     /// missing or stale), and places instances and spheres.
     pub fn build(scene: &Scene, quality: BuildQuality) -> Result<Self> {
-        let mut paths: Vec<PathBuf> = Vec::new();
-        let mut mesh_of_path: HashMap<PathBuf, usize> = HashMap::new();
-        for m in &scene.meshes {
-            mesh_of_path.entry(m.asset.clone()).or_insert_with(|| {
-                paths.push(m.asset.clone());
-                paths.len() - 1
-            });
-        }
-        let meshes = load_or_pack_all(&paths, quality)?;
+        let meshes = load_or_pack_all(&asset_paths(scene), quality)?;
         for mesh in &meshes {
             log::info!("{}: {} triangles, {:?}", mesh.path.display(), mesh.triangle_count, mesh.provenance);
+        }
+        Self::assemble(scene, meshes)
+    }
+
+    /// Places `meshes` (one per path of [`asset_paths`], in any order) as the scene's
+    /// instances, with its spheres and materials: everything but loading assets, so that a
+    /// live reload of one asset or of the materials reuses the BVHs of the others.
+    pub fn assemble(scene: &Scene, meshes: Vec<LoadedMesh>) -> Result<Self> {
+        let mesh_of_path: HashMap<PathBuf, usize> =
+            meshes.iter().enumerate().map(|(i, m)| (m.path.clone(), i)).collect();
+        if let Some(m) = scene.meshes.iter().find(|m| !mesh_of_path.contains_key(&m.asset)) {
+            bail!("{}: the asset {} was not loaded", scene.origin, m.asset.display());
         }
 
         let mut materials: Vec<Material> = vec![Material::default()];
@@ -177,6 +181,12 @@ impl SceneGeometry {
             bounds_max,
         })
     }
+}
+
+/// The distinct assets that a scene's meshes place, in file order.
+pub fn asset_paths(scene: &Scene) -> Vec<PathBuf> {
+    let mut seen = std::collections::HashSet::new();
+    scene.meshes.iter().filter(|m| seen.insert(&m.asset)).map(|m| m.asset.clone()).collect()
 }
 
 /// Every emissive triangle of every instance, and every emissive sphere, with

@@ -11,9 +11,19 @@ use wgpu::util::DeviceExt;
 pub const STAT_STACK_OVERFLOW: usize = 0;
 const STAT_COUNT: usize = 4;
 
+/// The scene's buffers in binding order (see `shaders/common.wgsl`), so that a live
+/// reload can replace some of them and rebind.
 pub struct SceneBuffers {
     pub frame: wgpu::Buffer,
+    nodes: wgpu::Buffer,
+    triangles: wgpu::Buffer,
+    shading: wgpu::Buffer,
+    instances: wgpu::Buffer,
+    tlas: wgpu::Buffer,
+    spheres: wgpu::Buffer,
+    materials: wgpu::Buffer,
     pub stats: wgpu::Buffer,
+    emitters: wgpu::Buffer,
     pub bind_group: wgpu::BindGroup,
     /// Group 2 of the integrator when the sky is an atmosphere: its parameters and
     /// tables (see `crate::sky`).
@@ -81,49 +91,95 @@ pub fn io_bind_group_layout(device: &wgpu::Device, count: u32) -> wgpu::BindGrou
 
 impl SceneBuffers {
     pub fn new(ctx: &GpuContext, geometry: &SceneGeometry, layout: &wgpu::BindGroupLayout) -> Result<Self> {
-        let max = ctx.device.limits().max_storage_buffer_binding_size;
-        let sizes = [
-            ("BVH nodes", std::mem::size_of_val(geometry.nodes.as_slice())),
-            ("triangles", std::mem::size_of_val(geometry.triangles.as_slice())),
-        ];
-        for (what, bytes) in sizes {
-            if bytes as u64 > max {
-                return Err(anyhow!(
-                    "the scene's {what} take {} MiB; this GPU binds at most {} MiB per buffer",
-                    bytes >> 20,
-                    max >> 20
-                ));
-            }
-        }
+        check_sizes(ctx, geometry)?;
         let none = wgpu::BufferUsages::empty();
         let frame = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("frame"),
             contents: bytemuck::bytes_of(&GpuFrame::default()),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
+        let stats =
+            storage(ctx, "stats", &[0u32; STAT_COUNT], wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST);
+        let materials = storage(ctx, "materials", &geometry.materials, wgpu::BufferUsages::COPY_DST);
+        let emitters = storage(ctx, "emitters", &geometry.emitters, wgpu::BufferUsages::COPY_DST);
         let nodes = storage(ctx, "nodes", &geometry.nodes, none);
         let triangles = storage(ctx, "triangles", &geometry.triangles, none);
         let shading = storage(ctx, "shading", &geometry.shading, none);
         let instances = storage(ctx, "instances", &geometry.instances, none);
         let tlas = storage(ctx, "tlas primitives", &geometry.tlas_primitives, none);
         let spheres = storage(ctx, "spheres", &geometry.spheres, none);
-        let materials = storage(ctx, "materials", &geometry.materials, none);
-        let stats =
-            storage(ctx, "stats", &[0u32; STAT_COUNT], wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST);
-        let emitters = storage(ctx, "emitters", &geometry.emitters, none);
-        let buffers =
-            [&frame, &nodes, &triangles, &shading, &instances, &tlas, &spheres, &materials, &stats, &emitters];
-        let entries: Vec<_> = buffers
-            .iter()
-            .enumerate()
-            .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
-            .collect();
-        let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("scene"),
+        let bind_group = bind(
+            ctx,
             layout,
-            entries: &entries,
-        });
-        Ok(Self { frame, stats, bind_group, sky_bind_group: None })
+            [&frame, &nodes, &triangles, &shading, &instances, &tlas, &spheres, &materials, &stats, &emitters],
+        );
+        Ok(Self {
+            frame,
+            nodes,
+            triangles,
+            shading,
+            instances,
+            tlas,
+            spheres,
+            materials,
+            stats,
+            emitters,
+            bind_group,
+            sky_bind_group: None,
+        })
+    }
+
+    /// Replaces the geometry (nodes, triangles, instances, spheres) and the material
+    /// table with `geometry`'s: after an asset or the placement of meshes changed.
+    pub fn replace_geometry(
+        &mut self,
+        ctx: &GpuContext,
+        geometry: &SceneGeometry,
+        layout: &wgpu::BindGroupLayout,
+    ) -> Result<()> {
+        check_sizes(ctx, geometry)?;
+        let none = wgpu::BufferUsages::empty();
+        self.nodes = storage(ctx, "nodes", &geometry.nodes, none);
+        self.triangles = storage(ctx, "triangles", &geometry.triangles, none);
+        self.shading = storage(ctx, "shading", &geometry.shading, none);
+        self.instances = storage(ctx, "instances", &geometry.instances, none);
+        self.tlas = storage(ctx, "tlas primitives", &geometry.tlas_primitives, none);
+        self.spheres = storage(ctx, "spheres", &geometry.spheres, none);
+        self.materials = storage(ctx, "materials", &geometry.materials, wgpu::BufferUsages::COPY_DST);
+        self.emitters = storage(ctx, "emitters", &geometry.emitters, wgpu::BufferUsages::COPY_DST);
+        self.rebind(ctx, layout);
+        Ok(())
+    }
+
+    /// Uploads `geometry`'s material table and emitter table (emission decides which
+    /// triangles are lights), in place when their sizes are unchanged.
+    pub fn replace_materials(&mut self, ctx: &GpuContext, geometry: &SceneGeometry, layout: &wgpu::BindGroupLayout) {
+        let same_size = self.materials.size() == size_of_nonempty(&geometry.materials)
+            && self.emitters.size() == size_of_nonempty(&geometry.emitters);
+        if same_size {
+            write_nonempty(ctx, &self.materials, &geometry.materials);
+            write_nonempty(ctx, &self.emitters, &geometry.emitters);
+        } else {
+            self.materials = storage(ctx, "materials", &geometry.materials, wgpu::BufferUsages::COPY_DST);
+            self.emitters = storage(ctx, "emitters", &geometry.emitters, wgpu::BufferUsages::COPY_DST);
+            self.rebind(ctx, layout);
+        }
+    }
+
+    fn rebind(&mut self, ctx: &GpuContext, layout: &wgpu::BindGroupLayout) {
+        let buffers = [
+            &self.frame,
+            &self.nodes,
+            &self.triangles,
+            &self.shading,
+            &self.instances,
+            &self.tlas,
+            &self.spheres,
+            &self.materials,
+            &self.stats,
+            &self.emitters,
+        ];
+        self.bind_group = bind(ctx, layout, buffers);
     }
 
     pub fn write_frame(&self, ctx: &GpuContext, frame: &GpuFrame) {
@@ -138,6 +194,45 @@ impl SceneBuffers {
         out.copy_from_slice(&values[..STAT_COUNT]);
         Ok(out)
     }
+}
+
+fn check_sizes(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<()> {
+    let max = ctx.device.limits().max_storage_buffer_binding_size;
+    let sizes = [
+        ("BVH nodes", std::mem::size_of_val(geometry.nodes.as_slice())),
+        ("triangles", std::mem::size_of_val(geometry.triangles.as_slice())),
+    ];
+    for (what, bytes) in sizes {
+        if bytes as u64 > max {
+            return Err(anyhow!(
+                "the scene's {what} take {} MiB; this GPU binds at most {} MiB per buffer",
+                bytes >> 20,
+                max >> 20
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The scene bind group: binding i is the i-th buffer.
+fn bind(ctx: &GpuContext, layout: &wgpu::BindGroupLayout, buffers: [&wgpu::Buffer; 10]) -> wgpu::BindGroup {
+    let entries: Vec<_> = buffers
+        .iter()
+        .enumerate()
+        .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
+        .collect();
+    ctx.device.create_bind_group(&wgpu::BindGroupDescriptor { label: Some("scene"), layout, entries: &entries })
+}
+
+/// The size [`storage`] gives a buffer for `data`.
+fn size_of_nonempty<T: Pod + Default>(data: &[T]) -> u64 {
+    (std::mem::size_of::<T>() * data.len().max(1)) as u64
+}
+
+fn write_nonempty<T: Pod + Default>(ctx: &GpuContext, buffer: &wgpu::Buffer, data: &[T]) {
+    let one = [T::default()];
+    let contents: &[T] = if data.is_empty() { &one } else { data };
+    ctx.queue.write_buffer(buffer, 0, bytemuck::cast_slice(contents));
 }
 
 /// Copies a buffer (with COPY_SRC usage) back to the host.

@@ -4,6 +4,9 @@ use anyhow::{Context as _, Result, anyhow, bail};
 
 /// The device rt renders with, and what it is.
 pub struct GpuContext {
+    /// Kept so that a window can make a surface that this adapter presents to.
+    pub instance: wgpu::Instance,
+    pub adapter: wgpu::Adapter,
     pub device: wgpu::Device,
     pub queue: wgpu::Queue,
     pub adapter_info: wgpu::AdapterInfo,
@@ -78,7 +81,7 @@ impl GpuContext {
             })
             .await
             .with_context(|| format!("could not open the GPU {:?}", info.name))?;
-        Ok(Self { device, queue, adapter_info: info, timestamps })
+        Ok(Self { instance, adapter, device, queue, adapter_info: info, timestamps })
     }
 
     /// "NVIDIA H100 80GB HBM3 (DiscreteGpu, Vulkan, driver 580.159)".

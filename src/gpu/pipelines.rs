@@ -2,7 +2,7 @@
 
 use super::GpuContext;
 use super::buffers::{io_bind_group_layout, scene_bind_group_layout, sky_bind_group_layout};
-use super::shader::{Program, assemble};
+use super::shader::{Program, ShaderFiles, assemble_from};
 use crate::scene::{FeatureSet, SkyFeature};
 use anyhow::{Result, anyhow};
 use std::collections::HashMap;
@@ -27,6 +27,7 @@ pub struct PipelineCache {
     pub trace_layout: wgpu::BindGroupLayout,
     /// Group 2 of the integrator under an atmosphere.
     pub sky_layout: wgpu::BindGroupLayout,
+    files: ShaderFiles,
     built: HashMap<(Program, FeatureSet), Rc<Pipelines>>,
 }
 
@@ -37,14 +38,38 @@ impl PipelineCache {
             accumulation_layout: io_bind_group_layout(&ctx.device, 2),
             trace_layout: io_bind_group_layout(&ctx.device, 2),
             sky_layout: sky_bind_group_layout(&ctx.device, false),
+            files: ShaderFiles::BuiltIn,
             built: HashMap::new(),
         }
+    }
+
+    /// Reads the shaders from `files` from now on, rebuilding every pipeline that was
+    /// built. Atomic: if any fails to build, nothing changes and the error says why.
+    pub fn reload_shaders(&mut self, ctx: &GpuContext, files: ShaderFiles) -> Result<()> {
+        let mut built = HashMap::new();
+        for &(program, features) in self.built.keys() {
+            built.insert((program, features), Rc::new(self.build(ctx, &files, program, features)?));
+        }
+        (self.files, self.built) = (files, built);
+        Ok(())
     }
 
     pub fn get(&mut self, ctx: &GpuContext, program: Program, features: FeatureSet) -> Result<Rc<Pipelines>> {
         if let Some(p) = self.built.get(&(program, features)) {
             return Ok(p.clone());
         }
+        let p = Rc::new(self.build(ctx, &self.files, program, features)?);
+        self.built.insert((program, features), p.clone());
+        Ok(p)
+    }
+
+    fn build(
+        &self,
+        ctx: &GpuContext,
+        files: &ShaderFiles,
+        program: Program,
+        features: FeatureSet,
+    ) -> Result<Pipelines> {
         let (io_layout, entry_names): (&wgpu::BindGroupLayout, &[&'static str]) = match program {
             Program::Integrator => (&self.accumulation_layout, &["render"]),
             Program::Trace => (
@@ -52,7 +77,7 @@ impl PipelineCache {
                 &["trace", "generate_camera_rays", "generate_diffuse_rays", "generate_through_rays"],
             ),
         };
-        let source = assemble(program, &features);
+        let source = assemble_from(files, program, &features).map_err(|e| anyhow!(e))?;
         let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let module = ctx.device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("rt"),
@@ -84,8 +109,6 @@ impl PipelineCache {
             return Err(anyhow!("building the {program:?} pipeline for [{features}] failed: {e}"));
         }
         log::debug!("built the {program:?} pipeline for [{features}]");
-        let p = Rc::new(Pipelines { features, entries });
-        self.built.insert((program, features), p.clone());
-        Ok(p)
+        Ok(Pipelines { features, entries })
     }
 }

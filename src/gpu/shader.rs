@@ -6,6 +6,7 @@
 //! [`FeatureSet::flag`]. Being comments, they leave every file valid WGSL.
 
 use crate::scene::{FeatureSet, SkyFeature, Transmission};
+use std::path::PathBuf;
 
 macro_rules! shader {
     ($name:literal) => {
@@ -121,14 +122,27 @@ fn parts(program: Program, f: &FeatureSet) -> Vec<Part> {
     parts
 }
 
-/// The WGSL source of `program` specialised to `features`.
-pub fn assemble(program: Program, features: &FeatureSet) -> String {
-    let mut source = String::new();
-    for (name, text) in parts(program, features) {
-        source.push_str(&format!("// ---- shaders/{name}\n"));
-        source.push_str(&preprocess(name, text, &|flag| features.flag(flag)));
+/// Where the shader files are read from.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub enum ShaderFiles {
+    /// The copies compiled into the binary.
+    #[default]
+    BuiltIn,
+    /// A `shaders/` folder on disk, read at every assembly: `rt watch --dev` edits shaders live.
+    Dir(PathBuf),
+}
+
+impl ShaderFiles {
+    /// The text of one shader file.
+    fn read(&self, (name, built_in): Part) -> Result<String, String> {
+        match self {
+            ShaderFiles::BuiltIn => Ok(built_in.to_owned()),
+            ShaderFiles::Dir(dir) => {
+                let path = dir.join(name);
+                std::fs::read_to_string(&path).map_err(|e| format!("{}: cannot read: {e}", path.display()))
+            }
+        }
     }
-    source
 }
 
 /// The program that builds the atmosphere's tables (entry points
@@ -139,41 +153,74 @@ pub fn atmosphere_tables_source() -> String {
     let mut source = String::new();
     for (name, text) in [ATMOSPHERE_TABLES, ATMOSPHERE_SCATTERING, SEGMENT].iter().chain(&ATMOSPHERE_MODEL) {
         source.push_str(&format!("// ---- shaders/{name}\n"));
-        source.push_str(&preprocess(name, text, &|_| None));
+        source.push_str(&preprocess(name, text, &|_| None).unwrap_or_else(|e| panic!("{e}")));
     }
     source
 }
 
-/// Applies the `//#if` directives of one file.
-///
-/// # Panics
-/// On an unknown flag or unbalanced directives: both are mistakes in the
-/// shaders themselves, which the tests catch for every file.
-pub fn preprocess(file: &str, text: &str, flag: &dyn Fn(&str) -> Option<bool>) -> String {
+/// The WGSL source of `program` specialised to `features`, from the built-in shaders.
+pub fn assemble(program: Program, features: &FeatureSet) -> String {
+    // The built-in files are checked by the tests for every feature set.
+    assemble_from(&ShaderFiles::BuiltIn, program, features).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The WGSL source of `program` specialised to `features`, from `files`; an error names
+/// the file that cannot be read or whose directives are wrong.
+pub fn assemble_from(files: &ShaderFiles, program: Program, features: &FeatureSet) -> Result<String, String> {
+    let mut source = String::new();
+    for part in parts(program, features) {
+        let text = files.read(part)?;
+        source.push_str(&format!("// ---- shaders/{}\n", part.0));
+        source.push_str(&preprocess(part.0, &text, &|flag| features.flag(flag))?);
+    }
+    if let ShaderFiles::Dir(_) = files {
+        check_syntax(&source)?;
+    }
+    Ok(source)
+}
+
+/// A WGSL syntax error in an assembled module, named by the file it is in and the line's
+/// text: wgpu's own message counts lines of the whole module, which no file has.
+fn check_syntax(source: &str) -> Result<(), String> {
+    let Err(e) = wgpu::naga::front::wgsl::parse_str(source) else { return Ok(()) };
+    let Some(at) = e.location(source) else { return Err(e.message().to_owned()) };
+    let lines: Vec<&str> = source.lines().collect();
+    let line = (at.line_number as usize).clamp(1, lines.len().max(1)) - 1;
+    let file = lines.iter().take(line + 1).rev().find_map(|l| l.strip_prefix("// ---- ")).unwrap_or("shaders");
+    let text = lines.get(line).map_or("", |l| l.trim());
+    Err(format!("{file}: {}: `{text}`", e.message()))
+}
+
+/// Applies the `//#if` directives of one file; a mistake in them (an unknown flag,
+/// unbalanced directives) is an error naming the file and line.
+pub fn preprocess(file: &str, text: &str, flag: &dyn Fn(&str) -> Option<bool>) -> Result<String, String> {
     let mut out = String::new();
     // For each open `#if`: (its branch is taken, the enclosing lines are kept).
     let mut stack: Vec<(bool, bool)> = Vec::new();
     let keeping = |stack: &[(bool, bool)]| stack.last().is_none_or(|&(taken, outer)| taken && outer);
     for (n, line) in text.lines().enumerate() {
+        let at = || format!("shaders/{file}:{}", n + 1);
         let directive = line.trim_start();
         if let Some(cond) = directive.strip_prefix("//#if ") {
             let cond = cond.trim();
             let (negated, name) = cond.strip_prefix('!').map_or((false, cond), |n| (true, n));
-            let value = flag(name).unwrap_or_else(|| panic!("shaders/{file}:{}: unknown flag `{name}`", n + 1));
+            let value = flag(name).ok_or_else(|| format!("{}: unknown flag `{name}`", at()))?;
             let outer = keeping(&stack);
             stack.push((value != negated, outer));
         } else if directive.starts_with("//#else") {
-            let top = stack.last_mut().unwrap_or_else(|| panic!("shaders/{file}:{}: #else without #if", n + 1));
+            let top = stack.last_mut().ok_or_else(|| format!("{}: #else without #if", at()))?;
             top.0 = !top.0;
         } else if directive.starts_with("//#endif") {
-            stack.pop().unwrap_or_else(|| panic!("shaders/{file}:{}: #endif without #if", n + 1));
+            stack.pop().ok_or_else(|| format!("{}: #endif without #if", at()))?;
         } else if keeping(&stack) {
             out.push_str(line);
             out.push('\n');
         }
     }
-    assert!(stack.is_empty(), "shaders/{file}: unclosed #if");
-    out
+    if !stack.is_empty() {
+        return Err(format!("shaders/{file}: unclosed #if"));
+    }
+    Ok(out)
 }
 
 /// Both programs with every flag on, under each sky that brings structs of its
@@ -252,7 +299,7 @@ mod tests {
     fn every_directive_names_a_known_flag() {
         let any = FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx);
         for (name, text) in ALL_PARTS {
-            preprocess(name, text, &|flag| any.flag(flag));
+            preprocess(name, text, &|flag| any.flag(flag)).unwrap_or_else(|e| panic!("{e}"));
         }
     }
 
@@ -293,9 +340,32 @@ mod tests {
     }
 
     #[test]
+    fn shaders_on_disk_assemble_like_the_built_in_ones_and_errors_name_the_file() {
+        let all = FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx);
+        let disk = ShaderFiles::Dir(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("shaders"));
+        assert_eq!(assemble_from(&disk, Program::Integrator, &all), Ok(assemble(Program::Integrator, &all)));
+        let missing = ShaderFiles::Dir(PathBuf::from("/nonexistent/shaders"));
+        let error = assemble_from(&missing, Program::Trace, &all).expect_err("no files");
+        assert!(error.starts_with("/nonexistent/shaders/common.wgsl: cannot read"), "{error}");
+        let broken = std::env::temp_dir().join(format!("rt-broken-shaders-{}", std::process::id()));
+        std::fs::create_dir_all(&broken).expect("temp folder");
+        for (name, text) in ALL_PARTS {
+            let text = if *name == "sky.wgsl" { format!("{text}\nfn oops( {{\n") } else { text.to_string() };
+            std::fs::write(broken.join(name), text).expect("shader copy");
+        }
+        let error = assemble_from(&ShaderFiles::Dir(broken.clone()), Program::Integrator, &all).expect_err("broken");
+        assert!(error.starts_with("shaders/sky.wgsl: ") && error.contains("oops"), "{error}");
+        let _ = std::fs::remove_dir_all(&broken);
+        let unbalanced = preprocess("bsdf.wgsl", "a\n//#if glossy\nb\n", &|f| all.flag(f)).expect_err("unclosed");
+        assert_eq!(unbalanced, "shaders/bsdf.wgsl: unclosed #if");
+        let unknown = preprocess("bsdf.wgsl", "//#if shiny\n//#endif\n", &|f| all.flag(f)).expect_err("unknown");
+        assert_eq!(unknown, "shaders/bsdf.wgsl:1: unknown flag `shiny`");
+    }
+
+    #[test]
     fn preprocessor_nests_and_negates() {
         let text = "a\n//#if x\nb\n//#if !y\nc\n//#else\nd\n//#endif\n//#else\ne\n//#endif\nf\n";
-        let run = |x: bool, y: bool| preprocess("t", text, &|n| Some(if n == "x" { x } else { y }));
+        let run = |x: bool, y: bool| preprocess("t", text, &|n| Some(if n == "x" { x } else { y })).expect("balanced");
         assert_eq!(run(true, false), "a\nb\nc\nf\n");
         assert_eq!(run(true, true), "a\nb\nd\nf\n");
         assert_eq!(run(false, false), "a\ne\nf\n");

@@ -122,6 +122,27 @@ impl<'a> Renderer<'a> {
         Ok(rebuilt)
     }
 
+    /// Takes a new sky of any kind: an atmosphere's tables are built or updated,
+    /// another kind drops them. The frame constants follow `self.scene.sky`.
+    pub fn set_sky(&mut self, sky: &Sky) -> Result<()> {
+        match sky {
+            Sky::Atmosphere(params) if self.sky.is_some() => {
+                self.set_atmosphere(params)?;
+            }
+            Sky::Atmosphere(params) => {
+                let tables = AtmosphereTables::new(self.ctx, &self.pipelines.sky_layout, params)?;
+                self.buffers.sky_bind_group = Some(tables.bind_group.clone());
+                self.sky = Some(tables);
+            }
+            _ => {
+                self.sky = None;
+                self.buffers.sky_bind_group = None;
+            }
+        }
+        self.scene.sky = sky.clone();
+        Ok(())
+    }
+
     /// The frame constants of a request, before per-dispatch fields.
     pub fn frame(&self, request: &RenderRequest) -> GpuFrame {
         let mut frame = GpuFrame {

@@ -48,6 +48,19 @@ impl Accumulation {
         Self { width, height, samples: 0, means, non_finite, bind_group, samples_per_dispatch: 1 }
     }
 
+    /// The running means per pixel (RGB, then the luminance's sum of squared deviations),
+    /// rows from the top: what a display pass reads.
+    pub fn means(&self) -> &wgpu::Buffer {
+        &self.means
+    }
+
+    /// Records zeroing the means and the non-finite counts: the samples taken so far are dropped.
+    pub fn clear(&mut self, encoder: &mut wgpu::CommandEncoder) {
+        encoder.clear_buffer(&self.means, 0, None);
+        encoder.clear_buffer(&self.non_finite, 0, None);
+        self.samples = 0;
+    }
+
     /// Adds up to `max_samples` samples per pixel in one dispatch and waits for it;
     /// returns how many it added. The next dispatch's size follows this one's time.
     pub fn dispatch(

@@ -3,7 +3,8 @@
 
 use super::mesh_bvh::BuildQuality;
 use super::node::{BvhStats, convert_bvh2, stats};
-use super::pack::{LoadedMesh, load_or_pack_all};
+use super::pack::{LoadedMesh, build_all_in_memory, load_or_pack_all};
+use crate::asset::AssetError;
 use crate::gpu::layout::*;
 use crate::scene::{FeatureSet, Material, Scene};
 use anyhow::{Result, bail};
@@ -39,6 +40,16 @@ impl SceneGeometry {
     /// Loads every asset's BVH once (from its cache, or packing it when the cache is
     /// missing or stale), and places instances and spheres.
     pub fn build(scene: &Scene, quality: BuildQuality) -> Result<Self> {
+        Self::build_from(scene, |paths| load_or_pack_all(paths, quality))
+    }
+
+    /// Every mesh's BVH built afresh at `quality` in memory, caches neither read nor
+    /// written: to time builds without disturbing caches of another quality.
+    pub fn build_in_memory(scene: &Scene, quality: BuildQuality) -> Result<Self> {
+        Self::build_from(scene, |paths| build_all_in_memory(paths, quality))
+    }
+
+    fn build_from(scene: &Scene, load: impl FnOnce(&[PathBuf]) -> Result<Vec<LoadedMesh>, AssetError>) -> Result<Self> {
         let mut paths: Vec<PathBuf> = Vec::new();
         let mut mesh_of_path: HashMap<PathBuf, usize> = HashMap::new();
         for m in &scene.meshes {
@@ -47,7 +58,7 @@ impl SceneGeometry {
                 paths.len() - 1
             });
         }
-        let meshes = load_or_pack_all(&paths, quality)?;
+        let meshes = load(&paths)?;
         for mesh in &meshes {
             log::info!("{}: {} triangles, {:?}", mesh.path.display(), mesh.triangle_count, mesh.provenance);
         }

@@ -42,21 +42,27 @@ impl EffectsReport {
     pub fn markdown(&self) -> String {
         let mut md = format!(
             "# Cost of effects: {}\n\n- adapter: {}\n- timing: {}, median of {} repeats of {} spp at {}x{}\n\n\
-             | pipeline | features | ms/spp | vs specialised |\n|---|---|---|---|\n",
+             | pipeline | features | ms/spp | vs specialised | mean luminance |\n|---|---|---|---|---|\n",
             self.scene, self.adapter, self.timing, self.repeats, self.spp, self.size.0, self.size.1
         );
         let base = self.rows[0].ms_per_spp;
         for r in &self.rows {
             let _ = writeln!(
                 md,
-                "| {} | {} | {:.3} | {:+.1} % |",
+                "| {} | {} | {:.3} | {:+.1} % | {:.4} |",
                 r.label,
                 r.features,
                 r.ms_per_spp,
-                (r.ms_per_spp / base - 1.0) * 100.0
+                (r.ms_per_spp / base - 1.0) * 100.0,
+                r.mean_luminance
             );
         }
-        let _ = writeln!(md, "\nSpecialised over all-features: **{:.2}×** faster.", self.speedup());
+        let _ = writeln!(
+            md,
+            "\nSpecialised over all-features: **{:.2}×** faster. Every pipeline renders the same \
+             picture: their mean luminances should differ by noise only.",
+            self.speedup()
+        );
         md
     }
 }

@@ -159,3 +159,20 @@ pub fn splice_readme(readme: &Path, tables: &str) -> Result<()> {
     std::fs::write(&tmp, spliced).with_context(|| format!("could not write {}", tmp.display()))?;
     std::fs::rename(&tmp, readme).with_context(|| format!("could not move {} into place", readme.display()))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn splicing_replaces_only_the_marked_section() {
+        let path = std::env::temp_dir().join(format!("rt-readme-{}.md", std::process::id()));
+        std::fs::write(&path, format!("intro\n{README_BEGIN}\nold\n{README_END}\noutro\n")).expect("write");
+        splice_readme(&path, "| new |\n").expect("splice");
+        let text = std::fs::read_to_string(&path).expect("read");
+        assert_eq!(text, format!("intro\n{README_BEGIN}\n| new |\n{README_END}\noutro\n"));
+        std::fs::write(&path, "no markers\n").expect("write");
+        assert!(splice_readme(&path, "x").is_err_and(|e| e.to_string().contains("rt-readme")));
+        let _ = std::fs::remove_file(path);
+    }
+}

@@ -104,6 +104,7 @@ pub fn run(ctx: &GpuContext, scene: &Scene, knobs: &[Knob], options: &SweepOptio
         let cost = levels.iter().sum::<u32>() as u64 * options.repeats as u64;
         let skipped = (knob.inapplicable)(&baseline_features);
         let mut settings = Vec::new();
+        let mut own: Vec<(Trial, Renderer, Option<f64>)> = Vec::new();
         for setting in knob.settings.iter().filter(|_| skipped.is_none()) {
             bar.set_message(format!("{}: {}", knob.name, setting.label));
             let trial = setting.trial(&base);
@@ -113,12 +114,23 @@ pub fn run(ctx: &GpuContext, scene: &Scene, knobs: &[Knob], options: &SweepOptio
                 continue;
             }
             let uses_base = trial.scene == base.scene && trial.quality == base.quality && !trial.fresh_bvh;
-            let mut own = None;
             let (renderer, build_seconds) = match uses_base {
                 true => (&mut base_renderer, None),
                 false => {
-                    let (r, build) = renderer_for(ctx, &trial)?;
-                    (own.insert(r), build)
+                    // Settings of a knob often share a scene (all RIS counts use seed sampling): one renderer.
+                    let found = own.iter().position(|(t, _, _): &(Trial, _, _)| {
+                        t.scene == trial.scene && t.quality == trial.quality && !t.fresh_bvh && !trial.fresh_bvh
+                    });
+                    let index = match found {
+                        Some(i) => i,
+                        None => {
+                            let (r, build) = renderer_for(ctx, &trial)?;
+                            own.push((trial.clone(), r, build));
+                            own.len() - 1
+                        }
+                    };
+                    let (_, r, build) = &mut own[index];
+                    (r, *build)
                 }
             };
             let mut result = measure(renderer, &trial, &levels, options.repeats, &reference, &timer, &bar)?;

@@ -94,17 +94,22 @@ pub fn tables(summaries: &[AccuracySummary], costs: &[EffectsReport], firefly: &
         percent(target)
     );
     for s in summaries {
-        let base = s.baseline_seconds.map_or("∞".into(), seconds);
-        let (setting, time, speedup) = match (&s.fastest, s.baseline_seconds) {
+        let base = s.baseline.map_or("∞".into(), |(t, extrapolated)| approx(t, extrapolated));
+        let (setting, time, speedup) = match (&s.fastest, s.baseline) {
             (Some((knob, label, spp, t, extrapolated)), base) => (
                 format!("{knob} = {label} ({spp:.0} spp)"),
-                format!("{}{}", if *extrapolated { "~" } else { "" }, seconds(*t)),
-                base.map_or("–".into(), |b| format!("{:.2}×", b / t)),
+                approx(*t, *extrapolated),
+                base.map_or("–".into(), |(b, _)| format!("{:.2}×", b / t)),
             ),
             (None, _) => ("none reaches it".into(), "–".into(), "–".into()),
         };
         let _ = writeln!(md, "| {} | {base} | {setting} | {time} | {speedup} |", scene_name(&s.scene));
     }
+    let _ = writeln!(
+        md,
+        "\nRMSE relative to the reference's mean radiance; times from the models fitted to each setting \
+         (`~`: beyond 4× the highest spp measured); speed-up: the scene defaults' time over the fastest's."
+    );
     let _ = writeln!(
         md,
         "\n| scene | features | specialised ms/spp | all-features ms/spp | speed-up |\n|---|---|---|---|---|"
@@ -141,8 +146,10 @@ pub fn tables(summaries: &[AccuracySummary], costs: &[EffectsReport], firefly: &
     md
 }
 
-fn seconds(s: f64) -> String {
-    if s >= 1.0 { format!("{s:.2} s") } else { format!("{:.1} ms", s * 1e3) }
+/// `~` before a time predicted beyond 4× the highest level measured.
+fn approx(seconds: f64, extrapolated: bool) -> String {
+    let s = if seconds >= 1.0 { format!("{seconds:.2} s") } else { format!("{:.1} ms", seconds * 1e3) };
+    if extrapolated { format!("~{s}") } else { s }
 }
 
 /// Replaces what lies between the headline markers of `readme` with `tables`.

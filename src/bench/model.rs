@@ -6,6 +6,9 @@
 //! squares fit over the levels gives both terms. The bias term is kept only when it is
 //! at least two standard errors above zero: otherwise noise in the measurements would
 //! invent error floors that no amount of samples could get under.
+//! The image's mean error is a second, far less noisy, view of bias (a mean over all
+//! pixels): |mean bias| ≤ RMS bias, so a mean error three standard errors from zero at
+//! the highest level sets a floor under bias² that noise in the fit cannot hide.
 //! Time: t(spp) = overhead + per_spp · spp, by ordinary least squares.
 
 /// One measured level of a setting.
@@ -17,6 +20,9 @@ pub struct Level {
     pub mse: f64,
     /// Standard error of `mse`, from the spread over repeats.
     pub mse_std_error: f64,
+    /// Relative error of the image's mean, and its standard error.
+    pub mean_error: f64,
+    pub mean_error_std_error: f64,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -40,7 +46,11 @@ impl Fit {
         if distinct.len() < 2 {
             return None;
         }
-        let (bias2, variance) = fit_error(levels);
+        let top = levels.iter().max_by(|a, b| a.spp.total_cmp(&b.spp)).copied();
+        let mean_bias2 = top
+            .filter(|l| l.mean_error.abs() > 3.0 * l.mean_error_std_error)
+            .map_or(0.0, |l| l.mean_error * l.mean_error);
+        let (bias2, variance) = fit_error(levels, mean_bias2);
         let (overhead_s, seconds_per_spp) = fit_time(levels);
         Some(Fit { bias2, variance, overhead_s, seconds_per_spp, max_spp: distinct[distinct.len() - 1] })
     }
@@ -74,26 +84,32 @@ impl Fit {
     }
 }
 
-/// Weighted least squares of mse = bias² + variance · x with x = 1/spp.
-fn fit_error(levels: &[Level]) -> (f64, f64) {
-    let weight = |l: &Level| 1.0 / l.mse_std_error.max(l.mse * 1e-3).max(1e-30).powi(2);
+/// Weighted least squares of mse = bias² + variance · x with x = 1/spp, bias² ≥ `min_bias2`.
+fn fit_error(levels: &[Level], min_bias2: f64) -> (f64, f64) {
+    // Heavy-tailed noise (caustics, fireflies) makes an MSE far less certain than a few
+    // repeats suggest: no level counts as known better than to 10 %.
+    let weight = |l: &Level| 1.0 / l.mse_std_error.max(l.mse * 0.1).max(1e-30).powi(2);
     let (mut s, mut sx, mut sxx, mut sy, mut sxy) = (0.0, 0.0, 0.0, 0.0, 0.0);
     for l in levels {
         let (w, x, y) = (weight(l), 1.0 / l.spp, l.mse);
         (s, sx, sxx, sy, sxy) = (s + w, sx + w * x, sxx + w * x * x, sy + w * y, sxy + w * x * y);
     }
+    // The variance that fits best with bias² held at `b2`.
+    let variance_given = |b2: f64| ((sxy - b2 * sx) / sxx).max(0.0);
     let det = s * sxx - sx * sx;
-    let through_origin = (sxy / sxx).max(0.0);
     if det <= 0.0 {
-        return (0.0, through_origin);
+        return (min_bias2, variance_given(min_bias2));
     }
     let bias2 = (sxx * sy - sx * sxy) / det;
     let variance = (s * sxy - sx * sy) / det;
     let bias2_std_error = (sxx / det).sqrt();
-    if bias2 < 2.0 * bias2_std_error || variance < 0.0 {
-        // No detectable floor (or a fit that makes no sense): pure noise through the origin,
-        // unless the error does not fall at all, which is all bias.
-        return if variance < 0.0 { (sy / s, 0.0) } else { (0.0, through_origin) };
+    if variance < 0.0 {
+        // The error does not fall with samples: all of it is bias.
+        return ((sy / s).max(min_bias2), 0.0);
+    }
+    if bias2 < 2.0 * bias2_std_error || bias2 < min_bias2 {
+        // No floor the fit can tell from noise (or a lower one than the mean error shows).
+        return (min_bias2, variance_given(min_bias2));
     }
     (bias2, variance)
 }
@@ -132,7 +148,14 @@ mod tests {
     use super::*;
 
     fn level(spp: f64, mse: f64) -> Level {
-        Level { spp, seconds: 0.001 + 0.002 * spp, mse, mse_std_error: mse * 0.02 }
+        Level {
+            spp,
+            seconds: 0.001 + 0.002 * spp,
+            mse,
+            mse_std_error: mse * 0.02,
+            mean_error: 0.0,
+            mean_error_std_error: 0.01,
+        }
     }
 
     #[test]
@@ -153,6 +176,17 @@ mod tests {
         assert!((fit.bias2 - b2).abs() < 1e-6, "{fit:?}");
         assert_eq!(fit.spp_for(0.05), None);
         assert!(fit.spp_for(0.2).is_some());
+    }
+
+    #[test]
+    fn a_clear_mean_error_is_a_floor_even_when_noise_hides_it_in_the_mse() {
+        let mut levels = [level(4.0, 0.25), level(16.0, 0.0625), level(64.0, 0.015625)];
+        levels[2].mean_error = -0.05;
+        let fit = Fit::of(&levels).expect("fit");
+        assert!((fit.relative_bias() - 0.05).abs() < 1e-9, "{fit:?}");
+        assert_eq!(fit.spp_for(0.01), None);
+        levels[2].mean_error = -0.02;
+        assert_eq!(Fit::of(&levels).expect("fit").bias2, 0.0, "within 3 standard errors of zero");
     }
 
     #[test]

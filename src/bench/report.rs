@@ -18,8 +18,8 @@ pub struct AccuracySummary {
     pub targets: Targets,
     /// (knob, setting, spp, seconds, extrapolated) of the fastest setting to reach the target.
     pub fastest: Option<(String, String, f64, f64, bool)>,
-    /// The scene's own settings: seconds to the target, if reachable.
-    pub baseline_seconds: Option<f64>,
+    /// The scene's own settings: seconds to the target (if reachable), and whether extrapolated.
+    pub baseline: Option<(f64, bool)>,
     pub report: PathBuf,
 }
 
@@ -55,7 +55,7 @@ pub fn write(dir: &Path, sweep: &Sweep, targets: Targets) -> Result<AccuracySumm
         adapter: sweep.adapter.clone(),
         targets,
         fastest,
-        baseline_seconds: baseline.seconds_to_target,
+        baseline: baseline.seconds_to_target.map(|t| (t, baseline.extrapolated)),
         report,
     })
 }

@@ -39,6 +39,8 @@ pub struct Measurement {
     pub error: ErrorMetrics,
     /// Standard error of `error.mse` over the repeats.
     pub mse_std_error: f64,
+    /// Standard error of `error.relative_mean_error`.
+    pub mean_error_std_error: f64,
 }
 
 #[derive(Clone, Debug)]
@@ -186,6 +188,9 @@ fn measure(
         let spread = errors.iter().map(|e| (e.mse - error.mse).powi(2)).sum::<f64>() / (n - 1.0).max(1.0);
         // Three channels of a pixel are far from independent: count pixels, not values.
         let floor = error.mse * (2.0 / pixels).sqrt() / n.sqrt();
+        let mean_spread =
+            errors.iter().map(|e| (e.relative_mean_error - error.relative_mean_error).powi(2)).sum::<f64>();
+        let mean_floor = (error.mse / pixels / n).sqrt() / reference.mean;
         let (fastest, slowest) = (times.iter().min().copied(), times.iter().max().copied());
         measurements.push(Measurement {
             spp,
@@ -194,6 +199,7 @@ fn measure(
             seconds_max: slowest.unwrap_or_default().as_secs_f64(),
             error,
             mse_std_error: (spread / n).sqrt().max(floor),
+            mean_error_std_error: (mean_spread / (n - 1.0).max(1.0) / n).sqrt().max(mean_floor),
         });
     }
     let mean2 = reference.mean * reference.mean;
@@ -204,6 +210,8 @@ fn measure(
             seconds: m.seconds,
             mse: m.error.mse / mean2,
             mse_std_error: m.mse_std_error / mean2,
+            mean_error: m.error.relative_mean_error,
+            mean_error_std_error: m.mean_error_std_error,
         })
         .collect();
     Ok(SettingResult {

@@ -165,13 +165,13 @@ struct AccuracyArgs {
     /// Image size [default: 160x120 on a CPU adapter, 320x240 on a GPU].
     #[arg(long, value_parser = parse_size)]
     size: Option<(u32, u32)>,
-    /// Samples-per-pixel levels, at least three [default: 1,4,16 on a CPU adapter, 16,...,4096 on a GPU].
+    /// Samples-per-pixel levels, at least three [default: 1,4,16 on a CPU adapter, 16,64,256,1024 on a GPU].
     #[arg(long, value_delimiter = ',')]
     spp: Option<Vec<u32>>,
     /// Timed renders per level, each with its own seed [default: 2 on a CPU adapter, 3 on a GPU].
     #[arg(long)]
     repeats: Option<u32>,
-    /// Samples per pixel of the reference [default: 256 on a CPU adapter, 65536 on a GPU].
+    /// Samples per pixel of the reference [default: 256 on a CPU adapter, 16384 on a GPU].
     #[arg(long)]
     reference_spp: Option<u32>,
     /// Error to reach, as a relative RMSE in percent of the reference's mean radiance.

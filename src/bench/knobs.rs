@@ -7,6 +7,7 @@
 use crate::bvh::BuildQuality;
 use crate::render::RenderRequest;
 use crate::scene::{FeatureSet, RoughTransmission, Sampling, Scene, Transmission};
+use clap::ValueEnum;
 
 /// One configuration to measure: the scene as the renderer is built for it, the
 /// request, and how its BVHs are built.
@@ -139,7 +140,8 @@ pub fn all_knobs(levels: &[u32]) -> Vec<Knob> {
             settings: [BuildQuality::Fastest, BuildQuality::Medium, BuildQuality::Slow, BuildQuality::VerySlow]
                 .into_iter()
                 .map(|q| {
-                    Setting::new(format!("{q:?}").to_lowercase(), move |t| {
+                    let name = q.to_possible_value().map_or(format!("{q:?}"), |v| v.get_name().to_string());
+                    Setting::new(name, move |t| {
                         t.quality = q;
                         t.fresh_bvh = true;
                     })

@@ -119,6 +119,21 @@ fn specialised_and_all_features_pipelines_agree() {
     assert!((a - b).abs() < 4.0 * sigma, "specialised {a:.5} vs all features {b:.5}: more than 4σ ({sigma:.5}) apart");
 }
 
+#[test]
+fn all_features_pipeline_stays_finite_without_emitters() {
+    // The sunlit pillars emit nothing: the emission code of the all-features pipeline
+    // must not divide by the total emitted power, which is 0.
+    let scene = rt::scene::load(&repo().join("scenes/specular_pillars.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let mut renderer = Renderer::new(gpu(), scene, BuildQuality::Medium).expect("renderer");
+    let own = renderer.geometry.features;
+    assert!(!own.emission);
+    let mut request = RenderRequest::from_scene(&renderer.scene);
+    (request.width, request.height, request.spp) = (24, 16, 8);
+    request.features = Some(FeatureSet::all(own.sky, own.sampling, renderer.scene.render.rough_transmission));
+    let (_, report) = renderer.render(&request).unwrap_or_else(|e| panic!("{e:#}"));
+    assert!(report.sentinel.is_clean(), "{}", report.sentinel);
+}
+
 fn csv_rows(path: &Path, header: &str) -> Vec<Vec<String>> {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let mut lines = text.lines();

@@ -64,7 +64,7 @@ pub fn headline(accuracy: AccuracyOptions, readme: Option<PathBuf>, adapter: Opt
     let size = accuracy.size.unwrap_or(Defaults::for_adapter(&ctx).size);
     let options = HeadlineOptions {
         accuracy: AccuracyOptions { progress: true, ..accuracy },
-        root: PathBuf::from("."),
+        root: PathBuf::new(),
         effects_spp: 16,
         effects_repeats: 5,
         fireflies: FireflyOptions { size, samples: 16, seeds: 8, clamp: None },

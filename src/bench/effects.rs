@@ -20,6 +20,8 @@ pub struct EffectTiming {
     pub ms_per_spp: f64,
     /// Mean luminance of the image: the same scene must give the same picture.
     pub mean_luminance: f64,
+    /// Non-finite samples dropped over all repeats (a bug in that pipeline if above 0).
+    pub dropped: u64,
 }
 
 pub struct EffectsReport {
@@ -42,19 +44,21 @@ impl EffectsReport {
     pub fn markdown(&self) -> String {
         let mut md = format!(
             "# Cost of effects: {}\n\n- adapter: {}\n- timing: {}, median of {} repeats of {} spp at {}x{}\n\n\
-             | pipeline | features | ms/spp | vs specialised | mean luminance |\n|---|---|---|---|---|\n",
+             | pipeline | features | ms/spp | vs specialised | mean luminance | dropped samples |\n\
+             |---|---|---|---|---|---|\n",
             self.scene, self.adapter, self.timing, self.repeats, self.spp, self.size.0, self.size.1
         );
         let base = self.rows[0].ms_per_spp;
         for r in &self.rows {
             let _ = writeln!(
                 md,
-                "| {} | {} | {:.3} | {:+.1} % | {:.4} |",
+                "| {} | {} | {:.3} | {:+.1} % | {:.4} | {} |",
                 r.label,
                 r.features,
                 r.ms_per_spp,
                 (r.ms_per_spp / base - 1.0) * 100.0,
-                r.mean_luminance
+                r.mean_luminance,
+                r.dropped
             );
         }
         let _ = writeln!(
@@ -117,13 +121,16 @@ pub fn effects(
     // Interleaved, so that a machine growing busier or cooler does not favour one pipeline.
     let mut times: Vec<Vec<Duration>> = vec![Vec::new(); variants.len()];
     let mut luminance = vec![0.0; variants.len()];
+    let mut dropped = vec![0u64; variants.len()];
     for repeat in 0..repeats.max(1) {
         for (i, (_, features)) in variants.iter().enumerate() {
             let r = RenderRequest { features: Some(*features), seed: repeat + 1, ..request.clone() };
-            let (image, took) = render_timed(&mut renderer, &r, &timer)?;
-            times[i].push(took);
-            let sum: f64 = image.pixels.iter().map(|p| crate::scene::luminance(*p) as f64).sum();
-            luminance[i] += sum / image.pixels.len().max(1) as f64 / repeats.max(1) as f64;
+            let render = render_timed(&mut renderer, &r, &timer)?;
+            times[i].push(render.time);
+            dropped[i] += render.dropped;
+            let pixels = &render.image.pixels;
+            let sum: f64 = pixels.iter().map(|p| crate::scene::luminance(*p) as f64).sum();
+            luminance[i] += sum / pixels.len().max(1) as f64 / repeats.max(1) as f64;
             bar.inc(1);
         }
     }
@@ -131,11 +138,13 @@ pub fn effects(
         .into_iter()
         .zip(times)
         .zip(luminance)
-        .map(|(((label, features), t), mean_luminance)| EffectTiming {
+        .zip(dropped)
+        .map(|((((label, features), t), mean_luminance), dropped)| EffectTiming {
             label,
             features,
             ms_per_spp: ms(median(t)) / request.spp as f64,
             mean_luminance,
+            dropped,
         })
         .collect();
     Ok(EffectsReport {

@@ -132,9 +132,9 @@ fn measure(
     for seed in 0..seeds {
         for sample in 0..samples {
             let r = RenderRequest { seed: 1 + seed * samples + sample, ..request.clone() };
-            let (image, took) = render_timed(renderer, &r, timer)?;
-            seconds += took.as_secs_f64();
-            for (mean, p) in means[seed as usize].iter_mut().zip(&image.pixels) {
+            let render = render_timed(renderer, &r, timer)?;
+            seconds += render.time.as_secs_f64();
+            for (mean, p) in means[seed as usize].iter_mut().zip(&render.image.pixels) {
                 let y = luminance(*p);
                 values.push(y);
                 *mean += y as f64 / samples as f64;

@@ -90,10 +90,13 @@ pub fn obtain(
             let mut took = Duration::ZERO;
             for (seed, path) in HALF_SEEDS.iter().zip(&paths) {
                 let half_request = crate::render::RenderRequest { seed: *seed, ..request.clone() };
-                let (image, time) = render_timed(renderer, &half_request, timer)?;
-                write_image(&image, path, 0.0)?;
-                halves.push(image.pixels);
-                took += time;
+                let render = render_timed(renderer, &half_request, timer)?;
+                if render.dropped > 0 {
+                    log::warn!("{}: {} non-finite samples dropped", path.display(), render.dropped);
+                }
+                write_image(&render.image, path, 0.0)?;
+                halves.push(render.image.pixels);
+                took += render.time;
             }
             (halves, ReferenceOrigin::Rendered(took))
         }
@@ -144,18 +147,19 @@ fn key(renderer: &Renderer, trial: &Trial, settings: ReferenceSettings) -> Resul
     let r = &trial.request;
     h.update(format!("{FORMAT} {}\n", env!("CARGO_PKG_VERSION")).as_bytes());
     // The parsed scene rather than its text: comments and layout do not change the image.
-    h.update(format!("{:?}\n", renderer.scene).as_bytes());
-    h.update(format!("{}x{} {settings:?} {HALF_SEEDS:?}\n", r.width, r.height).as_bytes());
-    let mut assets: Vec<&Path> = renderer.scene.meshes.iter().map(|m| m.asset.as_path()).collect();
-    assets.sort();
-    assets.dedup();
-    for asset in assets {
-        for file in AssetFiles::resolve(asset)?.source_files()? {
+    // Where it came from does not either: paths give way to the bytes of the assets.
+    let mut scene = renderer.scene.clone();
+    scene.origin.clear();
+    for mesh in &mut scene.meshes {
+        for file in AssetFiles::resolve(&mesh.asset)?.source_files()? {
             let bytes = builtin::read(&file).with_context(|| format!("cannot read {}", file.display()))?;
             h.update(&(bytes.len() as u64).to_le_bytes());
             h.update(&bytes);
         }
+        mesh.asset.clear();
     }
+    h.update(format!("{scene:?}\n").as_bytes());
+    h.update(format!("{}x{} {settings:?} {HALF_SEEDS:?}\n", r.width, r.height).as_bytes());
     h.update(assemble(Program::Integrator, &renderer.geometry.features).as_bytes());
     Ok(h.finalize().to_hex()[..16].to_string())
 }

@@ -199,7 +199,7 @@ fn opt(v: Option<f64>) -> String {
 }
 
 pub const MEASUREMENT_COLUMNS: &str = "knob,setting,features,spp,seconds,seconds_min,seconds_max,rmse,relative_rmse,\
-relative_mean_error,psnr_db,mse_std_error,build_seconds";
+relative_mean_error,psnr_db,mse_std_error,build_seconds,dropped_samples";
 
 fn measurements_csv(sweep: &Sweep) -> String {
     let mut csv = format!("{MEASUREMENT_COLUMNS}\n");
@@ -210,7 +210,7 @@ fn measurements_csv(sweep: &Sweep) -> String {
             let e = &m.error;
             let _ = writeln!(
                 csv,
-                "{knob},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:.4},{:e},{}",
+                "{knob},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:.4},{:e},{},{}",
                 csv_field(&s.label),
                 csv_field(&s.features.to_string()),
                 m.spp,
@@ -222,7 +222,8 @@ fn measurements_csv(sweep: &Sweep) -> String {
                 e.relative_mean_error,
                 e.psnr_db(),
                 m.mse_std_error,
-                opt(s.build_seconds)
+                opt(s.build_seconds),
+                m.dropped
             );
         }
     }

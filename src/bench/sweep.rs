@@ -41,6 +41,8 @@ pub struct Measurement {
     pub mse_std_error: f64,
     /// Standard error of `error.relative_mean_error`.
     pub mean_error_std_error: f64,
+    /// Non-finite samples dropped, over all repeats (a bug to report if ever above 0).
+    pub dropped: u64,
 }
 
 #[derive(Clone, Debug)]
@@ -176,11 +178,13 @@ fn measure(
     for &spp in levels {
         let mut times = Vec::new();
         let mut errors = Vec::new();
+        let mut dropped = 0;
         for repeat in 0..repeats.max(1) {
             let request = crate::render::RenderRequest { spp, seed: repeat + 1, ..trial.request.clone() };
-            let (image, took) = render_timed(renderer, &request, timer)?;
-            errors.push(ErrorMetrics::of(&image, reference, exposure));
-            times.push(took);
+            let render = render_timed(renderer, &request, timer)?;
+            errors.push(ErrorMetrics::of(&render.image, reference, exposure));
+            times.push(render.time);
+            dropped += render.dropped;
             bar.inc(spp as u64);
         }
         let error = ErrorMetrics::mean(&errors);
@@ -199,6 +203,7 @@ fn measure(
             seconds_max: slowest.unwrap_or_default().as_secs_f64(),
             error,
             mse_std_error: (spread / n).sqrt().max(floor),
+            dropped,
             mean_error_std_error: (mean_spread / (n - 1.0).max(1.0) / n).sqrt().max(mean_floor),
         });
     }

@@ -8,9 +8,15 @@ use crate::render::{Accumulation, Image, RenderRequest, Renderer};
 use anyhow::Result;
 use std::time::Duration;
 
-/// Renders `request` and returns the image with the summed time of its dispatches.
-/// Dispatch sizes follow `request.samples_per_dispatch`, or adapt as in `rt render`.
-pub fn render_timed(renderer: &mut Renderer, request: &RenderRequest, timer: &GpuTimer) -> Result<(Image, Duration)> {
+/// A render, the summed time of its dispatches, and how many samples it dropped as non-finite.
+pub struct TimedRender {
+    pub image: Image,
+    pub time: Duration,
+    pub dropped: u64,
+}
+
+/// Renders `request`. Dispatch sizes follow `request.samples_per_dispatch`, or adapt as in `rt render`.
+pub fn render_timed(renderer: &mut Renderer, request: &RenderRequest, timer: &GpuTimer) -> Result<TimedRender> {
     let ctx = renderer.ctx;
     let features = request.features.unwrap_or(renderer.geometry.features);
     let pipelines = renderer.pipelines.get(ctx, Program::Integrator, features)?;
@@ -25,7 +31,8 @@ pub fn render_timed(renderer: &mut Renderer, request: &RenderRequest, timer: &Gp
             acc.dispatch_timed(ctx, &pipelines, &renderer.buffers, &frame, request.spp - acc.samples, Some(timer))?;
         total += took;
     }
-    Ok((acc.image(ctx)?, total))
+    let dropped = acc.non_finite(ctx)?.iter().map(|(n, _)| *n as u64).sum();
+    Ok(TimedRender { image: acc.image(ctx)?, time: total, dropped })
 }
 
 /// Compiles the request's pipeline and runs one sample, so that the first timed

@@ -97,11 +97,16 @@ fn markdown(sweep: &Sweep, views: &[KnobView], baseline: &SettingView, targets: 
     let _ = writeln!(
         md,
         "- equal error: time to a relative RMSE of {} (RMSE over the reference's mean radiance); \
-         equal time: error reached in {:.1} ms (the scene defaults at {} spp)",
+         equal time: error reached in {:.1} ms (unless `--budget-ms`, the scene defaults' time at {} spp)",
         percent(targets.error),
         targets.budget_seconds * 1e3,
         o.levels.iter().max().unwrap_or(&0)
     );
+    let dropped: u64 = sweep.knobs.iter().flat_map(|k| &k.settings).flat_map(|s| &s.levels).map(|m| m.dropped).sum();
+    if dropped > 0 {
+        let _ =
+            writeln!(md, "- **{dropped} non-finite samples were dropped** (see `dropped_samples` in measurements.csv)");
+    }
     let _ = writeln!(
         md,
         "- models: MSE = bias² + variance/spp, time = overhead + spp × time per spp, fitted per setting; \

@@ -29,14 +29,23 @@ fn sphere_cone_one_minus_cos(p: vec3f, s: Sphere) -> f32 {
     return sin2 / (1.0 + sqrt(1.0 - sin2));
 }
 
+// Light sampling never picks a surface that does not emit, nor any in a scene without
+// emitters (whose total power is 0: the densities below would be 0/0 there).
+fn never_sampled(emission_luminance: f32) -> bool {
+    return emission_luminance <= 0.0 || frame.emitter_total_power <= 0.0;
+}
+
 // Density of reaching an emissive triangle at distance t along `direction` by light sampling.
 fn triangle_emitter_pdf(emission_luminance: f32, t: f32, cos_light: f32) -> f32 {
+    if never_sampled(emission_luminance) {
+        return 0.0;
+    }
     return emitter_share() * emission_luminance / frame.emitter_total_power * t * t / max(cos_light, 1e-12);
 }
 
 fn sphere_emitter_pdf(p: vec3f, s: Sphere, emission_luminance: f32) -> f32 {
     let omc = sphere_cone_one_minus_cos(p, s);
-    if omc <= 0.0 {
+    if omc <= 0.0 || never_sampled(emission_luminance) {
         return 0.0;
     }
     let power = 4.0 * PI * s.radius * s.radius * emission_luminance;

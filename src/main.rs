@@ -88,6 +88,9 @@ struct RenderArgs {
     /// Fail (exit status 1) if any sample was non-finite or any ray overflowed the traversal stack.
     #[arg(long)]
     strict: bool,
+    /// Samples per pixel in each GPU dispatch [default: as many as keep a dispatch near 80 ms].
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=rt::render::MAX_SAMPLES_PER_DISPATCH as i64))]
+    samples_per_dispatch: Option<u32>,
 }
 
 #[derive(Args)]
@@ -165,6 +168,101 @@ enum BenchCommand {
         #[arg(long, default_value_t = 3)]
         runs: u32,
     },
+    /// Error against a converged reference beside the time it cost, for every knob
+    /// that trades accuracy for time; writes report.md, CSV files and plots.
+    Accuracy(AccuracyArgs),
+    /// Time per sample of the pipeline specialised to the scene, of the all-features
+    /// pipeline, and with each absent effect forced on.
+    Effects {
+        /// Scene file; the built-in Cornell box when omitted.
+        scene: Option<PathBuf>,
+        /// Image size [default: 160x120 on a CPU adapter, 320x240 on a GPU].
+        #[arg(long, value_parser = parse_size)]
+        size: Option<(u32, u32)>,
+        /// Samples per pixel of each timed render.
+        #[arg(long, default_value_t = 16)]
+        spp: u32,
+        /// Timed renders per pipeline (the median is reported).
+        #[arg(long, default_value_t = 5)]
+        repeats: u32,
+    },
+    /// Fireflies per sampling strategy: the share of energy in the brightest 0.01 % of
+    /// samples and the noise of pixel means across seeds, also with a (biased) clamp.
+    Fireflies(FireflyArgs),
+    /// The headline tables for the bundled scenes: fastest setting to 1 % RMSE, speed-up
+    /// of the specialised pipeline, fireflies. Run from the repository root.
+    Headline {
+        /// Folder of the reports (one per scene) and of headline.md.
+        #[arg(long, default_value = "out/bench")]
+        out: PathBuf,
+        /// Image size [default: 160x120 on a CPU adapter, 320x240 on a GPU].
+        #[arg(long, value_parser = parse_size)]
+        size: Option<(u32, u32)>,
+        /// Samples-per-pixel levels of the accuracy sweeps [default: by adapter].
+        #[arg(long, value_delimiter = ',')]
+        spp: Option<Vec<u32>>,
+        /// Samples per pixel of the references [default: by adapter].
+        #[arg(long)]
+        reference_spp: Option<u32>,
+        /// Rewrite README.md's headline section with the tables.
+        #[arg(long)]
+        readme: bool,
+    },
+}
+
+#[derive(Args)]
+struct AccuracyArgs {
+    /// Scene file; the built-in Cornell box when omitted.
+    scene: Option<PathBuf>,
+    /// Knob to sweep (repeatable) [default: all]: spp, max-bounces, sampling,
+    /// ris-candidates, rough-glass, bvh-quality, samples-per-dispatch.
+    #[arg(long = "knob")]
+    knobs: Vec<String>,
+    /// Folder of the report [default: out/bench/SCENE].
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Folder of cached references [default: OUT/reference].
+    #[arg(long)]
+    cache: Option<PathBuf>,
+    /// Image size [default: 160x120 on a CPU adapter, 320x240 on a GPU].
+    #[arg(long, value_parser = parse_size)]
+    size: Option<(u32, u32)>,
+    /// Samples-per-pixel levels, at least three [default: 1,4,16 on a CPU adapter, 16,64,256,1024 on a GPU].
+    #[arg(long, value_delimiter = ',')]
+    spp: Option<Vec<u32>>,
+    /// Timed renders per level, each with its own seed [default: 2 on a CPU adapter, 3 on a GPU].
+    #[arg(long)]
+    repeats: Option<u32>,
+    /// Samples per pixel of the reference [default: 256 on a CPU adapter, 16384 on a GPU].
+    #[arg(long)]
+    reference_spp: Option<u32>,
+    /// Error to reach, as a relative RMSE in percent of the reference's mean radiance.
+    #[arg(long, default_value_t = 1.0)]
+    target_percent: f64,
+    /// Time budget of the equal-time view [default: the scene defaults at the highest level].
+    #[arg(long)]
+    budget_ms: Option<f64>,
+}
+
+#[derive(Args)]
+struct FireflyArgs {
+    /// Scene file; the built-in Cornell box when omitted (try scenes/specular_pillars.toml).
+    scene: Option<PathBuf>,
+    /// Image size [default: 160x120 on a CPU adapter, 320x240 on a GPU].
+    #[arg(long, value_parser = parse_size)]
+    size: Option<(u32, u32)>,
+    /// Samples per pixel of each seed's image.
+    #[arg(long, default_value_t = 16)]
+    samples: u32,
+    /// Independent images per strategy.
+    #[arg(long, default_value_t = 8)]
+    seeds: u32,
+    /// Clamp luminance of the clamped rows [default: ten times the NEE image's mean].
+    #[arg(long)]
+    clamp: Option<f32>,
+    /// Also write the table to this Markdown file.
+    #[arg(long)]
+    out: Option<PathBuf>,
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -214,6 +312,7 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
         }
         request.clamp = Some(c);
     }
+    request.samples_per_dispatch = args.samples_per_dispatch;
     request.progress = true;
     let exposure = args.exposure.unwrap_or(scene.render.exposure);
     let ctx = GpuContext::new(adapter)?;
@@ -271,6 +370,25 @@ fn watch(args: WatchArgs, adapter: Option<&str>) -> Result<()> {
     }
 }
 
+fn bench_accuracy(args: AccuracyArgs, adapter: Option<&str>) -> Result<()> {
+    let scene = load_scene(args.scene.as_deref())?;
+    let stem = args.scene.as_deref().and_then(Path::file_stem).map_or("cornell_box".into(), |s| s.to_string_lossy());
+    let options = rt::bench::AccuracyOptions {
+        knobs: args.knobs,
+        out: args.out.unwrap_or_else(|| Path::new("out/bench").join(&*stem)),
+        cache: args.cache,
+        size: args.size,
+        levels: args.spp,
+        repeats: args.repeats,
+        reference_spp: args.reference_spp,
+        reference_bounces: None,
+        target: Some(args.target_percent / 100.0),
+        budget_seconds: args.budget_ms.map(|ms| ms / 1e3),
+        progress: true,
+    };
+    rt::bench::commands::accuracy(&scene, &options, adapter)
+}
+
 fn pack(paths: &[PathBuf], quality: BuildQuality, force: bool) -> Result<()> {
     let assets = rt::bvh::pack::find_assets(paths)?;
     if assets.is_empty() {
@@ -320,6 +438,19 @@ fn main() -> ExitCode {
         }
         Command::Bench(BenchCommand::WatchLatency { asset, size, runs }) => {
             rt::bench::watch_latency(&asset, size, runs, adapter)
+        }
+        Command::Bench(BenchCommand::Accuracy(args)) => bench_accuracy(args, adapter),
+        Command::Bench(BenchCommand::Effects { scene, size, spp, repeats }) => {
+            load_scene(scene.as_deref()).and_then(|s| rt::bench::commands::effects(s, size, spp, repeats, adapter))
+        }
+        Command::Bench(BenchCommand::Fireflies(a)) => load_scene(a.scene.as_deref()).and_then(|s| {
+            let options =
+                rt::bench::FireflyOptions { size: (0, 0), samples: a.samples, seeds: a.seeds, clamp: a.clamp };
+            rt::bench::commands::fireflies(&s, options, a.size, a.out.as_deref(), adapter)
+        }),
+        Command::Bench(BenchCommand::Headline { out, size, spp, reference_spp, readme }) => {
+            let accuracy = rt::bench::AccuracyOptions { out, size, levels: spp, reference_spp, ..Default::default() };
+            rt::bench::commands::headline(accuracy, readme.then(|| PathBuf::from("README.md")), adapter)
         }
     };
     match result {

@@ -1,9 +1,28 @@
-//! Benchmarks: speed measured on the real pipeline, never in tests.
+//! Benchmarks: speed measured on the real pipeline, and accuracy against time
+//! (the price tag of every knob that trades one for the other).
 
+pub mod accuracy;
+pub mod commands;
+pub mod effects;
+pub mod fireflies;
+pub mod headline;
+pub mod knobs;
+pub mod metrics;
+pub mod model;
+mod plot;
+pub mod reference;
+pub mod report;
 mod sky;
+pub mod sweep;
 mod throughput;
+pub mod timing;
+pub mod views;
 mod watch_latency;
 
+pub use accuracy::{AccuracyOptions, accuracy};
+pub use effects::effects;
+pub use fireflies::{FireflyOptions, fireflies};
+pub use headline::{HeadlineOptions, headline};
 pub use sky::sky;
 pub use throughput::throughput;
 pub use watch_latency::watch_latency;

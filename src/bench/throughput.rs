@@ -1,6 +1,7 @@
 //! `rt bench throughput`: rays/s through the BVH alone (camera rays, then
 //! diffuse bounces from their hits) and paths/s of the whole integrator.
 
+use super::timing::{median, ms};
 use crate::bvh::BuildQuality;
 use crate::gpu::layout::{EMPTY_LINK, GpuTraceHit, GpuTraceRay};
 use crate::gpu::{GpuContext, GpuTimer, read_buffer};
@@ -8,12 +9,6 @@ use crate::render::{Accumulation, RenderRequest, Renderer, TraceBuffers, human};
 use crate::scene::Scene;
 use anyhow::Result;
 use indicatif::ProgressBar;
-use std::time::Duration;
-
-fn median(mut v: Vec<Duration>) -> Duration {
-    v.sort();
-    v[v.len() / 2]
-}
 
 pub fn throughput(scene: Scene, (width, height): (u32, u32), runs: u32, spp: u32, adapter: Option<&str>) -> Result<()> {
     let runs = runs.max(1);
@@ -81,8 +76,4 @@ pub fn throughput(scene: Scene, (width, height): (u32, u32), runs: u32, spp: u32
         request.max_bounces
     );
     Ok(())
-}
-
-fn ms(d: Duration) -> f64 {
-    d.as_secs_f64() * 1e3
 }

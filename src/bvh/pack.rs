@@ -165,6 +165,16 @@ pub fn load_or_pack_all(paths: &[PathBuf], quality: BuildQuality) -> Result<Vec<
     meshes.into_iter().collect()
 }
 
+/// Each asset imported and its BVH built at `quality`, in parallel, in memory only.
+pub fn build_all_in_memory(paths: &[PathBuf], quality: BuildQuality) -> Result<Vec<LoadedMesh>, AssetError> {
+    let meshes = parallel_map(paths, &ProgressBar::hidden(), |path| {
+        let start = Instant::now();
+        let packed = import_and_build(&AssetFiles::resolve(path)?, quality)?;
+        Ok(LoadedMesh::new(path, packed, Provenance::InMemory { build_time: start.elapsed() }))
+    });
+    meshes.into_iter().collect()
+}
+
 /// The assets under `roots`: each root that is a file, and in each folder (recursively,
 /// hidden ones skipped) every `.rtmesh` (named by its folder `NAME/` when that holds
 /// `NAME.rtmesh`), `.obj`, `.glb`, and `.gltf` that is not an `.rtmesh`'s materials.

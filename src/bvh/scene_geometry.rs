@@ -3,7 +3,7 @@
 
 use super::mesh_bvh::BuildQuality;
 use super::node::{BvhStats, convert_bvh2, stats};
-use super::pack::{LoadedMesh, load_or_pack_all};
+use super::pack::{LoadedMesh, build_all_in_memory, load_or_pack_all};
 use crate::gpu::layout::*;
 use crate::scene::{FeatureSet, Material, Scene};
 use anyhow::{Result, bail};
@@ -39,7 +39,16 @@ impl SceneGeometry {
     /// Loads every asset's BVH once (from its cache, or packing it when the cache is
     /// missing or stale), and places instances and spheres.
     pub fn build(scene: &Scene, quality: BuildQuality) -> Result<Self> {
-        let meshes = load_or_pack_all(&asset_paths(scene), quality)?;
+        Self::load_and_assemble(scene, load_or_pack_all(&asset_paths(scene), quality)?)
+    }
+
+    /// Every mesh's BVH built afresh at `quality` in memory, caches neither read nor
+    /// written: to time builds without disturbing caches of another quality.
+    pub fn build_in_memory(scene: &Scene, quality: BuildQuality) -> Result<Self> {
+        Self::load_and_assemble(scene, build_all_in_memory(&asset_paths(scene), quality)?)
+    }
+
+    fn load_and_assemble(scene: &Scene, meshes: Vec<LoadedMesh>) -> Result<Self> {
         for mesh in &meshes {
             log::info!("{}: {} triangles, {:?}", mesh.path.display(), mesh.triangle_count, mesh.provenance);
         }

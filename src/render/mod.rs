@@ -10,7 +10,7 @@ mod trace;
 
 pub use camera::set_camera;
 pub use image_out::{ImageFormat, image_format, write_image};
-pub use progressive::Accumulation;
+pub use progressive::{Accumulation, MAX_SAMPLES_PER_DISPATCH};
 pub use sentinel::{NonFiniteCause, Sentinel};
 pub use sun::{default_sun_radiance, sun_direction, sun_one_minus_cos};
 pub use trace::TraceBuffers;
@@ -37,7 +37,7 @@ pub struct Image {
 }
 
 /// What `rt render` was asked for; the scene's `[render]` gives the defaults.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct RenderRequest {
     pub width: u32,
     pub height: u32,
@@ -50,6 +50,8 @@ pub struct RenderRequest {
     pub clamp: Option<f32>,
     /// Run this feature set's pipeline instead of the scene's own (it must include it).
     pub features: Option<FeatureSet>,
+    /// Samples per pixel in each GPU dispatch; `None`: as many as keep a dispatch near 80 ms.
+    pub samples_per_dispatch: Option<u32>,
     pub progress: bool,
 }
 
@@ -65,6 +67,7 @@ impl RenderRequest {
             ris_candidates: r.ris_candidates,
             clamp: None,
             features: None,
+            samples_per_dispatch: None,
             progress: false,
         }
     }
@@ -94,6 +97,11 @@ pub struct Renderer<'a> {
 impl<'a> Renderer<'a> {
     pub fn new(ctx: &'a GpuContext, scene: Scene, quality: BuildQuality) -> Result<Self> {
         let geometry = SceneGeometry::build(&scene, quality)?;
+        Self::with_geometry(ctx, scene, geometry)
+    }
+
+    /// A renderer for `scene` placed as `geometry` (which must have been built from it).
+    pub fn with_geometry(ctx: &'a GpuContext, scene: Scene, geometry: SceneGeometry) -> Result<Self> {
         let pipelines = PipelineCache::new(ctx);
         let mut buffers = SceneBuffers::new(ctx, &geometry, &pipelines.scene_layout)?;
         let sky = match &scene.sky {
@@ -168,6 +176,9 @@ impl<'a> Renderer<'a> {
         let pipelines = self.pipelines.get(self.ctx, Program::Integrator, features)?;
         let frame = self.frame(request);
         let mut acc = Accumulation::new(self.ctx, &self.pipelines.accumulation_layout, request.width, request.height);
+        if let Some(n) = request.samples_per_dispatch {
+            acc.fix_samples_per_dispatch(n);
+        }
         self.buffers.take_stats(self.ctx)?;
         let bar = if request.progress { ProgressBar::new(request.spp as u64) } else { ProgressBar::hidden() };
         bar.set_style(

@@ -4,14 +4,14 @@
 use super::Image;
 use super::sentinel::NonFiniteCause;
 use crate::gpu::layout::GpuFrame;
-use crate::gpu::{GpuContext, Pipelines, SceneBuffers, read_buffer};
+use crate::gpu::{GpuContext, GpuTimer, Pipelines, SceneBuffers, read_buffer};
 use anyhow::Result;
 use std::time::{Duration, Instant};
 
 /// Time one dispatch should take: long enough to keep the GPU busy, far
 /// below the ~2 s after which drivers reset a GPU that does not answer.
 const DISPATCH_TARGET: Duration = Duration::from_millis(80);
-const MAX_SAMPLES_PER_DISPATCH: u32 = 256;
+pub const MAX_SAMPLES_PER_DISPATCH: u32 = 256;
 
 pub struct Accumulation {
     pub width: u32,
@@ -21,6 +21,8 @@ pub struct Accumulation {
     non_finite: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     samples_per_dispatch: u32,
+    /// Whether dispatch sizes follow dispatch times (else they stay as fixed).
+    adaptive: bool,
 }
 
 impl Accumulation {
@@ -45,7 +47,14 @@ impl Accumulation {
                 wgpu::BindGroupEntry { binding: 1, resource: non_finite.as_entire_binding() },
             ],
         });
-        Self { width, height, samples: 0, means, non_finite, bind_group, samples_per_dispatch: 1 }
+        Self { width, height, samples: 0, means, non_finite, bind_group, samples_per_dispatch: 1, adaptive: true }
+    }
+
+    /// Every dispatch takes `n` samples per pixel (the last one fewer if the total
+    /// asks for it), instead of as many as keep it near the target time.
+    pub fn fix_samples_per_dispatch(&mut self, n: u32) {
+        self.samples_per_dispatch = n.clamp(1, MAX_SAMPLES_PER_DISPATCH);
+        self.adaptive = false;
     }
 
     /// The running means per pixel (RGB, then the luminance's sum of squared deviations),
@@ -71,17 +80,39 @@ impl Accumulation {
         frame: &GpuFrame,
         max_samples: u32,
     ) -> Result<u32> {
+        self.dispatch_timed(ctx, pipelines, scene, frame, max_samples, None).map(|(n, _)| n)
+    }
+
+    /// [`Self::dispatch`], also returning how long it took: the GPU's own time with a
+    /// timer that has timestamp queries, else the wall-clock time until it finished.
+    pub fn dispatch_timed(
+        &mut self,
+        ctx: &GpuContext,
+        pipelines: &Pipelines,
+        scene: &SceneBuffers,
+        frame: &GpuFrame,
+        max_samples: u32,
+        timer: Option<&GpuTimer>,
+    ) -> Result<(u32, Duration)> {
         let n = self.samples_per_dispatch.min(max_samples).max(1);
         let start = Instant::now();
-        let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        self.encode(ctx, &mut encoder, pipelines, scene, frame, n, None);
-        ctx.queue.submit([encoder.finish()]);
-        ctx.wait()?;
-        let took = start.elapsed().max(Duration::from_micros(100));
-        // Grow or shrink towards the target, by at most 2× a step so a slow frame cannot overshoot.
-        let ratio = (DISPATCH_TARGET.as_secs_f64() / took.as_secs_f64()).clamp(0.5, 2.0);
-        self.samples_per_dispatch = ((n as f64 * ratio) as u32).clamp(1, MAX_SAMPLES_PER_DISPATCH);
-        Ok(n)
+        let took = match timer {
+            Some(timer) => timer.time(ctx, |e, w| self.encode(ctx, e, pipelines, scene, frame, n, w))?,
+            None => {
+                let mut encoder = ctx.device.create_command_encoder(&Default::default());
+                self.encode(ctx, &mut encoder, pipelines, scene, frame, n, None);
+                ctx.queue.submit([encoder.finish()]);
+                ctx.wait()?;
+                start.elapsed()
+            }
+        };
+        if self.adaptive {
+            let wall = start.elapsed().max(Duration::from_micros(100));
+            // Grow or shrink towards the target, by at most 2× a step so a slow frame cannot overshoot.
+            let ratio = (DISPATCH_TARGET.as_secs_f64() / wall.as_secs_f64()).clamp(0.5, 2.0);
+            self.samples_per_dispatch = ((n as f64 * ratio) as u32).clamp(1, MAX_SAMPLES_PER_DISPATCH);
+        }
+        Ok((n, took))
     }
 
     /// Records one dispatch of `n` samples per pixel (and counts them as taken).

@@ -1,0 +1,159 @@
+//! `rt bench effects`: the time per sample of the pipeline specialised to a scene's
+//! feature set, of the all-features pipeline (the scene's sky and sampling kept), and
+//! of the specialised one with each absent effect forced on: the measured price of
+//! code that a scene does not need.
+
+use super::timing::{median, ms, render_timed, warm_up};
+use crate::bvh::BuildQuality;
+use crate::gpu::{GpuContext, GpuTimer};
+use crate::render::{RenderRequest, Renderer};
+use crate::scene::{FeatureSet, RoughTransmission, Scene, Transmission};
+use anyhow::Result;
+use indicatif::ProgressBar;
+use std::fmt::Write as _;
+use std::time::Duration;
+
+pub struct EffectTiming {
+    pub label: String,
+    pub features: FeatureSet,
+    /// Median over repeats of the GPU time of one sample per pixel.
+    pub ms_per_spp: f64,
+    /// Mean luminance of the image: the same scene must give the same picture.
+    pub mean_luminance: f64,
+    /// Non-finite samples dropped over all repeats (a bug in that pipeline if above 0).
+    pub dropped: u64,
+}
+
+pub struct EffectsReport {
+    pub scene: String,
+    pub adapter: String,
+    pub timing: &'static str,
+    pub size: (u32, u32),
+    pub spp: u32,
+    pub repeats: u32,
+    /// Specialised first, all features second, then each forced effect.
+    pub rows: Vec<EffectTiming>,
+}
+
+impl EffectsReport {
+    /// How many times faster the specialised pipeline is than the all-features one.
+    pub fn speedup(&self) -> f64 {
+        self.rows[1].ms_per_spp / self.rows[0].ms_per_spp
+    }
+
+    pub fn markdown(&self) -> String {
+        let mut md = format!(
+            "# Cost of effects: {}\n\n- adapter: {}\n- timing: {}, median of {} repeats of {} spp at {}x{}\n\n\
+             | pipeline | features | ms/spp | vs specialised | mean luminance | dropped samples |\n\
+             |---|---|---|---|---|---|\n",
+            self.scene, self.adapter, self.timing, self.repeats, self.spp, self.size.0, self.size.1
+        );
+        let base = self.rows[0].ms_per_spp;
+        for r in &self.rows {
+            let _ = writeln!(
+                md,
+                "| {} | {} | {:.3} | {:+.1} % | {:.4} | {} |",
+                r.label,
+                r.features,
+                r.ms_per_spp,
+                (r.ms_per_spp / base - 1.0) * 100.0,
+                r.mean_luminance,
+                r.dropped
+            );
+        }
+        let _ = writeln!(
+            md,
+            "\nSpecialised over all-features: **{:.2}×** faster. Every pipeline renders the same \
+             picture: their mean luminances should differ by noise only.",
+            self.speedup()
+        );
+        md
+    }
+}
+
+/// The pipelines to time: the scene's, all features, and the scene's plus each absent effect.
+pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, FeatureSet)> {
+    let mut v = vec![
+        ("specialised".to_string(), own),
+        ("all features".to_string(), FeatureSet::all(own.sky, own.sampling, rough)),
+    ];
+    let mut force = |name: &str, on: bool, f: FeatureSet| {
+        if !on {
+            v.push((format!("+{name}"), f));
+        }
+    };
+    force("triangles", own.triangles, FeatureSet { triangles: true, ..own });
+    force("spheres", own.spheres, FeatureSet { spheres: true, ..own });
+    force("emission", own.emission, FeatureSet { emission: true, ..own });
+    force("sun", own.sun, FeatureSet { sun: true, ..own });
+    force("glossy", own.glossy, FeatureSet { glossy: true, ..own });
+    force("glass", own.transmission != Transmission::None, FeatureSet { transmission: Transmission::Smooth, ..own });
+    let rough_on = matches!(own.transmission, Transmission::Rough(_));
+    force("rough glass", rough_on, FeatureSet { transmission: Transmission::Rough(rough), ..own });
+    // Media live inside glass: forcing them on forces (at least smooth) glass too.
+    let glass = if own.transmission == Transmission::None { Transmission::Smooth } else { own.transmission };
+    force("media", own.media, FeatureSet { media: true, transmission: glass, ..own });
+    v
+}
+
+pub fn effects(
+    ctx: &GpuContext,
+    scene: Scene,
+    (width, height): (u32, u32),
+    spp: u32,
+    repeats: u32,
+    bar: &ProgressBar,
+) -> Result<EffectsReport> {
+    let timer = GpuTimer::new(ctx);
+    let rough = scene.render.rough_transmission;
+    let origin = scene.origin.clone();
+    let mut renderer = Renderer::new(ctx, scene, BuildQuality::default())?;
+    let mut request = RenderRequest::from_scene(&renderer.scene);
+    (request.width, request.height, request.spp) = (width, height, spp.max(1));
+    // Fixed dispatches: every pipeline does the same work in the same steps.
+    request.samples_per_dispatch = Some(request.spp.min(16));
+    let variants = variants(renderer.geometry.features, rough);
+    bar.set_length((variants.len() as u64) * (repeats.max(1) as u64 + 1));
+    for (_, features) in &variants {
+        warm_up(&mut renderer, &RenderRequest { features: Some(*features), ..request.clone() }, &timer)?;
+        bar.inc(1);
+    }
+    // Interleaved, so that a machine growing busier or cooler does not favour one pipeline.
+    let mut times: Vec<Vec<Duration>> = vec![Vec::new(); variants.len()];
+    let mut luminance = vec![0.0; variants.len()];
+    let mut dropped = vec![0u64; variants.len()];
+    for repeat in 0..repeats.max(1) {
+        for (i, (_, features)) in variants.iter().enumerate() {
+            let r = RenderRequest { features: Some(*features), seed: repeat + 1, ..request.clone() };
+            let render = render_timed(&mut renderer, &r, &timer)?;
+            times[i].push(render.time);
+            dropped[i] += render.dropped;
+            let pixels = &render.image.pixels;
+            let sum: f64 = pixels.iter().map(|p| crate::scene::luminance(*p) as f64).sum();
+            luminance[i] += sum / pixels.len().max(1) as f64 / repeats.max(1) as f64;
+            bar.inc(1);
+        }
+    }
+    let rows = variants
+        .into_iter()
+        .zip(times)
+        .zip(luminance)
+        .zip(dropped)
+        .map(|((((label, features), t), mean_luminance), dropped)| EffectTiming {
+            label,
+            features,
+            ms_per_spp: ms(median(t)) / request.spp as f64,
+            mean_luminance,
+            dropped,
+        })
+        .collect();
+    Ok(EffectsReport {
+        scene: origin,
+        adapter: ctx.describe(),
+        timing: timer.method(),
+        size: (width, height),
+        spp: request.spp,
+        repeats: repeats.max(1),
+        rows,
+    })
+}

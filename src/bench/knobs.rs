@@ -1,0 +1,234 @@
+//! The knobs that trade accuracy for time. A knob is a name, its settings, and for
+//! each setting a function that applies it to a [`Trial`]: what to render and how.
+//! A knob that changes the scene (its render settings, or the atmosphere's steps
+//! and table sizes) is measured on a renderer built for the
+//! changed scene, so new knobs slot in without changes to the sweep.
+
+use crate::bvh::BuildQuality;
+use crate::render::RenderRequest;
+use crate::scene::{Atmosphere, FeatureSet, RoughTransmission, Sampling, Scene, Sky, SkyFeature, Transmission};
+use clap::ValueEnum;
+
+/// One configuration to measure: the scene as the renderer is built for it, the
+/// request, and how its BVHs are built.
+#[derive(Clone, Debug)]
+pub struct Trial {
+    pub scene: Scene,
+    pub request: RenderRequest,
+    pub quality: BuildQuality,
+    /// Build every BVH afresh in memory (and time it) rather than load caches.
+    pub fresh_bvh: bool,
+}
+
+impl Trial {
+    /// The scene as it is, at `width`×`height`.
+    pub fn baseline(scene: &Scene, (width, height): (u32, u32)) -> Self {
+        let mut request = RenderRequest::from_scene(scene);
+        (request.width, request.height) = (width, height);
+        Self { scene: scene.clone(), request, quality: BuildQuality::default(), fresh_bvh: false }
+    }
+
+    /// Whether `other` renders the same thing the same way (so its measurements can be reused).
+    pub fn same_as(&self, other: &Trial) -> bool {
+        self.scene == other.scene
+            && self.quality == other.quality
+            && self.fresh_bvh == other.fresh_bvh
+            && self.request == other.request
+    }
+}
+
+pub struct Setting {
+    pub label: String,
+    apply: Box<dyn Fn(&mut Trial)>,
+}
+
+impl Setting {
+    fn new(label: impl Into<String>, apply: impl Fn(&mut Trial) + 'static) -> Self {
+        Self { label: label.into(), apply: Box::new(apply) }
+    }
+
+    /// The trial with this setting applied to it.
+    pub fn trial(&self, baseline: &Trial) -> Trial {
+        let mut trial = baseline.clone();
+        (self.apply)(&mut trial);
+        trial
+    }
+}
+
+pub struct Knob {
+    /// As `--knob` names it.
+    pub name: &'static str,
+    pub about: &'static str,
+    pub settings: Vec<Setting>,
+    /// Samples per pixel to measure each setting at, instead of the sweep's levels.
+    pub spp_levels: Option<Vec<u32>>,
+    /// Why the knob changes nothing in a scene with these features, if it does not.
+    pub inapplicable: fn(&FeatureSet) -> Option<&'static str>,
+}
+
+fn always(_: &FeatureSet) -> Option<&'static str> {
+    None
+}
+
+fn without_rough_glass(f: &FeatureSet) -> Option<&'static str> {
+    match f.transmission {
+        Transmission::Rough(_) => None,
+        _ => Some("the scene has no rough glass"),
+    }
+}
+
+fn without_atmosphere(f: &FeatureSet) -> Option<&'static str> {
+    match f.sky {
+        SkyFeature::Atmosphere => None,
+        _ => Some("the sky is not an atmosphere"),
+    }
+}
+
+/// Changes the scene's atmosphere, if its sky is one.
+fn with_atmosphere(trial: &mut Trial, change: impl Fn(&mut Atmosphere)) {
+    if let Sky::Atmosphere(a) = &mut trial.scene.sky {
+        change(a);
+    }
+}
+
+/// Every knob, in report order; `levels` are the sweep's samples-per-pixel levels.
+pub fn all_knobs(levels: &[u32]) -> Vec<Knob> {
+    let (lo, hi) = (levels.iter().copied().min().unwrap_or(1), levels.iter().copied().max().unwrap_or(1));
+    let ladder: Vec<u32> = (0..32).map(|i| 1u32 << i).filter(|s| (lo..=hi).contains(s)).collect();
+    vec![
+        Knob {
+            name: "spp",
+            about: "samples per pixel, at the scene's own settings: the convergence of the baseline",
+            settings: vec![Setting::new("scene defaults", |_| {})],
+            spp_levels: Some(if ladder.len() >= 3 { ladder } else { levels.to_vec() }),
+            inapplicable: always,
+        },
+        Knob {
+            name: "max-bounces",
+            about: "path length cap (biased: light that needs more bounces is missing)",
+            settings: [1u32, 2, 3, 4, 6, 8, 12, 16]
+                .into_iter()
+                .map(|b| Setting::new(format!("{b}"), move |t| t.request.max_bounces = b))
+                .collect(),
+            spp_levels: None,
+            inapplicable: always,
+        },
+        Knob {
+            name: "sampling",
+            about: "how paths find light: the seed's resampled BSDF directions, or next-event estimation with MIS",
+            settings: [Sampling::Seed, Sampling::Nee]
+                .into_iter()
+                .map(|s| Setting::new(format!("{s:?}").to_lowercase(), move |t| t.scene.render.sampling = s))
+                .collect(),
+            spp_levels: None,
+            inapplicable: always,
+        },
+        Knob {
+            name: "ris-candidates",
+            about: "candidates M per resampled direction, with seed sampling",
+            settings: [1u32, 2, 4, 8, 16, 32]
+                .into_iter()
+                .map(|m| {
+                    Setting::new(format!("M={m}"), move |t| {
+                        t.scene.render.sampling = Sampling::Seed;
+                        t.request.ris_candidates = m;
+                    })
+                })
+                .collect(),
+            spp_levels: None,
+            inapplicable: always,
+        },
+        Knob {
+            name: "rough-glass",
+            about: "model of rough refraction: GGX microfacets, or the seed's cone (cheaper, biased)",
+            settings: [RoughTransmission::Ggx, RoughTransmission::Cone]
+                .into_iter()
+                .map(|r| Setting::new(format!("{r:?}").to_lowercase(), move |t| t.scene.render.rough_transmission = r))
+                .collect(),
+            spp_levels: None,
+            inapplicable: without_rough_glass,
+        },
+        Knob {
+            name: "bvh-quality",
+            about: "BVH build quality: build time against trace time (the image does not change)",
+            settings: [BuildQuality::Fastest, BuildQuality::Medium, BuildQuality::Slow, BuildQuality::VerySlow]
+                .into_iter()
+                .map(|q| {
+                    let name = q.to_possible_value().map_or(format!("{q:?}"), |v| v.get_name().to_string());
+                    Setting::new(name, move |t| {
+                        t.quality = q;
+                        t.fresh_bvh = true;
+                    })
+                })
+                .collect(),
+            spp_levels: None,
+            inapplicable: always,
+        },
+        Knob {
+            name: "samples-per-dispatch",
+            about: "samples per pixel in one GPU dispatch (auto: sized to ~80 ms, as `rt render` does)",
+            settings: [Some(1u32), Some(4), Some(16), Some(64), None]
+                .into_iter()
+                .map(|n| {
+                    let label = n.map_or("auto".to_string(), |n| n.to_string());
+                    Setting::new(label, move |t| t.request.samples_per_dispatch = n)
+                })
+                .collect(),
+            spp_levels: None,
+            inapplicable: always,
+        },
+        Knob {
+            name: "atmosphere-steps",
+            about: "march steps per ray through the atmosphere",
+            settings: [4u32, 8, 16, 32, 64]
+                .into_iter()
+                .map(|n| Setting::new(format!("{n}"), move |t| with_atmosphere(t, |a| a.steps = n)))
+                .collect(),
+            spp_levels: None,
+            inapplicable: without_atmosphere,
+        },
+        Knob {
+            name: "atmosphere-tables",
+            about: "sizes of the transmittance and multiple-scattering tables",
+            settings: [
+                ([64u32, 16u32], [8u32, 8u32]),
+                ([128, 32], [16, 16]),
+                ([256, 64], [32, 32]),
+                ([512, 128], [64, 64]),
+            ]
+            .into_iter()
+            .map(|(t_lut, ms_lut)| {
+                Setting::new(format!("{}x{}, {}x{}", t_lut[0], t_lut[1], ms_lut[0], ms_lut[1]), move |t| {
+                    with_atmosphere(t, |a| (a.transmittance_lut, a.multiple_scattering_lut) = (t_lut, ms_lut))
+                })
+            })
+            .collect(),
+            spp_levels: None,
+            inapplicable: without_atmosphere,
+        },
+        Knob {
+            name: "multiple-scattering",
+            about: "light scattered more than once in the air: the closure of the seed, or single scattering only",
+            settings: [true, false]
+                .into_iter()
+                .map(|on| {
+                    Setting::new(if on { "on" } else { "off" }, move |t| {
+                        with_atmosphere(t, |a| a.multiple_scattering = on)
+                    })
+                })
+                .collect(),
+            spp_levels: None,
+            inapplicable: without_atmosphere,
+        },
+    ]
+}
+
+/// The knobs named, in report order; an unknown name is an error listing the known ones.
+pub fn select(levels: &[u32], names: &[String]) -> Result<Vec<Knob>, String> {
+    let all = all_knobs(levels);
+    if let Some(bad) = names.iter().find(|n| !all.iter().any(|k| k.name == n.as_str())) {
+        let known: Vec<&str> = all.iter().map(|k| k.name).collect();
+        return Err(format!("no knob named {bad:?}; the knobs are: {}", known.join(", ")));
+    }
+    Ok(all.into_iter().filter(|k| names.is_empty() || names.iter().any(|n| n == k.name)).collect())
+}

@@ -1,0 +1,264 @@
+//! The accuracy report: `report.md` (tables), `measurements.csv` (every setting at
+//! every level), `settings.csv` (the fitted models and the two views) and one
+//! error-against-time plot per knob.
+
+use super::plot::{Curve, error_vs_time};
+use super::reference::ReferenceOrigin;
+use super::sweep::{SettingResult, Sweep};
+use super::views::{KnobView, SettingView, Targets, fastest_to_target, setting_view, views};
+use anyhow::{Context, Result};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// What the headline needs from one scene's sweep.
+#[derive(Clone, Debug)]
+pub struct AccuracySummary {
+    pub scene: String,
+    pub adapter: String,
+    pub targets: Targets,
+    /// (knob, setting, spp, seconds, extrapolated) of the fastest setting to reach the target.
+    pub fastest: Option<(String, String, f64, f64, bool)>,
+    /// The scene's own settings: seconds to the target (if reachable), and whether extrapolated.
+    pub baseline: Option<(f64, bool)>,
+    pub report: PathBuf,
+}
+
+pub fn write(dir: &Path, sweep: &Sweep, targets: Targets) -> Result<AccuracySummary> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let views = views(sweep, targets);
+    let baseline = setting_view(&sweep.baseline, targets, sweep.reference.mean, true);
+    for (knob, view) in sweep.knobs.iter().zip(&views).filter(|(k, _)| k.skipped.is_none()) {
+        let curves: Vec<Curve> = knob
+            .settings
+            .iter()
+            .zip(&view.settings)
+            .map(|(s, v)| Curve { label: s.label.clone(), points: points(s, sweep), dominated: !v.on_front })
+            .collect();
+        let title = format!("{}: {}", scene_name(sweep), knob.name);
+        error_vs_time(&dir.join(format!("{}.png", knob.name)), &title, &curves, targets.error, targets.budget_seconds)?;
+    }
+    let report = dir.join("report.md");
+    write_file(&report, &markdown(sweep, &views, &baseline, targets))?;
+    write_file(&dir.join("measurements.csv"), &measurements_csv(sweep))?;
+    write_file(&dir.join("settings.csv"), &settings_csv(&views))?;
+    let fastest = fastest_to_target(&views).map(|(knob, s)| {
+        (
+            knob.to_string(),
+            s.label.clone(),
+            s.spp_to_target.unwrap_or(0.0),
+            s.seconds_to_target.unwrap_or(0.0),
+            s.extrapolated,
+        )
+    });
+    Ok(AccuracySummary {
+        scene: sweep.scene.origin.clone(),
+        adapter: sweep.adapter.clone(),
+        targets,
+        fastest,
+        baseline: baseline.seconds_to_target.map(|t| (t, baseline.extrapolated)),
+        report,
+    })
+}
+
+fn points(s: &SettingResult, sweep: &Sweep) -> Vec<(f64, f64)> {
+    s.levels.iter().map(|m| (m.seconds, m.error.relative_rmse(sweep.reference.mean))).collect()
+}
+
+fn scene_name(sweep: &Sweep) -> String {
+    Path::new(&sweep.scene.origin).file_stem().map_or("scene".into(), |s| s.to_string_lossy().into_owned())
+}
+
+fn write_file(path: &Path, text: &str) -> Result<()> {
+    std::fs::write(path, text).with_context(|| format!("could not write {}", path.display()))
+}
+
+fn markdown(sweep: &Sweep, views: &[KnobView], baseline: &SettingView, targets: Targets) -> String {
+    let o = &sweep.options;
+    let r = &sweep.reference;
+    let mut md = String::new();
+    let _ = writeln!(md, "# Accuracy against time: {}\n", sweep.scene.origin);
+    let _ = writeln!(md, "- adapter: {}", sweep.adapter);
+    let _ = writeln!(md, "- timing: {}, median of {} repeats (seeds 1..) after a warm-up", sweep.timing, o.repeats);
+    let _ = writeln!(md, "- size: {}x{}; samples per pixel: {:?}", o.size.0, o.size.1, o.levels);
+    let _ = writeln!(md, "- scene features: [{}]", sweep.baseline_features);
+    let origin = match r.origin {
+        ReferenceOrigin::Cached => "cached".to_string(),
+        ReferenceOrigin::Rendered(t) => format!("rendered in {:.1} s", t.as_secs_f64()),
+    };
+    let _ = writeln!(
+        md,
+        "- reference: {} spp, {} bounces, NEE, GGX rough glass, no clamp ({origin}: `{}`); its own noise, \
+         subtracted from every MSE: {} relative RMSE",
+        r.settings.spp,
+        r.settings.max_bounces,
+        r.path.display(),
+        percent(r.relative_noise())
+    );
+    let _ = writeln!(
+        md,
+        "- equal error: time to a relative RMSE of {} (RMSE over the reference's mean radiance); \
+         equal time: error reached in {:.1} ms (unless `--budget-ms`, the scene defaults' time at {} spp)",
+        percent(targets.error),
+        targets.budget_seconds * 1e3,
+        o.levels.iter().max().unwrap_or(&0)
+    );
+    let dropped: u64 = sweep.knobs.iter().flat_map(|k| &k.settings).flat_map(|s| &s.levels).map(|m| m.dropped).sum();
+    if dropped > 0 {
+        let _ =
+            writeln!(md, "- **{dropped} non-finite samples were dropped** (see `dropped_samples` in measurements.csv)");
+    }
+    let _ = writeln!(
+        md,
+        "- models: MSE = bias² + variance/spp, time = overhead + spp × time per spp, fitted per setting; \
+         `~` marks predictions beyond 4× the highest level measured; ∞: the bias is above the target\n"
+    );
+    let _ = writeln!(md, "**Scene defaults** reach {} in {}.", percent(targets.error), time_to(baseline));
+    if let Some((knob, s)) = fastest_to_target(views) {
+        let _ =
+            writeln!(md, "**Fastest setting to {}**: {knob} = {}, {}.\n", percent(targets.error), s.label, time_to(s));
+    }
+    for (view, knob) in views.iter().zip(&sweep.knobs) {
+        let _ = writeln!(md, "## {}\n\n{}\n", view.name, view.about);
+        if let Some(why) = view.skipped {
+            let _ = writeln!(md, "Left out: {why}.\n");
+            continue;
+        }
+        if view.name == "spp" {
+            spp_table(&mut md, sweep, &knob.settings);
+        }
+        let builds = view.settings.iter().any(|s| s.build_seconds.is_some());
+        let _ = writeln!(
+            md,
+            "| setting | ms/spp | rel. RMSE @ top | PSNR @ top | rel. mean error | bias | error in budget | time to {} |{} front |",
+            percent(targets.error),
+            if builds { " BVH build |" } else { "" }
+        );
+        let _ = writeln!(md, "|---|---|---|---|---|---|---|---|{}---|", if builds { "---|" } else { "" });
+        for s in &view.settings {
+            let build = match (builds, s.build_seconds) {
+                (false, _) => String::new(),
+                (true, Some(b)) => format!(" {:.1} ms |", b * 1e3),
+                (true, None) => " – |".into(),
+            };
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} | {:.2} dB | {:+.2} % | {} | {} | {} |{build} {} |",
+                s.label,
+                s.seconds_per_spp.map_or("–".into(), |t| format!("{:.3}", t * 1e3)),
+                percent(s.top_relative_rmse),
+                s.top_psnr_db,
+                s.top_relative_mean_error * 100.0,
+                s.relative_bias.map_or("–".into(), |b| if b > 0.0 { percent(b) } else { "0".into() }),
+                s.error_in_budget.map_or("–".into(), percent),
+                time_to(s),
+                if s.on_front { "yes" } else { "dominated" }
+            );
+        }
+        let _ = writeln!(md, "\n![{}]({}.png)\n", view.name, view.name);
+    }
+    md
+}
+
+/// The baseline's convergence: one row per level, and the log–log slope (−½ for pure noise).
+fn spp_table(md: &mut String, sweep: &Sweep, settings: &[SettingResult]) {
+    let Some(s) = settings.first() else { return };
+    let mean = sweep.reference.mean;
+    let _ = writeln!(md, "| spp | ms | rel. RMSE | PSNR | rel. mean error |\n|---|---|---|---|---|");
+    for m in &s.levels {
+        let (rmse, psnr) = (m.error.relative_rmse(mean), m.error.psnr_db());
+        let rel = m.error.relative_mean_error * 100.0;
+        let _ = writeln!(md, "| {} | {:.2} | {} | {psnr:.2} dB | {rel:+.2} % |", m.spp, m.seconds * 1e3, percent(rmse));
+    }
+    let pts: Vec<(f64, f64)> = s.levels.iter().map(|m| (m.spp as f64, m.error.rmse())).collect();
+    if let Some(slope) = super::model::log_log_slope(&pts) {
+        let _ = writeln!(md, "\nLog–log slope of RMSE against spp: {slope:.3} (−0.5 when noise dominates).\n");
+    }
+}
+
+fn time_to(s: &SettingView) -> String {
+    match (s.seconds_to_target, s.spp_to_target) {
+        (Some(t), Some(spp)) => format!("{}{} ({:.0} spp)", if s.extrapolated { "~" } else { "" }, duration(t), spp),
+        _ => "∞".into(),
+    }
+}
+
+fn duration(seconds: f64) -> String {
+    if seconds >= 1.0 { format!("{seconds:.2} s") } else { format!("{:.1} ms", seconds * 1e3) }
+}
+
+pub fn percent(v: f64) -> String {
+    match v * 100.0 {
+        p if !p.is_finite() => "–".into(),
+        p if p >= 10.0 => format!("{p:.1} %"),
+        p if p >= 0.1 => format!("{p:.2} %"),
+        p => format!("{p:.3} %"),
+    }
+}
+
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n']) { format!("\"{}\"", s.replace('"', "\"\"")) } else { s.to_string() }
+}
+
+fn opt(v: Option<f64>) -> String {
+    v.map_or(String::new(), |v| format!("{v:e}"))
+}
+
+pub const MEASUREMENT_COLUMNS: &str = "knob,setting,features,spp,seconds,seconds_min,seconds_max,rmse,relative_rmse,\
+relative_mean_error,psnr_db,mse_std_error,build_seconds,dropped_samples";
+
+fn measurements_csv(sweep: &Sweep) -> String {
+    let mut csv = format!("{MEASUREMENT_COLUMNS}\n");
+    let all = std::iter::once(("baseline", &sweep.baseline))
+        .chain(sweep.knobs.iter().flat_map(|k| k.settings.iter().map(move |s| (k.name, s))));
+    for (knob, s) in all {
+        for m in &s.levels {
+            let e = &m.error;
+            let _ = writeln!(
+                csv,
+                "{knob},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:.4},{:e},{},{}",
+                csv_field(&s.label),
+                csv_field(&s.features.to_string()),
+                m.spp,
+                m.seconds,
+                m.seconds_min,
+                m.seconds_max,
+                e.rmse(),
+                e.relative_rmse(sweep.reference.mean),
+                e.relative_mean_error,
+                e.psnr_db(),
+                m.mse_std_error,
+                opt(s.build_seconds),
+                m.dropped
+            );
+        }
+    }
+    csv
+}
+
+pub const SETTING_COLUMNS: &str = "knob,setting,seconds_per_spp,relative_bias,top_relative_rmse,top_psnr_db,\
+error_in_budget,seconds_to_target,spp_to_target,extrapolated,on_front,build_seconds";
+
+fn settings_csv(views: &[KnobView]) -> String {
+    let mut csv = format!("{SETTING_COLUMNS}\n");
+    for k in views {
+        for s in &k.settings {
+            let _ = writeln!(
+                csv,
+                "{},{},{},{},{:e},{:.4},{},{},{},{},{},{}",
+                k.name,
+                csv_field(&s.label),
+                opt(s.seconds_per_spp),
+                opt(s.relative_bias),
+                s.top_relative_rmse,
+                s.top_psnr_db,
+                opt(s.error_in_budget),
+                opt(s.seconds_to_target),
+                opt(s.spp_to_target),
+                s.extrapolated,
+                s.on_front,
+                opt(s.build_seconds)
+            );
+        }
+    }
+    csv
+}

@@ -1,0 +1,187 @@
+//! `rt bench`: convergence, the reference cache, pipelines that agree, and reports that parse.
+//! Tiny on purpose (lavapipe in CI): 32×32 images, few samples, few knobs, one or two repeats.
+
+mod common;
+
+use common::{gpu, repo, temp_dir, write};
+use rt::bench::knobs::select;
+use rt::bench::model::log_log_slope;
+use rt::bench::reference::{ReferenceOrigin, ReferenceSettings, obtain, reference_trial};
+use rt::bench::report::{MEASUREMENT_COLUMNS, SETTING_COLUMNS};
+use rt::bench::sweep::{SweepOptions, run};
+use rt::bvh::BuildQuality;
+use rt::gpu::GpuTimer;
+use rt::render::{RenderRequest, Renderer};
+use rt::scene::{FeatureSet, luminance};
+use std::path::Path;
+
+#[test]
+fn rmse_falls_as_one_over_root_spp_on_a_diffuse_scene() {
+    let scene = rt::scene::default_scene().unwrap_or_else(|e| panic!("{e}"));
+    let levels = vec![4, 16, 64];
+    let options = SweepOptions {
+        size: (32, 32),
+        levels: levels.clone(),
+        repeats: 2,
+        // As many bounces as the scene's renders: no bias, so all the error is noise.
+        reference: ReferenceSettings { spp: 512, max_bounces: scene.render.max_bounces },
+        cache_dir: temp_dir("slope"),
+        progress: false,
+    };
+    let knobs = select(&levels, &["spp".to_string()]).expect("the spp knob");
+    let sweep = run(gpu(), &scene, &knobs, &options).unwrap_or_else(|e| panic!("{e:#}"));
+    let ladder = &sweep.knobs[0].settings[0].levels;
+    assert_eq!(ladder.iter().map(|m| m.spp).collect::<Vec<_>>(), [4, 8, 16, 32, 64]);
+    let points: Vec<(f64, f64)> = ladder.iter().map(|m| (m.spp as f64, m.error.rmse())).collect();
+    let slope = log_log_slope(&points).expect("slope");
+    // Each level's MSE is a mean over 1,024 pixels and 2 seeds: with the Cornell box's
+    // tails, within ~10 % (1σ), so ln RMSE within ~0.05. Least squares over five levels
+    // ln 2 apart (Σ(x − x̄)² = 10 ln² 2 ≈ 4.8) puts the slope within 0.05 / √4.8 ≈ 0.023
+    // (1σ; nested levels share samples, which only narrows it): ±0.1 is over 4σ.
+    assert!((slope + 0.5).abs() < 0.1, "log-log slope {slope:.3}, expected -0.5 ± 0.1: {points:?}");
+    let fit = sweep.knobs[0].settings[0].fit.expect("fit");
+    assert_eq!(fit.bias2, 0.0, "an unbiased setting needs no error floor: {fit:?}");
+}
+
+const SCENE: &str = r#"
+[camera]
+position = [0.0, 1.0, 3.0]
+look_at = [0.0, 0.5, 0.0]
+[sky]
+kind = "uniform"
+color = [0.6, 0.7, 0.9]
+[materials.grey]
+base_color = [0.5, 0.5, 0.5]
+[[mesh]]
+asset = "floor.obj"
+[[sphere]]
+center = [0.0, 0.5, 0.0]
+radius = 0.5
+material = "grey"
+"#;
+
+const FLOOR: &str = "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nf 1 3 2\nf 1 4 3\n";
+
+fn reference_of(scene_path: &Path, cache: &Path) -> (ReferenceOrigin, Vec<[f32; 3]>) {
+    let scene = rt::scene::load(scene_path).unwrap_or_else(|e| panic!("{e}"));
+    let settings = ReferenceSettings { spp: 8, max_bounces: 4 };
+    let trial = reference_trial(&scene, (16, 16), settings);
+    let mut renderer = Renderer::new(gpu(), trial.scene.clone(), BuildQuality::Medium).expect("renderer");
+    let reference =
+        obtain(&mut renderer, &trial, settings, cache, &GpuTimer::new(gpu())).unwrap_or_else(|e| panic!("{e:#}"));
+    assert!(reference.path.starts_with(cache));
+    (reference.origin, reference.image.pixels)
+}
+
+#[test]
+fn reference_is_reused_until_the_scene_or_an_asset_changes() {
+    let dir = temp_dir("reference");
+    let (scene_path, cache) = (dir.join("scene.toml"), dir.join("cache"));
+    write(&scene_path, SCENE);
+    write(&dir.join("floor.obj"), FLOOR);
+    let (first, pixels) = reference_of(&scene_path, &cache);
+    assert!(matches!(first, ReferenceOrigin::Rendered(_)), "{first:?}");
+    let (again, cached) = reference_of(&scene_path, &cache);
+    assert_eq!(again, ReferenceOrigin::Cached);
+    assert_eq!(pixels, cached, "the cached reference is the rendered one");
+    // A comment changes no pixel: still cached.
+    write(&scene_path, &format!("# a note\n{SCENE}"));
+    assert_eq!(reference_of(&scene_path, &cache).0, ReferenceOrigin::Cached);
+    write(&scene_path, &SCENE.replace("[0.5, 0.5, 0.5]", "[0.8, 0.2, 0.2]"));
+    assert!(matches!(reference_of(&scene_path, &cache).0, ReferenceOrigin::Rendered(_)), "scene edited");
+    write(&dir.join("floor.obj"), &FLOOR.replace("v -2 0 -2", "v -3 0 -2"));
+    assert!(matches!(reference_of(&scene_path, &cache).0, ReferenceOrigin::Rendered(_)), "asset edited");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn specialised_and_all_features_pipelines_agree() {
+    let scene = rt::scene::load(&repo().join("scenes/cornell_glass.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let mut renderer = Renderer::new(gpu(), scene, BuildQuality::Medium).expect("renderer");
+    let own = renderer.geometry.features;
+    let all = FeatureSet::all(own.sky, own.sampling, renderer.scene.render.rough_transmission);
+    assert_ne!(own, all, "the scene must leave some effect out");
+    let mut request = RenderRequest::from_scene(&renderer.scene);
+    (request.width, request.height, request.spp) = (32, 32, 32);
+    let mut mean_and_error = |features: FeatureSet, seed: u32| {
+        let r = RenderRequest { features: Some(features), seed, ..request.clone() };
+        let (image, report) = renderer.render(&r).unwrap_or_else(|e| panic!("{e:#}"));
+        assert!(report.sentinel.is_clean(), "{}", report.sentinel);
+        assert_eq!(report.features, features);
+        let n = image.pixels.len() as f64;
+        let mean = image.pixels.iter().map(|p| luminance(*p) as f64).sum::<f64>() / n;
+        let std_error = image.std_error.iter().map(|e| (*e as f64).powi(2)).sum::<f64>().sqrt() / n;
+        (mean, std_error)
+    };
+    let (a, a_error) = mean_and_error(own, 1);
+    let (b, b_error) = mean_and_error(all, 2);
+    let sigma = a_error.hypot(b_error);
+    assert!((a - b).abs() < 4.0 * sigma, "specialised {a:.5} vs all features {b:.5}: more than 4σ ({sigma:.5}) apart");
+}
+
+#[test]
+fn all_features_pipeline_stays_finite_without_emitters() {
+    // The sunlit pillars emit nothing: the emission code of the all-features pipeline
+    // must not divide by the total emitted power, which is 0.
+    let scene = rt::scene::load(&repo().join("scenes/specular_pillars.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let mut renderer = Renderer::new(gpu(), scene, BuildQuality::Medium).expect("renderer");
+    let own = renderer.geometry.features;
+    assert!(!own.emission);
+    let mut request = RenderRequest::from_scene(&renderer.scene);
+    (request.width, request.height, request.spp) = (24, 16, 8);
+    request.features = Some(FeatureSet::all(own.sky, own.sampling, renderer.scene.render.rough_transmission));
+    let (_, report) = renderer.render(&request).unwrap_or_else(|e| panic!("{e:#}"));
+    assert!(report.sentinel.is_clean(), "{}", report.sentinel);
+}
+
+fn csv_rows(path: &Path, header: &str) -> Vec<Vec<String>> {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some(header), "{}: header", path.display());
+    let columns = header.split(',').count();
+    let rows: Vec<Vec<String>> = lines.map(|l| l.split(',').map(str::to_string).collect()).collect();
+    assert!(!rows.is_empty(), "{}: no rows", path.display());
+    for row in &rows {
+        assert_eq!(row.len(), columns, "{}: {row:?}", path.display());
+    }
+    rows
+}
+
+#[test]
+fn report_files_are_written_and_parse() {
+    let out = temp_dir("report");
+    let scene = rt::scene::default_scene().unwrap_or_else(|e| panic!("{e}"));
+    let options = rt::bench::AccuracyOptions {
+        knobs: vec!["sampling".into(), "samples-per-dispatch".into()],
+        out: out.clone(),
+        size: Some((32, 24)),
+        levels: Some(vec![1, 2, 4]),
+        repeats: Some(1),
+        reference_spp: Some(16),
+        ..Default::default()
+    };
+    let summary = rt::bench::accuracy(gpu(), &scene, &options).unwrap_or_else(|e| panic!("{e:#}"));
+    let report = std::fs::read_to_string(&summary.report).expect("report.md");
+    assert!(report.contains(&gpu().adapter_info.name), "the report names the adapter");
+    assert!(report.contains("## sampling") && report.contains("## samples-per-dispatch"));
+
+    let rows = csv_rows(&out.join("measurements.csv"), MEASUREMENT_COLUMNS);
+    // The baseline and 2 + 5 settings at 3 levels each.
+    assert_eq!(rows.len(), 8 * 3);
+    for row in &rows {
+        for value in &row[3..12] {
+            let v: f64 = value.parse().unwrap_or_else(|_| panic!("not a number: {value:?} in {row:?}"));
+            assert!(v.is_finite(), "{row:?}");
+        }
+    }
+    let settings = csv_rows(&out.join("settings.csv"), SETTING_COLUMNS);
+    assert_eq!(settings.len(), 7);
+    assert!(settings.iter().all(|r| r[9] == "true" || r[9] == "false"));
+
+    for knob in ["sampling", "samples-per-dispatch"] {
+        let png = image::open(out.join(format!("{knob}.png"))).unwrap_or_else(|e| panic!("{knob}.png: {e}"));
+        assert!(png.width() > 100 && png.height() > 100);
+    }
+    assert!(select(&[1, 2, 4], &["nope".into()]).is_err_and(|e| e.contains("samples-per-dispatch")));
+    let _ = std::fs::remove_dir_all(out);
+}

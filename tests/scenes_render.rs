@@ -12,7 +12,20 @@ fn every_scene_renders_finite() {
         .filter(|p| p.extension().is_some_and(|e| e == "toml"))
         .collect();
     scenes.sort();
-    assert!(!scenes.is_empty());
+    // The scenes README and the gallery show must be among those rendered here.
+    for name in [
+        "cornell_box",
+        "cornell_glass",
+        "dragon_mirror_spheres",
+        "far_spheres",
+        "flight",
+        "furnace",
+        "showcase",
+        "specular_pillars",
+        "sunset",
+    ] {
+        assert!(scenes.iter().any(|p| p.file_stem().is_some_and(|s| s == name)), "scenes/{name}.toml is missing");
+    }
     for path in scenes {
         let scene = rt::scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
         let image = render(scene, 48, 32, 2, 4);

@@ -103,18 +103,14 @@ impl<'a> Renderer<'a> {
     /// A renderer for `scene` placed as `geometry` (which must have been built from it).
     pub fn with_geometry(ctx: &'a GpuContext, scene: Scene, geometry: SceneGeometry) -> Result<Self> {
         let pipelines = PipelineCache::new(ctx);
-        let mut buffers = SceneBuffers::new(ctx, &geometry, &pipelines.scene_layout)?;
-        let sky = match &scene.sky {
-            Sky::Atmosphere(params) => {
-                if scene.sun.is_none() {
-                    log::warn!("{}: the atmosphere has no [sun] to light it: only its extinction shows", scene.origin);
-                }
-                Some(AtmosphereTables::new(ctx, &pipelines.sky_layout, params)?)
-            }
-            _ => None,
-        };
-        buffers.sky_bind_group = sky.as_ref().map(|t| t.bind_group.clone());
-        Ok(Self { ctx, scene, geometry, buffers, pipelines, sky })
+        let buffers = SceneBuffers::new(ctx, &geometry, &pipelines.scene_layout)?;
+        if matches!(scene.sky, Sky::Atmosphere(_)) && scene.sun.is_none() {
+            log::warn!("{}: the atmosphere has no [sun] to light it: only its extinction shows", scene.origin);
+        }
+        let sky = scene.sky.clone();
+        let mut renderer = Self { ctx, scene, geometry, buffers, pipelines, sky: None };
+        renderer.set_sky(&sky)?;
+        Ok(renderer)
     }
 
     /// Takes new atmosphere parameters: the tables are rebuilt only if they

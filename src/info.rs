@@ -8,7 +8,7 @@ use anyhow::Result;
 pub fn print_info(scene: Scene, quality: BuildQuality, adapter: Option<&str>) -> Result<()> {
     let g = SceneGeometry::build(&scene, quality)?;
     println!("scene      {}", scene.origin);
-    println!("features   {}", g.features);
+    println!("features   {}", crate::scene::FeatureSet::analyse(&scene, &g.summary()));
     println!(
         "contents   {} mesh instances of {} assets, {} spheres, {} triangles, {} materials",
         g.instances.len(),

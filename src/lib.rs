@@ -10,6 +10,7 @@ pub mod bench;
 pub mod bvh;
 pub mod gpu;
 pub mod info;
+pub mod layout;
 pub mod render;
 pub mod scene;
 pub mod sky;

@@ -1,13 +1,18 @@
-//! The `rt` command line: parses arguments, calls the library, maps errors to exit codes.
+//! The `rt` command line: parses arguments, calls the library, maps errors to exit codes:
+//! 0 success, 1 a bad input or a failed render, 2 a usage error (clap's), 3 a render that
+//! `--strict` found dropping samples or rays.
 
 use anyhow::{Result, bail};
 use clap::{Args, Parser, Subcommand};
 use rt::bvh::{BuildQuality, PackOutcome, PackReport};
 use rt::gpu::GpuContext;
-use rt::render::{ImageFormat, RenderRequest, Renderer, human, image_format, write_image};
-use rt::scene::{self, RoughTransmission, Sampling, Scene};
+use rt::render::{DroppedSamples, ImageFormat, RenderFlags, RenderRequest, Session, human, image_format, write_image};
+use rt::scene::{self, MAX_IMAGE_SIDE, RoughTransmission, Sampling, Scene};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+
+/// The exit status of a render that `--strict` rejects.
+const EXIT_STRICT: u8 = 3;
 
 #[derive(Parser)]
 #[command(name = "rt", version, about = "A physically based GPU path tracer for scenes made in Blender")]
@@ -64,6 +69,7 @@ struct RenderArgs {
     /// Seed of the random numbers: the same seed gives the same image.
     #[arg(long, default_value_t = 0)]
     seed: u32,
+    /// Bounces of a path at most [default: the scene's].
     #[arg(long)]
     max_bounces: Option<u32>,
     /// Exposure in EV for PNG output [default: the scene's].
@@ -85,12 +91,29 @@ struct RenderArgs {
     /// price of bias (bright light goes missing); off by default.
     #[arg(long)]
     clamp: Option<f32>,
-    /// Fail (exit status 1) if any sample was non-finite or any ray overflowed the traversal stack.
+    /// Fail (exit status 3) if any sample was non-finite or any ray overflowed the traversal stack.
     #[arg(long)]
     strict: bool,
     /// Samples per pixel in each GPU dispatch [default: as many as keep a dispatch near 80 ms].
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=rt::render::MAX_SAMPLES_PER_DISPATCH as i64))]
+    #[arg(long)]
     samples_per_dispatch: Option<u32>,
+}
+
+impl RenderArgs {
+    fn flags(&self) -> RenderFlags {
+        RenderFlags {
+            size: self.size,
+            spp: self.spp,
+            max_bounces: self.max_bounces,
+            exposure: self.exposure,
+            sampling: self.sampling,
+            ris_candidates: self.ris_candidates,
+            rough_transmission: self.rough_transmission,
+            seed: self.seed,
+            clamp: self.clamp,
+            samples_per_dispatch: self.samples_per_dispatch,
+        }
+    }
 }
 
 #[derive(Args)]
@@ -114,7 +137,7 @@ struct WatchArgs {
     seed: u32,
     /// Format of headless frames: png (tone-mapped) or exr (linear).
     #[arg(long, value_enum, default_value = "png")]
-    format: FrameFormat,
+    format: ImageFormat,
     /// Stop once the frame of this reload is written (0: the first state's).
     #[arg(long)]
     max_reloads: Option<u32>,
@@ -123,12 +146,6 @@ struct WatchArgs {
     dev: Option<PathBuf>,
     #[arg(long, value_enum, default_value_t)]
     quality: BuildQuality,
-}
-
-#[derive(Clone, Copy, clap::ValueEnum)]
-enum FrameFormat {
-    Png,
-    Exr,
 }
 
 #[derive(Subcommand)]
@@ -267,10 +284,10 @@ struct FireflyArgs {
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s.split_once(['x', 'X']).ok_or("expected WIDTHxHEIGHT, e.g. 640x480")?;
-    let parse = |v: &str| v.trim().parse::<u32>().ok().filter(|&n| (1..=16384).contains(&n));
+    let parse = |v: &str| v.trim().parse::<u32>().ok().filter(|&n| (1..=MAX_IMAGE_SIDE).contains(&n));
     match (parse(w), parse(h)) {
         (Some(w), Some(h)) => Ok((w, h)),
-        _ => Err("width and height must be whole numbers from 1 to 16384".into()),
+        _ => Err(format!("width and height must be whole numbers from 1 to {MAX_IMAGE_SIDE}")),
     }
 }
 
@@ -281,49 +298,25 @@ fn load_scene(path: Option<&Path>) -> Result<Scene> {
     })
 }
 
+/// `--strict` found dropped samples or rays: a finished render, but not a clean one.
+#[derive(Debug, thiserror::Error)]
+#[error("--strict: the render dropped samples or rays ({0})")]
+struct StrictFinding(DroppedSamples);
+
 fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
     image_format(&args.output)?;
     let mut scene = load_scene(args.scene.as_deref())?;
-    if let Some(s) = args.sampling {
-        scene.render.sampling = s;
-    }
-    if let Some(m) = args.ris_candidates {
-        if !(1..=64).contains(&m) {
-            bail!("--ris-candidates must be from 1 to 64");
-        }
-        scene.render.ris_candidates = m;
-    }
-    if let Some(r) = args.rough_transmission {
-        scene.render.rough_transmission = r;
-    }
-    let mut request = RenderRequest::from_scene(&scene);
-    if let Some((w, h)) = args.size {
-        (request.width, request.height) = (w, h);
-    }
-    request.spp = args.spp.unwrap_or(request.spp);
-    if request.spp == 0 {
-        bail!("--spp must be at least 1");
-    }
-    request.max_bounces = args.max_bounces.unwrap_or(request.max_bounces);
-    request.seed = args.seed;
-    if let Some(c) = args.clamp {
-        if !(c.is_finite() && c > 0.0) {
-            bail!("--clamp must be a positive luminance, got {c}");
-        }
-        request.clamp = Some(c);
-    }
-    request.samples_per_dispatch = args.samples_per_dispatch;
-    request.progress = true;
-    let exposure = args.exposure.unwrap_or(scene.render.exposure);
+    let request = RenderRequest { progress: true, ..args.flags().apply(&mut scene)? };
+    let exposure = scene.render.exposure;
     let ctx = GpuContext::new(adapter)?;
     eprintln!("GPU: {}", ctx.describe());
     let origin = scene.origin.clone();
-    let mut renderer = Renderer::new(&ctx, scene, args.quality)?;
-    eprintln!("{origin}: features [{}]", renderer.geometry.features);
-    if let Some(tables) = &renderer.sky {
+    let mut session = Session::open(&ctx, scene, args.quality)?;
+    eprintln!("{origin}: features [{}]", session.features());
+    if let Some(tables) = session.atmosphere() {
         eprintln!("atmosphere tables built in {:.1} ms", tables.build_time.as_secs_f64() * 1e3);
     }
-    let (image, report) = renderer.render(&request)?;
+    let (image, report) = session.render(&request, None)?;
     write_image(&image, &args.output, exposure)?;
     eprintln!(
         "wrote {} ({}x{}, {} spp) in {:.2} s: {}samples/s",
@@ -334,31 +327,23 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
         report.elapsed.as_secs_f64(),
         human(report.samples_per_second)
     );
-    if !report.sentinel.is_clean() {
-        eprintln!("warning: {}", report.sentinel);
+    if !report.dropped.is_clean() {
+        eprintln!("warning: {}", report.dropped);
         if args.strict {
-            bail!("--strict: the render dropped samples or rays (see the warning above)");
+            return Err(StrictFinding(report.dropped).into());
         }
     }
     Ok(())
 }
 
 fn watch(args: WatchArgs, adapter: Option<&str>) -> Result<()> {
-    if args.spp == Some(0) {
-        bail!("--spp must be at least 1");
-    }
     let options = rt::watch::WatchOptions {
         scene: args.scene,
         quality: args.quality,
         shader_dir: args.dev,
         frames_dir: args.frames_dir,
-        spp: args.spp,
-        size: args.size,
-        seed: args.seed,
-        format: match args.format {
-            FrameFormat::Png => ImageFormat::Png,
-            FrameFormat::Exr => ImageFormat::Exr,
-        },
+        flags: RenderFlags { spp: args.spp, size: args.size, seed: args.seed, ..Default::default() },
+        format: args.format,
         max_reloads: args.max_reloads,
     };
     if args.headless {
@@ -437,7 +422,7 @@ fn main() -> ExitCode {
             load_scene(Some(&scene)).and_then(|s| rt::bench::sky(s, size, spp, adapter))
         }
         Command::Bench(BenchCommand::WatchLatency { asset, size, runs }) => {
-            rt::bench::watch_latency(&asset, size, runs, adapter)
+            rt::watch::latency::watch_latency(&asset, size, runs, adapter)
         }
         Command::Bench(BenchCommand::Accuracy(args)) => bench_accuracy(args, adapter),
         Command::Bench(BenchCommand::Effects { scene, size, spp, repeats }) => {
@@ -457,7 +442,7 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");
-            ExitCode::FAILURE
+            if e.is::<StrictFinding>() { ExitCode::from(EXIT_STRICT) } else { ExitCode::FAILURE }
         }
     }
 }

@@ -8,32 +8,35 @@ mod common;
 use atmosphere::probe::{Kind, Probe, Query};
 use common::{gpu, scene_from};
 use rt::bvh::BuildQuality;
-use rt::render::{RenderRequest, Renderer};
+use rt::render::{RenderRequest, SceneUpdate, Session};
 use rt::scene::Sky;
 
-fn render(renderer: &mut Renderer) -> Vec<[f32; 3]> {
-    let mut request = RenderRequest::from_scene(&renderer.scene);
+fn render(renderer: &mut Session) -> Vec<[f32; 3]> {
+    let mut request = RenderRequest::from_scene(renderer.scene());
     (request.width, request.height, request.spp, request.max_bounces) = (8, 8, 1, 2);
-    let (image, report) = renderer.render(&request).unwrap_or_else(|e| panic!("{e:#}"));
-    assert!(report.sentinel.is_clean(), "{}", report.sentinel);
+    let (image, report) = renderer.render(&request, None).unwrap_or_else(|e| panic!("{e:#}"));
+    assert!(report.dropped.is_clean(), "{}", report.dropped);
     image.pixels
 }
 
 #[test]
 fn no_atmosphere_no_tables() {
-    let renderer = Renderer::new(gpu(), scene_from("[sky]\nkind = \"uniform\"\n"), BuildQuality::Medium)
+    let renderer = Session::open(gpu(), scene_from("[sky]\nkind = \"uniform\"\n"), BuildQuality::Medium)
         .unwrap_or_else(|e| panic!("{e:#}"));
-    assert!(renderer.sky.is_none() && renderer.buffers.sky_bind_group.is_none());
+    assert!(renderer.atmosphere().is_none() && renderer.buffers().sky_bind_group.is_none());
 }
 
 #[test]
 fn tables_are_rebuilt_only_when_they_must() {
     let scene = scene_from(&atmosphere::probe::scene_text(""));
-    let mut renderer = Renderer::new(gpu(), scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
-    let Sky::Atmosphere(defaults) = renderer.scene.sky.clone() else { panic!("an atmosphere") };
+    let mut renderer = Session::open(gpu(), scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
+    let Sky::Atmosphere(defaults) = renderer.scene().sky.clone() else { panic!("an atmosphere") };
     let before = render(&mut renderer);
     // The sun moves freely: it is in the frame, not in the tables.
-    renderer.scene.sun.as_mut().expect("a sun").elevation_deg = 40.0;
+    let mut moved = renderer.scene().clone();
+    moved.sun.as_mut().expect("a sun").elevation_deg = 40.0;
+    let reset = renderer.apply(SceneUpdate { scene: moved, geometry: None, shaders: None }).expect("the sun moves");
+    assert!(reset, "a moved sun drops the samples so far");
     assert_ne!(render(&mut renderer), before);
     let mut params = defaults.clone();
     for (what, change, rebuilds) in [
@@ -65,7 +68,7 @@ fn extreme_parameters_stay_finite_and_in_range() {
         "ground_altitude_m = 1000000.0",
     ] {
         let mut probe = Probe::new(keys, &[]);
-        let tables = probe.renderer.sky.as_ref().expect("an atmosphere");
+        let tables = probe.renderer.atmosphere().expect("an atmosphere");
         let layout = tables.layout();
         let entries: Vec<[f32; 4]> = rt::gpu::read_buffer(gpu(), &tables.tables).expect("read back");
         for (i, e) in entries.iter().enumerate() {

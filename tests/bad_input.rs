@@ -103,3 +103,44 @@ fn unknown_output_type_is_refused_before_rendering() {
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert!(stderr.contains("picture.jpg"), "{stderr}");
 }
+
+/// Runs `rt ARGS` on the built-in scene at 8x8 and returns (exit code, stderr).
+fn rt(args: &[&str]) -> (i32, String) {
+    let dir = temp_dir("flags");
+    let out = Command::new(env!("CARGO_BIN_EXE_rt"))
+        .args(["render", "--size", "8x8", "--spp", "1", "-o"])
+        .arg(dir.join("out.png"))
+        .args(args)
+        .output()
+        .expect("run rt");
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(!stderr.contains("panicked"), "rt panicked:\n{stderr}");
+    (out.status.code().unwrap_or(-1), stderr)
+}
+
+/// Flags are checked by the rules of the keys they override, before any GPU work.
+#[test]
+fn flags_are_checked_like_keys() {
+    for (args, needle) in [
+        (&["--exposure", "nan"][..], "--exposure: must be finite, got NaN"),
+        (&["--exposure", "inf"][..], "--exposure: must be finite, got inf"),
+        (&["--ris-candidates", "0"][..], "--ris-candidates: must be in 1..=64, got 0"),
+        (&["--spp", "0"][..], "--spp: must be at least 1, got 0"),
+        (&["--clamp=-1"][..], "--clamp: must be a positive, finite luminance, got -1"),
+        (&["--samples-per-dispatch", "0"][..], "--samples-per-dispatch: must be in 1..=256, got 0"),
+    ] {
+        let (code, stderr) = rt(args);
+        assert_eq!(code, 1, "{args:?}: exit code {code}, stderr:\n{stderr}");
+        assert!(stderr.contains(needle), "{args:?}: {needle:?} missing from:\n{stderr}");
+        assert!(!stderr.contains("GPU:"), "{args:?}: the GPU was opened before the flags were checked");
+    }
+}
+
+/// A usage error is clap's exit status 2, not a failed render's 1.
+#[test]
+fn usage_errors_exit_with_status_2() {
+    for args in [&["--no-such-flag"][..], &["--spp", "many"][..]] {
+        let (code, stderr) = rt(args);
+        assert_eq!(code, 2, "{args:?}: exit code {code}, stderr:\n{stderr}");
+    }
+}

@@ -11,7 +11,7 @@ use rt::bench::report::{MEASUREMENT_COLUMNS, SETTING_COLUMNS};
 use rt::bench::sweep::{SweepOptions, run};
 use rt::bvh::BuildQuality;
 use rt::gpu::GpuTimer;
-use rt::render::{RenderRequest, Renderer};
+use rt::render::{RenderRequest, Session};
 use rt::scene::{FeatureSet, luminance};
 use std::path::Path;
 
@@ -66,7 +66,7 @@ fn reference_of(scene_path: &Path, cache: &Path) -> (ReferenceOrigin, Vec<[f32; 
     let scene = rt::scene::load(scene_path).unwrap_or_else(|e| panic!("{e}"));
     let settings = ReferenceSettings { spp: 8, max_bounces: 4 };
     let trial = reference_trial(&scene, (16, 16), settings);
-    let mut renderer = Renderer::new(gpu(), trial.scene.clone(), BuildQuality::Medium).expect("renderer");
+    let mut renderer = Session::open(gpu(), trial.scene.clone(), BuildQuality::Medium).expect("renderer");
     let reference =
         obtain(&mut renderer, &trial, settings, cache, &GpuTimer::new(gpu())).unwrap_or_else(|e| panic!("{e:#}"));
     assert!(reference.path.starts_with(cache));
@@ -97,16 +97,16 @@ fn reference_is_reused_until_the_scene_or_an_asset_changes() {
 #[test]
 fn specialised_and_all_features_pipelines_agree() {
     let scene = rt::scene::load(&repo().join("scenes/cornell_glass.toml")).unwrap_or_else(|e| panic!("{e}"));
-    let mut renderer = Renderer::new(gpu(), scene, BuildQuality::Medium).expect("renderer");
-    let own = renderer.geometry.features;
-    let all = FeatureSet::all(own.sky, own.sampling, renderer.scene.render.rough_transmission);
+    let mut renderer = Session::open(gpu(), scene, BuildQuality::Medium).expect("renderer");
+    let own = renderer.features();
+    let all = FeatureSet::all(own.sky, own.sampling, renderer.scene().render.rough_transmission);
     assert_ne!(own, all, "the scene must leave some effect out");
-    let mut request = RenderRequest::from_scene(&renderer.scene);
+    let mut request = RenderRequest::from_scene(renderer.scene());
     (request.width, request.height, request.spp) = (32, 32, 32);
     let mut mean_and_error = |features: FeatureSet, seed: u32| {
         let r = RenderRequest { features: Some(features), seed, ..request.clone() };
-        let (image, report) = renderer.render(&r).unwrap_or_else(|e| panic!("{e:#}"));
-        assert!(report.sentinel.is_clean(), "{}", report.sentinel);
+        let (image, report) = renderer.render(&r, None).unwrap_or_else(|e| panic!("{e:#}"));
+        assert!(report.dropped.is_clean(), "{}", report.dropped);
         assert_eq!(report.features, features);
         let n = image.pixels.len() as f64;
         let mean = image.pixels.iter().map(|p| luminance(*p) as f64).sum::<f64>() / n;
@@ -124,14 +124,14 @@ fn all_features_pipeline_stays_finite_without_emitters() {
     // The sunlit pillars emit nothing: the emission code of the all-features pipeline
     // must not divide by the total emitted power, which is 0.
     let scene = rt::scene::load(&repo().join("scenes/specular_pillars.toml")).unwrap_or_else(|e| panic!("{e}"));
-    let mut renderer = Renderer::new(gpu(), scene, BuildQuality::Medium).expect("renderer");
-    let own = renderer.geometry.features;
+    let mut renderer = Session::open(gpu(), scene, BuildQuality::Medium).expect("renderer");
+    let own = renderer.features();
     assert!(!own.emission);
-    let mut request = RenderRequest::from_scene(&renderer.scene);
+    let mut request = RenderRequest::from_scene(renderer.scene());
     (request.width, request.height, request.spp) = (24, 16, 8);
-    request.features = Some(FeatureSet::all(own.sky, own.sampling, renderer.scene.render.rough_transmission));
-    let (_, report) = renderer.render(&request).unwrap_or_else(|e| panic!("{e:#}"));
-    assert!(report.sentinel.is_clean(), "{}", report.sentinel);
+    request.features = Some(FeatureSet::all(own.sky, own.sampling, renderer.scene().render.rough_transmission));
+    let (_, report) = renderer.render(&request, None).unwrap_or_else(|e| panic!("{e:#}"));
+    assert!(report.dropped.is_clean(), "{}", report.dropped);
 }
 
 fn csv_rows(path: &Path, header: &str) -> Vec<Vec<String>> {

@@ -7,8 +7,8 @@ mod common;
 use common::{TestRng, gpu, scene_from, temp_dir, write};
 use glam::DVec3;
 use rt::bvh::BuildQuality;
-use rt::gpu::layout::{EMPTY_LINK, GpuTraceRay, SPHERE_BIT};
-use rt::render::Renderer;
+use rt::layout::{EMPTY_LINK, GpuTraceRay, SPHERE_BIT};
+use rt::render::Session;
 
 fn ray(o: DVec3, d: DVec3) -> GpuTraceRay {
     GpuTraceRay {
@@ -61,7 +61,7 @@ fn spawned_rays_never_rehit_their_own_triangle_from_1e_4_to_1e6_m() {
     const TRIANGLES: usize = 1000;
     const RAYS_EACH: usize = 500;
     let tris = triangles_at_all_scales(TRIANGLES, 1e-4, 1e6);
-    let mut renderer = Renderer::new(gpu(), mesh_scene("reintersect", &tris), BuildQuality::Medium).expect("renderer");
+    let mut renderer = Session::open(gpu(), mesh_scene("reintersect", &tris), BuildQuality::Medium).expect("renderer");
     let mut rng = TestRng(5);
     let mut rays = Vec::with_capacity(TRIANGLES * RAYS_EACH);
     for t in &tris {
@@ -113,7 +113,7 @@ fn far_and_planet_sized_spheres_are_hit_at_the_right_distance() {
         "[[sphere]]\ncenter = [0.0, 1.0, -10000.0]\nradius = 1.0\n\
          [[sphere]]\ncenter = [0.0, -6360000.0, 0.0]\nradius = 6360000.0\n",
     );
-    let mut renderer = Renderer::new(gpu(), scene, BuildQuality::Medium).expect("renderer");
+    let mut renderer = Session::open(gpu(), scene, BuildQuality::Medium).expect("renderer");
     let mut rng = TestRng(9);
     let eye = DVec3::new(0.0, 1.7, 0.0);
     let small = (DVec3::new(0.0, 1.0, -10000.0), 1.0);
@@ -175,7 +175,7 @@ fn tiny_huge_and_degenerate_triangles() {
     ];
     let mut tris = vec![tiny, huge];
     tris.extend(degenerate);
-    let mut renderer = Renderer::new(gpu(), mesh_scene("scales", &tris), BuildQuality::Medium).expect("renderer");
+    let mut renderer = Session::open(gpu(), mesh_scene("scales", &tris), BuildQuality::Medium).expect("renderer");
     let mut rng = TestRng(3);
     let mut rays = Vec::new();
     for _ in 0..2000 {
@@ -189,7 +189,7 @@ fn tiny_huge_and_degenerate_triangles() {
         rays.push(ray(from, target - from));
     }
     let hits = renderer.trace(&rays).expect("trace");
-    let order = |p: u32| renderer.geometry.triangles[p as usize];
+    let order = |p: u32| renderer.geometry().triangles[p as usize];
     let mut worst_tiny = 0f64;
     for (i, (r, h)) in rays.iter().zip(&hits).enumerate() {
         assert!(h.t.is_finite() || h.primitive == EMPTY_LINK, "ray {i}: t = {}", h.t);
@@ -209,7 +209,7 @@ fn tiny_huge_and_degenerate_triangles() {
     println!("1e-4 m triangle hit at relative distance error {worst_tiny:.1e}; degenerate triangles never hit");
     assert!(worst_tiny < 1e-6);
     // And a render over them stays finite (the helper asserts a clean sentinel).
-    let scene = renderer.scene.clone();
+    let scene = renderer.scene().clone();
     common::render(scene, 16, 16, 4, 4);
 }
 
@@ -224,8 +224,8 @@ fn nested_coincident_triangles_never_give_a_silently_wrong_hit() {
             [[0.0, 0.0, z], [s, 0.0, z], [0.0, s, z]]
         })
         .collect();
-    let mut renderer = Renderer::new(gpu(), mesh_scene("nested", &tris), BuildQuality::Medium).expect("renderer");
-    let depth = renderer.geometry.meshes[0].bvh.stats.depth;
+    let mut renderer = Session::open(gpu(), mesh_scene("nested", &tris), BuildQuality::Medium).expect("renderer");
+    let depth = renderer.geometry().meshes[0].bvh.stats.depth;
     let mut rng = TestRng(21);
     let rays: Vec<GpuTraceRay> = (0..20000)
         .map(|_| {
@@ -235,7 +235,7 @@ fn nested_coincident_triangles_never_give_a_silently_wrong_hit() {
         })
         .collect();
     let hits = renderer.trace(&rays).expect("trace");
-    let world: Vec<[DVec3; 3]> = renderer.geometry.triangles.iter().map(|t| [v(t.v0), v(t.v1), v(t.v2)]).collect();
+    let world: Vec<[DVec3; 3]> = renderer.geometry().triangles.iter().map(|t| [v(t.v0), v(t.v1), v(t.v2)]).collect();
     let (mut overflowed, mut wrong) = (0, 0);
     for (r, h) in rays.iter().zip(&hits) {
         let (o, d) = (v(r.origin), v(r.direction));

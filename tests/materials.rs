@@ -39,7 +39,7 @@ fn sphere_furnace(material: &str, sampling: &str) -> (f64, f64) {
 
 #[test]
 fn smooth_glass_and_white_mirror_reflect_everything() {
-    for sampling in ["nee", "seed"] {
+    for sampling in ["nee", "resampled"] {
         for (what, material) in [
             ("smooth glass", "diffuse = 0.0\ntransmission = 1.0\nior = 1.5"),
             ("glass, ior 3", "diffuse = 0.0\ntransmission = 1.0\nior = 3.0"),
@@ -113,7 +113,7 @@ fn absorbing_slab_transmits_beer_lambert_times_fresnel() {
 fn sunlit_white_plane_has_radiance_e_cos_over_pi() {
     let dir = temp_dir("plane");
     write(&dir.join("plane.obj"), "v -100 0 -100\nv -100 0 100\nv 100 0 100\nv 100 0 -100\nf 1 2 3 4\n");
-    for sampling in ["nee", "seed"] {
+    for sampling in ["nee", "resampled"] {
         let scene = scene_from(&format!(
             "[render]\nsampling = \"{sampling}\"\n\
              [camera]\nposition = [0.0, 2.0, 2.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y_deg = 30.0\n\
@@ -143,7 +143,7 @@ fn hard_materials_stay_finite() {
         ("absorption 1e6", "diffuse = 0.0\ntransmission = 1.0\nabsorption = [1e6, 1e6, 1e6]", 0.0),
         ("zero absorption", "diffuse = 0.0\ntransmission = 1.0\nabsorption = [0.0, 0.0, 0.0]", 0.0),
     ];
-    for sampling in ["nee", "seed"] {
+    for sampling in ["nee", "resampled"] {
         for (what, material, tilt_deg) in cases {
             // A sphere, and a second sphere of the same material inside it (glass inside glass).
             let tilt = f64::to_radians(tilt_deg);
@@ -176,7 +176,7 @@ fn inverted_shading_normals_and_suns_at_and_below_the_horizon_stay_finite() {
         "v -1 0.5 -1\nv -1 0.5 1\nv 1 0.5 1\nv 1 0.5 -1\nvn 0.9999 0.01 0\nf 1//1 2//1 3//1 4//1\n",
     );
     for elevation in [0.0, -0.1, -5.0, 90.0] {
-        for sampling in ["nee", "seed"] {
+        for sampling in ["nee", "resampled"] {
             let scene = scene_from(&format!(
                 "[render]\nsampling = \"{sampling}\"\n{SKY_ONE}\
                  [camera]\nposition = [0.3, 2.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\n\

@@ -1,11 +1,11 @@
 //! The non-finite sentinel: samples that overflow are dropped and counted per
-//! pixel with their cause, never written into the image; `--strict` fails on them.
+//! pixel with their cause, never written into the image; `--strict` fails on them with exit status 3.
 
 mod common;
 
 use common::{gpu, scene_from, temp_dir, write};
 use rt::bvh::BuildQuality;
-use rt::render::{NonFiniteCause, RenderRequest, Renderer};
+use rt::render::{NonFiniteCause, RenderRequest, Session};
 use std::process::Command;
 
 // Two emitters at f32's largest radiance: a path that sees one and then the
@@ -18,11 +18,11 @@ const OVERFLOWING: &str = "[sky]\nkind = \"black\"\n\
 
 #[test]
 fn overflowing_samples_are_dropped_counted_and_attributed() {
-    let mut renderer = Renderer::new(gpu(), scene_from(OVERFLOWING), BuildQuality::Medium).expect("renderer");
-    let mut request = RenderRequest::from_scene(&renderer.scene);
+    let mut renderer = Session::open(gpu(), scene_from(OVERFLOWING), BuildQuality::Medium).expect("renderer");
+    let mut request = RenderRequest::from_scene(renderer.scene());
     (request.width, request.height, request.spp, request.max_bounces) = (16, 16, 4, 2);
-    let (image, report) = renderer.render(&request).expect("render");
-    let s = &report.sentinel;
+    let (image, report) = renderer.render(&request, None).expect("render");
+    let s = &report.dropped;
     println!("{s}");
     assert!(s.non_finite_samples > 0, "the overflow was not seen");
     assert!(s.pixels_with_non_finite > 0 && s.pixels_with_non_finite <= 256);
@@ -48,5 +48,5 @@ fn strict_fails_on_dropped_samples() {
     assert!(relaxed.status.success(), "{}", String::from_utf8_lossy(&relaxed.stderr));
     assert!(String::from_utf8_lossy(&relaxed.stderr).contains("non-finite samples dropped"));
     let strict = run(true);
-    assert_eq!(strict.status.code(), Some(1), "{}", String::from_utf8_lossy(&strict.stderr));
+    assert_eq!(strict.status.code(), Some(3), "{}", String::from_utf8_lossy(&strict.stderr));
 }

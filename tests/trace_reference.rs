@@ -5,8 +5,8 @@ mod common;
 use common::{TestRng, gpu, icosphere_obj, repo, scene_from, temp_dir, write};
 use glam::{DMat4, DVec3};
 use rt::bvh::BuildQuality;
-use rt::gpu::layout::{EMPTY_LINK, GpuTraceRay};
-use rt::render::Renderer;
+use rt::layout::{EMPTY_LINK, GpuTraceRay};
+use rt::render::Session;
 
 /// Closest hit by brute force in f64 (Möller–Trumbore): (t, triangle index).
 fn reference_hit(triangles: &[[DVec3; 3]], o: DVec3, d: DVec3) -> Option<(f64, usize)> {
@@ -31,12 +31,12 @@ fn reference_hit(triangles: &[[DVec3; 3]], o: DVec3, d: DVec3) -> Option<(f64, u
     best
 }
 
-fn world_triangles(renderer: &Renderer) -> Vec<[DVec3; 3]> {
-    let inst = &renderer.geometry.instances[0];
+fn world_triangles(renderer: &Session) -> Vec<[DVec3; 3]> {
+    let inst = &renderer.geometry().instances[0];
     let rows = inst.object_to_world.map(|r| r.map(f64::from));
     let m = DMat4::from_cols_array_2d(&[rows[0], rows[1], rows[2], [0.0, 0.0, 0.0, 1.0]]).transpose();
     renderer
-        .geometry
+        .geometry()
         .triangles
         .iter()
         .map(|t| [t.v0, t.v1, t.v2].map(|v| m.transform_point3(DVec3::from(v.map(f64::from)))))
@@ -57,9 +57,9 @@ fn gpu_traversal_matches_cpu_reference_on_the_bunny() {
     let scene = scene_from(
         "[[mesh]]\nasset = \"assets/bunny/bunny.obj\"\nrotate_deg = [10.0, 35.0, -5.0]\ntranslate = [0.3, -0.2, 0.1]\nscale = 1.7\n",
     );
-    let mut renderer = Renderer::new(gpu(), scene, BuildQuality::Medium).expect("renderer");
+    let mut renderer = Session::open(gpu(), scene, BuildQuality::Medium).expect("renderer");
     let tris = world_triangles(&renderer);
-    let (lo, hi) = (renderer.geometry.bounds_min.as_dvec3(), renderer.geometry.bounds_max.as_dvec3());
+    let (lo, hi) = (renderer.geometry().bounds_min.as_dvec3(), renderer.geometry().bounds_max.as_dvec3());
     let centre = (lo + hi) / 2.0;
     let mut rng = TestRng(7);
     let rays: Vec<GpuTraceRay> = (0..10_000)
@@ -110,8 +110,8 @@ fn no_ray_escapes_a_closed_mesh() {
         "[[mesh]]\nasset = {:?}\nrotate_deg = [17.0, 29.0, 41.0]\nscale = 2.0\n",
         path.display().to_string()
     ));
-    let mut renderer = Renderer::new(gpu(), scene, BuildQuality::Medium).expect("renderer");
-    let m = renderer.scene.meshes[0].object_to_world.as_dmat4();
+    let mut renderer = Session::open(gpu(), scene, BuildQuality::Medium).expect("renderer");
+    let m = renderer.scene().meshes[0].object_to_world.as_dmat4();
     let world = |p: [f64; 3]| m.transform_point3(DVec3::from(p));
     // Targets where rays are likeliest to slip through: vertices, edge midpoints, and edges' thirds.
     let mut targets: Vec<DVec3> = vertices.iter().map(|v| world(*v)).collect();

@@ -1,11 +1,9 @@
 //! Meshes compiled into the binary, so the built-in default scene renders with no
 //! files beside the executable.
 
+use crate::scene::BUILTIN_PREFIX;
 use std::borrow::Cow;
 use std::path::{Component, Path, PathBuf};
-
-/// Asset paths under this prefix name embedded files instead of files on disk.
-pub const BUILTIN_PREFIX: &str = "<built-in>";
 
 /// Embedded files, by their path in the repository (under [`BUILTIN_PREFIX`]).
 const FILES: &[(&str, &[u8])] = &[

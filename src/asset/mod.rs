@@ -45,7 +45,7 @@ impl AssetError {
 
 /// Loads a mesh asset: an asset folder `NAME/` (with `NAME.rtmesh` and `NAME.gltf`), an
 /// `.rtmesh` file (with the `.gltf` of the same name beside it), a `.obj`, `.gltf` or
-/// `.glb` file, or a built-in one (a path under [`builtin::BUILTIN_PREFIX`]).
+/// `.glb` file, or a built-in one (a path under [`crate::scene::BUILTIN_PREFIX`]).
 pub fn load_mesh(path: &Path) -> Result<MeshData, AssetError> {
     let files = AssetFiles::resolve(path)?;
     let mesh = match files.kind {

@@ -99,7 +99,7 @@ impl AssetFiles {
 }
 
 fn is_builtin(path: &Path) -> bool {
-    path.starts_with(builtin::BUILTIN_PREFIX)
+    path.starts_with(crate::scene::BUILTIN_PREFIX)
 }
 
 /// The `mtllib` names of an OBJ, as tobj reads them: the rest of the line, trimmed.

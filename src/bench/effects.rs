@@ -3,10 +3,11 @@
 //! of the specialised one with each absent effect forced on: the measured price of
 //! code that a scene does not need.
 
-use super::timing::{median, ms, render_timed, warm_up};
+use super::timing::{render_timed, warm_up};
 use crate::bvh::BuildQuality;
 use crate::gpu::{GpuContext, GpuTimer};
-use crate::render::{RenderRequest, Renderer};
+use crate::gpu::{median, ms};
+use crate::render::{RenderRequest, Session};
 use crate::scene::{FeatureSet, RoughTransmission, Scene, Transmission};
 use anyhow::Result;
 use indicatif::ProgressBar;
@@ -107,15 +108,15 @@ pub fn effects(
     let timer = GpuTimer::new(ctx);
     let rough = scene.render.rough_transmission;
     let origin = scene.origin.clone();
-    let mut renderer = Renderer::new(ctx, scene, BuildQuality::default())?;
-    let mut request = RenderRequest::from_scene(&renderer.scene);
+    let mut session = Session::open(ctx, scene, BuildQuality::default())?;
+    let mut request = RenderRequest::from_scene(session.scene());
     (request.width, request.height, request.spp) = (width, height, spp.max(1));
     // Fixed dispatches: every pipeline does the same work in the same steps.
     request.samples_per_dispatch = Some(request.spp.min(16));
-    let variants = variants(renderer.geometry.features, rough);
+    let variants = variants(session.features(), rough);
     bar.set_length((variants.len() as u64) * (repeats.max(1) as u64 + 1));
     for (_, features) in &variants {
-        warm_up(&mut renderer, &RenderRequest { features: Some(*features), ..request.clone() }, &timer)?;
+        warm_up(&mut session, &RenderRequest { features: Some(*features), ..request.clone() }, &timer)?;
         bar.inc(1);
     }
     // Interleaved, so that a machine growing busier or cooler does not favour one pipeline.
@@ -125,7 +126,7 @@ pub fn effects(
     for repeat in 0..repeats.max(1) {
         for (i, (_, features)) in variants.iter().enumerate() {
             let r = RenderRequest { features: Some(*features), seed: repeat + 1, ..request.clone() };
-            let render = render_timed(&mut renderer, &r, &timer)?;
+            let render = render_timed(&mut session, &r, &timer)?;
             times[i].push(render.time);
             dropped[i] += render.dropped;
             let pixels = &render.image.pixels;

@@ -8,7 +8,7 @@
 use super::timing::{render_timed, warm_up};
 use crate::bvh::BuildQuality;
 use crate::gpu::{GpuContext, GpuTimer};
-use crate::render::{RenderRequest, Renderer};
+use crate::render::{RenderRequest, Session};
 use crate::scene::{Sampling, Scene, luminance};
 use anyhow::Result;
 use indicatif::ProgressBar;
@@ -92,15 +92,15 @@ pub fn fireflies(
     bar.set_length(4 * per_strategy);
     let mut rows = Vec::new();
     let mut clamp = options.clamp;
-    for sampling in [Sampling::Nee, Sampling::Seed] {
+    for sampling in [Sampling::Nee, Sampling::Resampled] {
         let mut scene = scene.clone();
         scene.render.sampling = sampling;
-        let mut renderer = Renderer::new(ctx, scene, BuildQuality::default())?;
+        let mut session = Session::open(ctx, scene, BuildQuality::default())?;
         let name = format!("{sampling:?}").to_lowercase();
-        let unclamped = measure(&mut renderer, options, None, &timer, bar)?;
+        let unclamped = measure(&mut session, options, None, &timer, bar)?;
         let level = *clamp.get_or_insert((10.0 * unclamped.mean_luminance) as f32);
         rows.push(FireflyRow { strategy: name.clone(), ..unclamped });
-        let clamped = measure(&mut renderer, options, Some(level), &timer, bar)?;
+        let clamped = measure(&mut session, options, Some(level), &timer, bar)?;
         rows.push(FireflyRow { strategy: format!("{name} + clamp"), biased: true, ..clamped });
     }
     Ok(FireflyReport {
@@ -113,16 +113,16 @@ pub fn fireflies(
 }
 
 fn measure(
-    renderer: &mut Renderer,
+    session: &mut Session,
     options: &FireflyOptions,
     clamp: Option<f32>,
     timer: &GpuTimer,
     bar: &ProgressBar,
 ) -> Result<FireflyRow> {
-    let mut request = RenderRequest::from_scene(&renderer.scene);
+    let mut request = RenderRequest::from_scene(session.scene());
     (request.width, request.height, request.spp, request.clamp) = (options.size.0, options.size.1, 1, clamp);
     request.samples_per_dispatch = Some(1);
-    warm_up(renderer, &request, timer)?;
+    warm_up(session, &request, timer)?;
     let (samples, seeds) = (options.samples.max(1), options.seeds.max(2));
     let pixels = (options.size.0 * options.size.1) as usize;
     let mut values: Vec<f32> = Vec::with_capacity(pixels * (samples * seeds) as usize);
@@ -132,7 +132,7 @@ fn measure(
     for seed in 0..seeds {
         for sample in 0..samples {
             let r = RenderRequest { seed: 1 + seed * samples + sample, ..request.clone() };
-            let render = render_timed(renderer, &r, timer)?;
+            let render = render_timed(session, &r, timer)?;
             seconds += render.time.as_secs_f64();
             for (mean, p) in means[seed as usize].iter_mut().zip(&render.image.pixels) {
                 let y = luminance(*p);

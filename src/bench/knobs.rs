@@ -1,7 +1,7 @@
 //! The knobs that trade accuracy for time. A knob is a name, its settings, and for
 //! each setting a function that applies it to a [`Trial`]: what to render and how.
 //! A knob that changes the scene (its render settings, or the atmosphere's steps
-//! and table sizes) is measured on a renderer built for the
+//! and table sizes) is measured on a session built for the
 //! changed scene, so new knobs slot in without changes to the sweep.
 
 use crate::bvh::BuildQuality;
@@ -9,7 +9,7 @@ use crate::render::RenderRequest;
 use crate::scene::{Atmosphere, FeatureSet, RoughTransmission, Sampling, Scene, Sky, SkyFeature, Transmission};
 use clap::ValueEnum;
 
-/// One configuration to measure: the scene as the renderer is built for it, the
+/// One configuration to measure: the scene as the session is built for it, the
 /// request, and how its BVHs are built.
 #[derive(Clone, Debug)]
 pub struct Trial {
@@ -115,8 +115,8 @@ pub fn all_knobs(levels: &[u32]) -> Vec<Knob> {
         },
         Knob {
             name: "sampling",
-            about: "how paths find light: the seed's resampled BSDF directions, or next-event estimation with MIS",
-            settings: [Sampling::Seed, Sampling::Nee]
+            about: "how paths find light: resampled BSDF directions, or next-event estimation with MIS",
+            settings: [Sampling::Resampled, Sampling::Nee]
                 .into_iter()
                 .map(|s| Setting::new(format!("{s:?}").to_lowercase(), move |t| t.scene.render.sampling = s))
                 .collect(),
@@ -125,12 +125,12 @@ pub fn all_knobs(levels: &[u32]) -> Vec<Knob> {
         },
         Knob {
             name: "ris-candidates",
-            about: "candidates M per resampled direction, with seed sampling",
+            about: "candidates M per resampled direction, with resampled sampling",
             settings: [1u32, 2, 4, 8, 16, 32]
                 .into_iter()
                 .map(|m| {
                     Setting::new(format!("M={m}"), move |t| {
-                        t.scene.render.sampling = Sampling::Seed;
+                        t.scene.render.sampling = Sampling::Resampled;
                         t.request.ris_candidates = m;
                     })
                 })

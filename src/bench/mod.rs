@@ -17,7 +17,6 @@ pub mod sweep;
 mod throughput;
 pub mod timing;
 pub mod views;
-mod watch_latency;
 
 pub use accuracy::{AccuracyOptions, accuracy};
 pub use effects::effects;
@@ -25,4 +24,3 @@ pub use fireflies::{FireflyOptions, fireflies};
 pub use headline::{HeadlineOptions, headline};
 pub use sky::sky;
 pub use throughput::throughput;
-pub use watch_latency::watch_latency;

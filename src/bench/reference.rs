@@ -13,7 +13,7 @@ use super::timing::render_timed;
 use crate::asset::{AssetFiles, builtin};
 use crate::gpu::GpuTimer;
 use crate::gpu::shader::{Program, assemble};
-use crate::render::{Image, Renderer, write_image};
+use crate::render::{Image, Session, write_image};
 use crate::scene::{RoughTransmission, Sampling, Scene};
 use anyhow::{Context, Result, bail};
 use std::path::{Path, PathBuf};
@@ -70,17 +70,17 @@ pub fn reference_trial(scene: &Scene, size: (u32, u32), settings: ReferenceSetti
 }
 
 /// The reference from `cache_dir` if one with the same key is there, else rendered
-/// with `renderer` (built for [`reference_trial`]'s scene) and written there.
+/// with `session` (built for [`reference_trial`]'s scene) and written there.
 pub fn obtain(
-    renderer: &mut Renderer,
+    session: &mut Session,
     trial: &Trial,
     settings: ReferenceSettings,
     cache_dir: &Path,
     timer: &GpuTimer,
 ) -> Result<Reference> {
     let request = &trial.request;
-    let key = key(renderer, trial, settings)?;
-    let stem = Path::new(&renderer.scene.origin).file_stem().map_or("scene".into(), |s| s.to_string_lossy());
+    let key = key(session, trial, settings)?;
+    let stem = Path::new(&session.scene().origin).file_stem().map_or("scene".into(), |s| s.to_string_lossy());
     let paths = [format!("{stem}-{key}-a.exr"), format!("{stem}-{key}-b.exr")].map(|n| cache_dir.join(n));
     let (halves, origin) = match read_halves(&paths, request.width, request.height) {
         Some(halves) => (halves, ReferenceOrigin::Cached),
@@ -90,7 +90,7 @@ pub fn obtain(
             let mut took = Duration::ZERO;
             for (seed, path) in HALF_SEEDS.iter().zip(&paths) {
                 let half_request = crate::render::RenderRequest { seed: *seed, ..request.clone() };
-                let render = render_timed(renderer, &half_request, timer)?;
+                let render = render_timed(session, &half_request, timer)?;
                 if render.dropped > 0 {
                     log::warn!("{}: {} non-finite samples dropped", path.display(), render.dropped);
                 }
@@ -142,13 +142,13 @@ fn read_halves(paths: &[PathBuf; 2], width: u32, height: u32) -> Option<Vec<Vec<
 }
 
 /// Hex of the first 64 bits of a BLAKE3 over everything that decides the reference.
-fn key(renderer: &Renderer, trial: &Trial, settings: ReferenceSettings) -> Result<String> {
+fn key(session: &Session, trial: &Trial, settings: ReferenceSettings) -> Result<String> {
     let mut h = blake3::Hasher::new();
     let r = &trial.request;
     h.update(format!("{FORMAT} {}\n", env!("CARGO_PKG_VERSION")).as_bytes());
     // The parsed scene rather than its text: comments and layout do not change the image.
     // Where it came from does not either: paths give way to the bytes of the assets.
-    let mut scene = renderer.scene.clone();
+    let mut scene = session.scene().clone();
     scene.origin.clear();
     for mesh in &mut scene.meshes {
         for file in AssetFiles::resolve(&mesh.asset)?.source_files()? {
@@ -160,6 +160,6 @@ fn key(renderer: &Renderer, trial: &Trial, settings: ReferenceSettings) -> Resul
     }
     h.update(format!("{scene:?}\n").as_bytes());
     h.update(format!("{}x{} {settings:?} {HALF_SEEDS:?}\n", r.width, r.height).as_bytes());
-    h.update(assemble(Program::Integrator, &renderer.geometry.features).as_bytes());
+    h.update(assemble(Program::Integrator, &session.features()).as_bytes());
     Ok(h.finalize().to_hex()[..16].to_string())
 }

@@ -6,7 +6,7 @@
 
 use crate::bvh::BuildQuality;
 use crate::gpu::GpuContext;
-use crate::render::{Image, RenderRequest, Renderer};
+use crate::render::{Image, RenderRequest, Session};
 use crate::scene::{Atmosphere, Scene, Sky, luminance};
 use anyhow::{Result, bail};
 
@@ -31,25 +31,25 @@ pub fn sky(scene: Scene, (width, height): (u32, u32), spp: u32, adapter: Option<
         bail!("{}: the sky is not an atmosphere", scene.origin);
     };
     let ctx = GpuContext::new(adapter)?;
-    let mut renderer = Renderer::new(&ctx, scene, BuildQuality::default())?;
-    let mut request = RenderRequest::from_scene(&renderer.scene);
+    let mut session = Session::open(&ctx, scene, BuildQuality::default())?;
+    let mut request = RenderRequest::from_scene(session.scene());
     (request.width, request.height, request.spp) = (width, height, spp);
     println!("GPU       {}", ctx.describe());
-    println!("scene     {} at {width}x{height}, {spp} spp", renderer.scene.origin);
+    println!("scene     {} at {width}x{height}, {spp} spp", session.scene().origin);
     let reference = Atmosphere {
         steps: 256,
         transmittance_lut: [1024, 256],
         multiple_scattering_lut: [96, 96],
         ..defaults.clone()
     };
-    renderer.set_atmosphere(&reference)?;
-    let (truth, _) = renderer.render(&request)?;
+    session.set_atmosphere(&reference)?;
+    let (truth, _) = session.render(&request, None)?;
     println!("reference 256 steps, tables 1024x256 and 96x96; relative error of the pixels, median / 95th percentile:");
     let mut run = |label: String, params: Atmosphere| -> Result<()> {
-        let rebuilt = renderer.set_atmosphere(&params)?;
-        let (image, report) = renderer.render(&request)?;
+        let rebuilt = session.set_atmosphere(&params)?;
+        let (image, report) = session.render(&request, None)?;
         let (median, p95) = relative_errors(&image, &truth);
-        let tables = match (rebuilt, &renderer.sky) {
+        let tables = match (rebuilt, session.atmosphere()) {
             (true, Some(t)) => format!(", tables built in {:.1} ms", t.build_time.as_secs_f64() * 1e3),
             _ => String::new(),
         };

@@ -6,10 +6,11 @@ use super::knobs::{Knob, Trial};
 use super::metrics::ErrorMetrics;
 use super::model::{Fit, Level};
 use super::reference::{Reference, ReferenceSettings, obtain, reference_trial};
-use super::timing::{median, render_timed, warm_up};
+use super::timing::{render_timed, warm_up};
 use crate::bvh::SceneGeometry;
+use crate::gpu::median;
 use crate::gpu::{GpuContext, GpuTimer};
-use crate::render::Renderer;
+use crate::render::Session;
 use crate::scene::{FeatureSet, Scene};
 use anyhow::Result;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -76,14 +77,14 @@ pub struct Sweep {
     pub knobs: Vec<KnobResult>,
 }
 
-/// A renderer for the trial's scene, and the BVH build time when it built them afresh.
-fn renderer_for<'a>(ctx: &'a GpuContext, trial: &Trial) -> Result<(Renderer<'a>, Option<f64>)> {
+/// A session for the trial's scene, and the BVH build time when it built them afresh.
+fn session_for<'a>(ctx: &'a GpuContext, trial: &Trial) -> Result<(Session<'a>, Option<f64>)> {
     let geometry = match trial.fresh_bvh {
         true => SceneGeometry::build_in_memory(&trial.scene, trial.quality)?,
         false => SceneGeometry::build(&trial.scene, trial.quality)?,
     };
     let build = trial.fresh_bvh.then(|| geometry.meshes.iter().map(|m| m.bvh.build_time.as_secs_f64()).sum());
-    Ok((Renderer::with_geometry(ctx, trial.scene.clone(), geometry)?, build))
+    Ok((Session::with_geometry(ctx, trial.scene.clone(), geometry)?, build))
 }
 
 pub fn run(ctx: &GpuContext, scene: &Scene, knobs: &[Knob], options: &SweepOptions) -> Result<Sweep> {
@@ -91,15 +92,15 @@ pub fn run(ctx: &GpuContext, scene: &Scene, knobs: &[Knob], options: &SweepOptio
     let bar = progress_bar(options.progress, knobs, options);
     bar.set_message("reference");
     let ref_trial = reference_trial(scene, options.size, options.reference);
-    let (mut ref_renderer, _) = renderer_for(ctx, &ref_trial)?;
+    let (mut ref_renderer, _) = session_for(ctx, &ref_trial)?;
     let reference = obtain(&mut ref_renderer, &ref_trial, options.reference, &options.cache_dir, &timer)?;
     drop(ref_renderer);
 
     let base = Trial::baseline(scene, options.size);
-    let (mut base_renderer, _) = renderer_for(ctx, &base)?;
-    let baseline_features = base_renderer.geometry.features;
+    let (mut base_session, _) = session_for(ctx, &base)?;
+    let baseline_features = base_session.features();
     bar.set_message("baseline");
-    let mut baseline = measure(&mut base_renderer, &base, &options.levels, options.repeats, &reference, &timer, &bar)?;
+    let mut baseline = measure(&mut base_session, &base, &options.levels, options.repeats, &reference, &timer, &bar)?;
     baseline.label = "scene defaults".into();
     let mut measured = vec![(base.clone(), options.levels.clone(), baseline.clone())];
     let mut results = Vec::new();
@@ -108,7 +109,7 @@ pub fn run(ctx: &GpuContext, scene: &Scene, knobs: &[Knob], options: &SweepOptio
         let cost = levels.iter().sum::<u32>() as u64 * options.repeats as u64;
         let skipped = (knob.inapplicable)(&baseline_features);
         let mut settings = Vec::new();
-        let mut own: Vec<(Trial, Renderer, Option<f64>)> = Vec::new();
+        let mut own: Vec<(Trial, Session, Option<f64>)> = Vec::new();
         for setting in knob.settings.iter().filter(|_| skipped.is_none()) {
             bar.set_message(format!("{}: {}", knob.name, setting.label));
             let trial = setting.trial(&base);
@@ -118,17 +119,17 @@ pub fn run(ctx: &GpuContext, scene: &Scene, knobs: &[Knob], options: &SweepOptio
                 continue;
             }
             let uses_base = trial.scene == base.scene && trial.quality == base.quality && !trial.fresh_bvh;
-            let (renderer, build_seconds) = match uses_base {
-                true => (&mut base_renderer, None),
+            let (session, build_seconds) = match uses_base {
+                true => (&mut base_session, None),
                 false => {
-                    // Settings of a knob often share a scene (all RIS counts use seed sampling): one renderer.
+                    // Settings of a knob often share a scene (all RIS counts use seed sampling): one session.
                     let found = own.iter().position(|(t, _, _): &(Trial, _, _)| {
                         t.scene == trial.scene && t.quality == trial.quality && !t.fresh_bvh && !trial.fresh_bvh
                     });
                     let index = match found {
                         Some(i) => i,
                         None => {
-                            let (r, build) = renderer_for(ctx, &trial)?;
+                            let (r, build) = session_for(ctx, &trial)?;
                             own.push((trial.clone(), r, build));
                             own.len() - 1
                         }
@@ -137,7 +138,7 @@ pub fn run(ctx: &GpuContext, scene: &Scene, knobs: &[Knob], options: &SweepOptio
                     (r, *build)
                 }
             };
-            let mut result = measure(renderer, &trial, &levels, options.repeats, &reference, &timer, &bar)?;
+            let mut result = measure(session, &trial, &levels, options.repeats, &reference, &timer, &bar)?;
             result.label = setting.label.clone();
             result.build_seconds = build_seconds;
             measured.push((trial, levels.clone(), result.clone()));
@@ -162,7 +163,7 @@ pub fn run(ctx: &GpuContext, scene: &Scene, knobs: &[Knob], options: &SweepOptio
 }
 
 fn measure(
-    renderer: &mut Renderer,
+    session: &mut Session,
     trial: &Trial,
     levels: &[u32],
     repeats: u32,
@@ -170,9 +171,9 @@ fn measure(
     timer: &GpuTimer,
     bar: &ProgressBar,
 ) -> Result<SettingResult> {
-    warm_up(renderer, &trial.request, timer)?;
-    let features = trial.request.features.unwrap_or(renderer.geometry.features);
-    let exposure = renderer.scene.render.exposure;
+    warm_up(session, &trial.request, timer)?;
+    let features = trial.request.features.unwrap_or(session.features());
+    let exposure = session.scene().render.exposure;
     let pixels = (trial.request.width * trial.request.height) as f64;
     let mut measurements = Vec::new();
     for &spp in levels {
@@ -181,7 +182,7 @@ fn measure(
         let mut dropped = 0;
         for repeat in 0..repeats.max(1) {
             let request = crate::render::RenderRequest { spp, seed: repeat + 1, ..trial.request.clone() };
-            let render = render_timed(renderer, &request, timer)?;
+            let render = render_timed(session, &request, timer)?;
             errors.push(ErrorMetrics::of(&render.image, reference, exposure));
             times.push(render.time);
             dropped += render.dropped;

@@ -1,11 +1,10 @@
 //! `rt bench throughput`: rays/s through the BVH alone (camera rays, then
 //! diffuse bounces from their hits) and paths/s of the whole integrator.
 
-use super::timing::{median, ms};
 use crate::bvh::BuildQuality;
-use crate::gpu::layout::{EMPTY_LINK, GpuTraceHit, GpuTraceRay};
-use crate::gpu::{GpuContext, GpuTimer, read_buffer};
-use crate::render::{Accumulation, RenderRequest, Renderer, TraceBuffers, human};
+use crate::gpu::{GpuContext, GpuTimer, median, ms, read_buffer};
+use crate::layout::{EMPTY_LINK, GpuTraceHit, GpuTraceRay};
+use crate::render::{RenderRequest, Session, human};
 use crate::scene::Scene;
 use anyhow::Result;
 use indicatif::ProgressBar;
@@ -13,32 +12,30 @@ use indicatif::ProgressBar;
 pub fn throughput(scene: Scene, (width, height): (u32, u32), runs: u32, spp: u32, adapter: Option<&str>) -> Result<()> {
     let runs = runs.max(1);
     let ctx = GpuContext::new(adapter)?;
-    let mut renderer = Renderer::new(&ctx, scene, BuildQuality::default())?;
+    let mut session = Session::open(&ctx, scene, BuildQuality::default())?;
     let timer = GpuTimer::new(&ctx);
     println!("GPU       {}", ctx.describe());
-    println!("scene     {} [{}]", renderer.scene.origin, renderer.geometry.features);
+    println!("scene     {} [{}]", session.scene().origin, session.features());
     println!("size      {width}x{height}, median of {runs} runs after a warm-up, timed by {}", timer.method());
 
-    let mut request = RenderRequest::from_scene(&renderer.scene);
+    let mut request = RenderRequest::from_scene(session.scene());
     (request.width, request.height) = (width, height);
-    let frame = renderer.frame(&request);
-    let trace = renderer.trace_pipelines()?;
+    session.set_request(&request)?;
     let n = width * height;
-    let io = TraceBuffers::new(&ctx, &renderer.pipelines.trace_layout, &vec![GpuTraceRay::default(); n as usize]);
+    let io = session.trace_buffers(&vec![GpuTraceRay::default(); n as usize]);
     let bar = ProgressBar::new(3 * (runs as u64 + 1));
 
     let mut camera_times = Vec::new();
     let mut diffuse_times = Vec::new();
     let mut diffuse_rays = 0u64;
     for run in 0..=runs {
-        let f = crate::gpu::layout::GpuFrame { sample_base: 2 * run, ..frame };
-        renderer.buffers.write_frame(&ctx, &f);
-        timer.time(&ctx, |e, w| io.encode(e, &trace, &renderer.buffers, "generate_camera_rays", w))?;
-        let camera = timer.time(&ctx, |e, w| io.encode(e, &trace, &renderer.buffers, "trace", w))?;
+        let base = 2 * run;
+        session.trace_pass(&io, "generate_camera_rays", base, Some(&timer))?;
+        let camera = session.trace_pass(&io, "trace", base, Some(&timer))?;
         let hits: Vec<GpuTraceHit> = read_buffer(&ctx, &io.hits)?;
         let with_hit = hits.iter().filter(|h| h.primitive != EMPTY_LINK).count() as u64;
-        timer.time(&ctx, |e, w| io.encode(e, &trace, &renderer.buffers, "generate_diffuse_rays", w))?;
-        let diffuse = timer.time(&ctx, |e, w| io.encode(e, &trace, &renderer.buffers, "trace", w))?;
+        session.trace_pass(&io, "generate_diffuse_rays", base, Some(&timer))?;
+        let diffuse = session.trace_pass(&io, "trace", base, Some(&timer))?;
         // Run 0 warms caches and compiles lazily built state; it is not counted.
         if run > 0 {
             camera_times.push(camera);
@@ -47,14 +44,13 @@ pub fn throughput(scene: Scene, (width, height): (u32, u32), runs: u32, spp: u32
         }
         bar.inc(2);
     }
-    let integrator =
-        renderer.pipelines.get(&ctx, crate::gpu::shader::Program::Integrator, renderer.geometry.features)?;
-    let mut acc = Accumulation::new(&ctx, &renderer.pipelines.accumulation_layout, width, height);
+    // One dispatch of `spp` samples per pixel per run.
+    let paths_request = RenderRequest { spp, samples_per_dispatch: Some(spp), ..request.clone() };
     let mut path_times = Vec::new();
     for run in 0..=runs {
-        let took = timer.time(&ctx, |e, w| acc.encode(&ctx, e, &integrator, &renderer.buffers, &frame, spp, w))?;
+        let (_, report) = session.render(&paths_request, Some(&timer))?;
         if run > 0 {
-            path_times.push(took);
+            path_times.push(report.dispatch_time);
         }
         bar.inc(1);
     }

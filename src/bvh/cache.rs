@@ -27,7 +27,7 @@ use super::cached_material::CachedMaterial;
 use super::mesh_bvh::{BuildQuality, MeshBvh};
 use super::node::{BvhStats, NODE_LAYOUT};
 use crate::asset::{AssetError, AssetFiles, write_atomically};
-use crate::gpu::layout::{GpuBvhNode, GpuTriangle, GpuTriangleShading};
+use crate::layout::{GpuBvhNode, GpuTriangle, GpuTriangleShading};
 use crate::scene::Material;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;

@@ -3,7 +3,7 @@
 //! hostile writer must still stop here, not as out-of-bounds reads or an endless loop.
 
 use super::cached_material::CachedMaterial;
-use crate::gpu::layout::{EMPTY_LINK, GpuBvhNode, GpuTriangle, GpuTriangleShading};
+use crate::layout::{EMPTY_LINK, GpuBvhNode, GpuTriangle, GpuTriangleShading};
 
 /// Every node link points forward to an existing node (so traversal terminates), every
 /// leaf's triangle range is in bounds, every triangle's material exists, and every
@@ -75,7 +75,7 @@ mod tests {
     use super::super::cache::{self, CacheProblem, PackedMesh};
     use super::super::{BuildQuality, MeshBvh};
     use crate::asset::load_mesh;
-    use crate::gpu::layout::EMPTY_LINK;
+    use crate::layout::EMPTY_LINK;
     use std::path::Path;
 
     fn packed() -> PackedMesh {

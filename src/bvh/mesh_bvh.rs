@@ -2,7 +2,7 @@
 
 use super::node::{BvhStats, convert_bvh2, stats};
 use crate::asset::MeshData;
-use crate::gpu::layout::{GpuBvhNode, GpuTriangle, GpuTriangleShading};
+use crate::layout::{GpuBvhNode, GpuTriangle, GpuTriangleShading};
 use glam::{Vec3, Vec3A};
 use obvhs::{BvhBuildParams, bvh2::builder::build_bvh2_from_tris, triangle::Triangle};
 use std::time::{Duration, Instant};

@@ -2,7 +2,7 @@
 //! nodes that hold both children's boxes, as the seed renderer's 64-byte node did.
 //! Leaves live in their parent's child slot, so traversal never fetches a leaf node.
 
-use crate::gpu::layout::{EMPTY_LINK, GpuBvhNode};
+use crate::layout::{EMPTY_LINK, GpuBvhNode};
 use obvhs::{aabb::Aabb, bvh2::Bvh2};
 
 /// The layout's name, recorded in caches so that a new layout invalidates old files.

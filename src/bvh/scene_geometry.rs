@@ -4,8 +4,8 @@
 use super::mesh_bvh::BuildQuality;
 use super::node::{BvhStats, convert_bvh2, stats};
 use super::pack::{LoadedMesh, build_all_in_memory, load_or_pack_all};
-use crate::gpu::layout::*;
-use crate::scene::{FeatureSet, Material, Scene};
+use crate::layout::*;
+use crate::scene::{GeometrySummary, Material, Scene};
 use anyhow::{Result, bail};
 use glam::{Mat4, Vec3, Vec3A};
 use obvhs::{BvhBuildParams, aabb::Aabb, bvh2::builder::build_bvh2};
@@ -30,12 +30,22 @@ pub struct SceneGeometry {
     pub tlas_root: u32,
     pub tlas_stats: BvhStats,
     pub meshes: Vec<LoadedMesh>,
-    pub features: FeatureSet,
+    /// Every material some triangle or sphere uses.
+    pub materials_in_use: Vec<Material>,
     pub bounds_min: Vec3,
     pub bounds_max: Vec3,
 }
 
 impl SceneGeometry {
+    /// What the feature analysis needs to know of the geometry.
+    pub fn summary(&self) -> GeometrySummary {
+        GeometrySummary {
+            triangles: !self.instances.is_empty(),
+            spheres: !self.spheres.is_empty(),
+            materials_in_use: self.materials_in_use.clone(),
+        }
+    }
+
     /// Loads every asset's BVH once (from its cache, or packing it when the cache is
     /// missing or stale), and places instances and spheres.
     pub fn build(scene: &Scene, quality: BuildQuality) -> Result<Self> {
@@ -145,15 +155,7 @@ impl SceneGeometry {
             });
         }
 
-        let used: Vec<&Material> = materials.iter().zip(&in_use).filter(|(_, u)| **u).map(|(m, _)| m).collect();
-        let features = FeatureSet::analyse(
-            !instances.is_empty(),
-            !spheres.is_empty(),
-            &used,
-            &scene.sky,
-            scene.sun.is_some(),
-            &scene.render,
-        );
+        let materials_in_use = materials.iter().zip(&in_use).filter(|(_, u)| **u).map(|(m, _)| m.clone()).collect();
         let (emitters, emitter_total_power) =
             emitter_table(&instances, &instance_triangles, &triangles, &spheres, &materials);
 
@@ -185,7 +187,7 @@ impl SceneGeometry {
             tlas_root,
             tlas_stats,
             meshes,
-            features,
+            materials_in_use,
             bounds_min,
             bounds_max,
         })

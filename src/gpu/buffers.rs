@@ -1,20 +1,41 @@
 //! The scene's GPU buffers and the bind group that exposes them to every program.
 
 use super::GpuContext;
-use super::layout::GpuFrame;
+use super::bind::{Binding, bind_group, sequential_layout};
+use super::readback::read_buffer;
 use crate::bvh::SceneGeometry;
+use crate::layout::GpuFrame;
 use anyhow::{Result, anyhow};
 use bytemuck::Pod;
 use wgpu::util::DeviceExt;
 
-/// Counters in the statistics buffer (see `shaders/common.wgsl`).
+/// Counters in the statistics buffer (see `STAT_*` in `shaders/common.wgsl`).
 pub const STAT_STACK_OVERFLOW: usize = 0;
-const STAT_COUNT: usize = 4;
+const STAT_COUNT: usize = 1;
 
-/// The scene's buffers in binding order (see `shaders/common.wgsl`), so that a live
-/// reload can replace some of them and rebind.
-pub struct SceneBuffers {
-    pub frame: wgpu::Buffer,
+/// The scene group's bindings, in the order of `shaders/common.wgsl` and of
+/// [`SceneData::bindings`].
+pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    use Binding::*;
+    let bindings = [Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadWrite, ReadOnly];
+    sequential_layout(device, "scene", wgpu::ShaderStages::COMPUTE, &bindings)
+}
+
+/// Layout of the atmosphere's group: its parameters (uniform) and its tables
+/// (storage, read-only to render, written by the table passes).
+pub fn sky_bind_group_layout(device: &wgpu::Device, tables_writable: bool) -> wgpu::BindGroupLayout {
+    let tables = if tables_writable { Binding::ReadWrite } else { Binding::ReadOnly };
+    sequential_layout(device, "sky", wgpu::ShaderStages::COMPUTE, &[Binding::Uniform, tables])
+}
+
+/// Layout of group 1: `count` read-write storage buffers (accumulation, or trace rays and hits).
+pub fn io_bind_group_layout(device: &wgpu::Device, count: usize) -> wgpu::BindGroupLayout {
+    sequential_layout(device, "io", wgpu::ShaderStages::COMPUTE, &vec![Binding::ReadWrite; count])
+}
+
+/// The scene's buffers, so that a live reload can replace some of them and rebind.
+struct SceneData {
+    frame: wgpu::Buffer,
     nodes: wgpu::Buffer,
     triangles: wgpu::Buffer,
     shading: wgpu::Buffer,
@@ -22,8 +43,30 @@ pub struct SceneBuffers {
     tlas: wgpu::Buffer,
     spheres: wgpu::Buffer,
     materials: wgpu::Buffer,
-    pub stats: wgpu::Buffer,
+    stats: wgpu::Buffer,
     emitters: wgpu::Buffer,
+}
+
+impl SceneData {
+    /// The buffers in binding order (see [`scene_bind_group_layout`]).
+    fn bindings(&self) -> [&wgpu::Buffer; 10] {
+        [
+            &self.frame,
+            &self.nodes,
+            &self.triangles,
+            &self.shading,
+            &self.instances,
+            &self.tlas,
+            &self.spheres,
+            &self.materials,
+            &self.stats,
+            &self.emitters,
+        ]
+    }
+}
+
+pub struct SceneBuffers {
+    data: SceneData,
     pub bind_group: wgpu::BindGroup,
     /// Group 2 of the integrator when the sky is an atmosphere: its parameters and
     /// tables (see `crate::sky`).
@@ -41,92 +84,41 @@ fn storage<T: Pod + Default>(ctx: &GpuContext, label: &str, data: &[T], extra: w
     })
 }
 
-pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-    let entry = |binding: u32, ty: wgpu::BufferBindingType| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer { ty, has_dynamic_offset: false, min_binding_size: None },
-        count: None,
-    };
-    let read = wgpu::BufferBindingType::Storage { read_only: true };
-    let mut entries = vec![entry(0, wgpu::BufferBindingType::Uniform)];
-    entries.extend((1..=7).map(|b| entry(b, read)));
-    entries.push(entry(8, wgpu::BufferBindingType::Storage { read_only: false }));
-    entries.push(entry(9, read));
-    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some("scene"), entries: &entries })
+/// The geometry's buffers: (nodes, triangles, shading, instances, top-level primitives, spheres).
+type GeometryBuffers = (wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer);
+
+fn geometry_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<GeometryBuffers> {
+    check_sizes(ctx, geometry)?;
+    let none = wgpu::BufferUsages::empty();
+    Ok((
+        storage(ctx, "nodes", &geometry.nodes, none),
+        storage(ctx, "triangles", &geometry.triangles, none),
+        storage(ctx, "shading", &geometry.shading, none),
+        storage(ctx, "instances", &geometry.instances, none),
+        storage(ctx, "tlas primitives", &geometry.tlas_primitives, none),
+        storage(ctx, "spheres", &geometry.spheres, none),
+    ))
 }
 
-/// Layout of the atmosphere's group: its parameters (uniform) and its tables
-/// (storage, read-only to render, written by the table passes).
-pub fn sky_bind_group_layout(device: &wgpu::Device, tables_writable: bool) -> wgpu::BindGroupLayout {
-    let entry = |binding: u32, ty: wgpu::BufferBindingType| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer { ty, has_dynamic_offset: false, min_binding_size: None },
-        count: None,
-    };
-    let tables = wgpu::BufferBindingType::Storage { read_only: !tables_writable };
-    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("sky"),
-        entries: &[entry(0, wgpu::BufferBindingType::Uniform), entry(1, tables)],
-    })
-}
-
-/// Layout of group 1: `count` read-write storage buffers (accumulation, or trace rays and hits).
-pub fn io_bind_group_layout(device: &wgpu::Device, count: u32) -> wgpu::BindGroupLayout {
-    let entries: Vec<_> = (0..count)
-        .map(|binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only: false },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        })
-        .collect();
-    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some("io"), entries: &entries })
+fn material_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer, wgpu::Buffer) {
+    let writable = wgpu::BufferUsages::COPY_DST;
+    (storage(ctx, "materials", &geometry.materials, writable), storage(ctx, "emitters", &geometry.emitters, writable))
 }
 
 impl SceneBuffers {
     pub fn new(ctx: &GpuContext, geometry: &SceneGeometry, layout: &wgpu::BindGroupLayout) -> Result<Self> {
-        check_sizes(ctx, geometry)?;
-        let none = wgpu::BufferUsages::empty();
+        let (nodes, triangles, shading, instances, tlas, spheres) = geometry_buffers(ctx, geometry)?;
+        let (materials, emitters) = material_buffers(ctx, geometry);
         let frame = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("frame"),
             contents: bytemuck::bytes_of(&GpuFrame::default()),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
-        let stats =
-            storage(ctx, "stats", &[0u32; STAT_COUNT], wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST);
-        let materials = storage(ctx, "materials", &geometry.materials, wgpu::BufferUsages::COPY_DST);
-        let emitters = storage(ctx, "emitters", &geometry.emitters, wgpu::BufferUsages::COPY_DST);
-        let nodes = storage(ctx, "nodes", &geometry.nodes, none);
-        let triangles = storage(ctx, "triangles", &geometry.triangles, none);
-        let shading = storage(ctx, "shading", &geometry.shading, none);
-        let instances = storage(ctx, "instances", &geometry.instances, none);
-        let tlas = storage(ctx, "tlas primitives", &geometry.tlas_primitives, none);
-        let spheres = storage(ctx, "spheres", &geometry.spheres, none);
-        let bind_group = bind(
-            ctx,
-            layout,
-            [&frame, &nodes, &triangles, &shading, &instances, &tlas, &spheres, &materials, &stats, &emitters],
-        );
-        Ok(Self {
-            frame,
-            nodes,
-            triangles,
-            shading,
-            instances,
-            tlas,
-            spheres,
-            materials,
-            stats,
-            emitters,
-            bind_group,
-            sky_bind_group: None,
-        })
+        let counters = wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST;
+        let stats = storage(ctx, "stats", &[0u32; STAT_COUNT], counters);
+        let data = SceneData { frame, nodes, triangles, shading, instances, tlas, spheres, materials, stats, emitters };
+        let bind_group = bind_group(ctx, "scene", layout, &data.bindings());
+        Ok(Self { data, bind_group, sky_bind_group: None })
     }
 
     /// Replaces the geometry (nodes, triangles, instances, spheres) and the material
@@ -137,59 +129,36 @@ impl SceneBuffers {
         geometry: &SceneGeometry,
         layout: &wgpu::BindGroupLayout,
     ) -> Result<()> {
-        check_sizes(ctx, geometry)?;
-        let none = wgpu::BufferUsages::empty();
-        self.nodes = storage(ctx, "nodes", &geometry.nodes, none);
-        self.triangles = storage(ctx, "triangles", &geometry.triangles, none);
-        self.shading = storage(ctx, "shading", &geometry.shading, none);
-        self.instances = storage(ctx, "instances", &geometry.instances, none);
-        self.tlas = storage(ctx, "tlas primitives", &geometry.tlas_primitives, none);
-        self.spheres = storage(ctx, "spheres", &geometry.spheres, none);
-        self.materials = storage(ctx, "materials", &geometry.materials, wgpu::BufferUsages::COPY_DST);
-        self.emitters = storage(ctx, "emitters", &geometry.emitters, wgpu::BufferUsages::COPY_DST);
-        self.rebind(ctx, layout);
+        let d = &mut self.data;
+        (d.nodes, d.triangles, d.shading, d.instances, d.tlas, d.spheres) = geometry_buffers(ctx, geometry)?;
+        (d.materials, d.emitters) = material_buffers(ctx, geometry);
+        self.bind_group = bind_group(ctx, "scene", layout, &self.data.bindings());
         Ok(())
     }
 
     /// Uploads `geometry`'s material table and emitter table (emission decides which
     /// triangles are lights), in place when their sizes are unchanged.
     pub fn replace_materials(&mut self, ctx: &GpuContext, geometry: &SceneGeometry, layout: &wgpu::BindGroupLayout) {
-        let same_size = self.materials.size() == size_of_nonempty(&geometry.materials)
-            && self.emitters.size() == size_of_nonempty(&geometry.emitters);
+        let d = &mut self.data;
+        let same_size = d.materials.size() == size_of_nonempty(&geometry.materials)
+            && d.emitters.size() == size_of_nonempty(&geometry.emitters);
         if same_size {
-            write_nonempty(ctx, &self.materials, &geometry.materials);
-            write_nonempty(ctx, &self.emitters, &geometry.emitters);
+            write_nonempty(ctx, &d.materials, &geometry.materials);
+            write_nonempty(ctx, &d.emitters, &geometry.emitters);
         } else {
-            self.materials = storage(ctx, "materials", &geometry.materials, wgpu::BufferUsages::COPY_DST);
-            self.emitters = storage(ctx, "emitters", &geometry.emitters, wgpu::BufferUsages::COPY_DST);
-            self.rebind(ctx, layout);
+            (d.materials, d.emitters) = material_buffers(ctx, geometry);
+            self.bind_group = bind_group(ctx, "scene", layout, &self.data.bindings());
         }
     }
 
-    fn rebind(&mut self, ctx: &GpuContext, layout: &wgpu::BindGroupLayout) {
-        let buffers = [
-            &self.frame,
-            &self.nodes,
-            &self.triangles,
-            &self.shading,
-            &self.instances,
-            &self.tlas,
-            &self.spheres,
-            &self.materials,
-            &self.stats,
-            &self.emitters,
-        ];
-        self.bind_group = bind(ctx, layout, buffers);
-    }
-
     pub fn write_frame(&self, ctx: &GpuContext, frame: &GpuFrame) {
-        ctx.queue.write_buffer(&self.frame, 0, bytemuck::bytes_of(frame));
+        ctx.queue.write_buffer(&self.data.frame, 0, bytemuck::bytes_of(frame));
     }
 
     /// Reads the counters and zeroes them.
     pub fn take_stats(&self, ctx: &GpuContext) -> Result<[u32; STAT_COUNT]> {
-        let values: Vec<u32> = read_buffer(ctx, &self.stats)?;
-        ctx.queue.write_buffer(&self.stats, 0, bytemuck::cast_slice(&[0u32; STAT_COUNT]));
+        let values: Vec<u32> = read_buffer(ctx, &self.data.stats)?;
+        ctx.queue.write_buffer(&self.data.stats, 0, bytemuck::cast_slice(&[0u32; STAT_COUNT]));
         let mut out = [0; STAT_COUNT];
         out.copy_from_slice(&values[..STAT_COUNT]);
         Ok(out)
@@ -214,16 +183,6 @@ fn check_sizes(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<()> {
     Ok(())
 }
 
-/// The scene bind group: binding i is the i-th buffer.
-fn bind(ctx: &GpuContext, layout: &wgpu::BindGroupLayout, buffers: [&wgpu::Buffer; 10]) -> wgpu::BindGroup {
-    let entries: Vec<_> = buffers
-        .iter()
-        .enumerate()
-        .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
-        .collect();
-    ctx.device.create_bind_group(&wgpu::BindGroupDescriptor { label: Some("scene"), layout, entries: &entries })
-}
-
 /// The size [`storage`] gives a buffer for `data`.
 fn size_of_nonempty<T: Pod + Default>(data: &[T]) -> u64 {
     (std::mem::size_of::<T>() * data.len().max(1)) as u64
@@ -233,28 +192,4 @@ fn write_nonempty<T: Pod + Default>(ctx: &GpuContext, buffer: &wgpu::Buffer, dat
     let one = [T::default()];
     let contents: &[T] = if data.is_empty() { &one } else { data };
     ctx.queue.write_buffer(buffer, 0, bytemuck::cast_slice(contents));
-}
-
-/// Copies a buffer (with COPY_SRC usage) back to the host.
-pub fn read_buffer<T: Pod>(ctx: &GpuContext, buffer: &wgpu::Buffer) -> Result<Vec<T>> {
-    let size = buffer.size();
-    let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("readback"),
-        size,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let mut encoder = ctx.device.create_command_encoder(&Default::default());
-    encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
-    ctx.queue.submit([encoder.finish()]);
-    let slice = staging.slice(..);
-    let (tx, rx) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |r| {
-        let _ = tx.send(r);
-    });
-    ctx.wait()?;
-    rx.recv()?.map_err(|e| anyhow!("could not read a GPU buffer back: {e}"))?;
-    let view = slice.get_mapped_range().map_err(|e| anyhow!("could not map a GPU buffer: {e}"))?;
-    let data = bytemuck::pod_collect_to_vec(&view);
-    Ok(data)
 }

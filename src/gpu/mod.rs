@@ -1,14 +1,21 @@
-//! The GPU side: device setup, host mirrors of GPU structs, shader assembly
-//! per feature set, scene buffers and the pipelines that use them.
+//! The GPU side: device setup, shader assembly per feature set, scene buffers and
+//! the pipelines that use them. The host mirrors of GPU structs live in `crate::layout`.
 
+mod bind;
 mod buffers;
+mod build;
 mod context;
-pub mod layout;
+#[cfg(test)]
+mod layout_check;
 mod pipelines;
+mod readback;
 pub mod shader;
 mod timer;
 
-pub use buffers::{STAT_STACK_OVERFLOW, SceneBuffers, read_buffer, sky_bind_group_layout};
+pub use bind::{Binding, bind_group, sequential_layout};
+pub use buffers::{STAT_STACK_OVERFLOW, SceneBuffers, sky_bind_group_layout};
+pub use build::{compute_pipelines, validated};
 pub use context::GpuContext;
 pub use pipelines::{PipelineCache, Pipelines};
-pub use timer::GpuTimer;
+pub use readback::{Readback, read_buffer};
+pub use timer::{GpuTimer, median, ms};

@@ -2,6 +2,7 @@
 
 use super::GpuContext;
 use super::buffers::{io_bind_group_layout, scene_bind_group_layout, sky_bind_group_layout};
+use super::build::compute_pipelines;
 use super::shader::{Program, ShaderFiles, assemble_from};
 use crate::scene::{FeatureSet, SkyFeature};
 use anyhow::{Result, anyhow};
@@ -10,7 +11,6 @@ use std::rc::Rc;
 
 /// The pipelines of one program specialised to one feature set.
 pub struct Pipelines {
-    pub features: FeatureSet,
     /// Entry point name → pipeline.
     pub entries: HashMap<&'static str, wgpu::ComputePipeline>,
 }
@@ -78,37 +78,14 @@ impl PipelineCache {
             ),
         };
         let source = assemble_from(files, program, &features).map_err(|e| anyhow!(e))?;
-        let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let module = ctx.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("rt"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
         // Only the integrator reads the atmosphere; the trace program never calls the sky.
-        let mut groups = vec![Some(&self.scene_layout), Some(io_layout)];
+        let mut groups = vec![&self.scene_layout, io_layout];
         if program == Program::Integrator && features.sky == SkyFeature::Atmosphere {
-            groups.push(Some(&self.sky_layout));
+            groups.push(&self.sky_layout);
         }
-        let layout = ctx.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("rt"),
-            bind_group_layouts: &groups,
-            immediate_size: 0,
-        });
-        let mut entries = HashMap::new();
-        for &name in entry_names {
-            let pipeline = ctx.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(name),
-                layout: Some(&layout),
-                module: &module,
-                entry_point: Some(name),
-                compilation_options: Default::default(),
-                cache: None,
-            });
-            entries.insert(name, pipeline);
-        }
-        if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(anyhow!("building the {program:?} pipeline for [{features}] failed: {e}"));
-        }
+        let what = format!("the {program:?} pipeline for [{features}]");
+        let entries = compute_pipelines(ctx, &what, source, &groups, entry_names)?;
         log::debug!("built the {program:?} pipeline for [{features}]");
-        Ok(Pipelines { features, entries })
+        Ok(Pipelines { entries })
     }
 }

@@ -267,7 +267,7 @@ mod tests {
                 glossy: on(7),
                 transmission,
                 media: on(1) && transmission != Transmission::None,
-                sampling: if on(0) { Sampling::Nee } else { Sampling::Seed },
+                sampling: if on(0) { Sampling::Nee } else { Sampling::Resampled },
             });
         }
         sets

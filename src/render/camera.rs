@@ -1,6 +1,6 @@
 //! The camera's basis for the GPU.
 
-use crate::gpu::layout::GpuFrame;
+use crate::layout::GpuFrame;
 use crate::scene::Camera;
 use glam::Vec3;
 

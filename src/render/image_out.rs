@@ -6,7 +6,7 @@ use super::tonemap::display_pixel;
 use anyhow::{Context, Result, bail};
 use std::path::Path;
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum ImageFormat {
     Png,
     Exr,
@@ -21,22 +21,41 @@ pub fn image_format(path: &Path) -> Result<ImageFormat> {
     }
 }
 
-pub fn write_image(image: &Image, path: &Path, exposure_ev: f32) -> Result<()> {
-    let format = image_format(path)?;
-    let tmp = path.with_extension("partial");
-    match format {
-        ImageFormat::Png => {
-            let bytes: Vec<u8> = image.pixels.iter().flat_map(|p| display_pixel(*p, exposure_ev)).collect();
-            let buf = image::RgbImage::from_raw(image.width, image.height, bytes).context("image size mismatch")?;
-            buf.save_with_format(&tmp, image::ImageFormat::Png)
-        }
-        ImageFormat::Exr => {
-            let floats: Vec<f32> = image.pixels.iter().flatten().copied().collect();
-            let buf = image::Rgb32FImage::from_raw(image.width, image.height, floats).context("image size mismatch")?;
-            buf.save_with_format(&tmp, image::ImageFormat::OpenExr)
+impl ImageFormat {
+    pub fn extension(self) -> &'static str {
+        match self {
+            ImageFormat::Png => "png",
+            ImageFormat::Exr => "exr",
         }
     }
-    .with_context(|| format!("could not write {}", tmp.display()))?;
-    std::fs::rename(&tmp, path).with_context(|| format!("could not move {} into place", path.display()))?;
-    Ok(())
+}
+
+/// A render to `path`: linear EXR, or exposed and tone-mapped sRGB PNG.
+pub fn write_image(image: &Image, path: &Path, exposure_ev: f32) -> Result<()> {
+    match image_format(path)? {
+        ImageFormat::Png => {
+            let pixels: Vec<[u8; 3]> = image.pixels.iter().map(|p| display_pixel(*p, exposure_ev)).collect();
+            write_png(&pixels, image.width, image.height, path)
+        }
+        ImageFormat::Exr => write_exr(image, path),
+    }
+}
+
+/// 8-bit sRGB pixels (rows from the top) to a PNG.
+pub fn write_png(pixels: &[[u8; 3]], width: u32, height: u32, path: &Path) -> Result<()> {
+    let bytes: Vec<u8> = pixels.iter().flatten().copied().collect();
+    let buf = image::RgbImage::from_raw(width, height, bytes).context("image size mismatch")?;
+    let tmp = path.with_extension("partial");
+    buf.save_with_format(&tmp, image::ImageFormat::Png)
+        .with_context(|| format!("could not write {}", tmp.display()))?;
+    std::fs::rename(&tmp, path).with_context(|| format!("could not move {} into place", path.display()))
+}
+
+fn write_exr(image: &Image, path: &Path) -> Result<()> {
+    let floats: Vec<f32> = image.pixels.iter().flatten().copied().collect();
+    let buf = image::Rgb32FImage::from_raw(image.width, image.height, floats).context("image size mismatch")?;
+    let tmp = path.with_extension("partial");
+    buf.save_with_format(&tmp, image::ImageFormat::OpenExr)
+        .with_context(|| format!("could not write {}", tmp.display()))?;
+    std::fs::rename(&tmp, path).with_context(|| format!("could not move {} into place", path.display()))
 }

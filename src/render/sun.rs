@@ -1,6 +1,6 @@
 //! The sun's fields of the frame constants.
 
-use crate::gpu::layout::GpuFrame;
+use crate::layout::GpuFrame;
 use crate::scene::Sun;
 use glam::DVec3;
 

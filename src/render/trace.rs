@@ -1,12 +1,13 @@
 //! The trace-only program: rays in, closest hits out. Used to check traversal
 //! against a CPU reference and to measure rays/s.
 
-use super::Renderer;
-use crate::gpu::layout::{GpuTraceHit, GpuTraceRay};
+use super::Session;
 use crate::gpu::shader::Program;
-use crate::gpu::{GpuContext, Pipelines, SceneBuffers, read_buffer};
+use crate::gpu::{GpuContext, GpuTimer, Pipelines, SceneBuffers, read_buffer};
+use crate::layout::{GpuFrame, GpuTraceHit, GpuTraceRay};
 use anyhow::Result;
 use std::rc::Rc;
+use std::time::{Duration, Instant};
 use wgpu::util::DeviceExt;
 
 pub struct TraceBuffers {
@@ -61,21 +62,50 @@ impl TraceBuffers {
     }
 }
 
-impl Renderer<'_> {
-    pub fn trace_pipelines(&mut self) -> Result<Rc<Pipelines>> {
-        self.pipelines.get(self.ctx, Program::Trace, self.geometry.features)
+impl Session<'_> {
+    fn trace_pipelines(&mut self) -> Result<Rc<Pipelines>> {
+        let features = self.features();
+        let ctx = self.ctx();
+        self.pipelines_mut().get(ctx, Program::Trace, features)
+    }
+
+    /// Buffers of `rays` and their hits for [`Self::trace_pass`].
+    pub fn trace_buffers(&self, rays: &[GpuTraceRay]) -> TraceBuffers {
+        TraceBuffers::new(self.ctx(), &self.pipeline_cache().trace_layout, rays)
+    }
+
+    /// Runs one entry point of the trace program over `io` with the frame constants of
+    /// the current request (its random numbers drawn from `sample_base`), waits for it
+    /// and returns how long it took (on the GPU with a timer that has timestamps).
+    pub fn trace_pass(
+        &mut self,
+        io: &TraceBuffers,
+        entry: &str,
+        sample_base: u32,
+        timer: Option<&GpuTimer>,
+    ) -> Result<Duration> {
+        let pipelines = self.trace_pipelines()?;
+        let ctx = self.ctx();
+        self.buffers().write_frame(ctx, &GpuFrame { sample_base, ..self.frame() });
+        let buffers = self.buffers();
+        match timer {
+            Some(timer) => timer.time(ctx, |e, w| io.encode(e, &pipelines, buffers, entry, w)),
+            None => {
+                let start = Instant::now();
+                let mut encoder = ctx.device.create_command_encoder(&Default::default());
+                io.encode(&mut encoder, &pipelines, buffers, entry, None);
+                ctx.queue.submit([encoder.finish()]);
+                ctx.wait()?;
+                Ok(start.elapsed())
+            }
+        }
     }
 
     /// Closest hits of `rays` (directions of unit length), traced on the GPU.
     pub fn trace(&mut self, rays: &[GpuTraceRay]) -> Result<Vec<GpuTraceHit>> {
-        let pipelines = self.trace_pipelines()?;
-        let frame = self.frame(&super::RenderRequest::from_scene(&self.scene));
-        self.buffers.write_frame(self.ctx, &frame);
-        let io = TraceBuffers::new(self.ctx, &self.pipelines.trace_layout, rays);
-        let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
-        io.encode(&mut encoder, &pipelines, &self.buffers, "trace", None);
-        self.ctx.queue.submit([encoder.finish()]);
-        read_buffer(self.ctx, &io.hits)
+        let io = self.trace_buffers(rays);
+        self.trace_pass(&io, "trace", 0, None)?;
+        read_buffer(self.ctx(), &io.hits)
     }
 
     /// Traces `rays`, spawns from each hit a ray as a path would (on the side
@@ -86,19 +116,11 @@ impl Renderer<'_> {
         rays: &[GpuTraceRay],
         through: bool,
     ) -> Result<(Vec<GpuTraceHit>, Vec<GpuTraceRay>, Vec<GpuTraceHit>)> {
-        let pipelines = self.trace_pipelines()?;
-        let frame = self.frame(&super::RenderRequest::from_scene(&self.scene));
-        self.buffers.write_frame(self.ctx, &frame);
-        let io = TraceBuffers::new(self.ctx, &self.pipelines.trace_layout, rays);
-        let run = |entry: &str| {
-            let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
-            io.encode(&mut encoder, &pipelines, &self.buffers, entry, None);
-            self.ctx.queue.submit([encoder.finish()]);
-        };
-        run("trace");
-        let first = read_buffer(self.ctx, &io.hits)?;
-        run(if through { "generate_through_rays" } else { "generate_diffuse_rays" });
-        run("trace");
-        Ok((first, read_buffer(self.ctx, &io.rays)?, read_buffer(self.ctx, &io.hits)?))
+        let io = self.trace_buffers(rays);
+        self.trace_pass(&io, "trace", 0, None)?;
+        let first = read_buffer(self.ctx(), &io.hits)?;
+        self.trace_pass(&io, if through { "generate_through_rays" } else { "generate_diffuse_rays" }, 0, None)?;
+        self.trace_pass(&io, "trace", 0, None)?;
+        Ok((first, read_buffer(self.ctx(), &io.rays)?, read_buffer(self.ctx(), &io.hits)?))
     }
 }

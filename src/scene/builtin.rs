@@ -2,8 +2,10 @@
 //! arguments makes a picture on a fresh machine.
 
 use super::{Scene, SceneError, parse};
-use crate::asset::builtin::BUILTIN_PREFIX;
 use std::path::Path;
+
+/// Paths under this prefix name files embedded in the binary instead of files on disk.
+pub const BUILTIN_PREFIX: &str = "<built-in>";
 
 const DEFAULT_SCENE: &str = include_str!("../../scenes/cornell_box.toml");
 

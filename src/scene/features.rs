@@ -1,6 +1,6 @@
 //! Feature analysis: which effects a scene needs, so that the GPU runs only their code.
 
-use super::{Material, RenderSettings, RoughTransmission, Sampling, Sky};
+use super::{Material, RoughTransmission, Sampling, Scene, Sky};
 use std::fmt;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -40,37 +40,42 @@ pub struct FeatureSet {
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
 pub const ALPHA_DELTA: f32 = 1e-3;
 
+/// What the loaded geometry holds, as far as the feature set cares: a summary the
+/// BVH room makes of a scene once its assets are loaded.
+#[derive(Clone, Debug, Default)]
+pub struct GeometrySummary {
+    pub triangles: bool,
+    pub spheres: bool,
+    /// Every material some triangle or sphere uses (an asset's own materials may
+    /// emit or refract).
+    pub materials_in_use: Vec<Material>,
+}
+
 impl FeatureSet {
-    /// Derives the set from what the scene really contains, after its assets
-    /// are loaded (an asset's own materials may emit or refract).
-    pub fn analyse(
-        has_triangles: bool,
-        has_spheres: bool,
-        materials_in_use: &[&Material],
-        sky: &Sky,
-        has_sun: bool,
-        settings: &RenderSettings,
-    ) -> Self {
+    /// Derives the set from what the scene really contains, after its assets are loaded.
+    pub fn analyse(scene: &Scene, geometry: &GeometrySummary) -> Self {
+        let settings = &scene.render;
+        let materials_in_use = &geometry.materials_in_use;
         let rough = |m: &&Material| m.alpha() >= ALPHA_DELTA;
-        let transmissive: Vec<&&Material> = materials_in_use.iter().filter(|m| m.transmission > 0.0).collect();
+        let transmissive: Vec<&Material> = materials_in_use.iter().filter(|m| m.transmission > 0.0).collect();
         let transmission = if transmissive.is_empty() {
             Transmission::None
-        } else if transmissive.iter().any(|m| rough(m)) {
+        } else if transmissive.iter().any(rough) {
             Transmission::Rough(settings.rough_transmission)
         } else {
             Transmission::Smooth
         };
         Self {
-            triangles: has_triangles,
-            spheres: has_spheres,
+            triangles: geometry.triangles,
+            spheres: geometry.spheres,
             emission: materials_in_use.iter().any(|m| m.is_emissive()),
-            sky: match sky {
+            sky: match scene.sky {
                 Sky::Black => SkyFeature::Black,
                 Sky::Uniform { .. } => SkyFeature::Uniform,
                 Sky::Atmosphere(_) => SkyFeature::Atmosphere,
             },
-            sun: has_sun,
-            glossy: materials_in_use.iter().any(|m| (m.specular > 0.0 || m.reflection > 0.0) && rough(m)),
+            sun: scene.sun.is_some(),
+            glossy: materials_in_use.iter().any(|m| (m.specular > 0.0 || m.reflection > 0.0) && rough(&m)),
             transmission,
             media: transmissive.iter().any(|m| m.has_medium()),
             sampling: settings.sampling,

@@ -12,10 +12,11 @@ mod tests;
 mod validate;
 
 pub use atmosphere::Atmosphere;
-pub use builtin::default_scene;
-pub use features::{ALPHA_DELTA, FeatureSet, SkyFeature, Transmission};
+pub use builtin::{BUILTIN_PREFIX, default_scene};
+pub use features::{ALPHA_DELTA, FeatureSet, GeometrySummary, SkyFeature, Transmission};
 pub use material::{Material, luminance};
 pub use parse::{SceneError, load, parse};
+pub use validate::MAX_IMAGE_SIDE;
 
 use glam::{Mat4, Vec3};
 use serde::Deserialize;
@@ -33,7 +34,7 @@ pub struct RenderSettings {
     /// Exposure in EV, applied before tone mapping (PNG only).
     pub exposure: f32,
     pub sampling: Sampling,
-    /// Candidates per resampled direction in `seed` sampling.
+    /// Candidates per resampled direction in `resampled` sampling.
     pub ris_candidates: u32,
     pub rough_transmission: RoughTransmission,
 }
@@ -57,9 +58,12 @@ impl Default for RenderSettings {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "lowercase")]
 pub enum Sampling {
-    /// The seed renderer's: no light sampling; each bounce resamples (RIS) candidate
-    /// directions drawn from the BSDF and the sun disk, weighted by the BSDF.
-    Seed,
+    /// No light sampling: each bounce resamples (RIS) candidate directions drawn
+    /// from the BSDF and the sun disk, weighted by the BSDF. `"seed"` is read as an
+    /// alias: the name of the renderer rt grew from, whose scheme this is.
+    #[serde(alias = "seed")]
+    #[value(alias = "seed")]
+    Resampled,
     /// Next-event estimation towards emitters and the sun, combined with BSDF
     /// sampling by multiple importance sampling (power heuristic).
     #[default]
@@ -73,7 +77,7 @@ pub enum RoughTransmission {
     /// GGX microfacet refraction (Walter et al. 2007).
     #[default]
     Ggx,
-    /// The seed's cheaper model: the refracted direction jittered in a cone.
+    /// A cheaper model: the refracted direction jittered in a cone.
     Cone,
 }
 

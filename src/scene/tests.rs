@@ -266,3 +266,11 @@ fn load_names_an_unreadable_file() {
     assert!(e.to_string().starts_with("/nonexistent/scene.toml: cannot read: "), "{e}");
     assert_eq!((e.line(), e.column()), (None, None));
 }
+
+#[test]
+fn seed_is_read_as_resampled_sampling() {
+    for name in ["resampled", "seed"] {
+        let scene = parse_ok(&format!("[render]\nsampling = \"{name}\"\n"));
+        assert_eq!(scene.render.sampling, Sampling::Resampled, "{name}");
+    }
+}

@@ -3,26 +3,14 @@
 use super::atmosphere;
 use super::parse::{SceneError, Seg, Seg::*, Source, hint};
 use super::schema::{self, File, Scale, SkyKind};
-use super::{Camera, Material, MeshInstance, Scene, Sky, Sphere, Sun};
+use super::{Camera, Material, MeshInstance, RenderSettings, Scene, Sky, Sphere, Sun};
 use glam::{Mat3, Mat4, Vec3};
 use std::path::Path;
 
-const MAX_SIZE: u32 = 16384;
-
 pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, SceneError> {
     let render = file.render;
-    let p = [Key("render")];
-    for (field, size) in [("width", render.width), ("height", render.height)] {
-        if !(1..=MAX_SIZE).contains(&size) {
-            return Err(src.error(&p, field, format!("must be in 1..={MAX_SIZE}, got {size}")));
-        }
-    }
-    if render.spp == 0 {
-        return Err(src.error(&p, "spp", "must be at least 1, got 0"));
-    }
-    src.finite(&p, "exposure", &[render.exposure])?;
-    if !(1..=64).contains(&render.ris_candidates) {
-        return Err(src.error(&p, "ris_candidates", format!("must be in 1..=64, got {}", render.ris_candidates)));
+    if let Err((key, message)) = render.check() {
+        return Err(src.error(&[Key("render")], key, message));
     }
 
     let mut materials: Vec<(String, Material)> = file.materials.into_iter().collect();
@@ -179,4 +167,29 @@ fn transform(src: &Source, p: &[Seg], m: &schema::Mesh) -> Result<Mat4, SceneErr
         * Mat4::from_rotation_y(r[1].to_radians())
         * Mat4::from_rotation_x(r[0].to_radians())
         * Mat4::from_scale(s.into()))
+}
+
+/// The largest image side a render may ask for.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+
+impl RenderSettings {
+    /// The rules every `[render]` value obeys, whether it comes from the scene file or a
+    /// flag: on a violation, the key and what is wrong.
+    pub fn check(&self) -> Result<(), (&'static str, String)> {
+        for (key, size) in [("width", self.width), ("height", self.height)] {
+            if !(1..=MAX_IMAGE_SIDE).contains(&size) {
+                return Err((key, format!("must be in 1..={MAX_IMAGE_SIDE}, got {size}")));
+            }
+        }
+        if self.spp == 0 {
+            return Err(("spp", "must be at least 1, got 0".into()));
+        }
+        if !self.exposure.is_finite() {
+            return Err(("exposure", format!("must be finite, got {}", self.exposure)));
+        }
+        if !(1..=64).contains(&self.ris_candidates) {
+            return Err(("ris_candidates", format!("must be in 1..=64, got {}", self.ris_candidates)));
+        }
+        Ok(())
+    }
 }

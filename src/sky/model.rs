@@ -1,7 +1,7 @@
 //! Hillaire's Earth (EGSR 2020, table 1), scaled by the scene's `[sky]` keys, in
 //! the layout the shaders read.
 
-use crate::gpu::layout::GpuAtmosphere;
+use crate::layout::GpuAtmosphere;
 use crate::scene::Atmosphere;
 
 pub const BOTTOM_RADIUS_M: f32 = 6_360_000.0;

@@ -4,7 +4,7 @@
 
 use super::model::{TableLayout, gpu_atmosphere};
 use crate::gpu::shader::atmosphere_tables_source;
-use crate::gpu::{GpuContext, GpuTimer, sky_bind_group_layout};
+use crate::gpu::{GpuContext, GpuTimer, compute_pipelines, sky_bind_group_layout};
 use crate::scene::Atmosphere;
 use anyhow::{Result, anyhow};
 use std::time::Duration;
@@ -38,39 +38,20 @@ struct Passes {
 
 impl Passes {
     fn new(ctx: &GpuContext) -> Result<Self> {
-        let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let module = ctx.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("atmosphere tables"),
-            source: wgpu::ShaderSource::Wgsl(atmosphere_tables_source().into()),
-        });
         let layout = sky_bind_group_layout(&ctx.device, true);
-        let pipeline_layout = ctx.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("atmosphere tables"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = |entry: &str| {
-            ctx.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(entry),
-                layout: Some(&pipeline_layout),
-                module: &module,
-                entry_point: Some(entry),
-                compilation_options: Default::default(),
-                cache: None,
-            })
-        };
-        let passes = Self {
-            transmittance: pipeline("build_transmittance"),
-            second_order: pipeline("build_second_order"),
-            third_order: pipeline("build_third_order"),
-            fourth_order: pipeline("build_fourth_order"),
-            closure: pipeline("build_closure"),
+        let names =
+            ["build_transmittance", "build_second_order", "build_third_order", "build_fourth_order", "build_closure"];
+        let mut built =
+            compute_pipelines(ctx, "the atmosphere's table passes", atmosphere_tables_source(), &[&layout], &names)?;
+        let mut take = |name| built.remove(name).ok_or_else(|| anyhow!("no table pass {name}"));
+        Ok(Self {
+            transmittance: take("build_transmittance")?,
+            second_order: take("build_second_order")?,
+            third_order: take("build_third_order")?,
+            fourth_order: take("build_fourth_order")?,
+            closure: take("build_closure")?,
             layout,
-        };
-        if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(anyhow!("building the atmosphere's table passes failed: {e}"));
-        }
-        Ok(passes)
+        })
     }
 }
 

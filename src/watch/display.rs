@@ -2,7 +2,7 @@
 //! tone-mapped on the GPU, into the window's surface or into a texture that is read
 //! back as a screenshot, with the same pipeline, so a screenshot is what the window shows.
 
-use crate::gpu::GpuContext;
+use crate::gpu::{Binding, GpuContext, bind_group, sequential_layout, validated};
 use crate::render::Accumulation;
 use anyhow::{Result, anyhow};
 use bytemuck::{Pod, Zeroable};
@@ -40,19 +40,8 @@ impl Display {
     /// not build is an error naming it.
     pub fn new(ctx: &GpuContext, surface_format: wgpu::TextureFormat, shader_dir: Option<&Path>) -> Result<Self> {
         let device = &ctx.device;
-        let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Buffer { ty, has_dynamic_offset: false, min_binding_size: None },
-            count: None,
-        };
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("display"),
-            entries: &[
-                entry(0, wgpu::BufferBindingType::Uniform),
-                entry(1, wgpu::BufferBindingType::Storage { read_only: true }),
-            ],
-        });
+        let bindings = [Binding::Uniform, Binding::ReadOnly];
+        let layout = sequential_layout(device, "display", wgpu::ShaderStages::FRAGMENT, &bindings);
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("display"),
             size: size_of::<DisplayUniform>() as u64,
@@ -153,14 +142,7 @@ impl Display {
         acc: &Accumulation,
         pipeline: &wgpu::RenderPipeline,
     ) {
-        let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("display"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: self.uniform.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: acc.means().as_entire_binding() },
-            ],
-        });
+        let bind_group = bind_group(ctx, "display", &self.layout, &[&self.uniform, acc.means()]);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("display"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -191,44 +173,41 @@ fn pipelines(
         None => BUILT_IN.to_owned(),
     };
     let device = &ctx.device;
-    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("display"),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    });
-    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some("display"),
-        bind_group_layouts: &[Some(layout)],
-        immediate_size: 0,
-    });
-    let pipeline = |format: wgpu::TextureFormat| {
-        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+    validated(ctx, "the display pipeline (shaders/display.wgsl)", || {
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("display"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vertex"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fragment"),
-                compilation_options: Default::default(),
-                targets: &[Some(format.into())],
-            }),
-            primitive: Default::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            multiview_mask: None,
-            cache: None,
-        })
-    };
-    let pipelines = (pipeline(surface_format), pipeline(SCREENSHOT_FORMAT));
-    if let Some(e) = pollster::block_on(scope.pop()) {
-        return Err(anyhow!("building the display pipeline (shaders/display.wgsl) failed: {e}"));
-    }
-    Ok(pipelines)
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("display"),
+            bind_group_layouts: &[Some(layout)],
+            immediate_size: 0,
+        });
+        let pipeline = |format: wgpu::TextureFormat| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some("display"),
+                layout: Some(&pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some("vertex"),
+                    compilation_options: Default::default(),
+                    buffers: &[],
+                },
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some("fragment"),
+                    compilation_options: Default::default(),
+                    targets: &[Some(format.into())],
+                }),
+                primitive: Default::default(),
+                depth_stencil: None,
+                multisample: Default::default(),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        (pipeline(surface_format), pipeline(SCREENSHOT_FORMAT))
+    })
 }
 
 #[cfg(test)]
@@ -251,7 +230,7 @@ mod tests {
             })
             .collect();
         let pipelines = PipelineCache::new(&ctx);
-        let mut acc = Accumulation::new(&ctx, &pipelines.accumulation_layout, width, height);
+        let mut acc = Accumulation::new(&ctx, &pipelines.accumulation_layout, width, height).expect("accumulation");
         let means: Vec<[f32; 4]> = radiance.iter().map(|c| [c[0], c[1], c[2], 0.0]).collect();
         ctx.queue.write_buffer(acc.means(), 0, bytemuck::cast_slice(&means));
         acc.samples = samples;

@@ -5,11 +5,10 @@
 
 use super::fs_watch::{Batch, FileWatcher};
 use super::live::LiveScene;
-use super::refine::Refinement;
 use super::reload_log::ReloadLog;
-use crate::render::{ImageFormat, write_image};
+use crate::render::{ImageFormat, Pacing, write_image};
 use anyhow::Result;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender};
 use std::time::{Duration, Instant};
 
@@ -20,15 +19,10 @@ pub const STOP_FILE: &str = "stop";
 const STOP_POLL: Duration = Duration::from_millis(50);
 
 /// Headless frames take as long as they need: no window waits for them.
-const FRAME_BUDGET: Duration = Duration::from_millis(100);
+const PACING: Pacing = Pacing { target: Duration::from_millis(100), max_samples: 64 };
 
 pub struct HeadlessOptions {
     pub frames_dir: PathBuf,
-    /// [default: the scene's]
-    pub spp: Option<u32>,
-    /// [default: the scene's]
-    pub size: Option<(u32, u32)>,
-    pub seed: u32,
     pub format: ImageFormat,
     /// Stop once the frame of this reload is written (0: the first state's).
     pub max_reloads: Option<u32>,
@@ -52,11 +46,7 @@ pub fn run(
     log: &mut ReloadLog,
     opened_at: Instant,
 ) -> Result<()> {
-    let ctx = live.renderer.ctx;
-    let size = |live: &LiveScene| options.size.unwrap_or((live.scene().render.width, live.scene().render.height));
-    let target = |live: &LiveScene| options.spp.unwrap_or(live.scene().render.spp);
-    let (width, height) = size(live);
-    let mut refine = Refinement::new(live, width, height, target(live), FRAME_BUDGET);
+    live.session.set_pacing(PACING);
     let mut state = State { number: 0, since: opened_at, first_frame: None, written: false };
     let stop_file = options.frames_dir.join(STOP_FILE);
     let mut pending: Option<Batch> = None;
@@ -68,15 +58,6 @@ pub fn run(
             match live.reload(&batch.paths) {
                 Ok(report) => {
                     log.reload(&report, &batch.paths);
-                    if size(live) != (refine.acc.width, refine.acc.height) {
-                        let (w, h) = size(live);
-                        refine.resize(live, w, h);
-                    } else if report.reload.resets_accumulation() {
-                        let mut encoder = ctx.device.create_command_encoder(&Default::default());
-                        refine.reset(&mut encoder);
-                        ctx.queue.submit([encoder.finish()]);
-                    }
-                    refine.target_spp = target(live);
                     state =
                         State { number: report.number, since: batch.first_event, first_frame: None, written: false };
                 }
@@ -90,14 +71,7 @@ pub fn run(
             log.write("stop: the stop file appeared");
             return Ok(());
         }
-        if !refine.converged() {
-            let mut encoder = ctx.device.create_command_encoder(&Default::default());
-            let samples = refine.encode(live, options.seed, &mut encoder)?;
-            let submitted = Instant::now();
-            ctx.queue.submit([encoder.finish()]);
-            ctx.wait()?;
-            refine.frame_done(samples, submitted);
-        }
+        live.session.step(None)?;
         if state.first_frame.is_none() {
             let now = Instant::now();
             state.first_frame = Some(now - state.since);
@@ -105,21 +79,18 @@ pub fn run(
                 let _ = tx.send((state.number, now));
             }
         }
-        if refine.converged() && !state.written {
-            let ext = match options.format {
-                ImageFormat::Png => "png",
-                ImageFormat::Exr => "exr",
-            };
-            let file = options.frames_dir.join(format!("frame-{:04}.{ext}", state.number));
-            write_frame(live, &refine, &file)?;
+        let session = &live.session;
+        if session.converged() && !state.written {
+            let file = options.frames_dir.join(format!("frame-{:04}.{}", state.number, options.format.extension()));
+            write_image(&session.image()?, &file, session.scene().render.exposure)?;
             let first_frame = state.first_frame.unwrap_or_default();
-            log.frame(state.number, refine.acc.samples, &file, first_frame, state.since.elapsed());
+            log.frame(state.number, session.samples(), &file, first_frame, state.since.elapsed());
             state.written = true;
             if options.max_reloads.is_some_and(|max| state.number >= max) {
                 return Ok(());
             }
         }
-        if refine.converged() {
+        if live.session.converged() {
             match batches.recv_timeout(STOP_POLL) {
                 Ok(batch) => merge(&mut pending, batch),
                 Err(RecvTimeoutError::Timeout) => {}
@@ -134,9 +105,4 @@ fn merge(pending: &mut Option<Batch>, batch: Batch) {
         Some(p) => p.merge(batch),
         None => *pending = Some(batch),
     }
-}
-
-fn write_frame(live: &LiveScene, refine: &Refinement, file: &Path) -> Result<()> {
-    let image = refine.acc.image(live.renderer.ctx)?;
-    write_image(&image, file, live.scene().render.exposure)
 }

@@ -5,16 +5,16 @@
 //! assets, building pipelines) happens before anything on the GPU is replaced, so a
 //! bad edit leaves the last good scene rendering.
 
+use super::WatchOptions;
 use super::plan::{AssetPrints, Change, Reload, plan};
 use super::sources::{asset_prints, watched_files};
 use crate::bvh::{BuildQuality, LoadedMesh, SceneGeometry, asset_paths, pack::load_or_pack};
-use crate::gpu::shader::{Program, ShaderFiles};
-use crate::gpu::{GpuContext, Pipelines};
-use crate::render::{RenderRequest, Renderer};
+use crate::gpu::GpuContext;
+use crate::gpu::shader::ShaderFiles;
+use crate::render::{GeometryUpdate, RenderFlags, RenderRequest, SceneUpdate, Session};
 use crate::scene::{self, Camera, FeatureSet, Scene, Sun};
 use anyhow::{Result, bail};
 use std::path::{Path, PathBuf};
-use std::rc::Rc;
 use std::time::{Duration, Instant};
 
 /// What the viewer changed on top of the scene file; a change of the same thing in the
@@ -24,6 +24,20 @@ pub struct Overrides {
     pub camera: Option<Camera>,
     pub sun: Option<Sun>,
     pub exposure: Option<f32>,
+}
+
+impl Overrides {
+    /// These overrides without those of what the file changed.
+    fn without(&self, reload: &Reload) -> Self {
+        fn keep<T: Clone>(reload: &Reload, change: Change, value: &Option<T>) -> Option<T> {
+            if reload.has(&change) { None } else { value.clone() }
+        }
+        Self {
+            camera: keep(reload, Change::Camera, &self.camera),
+            sun: keep(reload, Change::Sun, &self.sun),
+            exposure: keep(reload, Change::Exposure, &self.exposure),
+        }
+    }
 }
 
 /// What one successful reload did.
@@ -38,12 +52,16 @@ pub struct ReloadReport {
 }
 
 pub struct LiveScene<'a> {
-    pub renderer: Renderer<'a>,
+    pub session: Session<'a>,
     pub scene_path: PathBuf,
-    /// The last good scene read from the file, without overrides.
+    /// The last good scene read from the file, without flags or overrides.
     file_scene: Scene,
     assets: AssetPrints,
+    /// The command line's settings on top of the file's `[render]`.
+    flags: RenderFlags,
     overrides: Overrides,
+    /// The window's size, which wins over the scene's and the flags'.
+    window_size: Option<(u32, u32)>,
     quality: BuildQuality,
     /// `shaders/` on disk, with `--dev`.
     shader_dir: Option<PathBuf>,
@@ -51,28 +69,34 @@ pub struct LiveScene<'a> {
 }
 
 impl<'a> LiveScene<'a> {
-    pub fn open(
-        ctx: &'a GpuContext,
-        scene_path: &Path,
-        quality: BuildQuality,
-        shader_dir: Option<PathBuf>,
-    ) -> Result<Self> {
-        let scene = scene::load(scene_path)?;
-        let assets = asset_prints(&scene);
-        let mut renderer = Renderer::new(ctx, scene.clone(), quality)?;
-        if let Some(dir) = &shader_dir {
-            renderer.pipelines.reload_shaders(ctx, ShaderFiles::Dir(dir.clone()))?;
-        }
-        Ok(Self {
-            renderer,
-            scene_path: scene_path.to_path_buf(),
-            file_scene: scene,
+    pub fn open(ctx: &'a GpuContext, options: &WatchOptions) -> Result<Self> {
+        let file_scene = scene::load(&options.scene)?;
+        let assets = asset_prints(&file_scene);
+        let mut live_scene = file_scene.clone();
+        let request = options.flags.apply(&mut live_scene)?;
+        let mut session = Session::open(ctx, live_scene, options.quality)?;
+        session.set_request(&request)?;
+        let mut live = Self {
+            session,
+            scene_path: options.scene.clone(),
+            file_scene,
             assets,
+            flags: options.flags.clone(),
             overrides: Overrides::default(),
-            quality,
-            shader_dir,
+            window_size: None,
+            quality: options.quality,
+            shader_dir: options.shader_dir.clone(),
             reloads: 0,
-        })
+        };
+        if let Some(dir) = &live.shader_dir {
+            let update = SceneUpdate {
+                scene: live.session.scene().clone(),
+                geometry: None,
+                shaders: Some(ShaderFiles::Dir(dir.clone())),
+            };
+            live.session.apply(update)?;
+        }
+        Ok(live)
     }
 
     /// Every file whose change may change the image.
@@ -84,88 +108,86 @@ impl<'a> LiveScene<'a> {
         self.shader_dir.as_deref()
     }
 
-    /// The path tracer's pipelines for the current feature set.
-    pub fn pipelines(&mut self) -> Result<Rc<Pipelines>> {
-        let features = self.renderer.geometry.features;
-        self.renderer.pipelines.get(self.renderer.ctx, Program::Integrator, features)
-    }
-
-    /// A request for the current scene at `width`×`height`.
-    pub fn request(&self, width: u32, height: u32, seed: u32) -> RenderRequest {
-        let mut request = RenderRequest::from_scene(&self.renderer.scene);
-        (request.width, request.height, request.seed) = (width, height, seed);
-        request
-    }
-
-    /// The scene as rendered: the file's, with the overrides applied.
+    /// The scene as rendered: the file's, with the flags and the overrides applied.
     pub fn scene(&self) -> &Scene {
-        &self.renderer.scene
+        self.session.scene()
     }
 
     pub fn overrides(&self) -> &Overrides {
         &self.overrides
     }
 
-    /// Sets the overrides; the caller resets the accumulation if the camera or sun moved.
-    pub fn set_overrides(&mut self, overrides: Overrides) {
-        self.overrides = overrides;
-        self.renderer.scene = self.with_overrides(&self.file_scene);
-    }
-
-    fn with_overrides(&self, file: &Scene) -> Scene {
+    /// The file's scene with the flags and `overrides` on top, and the request it makes.
+    fn rendered(&self, file: &Scene, overrides: &Overrides) -> Result<(Scene, RenderRequest)> {
         let mut scene = file.clone();
-        if let Some(camera) = &self.overrides.camera {
+        let mut request = self.flags.apply(&mut scene)?;
+        if let Some(camera) = &overrides.camera {
             scene.camera = camera.clone();
         }
         // The sun can be turned, not added: without a sun in the file there is none to turn.
-        if let (Some(sun), Some(_)) = (&self.overrides.sun, &scene.sun) {
+        if let (Some(sun), Some(_)) = (&overrides.sun, &scene.sun) {
             scene.sun = Some(sun.clone());
         }
-        if let Some(ev) = self.overrides.exposure {
+        if let Some(ev) = overrides.exposure {
             scene.render.exposure = ev;
         }
-        scene
+        if let Some((w, h)) = self.window_size {
+            (request.width, request.height) = (w, h);
+        }
+        Ok((scene, request))
+    }
+
+    /// Sets the overrides; the session drops its samples if the camera or sun moved.
+    pub fn set_overrides(&mut self, overrides: Overrides) -> Result<()> {
+        let (scene, request) = self.rendered(&self.file_scene, &overrides)?;
+        self.session.apply(SceneUpdate { scene, geometry: None, shaders: None })?;
+        self.session.set_request(&request)?;
+        self.overrides = overrides;
+        Ok(())
+    }
+
+    /// Renders at the window's size from now on.
+    pub fn set_window_size(&mut self, width: u32, height: u32) -> Result<()> {
+        self.window_size = Some((width, height));
+        let (_, request) = self.rendered(&self.file_scene, &self.overrides)?;
+        self.session.set_request(&request)?;
+        Ok(())
     }
 
     /// Reads the scene and its assets again after `changed` files changed, and brings the
     /// GPU to them with the least work. On an error nothing changes.
     pub fn reload(&mut self, changed: &[PathBuf]) -> Result<ReloadReport> {
         let start = Instant::now();
-        let ctx = self.renderer.ctx;
         let shaders_changed =
             self.shader_dir.is_some() && changed.iter().any(|p| p.extension().is_some_and(|e| e == "wgsl"));
-        let new_scene = scene::load(&self.scene_path)?;
-        let new_assets = asset_prints(&new_scene);
-        let reload = plan(&self.file_scene, &new_scene, &self.assets, &new_assets, shaders_changed);
+        let new_file_scene = scene::load(&self.scene_path)?;
+        let new_assets = asset_prints(&new_file_scene);
+        let reload = plan(&self.file_scene, &new_file_scene, &self.assets, &new_assets, shaders_changed);
         // The message names the asset's file.
         if let Some(Err(message)) = new_assets.values().find(|print| print.is_err()) {
             bail!("{message}");
         }
+        let overrides = self.overrides.without(&reload);
+        let (scene, request) = self.rendered(&new_file_scene, &overrides)?;
+        self.session.check_image_size(request.width, request.height)?;
 
-        let geometry = if reload.reassembles() { Some(self.assemble(&new_scene, &reload)?) } else { None };
-        if let Some(dir) = self.shader_dir.as_ref().filter(|_| shaders_changed) {
-            self.renderer.pipelines.reload_shaders(ctx, ShaderFiles::Dir(dir.clone()))?;
-        }
-        let features = geometry.as_ref().map_or(self.renderer.geometry.features, |g| g.features);
-        self.renderer.pipelines.get(ctx, Program::Integrator, features)?;
-        if reload.has(&Change::Sky) {
-            // Before anything else changes: building an atmosphere's tables can fail.
-            self.renderer.set_sky(&new_scene.sky)?;
-        }
-
-        let old_features = self.renderer.geometry.features;
-        let layout = &self.renderer.pipelines.scene_layout;
-        if let Some(geometry) = geometry {
-            if reload.replaces_geometry() {
-                self.renderer.buffers.replace_geometry(ctx, &geometry, layout)?;
+        let geometry = if reload.reassembles() {
+            let geometry = self.assemble(&new_file_scene, &reload)?;
+            Some(if reload.replaces_geometry() {
+                GeometryUpdate::Replace(geometry)
             } else {
-                self.renderer.buffers.replace_materials(ctx, &geometry, layout);
-            }
-            self.renderer.geometry = geometry;
-        }
-        self.forget_overrides(&reload);
-        self.renderer.scene = self.with_overrides(&new_scene);
-        (self.file_scene, self.assets) = (new_scene, new_assets);
+                GeometryUpdate::Materials(geometry)
+            })
+        } else {
+            None
+        };
+        let shaders = self.shader_dir.clone().filter(|_| shaders_changed).map(ShaderFiles::Dir);
+        let old_features = self.session.features();
+        self.session.apply(SceneUpdate { scene, geometry, shaders })?;
+        self.session.set_request(&request)?;
+        self.overrides = overrides;
+        let features = self.session.features();
+        (self.file_scene, self.assets) = (new_file_scene, new_assets);
         self.reloads += 1;
         Ok(ReloadReport {
             number: self.reloads,
@@ -181,7 +203,7 @@ impl<'a> LiveScene<'a> {
         let changed: Vec<&Path> = reload.assets().collect();
         let mut meshes: Vec<LoadedMesh> = Vec::new();
         for path in asset_paths(scene) {
-            let old = self.renderer.geometry.meshes.iter().find(|m| m.path == path);
+            let old = self.session.geometry().meshes.iter().find(|m| m.path == path);
             match old {
                 Some(mesh) if !changed.contains(&path.as_path()) => meshes.push(mesh.clone()),
                 _ => {
@@ -192,18 +214,5 @@ impl<'a> LiveScene<'a> {
             }
         }
         SceneGeometry::assemble(scene, meshes)
-    }
-
-    /// Drops the overrides of what the file changed.
-    fn forget_overrides(&mut self, reload: &Reload) {
-        if reload.has(&Change::Camera) {
-            self.overrides.camera = None;
-        }
-        if reload.has(&Change::Sun) {
-            self.overrides.sun = None;
-        }
-        if reload.has(&Change::Exposure) {
-            self.overrides.exposure = None;
-        }
     }
 }

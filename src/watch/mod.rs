@@ -1,16 +1,16 @@
 //! `rt watch`: the scene kept live while the artist edits it. Files are watched
 //! (`fs_watch`), each batch of changes is planned into the least work (`plan`) and
 //! applied to the scene on the GPU (`live`), which is refined frame by frame
-//! (`refine`) in a window (`viewer`) or headless, writing frames (`headless`).
+//! in a window (`viewer`) or headless, writing frames (`headless`).
 
 mod camera_control;
 mod display;
 pub mod fs_watch;
 pub mod headless;
 mod input;
+pub mod latency;
 pub mod live;
 pub mod plan;
-mod refine;
 pub mod reload_log;
 mod sources;
 mod viewer;
@@ -22,6 +22,7 @@ pub use reload_log::LOG_FILE;
 
 use crate::bvh::BuildQuality;
 use crate::gpu::GpuContext;
+use crate::render::{ImageFormat, RenderFlags};
 use anyhow::{Context, Result};
 use fs_watch::{Batch, FileWatcher};
 use reload_log::ReloadLog;
@@ -35,10 +36,9 @@ pub struct WatchOptions {
     pub shader_dir: Option<PathBuf>,
     /// Where frames, screenshots and `watch.log` go; required headless.
     pub frames_dir: Option<PathBuf>,
-    pub spp: Option<u32>,
-    pub size: Option<(u32, u32)>,
-    pub seed: u32,
-    pub format: crate::render::ImageFormat,
+    /// The command line's settings on top of the scene's `[render]` (spp, size, seed …).
+    pub flags: RenderFlags,
+    pub format: ImageFormat,
     pub max_reloads: Option<u32>,
 }
 
@@ -52,22 +52,15 @@ pub fn run_headless(
     std::fs::create_dir_all(&frames_dir).with_context(|| format!("cannot create {}", frames_dir.display()))?;
     let mut log = ReloadLog::new(Some(&frames_dir))?;
     let opened_at = Instant::now();
-    let mut live = LiveScene::open(ctx, &options.scene, options.quality, options.shader_dir.clone())?;
+    let mut live = LiveScene::open(ctx, options)?;
     let (tx, rx) = std::sync::mpsc::channel::<Batch>();
     let mut watcher = FileWatcher::start(move |batch| {
         let _ = tx.send(batch);
     })?;
     watcher.watch(&live.watched_files());
     log.write(&format!("watching {} ({} files)", options.scene.display(), live.watched_files().len()));
-    let headless = HeadlessOptions {
-        frames_dir,
-        spp: options.spp,
-        size: options.size,
-        seed: options.seed,
-        format: options.format,
-        max_reloads: options.max_reloads,
-        first_frames,
-    };
+    let headless =
+        HeadlessOptions { frames_dir, format: options.format, max_reloads: options.max_reloads, first_frames };
     headless::run(&mut live, &mut watcher, &rx, &headless, &mut log, opened_at)
 }
 

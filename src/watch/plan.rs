@@ -251,7 +251,7 @@ mod tests {
     #[test]
     fn settings_and_sampling() {
         assert_eq!(kind_after(|s| s.render.max_bounces = 3).changes, [Change::Settings]);
-        let reload = kind_after(|s| s.render.sampling = Sampling::Seed);
+        let reload = kind_after(|s| s.render.sampling = Sampling::Resampled);
         assert_eq!(reload.changes, [Change::Settings, Change::Features]);
     }
 

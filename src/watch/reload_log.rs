@@ -12,6 +12,7 @@
 
 use super::live::ReloadReport;
 use super::sources::names;
+use crate::gpu::ms;
 use anyhow::{Context, Result};
 use std::fs::File;
 use std::io::Write;
@@ -77,8 +78,4 @@ impl ReloadLog {
             log::warn!("cannot write to {LOG_FILE}: {e}");
         }
     }
-}
-
-pub fn ms(d: Duration) -> f64 {
-    d.as_secs_f64() * 1000.0
 }

@@ -10,11 +10,10 @@ use super::fs_watch::{Batch, FileWatcher};
 use super::headless::STOP_FILE;
 use super::input::{Action, Drag, HELP, action, drag, fly_direction};
 use super::live::LiveScene;
-use super::refine::Refinement;
-use super::reload_log::{ReloadLog, ms};
+use super::reload_log::ReloadLog;
 use super::{WatchOptions, sources};
-use crate::gpu::GpuContext;
-use crate::render::{human, write_image};
+use crate::gpu::{GpuContext, ms};
+use crate::render::{Pacing, Session, human, write_image, write_png};
 use anyhow::{Context, Result, anyhow};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -27,7 +26,7 @@ use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
 
 /// GPU time per frame to aim for: 40 fps on a GPU that can.
-const FRAME_BUDGET: Duration = Duration::from_millis(25);
+const PACING: Pacing = Pacing { target: Duration::from_millis(25), max_samples: 64 };
 /// How often an idle window with `--frames-dir` looks for the stop file.
 const STOP_POLL: Duration = Duration::from_millis(100);
 
@@ -35,7 +34,8 @@ pub fn run(adapter: Option<&str>, options: WatchOptions) -> Result<()> {
     let event_loop = EventLoop::<Batch>::with_user_event().build().context("cannot open a window")?;
     let ctx = GpuContext::new(adapter)?;
     println!("GPU: {}", ctx.describe());
-    let live = LiveScene::open(&ctx, &options.scene, options.quality, options.shader_dir.clone())?;
+    let mut live = LiveScene::open(&ctx, &options)?;
+    live.session.set_pacing(PACING);
     let proxy = event_loop.create_proxy();
     let mut watcher = FileWatcher::start(move |batch| {
         let _ = proxy.send_event(batch);
@@ -55,7 +55,6 @@ pub fn run(adapter: Option<&str>, options: WatchOptions) -> Result<()> {
         shift: false,
         dragging: None,
         cursor: None,
-        pending_reset: false,
         last_tick: Instant::now(),
         presented: 0,
         screenshots: 0,
@@ -75,7 +74,6 @@ pub(super) struct WindowParts {
     surface: wgpu::Surface<'static>,
     pub(super) config: wgpu::SurfaceConfiguration,
     display: Display,
-    refine: Refinement,
 }
 
 /// The state being refined: which reload made it, and when its edit was seen.
@@ -101,7 +99,6 @@ pub(super) struct Viewer<'a> {
     pub(super) shift: bool,
     dragging: Option<Drag>,
     cursor: Option<(f64, f64)>,
-    pub(super) pending_reset: bool,
     pub(super) last_tick: Instant,
     presented: u64,
     screenshots: u32,
@@ -175,8 +172,8 @@ impl ApplicationHandler<Batch> for Viewer<'_> {
             return;
         }
         let flying = fly_direction(&self.held) != glam::Vec3::ZERO;
-        let refining = self.window.as_ref().is_some_and(|w| !w.refine.converged());
-        if flying || refining || self.pending_reset {
+        let refining = self.window.is_some() && !self.live.session.converged();
+        if flying || refining {
             self.request_redraw();
         }
         event_loop.set_control_flow(match self.options.frames_dir {
@@ -189,7 +186,7 @@ impl ApplicationHandler<Batch> for Viewer<'_> {
 impl Viewer<'_> {
     fn open_window(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
         let render = &self.live.scene().render;
-        let (width, height) = self.options.size.unwrap_or((render.width, render.height));
+        let (width, height) = (render.width, render.height);
         let attributes = Window::default_attributes()
             .with_title(format!("rt watch - {}", self.options.scene.display()))
             .with_inner_size(PhysicalSize::new(width, height));
@@ -206,10 +203,9 @@ impl Viewer<'_> {
         config.present_mode = wgpu::PresentMode::AutoVsync;
         surface.configure(&self.ctx.device, &config);
         let display = Display::new(self.ctx, config.format, self.live.shader_dir())?;
-        let spp = self.options.spp.unwrap_or(self.live.scene().render.spp);
-        let refine = Refinement::new(&self.live, width, height, spp, FRAME_BUDGET);
+        self.live.set_window_size(width, height)?;
         self.log.write(&format!("window {width}x{height}, surface {:?}", config.format));
-        self.window = Some(WindowParts { window, surface, config, display, refine });
+        self.window = Some(WindowParts { window, surface, config, display });
         self.state.since = Instant::now();
         self.request_redraw();
         Ok(())
@@ -228,7 +224,9 @@ impl Viewer<'_> {
         }
         (w.config.width, w.config.height) = (size.width, size.height);
         w.surface.configure(&self.ctx.device, &w.config);
-        w.refine.resize(&self.live, size.width, size.height);
+        if let Err(e) = self.live.set_window_size(size.width, size.height) {
+            self.fail(&[], &e);
+        }
         self.state.written = false;
         self.request_redraw();
     }
@@ -248,10 +246,6 @@ impl Viewer<'_> {
                 {
                     self.fail(&batch.paths, &e);
                 }
-                self.pending_reset |= report.reload.resets_accumulation();
-                if let Some(w) = &mut self.window {
-                    w.refine.target_spp = self.options.spp.unwrap_or(self.live.scene().render.spp);
-                }
                 self.state =
                     State { number: report.number, since: batch.first_event, first_frame: None, written: false };
             }
@@ -270,11 +264,10 @@ impl Viewer<'_> {
         let ctx = self.ctx;
         let Some(w) = &mut self.window else { return Ok(()) };
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        if std::mem::take(&mut self.pending_reset) {
-            w.refine.reset(&mut encoder);
+        if self.live.session.samples() == 0 {
             self.state.written = false;
         }
-        let samples = w.refine.encode(&mut self.live, self.options.seed, &mut encoder)?;
+        let samples = self.live.session.encode_step(&mut encoder, None)?;
         let texture = match w.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(t) | wgpu::CurrentSurfaceTexture::Suboptimal(t) => Some(t),
             wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
@@ -286,7 +279,14 @@ impl Viewer<'_> {
         let exposure = self.live.scene().render.exposure;
         if let Some(texture) = &texture {
             let view = texture.texture.create_view(&Default::default());
-            w.display.encode(ctx, &mut encoder, &view, &w.refine.acc, exposure, self.error.is_some());
+            w.display.encode(
+                ctx,
+                &mut encoder,
+                &view,
+                self.live.session.accumulation(),
+                exposure,
+                self.error.is_some(),
+            );
         }
         let submitted = Instant::now();
         ctx.queue.submit([encoder.finish()]);
@@ -295,13 +295,13 @@ impl Viewer<'_> {
             self.presented += 1;
         }
         ctx.wait()?;
-        w.refine.frame_done(samples, submitted);
+        self.live.session.observe(samples, submitted.elapsed());
         if self.state.first_frame.is_none() {
             self.state.first_frame = Some(self.state.since.elapsed());
         }
-        let title = title(&self.options.scene, &w.refine, &self.last_reload, self.error.as_deref());
+        let title = title(&self.options.scene, &self.live.session, &self.last_reload, self.error.as_deref());
         w.window.set_title(&title);
-        if w.refine.converged() && !self.state.written {
+        if self.live.session.converged() && !self.state.written {
             self.state.written = true;
             self.write_frame(event_loop)?;
         }
@@ -312,10 +312,11 @@ impl Viewer<'_> {
     fn write_frame(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
         let (Some(dir), Some(w)) = (&self.options.frames_dir, &self.window) else { return Ok(()) };
         let file = dir.join(format!("frame-{:04}.png", self.state.number));
-        let pixels = w.display.screenshot(self.ctx, &w.refine.acc, self.live.scene().render.exposure)?;
-        save_png(&pixels, w.refine.acc.width, w.refine.acc.height, &file)?;
+        let acc = self.live.session.accumulation();
+        let pixels = w.display.screenshot(self.ctx, acc, self.live.scene().render.exposure)?;
+        write_png(&pixels, acc.width, acc.height, &file)?;
         let first = self.state.first_frame.unwrap_or_default();
-        self.log.frame(self.state.number, w.refine.acc.samples, &file, first, self.state.since.elapsed());
+        self.log.frame(self.state.number, acc.samples, &file, first, self.state.since.elapsed());
         self.log.write(&format!("presented {} frames", self.presented));
         if self.options.max_reloads.is_some_and(|max| self.state.number >= max) {
             event_loop.exit();
@@ -329,40 +330,33 @@ impl Viewer<'_> {
         self.screenshots += 1;
         let file = dir.join(format!("rt-screenshot-{:03}.{}", self.screenshots, if exr { "exr" } else { "png" }));
         let exposure = self.live.scene().render.exposure;
+        let acc = self.live.session.accumulation();
         if exr {
-            write_image(&w.refine.acc.image(self.ctx)?, &file, exposure)?;
+            write_image(&self.live.session.image()?, &file, exposure)?;
         } else {
-            let pixels = w.display.screenshot(self.ctx, &w.refine.acc, exposure)?;
-            save_png(&pixels, w.refine.acc.width, w.refine.acc.height, &file)?;
+            let pixels = w.display.screenshot(self.ctx, acc, exposure)?;
+            write_png(&pixels, acc.width, acc.height, &file)?;
         }
-        self.log.write(&format!("screenshot {} ({} spp)", file.display(), w.refine.acc.samples));
+        self.log.write(&format!("screenshot {} ({} spp)", file.display(), acc.samples));
         Ok(())
     }
 }
 
-fn title(scene: &Path, refine: &Refinement, last_reload: &str, error: Option<&str>) -> String {
+fn title(scene: &Path, session: &Session, last_reload: &str, error: Option<&str>) -> String {
     let name = sources::names(&[scene.to_path_buf()]);
     if let Some(error) = error {
         return format!("rt watch - {name} - ERROR: {error}");
     }
+    let step = session.last_step();
+    let pixels = session.request().width as f64 * session.request().height as f64;
+    let rate = step.samples as f64 * pixels / step.took.as_secs_f64().max(1e-9);
     // ASCII only: some window managers draw titles in Latin-1 fonts.
     format!(
         "rt watch - {name} - {}/{} spp | {}samples/s | {:.1} ms/frame{}{last_reload}",
-        refine.acc.samples,
-        refine.target_spp,
-        human(refine.samples_per_second),
-        ms(refine.last_frame),
+        session.samples(),
+        session.request().spp,
+        human(rate),
+        ms(step.took),
         if last_reload.is_empty() { "" } else { " | " },
     )
-}
-
-/// 8-bit sRGB pixels (rows from the top) to a PNG, through a temporary name.
-fn save_png(pixels: &[[u8; 3]], width: u32, height: u32, path: &Path) -> Result<()> {
-    let bytes: Vec<u8> = pixels.iter().flatten().copied().collect();
-    let image = image::RgbImage::from_raw(width, height, bytes).context("screenshot size mismatch")?;
-    let tmp = path.with_extension("partial");
-    image
-        .save_with_format(&tmp, image::ImageFormat::Png)
-        .with_context(|| format!("could not write {}", tmp.display()))?;
-    std::fs::rename(&tmp, path).with_context(|| format!("could not move {} into place", path.display()))
 }

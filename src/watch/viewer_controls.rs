@@ -21,13 +21,9 @@ impl Viewer<'_> {
                     return;
                 };
                 overrides.sun = Some(turn_sun(sun, elevation, azimuth));
-                self.pending_reset = true;
             }
             Action::Exposure(ev) => overrides.exposure = Some(self.live.scene().render.exposure + ev),
-            Action::Reset => {
-                self.pending_reset |= overrides.camera.is_some() || overrides.sun.is_some();
-                overrides = Overrides::default();
-            }
+            Action::Reset => overrides = Overrides::default(),
             Action::ScreenshotPng | Action::ScreenshotExr => {
                 if let Err(e) = self.screenshot(action == Action::ScreenshotExr) {
                     self.fail(&[], &e);
@@ -43,7 +39,14 @@ impl Viewer<'_> {
                 return;
             }
         }
-        self.live.set_overrides(overrides);
+        self.set_overrides(overrides);
+    }
+
+    /// Renders with `overrides` from now on (the samples so far are dropped if the view moved).
+    fn set_overrides(&mut self, overrides: Overrides) {
+        if let Err(e) = self.live.set_overrides(overrides) {
+            self.fail(&[], &e);
+        }
         self.request_redraw();
     }
 
@@ -59,9 +62,7 @@ impl Viewer<'_> {
     pub(super) fn move_camera(&mut self, to: impl FnOnce(&Camera) -> Camera) {
         let mut overrides = self.live.overrides().clone();
         overrides.camera = Some(to(&self.live.scene().camera));
-        self.live.set_overrides(overrides);
-        self.pending_reset = true;
-        self.request_redraw();
+        self.set_overrides(overrides);
     }
 
     /// Moves by the fly keys held, at a speed that crosses the scene in about 4 s.
@@ -73,7 +74,7 @@ impl Viewer<'_> {
         if direction == glam::Vec3::ZERO {
             return;
         }
-        let g = &self.live.renderer.geometry;
+        let g = self.live.session.geometry();
         let size = (g.bounds_max - g.bounds_min).length();
         let speed = if size.is_finite() && size > 0.0 { size / 4.0 } else { 1.0 };
         let boost = if self.shift { 5.0 } else { 1.0 };

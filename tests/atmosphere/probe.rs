@@ -3,10 +3,10 @@
 //! calls its functions (`PROBE_WGSL`). The scene's tables and frame are rt's own.
 
 use rt::bvh::BuildQuality;
-use rt::gpu::layout::GpuFrame;
 use rt::gpu::read_buffer;
 use rt::gpu::shader::{Program, assemble};
-use rt::render::{RenderRequest, Renderer};
+use rt::layout::GpuFrame;
+use rt::render::Session;
 use std::time::{Duration, Instant};
 use wgpu::util::DeviceExt;
 
@@ -169,7 +169,7 @@ fn probe(@builtin(global_invocation_id) id: vec3u) {
 pub type Outputs = ([f32; 3], [f32; 3]);
 
 pub struct Probe {
-    pub renderer: Renderer<'static>,
+    pub renderer: Session<'static>,
     pub frame: GpuFrame,
     pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
@@ -185,8 +185,8 @@ impl Probe {
     pub fn new(sky_keys: &str, patches: &[(&str, &str)]) -> Self {
         let ctx = crate::common::gpu();
         let scene = crate::common::scene_from(&scene_text(sky_keys));
-        let renderer = Renderer::new(ctx, scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
-        let mut source = assemble(Program::Integrator, &renderer.geometry.features) + VARIANTS_WGSL + PROBE_WGSL;
+        let renderer = Session::open(ctx, scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
+        let mut source = assemble(Program::Integrator, &renderer.features()) + VARIANTS_WGSL + PROBE_WGSL;
         for (from, to) in VARIANT_PATCHES.iter().chain(patches) {
             assert!(source.contains(from), "patch target {from:?} not in the shader");
             source = source.replace(from, to);
@@ -209,7 +209,7 @@ impl Probe {
             label: Some("probe"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
         });
-        let p = &renderer.pipelines;
+        let p = &renderer.pipeline_cache();
         let pipeline_layout = ctx.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("probe"),
             bind_group_layouts: &[Some(&p.scene_layout), Some(&layout), Some(&p.sky_layout)],
@@ -223,7 +223,7 @@ impl Probe {
             compilation_options: Default::default(),
             cache: None,
         });
-        let frame = renderer.frame(&RenderRequest::from_scene(&renderer.scene));
+        let frame = renderer.frame();
         Self { renderer, frame, pipeline, layout }
     }
 
@@ -235,7 +235,7 @@ impl Probe {
 
     /// March steps per ray (the tables stay as they are).
     pub fn set_steps(&mut self, steps: u32) {
-        let rt::scene::Sky::Atmosphere(mut params) = self.renderer.scene.sky.clone() else { panic!("an atmosphere") };
+        let rt::scene::Sky::Atmosphere(mut params) = self.renderer.scene().sky.clone() else { panic!("an atmosphere") };
         params.steps = steps;
         let rebuilt = self.renderer.set_atmosphere(&params).unwrap_or_else(|e| panic!("{e:#}"));
         assert!(!rebuilt, "the step count rebuilt the tables");
@@ -249,7 +249,7 @@ impl Probe {
     /// Pairs of outputs per query, and the GPU time the dispatch took.
     pub fn run(&self, queries: &[Query]) -> (Vec<Outputs>, Duration) {
         let ctx = crate::common::gpu();
-        self.renderer.buffers.write_frame(ctx, &self.frame);
+        self.renderer.buffers().write_frame(ctx, &self.frame);
         let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC;
         let input = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("probe queries"),
@@ -270,12 +270,12 @@ impl Probe {
                 wgpu::BindGroupEntry { binding: 1, resource: input.as_entire_binding() },
             ],
         });
-        let sky = self.renderer.buffers.sky_bind_group.as_ref().expect("an atmosphere");
+        let sky = self.renderer.buffers().sky_bind_group.as_ref().expect("an atmosphere");
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         {
             let mut pass = encoder.begin_compute_pass(&Default::default());
             pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(0, &self.renderer.buffers.bind_group, &[]);
+            pass.set_bind_group(0, &self.renderer.buffers().bind_group, &[]);
             pass.set_bind_group(1, &group, &[]);
             pass.set_bind_group(2, sky, &[]);
             pass.dispatch_workgroups((queries.len() as u32).div_ceil(64), 1, 1);

@@ -3,7 +3,7 @@
 
 use rt::bvh::BuildQuality;
 use rt::gpu::GpuContext;
-use rt::render::{Image, RenderRequest, Renderer};
+use rt::render::{Image, RenderRequest, Session};
 use rt::scene::Scene;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -25,11 +25,11 @@ pub fn scene_from(text: &str) -> Scene {
 }
 
 pub fn render(scene: Scene, width: u32, height: u32, spp: u32, max_bounces: u32) -> Image {
-    let mut renderer = Renderer::new(gpu(), scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
-    let mut request = RenderRequest::from_scene(&renderer.scene);
+    let mut renderer = Session::open(gpu(), scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
+    let mut request = RenderRequest::from_scene(renderer.scene());
     (request.width, request.height, request.spp, request.max_bounces) = (width, height, spp, max_bounces);
-    let (image, report) = renderer.render(&request).unwrap_or_else(|e| panic!("{e:#}"));
-    assert!(report.sentinel.is_clean(), "{}", report.sentinel);
+    let (image, report) = renderer.render(&request, None).unwrap_or_else(|e| panic!("{e:#}"));
+    assert!(report.dropped.is_clean(), "{}", report.dropped);
     image
 }
 

@@ -7,9 +7,9 @@
 //! temporary name and renamed, as the Blender exporter does) and notes when the first
 //! frame of each new state is done. The numbers include the watcher's debouncing.
 
-use crate::gpu::GpuContext;
-use crate::render::ImageFormat;
-use crate::watch::{STOP_FILE, WatchOptions, run_headless};
+use super::{STOP_FILE, WatchOptions, run_headless};
+use crate::gpu::{GpuContext, median};
+use crate::render::{ImageFormat, RenderFlags};
 use anyhow::{Context, Result, anyhow, bail};
 use std::path::Path;
 use std::sync::mpsc::{Receiver, channel};
@@ -52,11 +52,6 @@ fn write_by_rename(path: &Path, bytes: &[u8]) -> Result<()> {
     std::fs::rename(&tmp, path).with_context(|| format!("cannot move {} into place", path.display()))
 }
 
-fn median(mut v: Vec<Duration>) -> Duration {
-    v.sort();
-    v[v.len() / 2]
-}
-
 pub fn watch_latency(asset: &Path, (width, height): (u32, u32), runs: u32, adapter: Option<&str>) -> Result<()> {
     let name = asset
         .file_name()
@@ -84,9 +79,7 @@ pub fn watch_latency(asset: &Path, (width, height): (u32, u32), runs: u32, adapt
         quality: Default::default(),
         shader_dir: None,
         frames_dir: Some(dir.join("frames")),
-        spp: Some(4),
-        size: Some((width, height)),
-        seed: 0,
+        flags: RenderFlags { spp: Some(4), size: Some((width, height)), ..Default::default() },
         format: ImageFormat::Png,
         max_reloads: None,
     };

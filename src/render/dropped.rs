@@ -55,7 +55,7 @@ impl fmt::Display for NonFiniteCause {
 
 /// Per render: how many samples were dropped, in how many pixels, and why.
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct Sentinel {
+pub struct DroppedSamples {
     pub non_finite_samples: u64,
     pub pixels_with_non_finite: usize,
     /// Pixels by the cause of their first non-finite sample, most frequent first.
@@ -63,10 +63,10 @@ pub struct Sentinel {
     pub stack_overflows: u32,
 }
 
-impl Sentinel {
+impl DroppedSamples {
     pub fn from_pixels(per_pixel: &[(u32, NonFiniteCause)], stack_overflows: u32) -> Self {
         let mut causes = std::collections::BTreeMap::new();
-        let mut s = Sentinel { stack_overflows, ..Default::default() };
+        let mut s = DroppedSamples { stack_overflows, ..Default::default() };
         for &(count, cause) in per_pixel.iter().filter(|(c, _)| *c > 0) {
             s.non_finite_samples += count as u64;
             s.pixels_with_non_finite += 1;
@@ -82,7 +82,7 @@ impl Sentinel {
     }
 }
 
-impl fmt::Display for Sentinel {
+impl fmt::Display for DroppedSamples {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{} non-finite samples dropped", self.non_finite_samples)?;
         if self.non_finite_samples > 0 {

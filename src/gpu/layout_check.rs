@@ -1,0 +1,127 @@
+//! Checks every host mirror in `crate::layout` against naga's layout of the assembled WGSL.
+
+use crate::layout::*;
+use std::mem::{offset_of, size_of};
+
+/// (name, size, [(field, offset)]) of a host struct.
+type HostLayout = (&'static str, usize, Vec<(&'static str, usize)>);
+
+macro_rules! host_layout {
+    ($wgsl:literal, $t:ty, [$($field:ident),*]) => {
+        ($wgsl, size_of::<$t>(), vec![$((stringify!($field), offset_of!($t, $field))),*])
+    };
+}
+
+fn wgsl_layouts() -> std::collections::HashMap<String, (u32, Vec<(String, u32)>)> {
+    let mut out = std::collections::HashMap::new();
+    for source in crate::gpu::shader::full_sources_for_layout_checks() {
+        let module = wgpu::naga::front::wgsl::parse_str(&source).expect("WGSL parses");
+        let mut layouter = wgpu::naga::proc::Layouter::default();
+        layouter.update(module.to_ctx()).expect("layout");
+        for (handle, ty) in module.types.iter() {
+            if let (Some(name), wgpu::naga::TypeInner::Struct { members, span }) = (&ty.name, &ty.inner) {
+                let fields = members.iter().map(|m| (m.name.clone().unwrap_or_default(), m.offset)).collect();
+                assert_eq!(layouter[handle].size, *span);
+                out.insert(name.clone(), (*span, fields));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn host_structs_match_wgsl_layouts() {
+    let hosts: Vec<HostLayout> = vec![
+        host_layout!(
+            "Frame",
+            GpuFrame,
+            [
+                camera_position,
+                tan_half_fov_y,
+                camera_right,
+                aspect,
+                camera_up,
+                width,
+                camera_forward,
+                height,
+                sky_color,
+                max_bounces,
+                sample_base,
+                samples_per_dispatch,
+                seed,
+                tlas_root,
+                sun_direction,
+                sun_one_minus_cos,
+                sun_radiance,
+                sun_select_probability,
+                emitter_count,
+                emitter_total_power,
+                ris_candidates,
+                clamp_luminance
+            ]
+        ),
+        host_layout!("BvhNode", GpuBvhNode, [a_min, a_link, a_max, a_count, b_min, b_link, b_max, b_count]),
+        host_layout!("Triangle", GpuTriangle, [v0, material, v1, v2]),
+        host_layout!("TriangleShading", GpuTriangleShading, [n0, n1, n2]),
+        host_layout!(
+            "Instance",
+            GpuInstance,
+            [world_to_object, object_to_world, node_offset, triangle_offset, material_base, material_override]
+        ),
+        host_layout!("Sphere", GpuSphere, [center, radius, material, k]),
+        host_layout!(
+            "Material",
+            GpuMaterial,
+            [
+                base_color,
+                diffuse,
+                emission,
+                specular,
+                absorption,
+                reflection,
+                volume_emission,
+                transmission,
+                ior,
+                alpha,
+                emission_luminance
+            ]
+        ),
+        host_layout!("Emitter", GpuEmitter, [primitive, instance, cdf]),
+        host_layout!(
+            "Atmosphere",
+            GpuAtmosphere,
+            [
+                rayleigh_scattering,
+                bottom_radius,
+                mie_scattering,
+                top_altitude,
+                mie_absorption,
+                rayleigh_scale_height,
+                ozone_absorption,
+                mie_scale_height,
+                ground_albedo,
+                mie_g,
+                ozone_center,
+                ozone_half_width,
+                ground_altitude,
+                steps,
+                transmittance_size,
+                scattering_size,
+                scattering_offset,
+                ground_offset,
+                multiple_scattering
+            ]
+        ),
+        host_layout!("TraceRay", GpuTraceRay, [origin, t_max, direction]),
+        host_layout!("TraceHit", GpuTraceHit, [t, primitive, instance, overflowed, b1, b2]),
+    ];
+    let wgsl = wgsl_layouts();
+    for (name, size, fields) in hosts {
+        let (wgsl_size, wgsl_fields) = wgsl.get(name).unwrap_or_else(|| panic!("no WGSL struct {name}"));
+        assert_eq!(size as u32, *wgsl_size, "size of {name}");
+        for (field, offset) in fields {
+            let wgsl_offset = wgsl_fields.iter().find(|(f, _)| f == field).map(|(_, o)| *o);
+            assert_eq!(Some(offset as u32), wgsl_offset, "offset of {name}.{field}");
+        }
+    }
+}

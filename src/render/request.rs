@@ -1,0 +1,112 @@
+//! What a render is asked for, resolved once: the scene's `[render]` table gives the
+//! defaults, the command line's flags override them and are checked like the keys.
+
+use crate::scene::{FeatureSet, RoughTransmission, Sampling, Scene};
+use anyhow::{Result, bail};
+
+/// Samples per pixel in one GPU dispatch at most.
+pub const MAX_SAMPLES_PER_DISPATCH: u32 = 256;
+
+/// One render's settings, as the session runs them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RenderRequest {
+    pub width: u32,
+    pub height: u32,
+    pub spp: u32,
+    pub max_bounces: u32,
+    pub seed: u32,
+    /// Candidates per resampled direction in `resampled` sampling.
+    pub ris_candidates: u32,
+    /// Scale samples down to this luminance (biased; `None`: off).
+    pub clamp: Option<f32>,
+    /// Run this feature set's pipeline instead of the scene's own (it must include it).
+    pub features: Option<FeatureSet>,
+    /// Samples per pixel in each GPU dispatch; `None`: as many as keep a dispatch near its target time.
+    pub samples_per_dispatch: Option<u32>,
+    pub progress: bool,
+}
+
+impl RenderRequest {
+    pub fn from_scene(scene: &Scene) -> Self {
+        let r = &scene.render;
+        Self {
+            width: r.width,
+            height: r.height,
+            spp: r.spp,
+            max_bounces: r.max_bounces,
+            seed: 0,
+            ris_candidates: r.ris_candidates,
+            clamp: None,
+            features: None,
+            samples_per_dispatch: None,
+            progress: false,
+        }
+    }
+
+    /// Whether `other` renders the same image as `self` (only how it is reached differs).
+    pub fn same_image(&self, other: &Self) -> bool {
+        let driver_only = |r: &Self| Self { spp: 0, samples_per_dispatch: None, progress: false, ..r.clone() };
+        driver_only(self) == driver_only(other)
+    }
+}
+
+/// The command line's overrides of a scene's `[render]` keys, and the settings that
+/// only the command line has.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RenderFlags {
+    pub size: Option<(u32, u32)>,
+    pub spp: Option<u32>,
+    pub max_bounces: Option<u32>,
+    pub exposure: Option<f32>,
+    pub sampling: Option<Sampling>,
+    pub ris_candidates: Option<u32>,
+    pub rough_transmission: Option<RoughTransmission>,
+    pub seed: u32,
+    pub clamp: Option<f32>,
+    pub samples_per_dispatch: Option<u32>,
+}
+
+impl RenderFlags {
+    /// Writes the flags into `scene.render`, checked by the same rules as the scene's
+    /// keys (an error names the flag), and returns the request they make.
+    pub fn apply(&self, scene: &mut Scene) -> Result<RenderRequest> {
+        let r = &mut scene.render;
+        if let Some((w, h)) = self.size {
+            (r.width, r.height) = (w, h);
+        }
+        let set = |value: Option<u32>, key: &mut u32| *key = value.unwrap_or(*key);
+        set(self.spp, &mut r.spp);
+        set(self.max_bounces, &mut r.max_bounces);
+        set(self.ris_candidates, &mut r.ris_candidates);
+        r.exposure = self.exposure.unwrap_or(r.exposure);
+        r.sampling = self.sampling.unwrap_or(r.sampling);
+        r.rough_transmission = self.rough_transmission.unwrap_or(r.rough_transmission);
+        if let Err((key, message)) = r.check() {
+            bail!("{}: {message}", flag_of(key));
+        }
+        if let Some(c) = self.clamp
+            && !(c.is_finite() && c > 0.0)
+        {
+            bail!("--clamp: must be a positive, finite luminance, got {c}");
+        }
+        if let Some(n) = self.samples_per_dispatch
+            && !(1..=MAX_SAMPLES_PER_DISPATCH).contains(&n)
+        {
+            bail!("--samples-per-dispatch: must be in 1..={MAX_SAMPLES_PER_DISPATCH}, got {n}");
+        }
+        Ok(RenderRequest {
+            seed: self.seed,
+            clamp: self.clamp,
+            samples_per_dispatch: self.samples_per_dispatch,
+            ..RenderRequest::from_scene(scene)
+        })
+    }
+}
+
+/// The flag that sets a `[render]` key.
+fn flag_of(key: &str) -> String {
+    match key {
+        "width" | "height" => "--size".to_owned(),
+        key => format!("--{}", key.replace('_', "-")),
+    }
+}

@@ -1,0 +1,400 @@
+//! The render session: a scene on the GPU (geometry, buffers, pipelines, sky tables),
+//! the accumulation its samples go to and the one controller of dispatch sizes.
+//! `rt render` steps it to its spp, `rt watch` applies edits to it and steps it frame
+//! by frame, `rt bench` steps it under a timer. The watcher decides what to redo; the
+//! session does it.
+
+use super::accumulation::{Accumulation, check_image_size};
+use super::dropped::DroppedSamples;
+use super::pacing::{DispatchSizer, Pacing};
+use super::{Image, RenderRequest, camera, sun};
+use crate::bvh::{BuildQuality, SceneGeometry};
+use crate::gpu::shader::{Program, ShaderFiles};
+use crate::gpu::{GpuContext, GpuTimer, PipelineCache, Pipelines, Readback, STAT_STACK_OVERFLOW, SceneBuffers};
+use crate::layout::GpuFrame;
+use crate::scene::{Atmosphere, FeatureSet, RenderSettings, Scene, Sky};
+use crate::sky::AtmosphereTables;
+use anyhow::{Result, bail};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::rc::Rc;
+use std::time::{Duration, Instant};
+
+/// What one finished render did.
+#[derive(Clone, Debug)]
+pub struct RenderReport {
+    pub samples_per_pixel: u32,
+    /// Wall-clock time of the whole render.
+    pub elapsed: Duration,
+    /// The dispatches' own time: the GPU's, with a timer that has timestamp queries.
+    pub dispatch_time: Duration,
+    /// Camera paths per second.
+    pub samples_per_second: f64,
+    pub dropped: DroppedSamples,
+    pub features: FeatureSet,
+}
+
+/// One dispatch: how many samples per pixel it added and how long it took.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Step {
+    pub samples: u32,
+    pub took: Duration,
+}
+
+/// New state for a session, all applied or none.
+pub struct SceneUpdate {
+    /// The scene as it now renders.
+    pub scene: Scene,
+    pub geometry: Option<GeometryUpdate>,
+    /// Read the shaders from here from now on.
+    pub shaders: Option<ShaderFiles>,
+}
+
+pub enum GeometryUpdate {
+    /// Assets or their placement changed: every geometry buffer is replaced.
+    Replace(SceneGeometry),
+    /// Only materials changed: the material and emitter tables are uploaded.
+    Materials(SceneGeometry),
+}
+
+pub struct Session<'a> {
+    ctx: &'a GpuContext,
+    scene: Scene,
+    geometry: SceneGeometry,
+    features: FeatureSet,
+    buffers: SceneBuffers,
+    pipelines: PipelineCache,
+    /// The atmosphere's parameters and tables, when the sky is one.
+    sky: Option<AtmosphereTables>,
+    request: RenderRequest,
+    acc: Accumulation,
+    sizer: DispatchSizer,
+    last_step: Step,
+    readback: Readback,
+}
+
+impl<'a> Session<'a> {
+    pub fn open(ctx: &'a GpuContext, scene: Scene, quality: BuildQuality) -> Result<Self> {
+        let geometry = SceneGeometry::build(&scene, quality)?;
+        Self::with_geometry(ctx, scene, geometry)
+    }
+
+    /// A session for `scene` placed as `geometry` (which must have been built from it).
+    pub fn with_geometry(ctx: &'a GpuContext, scene: Scene, geometry: SceneGeometry) -> Result<Self> {
+        let request = RenderRequest::from_scene(&scene);
+        let pipelines = PipelineCache::new(ctx);
+        let acc = Accumulation::new(ctx, &pipelines.accumulation_layout, request.width, request.height)?;
+        let buffers = SceneBuffers::new(ctx, &geometry, &pipelines.scene_layout)?;
+        if matches!(scene.sky, Sky::Atmosphere(_)) && scene.sun.is_none() {
+            log::warn!("{}: the atmosphere has no [sun] to light it: only its extinction shows", scene.origin);
+        }
+        let features = FeatureSet::analyse(&scene, &geometry.summary());
+        let sky = scene.sky.clone();
+        let mut session = Self {
+            ctx,
+            scene,
+            geometry,
+            features,
+            buffers,
+            pipelines,
+            sky: None,
+            request,
+            acc,
+            sizer: DispatchSizer::new(Pacing::RENDER),
+            last_step: Step::default(),
+            readback: Readback::new(),
+        };
+        session.set_sky(&sky)?;
+        Ok(session)
+    }
+
+    pub fn ctx(&self) -> &'a GpuContext {
+        self.ctx
+    }
+
+    /// The scene as it renders.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    pub fn geometry(&self) -> &SceneGeometry {
+        &self.geometry
+    }
+
+    /// The effects the scene needs: the pipeline that runs unless a request names another.
+    pub fn features(&self) -> FeatureSet {
+        self.features
+    }
+
+    pub fn atmosphere(&self) -> Option<&AtmosphereTables> {
+        self.sky.as_ref()
+    }
+
+    pub fn buffers(&self) -> &SceneBuffers {
+        &self.buffers
+    }
+
+    pub fn pipeline_cache(&self) -> &PipelineCache {
+        &self.pipelines
+    }
+
+    pub(super) fn pipelines_mut(&mut self) -> &mut PipelineCache {
+        &mut self.pipelines
+    }
+
+    pub fn request(&self) -> &RenderRequest {
+        &self.request
+    }
+
+    pub fn accumulation(&self) -> &Accumulation {
+        &self.acc
+    }
+
+    /// Samples per pixel taken since the last reset.
+    pub fn samples(&self) -> u32 {
+        self.acc.samples
+    }
+
+    pub fn converged(&self) -> bool {
+        self.acc.samples >= self.request.spp
+    }
+
+    /// The last dispatch.
+    pub fn last_step(&self) -> Step {
+        self.last_step
+    }
+
+    /// How long dispatches should take: `rt watch` aims at its frame time.
+    pub fn set_pacing(&mut self, pacing: Pacing) {
+        self.sizer.set_pacing(pacing);
+    }
+
+    /// Renders `request` from now on. Returns whether the samples taken so far were
+    /// dropped (anything but the spp and the dispatch sizes changed). An image larger
+    /// than the GPU can hold is refused and nothing changes.
+    pub fn set_request(&mut self, request: &RenderRequest) -> Result<bool> {
+        let resized = (request.width, request.height) != (self.acc.width, self.acc.height);
+        if resized {
+            self.acc = Accumulation::new(self.ctx, &self.pipelines.accumulation_layout, request.width, request.height)?;
+        }
+        let reset = resized || !self.request.same_image(request);
+        self.sizer.fix(request.samples_per_dispatch);
+        self.request = request.clone();
+        if reset {
+            self.reset();
+        }
+        Ok(reset)
+    }
+
+    /// Refuses an image size the GPU cannot hold, before anything changes.
+    pub fn check_image_size(&self, width: u32, height: u32) -> Result<()> {
+        check_image_size(self.ctx, width, height)
+    }
+
+    /// Drops the samples taken so far; the next dispatch takes one sample, to show the
+    /// new state as soon as possible.
+    pub fn reset(&mut self) {
+        let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
+        self.acc.clear(&mut encoder);
+        self.ctx.queue.submit([encoder.finish()]);
+        self.sizer.restart();
+    }
+
+    fn integrator(&mut self) -> Result<Rc<Pipelines>> {
+        let features = self.request.features.unwrap_or(self.features);
+        self.pipelines.get(self.ctx, Program::Integrator, features)
+    }
+
+    /// The frame constants of the current request, before per-dispatch fields.
+    pub fn frame(&self) -> GpuFrame {
+        let request = &self.request;
+        let mut frame = GpuFrame {
+            max_bounces: request.max_bounces,
+            seed: request.seed,
+            tlas_root: self.geometry.tlas_root,
+            ..Default::default()
+        };
+        camera::set_camera(&mut frame, &self.scene.camera, request.width, request.height);
+        if let Sky::Uniform { color } = self.scene.sky {
+            frame.sky_color = color.to_array();
+        }
+        sun::set_sun(&mut frame, self.scene.sun.as_ref(), !self.geometry.emitters.is_empty());
+        frame.emitter_count = self.geometry.emitters.len() as u32;
+        frame.emitter_total_power = self.geometry.emitter_total_power;
+        frame.ris_candidates = request.ris_candidates;
+        frame.clamp_luminance = request.clamp.unwrap_or(0.0);
+        frame
+    }
+
+    /// Records the next dispatch into `encoder` (none once converged) and returns its
+    /// samples per pixel; the caller submits it and reports its time to [`Self::observe`].
+    pub fn encode_step(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites>,
+    ) -> Result<u32> {
+        if self.converged() {
+            return Ok(0);
+        }
+        let pipelines = self.integrator()?;
+        let n = self.sizer.next(self.request.spp - self.acc.samples);
+        let frame = GpuFrame { samples_per_dispatch: n, ..self.frame() };
+        self.acc.encode(self.ctx, encoder, &pipelines, &self.buffers, &frame, timestamp_writes);
+        Ok(n)
+    }
+
+    /// How long a dispatch of `samples` took: the next one's size follows it.
+    pub fn observe(&mut self, samples: u32, took: Duration) {
+        self.sizer.observe(samples, took);
+        self.last_step = Step { samples, took };
+    }
+
+    /// One dispatch towards the request's spp, waited for. Its time is the GPU's with a
+    /// timer that has timestamp queries, else the wall-clock time until it finished.
+    pub fn step(&mut self, timer: Option<&GpuTimer>) -> Result<Step> {
+        let start = Instant::now();
+        let (samples, took) = match timer {
+            Some(timer) => {
+                let ctx = self.ctx;
+                let mut samples = Ok(0);
+                let took = timer.time(ctx, |e, w| samples = self.encode_step(e, w))?;
+                (samples?, took)
+            }
+            None => {
+                let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
+                let samples = self.encode_step(&mut encoder, None)?;
+                self.ctx.queue.submit([encoder.finish()]);
+                self.ctx.wait()?;
+                (samples, start.elapsed())
+            }
+        };
+        // Sizes follow the wall clock: it is what a watchdog and a window see.
+        self.sizer.observe(samples, start.elapsed());
+        self.last_step = Step { samples, took };
+        Ok(self.last_step)
+    }
+
+    /// Renders `request` from no samples to its spp, with a progress bar if it asks for one.
+    pub fn render(&mut self, request: &RenderRequest, timer: Option<&GpuTimer>) -> Result<(Image, RenderReport)> {
+        self.set_request(request)?;
+        self.reset();
+        self.buffers.take_stats(self.ctx)?;
+        let bar = if request.progress { ProgressBar::new(request.spp as u64) } else { ProgressBar::hidden() };
+        bar.set_style(
+            ProgressStyle::with_template("{bar:40} {pos}/{len} spp  {msg}  ETA {eta}")
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        let start = Instant::now();
+        let pixels = request.width as f64 * request.height as f64;
+        let mut dispatch_time = Duration::ZERO;
+        while !self.converged() {
+            dispatch_time += self.step(timer)?.took;
+            let rate = self.acc.samples as f64 * pixels / start.elapsed().as_secs_f64();
+            bar.set_position(self.acc.samples as u64);
+            bar.set_message(format!("{} samples/s", super::human(rate)));
+        }
+        bar.finish_and_clear();
+        let elapsed = start.elapsed();
+        let report = RenderReport {
+            samples_per_pixel: self.acc.samples,
+            elapsed,
+            dispatch_time,
+            samples_per_second: self.acc.samples as f64 * pixels / elapsed.as_secs_f64(),
+            dropped: self.dropped()?,
+            features: request.features.unwrap_or(self.features),
+        };
+        Ok((self.image()?, report))
+    }
+
+    /// The mean radiance per pixel so far, with each pixel's standard error.
+    pub fn image(&self) -> Result<Image> {
+        self.acc.image(self.ctx, &self.readback)
+    }
+
+    /// What was dropped since the last reset; the stack-overflow counter starts again.
+    pub fn dropped(&mut self) -> Result<DroppedSamples> {
+        let stats = self.buffers.take_stats(self.ctx)?;
+        let per_pixel = self.acc.non_finite(self.ctx, &self.readback)?;
+        Ok(DroppedSamples::from_pixels(&per_pixel, stats[STAT_STACK_OVERFLOW]))
+    }
+
+    /// Takes new atmosphere parameters: the tables are rebuilt only if they depend on
+    /// what changed (the sun may move freely: nothing in them depends on it). Returns
+    /// whether they were.
+    pub fn set_atmosphere(&mut self, params: &Atmosphere) -> Result<bool> {
+        let Some(tables) = self.sky.as_mut() else {
+            bail!("{}: the sky is not an atmosphere", self.scene.origin);
+        };
+        let rebuilt = tables.update(self.ctx, &self.pipelines.sky_layout, params)?;
+        self.buffers.sky_bind_group = Some(tables.bind_group.clone());
+        self.scene.sky = Sky::Atmosphere(params.clone());
+        Ok(rebuilt)
+    }
+
+    /// Takes a new sky of any kind: an atmosphere's tables are built or updated,
+    /// another kind drops them.
+    fn set_sky(&mut self, sky: &Sky) -> Result<()> {
+        match sky {
+            Sky::Atmosphere(params) if self.sky.is_some() => {
+                self.set_atmosphere(params)?;
+            }
+            Sky::Atmosphere(params) => {
+                let tables = AtmosphereTables::new(self.ctx, &self.pipelines.sky_layout, params)?;
+                self.buffers.sky_bind_group = Some(tables.bind_group.clone());
+                self.sky = Some(tables);
+            }
+            _ => {
+                self.sky = None;
+                self.buffers.sky_bind_group = None;
+            }
+        }
+        self.scene.sky = sky.clone();
+        Ok(())
+    }
+
+    /// Brings the session to `update`. Everything that can fail (shaders, pipelines,
+    /// the atmosphere's tables) happens before anything is replaced, so on an error the
+    /// last good state keeps rendering. Returns whether the samples so far were dropped.
+    pub fn apply(&mut self, update: SceneUpdate) -> Result<bool> {
+        let SceneUpdate { scene, geometry, shaders } = update;
+        let reshaded = shaders.is_some();
+        if let Some(files) = shaders {
+            self.pipelines.reload_shaders(self.ctx, files)?;
+        }
+        let summary = match &geometry {
+            Some(GeometryUpdate::Replace(g) | GeometryUpdate::Materials(g)) => g.summary(),
+            None => self.geometry.summary(),
+        };
+        let features = FeatureSet::analyse(&scene, &summary);
+        self.pipelines.get(self.ctx, Program::Integrator, features)?;
+        if scene.sky != self.scene.sky {
+            self.set_sky(&scene.sky)?;
+        }
+        let regeometry = geometry.is_some();
+        match geometry {
+            Some(GeometryUpdate::Replace(g)) => {
+                self.buffers.replace_geometry(self.ctx, &g, &self.pipelines.scene_layout)?;
+                self.geometry = g;
+            }
+            Some(GeometryUpdate::Materials(g)) => {
+                self.buffers.replace_materials(self.ctx, &g, &self.pipelines.scene_layout);
+                self.geometry = g;
+            }
+            None => {}
+        }
+        let reset = reshaded || regeometry || features != self.features || !same_image(&scene, &self.scene);
+        self.scene = scene;
+        self.features = features;
+        if reset {
+            self.reset();
+        }
+        Ok(reset)
+    }
+}
+
+/// Whether two scenes render the same image (the exposure only changes its display).
+fn same_image(a: &Scene, b: &Scene) -> bool {
+    let unexposed = |s: &Scene| RenderSettings { exposure: 0.0, ..s.render.clone() };
+    unexposed(a) == unexposed(b)
+        && (&a.camera, &a.sky, &a.sun, &a.materials, &a.meshes, &a.spheres)
+            == (&b.camera, &b.sky, &b.sun, &b.materials, &b.meshes, &b.spheres)
+}

@@ -104,12 +104,15 @@ fn unknown_output_type_is_refused_before_rendering() {
     assert!(stderr.contains("picture.jpg"), "{stderr}");
 }
 
-/// Runs `rt ARGS` on the built-in scene at 8x8 and returns (exit code, stderr).
+/// Runs `rt render ARGS` on the built-in scene (at 8x8, 1 spp unless ARGS say otherwise)
+/// and returns (exit code, stderr).
 fn rt(args: &[&str]) -> (i32, String) {
     let dir = temp_dir("flags");
+    let spp: &[&str] = if args.contains(&"--spp") { &[] } else { &["--spp", "1"] };
     let out = Command::new(env!("CARGO_BIN_EXE_rt"))
-        .args(["render", "--size", "8x8", "--spp", "1", "-o"])
+        .args(["render", "--size", "8x8", "-o"])
         .arg(dir.join("out.png"))
+        .args(spp)
         .args(args)
         .output()
         .expect("run rt");

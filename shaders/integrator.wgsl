@@ -1,6 +1,6 @@
-// The path-tracing megakernel: each invocation adds `samples_per_dispatch`
-// samples to one pixel's running sums. Progressive: the host divides by the
-// total sample count.
+// The path-tracing megakernel: each dispatch adds `samples_per_dispatch` samples
+// to every pixel's running mean, taken by one invocation per pixel (`render`) or,
+// for small images, spread over several (`render_lanes`, then `reduce_lanes`).
 
 // rgb: the running mean of radiance; w: the running sum of squared deviations
 // of luminance (Welford), for the standard error. Means rather than sums: a sum
@@ -9,6 +9,8 @@
 // Per pixel: dropped non-finite samples (low 24 bits) and the event that
 // produced the first one (top 8 bits).
 @group(1) @binding(1) var<storage, read_write> non_finite: array<u32>;
+// Samples of small images spread over lanes, before `reduce_lanes` adds them up.
+@group(1) @binding(2) var<storage, read_write> lane_samples: array<vec4f>;
 
 // The first event of this sample that produced a non-finite value.
 var<private> first_bad_event: u32;
@@ -189,6 +191,32 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
     return radiance;
 }
 
+// Adds sample `sample_index` of a pixel, of radiance `radiance`, to its running mean
+// `acc`; a non-finite sample is dropped and counted in `bad` with the event `event`
+// that first made it so. One sample at a time, in sample order, so that the result
+// does not depend on how samples are split into dispatches or lanes.
+fn accumulate(acc: ptr<function, vec4f>, bad: ptr<function, u32>, radiance: vec3f, event: u32, sample_index: u32) {
+    // A non-finite sample would poison the pixel for good: drop it, count it, keep its cause.
+    if !all_finite(radiance) {
+        if (*bad & 0xffffffu) == 0u {
+            *bad = event << 24u;
+        }
+        *bad = (*bad & 0xff000000u) | min((*bad & 0xffffffu) + 1u, 0xffffffu);
+        return;
+    }
+    var l = radiance;
+    var y = luminance(l);
+    if frame.clamp_luminance > 0.0 && y > frame.clamp_luminance {
+        l *= frame.clamp_luminance / y;
+        y = frame.clamp_luminance;
+    }
+    let n = f32(sample_index + 1u - (*bad & 0xffffffu));
+    let y_before = luminance((*acc).rgb);
+    let mean = (*acc).rgb + (l - (*acc).rgb) / n;
+    *acc = vec4f(mean, (*acc).w + (y - y_before) * (y - luminance(mean)));
+}
+
+// One invocation per pixel, taking the dispatch's samples one after another.
 @compute @workgroup_size(8, 8)
 fn render(@builtin(global_invocation_id) id: vec3u) {
     if id.x >= frame.width || id.y >= frame.height {
@@ -201,25 +229,44 @@ fn render(@builtin(global_invocation_id) id: vec3u) {
         let sample_index = frame.sample_base + s;
         var rng = rng_for_sample(pixel_index, sample_index, frame.seed);
         first_bad_event = EVENT_NONE;
-        var l = trace_path(id.xy, &rng);
-        // A non-finite sample would poison the pixel for good: drop it, count it, keep its cause.
-        if !all_finite(l) {
-            if (bad & 0xffffffu) == 0u {
-                bad = first_bad_event << 24u;
-            }
-            bad = (bad & 0xff000000u) | min((bad & 0xffffffu) + 1u, 0xffffffu);
-            continue;
-        }
-        var y = luminance(l);
-        if frame.clamp_luminance > 0.0 && y > frame.clamp_luminance {
-            l *= frame.clamp_luminance / y;
-            y = frame.clamp_luminance;
-        }
-        // Updated one sample at a time, so the result does not depend on how samples are split into dispatches.
-        let n = f32(sample_index + 1u - (bad & 0xffffffu));
-        let y_before = luminance(acc.rgb);
-        let mean = acc.rgb + (l - acc.rgb) / n;
-        acc = vec4f(mean, acc.w + (y - y_before) * (y - luminance(mean)));
+        let l = trace_path(id.xy, &rng);
+        accumulate(&acc, &bad, l, first_bad_event, sample_index);
+    }
+    accumulation[pixel_index] = acc;
+    non_finite[pixel_index] = bad;
+}
+
+// Small images leave most of a GPU idle with one invocation per pixel: there, each
+// pixel's samples are spread over the dispatch's z lanes, written to `lane_samples`
+// (radiance, and the event of a non-finite one in w) and added up in sample order by
+// `reduce_lanes`, so that the image is the same bit for bit as `render`'s.
+@compute @workgroup_size(8, 8)
+fn render_lanes(@builtin(global_invocation_id) id: vec3u, @builtin(num_workgroups) groups: vec3u) {
+    if id.x >= frame.width || id.y >= frame.height {
+        return;
+    }
+    let pixel_index = id.y * frame.width + id.x;
+    let pixels = frame.width * frame.height;
+    for (var s = id.z; s < frame.samples_per_dispatch; s += groups.z) {
+        var rng = rng_for_sample(pixel_index, frame.sample_base + s, frame.seed);
+        first_bad_event = EVENT_NONE;
+        let l = trace_path(id.xy, &rng);
+        lane_samples[s * pixels + pixel_index] = vec4f(l, bitcast<f32>(first_bad_event));
+    }
+}
+
+@compute @workgroup_size(8, 8)
+fn reduce_lanes(@builtin(global_invocation_id) id: vec3u) {
+    if id.x >= frame.width || id.y >= frame.height {
+        return;
+    }
+    let pixel_index = id.y * frame.width + id.x;
+    let pixels = frame.width * frame.height;
+    var acc = accumulation[pixel_index];
+    var bad = non_finite[pixel_index];
+    for (var s = 0u; s < frame.samples_per_dispatch; s++) {
+        let sample = lane_samples[s * pixels + pixel_index];
+        accumulate(&acc, &bad, sample.xyz, bitcast<u32>(sample.w), frame.sample_base + s);
     }
     accumulation[pixel_index] = acc;
     non_finite[pixel_index] = bad;

@@ -35,7 +35,7 @@ impl PipelineCache {
     pub fn new(ctx: &GpuContext) -> Self {
         Self {
             scene_layout: scene_bind_group_layout(&ctx.device),
-            accumulation_layout: io_bind_group_layout(&ctx.device, 2),
+            accumulation_layout: io_bind_group_layout(&ctx.device, 3),
             trace_layout: io_bind_group_layout(&ctx.device, 2),
             sky_layout: sky_bind_group_layout(&ctx.device, false),
             files: ShaderFiles::BuiltIn,
@@ -71,7 +71,7 @@ impl PipelineCache {
         features: FeatureSet,
     ) -> Result<Pipelines> {
         let (io_layout, entry_names): (&wgpu::BindGroupLayout, &[&'static str]) = match program {
-            Program::Integrator => (&self.accumulation_layout, &["render"]),
+            Program::Integrator => (&self.accumulation_layout, &["render", "render_lanes", "reduce_lanes"]),
             Program::Trace => (
                 &self.trace_layout,
                 &["trace", "generate_camera_rays", "generate_diffuse_rays", "generate_through_rays"],

@@ -3,12 +3,20 @@
 
 use super::Image;
 use super::dropped::NonFiniteCause;
+use super::request::{MAX_LANES, MAX_SAMPLES_PER_DISPATCH};
 use crate::gpu::{GpuContext, Pipelines, Readback, SceneBuffers};
 use crate::layout::GpuFrame;
 use anyhow::{Result, bail};
 
 /// Bytes per pixel of the means (RGB and the luminance's sum of squared deviations).
 const MEAN_BYTES: u64 = 16;
+/// Bytes of one sample in the lanes' scratch (radiance, and the event of a non-finite one).
+const SAMPLE_BYTES: u64 = 16;
+/// The lanes' scratch at most: it holds pixels × samples per dispatch.
+const LANE_SCRATCH_BYTES: u64 = 64 << 20;
+/// Invocations that keep a large GPU busy (an H200 holds 132 × 2048 resident threads):
+/// images with fewer pixels spread each pixel's samples over lanes.
+const GPU_INVOCATIONS: u64 = 1 << 18;
 
 pub struct Accumulation {
     pub width: u32,
@@ -16,7 +24,12 @@ pub struct Accumulation {
     pub samples: u32,
     means: wgpu::Buffer,
     non_finite: wgpu::Buffer,
+    /// Samples spread over lanes wait here for `reduce_lanes` (a token buffer when
+    /// the image is large enough to keep the GPU busy on its own).
+    lane_samples: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
+    /// Lanes per pixel that keep the GPU busy; 1 on a CPU adapter.
+    lanes_wanted: u32,
 }
 
 /// Refuses an image whose running means do not fit one GPU binding, naming the limit.
@@ -52,8 +65,36 @@ impl Accumulation {
         };
         let means = buffer("accumulation", pixels * MEAN_BYTES);
         let non_finite = buffer("non-finite samples", pixels * 4);
-        let bind_group = crate::gpu::bind_group(ctx, "accumulation", layout, &[&means, &non_finite]);
-        Ok(Self { width, height, samples: 0, means, non_finite, bind_group })
+        // A CPU runs one invocation per core at a time: lanes would only add the reduction.
+        let cpu = ctx.adapter_info.device_type == wgpu::DeviceType::Cpu;
+        let lanes_wanted = if cpu { 1 } else { GPU_INVOCATIONS.div_ceil(pixels).min(MAX_LANES as u64) as u32 };
+        let lane_samples = buffer("lane samples", SAMPLE_BYTES);
+        let bind_group = crate::gpu::bind_group(ctx, "accumulation", layout, &[&means, &non_finite, &lane_samples]);
+        let mut acc = Self { width, height, samples: 0, means, non_finite, lane_samples, bind_group, lanes_wanted };
+        if lanes_wanted > 1 {
+            acc.prepare_lanes(ctx, layout);
+        }
+        Ok(acc)
+    }
+
+    /// Makes room for samples spread over lanes, if there is none yet.
+    pub fn prepare_lanes(&mut self, ctx: &GpuContext, layout: &wgpu::BindGroupLayout) {
+        let pixels = self.width as u64 * self.height as u64;
+        if self.lane_samples.size() >= pixels * SAMPLE_BYTES {
+            return;
+        }
+        let max = ctx.device.limits().max_storage_buffer_binding_size;
+        let size = (pixels * SAMPLE_BYTES * MAX_SAMPLES_PER_DISPATCH as u64)
+            .min(LANE_SCRATCH_BYTES.max(pixels * SAMPLE_BYTES))
+            .min(max);
+        self.lane_samples = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("lane samples"),
+            size,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
+        let buffers = [&self.means, &self.non_finite, &self.lane_samples];
+        self.bind_group = crate::gpu::bind_group(ctx, "accumulation", layout, &buffers);
     }
 
     /// The running means per pixel (RGB, then the luminance's sum of squared deviations),
@@ -69,8 +110,25 @@ impl Accumulation {
         self.samples = 0;
     }
 
-    /// Records one dispatch of `frame.samples_per_dispatch` samples per pixel (and counts
-    /// them as taken).
+    /// Lanes per pixel for a dispatch of `samples` samples per pixel: as many as keep the
+    /// GPU busy, or `forced`; 1 runs the plain one-invocation-per-pixel kernel.
+    pub fn lanes(&self, samples: u32, forced: Option<u32>) -> u32 {
+        forced.unwrap_or(self.lanes_wanted).clamp(1, samples.max(1))
+    }
+
+    /// Samples per pixel one dispatch with `lanes` lanes can take: as many as the lanes'
+    /// scratch holds.
+    pub fn max_samples(&self, lanes: u32) -> u32 {
+        if lanes <= 1 {
+            return MAX_SAMPLES_PER_DISPATCH;
+        }
+        let per_sample = self.width as u64 * self.height as u64 * SAMPLE_BYTES;
+        (self.lane_samples.size() / per_sample).min(MAX_SAMPLES_PER_DISPATCH as u64) as u32
+    }
+
+    /// Records one dispatch of `frame.samples_per_dispatch` samples per pixel over `lanes`
+    /// lanes (and counts them as taken).
+    #[allow(clippy::too_many_arguments)]
     pub fn encode(
         &mut self,
         ctx: &GpuContext,
@@ -78,6 +136,7 @@ impl Accumulation {
         pipelines: &Pipelines,
         scene: &SceneBuffers,
         frame: &GpuFrame,
+        lanes: u32,
         timestamp_writes: Option<wgpu::ComputePassTimestampWrites>,
     ) {
         let n = frame.samples_per_dispatch;
@@ -85,13 +144,21 @@ impl Accumulation {
         scene.write_frame(ctx, &frame);
         let mut pass =
             encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("render"), timestamp_writes });
-        pass.set_pipeline(pipelines.entry("render"));
         pass.set_bind_group(0, &scene.bind_group, &[]);
         pass.set_bind_group(1, &self.bind_group, &[]);
         if let Some(sky) = &scene.sky_bind_group {
             pass.set_bind_group(2, sky, &[]);
         }
-        pass.dispatch_workgroups(self.width.div_ceil(8), self.height.div_ceil(8), 1);
+        let (x, y) = (self.width.div_ceil(8), self.height.div_ceil(8));
+        if lanes > 1 {
+            pass.set_pipeline(pipelines.entry("render_lanes"));
+            pass.dispatch_workgroups(x, y, lanes);
+            pass.set_pipeline(pipelines.entry("reduce_lanes"));
+            pass.dispatch_workgroups(x, y, 1);
+        } else {
+            pass.set_pipeline(pipelines.entry("render"));
+            pass.dispatch_workgroups(x, y, 1);
+        }
         self.samples += n;
     }
 

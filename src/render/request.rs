@@ -6,6 +6,8 @@ use anyhow::{Result, bail};
 
 /// Samples per pixel in one GPU dispatch at most.
 pub const MAX_SAMPLES_PER_DISPATCH: u32 = 256;
+/// Invocations one pixel's samples are spread over at most.
+pub const MAX_LANES: u32 = 64;
 
 /// One render's settings, as the session runs them.
 #[derive(Clone, Debug, PartialEq)]
@@ -23,6 +25,9 @@ pub struct RenderRequest {
     pub features: Option<FeatureSet>,
     /// Samples per pixel in each GPU dispatch; `None`: as many as keep a dispatch near its target time.
     pub samples_per_dispatch: Option<u32>,
+    /// Invocations each pixel's samples are spread over; `None`: as many as keep the GPU
+    /// busy (small images on a GPU). The image is the same whatever the number.
+    pub sample_lanes: Option<u32>,
     pub progress: bool,
 }
 
@@ -39,13 +44,15 @@ impl RenderRequest {
             clamp: None,
             features: None,
             samples_per_dispatch: None,
+            sample_lanes: None,
             progress: false,
         }
     }
 
     /// Whether `other` renders the same image as `self` (only how it is reached differs).
     pub fn same_image(&self, other: &Self) -> bool {
-        let driver_only = |r: &Self| Self { spp: 0, samples_per_dispatch: None, progress: false, ..r.clone() };
+        let driver_only =
+            |r: &Self| Self { spp: 0, samples_per_dispatch: None, sample_lanes: None, progress: false, ..r.clone() };
         driver_only(self) == driver_only(other)
     }
 }

@@ -236,9 +236,21 @@ impl<'a> Session<'a> {
             return Ok(0);
         }
         let pipelines = self.integrator()?;
-        let n = self.sizer.next(self.request.spp - self.acc.samples);
+        let remaining = self.request.spp - self.acc.samples;
+        let n = self.sizer.next(remaining);
+        let mut lanes = self.acc.lanes(n, self.request.sample_lanes);
+        if lanes > 1 {
+            self.acc.prepare_lanes(self.ctx, &self.pipelines.accumulation_layout);
+        }
+        let n = n.min(self.acc.max_samples(lanes));
+        if n <= 1 {
+            // One sample per pixel needs no lanes (and an image too large for the
+            // scratch gets none).
+            lanes = 1;
+        }
+        let n = n.max(1);
         let frame = GpuFrame { samples_per_dispatch: n, ..self.frame() };
-        self.acc.encode(self.ctx, encoder, &pipelines, &self.buffers, &frame, timestamp_writes);
+        self.acc.encode(self.ctx, encoder, &pipelines, &self.buffers, &frame, lanes, timestamp_writes);
         Ok(n)
     }
 

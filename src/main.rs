@@ -97,6 +97,10 @@ struct RenderArgs {
     /// Samples per pixel in each GPU dispatch [default: as many as keep a dispatch near 80 ms].
     #[arg(long)]
     samples_per_dispatch: Option<u32>,
+    /// Invocations each pixel's samples are spread over; the image is the same whatever
+    /// the number [default: as many as keep the GPU busy, 1 on a CPU].
+    #[arg(long)]
+    sample_lanes: Option<u32>,
 }
 
 impl RenderArgs {
@@ -112,6 +116,7 @@ impl RenderArgs {
             seed: self.seed,
             clamp: self.clamp,
             samples_per_dispatch: self.samples_per_dispatch,
+            sample_lanes: self.sample_lanes,
         }
     }
 }

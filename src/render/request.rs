@@ -71,6 +71,7 @@ pub struct RenderFlags {
     pub seed: u32,
     pub clamp: Option<f32>,
     pub samples_per_dispatch: Option<u32>,
+    pub sample_lanes: Option<u32>,
 }
 
 impl RenderFlags {
@@ -101,10 +102,16 @@ impl RenderFlags {
         {
             bail!("--samples-per-dispatch: must be in 1..={MAX_SAMPLES_PER_DISPATCH}, got {n}");
         }
+        if let Some(n) = self.sample_lanes
+            && !(1..=MAX_LANES).contains(&n)
+        {
+            bail!("--sample-lanes: must be in 1..={MAX_LANES}, got {n}");
+        }
         Ok(RenderRequest {
             seed: self.seed,
             clamp: self.clamp,
             samples_per_dispatch: self.samples_per_dispatch,
+            sample_lanes: self.sample_lanes,
             ..RenderRequest::from_scene(scene)
         })
     }

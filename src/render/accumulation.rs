@@ -14,9 +14,10 @@ const MEAN_BYTES: u64 = 16;
 const SAMPLE_BYTES: u64 = 16;
 /// The lanes' scratch at most: it holds pixels × samples per dispatch.
 const LANE_SCRATCH_BYTES: u64 = 64 << 20;
-/// Invocations that keep a large GPU busy (an H200 holds 132 × 2048 resident threads):
+/// Invocations that keep a large GPU busy (an H200 holds 132 × 2048 resident threads;
+/// four times that evens out paths of unequal length):
 /// images with fewer pixels spread each pixel's samples over lanes.
-const GPU_INVOCATIONS: u64 = 1 << 18;
+const GPU_INVOCATIONS: u64 = 1 << 20;
 
 pub struct Accumulation {
     pub width: u32,

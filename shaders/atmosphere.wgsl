@@ -2,9 +2,14 @@
 // Sky and Atmosphere Rendering Technique", EGSR 2020): air molecules (Rayleigh)
 // and aerosols (Mie) with exponential density profiles, an ozone layer that only
 // absorbs, over a spherical Lambertian ground. Metres; altitudes are above the
-// planet's surface. Shared by the table passes and the render march, each of
-// which declares `atmosphere` (this struct) and `atmosphere_luts` (the tables),
-// and defines PI.
+// planet's surface. Shared by the table passes and the render march.
+//
+// The atmosphere's files use `atmosphere` (this struct) and `atmosphere_luts`
+// (the tables) without including them: each program binds them its own way, and
+// its entry file declares them (atmosphere_tables.wgsl: group 0, the tables
+// writable; atmosphere_sky.wgsl, for the render programs: group 2, read-only).
+
+//#include "constants.wgsl"
 
 // Mirrored by `GpuAtmosphere` in src/gpu/layout.rs.
 struct Atmosphere {

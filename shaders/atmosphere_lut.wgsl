@@ -2,6 +2,9 @@
 // are built). Entries sit at the ends of their cells, so that the horizon and
 // the zenith are represented exactly, and are interpolated bilinearly.
 
+//#include "atmosphere.wgsl"
+//#include "atmosphere_path.wgsl"
+
 fn table_bilinear(offset: u32, size: vec2u, coords: vec2f) -> vec4f {
     let p = clamp(coords, vec2f(0.0), vec2f(1.0)) * vec2f(size - 1u);
     let i = min(vec2u(p), size - 2u);

@@ -4,6 +4,8 @@
 // altitude h₀ of the ray's origin and the cosine μ of its zenith angle there, with
 // differences of squares written as products: r² − R² = h(2R + h).
 
+//#include "atmosphere.wgsl"
+
 struct PlanetRay {
     h0: f32,
     r0: f32,

@@ -21,6 +21,16 @@
 // of equal solid angle in (cosine ν of the angle to the sun, azimuth about the
 // sun), in which the phase functions are integrated exactly, so that the Mie
 // forward peak (g = 0.8: most of it within 15° of the sun) is not undersampled.
+//
+// Its passes belong to the program of atmosphere_tables.wgsl, which declares the
+// tables they write.
+
+//#include "constants.wgsl"
+//#include "segment.wgsl"
+//#include "atmosphere.wgsl"
+//#include "atmosphere_path.wgsl"
+//#include "atmosphere_steps.wgsl"
+//#include "atmosphere_lut.wgsl"
 
 // 256 cells: 8 × 8 for the isotropic orders would halve their cost and lose 2 dB.
 const SIDE: u32 = 16u;
@@ -58,7 +68,7 @@ fn ground_index(row: u32, column: u32) -> u32 {
 // `plane` + 1 times, and that cell's zenith cosine. Once: the sun's light
 // scattered by the air, or reflected by the ground. More: the plane before,
 // scattered isotropically, or the ground row before, reflected.
-fn gather(h: f32, mu_s: f32, cell: u32, plane: u32) -> vec4f {
+fn radiance_from_cell(h: f32, mu_s: f32, cell: u32, plane: u32) -> vec4f {
     let i_nu = cell / SIDE;
     let i_psi = cell % SIDE;
     let a = -1.0 + 2.0 * f32(i_nu) / f32(SIDE);
@@ -120,7 +130,7 @@ fn integrate_sphere(entry: vec2u, lane: u32, plane: u32) {
     var radiance = vec3f(0.0);
     var irradiance = vec3f(0.0);
     for (var cell = lane; cell < CELLS; cell += LANES) {
-        let g = gather(h, x * abs(x), cell, plane);
+        let g = radiance_from_cell(h, x * abs(x), cell, plane);
         radiance += g.rgb;
         irradiance += g.rgb * max(g.w, 0.0);
     }

@@ -8,6 +8,15 @@
 // x' = −σₑx + σₛL), with L = L₁ p(ν) from the transmittance table and the phase
 // functions, plus Σᵢ≥₂ Lᵢ = L₂ / (1 − c) from the multiple scattering table.
 
+//#include "constants.wgsl"
+//#include "common.wgsl"
+//#include "rng.wgsl"
+//#include "segment.wgsl"
+//#include "atmosphere.wgsl"
+//#include "atmosphere_path.wgsl"
+//#include "atmosphere_steps.wgsl"
+//#include "atmosphere_lut.wgsl"
+
 @group(2) @binding(0) var<uniform> atmosphere: Atmosphere;
 @group(2) @binding(1) var<storage, read> atmosphere_luts: array<vec4f>;
 

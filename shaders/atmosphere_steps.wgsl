@@ -6,6 +6,9 @@
 // which is what the density varies on: ~1 km for a vertical ray, ~120 km for a
 // horizontal one.
 
+//#include "atmosphere.wgsl"
+//#include "atmosphere_path.wgsl"
+
 struct MarchSteps {
     count: u32,
     // Steps between the path's start and its lowest point; the rest lie after it.

@@ -6,7 +6,9 @@
 // Passes, in order: build_transmittance, then in atmosphere_scattering.wgsl
 // build_second_order, build_third_order, build_fourth_order, build_closure.
 
-const PI: f32 = 3.14159265358979;
+//#include "atmosphere.wgsl"
+//#include "atmosphere_path.wgsl"
+//#include "atmosphere_scattering.wgsl"
 
 @group(0) @binding(0) var<uniform> atmosphere: Atmosphere;
 @group(0) @binding(1) var<storage, read_write> atmosphere_luts: array<vec4f>;

@@ -1,7 +1,24 @@
 // Bottom-level traversal of one mesh instance, in object space. The direction
 // is transformed but not renormalised, so t means the same in both spaces.
 
-fn trace_instance(instance_index: u32, world_origin: vec3f, world_direction: vec3f, hit: ptr<function, Hit>) {
+//#include "constants.wgsl"
+//#include "common.wgsl"
+//#include "ray.wgsl"
+//#include "triangle.wgsl"
+//#include "transform.wgsl"
+//#include "hit.wgsl"
+//#include "bvh_walk.wgsl"
+
+// Updates `hit` with a closer hit on the instance's triangles (with `any_hit`, the
+// first one found); sets `overflowed` when a stack was full (see `intersect_scene`).
+fn intersect_instance(
+    instance_index: u32,
+    world_origin: vec3f,
+    world_direction: vec3f,
+    any_hit: bool,
+    hit: ptr<function, Hit>,
+    overflowed: ptr<function, bool>,
+) {
     let inst = instances[instance_index];
     let origin = transform_point(inst.world_to_object, world_origin);
     let direction = transform_vector(inst.world_to_object, world_direction);
@@ -22,11 +39,11 @@ fn trace_instance(instance_index: u32, world_origin: vec3f, world_direction: vec
             test_triangles(inst, instance_index, node.b_link, node.b_count, sheared, hit);
             t_b = INFINITY;
         }
-        if any_hit_only && (*hit).kind != HIT_NONE {
+        if any_hit && (*hit).kind != HIT_NONE {
             break;
         }
         // Links are relative to the instance's mesh.
-        let next = next_node(node, t_a, t_b, &stack, &depth);
+        let next = next_node(node, t_a, t_b, &stack, &depth, overflowed);
         if next == EMPTY_LINK {
             break;
         }
@@ -63,14 +80,4 @@ fn triangle_surface(hit: Hit) -> Surface {
     let p = transform_point(m, p_object);
     let error = transform_point_error(m, p_object, error_object);
     return Surface(p, error, normalize(n_geometric), normalize(n_shading), material);
-}
-
-// Error bound of an affine transform of a point known within ±error (pbrt-v4 §6.8.5).
-fn transform_point_error(m: array<vec4f, 3>, p: vec3f, error: vec3f) -> vec3f {
-    let a0 = abs(m[0]);
-    let a1 = abs(m[1]);
-    let a2 = abs(m[2]);
-    let rounding = gamma(3.0) * vec3f(dot(a0.xyz, abs(p)) + a0.w, dot(a1.xyz, abs(p)) + a1.w, dot(a2.xyz, abs(p)) + a2.w);
-    let carried = (1.0 + gamma(3.0)) * vec3f(dot(a0.xyz, error), dot(a1.xyz, error), dot(a2.xyz, error));
-    return rounding + carried;
 }

@@ -9,6 +9,9 @@
 // by `base_color`. At α below ALPHA_DELTA a lobe is a perfect (delta) mirror or
 // interface.
 
+//#include "common.wgsl"
+//#include "directions.wgsl"
+
 const ALPHA_DELTA: f32 = 1e-3;
 
 const LOBE_DIFFUSE: u32 = 0u;
@@ -40,36 +43,13 @@ struct BsdfSample {
     valid: bool,
     // The direction crosses the surface.
     transmitted: bool,
+    // The lobe that was picked (LOBE_*).
+    lobe: u32,
 }
 
+// A sample that ends the path: nothing could be sampled (its lobe is not looked at).
 fn invalid_sample() -> BsdfSample {
-    return BsdfSample(vec3f(0.0, 0.0, 1.0), vec3f(0.0), 0.0, false, false);
-}
-
-// What produced a non-finite value first, recorded per pixel (see `integrator.wgsl`).
-const EVENT_NONE: u32 = 0u;
-const EVENT_EMISSION: u32 = 1u;
-const EVENT_SKY: u32 = 2u;
-const EVENT_LIGHT_SAMPLE: u32 = 3u;
-const EVENT_MEDIUM: u32 = 4u;
-const EVENT_AIR: u32 = 5u;
-// EVENT_LOBE + lobe index: the BSDF sample of that lobe.
-const EVENT_LOBE: u32 = 6u;
-
-// An orthonormal basis around n (Duff et al., "Building an Orthonormal Basis, Revisited", JCGT 2017).
-fn tangent_frame(n: vec3f) -> mat3x3f {
-    let s = select(-1.0, 1.0, n.z >= 0.0);
-    let a = -1.0 / (s + n.z);
-    let b = n.x * n.y * a;
-    let t = vec3f(1.0 + s * n.x * n.x * a, s * b, -s * n.x);
-    let bt = vec3f(b, s + n.y * n.y * a, -n.y);
-    return mat3x3f(t, bt, n);
-}
-
-fn sample_cosine_hemisphere(u: vec2f) -> vec3f {
-    let r = sqrt(u.x);
-    let phi = 2.0 * PI * u.y;
-    return vec3f(r * cos(phi), r * sin(phi), sqrt(max(0.0, 1.0 - u.x)));
+    return BsdfSample(vec3f(0.0, 0.0, 1.0), vec3f(0.0), 0.0, false, false, LOBE_DIFFUSE);
 }
 
 // Unpolarised Fresnel reflectance of a dielectric interface; `eta` is the
@@ -133,151 +113,4 @@ fn fold_above(w: vec3f, n_geometric: vec3f) -> vec3f {
 
 fn reflect_local(wo: vec3f, m: vec3f) -> vec3f {
     return 2.0 * dot(wo, m) * m - wo;
-}
-
-// f·|cos θi| of one reflection lobe, before folding.
-fn reflection_lobe_eval(ctx: ShadingContext, lobe: u32, wi: vec3f) -> vec3f {
-    if wi.z <= 0.0 {
-        return vec3f(0.0);
-    }
-    if lobe == LOBE_DIFFUSE {
-        return ctx.m.base_color * (ctx.m.diffuse * wi.z / PI);
-    }
-    //#if glossy
-    let m = normalize(ctx.wo + wi);
-    let a = ctx.m.alpha;
-    let microfacet = ggx_d(m, a) * ggx_g2(ctx.wo, wi, a) / (4.0 * ctx.wo.z);
-    if lobe == LOBE_SPECULAR {
-        return vec3f(ctx.m.specular * microfacet);
-    }
-    return ctx.m.reflection * microfacet * conductor_fresnel(ctx.m.base_color, dot(ctx.wo, m));
-    //#else
-    return vec3f(0.0);
-    //#endif
-}
-
-fn reflection_lobe_pdf(ctx: ShadingContext, lobe: u32, wi: vec3f) -> f32 {
-    if wi.z <= 0.0 {
-        return 0.0;
-    }
-    if lobe == LOBE_DIFFUSE {
-        return wi.z / PI;
-    }
-    //#if glossy
-    let m = normalize(ctx.wo + wi);
-    return ggx_visible_pdf(ctx.wo, m, ctx.m.alpha) / (4.0 * dot(ctx.wo, m));
-    //#else
-    return 0.0;
-    //#endif
-}
-
-// f·|cos θi| of all lobes that have a density, at wi.
-fn bsdf_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
-    var f = vec3f(0.0);
-    if dot(wi, ctx.n_geometric) > 0.0 {
-        let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
-        for (var lobe = LOBE_DIFFUSE; lobe <= LOBE_REFLECTION; lobe++) {
-            if ctx.smooth_lobe[lobe] > 0.0 && ctx.lobe_probability[lobe] > 0.0 {
-                f += reflection_lobe_eval(ctx, lobe, wi) + reflection_lobe_eval(ctx, lobe, mirrored);
-            }
-        }
-    }
-    //#if rough_glass_ggx
-    if ctx.smooth_lobe.w > 0.0 && ctx.lobe_probability.w > 0.0 {
-        f += ctx.m.transmission * rough_dielectric_eval(ctx, wi);
-    }
-    //#endif
-    return f;
-}
-
-// Density with which `bsdf_sample` produces wi (delta lobes aside).
-fn bsdf_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
-    var pdf = 0.0;
-    if dot(wi, ctx.n_geometric) > 0.0 {
-        let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
-        for (var lobe = LOBE_DIFFUSE; lobe <= LOBE_REFLECTION; lobe++) {
-            if ctx.smooth_lobe[lobe] > 0.0 {
-                pdf += ctx.lobe_probability[lobe] * (reflection_lobe_pdf(ctx, lobe, wi) + reflection_lobe_pdf(ctx, lobe, mirrored));
-            }
-        }
-    }
-    //#if rough_glass_ggx
-    if ctx.smooth_lobe.w > 0.0 {
-        pdf += ctx.lobe_probability.w * rough_dielectric_pdf(ctx, wi);
-    }
-    //#endif
-    return pdf;
-}
-
-// A direction from one lobe that has a density (before the mixture weighs it).
-// Returns a zero vector when the lobe produced nothing.
-fn sample_smooth_lobe_direction(ctx: ShadingContext, lobe: u32, rng: ptr<function, Rng>) -> vec3f {
-    let u = vec2f(rng_next(rng), rng_next(rng));
-    //#if rough_glass_ggx
-    if lobe == LOBE_TRANSMISSION {
-        return rough_dielectric_sample(ctx, vec3f(u, rng_next(rng)));
-    }
-    //#endif
-    var wi = sample_cosine_hemisphere(u);
-    //#if glossy
-    if lobe != LOBE_DIFFUSE {
-        wi = reflect_local(ctx.wo, ggx_sample_visible_normal(ctx.wo, ctx.m.alpha, u));
-    }
-    //#endif
-    if wi.z <= 0.0 {
-        return vec3f(0.0);
-    }
-    return fold_above(wi, ctx.n_geometric);
-}
-
-// Picks a lobe with `u` in [0, 1); returns its index and rescales u to [0, 1).
-fn pick_lobe(ctx: ShadingContext, u: ptr<function, f32>) -> u32 {
-    var acc = 0.0;
-    for (var lobe = 0u; lobe < 3u; lobe++) {
-        let p = ctx.lobe_probability[lobe];
-        if *u < acc + p {
-            *u = (*u - acc) / p;
-            return lobe;
-        }
-        acc += p;
-    }
-    *u = clamp((*u - acc) / max(ctx.lobe_probability.w, 1e-20), 0.0, 1.0);
-    return LOBE_TRANSMISSION;
-}
-
-// The lobe picked by the last `bsdf_sample`, for the non-finite sentinel.
-var<private> sampled_lobe: u32;
-
-fn bsdf_sample(ctx: ShadingContext, rng: ptr<function, Rng>) -> BsdfSample {
-    if all(ctx.lobe_probability == vec4f(0.0)) {
-        return invalid_sample();
-    }
-    var u = rng_next(rng);
-    let lobe = pick_lobe(ctx, &u);
-    sampled_lobe = lobe;
-    var s: BsdfSample;
-    if ctx.smooth_lobe[lobe] > 0.0 {
-        s = sample_smooth_part(ctx, lobe, rng);
-    } else {
-        s = sample_delta_lobe(ctx, lobe, u, rng);
-    }
-    s.direction = ctx.basis * s.direction;
-    return s;
-}
-
-// Delta lobes: perfect mirrors and smooth (or cone-jittered) refraction.
-fn sample_delta_lobe(ctx: ShadingContext, lobe: u32, u: f32, rng: ptr<function, Rng>) -> BsdfSample {
-    let p = ctx.lobe_probability[lobe];
-    let mirror = fold_above(vec3f(-ctx.wo.xy, ctx.wo.z), ctx.n_geometric);
-    if lobe == LOBE_SPECULAR {
-        return BsdfSample(mirror, vec3f(ctx.m.specular / p), 0.0, true, false);
-    }
-    if lobe == LOBE_REFLECTION {
-        return BsdfSample(mirror, ctx.m.reflection * conductor_fresnel(ctx.m.base_color, ctx.wo.z) / p, 0.0, true, false);
-    }
-    //#if glass
-    return smooth_dielectric_sample(ctx, u, rng);
-    //#else
-    return invalid_sample();
-    //#endif
 }

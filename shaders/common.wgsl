@@ -116,14 +116,9 @@ const EMPTY_LINK: u32 = 0xffffffffu;
 const NO_MATERIAL: u32 = 0xffffffffu;
 // Top-level leaves hold instances and spheres; the top bit says which.
 const SPHERE_BIT: u32 = 0x80000000u;
-const INFINITY: f32 = 3.402823466e38;
-const PI: f32 = 3.14159265358979;
 
 // Counters in the statistics buffer.
 const STAT_STACK_OVERFLOW: u32 = 0u;
-
-// Depth of the traversal stacks; a push beyond it is counted, never silent.
-const STACK_SIZE: u32 = 32u;
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<storage, read> nodes: array<BvhNode>;

@@ -3,6 +3,12 @@
 // is tinted by `base_color`, and refracted radiance is scaled by 1/η² (radiance
 // is not conserved across a change of index).
 
+//#include "constants.wgsl"
+//#include "rng.wgsl"
+//#include "directions.wgsl"
+//#include "bsdf.wgsl"
+//#include "microfacet.wgsl"
+
 fn refraction_weight(ctx: ShadingContext) -> vec3f {
     return ctx.m.base_color / (ctx.eta * ctx.eta);
 }
@@ -13,7 +19,7 @@ fn smooth_dielectric_sample(ctx: ShadingContext, u: f32, rng: ptr<function, Rng>
     let f = fresnel_dielectric(ctx.wo.z, ctx.eta);
     if u < f {
         let wi = fold_above(vec3f(-ctx.wo.xy, ctx.wo.z), ctx.n_geometric);
-        return BsdfSample(wi, vec3f(scale), 0.0, true, false);
+        return BsdfSample(wi, vec3f(scale), 0.0, true, false, LOBE_TRANSMISSION);
     }
     var wi = refract_direction(ctx.wo, vec3f(0.0, 0.0, 1.0), ctx.eta);
     //#if rough_glass_cone
@@ -22,7 +28,7 @@ fn smooth_dielectric_sample(ctx: ShadingContext, u: f32, rng: ptr<function, Rng>
     if dot(wi, ctx.n_geometric) >= 0.0 {
         return invalid_sample();
     }
-    return BsdfSample(wi, scale * refraction_weight(ctx), 0.0, true, true);
+    return BsdfSample(wi, scale * refraction_weight(ctx), 0.0, true, true, LOBE_TRANSMISSION);
 }
 
 //#if rough_glass_cone

@@ -2,6 +2,30 @@
 // to every pixel's running mean, taken by one invocation per pixel (`render`) or,
 // for small images, spread over several (`render_lanes`, then `reduce_lanes`).
 
+//#include "constants.wgsl"
+//#include "common.wgsl"
+//#include "rng.wgsl"
+//#include "ray.wgsl"
+//#include "camera.wgsl"
+//#include "hit.wgsl"
+//#include "traverse.wgsl"
+//#include "surface.wgsl"
+//#include "sky.wgsl"
+//#include "bsdf.wgsl"
+//#include "sampling.wgsl"
+//#if nee
+//#include "lights.wgsl"
+//#endif
+//#if media
+//#include "segment.wgsl"
+//#endif
+//#if sun
+//#include "sun.wgsl"
+//#endif
+//#if sky_atmosphere
+//#include "atmosphere_sky.wgsl"
+//#endif
+
 // rgb: the running mean of radiance; w: the running sum of squared deviations
 // of luminance (Welford), for the standard error. Means rather than sums: a sum
 // of finite samples can overflow.
@@ -11,6 +35,16 @@
 @group(1) @binding(1) var<storage, read_write> non_finite: array<u32>;
 // Samples of small images spread over lanes, before `reduce_lanes` adds them up.
 @group(1) @binding(2) var<storage, read_write> lane_samples: array<vec4f>;
+
+// What produced a non-finite value first, recorded per pixel (src/render/sentinel.rs reads it).
+const EVENT_NONE: u32 = 0u;
+const EVENT_EMISSION: u32 = 1u;
+const EVENT_SKY: u32 = 2u;
+const EVENT_LIGHT_SAMPLE: u32 = 3u;
+const EVENT_MEDIUM: u32 = 4u;
+const EVENT_AIR: u32 = 5u;
+// EVENT_LOBE + lobe index (LOBE_* in bsdf.wgsl): the BSDF sample of that lobe.
+const EVENT_LOBE: u32 = 6u;
 
 // The first event of this sample that produced a non-finite value.
 var<private> first_bad_event: u32;
@@ -98,6 +132,8 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
     //#endif
     var shadow_pending = false;
     var path_ended = false;
+    // Set by the traversal when a stack was full (it counts that in `stats` itself).
+    var stack_overflowed = false;
     loop {
         var ray_origin = origin;
         var ray_direction = direction;
@@ -109,8 +145,8 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
             ray_t_max = shadow.t_max;
         }
         //#endif
-        any_hit_only = shadow_pending;
-        let hit = traverse_scene(ray_origin, ray_direction, ray_t_max);
+        // A shadow ray only asks whether anything is in the way.
+        let hit = intersect_scene(ray_origin, ray_direction, ray_t_max, shadow_pending, &stack_overflowed);
         //#if nee
         if shadow_pending {
             shadow_pending = false;
@@ -163,7 +199,7 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
         if !s.valid {
             path_ended = true;
         } else {
-            attenuate(&throughput, s.weight, EVENT_LOBE + sampled_lobe);
+            attenuate(&throughput, s.weight, EVENT_LOBE + s.lobe);
             bsdf_pdf = s.pdf;
             //#if media
             // Crossing into a material adds its medium, leaving subtracts it: nested media add up.

@@ -2,6 +2,28 @@
 // in proportion to power: area × luminance of emission), weighed against BSDF
 // sampling by the power heuristic (Veach 1997).
 
+//#include "constants.wgsl"
+//#include "common.wgsl"
+//#include "rng.wgsl"
+//#include "ray.wgsl"
+//#include "transform.wgsl"
+//#include "directions.wgsl"
+//#include "hit.wgsl"
+//#include "bsdf.wgsl"
+//#include "bsdf_eval.wgsl"
+//#if spheres
+//#include "sphere.wgsl"
+//#endif
+//#if sun
+//#include "sun.wgsl"
+//#endif
+//#if media
+//#include "segment.wgsl"
+//#endif
+//#if sky_atmosphere
+//#include "atmosphere_sky.wgsl"
+//#endif
+
 struct LightSample {
     direction: vec3f,
     distance: f32,

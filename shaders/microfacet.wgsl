@@ -5,6 +5,8 @@
 // visible normals (Heitz, "Sampling the GGX Distribution of Visible Normals", JCGT 2018).
 // Directions are in a local frame whose z axis is the shading normal.
 
+//#include "constants.wgsl"
+
 fn ggx_d(m: vec3f, alpha: f32) -> f32 {
     let a2 = alpha * alpha;
     let c2 = m.z * m.z;

@@ -1,9 +1,6 @@
 // Rays, conservative ray–box tests and self-intersection-free ray origins.
 
-struct Ray {
-    origin: vec3f,
-    direction: vec3f,
-}
+//#include "constants.wgsl"
 
 // What traversal needs of a ray, precomputed once per ray (and per instance).
 struct TraversalRay {

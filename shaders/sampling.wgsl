@@ -1,8 +1,96 @@
-// Sampling the lobes that have a density. With next-event estimation (`nee`),
-// one direction from the picked lobe, weighed against the whole mixture. With
-// the seed renderer's scheme (`seed`), resampled importance sampling (Talbot et
-// al. 2005): candidates from the BSDF mixture and from the sun's disk, one of
-// them chosen in proportion to BSDF × (1 + sun radiance if it points at the sun).
+// Sampling the BSDF (see bsdf.wgsl): a lobe picked in proportion to its
+// probability, then a direction from it. Delta lobes give their one direction.
+// For the lobes that have a density: with next-event estimation (`nee`), one
+// direction from the picked lobe, weighed against the whole mixture; with the
+// seed renderer's scheme (`seed`), resampled importance sampling (Talbot et al.
+// 2005): candidates from the BSDF mixture and from the sun's disk, one of them
+// chosen in proportion to BSDF × (1 + sun radiance if it points at the sun).
+
+//#include "common.wgsl"
+//#include "rng.wgsl"
+//#include "directions.wgsl"
+//#include "bsdf.wgsl"
+//#include "bsdf_eval.wgsl"
+//#if glossy
+//#include "microfacet.wgsl"
+//#endif
+//#if glass
+//#include "dielectric.wgsl"
+//#endif
+//#if !nee
+//#if sun
+//#include "sun.wgsl"
+//#endif
+//#endif
+
+// A direction from one lobe that has a density (before the mixture weighs it).
+// Returns a zero vector when the lobe produced nothing.
+fn sample_smooth_lobe_direction(ctx: ShadingContext, lobe: u32, rng: ptr<function, Rng>) -> vec3f {
+    let u = vec2f(rng_next(rng), rng_next(rng));
+    //#if rough_glass_ggx
+    if lobe == LOBE_TRANSMISSION {
+        return rough_dielectric_sample(ctx, vec3f(u, rng_next(rng)));
+    }
+    //#endif
+    var wi = sample_cosine_hemisphere(u);
+    //#if glossy
+    if lobe != LOBE_DIFFUSE {
+        wi = reflect_local(ctx.wo, ggx_sample_visible_normal(ctx.wo, ctx.m.alpha, u));
+    }
+    //#endif
+    if wi.z <= 0.0 {
+        return vec3f(0.0);
+    }
+    return fold_above(wi, ctx.n_geometric);
+}
+
+// Picks a lobe with `u` in [0, 1); returns its index and rescales u to [0, 1).
+fn pick_lobe(ctx: ShadingContext, u: ptr<function, f32>) -> u32 {
+    var acc = 0.0;
+    for (var lobe = 0u; lobe < 3u; lobe++) {
+        let p = ctx.lobe_probability[lobe];
+        if *u < acc + p {
+            *u = (*u - acc) / p;
+            return lobe;
+        }
+        acc += p;
+    }
+    *u = clamp((*u - acc) / max(ctx.lobe_probability.w, 1e-20), 0.0, 1.0);
+    return LOBE_TRANSMISSION;
+}
+
+fn bsdf_sample(ctx: ShadingContext, rng: ptr<function, Rng>) -> BsdfSample {
+    if all(ctx.lobe_probability == vec4f(0.0)) {
+        return invalid_sample();
+    }
+    var u = rng_next(rng);
+    let lobe = pick_lobe(ctx, &u);
+    var s: BsdfSample;
+    if ctx.smooth_lobe[lobe] > 0.0 {
+        s = sample_smooth_part(ctx, lobe, rng);
+    } else {
+        s = sample_delta_lobe(ctx, lobe, u, rng);
+    }
+    s.direction = ctx.basis * s.direction;
+    return s;
+}
+
+// Delta lobes: perfect mirrors and smooth (or cone-jittered) refraction.
+fn sample_delta_lobe(ctx: ShadingContext, lobe: u32, u: f32, rng: ptr<function, Rng>) -> BsdfSample {
+    let p = ctx.lobe_probability[lobe];
+    let mirror = fold_above(vec3f(-ctx.wo.xy, ctx.wo.z), ctx.n_geometric);
+    if lobe == LOBE_SPECULAR {
+        return BsdfSample(mirror, vec3f(ctx.m.specular / p), 0.0, true, false, lobe);
+    }
+    if lobe == LOBE_REFLECTION {
+        return BsdfSample(mirror, ctx.m.reflection * conductor_fresnel(ctx.m.base_color, ctx.wo.z) / p, 0.0, true, false, lobe);
+    }
+    //#if glass
+    return smooth_dielectric_sample(ctx, u, rng);
+    //#else
+    return invalid_sample();
+    //#endif
+}
 
 fn sample_smooth_part(ctx: ShadingContext, lobe: u32, rng: ptr<function, Rng>) -> BsdfSample {
     //#if nee
@@ -14,14 +102,15 @@ fn sample_smooth_part(ctx: ShadingContext, lobe: u32, rng: ptr<function, Rng>) -
     if pdf <= 0.0 {
         return invalid_sample();
     }
-    return BsdfSample(wi, bsdf_eval(ctx, wi) / pdf, pdf, true, dot(wi, ctx.n_geometric) < 0.0);
+    return BsdfSample(wi, bsdf_eval(ctx, wi) / pdf, pdf, true, dot(wi, ctx.n_geometric) < 0.0, lobe);
     //#else
-    return resample_smooth_part(ctx, rng);
+    return resample_smooth_part(ctx, lobe, rng);
     //#endif
 }
 
 //#if !nee
-fn resample_smooth_part(ctx: ShadingContext, rng: ptr<function, Rng>) -> BsdfSample {
+// The whole smooth part is resampled; `lobe`, the one `bsdf_sample` picked, only labels the sample.
+fn resample_smooth_part(ctx: ShadingContext, lobe: u32, rng: ptr<function, Rng>) -> BsdfSample {
     let dense = ctx.lobe_probability * ctx.smooth_lobe;
     let p_smooth = dense.x + dense.y + dense.z + dense.w;
     let lobe_choice = ShadingContext(ctx.m, ctx.basis, ctx.wo, ctx.n_geometric, ctx.eta, dense / p_smooth, ctx.smooth_lobe);
@@ -73,6 +162,6 @@ fn resample_smooth_part(ctx: ShadingContext, rng: ptr<function, Rng>) -> BsdfSam
     }
     // Unbiased contribution weight of the chosen candidate; the smooth part was picked with p_smooth.
     let contribution = weight_sum / (f32(frame.ris_candidates) * chosen_target);
-    return BsdfSample(chosen, chosen_f * contribution / p_smooth, 0.0, true, dot(chosen, ctx.n_geometric) < 0.0);
+    return BsdfSample(chosen, chosen_f * contribution / p_smooth, 0.0, true, dot(chosen, ctx.n_geometric) < 0.0, lobe);
 }
 //#endif

@@ -1,5 +1,10 @@
 // Radiance arriving from the sky along a ray that leaves the scene, the sun's disk excepted.
 
+//#include "common.wgsl"
+//#if sky_atmosphere
+//#include "atmosphere_sky.wgsl"
+//#endif
+
 fn sky_radiance(origin: vec3f, direction: vec3f) -> vec3f {
     //#if sky_uniform
     return frame.sky_color;

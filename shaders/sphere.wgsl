@@ -4,6 +4,8 @@
 // the digits of its height (see `sphere_c`).
 // `direction` is unit length. Returns the nearest t in (0, t_max) or INFINITY.
 
+//#include "constants.wgsl"
+
 // c = |o − centre|² − r², the quantity whose cancellation ruins rays that
 // start near a large sphere: in f32, o − centre keeps only the digits of the
 // centre's magnitude (half a metre for a planet). Expanded as |o|² − 2 o·centre

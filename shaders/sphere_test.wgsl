@@ -1,3 +1,12 @@
+// A sphere of the scene: the test traversal runs on it, and the surface at its hit.
+
+//#include "constants.wgsl"
+//#include "common.wgsl"
+//#include "ray.wgsl"
+//#include "sphere.wgsl"
+//#include "hit.wgsl"
+
+// Updates `hit` if the ray meets the sphere before it.
 fn test_sphere(index: u32, origin: vec3f, direction: vec3f, hit: ptr<function, Hit>) {
     let s = spheres[index];
     let t = intersect_sphere(origin, direction, s.center, s.radius, s.k, (*hit).t);

@@ -1,6 +1,13 @@
 // The sun: a disk of uniform radiance seen under a small solid angle
 // 2π(1 − cos θ), with θ its angular radius.
 
+//#include "constants.wgsl"
+//#include "common.wgsl"
+//#include "directions.wgsl"
+//#if sky_atmosphere
+//#include "atmosphere_sky.wgsl"
+//#endif
+
 fn sun_solid_angle() -> f32 {
     return 2.0 * PI * frame.sun_one_minus_cos;
 }

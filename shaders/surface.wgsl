@@ -1,14 +1,12 @@
 // The local geometry at a hit, whatever the primitive.
 
-struct Surface {
-    position: vec3f,
-    // Bound on the absolute error of each component of `position`.
-    position_error: vec3f,
-    // Outward normals: the winding's for triangles, radial for spheres.
-    geometric_normal: vec3f,
-    shading_normal: vec3f,
-    material: u32,
-}
+//#include "hit.wgsl"
+//#if spheres
+//#include "sphere_test.wgsl"
+//#endif
+//#if triangles
+//#include "bottom_level.wgsl"
+//#endif
 
 fn surface_at(hit: Hit, origin: vec3f, direction: vec3f) -> Surface {
     //#if spheres

@@ -1,6 +1,16 @@
 // Traversal alone, for throughput benchmarks and for checking traversal
 // against a CPU reference: one ray in, its closest hit out.
 
+//#include "constants.wgsl"
+//#include "common.wgsl"
+//#include "rng.wgsl"
+//#include "ray.wgsl"
+//#include "camera.wgsl"
+//#include "directions.wgsl"
+//#include "hit.wgsl"
+//#include "traverse.wgsl"
+//#include "surface.wgsl"
+
 struct TraceRay {
     origin: vec3f,
     t_max: f32,
@@ -26,14 +36,15 @@ struct TraceHit {
 
 fn trace_one(i: u32) {
     let r = trace_rays[i];
-    let hit = trace_scene(r.origin, r.direction, r.t_max);
+    var overflowed = false;
+    let hit = intersect_scene(r.origin, r.direction, r.t_max, false, &overflowed);
     var primitive = EMPTY_LINK;
     if hit.kind == HIT_TRIANGLE {
         primitive = hit.primitive;
     } else if hit.kind == HIT_SPHERE {
         primitive = hit.primitive | SPHERE_BIT;
     }
-    trace_hits[i] = TraceHit(select(INFINITY, hit.t, hit.kind != HIT_NONE), primitive, hit.instance, u32(stack_overflowed), hit.b1, hit.b2, 0u, 0u);
+    trace_hits[i] = TraceHit(select(INFINITY, hit.t, hit.kind != HIT_NONE), primitive, hit.instance, u32(overflowed), hit.b1, hit.b2, 0u, 0u);
 }
 
 // Launches over 65535 workgroups spill into y.

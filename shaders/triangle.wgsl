@@ -3,6 +3,9 @@
 // along +z; the edge functions of neighbouring triangles are computed from the
 // same numbers, so a ray through a shared edge or vertex hits at least one of them.
 
+//#include "constants.wgsl"
+//#include "ray.wgsl"
+
 struct ShearedRay {
     origin: vec3f,
     // Permutation putting the largest direction component last.

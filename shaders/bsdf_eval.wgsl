@@ -1,0 +1,85 @@
+// Evaluating the BSDF (see bsdf.wgsl) at a direction: f·|cos θi| of the lobes
+// that have a density, and the density with which `bsdf_sample` produces the direction.
+
+//#include "constants.wgsl"
+//#include "bsdf.wgsl"
+//#if glossy
+//#include "microfacet.wgsl"
+//#endif
+//#if rough_glass_ggx
+//#include "dielectric.wgsl"
+//#endif
+
+// f·|cos θi| of one reflection lobe, before folding.
+fn reflection_lobe_eval(ctx: ShadingContext, lobe: u32, wi: vec3f) -> vec3f {
+    if wi.z <= 0.0 {
+        return vec3f(0.0);
+    }
+    if lobe == LOBE_DIFFUSE {
+        return ctx.m.base_color * (ctx.m.diffuse * wi.z / PI);
+    }
+    //#if glossy
+    let m = normalize(ctx.wo + wi);
+    let a = ctx.m.alpha;
+    let microfacet = ggx_d(m, a) * ggx_g2(ctx.wo, wi, a) / (4.0 * ctx.wo.z);
+    if lobe == LOBE_SPECULAR {
+        return vec3f(ctx.m.specular * microfacet);
+    }
+    return ctx.m.reflection * microfacet * conductor_fresnel(ctx.m.base_color, dot(ctx.wo, m));
+    //#else
+    return vec3f(0.0);
+    //#endif
+}
+
+fn reflection_lobe_pdf(ctx: ShadingContext, lobe: u32, wi: vec3f) -> f32 {
+    if wi.z <= 0.0 {
+        return 0.0;
+    }
+    if lobe == LOBE_DIFFUSE {
+        return wi.z / PI;
+    }
+    //#if glossy
+    let m = normalize(ctx.wo + wi);
+    return ggx_visible_pdf(ctx.wo, m, ctx.m.alpha) / (4.0 * dot(ctx.wo, m));
+    //#else
+    return 0.0;
+    //#endif
+}
+
+// f·|cos θi| of all lobes that have a density, at wi.
+fn bsdf_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
+    var f = vec3f(0.0);
+    if dot(wi, ctx.n_geometric) > 0.0 {
+        let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
+        for (var lobe = LOBE_DIFFUSE; lobe <= LOBE_REFLECTION; lobe++) {
+            if ctx.smooth_lobe[lobe] > 0.0 && ctx.lobe_probability[lobe] > 0.0 {
+                f += reflection_lobe_eval(ctx, lobe, wi) + reflection_lobe_eval(ctx, lobe, mirrored);
+            }
+        }
+    }
+    //#if rough_glass_ggx
+    if ctx.smooth_lobe.w > 0.0 && ctx.lobe_probability.w > 0.0 {
+        f += ctx.m.transmission * rough_dielectric_eval(ctx, wi);
+    }
+    //#endif
+    return f;
+}
+
+// Density with which `bsdf_sample` produces wi (delta lobes aside).
+fn bsdf_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
+    var pdf = 0.0;
+    if dot(wi, ctx.n_geometric) > 0.0 {
+        let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
+        for (var lobe = LOBE_DIFFUSE; lobe <= LOBE_REFLECTION; lobe++) {
+            if ctx.smooth_lobe[lobe] > 0.0 {
+                pdf += ctx.lobe_probability[lobe] * (reflection_lobe_pdf(ctx, lobe, wi) + reflection_lobe_pdf(ctx, lobe, mirrored));
+            }
+        }
+    }
+    //#if rough_glass_ggx
+    if ctx.smooth_lobe.w > 0.0 {
+        pdf += ctx.lobe_probability.w * rough_dielectric_pdf(ctx, wi);
+    }
+    //#endif
+    return pdf;
+}

@@ -1,0 +1,298 @@
+use super::resolve::{include_of, kept_lines, resolve};
+use super::*;
+use crate::scene::{RoughTransmission, Sampling, SkyFeature, Transmission};
+use std::collections::{BTreeSet, HashSet};
+use std::path::Path;
+
+/// A spread of feature sets: each flag on and off, in many combinations.
+fn feature_sets() -> Vec<FeatureSet> {
+    let mut sets = Vec::new();
+    for bits in 0..256u32 {
+        let on = |b: u32| bits & (1 << b) != 0;
+        let transmission = match bits % 4 {
+            0 => Transmission::None,
+            1 => Transmission::Smooth,
+            2 => Transmission::Rough(RoughTransmission::Ggx),
+            _ => Transmission::Rough(RoughTransmission::Cone),
+        };
+        sets.push(FeatureSet {
+            triangles: on(2) || !on(3),
+            spheres: on(3),
+            emission: on(4),
+            sky: match (on(5), on(2)) {
+                (true, _) => SkyFeature::Uniform,
+                (false, true) => SkyFeature::Atmosphere,
+                (false, false) => SkyFeature::Black,
+            },
+            sun: on(6),
+            glossy: on(7),
+            transmission,
+            media: on(1) && transmission != Transmission::None,
+            sampling: if on(0) { Sampling::Nee } else { Sampling::Resampled },
+        });
+    }
+    sets
+}
+
+fn all_on() -> FeatureSet {
+    FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx)
+}
+
+fn plain() -> FeatureSet {
+    FeatureSet {
+        triangles: true,
+        spheres: false,
+        emission: false,
+        sky: SkyFeature::Black,
+        sun: false,
+        glossy: false,
+        transmission: Transmission::None,
+        media: false,
+        sampling: Sampling::Nee,
+    }
+}
+
+fn validate(source: &str, what: &str) {
+    let module =
+        wgpu::naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{what}: {}", e.emit_to_string(source)));
+    wgpu::naga::valid::Validator::new(Default::default(), wgpu::naga::valid::Capabilities::all())
+        .validate(&module)
+        .unwrap_or_else(|e| panic!("{what}: {}", e.emit_to_string(source)));
+}
+
+/// The files an assembled module is made of, in the order it holds them.
+fn files_in(source: &str) -> Vec<&str> {
+    source.lines().filter_map(|l| l.strip_prefix("// ---- shaders/")).collect()
+}
+
+/// A folder of shader files for one test, made of (name, text) pairs.
+fn folder(test: &str, files: &[(&str, &str)]) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("rt-shaders-{test}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp folder");
+    for (name, text) in files {
+        std::fs::write(dir.join(name), text).expect("shader file");
+    }
+    dir
+}
+
+#[test]
+fn every_feature_set_assembles_to_valid_wgsl() {
+    for features in feature_sets() {
+        for program in [Program::Integrator, Program::Trace] {
+            validate(&assemble(program, &features), &format!("[{features}] {program:?}"));
+        }
+    }
+}
+
+#[test]
+fn atmosphere_tables_program_is_valid_wgsl() {
+    validate(&atmosphere_tables_source(), "atmosphere tables");
+}
+
+#[test]
+fn every_directive_names_a_known_flag() {
+    let any = all_on();
+    for (name, text) in ALL_PARTS {
+        kept_lines(name, text, &|flag| any.flag(flag)).unwrap_or_else(|e| panic!("{e}"));
+    }
+}
+
+#[test]
+fn each_file_comes_once_and_after_the_files_it_includes() {
+    // Each module with the feature set it was assembled for (none: the tables program).
+    let mut modules: Vec<(String, Option<FeatureSet>)> = vec![(atmosphere_tables_source(), None)];
+    for features in feature_sets().into_iter().step_by(7) {
+        for program in [Program::Integrator, Program::Trace] {
+            modules.push((assemble(program, &features), Some(features)));
+        }
+    }
+    for (source, features) in &modules {
+        let flag = |f: &str| features.and_then(|features| features.flag(f));
+        let files = files_in(source);
+        for (i, name) in files.iter().enumerate() {
+            assert!(!files[..i].contains(name), "{name} is in a module twice");
+            let text = ShaderFiles::BuiltIn.read(name).expect("built-in");
+            for (_, line) in kept_lines(name, &text, &flag).expect("directives") {
+                if let Some(Ok(included)) = include_of(line) {
+                    assert!(files[..i].contains(&included), "{name} comes before {included}, which it includes");
+                }
+            }
+        }
+        assert!(!source.contains("//#include"), "an include line is left in the module");
+    }
+}
+
+#[test]
+fn every_shader_file_is_built_in_and_used_by_a_program() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders");
+    let on_disk: BTreeSet<String> = std::fs::read_dir(&dir)
+        .expect("shaders/")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .filter(|name| name != "display.wgsl")
+        .collect();
+    let built_in: BTreeSet<String> = ALL_PARTS.iter().map(|(name, _)| name.to_string()).collect();
+    assert_eq!(on_disk, built_in, "the files of shaders/ and the built-in ones differ");
+    let mut used = BTreeSet::new();
+    for sky in [SkyFeature::Uniform, SkyFeature::Atmosphere] {
+        for sampling in [Sampling::Nee, Sampling::Resampled] {
+            for rough in [RoughTransmission::Ggx, RoughTransmission::Cone] {
+                let features = FeatureSet::all(sky, sampling, rough);
+                for program in [Program::Integrator, Program::Trace] {
+                    used.extend(files_in(&assemble(program, &features)).into_iter().map(str::to_owned));
+                }
+            }
+        }
+    }
+    used.extend(files_in(&atmosphere_tables_source()).into_iter().map(str::to_owned));
+    assert_eq!(used, built_in, "some built-in files are included by no program");
+}
+
+#[test]
+fn no_private_variable_is_shared_between_files() {
+    let words = |text: &str| -> HashSet<String> {
+        text.split(|c: char| !(c.is_alphanumeric() || c == '_')).map(str::to_owned).collect()
+    };
+    for (name, text) in ALL_PARTS {
+        for line in text.lines() {
+            let Some(rest) = line.trim().strip_prefix("var<private> ") else { continue };
+            let variable: String = rest.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+            for (other, other_text) in ALL_PARTS.iter().filter(|(other, _)| other != name) {
+                assert!(
+                    !words(other_text).contains(&variable),
+                    "{other} uses `{variable}`, a private variable of {name}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn absent_effects_leave_no_code() {
+    let plain = plain();
+    let source = assemble(Program::Integrator, &plain);
+    for absent in [
+        "fn intersect_sphere",
+        "m.emission *",
+        "frame.sky_color",
+        "fn ggx_d",
+        "fn refract_direction",
+        "fn sample_sun",
+        "fn integrate_segment",
+        "atmosphere_",
+        "var<uniform> atmosphere",
+        "fn sun_limb_darkening",
+        "@group(2)",
+    ] {
+        assert!(!source.contains(absent), "{absent:?} is in the plain pipeline");
+    }
+    // Includes inside dropped blocks are not followed: the files are not there at all.
+    for file in ["sphere.wgsl", "sphere_test.wgsl", "microfacet.wgsl", "dielectric.wgsl", "sun.wgsl", "segment.wgsl"] {
+        assert!(!files_in(&source).contains(&file), "{file} is in the plain pipeline");
+    }
+    let uniform_sun = FeatureSet { sky: SkyFeature::Uniform, sun: true, ..plain };
+    for program in [Program::Integrator, Program::Trace] {
+        let source = assemble(program, &uniform_sun);
+        assert!(!source.contains("atmosphere_"), "the atmosphere is in a uniform sky's {program:?} pipeline");
+    }
+    let trace = assemble(Program::Trace, &all_on());
+    for file in ["bsdf.wgsl", "sampling.wgsl", "lights.wgsl", "integrator.wgsl"] {
+        assert!(!files_in(&trace).contains(&file), "{file} is in the trace kernel");
+    }
+}
+
+#[test]
+fn shaders_on_disk_assemble_like_the_built_in_ones_and_errors_name_the_file() {
+    let all = all_on();
+    let disk = ShaderFiles::Dir(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("shaders"));
+    for program in [Program::Integrator, Program::Trace] {
+        assert_eq!(assemble_from(&disk, program, &all), Ok(assemble(program, &all)));
+    }
+    let missing = ShaderFiles::Dir(PathBuf::from("/nonexistent/shaders"));
+    let error = assemble_from(&missing, Program::Trace, &all).expect_err("no files");
+    assert!(error.starts_with("/nonexistent/shaders/trace_kernel.wgsl: cannot read"), "{error}");
+    let copies: Vec<(&str, String)> = ALL_PARTS
+        .iter()
+        .map(|(name, text)| {
+            (*name, if *name == "sky.wgsl" { format!("{text}\nfn oops( {{\n") } else { text.to_string() })
+        })
+        .collect();
+    let copies: Vec<(&str, &str)> = copies.iter().map(|(name, text)| (*name, text.as_str())).collect();
+    let broken = folder("broken", &copies);
+    let error = assemble_from(&ShaderFiles::Dir(broken.clone()), Program::Integrator, &all).expect_err("broken");
+    assert!(error.starts_with("shaders/sky.wgsl: ") && error.contains("oops"), "{error}");
+    let _ = std::fs::remove_dir_all(&broken);
+}
+
+#[test]
+fn a_missing_include_or_an_include_cycle_is_an_error_naming_both_files() {
+    let none = |_: &str| None;
+    let dir = folder(
+        "includes",
+        &[
+            ("entry.wgsl", "// entry\n//#include \"a.wgsl\"\nfn entry() {}\n"),
+            ("a.wgsl", "//#include \"b.wgsl\"\nfn a() {}\n"),
+            ("b.wgsl", "\n//#include \"a.wgsl\"\n"),
+            ("lost.wgsl", "//#include \"nowhere.wgsl\"\n"),
+            ("odd.wgsl", "//#include <a.wgsl>\n"),
+            ("diamond.wgsl", "//#include \"left.wgsl\"\n//#include \"right.wgsl\"\n"),
+            ("left.wgsl", "//#include \"base.wgsl\"\nfn left() {}\n"),
+            ("right.wgsl", "//#include \"base.wgsl\"\nfn right() {}\n"),
+            ("base.wgsl", "fn base() {}\n"),
+        ],
+    );
+    let files = ShaderFiles::Dir(dir.clone());
+    let cycle = resolve(&files, "entry.wgsl", &none).expect_err("a cycle");
+    assert_eq!(cycle, "shaders/b.wgsl:2: including a.wgsl closes a cycle: a.wgsl → b.wgsl → a.wgsl");
+    let lost = resolve(&files, "lost.wgsl", &none).expect_err("a missing file");
+    let expected = format!(
+        "shaders/lost.wgsl:1: cannot include nowhere.wgsl: {}: cannot read",
+        dir.join("nowhere.wgsl").display()
+    );
+    assert!(lost.starts_with(&expected), "{lost}");
+    let odd = resolve(&files, "odd.wgsl", &none).expect_err("a malformed include");
+    assert!(odd.starts_with("shaders/odd.wgsl:1: expected `//#include \"file.wgsl\"`"), "{odd}");
+    let diamond = resolve(&files, "diamond.wgsl", &none).expect("no cycle");
+    assert_eq!(files_in(&diamond), ["base.wgsl", "left.wgsl", "right.wgsl", "diamond.wgsl"]);
+    let built_in = resolve(&ShaderFiles::BuiltIn, "nowhere.wgsl", &none).expect_err("not built in");
+    assert_eq!(built_in, "shaders/nowhere.wgsl: no such file among the built-in shaders");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn includes_follow_the_flags() {
+    let dir = folder(
+        "flags",
+        &[
+            ("entry.wgsl", "//#if x\n//#include \"on.wgsl\"\n//#else\n//#include \"off.wgsl\"\n//#endif\n"),
+            ("on.wgsl", "fn on() {}\n"),
+        ],
+    );
+    let files = ShaderFiles::Dir(dir.clone());
+    let source = resolve(&files, "entry.wgsl", &|_| Some(true)).expect("off.wgsl is not read");
+    assert_eq!(source, "// ---- shaders/on.wgsl\nfn on() {}\n// ---- shaders/entry.wgsl\n");
+    let error = resolve(&files, "entry.wgsl", &|_| Some(false)).expect_err("off.wgsl is missing");
+    assert!(error.starts_with("shaders/entry.wgsl:4: cannot include off.wgsl"), "{error}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn directive_mistakes_name_the_file_and_line() {
+    let all = all_on();
+    let unbalanced = kept_lines("bsdf.wgsl", "a\n//#if glossy\nb\n", &|f| all.flag(f)).expect_err("unclosed");
+    assert_eq!(unbalanced, "shaders/bsdf.wgsl: unclosed #if");
+    let unknown = kept_lines("bsdf.wgsl", "//#if shiny\n//#endif\n", &|f| all.flag(f)).expect_err("unknown");
+    assert_eq!(unknown, "shaders/bsdf.wgsl:1: unknown flag `shiny`");
+}
+
+#[test]
+fn preprocessor_nests_and_negates() {
+    let text = "a\n//#if x\nb\n//#if !y\nc\n//#else\nd\n//#endif\n//#else\ne\n//#endif\nf\n";
+    let run = |x: bool, y: bool| {
+        let kept = kept_lines("t", text, &|n| Some(if n == "x" { x } else { y })).expect("balanced");
+        kept.into_iter().map(|(_, line)| line).collect::<Vec<_>>().join("")
+    };
+    assert_eq!(run(true, false), "abcf");
+    assert_eq!(run(true, true), "abdf");
+    assert_eq!(run(false, false), "aef");
+}

@@ -153,6 +153,7 @@ impl SceneGeometry {
             &scene.sky,
             scene.sun.is_some(),
             &scene.render,
+            &scene.camera,
         );
         let (emitters, emitter_total_power) =
             emitter_table(&instances, &instance_triangles, &triangles, &spheres, &materials);

@@ -268,6 +268,7 @@ mod tests {
                 transmission,
                 media: on(1) && transmission != Transmission::None,
                 sampling: if on(0) { Sampling::Nee } else { Sampling::Seed },
+                depth_of_field: on(4) != on(6),
             });
         }
         sets
@@ -315,6 +316,7 @@ mod tests {
             transmission: Transmission::None,
             media: false,
             sampling: Sampling::Nee,
+            depth_of_field: false,
         };
         let source = assemble(Program::Integrator, &plain);
         for absent in [
@@ -329,8 +331,14 @@ mod tests {
             "var<uniform> atmosphere",
             "fn sun_limb_darkening",
             "@group(2)",
+            "fn sample_aperture",
+            "frame.aperture_radius",
         ] {
             assert!(!source.contains(absent), "{absent:?} is in the plain pipeline");
+        }
+        for program in [Program::Integrator, Program::Trace] {
+            let lens = assemble(program, &FeatureSet { depth_of_field: true, ..plain });
+            assert!(lens.contains("fn sample_aperture"), "no aperture in the depth-of-field {program:?} pipeline");
         }
         let uniform_sun = FeatureSet { sky: SkyFeature::Uniform, sun: true, ..plain };
         for program in [Program::Integrator, Program::Trace] {

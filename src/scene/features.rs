@@ -1,6 +1,6 @@
 //! Feature analysis: which effects a scene needs, so that the GPU runs only their code.
 
-use super::{Material, RenderSettings, RoughTransmission, Sampling, Sky};
+use super::{Camera, Material, RenderSettings, RoughTransmission, Sampling, Sky};
 use std::fmt;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -35,6 +35,8 @@ pub struct FeatureSet {
     /// Absorption or emission inside transmissive materials.
     pub media: bool,
     pub sampling: Sampling,
+    /// A thin-lens camera: rays start across the aperture.
+    pub depth_of_field: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -50,6 +52,7 @@ impl FeatureSet {
         sky: &Sky,
         has_sun: bool,
         settings: &RenderSettings,
+        camera: &Camera,
     ) -> Self {
         let rough = |m: &&Material| m.alpha() >= ALPHA_DELTA;
         let transmissive: Vec<&&Material> = materials_in_use.iter().filter(|m| m.transmission > 0.0).collect();
@@ -74,6 +77,7 @@ impl FeatureSet {
             transmission,
             media: transmissive.iter().any(|m| m.has_medium()),
             sampling: settings.sampling,
+            depth_of_field: camera.depth_of_field.is_some(),
         }
     }
 
@@ -89,6 +93,7 @@ impl FeatureSet {
             transmission: Transmission::Rough(rough),
             media: true,
             sampling,
+            depth_of_field: true,
         }
     }
 
@@ -108,6 +113,7 @@ impl FeatureSet {
             "rough_glass_cone" => self.transmission == Transmission::Rough(RoughTransmission::Cone),
             "media" => self.media,
             "nee" => self.sampling == Sampling::Nee,
+            "depth_of_field" => self.depth_of_field,
             _ => return None,
         })
     }
@@ -123,6 +129,7 @@ impl fmt::Display for FeatureSet {
             (self.sun, "sun"),
             (self.glossy, "glossy"),
             (self.media, "media"),
+            (self.depth_of_field, "depth-of-field"),
         ] {
             if on {
                 parts.push(name.to_string());

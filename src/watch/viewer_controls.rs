@@ -48,11 +48,11 @@ impl Viewer<'_> {
     }
 
     pub(super) fn drag(&mut self, mode: Drag, dx: f32, dy: f32) {
-        let height = self.window.as_ref().map_or(1, |w| w.config.height);
+        let (width, height) = self.window.as_ref().map_or((1, 1), |w| (w.config.width, w.config.height));
         match mode {
             Drag::Orbit => self.move_camera(|c| orbit(c, dx, dy)),
             Drag::Look => self.move_camera(|c| look(c, dx, dy)),
-            Drag::Pan => self.move_camera(|c| pan(c, dx, dy, height)),
+            Drag::Pan => self.move_camera(|c| pan(c, dx, dy, width, height)),
         }
     }
 

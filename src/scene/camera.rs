@@ -129,6 +129,20 @@ impl Camera {
         0.5 * self.sensor_along_fit() / if self.fits_horizontally(width, height) { half.x } else { half.y }
     }
 
+    /// The pinhole ray (origin, unit direction) through the point (`x`, `y`) of a
+    /// `width`×`height` image, in pixels from its top left: the camera's ray without its lens.
+    pub fn pixel_ray(&self, x: f32, y: f32, width: u32, height: u32) -> (Vec3, Vec3) {
+        let (right, up, forward) = self.basis();
+        let plane = self.view_plane(width, height);
+        let ndc = Vec2::new(x / width.max(1) as f32, y / height.max(1) as f32) * 2.0 - 1.0;
+        let at = Vec2::new(ndc.x, -ndc.y) * plane.half_extent + plane.shift;
+        let across = right * at.x + up * at.y;
+        match self.projection {
+            Projection::Orthographic { .. } => (self.position + across, forward),
+            _ => (self.position, (forward + across).normalize()),
+        }
+    }
+
     /// Right, up and forward: `up` (world +Y by default) made perpendicular to the view.
     pub fn basis(&self) -> (Vec3, Vec3, Vec3) {
         let forward = (self.look_at - self.position).normalize();

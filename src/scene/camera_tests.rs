@@ -139,3 +139,17 @@ fn bad_camera_keys_are_located() {
         assert_eq!(parse_camera(text), Err(expected.to_owned()), "{text}");
     }
 }
+
+#[test]
+fn pixel_rays_cross_the_image_plane() {
+    let camera =
+        Camera { position: Vec3::ZERO, look_at: Vec3::NEG_Z, shift: Vec2::new(0.25, 0.0), ..Camera::default() };
+    let half = camera.view_plane(100, 50).half_extent;
+    // The centre looks along the view, moved by the shift: a quarter of the width (the fit side).
+    let (origin, direction) = camera.pixel_ray(50.0, 25.0, 100, 50);
+    let expected = Vec3::new(0.5 * half.x, 0.0, -1.0).normalize();
+    assert!(origin == Vec3::ZERO && direction.distance(expected) < 1e-6, "{direction} vs {expected}");
+    let ortho = Camera { projection: Projection::Orthographic { scale: 2.0 }, ..camera };
+    let (origin, direction) = ortho.pixel_ray(0.0, 0.0, 100, 50);
+    assert!(origin.distance(Vec3::new(-0.5, 0.5, 0.0)) < 1e-6 && direction == Vec3::NEG_Z, "{origin} {direction}");
+}

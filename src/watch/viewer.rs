@@ -100,7 +100,7 @@ pub(super) struct Viewer<'a> {
     pub(super) held: Vec<KeyCode>,
     pub(super) shift: bool,
     dragging: Option<Drag>,
-    cursor: Option<(f64, f64)>,
+    pub(super) cursor: Option<(f64, f64)>,
     pub(super) pending_reset: bool,
     pub(super) last_tick: Instant,
     presented: u64,

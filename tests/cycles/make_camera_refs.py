@@ -7,8 +7,8 @@ Cycles into tests/cycles/camera_NAME.exr, and exports it with blender/rt_export.
 tests/cycles/scenes/camera_NAME/ (scene.toml and its assets). CI does not run Cycles:
 commit both.
 
-The scene is nine emissive cubes of different colours at three depths before an emissive
-wall, under a dim uniform world. Every surface only emits (black base colour, no specular
+The scene is nine emissive cubes of different colours at three depths and five small
+bright ones far behind them before an emissive wall, under a dim uniform world. Every surface only emits (black base colour, no specular
 layer), so a pixel's value is the emission its camera rays meet: the comparison tests where
 the rays go (roll, projection, shift, sensor fit, aperture) and nothing else.
 
@@ -78,8 +78,8 @@ CAMERAS = {
             "location": (0.0, -6.0, 0.3),
             "target": (0.0, 0.0, 0.0),
             "lens": 50.0,
-            "fstop": 0.3,
-            "focus_object": "cube_1_1",
+            "fstop": 0.12,
+            "focus_object": "cube_0_0",
             "blades": 6,
             "blade_rotation_deg": 20.0,
             "aperture_ratio": 1.6,
@@ -107,6 +107,12 @@ def build_objects(scene):
             cube = bpy.context.object
             cube.name = cube.data.name = f"cube_{i}_{j}"
             cube.data.materials.append(emitter(cube.name, COLOURS[3 * j + i]))
+    # Small bright points far behind: out of focus they show the aperture's shape.
+    for k, (x, z) in enumerate([(-2.2, 1.6), (0.7, 2.0), (2.4, -0.4), (-0.9, -1.9), (1.5, 0.9)]):
+        bpy.ops.mesh.primitive_cube_add(size=0.12, location=(x, 5.0, z))
+        point = bpy.context.object
+        point.name = point.data.name = f"point_{k}"
+        point.data.materials.append(emitter(point.name, (4.0, 4.0, 4.0)))
     bpy.ops.mesh.primitive_plane_add(size=40.0, location=(0.0, 7.0, 0.0), rotation=(math.pi / 2, 0.0, 0.0))
     wall = bpy.context.object
     wall.name = wall.data.name = "wall"

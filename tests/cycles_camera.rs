@@ -1,9 +1,9 @@
-//! rt's camera against Cycles (`tests/cycles/make_camera_refs.py` renders the references and
-//! exports the scenes with `blender/rt_export.py`): a rolled camera, an orthographic one,
-//! lens shift with a vertical sensor fit, and depth of field through a round and a
-//! six-bladed anamorphic aperture. The scenes only emit, so the images differ only where
-//! the camera's rays go. 8×8-block means and the global mean must agree within bounds
-//! derived from the noise at the sample counts used.
+//! rt's camera against Cycles (`tests/cycles/make_camera_refs.py` renders the references
+//! and exports the scenes with `blender/rt_export.py`): a rolled camera, an orthographic
+//! one without and with depth of field, lens shift with a vertical sensor fit, and depth
+//! of field through a round and a six-bladed anamorphic aperture. The scenes only emit, so
+//! the images differ only where the camera's rays go. 8×8-block means and the global mean
+//! must agree within bounds derived from the noise at the sample counts used.
 
 mod common;
 
@@ -102,6 +102,11 @@ fn rolled_camera_matches_cycles() {
 #[test]
 fn orthographic_camera_matches_cycles() {
     check("ortho");
+}
+
+#[test]
+fn orthographic_depth_of_field_matches_cycles() {
+    check("ortho_dof");
 }
 
 #[test]

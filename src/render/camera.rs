@@ -18,7 +18,10 @@ pub fn set_camera(frame: &mut GpuFrame, camera: &Camera, width: u32, height: u32
     frame.orthographic = u32::from(matches!(camera.projection, Projection::Orthographic { .. }));
     frame.width = width;
     frame.height = height;
+    // A pinhole, also for a pipeline that carries the lens code anyway (all features):
+    // no aperture, and a plane in focus at any positive distance.
     frame.inv_aperture_ratio = 1.0;
+    frame.focus_distance = 1.0;
     if let Some(dof) = &camera.depth_of_field {
         // Cycles (`blender_camera_from_object`): the aperture's radius is half the focal
         // length over the f-number; an orthographic camera has no focal length and uses 1 m.
@@ -58,5 +61,8 @@ mod tests {
         let ortho = Camera { projection: Projection::Orthographic { scale: 2.0 }, ..by_angle };
         set_camera(&mut frame, &ortho, 64, 64);
         assert!((frame.aperture_radius - 0.25).abs() < 1e-7 && frame.orthographic == 1);
+        let mut pinhole = GpuFrame::default();
+        set_camera(&mut pinhole, &Camera::default(), 64, 64);
+        assert!(pinhole.aperture_radius == 0.0 && pinhole.focus_distance > 0.0, "{pinhole:?}");
     }
 }

@@ -54,6 +54,18 @@ CAMERAS = {
         64,
         {"location": (4.0, -7.0, 2.5), "target": (0.0, 0.0, 0.0), "roll_deg": -10.0, "type": "ORTHO", "ortho_scale": 6.5},
     ),
+    "ortho_dof": (
+        64,
+        64,
+        {
+            "location": (4.0, -7.0, 2.5),
+            "target": (0.0, 0.0, 0.0),
+            "type": "ORTHO",
+            "ortho_scale": 6.5,
+            "fstop": 0.5,
+            "focus_object": "cube_1_1",
+        },
+    ),
     "shift": (
         64,
         48,

@@ -378,33 +378,59 @@ def render_size(scene):
     )
 
 
-def vertical_fov_deg(camera_data, aspect):
-    """Blender's sensor fit: AUTO fits the sensor width to the larger image side."""
-    lens = camera_data.lens
-    fit = camera_data.sensor_fit
-    if fit == "VERTICAL":
-        return math.degrees(2 * math.atan(camera_data.sensor_height / (2 * lens)))
-    half_width = camera_data.sensor_width / (2 * lens)
-    if fit == "HORIZONTAL" or aspect >= 1.0:
-        return math.degrees(2 * math.atan(half_width / aspect))
-    return math.degrees(2 * math.atan(half_width))
+def focus_distance(cam):
+    """Cycles' focus distance: the focus object's distance along the view axis, if any."""
+    dof = cam.data.dof
+    if dof.focus_object is None:
+        return dof.focus_distance
+    if dof.focus_subtarget:
+        log(f"camera {cam.name}: focus bone {dof.focus_subtarget!r} is ignored; focusing on its object")
+    view_axis = cam.matrix_world.to_3x3().col[2].normalized()
+    offset = cam.matrix_world.translation - dof.focus_object.matrix_world.translation
+    return abs(view_axis.dot(offset))
 
 
 def camera_toml(scene):
+    """The camera as Cycles sees it: its roll through `up`, projection, sensor, shift and
+    depth of field (Blender's camera looks down its local -Z with +Y up)."""
     cam = scene.camera
     if cam is None:
         return ""
-    if cam.data.type != "PERSP":
-        log(f"camera {cam.name}: {cam.data.type} is exported as a perspective camera")
-    width, height = render_size(scene)
-    aspect = width * scene.render.pixel_aspect_x / (height * scene.render.pixel_aspect_y)
+    data = cam.data
+    if data.type not in {"PERSP", "ORTHO"}:
+        log(f"camera {cam.name}: {data.type} is exported as a perspective camera")
+    if scene.render.pixel_aspect_x != scene.render.pixel_aspect_y:
+        log(f"camera {cam.name}: rt has square pixels; the pixel aspect is ignored")
     m = TO_RT @ cam.matrix_world
     position = m.translation
     forward = -(m.to_3x3() @ Vector((0, 0, 1))).normalized()
-    distance = cam.data.dof.focus_distance if cam.data.dof.focus_distance > 0 else 10.0
-    look_at = position + forward * distance
-    fov = vertical_fov_deg(cam.data, aspect)
-    return f"[camera]\nposition = {vec(position)}\nlook_at = {vec(look_at)}\nfov_y_deg = {fmt(fov)}\n\n"
+    up = (m.to_3x3() @ Vector((0, 1, 0))).normalized()
+    focus = focus_distance(cam)
+    look_at = position + forward * (focus if focus > 0 else 10.0)
+    lines = [f"position = {vec(position)}", f"look_at = {vec(look_at)}", f"up = {vec(up)}"]
+    if data.type == "ORTHO":
+        lines += ['projection = "orthographic"', f"ortho_scale = {fmt(data.ortho_scale)}"]
+    else:
+        lines.append(f"focal_length_mm = {fmt(data.lens)}")
+    lines += [
+        f"sensor_fit = {json.dumps(data.sensor_fit.lower())}",
+        f"sensor_width_mm = {fmt(data.sensor_width)}",
+        f"sensor_height_mm = {fmt(data.sensor_height)}",
+        f"shift_x = {fmt(data.shift_x)}",
+        f"shift_y = {fmt(data.shift_y)}",
+    ]
+    dof = data.dof
+    if dof.use_dof:
+        # Cycles clamps both to 1e-5 rather than refusing them.
+        lines += [
+            f"fstop = {fmt(max(dof.aperture_fstop, 1e-5))}",
+            f"focus_distance = {fmt(max(focus, 1e-5))}",
+            # Cycles renders fewer than 3 blades as a round aperture.
+            f"blades = {dof.aperture_blades if dof.aperture_blades >= 3 else 0}",
+            f"blade_rotation_deg = {fmt(math.degrees(dof.aperture_rotation))}",
+            f"aperture_ratio = {fmt(dof.aperture_ratio)}",
+        ]
+    return "[camera]\n" + "\n".join(lines) + "\n\n"
 
 
 def sun_toml(scene):

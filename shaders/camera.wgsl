@@ -1,10 +1,77 @@
-// Pinhole camera with a vertical field of view; pixel (0, 0) is the top left.
+// The camera's rays, as Cycles makes them: pixel (0, 0) is the top left; a point of
+// the image plane (lens shift included) gives a direction from the camera's centre
+// (perspective) or a start on the camera's plane (orthographic). With depth of field
+// the ray starts on the aperture instead and passes through the point where the
+// pinhole ray meets the plane in focus.
 
+//#include "constants.wgsl"
 //#include "common.wgsl"
+//#include "rng.wgsl"
 
-fn camera_ray_direction(pixel: vec2u, jitter: vec2f) -> vec3f {
-    let ndc = (vec2f(pixel) + jitter) / vec2f(f32(frame.width), f32(frame.height)) * 2.0 - 1.0;
-    let x = ndc.x * frame.tan_half_fov_y * frame.aspect;
-    let y = -ndc.y * frame.tan_half_fov_y;
-    return normalize(frame.camera_forward + x * frame.camera_right + y * frame.camera_up);
+struct CameraRay {
+    origin: vec3f,
+    direction: vec3f,
 }
+
+fn camera_ray(pixel: vec2u, rng: ptr<function, Rng>) -> CameraRay {
+    let jitter = vec2f(rng_next(rng), rng_next(rng));
+    let ndc = (vec2f(pixel) + jitter) / vec2f(f32(frame.width), f32(frame.height)) * 2.0 - 1.0;
+    let plane = vec2f(ndc.x, -ndc.y) * frame.view_half_extent + frame.view_shift;
+    // In the camera's frame: x right, y up, z along the view.
+    var origin = vec3f(0.0);
+    var direction = vec3f(plane, 1.0);
+    if frame.orthographic != 0u {
+        origin = vec3f(plane, 0.0);
+        direction = vec3f(0.0, 0.0, 1.0);
+    }
+    //#if depth_of_field
+    let lens = sample_aperture(vec2f(rng_next(rng), rng_next(rng))) * frame.aperture_radius;
+    // direction.z is 1: the plane in focus is reached at t = focus_distance.
+    let focus = origin + direction * frame.focus_distance;
+    origin += vec3f(lens, 0.0);
+    direction = focus - origin;
+    //#endif
+    let world_origin =
+        frame.camera_position + origin.x * frame.camera_right + origin.y * frame.camera_up + origin.z * frame.camera_forward;
+    let world_direction = direction.x * frame.camera_right + direction.y * frame.camera_up + direction.z * frame.camera_forward;
+    return CameraRay(world_origin, normalize(world_direction));
+}
+
+//#if depth_of_field
+// A point of the unit aperture (Cycles' `camera_sample_aperture`): the disk by the
+// concentric map, or a regular polygon inscribed in it, one triangle per side, whose
+// corners lie at blade_rotation + (2k + 1)π / blades; then squeezed for anamorphic bokeh.
+fn sample_aperture(u: vec2f) -> vec2f {
+    var p: vec2f;
+    if frame.aperture_blades == 0u {
+        p = concentric_disk(u);
+    } else {
+        let corners = f32(frame.aperture_blades);
+        let corner = min(floor(u.x * corners), corners - 1.0);
+        let s = sqrt(u.x * corners - corner);
+        let a = 1.0 - s;
+        let b = u.y * s;
+        let half_angle = PI / corners;
+        let q = vec2f((a + b) * cos(half_angle), (a - b) * sin(half_angle));
+        let rotation = frame.blade_rotation + corner * 2.0 * half_angle;
+        let c = cos(rotation);
+        let r = sin(rotation);
+        p = vec2f(c * q.x - r * q.y, r * q.x + c * q.y);
+    }
+    return vec2f(p.x * frame.inv_aperture_ratio, p.y);
+}
+
+// Shirley and Chiu's concentric map of the unit square onto the unit disk.
+fn concentric_disk(u: vec2f) -> vec2f {
+    let a = 2.0 * u - 1.0;
+    if all(a == vec2f(0.0)) {
+        return vec2f(0.0);
+    }
+    if a.x * a.x > a.y * a.y {
+        let phi = 0.25 * PI * (a.y / a.x);
+        return a.x * vec2f(cos(phi), sin(phi));
+    }
+    let phi = 0.5 * PI - 0.25 * PI * (a.x / a.y);
+    return a.y * vec2f(cos(phi), sin(phi));
+}
+//#endif

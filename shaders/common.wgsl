@@ -2,13 +2,24 @@
 
 struct Frame {
     camera_position: vec3f,
-    tan_half_fov_y: f32,
+    // Metres; 0: a pinhole.
+    aperture_radius: f32,
     camera_right: vec3f,
-    aspect: f32,
+    focus_distance: f32,
     camera_up: vec3f,
     width: u32,
     camera_forward: vec3f,
     height: u32,
+    // Half the image plane's size and its centre's offset (lens shift), at distance 1
+    // along the view (perspective) or in metres (orthographic).
+    view_half_extent: vec2f,
+    view_shift: vec2f,
+    // 1: parallel rays.
+    orthographic: u32,
+    // 0: a round aperture; else the sides of a regular polygon.
+    aperture_blades: u32,
+    blade_rotation: f32,
+    inv_aperture_ratio: f32,
     sky_color: vec3f,
     max_bounces: u32,
     sample_base: u32,

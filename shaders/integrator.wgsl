@@ -116,8 +116,9 @@ fn sun_seen(origin: vec3f, direction: vec3f, bsdf_pdf: f32) -> vec3f {
 // or a pending shadow ray, through the loop's single call of the traversal: the
 // traversal code is then in the kernel once, not once per kind of ray.
 fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
-    var origin = frame.camera_position;
-    var direction = camera_ray_direction(pixel, vec2f(rng_next(rng), rng_next(rng)));
+    let camera = camera_ray(pixel, rng);
+    var origin = camera.origin;
+    var direction = camera.direction;
     var radiance = vec3f(0.0);
     var throughput = vec3f(1.0);
     // Density of the last BSDF sample, for MIS; 0 after the camera and after delta lobes.

@@ -69,8 +69,8 @@ fn generate_camera_rays(@builtin(global_invocation_id) id: vec3u, @builtin(num_w
     }
     let pixel = vec2u(i % frame.width, i / frame.width);
     var rng = rng_for_sample(i, frame.sample_base, frame.seed);
-    let d = camera_ray_direction(pixel, vec2f(rng_next(&rng), rng_next(&rng)));
-    trace_rays[i] = TraceRay(frame.camera_position, INFINITY, d, 0u);
+    let ray = camera_ray(pixel, &rng);
+    trace_rays[i] = TraceRay(ray.origin, INFINITY, ray.direction, 0u);
 }
 
 // Turns each ray with a hit into a new ray leaving that hit as a path would:

@@ -8,13 +8,25 @@ use bytemuck::{Pod, Zeroable};
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct GpuFrame {
     pub camera_position: [f32; 3],
-    pub tan_half_fov_y: f32,
+    /// Metres; 0: a pinhole.
+    pub aperture_radius: f32,
     pub camera_right: [f32; 3],
-    pub aspect: f32,
+    pub focus_distance: f32,
     pub camera_up: [f32; 3],
     pub width: u32,
     pub camera_forward: [f32; 3],
     pub height: u32,
+    /// Half the image plane's size and its centre's offset, at distance 1 along the view
+    /// (perspective) or in metres (orthographic).
+    pub view_half_extent: [f32; 2],
+    pub view_shift: [f32; 2],
+    /// 1: parallel rays.
+    pub orthographic: u32,
+    /// 0: a round aperture; else the sides of a regular polygon.
+    pub aperture_blades: u32,
+    /// Radians.
+    pub blade_rotation: f32,
+    pub inv_aperture_ratio: f32,
     pub sky_color: [f32; 3],
     pub max_bounces: u32,
     pub sample_base: u32,

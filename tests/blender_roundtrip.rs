@@ -132,20 +132,7 @@ fn blender_scene_exports_packs_and_renders() {
         assert!((got - want).abs() < 1e-5, "lamp emission {:?}", lamp.emission);
     }
 
-    let camera = &expected["camera"];
-    let m = camera["matrix_world"].as_array().expect("matrix");
-    let column = |c: usize| Value::from((0..3).map(|r| m[r][c].clone()).collect::<Vec<_>>());
-    let position = y_up(&column(3));
-    let forward = -y_up(&column(2)).normalize();
-    assert!(scene.camera.position.distance(position) < 1e-5, "camera at {}", scene.camera.position);
-    let looking = (scene.camera.look_at - scene.camera.position).normalize();
-    assert!(looking.distance(forward) < 1e-5, "camera looks along {looking}, Blender's along {forward}");
-    let f = |k: &str| camera[k].as_f64().expect("number");
-    let aspect = f64::from(scene.render.width) / f64::from(scene.render.height);
-    assert_eq!((scene.render.width, scene.render.height), (160, 90));
-    // Sensor fit AUTO on a landscape image fits the sensor width to the image width.
-    let fov = 2.0 * (f("sensor_width") / 2.0 / f("lens") / aspect).atan().to_degrees();
-    assert!((f64::from(scene.camera.fov_y_deg) - fov).abs() < 1e-4, "fov {} vs {fov}", scene.camera.fov_y_deg);
+    cameras_come_through(&python, &out, &expected, &scene);
     assert_eq!(scene.sky, rt::scene::Sky::Uniform { color: Vec3::new(0.2, 0.25, 0.3) });
     assert!(scene.sun.is_some());
 
@@ -173,6 +160,66 @@ fn blender_scene_exports_packs_and_renders() {
 
     live_export_writes_only_what_changed(&python, &script, &out);
     let _ = std::fs::remove_dir_all(&out);
+}
+
+/// The camera's position, view, roll, lens, shift and depth of field, and an orthographic one.
+fn cameras_come_through(python: &Path, out: &Path, expected: &Value, scene: &Scene) {
+    use rt::scene::{DepthOfField, Projection, SensorFit};
+    let column = |m: &Value, c: usize| {
+        let m = m.as_array().expect("matrix");
+        y_up(&Value::from((0..3).map(|r| m[r][c].clone()).collect::<Vec<_>>()))
+    };
+    let check_frame = |camera: &rt::scene::Camera, matrix: &Value| {
+        assert!(camera.position.distance(column(matrix, 3)) < 1e-5, "camera at {}", camera.position);
+        let (right, up, forward) = camera.basis();
+        let axes = [(right, column(matrix, 0).normalize()), (up, column(matrix, 1).normalize())];
+        for (ours, blender) in axes.into_iter().chain([(forward, -column(matrix, 2).normalize())]) {
+            assert!(ours.distance(blender) < 1e-5, "camera axis {ours} vs Blender's {blender}");
+        }
+    };
+    let camera = &expected["camera"];
+    check_frame(&scene.camera, &camera["matrix_world"]);
+    let f = |k: &str| camera[k].as_f64().expect("number") as f32;
+    assert_eq!((scene.render.width, scene.render.height), (160, 90));
+    assert_eq!(scene.camera.projection, Projection::FocalLength { mm: f("lens") });
+    assert_eq!((scene.camera.sensor_fit, scene.camera.sensor_mm.x), (SensorFit::Auto, f("sensor_width")));
+    assert!(scene.camera.shift.distance(glam::Vec2::new(0.1, -0.05)) < 1e-6, "{}", scene.camera.shift);
+    // Cycles focuses on the focus object's distance along the camera's axis.
+    let lamp = y_up(&camera["focus_object_location"]);
+    let axis = -column(&camera["matrix_world"], 2).normalize();
+    let focus_distance = axis.dot(lamp - scene.camera.position).abs();
+    let dof = scene.camera.depth_of_field.expect("depth of field");
+    assert!((dof.focus_distance - focus_distance).abs() < 1e-4, "focus {} vs {focus_distance}", dof.focus_distance);
+    let want = DepthOfField {
+        focus_distance: dof.focus_distance,
+        fstop: 2.8,
+        blades: 6,
+        blade_rotation_deg: 0.3f32.to_degrees(),
+        aperture_ratio: 1.2,
+    };
+    assert!(
+        dof.blades == want.blades
+            && [
+                (dof.fstop, want.fstop),
+                (dof.blade_rotation_deg, want.blade_rotation_deg),
+                (dof.aperture_ratio, want.aperture_ratio)
+            ]
+            .iter()
+            .all(|(a, b)| (a - b).abs() < 1e-4),
+        "{dof:?} vs {want:?}"
+    );
+
+    run(Command::new(python)
+        .arg(repo().join("blender/rt_export.py"))
+        .arg(out.join("ortho.blend"))
+        .arg("--out")
+        .arg(out.join("assets"))
+        .arg("--scene")
+        .arg(out.join("scenes/ortho.toml")));
+    let ortho = rt::scene::load(&out.join("scenes/ortho.toml")).unwrap_or_else(|e| panic!("{e}")).camera;
+    check_frame(&ortho, &expected["ortho"]["matrix_world"]);
+    assert_eq!((ortho.projection, ortho.sensor_fit), (Projection::Orthographic { scale: 5.0 }, SensorFit::Vertical));
+    assert_eq!((ortho.shift.y, ortho.depth_of_field), (0.2, None));
 }
 
 fn live_export_writes_only_what_changed(python: &Path, script: &Path, out: &Path) {

@@ -35,6 +35,8 @@ pub struct FeatureSet {
     /// Absorption or emission inside transmissive materials.
     pub media: bool,
     pub sampling: Sampling,
+    /// A thin-lens camera: rays start across the aperture.
+    pub depth_of_field: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -79,6 +81,7 @@ impl FeatureSet {
             transmission,
             media: transmissive.iter().any(|m| m.has_medium()),
             sampling: settings.sampling,
+            depth_of_field: scene.camera.depth_of_field.is_some(),
         }
     }
 
@@ -94,6 +97,7 @@ impl FeatureSet {
             transmission: Transmission::Rough(rough),
             media: true,
             sampling,
+            depth_of_field: true,
         }
     }
 
@@ -113,6 +117,7 @@ impl FeatureSet {
             "rough_glass_cone" => self.transmission == Transmission::Rough(RoughTransmission::Cone),
             "media" => self.media,
             "nee" => self.sampling == Sampling::Nee,
+            "depth_of_field" => self.depth_of_field,
             _ => return None,
         })
     }
@@ -128,6 +133,7 @@ impl fmt::Display for FeatureSet {
             (self.sun, "sun"),
             (self.glossy, "glossy"),
             (self.media, "media"),
+            (self.depth_of_field, "depth-of-field"),
         ] {
             if on {
                 parts.push(name.to_string());

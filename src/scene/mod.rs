@@ -3,6 +3,7 @@
 
 mod atmosphere;
 mod builtin;
+mod camera;
 mod features;
 mod material;
 mod parse;
@@ -13,6 +14,7 @@ mod validate;
 
 pub use atmosphere::Atmosphere;
 pub use builtin::{BUILTIN_PREFIX, default_scene};
+pub use camera::{Camera, DepthOfField, Projection, SensorFit};
 pub use features::{ALPHA_DELTA, FeatureSet, GeometrySummary, SkyFeature, Transmission};
 pub use material::{Material, luminance};
 pub use parse::{SceneError, load, parse};
@@ -79,15 +81,6 @@ pub enum RoughTransmission {
     Ggx,
     /// A cheaper model: the refracted direction jittered in a cone.
     Cone,
-}
-
-/// `[camera]`; when the table or a key is left out: at `[0, 1, 5]` looking at
-/// `[0, 1, 0]` with a 40° vertical field of view.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Camera {
-    pub position: Vec3,
-    pub look_at: Vec3,
-    pub fov_y_deg: f32,
 }
 
 /// `[sky]`; black when the table is left out, white when `uniform` has no `color`.

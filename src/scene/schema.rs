@@ -24,21 +24,64 @@ pub(super) struct File {
     pub sphere: Vec<Sphere>,
 }
 
-/// Each key may be left out, and so may the whole `[camera]` table.
+/// Each key may be left out, and so may the whole `[camera]` table; `scene::camera`
+/// checks which keys go together.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub(super) struct Camera {
     pub position: [f32; 3],
     pub look_at: [f32; 3],
-    pub fov_y_deg: f32,
+    pub up: Option<[f32; 3]>,
+    pub projection: Projection,
+    pub fov_y_deg: Option<f32>,
+    pub focal_length_mm: Option<f32>,
+    pub ortho_scale: Option<f32>,
+    pub sensor_fit: SensorFit,
+    pub sensor_width_mm: f32,
+    pub sensor_height_mm: f32,
+    pub shift_x: f32,
+    pub shift_y: f32,
+    pub fstop: Option<f32>,
+    pub focus_distance: Option<f32>,
+    pub blades: Option<u32>,
+    pub blade_rotation_deg: Option<f32>,
+    pub aperture_ratio: Option<f32>,
 }
 
 impl Default for Camera {
-    /// A person's eye height, looking at the origin from 5 m down +Z.
+    /// A person's eye height, looking at the origin from 5 m down +Z; Blender's
+    /// full-frame sensor (36 × 24 mm).
     fn default() -> Self {
-        Self { position: [0.0, 1.0, 5.0], look_at: [0.0, 1.0, 0.0], fov_y_deg: 40.0 }
+        Self {
+            position: [0.0, 1.0, 5.0],
+            look_at: [0.0, 1.0, 0.0],
+            up: None,
+            projection: Projection::Perspective,
+            fov_y_deg: None,
+            focal_length_mm: None,
+            ortho_scale: None,
+            sensor_fit: SensorFit::Auto,
+            sensor_width_mm: 36.0,
+            sensor_height_mm: 24.0,
+            shift_x: 0.0,
+            shift_y: 0.0,
+            fstop: None,
+            focus_distance: None,
+            blades: None,
+            blade_rotation_deg: None,
+            aperture_ratio: None,
+        }
     }
 }
+
+#[derive(Clone, Copy, PartialEq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum Projection {
+    Perspective,
+    Orthographic,
+}
+
+pub(super) use super::camera::SensorFit;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -68,7 +68,7 @@ fn full_example_parses() {
     let render =
         RenderSettings { width: 320, height: 200, spp: 64, max_bounces: 8, exposure: -1.5, ..Default::default() };
     assert_eq!(s.render, render);
-    let camera = Camera { position: Vec3::new(0.0, 1.5, 6.0), look_at: Vec3::Y, fov_y_deg: 40.0 };
+    let camera = Camera { position: Vec3::new(0.0, 1.5, 6.0), look_at: Vec3::Y, ..Camera::default() };
     assert_eq!(s.camera, camera);
     assert_eq!(s.sky, Sky::Atmosphere(Atmosphere::default()));
     let radiance = Some(Vec3::new(1.0, 2.0, 3.0));
@@ -123,7 +123,7 @@ fn atmosphere_keys_parse() {
 fn empty_file_gives_defaults() {
     let s = parse_ok("");
     assert_eq!(s.render, RenderSettings::default());
-    let camera = Camera { position: Vec3::new(0.0, 1.0, 5.0), look_at: Vec3::Y, fov_y_deg: 40.0 };
+    let camera = Camera::default();
     assert_eq!(s.camera, camera);
     assert_eq!((s.sky, s.sun), (Sky::Black, None));
     assert_eq!(parse_ok("[sky]\nkind = \"uniform\"\n").sky, Sky::Uniform { color: Vec3::ONE });

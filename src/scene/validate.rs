@@ -3,7 +3,7 @@
 use super::atmosphere;
 use super::parse::{SceneError, Seg, Seg::*, Source, hint};
 use super::schema::{self, File, Scale, SkyKind};
-use super::{Camera, Material, MeshInstance, RenderSettings, Scene, Sky, Sphere, Sun};
+use super::{Material, MeshInstance, RenderSettings, Scene, Sky, Sphere, Sun};
 use glam::{Mat3, Mat4, Vec3};
 use std::path::Path;
 
@@ -50,24 +50,13 @@ pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, 
     Ok(Scene {
         origin: src.origin.to_owned(),
         render,
-        camera: camera(src, file.camera)?,
+        camera: super::camera::validate(src, file.camera)?,
         sky: sky(src, file.sky)?,
         sun: file.sun.map(|s| sun(src, s)).transpose()?,
         materials,
         meshes,
         spheres,
     })
-}
-
-fn camera(src: &Source, c: schema::Camera) -> Result<Camera, SceneError> {
-    let p = [Key("camera")];
-    src.finite(&p, "position", &c.position)?;
-    src.finite(&p, "look_at", &c.look_at)?;
-    src.check(&p, "fov_y_deg", &[c.fov_y_deg], "in (0, 180)", |f| f > 0.0 && f < 180.0)?;
-    if c.position == c.look_at {
-        return Err(src.error(&p, "look_at", "must differ from position"));
-    }
-    Ok(Camera { position: c.position.into(), look_at: c.look_at.into(), fov_y_deg: c.fov_y_deg })
 }
 
 fn sky(src: &Source, sky: Option<schema::Sky>) -> Result<Sky, SceneError> {

@@ -2,7 +2,7 @@
 //! the camera stands, pan, dolly, and fly. Each move takes a camera and gives the moved
 //! one; the window decides which input makes which move.
 
-use crate::scene::{Camera, Sun};
+use crate::scene::{Camera, Projection, Sun};
 use glam::Vec3;
 
 /// Radians per pixel of mouse drag.
@@ -43,11 +43,16 @@ pub fn look(camera: &Camera, dx: f32, dy: f32) -> Camera {
 }
 
 /// Slides camera and point looked at in the view plane, by `dx`, `dy` pixels of a
-/// `height`-pixel-tall image (so the point under the mouse follows it).
-pub fn pan(camera: &Camera, dx: f32, dy: f32, height: u32) -> Camera {
-    let view = camera.look_at - camera.position;
-    let (right, up) = basis(view);
-    let metres_per_pixel = 2.0 * view.length() * (camera.fov_y_deg.to_radians() * 0.5).tan() / height.max(1) as f32;
+/// `width`×`height` image (so the point under the mouse follows it).
+pub fn pan(camera: &Camera, dx: f32, dy: f32, width: u32, height: u32) -> Camera {
+    let (right, up, _) = camera.basis();
+    let plane_height = 2.0 * camera.view_plane(width, height).half_extent.y;
+    // A perspective image plane is at distance 1: scale it out to the point looked at.
+    let depth = match camera.projection {
+        Projection::Orthographic { .. } => 1.0,
+        _ => camera.position.distance(camera.look_at),
+    };
+    let metres_per_pixel = plane_height * depth / height.max(1) as f32;
     let shift = (-right * dx + up * dy) * metres_per_pixel;
     Camera { position: camera.position + shift, look_at: camera.look_at + shift, ..camera.clone() }
 }
@@ -90,7 +95,7 @@ mod tests {
     use super::*;
 
     fn camera() -> Camera {
-        Camera { position: Vec3::new(0.0, 1.0, 4.0), look_at: Vec3::new(0.0, 1.0, 0.0), fov_y_deg: 40.0 }
+        Camera { position: Vec3::new(0.0, 1.0, 4.0), look_at: Vec3::new(0.0, 1.0, 0.0), ..Camera::default() }
     }
 
     fn close(a: Vec3, b: Vec3) -> bool {
@@ -117,7 +122,7 @@ mod tests {
 
     #[test]
     fn pan_dolly_and_fly() {
-        let c = pan(&camera(), 10.0, 0.0, 100);
+        let c = pan(&camera(), 10.0, 0.0, 100, 100);
         assert!(close(c.position - camera().position, c.look_at - camera().look_at));
         assert!(c.position.x < 0.0);
         let c = dolly(&camera(), 1.0);

@@ -13,6 +13,7 @@ rt watch keys and mouse:
   W A S D  Q E         fly forward, left, back, right, down, up (shift: 5x faster)
   arrows up/down       sun elevation +/- 2 deg; left/right: azimuth -/+ 5 deg
   + / -                exposure +/- 0.5 EV
+  F                    focus (with depth of field) on what is under the mouse
   R                    back to the scene file's camera, sun and exposure
   P / X                screenshot: PNG as shown / linear EXR
   H                    this help
@@ -23,6 +24,7 @@ rt watch keys and mouse:
 pub enum Action {
     Sun { elevation: f32, azimuth: f32 },
     Exposure(f32),
+    Focus,
     Reset,
     ScreenshotPng,
     ScreenshotExr,
@@ -38,6 +40,7 @@ pub fn action(key: KeyCode) -> Option<Action> {
         KeyCode::ArrowRight => Action::Sun { elevation: 0.0, azimuth: 5.0 },
         KeyCode::Equal | KeyCode::NumpadAdd => Action::Exposure(0.5),
         KeyCode::Minus | KeyCode::NumpadSubtract => Action::Exposure(-0.5),
+        KeyCode::KeyF => Action::Focus,
         KeyCode::KeyR => Action::Reset,
         KeyCode::KeyP => Action::ScreenshotPng,
         KeyCode::KeyX => Action::ScreenshotExr,

@@ -111,6 +111,9 @@ pub fn plan(old: &Scene, new: &Scene, old_assets: &AssetPrints, new_assets: &Ass
     let mut changes = Vec::new();
     if old.camera != new.camera {
         changes.push(Change::Camera);
+        if old.camera.depth_of_field.is_some() != new.camera.depth_of_field.is_some() {
+            changes.push(Change::Features);
+        }
     }
     if old.sun != new.sun {
         changes.push(Change::Sun);
@@ -306,10 +309,23 @@ mod tests {
     }
 
     #[test]
+    fn turning_depth_of_field_on_changes_the_features() {
+        let dof = crate::scene::DepthOfField {
+            fstop: 2.8,
+            focus_distance: 3.0,
+            blades: 0,
+            blade_rotation_deg: 0.0,
+            aperture_ratio: 1.0,
+        };
+        let reload = kind_after(|s| s.camera.depth_of_field = Some(dof));
+        assert_eq!(reload.changes, [Change::Camera, Change::Features]);
+    }
+
+    #[test]
     fn several_changes_at_once_and_shaders() {
         let old = scene();
         let mut new = old.clone();
-        new.camera.fov_y_deg = 50.0;
+        new.camera.projection = crate::scene::Projection::FovY { degrees: 50.0 };
         new.materials[1].1.emission = [1.0; 3];
         let reload = plan(&old, &new, &prints(1), &prints(1), true);
         assert_eq!(reload.changes, [Change::Camera, Change::Materials, Change::Shaders]);

@@ -98,7 +98,7 @@ pub(super) struct Viewer<'a> {
     pub(super) held: Vec<KeyCode>,
     pub(super) shift: bool,
     dragging: Option<Drag>,
-    cursor: Option<(f64, f64)>,
+    pub(super) cursor: Option<(f64, f64)>,
     pub(super) last_tick: Instant,
     presented: u64,
     screenshots: u32,

@@ -5,7 +5,8 @@ use super::camera_control::{fly, look, orbit, pan, turn_sun};
 use super::input::{Action, Drag, HELP, action, fly_direction};
 use super::live::Overrides;
 use super::viewer::Viewer;
-use crate::scene::Camera;
+use crate::layout::{EMPTY_LINK, GpuTraceRay};
+use crate::scene::{Camera, DepthOfField};
 use std::time::Instant;
 use winit::event_loop::ActiveEventLoop;
 use winit::keyboard::KeyCode;
@@ -34,6 +35,11 @@ impl Viewer<'_> {
                 self.log.write(HELP);
                 return;
             }
+            Action::Focus => match self.focus_under_cursor() {
+                Ok(Some(camera)) => overrides.camera = Some(camera),
+                Ok(None) => return,
+                Err(e) => return self.fail(&[], &e),
+            },
             Action::Quit => {
                 event_loop.exit();
                 return;
@@ -51,12 +57,36 @@ impl Viewer<'_> {
     }
 
     pub(super) fn drag(&mut self, mode: Drag, dx: f32, dy: f32) {
-        let height = self.window.as_ref().map_or(1, |w| w.config.height);
+        let (width, height) = self.window.as_ref().map_or((1, 1), |w| (w.config.width, w.config.height));
         match mode {
             Drag::Orbit => self.move_camera(|c| orbit(c, dx, dy)),
             Drag::Look => self.move_camera(|c| look(c, dx, dy)),
-            Drag::Pan => self.move_camera(|c| pan(c, dx, dy, height)),
+            Drag::Pan => self.move_camera(|c| pan(c, dx, dy, width, height)),
         }
+    }
+
+    /// The camera focused at the depth of the surface under the mouse (the window's centre
+    /// without one), found by the trace program; `None` (and a note) when there is nothing to do.
+    fn focus_under_cursor(&mut self) -> anyhow::Result<Option<Camera>> {
+        let camera = self.live.scene().camera.clone();
+        let Some(dof) = camera.depth_of_field else {
+            self.log.write("the camera has no depth of field to focus (set fstop in [camera])");
+            return Ok(None);
+        };
+        let (width, height) = self.window.as_ref().map_or((1, 1), |w| (w.config.width, w.config.height));
+        let (x, y) = self.cursor.map_or((width as f32 / 2.0, height as f32 / 2.0), |(x, y)| (x as f32, y as f32));
+        let (origin, direction) = camera.pixel_ray(x, y, width, height);
+        let ray =
+            GpuTraceRay { origin: origin.to_array(), t_max: f32::INFINITY, direction: direction.to_array(), _pad: 0 };
+        let hit = self.live.session.trace(&[ray])?[0];
+        if hit.primitive == EMPTY_LINK {
+            self.log.write("nothing under the mouse to focus on");
+            return Ok(None);
+        }
+        // Cycles' plane in focus is perpendicular to the view: its distance is along the view.
+        let focus_distance = hit.t * direction.dot(camera.basis().2);
+        self.log.write(&format!("focus at {focus_distance:.3} m"));
+        Ok(Some(Camera { depth_of_field: Some(DepthOfField { focus_distance, ..dof }), ..camera }))
     }
 
     pub(super) fn move_camera(&mut self, to: impl FnOnce(&Camera) -> Camera) {

@@ -1,6 +1,7 @@
 """Blender side of tests/blender_roundtrip.rs (run with the bpy venv's python).
 
-    roundtrip.py build OUT     builds OUT/roundtrip.blend and writes OUT/expected.json
+    roundtrip.py build OUT     builds OUT/roundtrip.blend (and OUT/ortho.blend, the same
+                               through its orthographic camera) and writes OUT/expected.json
                                with what rt must find (raw Blender values; the Rust test
                                converts them itself), plus Blender's own glTF, GLB and OBJ
                                exports of the `probe` object into OUT/formats/
@@ -70,10 +71,21 @@ def build(out):
     for polygon in probe.data.polygons:
         polygon.material_index = int(polygon.center.z > 0)
 
-    bpy.ops.object.camera_add(location=(0.0, -7.0, 2.5), rotation=(1.35, 0.0, 0.1))
+    # Rolled (the Y rotation turns it about its view), shifted, focused on the lamp.
+    bpy.ops.object.camera_add(location=(0.0, -7.0, 2.5), rotation=(1.35, 0.3, 0.1))
     camera = bpy.context.object
     camera.data.lens = 35
+    camera.data.shift_x, camera.data.shift_y = 0.1, -0.05
+    dof = camera.data.dof
+    dof.use_dof, dof.focus_object, dof.aperture_fstop = True, lamp, 2.8
+    dof.aperture_blades, dof.aperture_rotation, dof.aperture_ratio = 6, 0.3, 1.2
     scene.camera = camera
+    # Exported from ortho.blend, where it is the scene's camera.
+    bpy.ops.object.camera_add(location=(4.0, -4.0, 3.0), rotation=(1.1, 0.0, 0.8))
+    ortho = bpy.context.object
+    ortho.name = "ortho"
+    ortho.data.type, ortho.data.ortho_scale, ortho.data.sensor_fit = "ORTHO", 5.0, "VERTICAL"
+    ortho.data.shift_y = 0.2
     bpy.ops.object.light_add(type="SUN", rotation=(0.6, 0.0, 0.8))
 
     world = bpy.data.worlds.new("sky")
@@ -82,6 +94,9 @@ def build(out):
     scene.world = world
     os.makedirs(out, exist_ok=True)
     bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, "roundtrip.blend"))
+    scene.camera = ortho
+    bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, "ortho.blend"), copy=True)
+    scene.camera = camera
 
     depsgraph = bpy.context.evaluated_depsgraph_get()
     expected = {"objects": {}}
@@ -100,7 +115,9 @@ def build(out):
         "lens": camera.data.lens,
         "sensor_width": camera.data.sensor_width,
         "resolution": [scene.render.resolution_x, scene.render.resolution_y],
+        "focus_object_location": list(lamp.matrix_world.translation),
     }
+    expected["ortho"] = {"matrix_world": [list(row) for row in ortho.matrix_world]}
     with open(os.path.join(out, "expected.json"), "w") as f:
         json.dump(expected, f)
 

@@ -29,6 +29,7 @@ fn feature_sets() -> Vec<FeatureSet> {
             transmission,
             media: on(1) && transmission != Transmission::None,
             sampling: if on(0) { Sampling::Nee } else { Sampling::Resampled },
+            depth_of_field: on(4) != on(6),
         });
     }
     sets
@@ -49,6 +50,7 @@ fn plain() -> FeatureSet {
         transmission: Transmission::None,
         media: false,
         sampling: Sampling::Nee,
+        depth_of_field: false,
     }
 }
 
@@ -183,8 +185,14 @@ fn absent_effects_leave_no_code() {
         "var<uniform> atmosphere",
         "fn sun_limb_darkening",
         "@group(2)",
+        "fn sample_aperture",
+        "frame.aperture_radius",
     ] {
         assert!(!source.contains(absent), "{absent:?} is in the plain pipeline");
+    }
+    for program in [Program::Integrator, Program::Trace] {
+        let lens = assemble(program, &FeatureSet { depth_of_field: true, ..plain });
+        assert!(lens.contains("fn sample_aperture"), "no aperture in the depth-of-field {program:?} pipeline");
     }
     // Includes inside dropped blocks are not followed: the files are not there at all.
     for file in ["sphere.wgsl", "sphere_test.wgsl", "microfacet.wgsl", "dielectric.wgsl", "sun.wgsl", "segment.wgsl"] {

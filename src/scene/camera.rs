@@ -1,0 +1,253 @@
+//! `[camera]`: Blender's camera. Where it stands and looks, its roll, its projection
+//! (perspective by a vertical angle or by a focal length over a sensor; orthographic),
+//! lens shift, and depth of field as Cycles models it: a thin lens whose aperture is a
+//! disk or a regular polygon.
+
+use super::parse::{SceneError, Seg::Key, Source};
+use super::schema;
+use glam::{Vec2, Vec3};
+use serde::Deserialize;
+
+/// Which side of the image the sensor (or the orthographic scale) spans: Blender's sensor fit.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SensorFit {
+    /// The larger side, spanned by the sensor's width.
+    #[default]
+    Auto,
+    Horizontal,
+    Vertical,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection {
+    /// Perspective with this vertical field of view, whatever the sensor fit.
+    FovY { degrees: f32 },
+    /// Perspective from a focal length over the sensor's side along the fit (Blender's).
+    FocalLength { mm: f32 },
+    /// Parallel rays; `scale` metres of view along the fit (Blender's `ortho_scale`).
+    Orthographic { scale: f32 },
+}
+
+/// A thin lens focused at `focus_distance`, its aperture from the f-number as in Cycles.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DepthOfField {
+    pub fstop: f32,
+    /// Metres from the camera to the plane in focus, along the view direction.
+    pub focus_distance: f32,
+    /// 0: a round aperture; else a regular polygon of this many sides (at least 3).
+    pub blades: u32,
+    pub blade_rotation_deg: f32,
+    /// Anamorphic bokeh: the aperture's height over its width (Blender's `aperture_ratio`).
+    pub aperture_ratio: f32,
+}
+
+/// `[camera]`; when the table or a key is left out: at `[0, 1, 5]` looking at
+/// `[0, 1, 0]` with a 40° vertical field of view, no shift, no depth of field.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Camera {
+    pub position: Vec3,
+    pub look_at: Vec3,
+    /// What is up in the image, made perpendicular to the view: the camera's roll.
+    /// `None`: the world's +Y (−Z when looking straight up or down).
+    pub up: Option<Vec3>,
+    pub projection: Projection,
+    pub sensor_fit: SensorFit,
+    /// Sensor width and height in millimetres.
+    pub sensor_mm: Vec2,
+    /// Lens shift (x right, y up) in units of the view's extent along the fit.
+    pub shift: Vec2,
+    pub depth_of_field: Option<DepthOfField>,
+}
+
+impl Default for Camera {
+    fn default() -> Self {
+        Self {
+            position: Vec3::new(0.0, 1.0, 5.0),
+            look_at: Vec3::Y,
+            up: None,
+            projection: Projection::FovY { degrees: DEFAULT_FOV_Y_DEG },
+            sensor_fit: SensorFit::Auto,
+            sensor_mm: Vec2::new(36.0, 24.0),
+            shift: Vec2::ZERO,
+            depth_of_field: None,
+        }
+    }
+}
+
+/// A camera's image plane for an image of a given size: half its extent and the offset of
+/// its centre, at distance 1 along the view (perspective) or in metres (orthographic).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ViewPlane {
+    pub half_extent: Vec2,
+    pub shift: Vec2,
+}
+
+impl Camera {
+    /// Whether the sensor spans the image's width (else its height), as Blender decides.
+    fn fits_horizontally(&self, width: u32, height: u32) -> bool {
+        match self.sensor_fit {
+            SensorFit::Auto => width > height,
+            SensorFit::Horizontal => true,
+            SensorFit::Vertical => false,
+        }
+    }
+
+    /// The sensor's side along the fit: Blender's `AUTO` fits the width to the larger side.
+    fn sensor_along_fit(&self) -> f32 {
+        match self.sensor_fit {
+            SensorFit::Vertical => self.sensor_mm.y,
+            SensorFit::Auto | SensorFit::Horizontal => self.sensor_mm.x,
+        }
+    }
+
+    /// Blender's viewplane (`blender_camera_viewplane` in Cycles): the fit side spans the
+    /// sensor (or `ortho_scale`), the other follows the image's aspect, and the shift is in
+    /// units of the fit side.
+    pub fn view_plane(&self, width: u32, height: u32) -> ViewPlane {
+        let horizontal = self.fits_horizontally(width, height);
+        let (w, h) = (width.max(1) as f32, height.max(1) as f32);
+        let half_fit = match self.projection {
+            Projection::FovY { degrees } => {
+                let half_y = (degrees.to_radians() * 0.5).tan();
+                if horizontal { half_y * w / h } else { half_y }
+            }
+            Projection::FocalLength { mm } => 0.5 * self.sensor_along_fit() / mm,
+            Projection::Orthographic { scale } => 0.5 * scale,
+        };
+        let half_extent =
+            if horizontal { Vec2::new(half_fit, half_fit * h / w) } else { Vec2::new(half_fit * w / h, half_fit) };
+        ViewPlane { half_extent, shift: self.shift * 2.0 * half_fit }
+    }
+
+    /// The focal length in millimetres that gives this view over the sensor (perspective).
+    pub fn focal_length_mm(&self, width: u32, height: u32) -> f32 {
+        if let Projection::FocalLength { mm } = self.projection {
+            return mm;
+        }
+        let half = self.view_plane(width, height).half_extent;
+        0.5 * self.sensor_along_fit() / if self.fits_horizontally(width, height) { half.x } else { half.y }
+    }
+
+    /// The pinhole ray (origin, unit direction) through the point (`x`, `y`) of a
+    /// `width`×`height` image, in pixels from its top left: the camera's ray without its lens.
+    pub fn pixel_ray(&self, x: f32, y: f32, width: u32, height: u32) -> (Vec3, Vec3) {
+        let (right, up, forward) = self.basis();
+        let plane = self.view_plane(width, height);
+        let ndc = Vec2::new(x / width.max(1) as f32, y / height.max(1) as f32) * 2.0 - 1.0;
+        let at = Vec2::new(ndc.x, -ndc.y) * plane.half_extent + plane.shift;
+        let across = right * at.x + up * at.y;
+        match self.projection {
+            Projection::Orthographic { .. } => (self.position + across, forward),
+            _ => (self.position, (forward + across).normalize()),
+        }
+    }
+
+    /// Right, up and forward: `up` (world +Y by default) made perpendicular to the view.
+    pub fn basis(&self) -> (Vec3, Vec3, Vec3) {
+        let forward = (self.look_at - self.position).normalize();
+        // Looking straight up or down, world up gives no right vector: use −Z then.
+        let world_up = if forward.cross(Vec3::Y).length_squared() < 1e-12 { Vec3::NEG_Z } else { Vec3::Y };
+        let right = forward.cross(self.up.unwrap_or(world_up)).normalize();
+        (right, right.cross(forward), forward)
+    }
+}
+
+const DEFAULT_FOV_Y_DEG: f32 = 40.0;
+/// Blender's default `ortho_scale`.
+const DEFAULT_ORTHO_SCALE: f32 = 6.0;
+/// Blender's limit on `aperture_blades`.
+const MAX_BLADES: u32 = 16;
+
+pub(super) fn validate(src: &Source, c: schema::Camera) -> Result<Camera, SceneError> {
+    let p = [Key("camera")];
+    src.finite(&p, "position", &c.position)?;
+    src.finite(&p, "look_at", &c.look_at)?;
+    if c.position == c.look_at {
+        return Err(src.error(&p, "look_at", "must differ from position"));
+    }
+    let (position, look_at) = (Vec3::from(c.position), Vec3::from(c.look_at));
+    let up = match c.up {
+        None => None,
+        Some(up) => {
+            src.finite(&p, "up", &up)?;
+            let (up, forward) = (Vec3::from(up), (look_at - position).normalize());
+            if up.cross(forward).length_squared() <= 1e-12 * up.length_squared() {
+                return Err(src.error(&p, "up", "must be a direction not along the view (look_at − position)"));
+            }
+            Some(up)
+        }
+    };
+    let only = |key: &str, present: bool, condition: &str| match present {
+        true => Err(src.error(&p, key, format!("only applies {condition}"))),
+        false => Ok(()),
+    };
+    let projection = match c.projection {
+        schema::Projection::Orthographic => {
+            let perspective_only = "to projection = \"perspective\"";
+            only("fov_y_deg", c.fov_y_deg.is_some(), perspective_only)?;
+            only("focal_length_mm", c.focal_length_mm.is_some(), perspective_only)?;
+            let scale = c.ortho_scale.unwrap_or(DEFAULT_ORTHO_SCALE);
+            src.check(&p, "ortho_scale", &[scale], "positive", |s| s > 0.0)?;
+            Projection::Orthographic { scale }
+        }
+        schema::Projection::Perspective => {
+            only("ortho_scale", c.ortho_scale.is_some(), "to projection = \"orthographic\"")?;
+            match (c.fov_y_deg, c.focal_length_mm) {
+                (Some(_), Some(_)) => return Err(src.error(&p, "focal_length_mm", "excludes fov_y_deg: give one")),
+                (None, Some(mm)) => {
+                    src.check(&p, "focal_length_mm", &[mm], "positive", |f| f > 0.0)?;
+                    Projection::FocalLength { mm }
+                }
+                (fov, None) => {
+                    let degrees = fov.unwrap_or(DEFAULT_FOV_Y_DEG);
+                    src.check(&p, "fov_y_deg", &[degrees], "in (0, 180)", |f| f > 0.0 && f < 180.0)?;
+                    Projection::FovY { degrees }
+                }
+            }
+        }
+    };
+    src.check(&p, "sensor_width_mm", &[c.sensor_width_mm], "positive", |s| s > 0.0)?;
+    src.check(&p, "sensor_height_mm", &[c.sensor_height_mm], "positive", |s| s > 0.0)?;
+    src.finite(&p, "shift_x", &[c.shift_x])?;
+    src.finite(&p, "shift_y", &[c.shift_y])?;
+    let depth_of_field = match c.fstop {
+        None => {
+            let with_fstop = "with fstop (depth of field)";
+            only("focus_distance", c.focus_distance.is_some(), with_fstop)?;
+            only("blades", c.blades.is_some(), with_fstop)?;
+            only("blade_rotation_deg", c.blade_rotation_deg.is_some(), with_fstop)?;
+            only("aperture_ratio", c.aperture_ratio.is_some(), with_fstop)?;
+            None
+        }
+        Some(fstop) => {
+            src.check(&p, "fstop", &[fstop], "positive", |f| f > 0.0)?;
+            let focus_distance = c.focus_distance.unwrap_or_else(|| position.distance(look_at));
+            src.check(&p, "focus_distance", &[focus_distance], "positive", |d| d > 0.0)?;
+            let blades = c.blades.unwrap_or(0);
+            if blades == 1 || blades == 2 || blades > MAX_BLADES {
+                let message = format!("must be 0 (round) or in 3..={MAX_BLADES}, got {blades}");
+                return Err(src.error(&p, "blades", message));
+            }
+            let blade_rotation_deg = c.blade_rotation_deg.unwrap_or(0.0);
+            src.finite(&p, "blade_rotation_deg", &[blade_rotation_deg])?;
+            let aperture_ratio = c.aperture_ratio.unwrap_or(1.0);
+            src.check(&p, "aperture_ratio", &[aperture_ratio], "positive", |r| r > 0.0)?;
+            Some(DepthOfField { fstop, focus_distance, blades, blade_rotation_deg, aperture_ratio })
+        }
+    };
+    Ok(Camera {
+        position,
+        look_at,
+        up,
+        projection,
+        sensor_fit: c.sensor_fit,
+        sensor_mm: Vec2::new(c.sensor_width_mm, c.sensor_height_mm),
+        shift: Vec2::new(c.shift_x, c.shift_y),
+        depth_of_field,
+    })
+}
+
+#[cfg(test)]
+#[path = "camera_tests.rs"]
+mod tests;

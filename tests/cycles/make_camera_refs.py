@@ -1,0 +1,210 @@
+"""Cycles references for rt's camera (tests/cycles_camera.rs compares rt against them).
+
+    /work/main/.venv-bpy/bin/python tests/cycles/make_camera_refs.py [--spp 8192] [NAME...]
+
+Builds one small scene in bpy, views it through each camera below, renders it with
+Cycles into tests/cycles/camera_NAME.exr, and exports it with blender/rt_export.py into
+tests/cycles/scenes/camera_NAME/ (scene.toml and its assets). CI does not run Cycles:
+commit both.
+
+The scene is nine emissive cubes of different colours at three depths and five small
+bright ones far behind them before an emissive wall, under a dim uniform world. Every surface only emits (black base colour, no specular
+layer), so a pixel's value is the emission its camera rays meet: the comparison tests where
+the rays go (roll, projection, shift, sensor fit, aperture) and nothing else.
+
+Cycles settings: box filter of width 1, no clamping, denoising or adaptive sampling,
+blur_glossy 0, linear 32-bit EXR.
+"""
+
+import argparse
+import math
+import os
+import sys
+
+import bpy
+from mathutils import Matrix, Vector
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(REPO, "blender"))
+import rt_export  # noqa: E402
+
+# Multiples of 1/8, so that Cycles' f32 sum of a pixel's equal samples is exact and the
+# faces' inner pixels match rt's to rounding.
+COLOURS = [
+    (0.875, 0.125, 0.125),
+    (0.125, 0.75, 0.25),
+    (0.125, 0.25, 1.0),
+    (1.0, 0.875, 0.125),
+    (0.125, 0.875, 0.875),
+    (0.875, 0.125, 0.75),
+    (1.0, 1.0, 1.0),
+    (1.0, 0.5, 0.0),
+    (0.5, 0.25, 0.75),
+]
+# Depth (Blender Y) of the cube in grid cell (i, j).
+DEPTHS = (-3.0, 0.0, 3.0)
+
+# name: (width, height, camera settings). Positions and targets are in Blender's Z-up
+# coordinates; `roll_deg` turns the camera about its view axis.
+CAMERAS = {
+    "rolled": (64, 64, {"location": (0.8, -6.0, 0.6), "target": (0.0, 0.0, 0.0), "roll_deg": 25.0, "lens": 40.0}),
+    "ortho": (
+        64,
+        64,
+        {"location": (4.0, -7.0, 2.5), "target": (0.0, 0.0, 0.0), "roll_deg": -10.0, "type": "ORTHO", "ortho_scale": 6.5},
+    ),
+    "ortho_dof": (
+        64,
+        64,
+        {
+            "location": (4.0, -7.0, 2.5),
+            "target": (0.0, 0.0, 0.0),
+            "type": "ORTHO",
+            "ortho_scale": 6.5,
+            "fstop": 0.5,
+            "focus_object": "cube_1_1",
+        },
+    ),
+    "shift": (
+        64,
+        48,
+        {
+            "location": (0.0, -6.0, 0.0),
+            "target": (0.0, 0.0, 0.0),
+            "lens": 35.0,
+            "sensor_fit": "VERTICAL",
+            "shift_x": 0.2,
+            "shift_y": -0.15,
+        },
+    ),
+    "dof_round": (
+        64,
+        64,
+        {"location": (0.0, -6.0, 0.3), "target": (0.0, 0.0, 0.0), "lens": 50.0, "fstop": 0.3, "focus_distance": 6.0},
+    ),
+    "dof_blades": (
+        64,
+        64,
+        {
+            "location": (0.0, -6.0, 0.3),
+            "target": (0.0, 0.0, 0.0),
+            "lens": 50.0,
+            "fstop": 0.12,
+            "focus_object": "cube_0_0",
+            "blades": 6,
+            "blade_rotation_deg": 20.0,
+            "aperture_ratio": 1.6,
+        },
+    ),
+}
+
+
+def emitter(name, colour):
+    material = bpy.data.materials.new(name)
+    node = material.node_tree.nodes["Principled BSDF"]
+    node.inputs["Base Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+    node.inputs["Specular IOR Level"].default_value = 0.0
+    node.inputs["Roughness"].default_value = 1.0
+    node.inputs["Emission Color"].default_value = (*colour, 1.0)
+    node.inputs["Emission Strength"].default_value = 1.0
+    return material
+
+
+def build_objects(scene):
+    for i in range(3):
+        for j in range(3):
+            location = ((i - 1) * 1.6, DEPTHS[(i + 2 * j) % 3], (j - 1) * 1.3)
+            bpy.ops.mesh.primitive_cube_add(size=0.9, location=location, rotation=(0.0, 0.0, 0.3 * (i - j)))
+            cube = bpy.context.object
+            cube.name = cube.data.name = f"cube_{i}_{j}"
+            cube.data.materials.append(emitter(cube.name, COLOURS[3 * j + i]))
+    # Small bright points far behind: out of focus they show the aperture's shape.
+    for k, (x, z) in enumerate([(-2.2, 1.6), (0.7, 2.0), (2.4, -0.4), (-0.9, -1.9), (1.5, 0.9)]):
+        bpy.ops.mesh.primitive_cube_add(size=0.12, location=(x, 5.0, z))
+        point = bpy.context.object
+        point.name = point.data.name = f"point_{k}"
+        point.data.materials.append(emitter(point.name, (4.0, 4.0, 4.0)))
+    bpy.ops.mesh.primitive_plane_add(size=40.0, location=(0.0, 7.0, 0.0), rotation=(math.pi / 2, 0.0, 0.0))
+    wall = bpy.context.object
+    wall.name = wall.data.name = "wall"
+    wall.data.materials.append(emitter("wall", (0.125, 0.125, 0.25)))
+    world = bpy.data.worlds.new("world")
+    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.0625, 0.0625, 0.0625, 1.0)
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
+    scene.world = world
+
+
+def add_camera(scene, settings):
+    bpy.ops.object.camera_add(location=settings["location"])
+    cam = bpy.context.object
+    view = Vector(settings["target"]) - Vector(settings["location"])
+    # Looking at the target with +Y up, then turned about the view axis (its local Z).
+    roll = Matrix.Rotation(math.radians(settings.get("roll_deg", 0.0)), 3, "Z")
+    cam.rotation_euler = (view.to_track_quat("-Z", "Y").to_matrix() @ roll).to_euler()
+    data = cam.data
+    data.type = settings.get("type", "PERSP")
+    data.lens = settings.get("lens", 50.0)
+    data.ortho_scale = settings.get("ortho_scale", 6.0)
+    data.sensor_fit = settings.get("sensor_fit", "AUTO")
+    data.shift_x = settings.get("shift_x", 0.0)
+    data.shift_y = settings.get("shift_y", 0.0)
+    if "fstop" in settings:
+        dof = data.dof
+        dof.use_dof = True
+        dof.aperture_fstop = settings["fstop"]
+        dof.focus_distance = settings.get("focus_distance", 10.0)
+        if "focus_object" in settings:
+            dof.focus_object = bpy.data.objects[settings["focus_object"]]
+        dof.aperture_blades = settings.get("blades", 0)
+        dof.aperture_rotation = math.radians(settings.get("blade_rotation_deg", 0.0))
+        dof.aperture_ratio = settings.get("aperture_ratio", 1.0)
+    scene.camera = cam
+    return cam
+
+
+def set_up_cycles(scene, width, height, spp):
+    scene.render.engine = "CYCLES"
+    scene.render.resolution_x, scene.render.resolution_y = width, height
+    scene.render.resolution_percentage = 100
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.image_settings.color_depth = "32"
+    scene.view_settings.view_transform = "Standard"
+    c = scene.cycles
+    c.device = "CPU"
+    c.samples = spp
+    c.use_adaptive_sampling = False
+    c.use_denoising = False
+    c.pixel_filter_type = "BOX"
+    c.filter_width = 1.0
+    c.sample_clamp_direct = 0.0
+    c.sample_clamp_indirect = 0.0
+    c.blur_glossy = 0.0
+    c.max_bounces = 16
+    c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = 16
+    c.seed = 0
+
+
+def main():
+    argv = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else sys.argv[1:]
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--spp", type=int, default=8192, help="Cycles samples per pixel")
+    parser.add_argument("names", nargs="*", help=f"cameras to render (default: all of {', '.join(CAMERAS)})")
+    args = parser.parse_args(argv)
+    for name in args.names or CAMERAS:
+        width, height, settings = CAMERAS[name]
+        bpy.ops.wm.read_factory_settings(use_empty=True)
+        scene = bpy.context.scene
+        build_objects(scene)
+        add_camera(scene, settings)
+        set_up_cycles(scene, width, height, args.spp)
+        bpy.context.view_layer.update()
+        folder = os.path.join(HERE, "scenes", f"camera_{name}")
+        rt_export.export_scene(scene, os.path.join(folder, "assets"), os.path.join(folder, "scene.toml"))
+        scene.render.filepath = os.path.join(HERE, f"camera_{name}.exr")
+        bpy.ops.render.render(write_still=True)
+        print(f"camera_{name}: {width}x{height} at {args.spp} spp -> {scene.render.filepath}", flush=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -4,7 +4,7 @@ use anyhow::{Result, bail};
 use clap::{Args, Parser, Subcommand};
 use rt::bvh::{BuildQuality, PackOutcome, PackReport};
 use rt::gpu::GpuContext;
-use rt::render::{ImageFormat, RenderRequest, Renderer, human, image_format, write_image};
+use rt::render::{ImageFormat, RenderRequest, Renderer, human, write_image};
 use rt::scene::{self, RoughTransmission, Sampling, Scene};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -282,7 +282,7 @@ fn load_scene(path: Option<&Path>) -> Result<Scene> {
 }
 
 fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
-    image_format(&args.output)?;
+    rt::render::check_output(&args.output)?;
     let mut scene = load_scene(args.scene.as_deref())?;
     if let Some(s) = args.sampling {
         scene.render.sampling = s;

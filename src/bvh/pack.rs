@@ -110,6 +110,8 @@ pub fn pack(path: &Path, quality: BuildQuality, force: bool) -> Result<PackRepor
     let cache_path = files.cache_path().ok_or_else(|| AssetError::new(path, "built-in assets are not cached"))?;
     let (source_hash, params_hash) = (cache::source_hash(&files)?, cache::params_hash(quality));
     let report = |outcome| PackReport { asset: path.to_path_buf(), cache: cache_path.clone(), outcome };
+    // Even an up-to-date cache clears what a killed packer left beside it.
+    crate::files::output::remove_stale_temporaries(&cache_path);
     let reason = match force {
         true => "forced".to_owned(),
         false => match cache::read(&cache_path, source_hash, params_hash) {
@@ -208,6 +210,16 @@ fn walk(dir: &Path, found: &mut Vec<PathBuf>) -> Result<(), AssetError> {
         if path.is_dir() {
             walk(&path, found)?;
             continue;
+        }
+        // A FIFO would block its reader forever, a device never ends: neither is an asset.
+        match std::fs::metadata(&path) {
+            Ok(m) if m.is_file() => {}
+            Ok(m) => {
+                log::warn!("{}: skipped: {}, not a file", path.display(), crate::files::input::describe(m.file_type()));
+                continue;
+            }
+            // A dangling link or a file that vanished: there is nothing to pack.
+            Err(_) => continue,
         }
         let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
         match ext.as_deref() {

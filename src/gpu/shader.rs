@@ -139,7 +139,7 @@ impl ShaderFiles {
             ShaderFiles::BuiltIn => Ok(built_in.to_owned()),
             ShaderFiles::Dir(dir) => {
                 let path = dir.join(name);
-                std::fs::read_to_string(&path).map_err(|e| format!("{}: cannot read: {e}", path.display()))
+                crate::files::read_to_string(&path).map_err(|e| e.to_string())
             }
         }
     }

@@ -1,9 +1,12 @@
-//! Writing renders: linear EXR, or tone-mapped sRGB PNG. Each file is written
-//! to a temporary name and renamed into place, so a failed write loses nothing.
+//! Writing renders: linear EXR, or tone-mapped sRGB PNG. Each file is written through
+//! [`crate::files::output`]: a unique temporary renamed into place, so a failed or
+//! interrupted write loses nothing and leaves nothing behind.
 
 use super::Image;
 use super::tonemap::display_pixel;
-use anyhow::{Context, Result, bail};
+use crate::files::output;
+use anyhow::{Result, bail};
+use std::io::{BufWriter, Write};
 use std::path::Path;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -21,22 +24,69 @@ pub fn image_format(path: &Path) -> Result<ImageFormat> {
     }
 }
 
+/// Checks, before any rendering, that an image can be written at `path`: a known
+/// format, a folder that exists and can be written, and no folder in the way.
+pub fn check_output(path: &Path) -> Result<()> {
+    image_format(path)?;
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    match std::fs::metadata(dir) {
+        Ok(m) if m.is_dir() => {}
+        Ok(_) => bail!("{}: cannot write there: {} is a file, not a folder", path.display(), dir.display()),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            bail!("{}: cannot write there: the folder {} does not exist", path.display(), dir.display())
+        }
+        Err(e) => bail!("{}: cannot write there: {}: {e}", path.display(), dir.display()),
+    }
+    if path.is_dir() {
+        bail!("{}: is a folder, not an image file", path.display());
+    }
+    output::probe_writable(dir)?;
+    Ok(())
+}
+
 pub fn write_image(image: &Image, path: &Path, exposure_ev: f32) -> Result<()> {
     let format = image_format(path)?;
-    let tmp = path.with_extension("partial");
-    match format {
-        ImageFormat::Png => {
-            let bytes: Vec<u8> = image.pixels.iter().flat_map(|p| display_pixel(*p, exposure_ev)).collect();
-            let buf = image::RgbImage::from_raw(image.width, image.height, bytes).context("image size mismatch")?;
-            buf.save_with_format(&tmp, image::ImageFormat::Png)
-        }
-        ImageFormat::Exr => {
-            let floats: Vec<f32> = image.pixels.iter().flatten().copied().collect();
-            let buf = image::Rgb32FImage::from_raw(image.width, image.height, floats).context("image size mismatch")?;
-            buf.save_with_format(&tmp, image::ImageFormat::OpenExr)
-        }
+    let (width, height) = (image.width, image.height);
+    let encode = |file: &mut std::fs::File| {
+        let mut out = BufWriter::new(file);
+        let encoded = match format {
+            ImageFormat::Png => {
+                let bytes: Vec<u8> = image.pixels.iter().flat_map(|p| display_pixel(*p, exposure_ev)).collect();
+                let buf = image::RgbImage::from_raw(width, height, bytes).ok_or_else(size_mismatch)?;
+                buf.write_to(&mut out, image::ImageFormat::Png)
+            }
+            ImageFormat::Exr => {
+                let floats: Vec<f32> = image.pixels.iter().flatten().copied().collect();
+                let buf = image::Rgb32FImage::from_raw(width, height, floats).ok_or_else(size_mismatch)?;
+                buf.write_to(&mut out, image::ImageFormat::OpenExr)
+            }
+        };
+        encoded.map_err(io_error)?;
+        out.flush()
+    };
+    Ok(output::write_with(path, encode)?)
+}
+
+/// An 8-bit sRGB image (a screenshot, a plot) as a PNG, written atomically.
+pub fn write_png(image: &image::RgbImage, path: &Path) -> Result<()> {
+    let encode = |file: &mut std::fs::File| {
+        let mut out = BufWriter::new(file);
+        image.write_to(&mut out, image::ImageFormat::Png).map_err(io_error)?;
+        out.flush()
+    };
+    Ok(output::write_with(path, encode)?)
+}
+
+fn io_error(e: image::ImageError) -> std::io::Error {
+    match e {
+        image::ImageError::IoError(e) => e,
+        other => std::io::Error::other(other),
     }
-    .with_context(|| format!("could not write {}", tmp.display()))?;
-    std::fs::rename(&tmp, path).with_context(|| format!("could not move {} into place", path.display()))?;
-    Ok(())
+}
+
+fn size_mismatch() -> std::io::Error {
+    std::io::Error::other("image size mismatch")
 }

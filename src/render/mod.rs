@@ -9,7 +9,7 @@ pub mod tonemap;
 mod trace;
 
 pub use camera::set_camera;
-pub use image_out::{ImageFormat, image_format, write_image};
+pub use image_out::{ImageFormat, check_output, image_format, write_image, write_png};
 pub use progressive::{Accumulation, MAX_SAMPLES_PER_DISPATCH};
 pub use sentinel::{NonFiniteCause, Sentinel};
 pub use sun::{default_sun_radiance, sun_direction, sun_one_minus_cos};

@@ -15,7 +15,7 @@ pub use atmosphere::Atmosphere;
 pub use builtin::default_scene;
 pub use features::{ALPHA_DELTA, FeatureSet, SkyFeature, Transmission};
 pub use material::{Material, luminance};
-pub use parse::{SceneError, load, parse};
+pub use parse::{SceneError, hint as did_you_mean, load, parse};
 
 use glam::{Mat4, Vec3};
 use serde::Deserialize;

@@ -360,9 +360,5 @@ fn title(scene: &Path, refine: &Refinement, last_reload: &str, error: Option<&st
 fn save_png(pixels: &[[u8; 3]], width: u32, height: u32, path: &Path) -> Result<()> {
     let bytes: Vec<u8> = pixels.iter().flatten().copied().collect();
     let image = image::RgbImage::from_raw(width, height, bytes).context("screenshot size mismatch")?;
-    let tmp = path.with_extension("partial");
-    image
-        .save_with_format(&tmp, image::ImageFormat::Png)
-        .with_context(|| format!("could not write {}", tmp.display()))?;
-    std::fs::rename(&tmp, path).with_context(|| format!("could not move {} into place", path.display()))
+    crate::render::write_png(&image, path)
 }

@@ -64,6 +64,7 @@ struct RenderArgs {
     /// Seed of the random numbers: the same seed gives the same image.
     #[arg(long, default_value_t = 0)]
     seed: u32,
+    /// Longest path, in bounces: 0 shows emitters and the sky only [default: the scene's].
     #[arg(long)]
     max_bounces: Option<u32>,
     /// Exposure in EV for PNG output [default: the scene's].
@@ -420,6 +421,7 @@ fn pack(paths: &[PathBuf], quality: BuildQuality, force: bool) -> Result<()> {
 }
 
 fn main() -> ExitCode {
+    rt::gpu::ensure_runtime_dir();
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
     let cli = Cli::parse();
     let adapter = cli.adapter.as_deref();

@@ -52,6 +52,7 @@ pub enum PackOutcome {
 
 impl LoadedMesh {
     fn new(path: &Path, packed: PackedMesh, provenance: Provenance) -> Self {
+        warn_if_invisible(path, &packed);
         Self {
             path: path.to_path_buf(),
             bvh: packed.bvh,
@@ -60,6 +61,15 @@ impl LoadedMesh {
             triangle_count: packed.triangle_count as usize,
             provenance,
         }
+    }
+}
+
+/// The build leaves zero-area triangles out; a mesh of nothing else renders nothing,
+/// which must not pass without a word.
+fn warn_if_invisible(path: &Path, packed: &PackedMesh) {
+    if packed.bvh.triangles.is_empty() && packed.triangle_count > 0 {
+        let n = packed.triangle_count;
+        log::warn!("{}: all {n} triangles are degenerate (zero area): the mesh is invisible", path.display());
     }
 }
 
@@ -121,6 +131,7 @@ pub fn pack(path: &Path, quality: BuildQuality, force: bool) -> Result<PackRepor
     };
     let start = Instant::now();
     let packed = import_and_build(&files, quality)?;
+    warn_if_invisible(path, &packed);
     cache::write(&cache_path, &packed, source_hash, params_hash)?;
     Ok(report(PackOutcome::Packed { reason, triangles: packed.triangle_count, time: start.elapsed() }))
 }

@@ -9,6 +9,6 @@ pub mod shader;
 mod timer;
 
 pub use buffers::{STAT_STACK_OVERFLOW, SceneBuffers, read_buffer, sky_bind_group_layout};
-pub use context::GpuContext;
+pub use context::{GpuContext, ensure_runtime_dir};
 pub use pipelines::{PipelineCache, Pipelines};
 pub use timer::GpuTimer;

@@ -105,6 +105,8 @@ impl Source<'_> {
     ) -> Result<(), SceneError> {
         match values.iter().find(|v| !v.is_finite() || !ok(**v)) {
             Some(v) if !v.is_finite() => Err(self.error(base, field, format!("must be finite, got {v}"))),
+            // 1e20, not 100000000000000000000.
+            Some(v) if v.abs() >= 1e7 => Err(self.error(base, field, format!("must be {what}, got {v:e}"))),
             Some(v) => Err(self.error(base, field, format!("must be {what}, got {v}"))),
             None => Ok(()),
         }

@@ -62,6 +62,9 @@ pub fn run(adapter: Option<&str>, options: WatchOptions) -> Result<()> {
         failure: None,
     };
     app.log.write(HELP);
+    if let Some(dir) = app.options.frames_dir.clone() {
+        super::headless::remove_stale_stop_file(&dir, &mut app.log);
+    }
     event_loop.run_app(&mut app).context("the window's event loop failed")?;
     match app.failure {
         Some(e) => Err(e),
@@ -169,7 +172,8 @@ impl ApplicationHandler<Batch> for Viewer<'_> {
     }
 
     fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
-        if self.options.frames_dir.as_ref().is_some_and(|d| d.join(STOP_FILE).exists()) {
+        if let Some(stop_file) = self.options.frames_dir.as_ref().map(|d| d.join(STOP_FILE)).filter(|f| f.exists()) {
+            let _ = std::fs::remove_file(&stop_file);
             self.log.write("stop: the stop file appeared");
             event_loop.exit();
             return;

@@ -65,3 +65,28 @@ pub fn percent_decode(uri: &str) -> String {
     }
     String::from_utf8_lossy(&out).into_owned()
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::asset::fixture::TempDir;
+    use crate::asset::gltf_import;
+
+    #[test]
+    fn buffers_are_read_safely_and_checked_against_their_declared_length() {
+        let dir = TempDir::new("gltf_buffers");
+        let gltf = |uri: &str, length: usize| {
+            format!(r#"{{"asset": {{"version": "2.0"}}, "buffers": [{{"byteLength": {length}, "uri": "{uri}"}}]}}"#)
+        };
+        let error = |path: std::path::PathBuf| gltf_import::load(&path).expect_err("refused").to_string();
+        let zero = dir.write("zero.gltf", &gltf("file:///dev/zero", 36));
+        assert!(error(zero).ends_with("zero.gltf: buffer 0: /dev/zero: is a character device, not a file"));
+        dir.write("short.bin", "abc");
+        let short = dir.write("short.gltf", &gltf("short.bin", 36));
+        assert!(error(short).ends_with("buffer 0 holds 3 bytes but the file declares 36"));
+        let web = dir.write("web.gltf", &gltf("https://example.com/m.bin", 4));
+        assert!(error(web).contains("has a scheme rt cannot read"));
+        let bad = || dir.write("bad.gltf", &gltf("%FF%FE.bin", 4));
+        // The gltf crate's own loader panics on a URI that decodes to invalid UTF-8.
+        assert!(error(bad()).contains("cannot read: No such file"), "{}", error(bad()));
+    }
+}

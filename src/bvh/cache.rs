@@ -122,7 +122,9 @@ pub fn source_hash(files: &AssetFiles) -> Result<[u8; 32], AssetError> {
             Err(e) if e.is_not_found() => {
                 hasher.update(&u64::MAX.to_le_bytes());
             }
-            Err(e) => return Err(AssetError::new(&path, e.message())),
+            // Named after the asset, so that a bad sidecar (an .mtl, a buffer) is traced to it.
+            Err(e) if path == files.main => return Err(AssetError::new(&path, e.message())),
+            Err(e) => return Err(AssetError::new(&files.main, e.to_string())),
         }
     }
     Ok(*hasher.finalize().as_bytes())

@@ -45,8 +45,11 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
 
 /// Writes what `fill` writes into the temporary to `path`, atomically.
 pub fn write_with(path: &Path, fill: impl FnOnce(&mut File) -> io::Result<()>) -> Result<(), OutputError> {
+    refuse_special(path)?;
     remove_stale_temporaries(path);
-    let mut temporary = Temporary::create(path)?;
+    let mut temporary = Temporary::create(path).map_err(|e| {
+        OutputError::new(path, format!("cannot create a file in {}: {}", folder_of(path).display(), describe(&e)))
+    })?;
     let written = fill(&mut temporary.file).and_then(|()| temporary.file.sync_all());
     if let Err(e) = written {
         return Err(OutputError::new(path, format!("cannot write: {} (nothing was left behind)", describe(&e))));
@@ -57,9 +60,23 @@ pub fn write_with(path: &Path, fill: impl FnOnce(&mut File) -> io::Result<()>) -
     Ok(())
 }
 
+/// The rename would replace a FIFO, a device (as root, `/dev/full` itself) or a folder:
+/// only regular files (or nothing) are replaced.
+pub fn refuse_special(path: &Path) -> Result<(), OutputError> {
+    match std::fs::metadata(path) {
+        Ok(m) if !m.is_file() => {
+            let what = super::input::describe(m.file_type());
+            Err(OutputError::new(path, format!("is {what}, not a file: rt replaces only files")))
+        }
+        _ => Ok(()),
+    }
+}
+
 /// Checks that files can be created in `dir`, by creating (and removing) a temporary there.
 pub fn probe_writable(dir: &Path) -> Result<(), OutputError> {
-    Temporary::create(&dir.join("write-check")).map(drop)
+    Temporary::create(&dir.join("write-check"))
+        .map(drop)
+        .map_err(|e| OutputError::new(dir, format!("cannot create files in this folder: {}", describe(&e))))
 }
 
 /// `dir` as a folder to write into: created if missing; an error if it is a file or
@@ -94,12 +111,11 @@ struct Temporary {
 }
 
 impl Temporary {
-    fn create(target: &Path) -> Result<Self, OutputError> {
+    fn create(target: &Path) -> io::Result<Self> {
         super::interrupt::install();
         let dir = folder_of(target);
         let name = target.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
         let random = RandomState::new();
-        let mut last_error = None;
         for attempt in 0..16u64 {
             let mut hasher = random.build_hasher();
             hasher.write_u64(attempt);
@@ -112,15 +128,12 @@ impl Temporary {
                 Err(e) => {
                     unregister(&path);
                     if e.kind() != io::ErrorKind::AlreadyExists {
-                        let message = format!("cannot create a file in {}: {}", dir.display(), describe(&e));
-                        return Err(OutputError::new(target, message));
+                        return Err(e);
                     }
-                    last_error = Some(e);
                 }
             }
         }
-        let why = last_error.map(|e| describe(&e)).unwrap_or_default();
-        Err(OutputError::new(target, format!("cannot create a unique temporary: {why}")))
+        Err(io::Error::new(io::ErrorKind::AlreadyExists, "no unused temporary name after 16 tries"))
     }
 }
 
@@ -219,15 +232,19 @@ mod tests {
     fn the_signal_handler_removes_temporaries_in_progress() {
         let dir = temp_dir("signal");
         let target = dir.join("b.exr");
+        let registered = || lock().iter().filter(|p| p.starts_with(&dir)).cloned().collect::<Vec<_>>();
         let result = write_with(&target, |file| {
             file.write_all(b"half")?;
-            assert_eq!(lock().len(), 1, "the temporary is registered while it is written");
-            // What SIGINT's handler does before it exits.
-            remove_temporaries_in_progress();
-            Ok(())
+            let temporaries = registered();
+            assert_eq!(temporaries.len(), 1, "the temporary is registered while it is written");
+            assert_eq!(names(&dir), [temporaries[0].file_name().expect("name").to_string_lossy()]);
+            // What SIGINT's handler does to each before it exits (the handler removes every
+            // registered one; tests running in parallel have theirs).
+            std::fs::remove_file(&temporaries[0])
         });
         assert!(result.is_err(), "the temporary was gone, so the rename must fail");
         assert!(names(&dir).is_empty(), "{:?}", names(&dir));
+        assert!(registered().is_empty(), "a finished write leaves the list");
         std::fs::remove_dir_all(&dir).expect("clean up");
     }
 

@@ -40,9 +40,7 @@ pub fn check_output(path: &Path) -> Result<()> {
         }
         Err(e) => bail!("{}: cannot write there: {}: {e}", path.display(), dir.display()),
     }
-    if path.is_dir() {
-        bail!("{}: is a folder, not an image file", path.display());
-    }
+    output::refuse_special(path)?;
     output::probe_writable(dir)?;
     Ok(())
 }

@@ -5,8 +5,8 @@
 use super::Image;
 use super::tonemap::display_pixel;
 use crate::files::output;
-use anyhow::{Result, bail};
-use std::io::{BufWriter, Write};
+use anyhow::{Context, Result, bail};
+use std::io::Cursor;
 use std::path::Path;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -48,43 +48,28 @@ pub fn check_output(path: &Path) -> Result<()> {
 pub fn write_image(image: &Image, path: &Path, exposure_ev: f32) -> Result<()> {
     let format = image_format(path)?;
     let (width, height) = (image.width, image.height);
-    let encode = |file: &mut std::fs::File| {
-        let mut out = BufWriter::new(file);
-        let encoded = match format {
-            ImageFormat::Png => {
-                let bytes: Vec<u8> = image.pixels.iter().flat_map(|p| display_pixel(*p, exposure_ev)).collect();
-                let buf = image::RgbImage::from_raw(width, height, bytes).ok_or_else(size_mismatch)?;
-                buf.write_to(&mut out, image::ImageFormat::Png)
-            }
-            ImageFormat::Exr => {
-                let floats: Vec<f32> = image.pixels.iter().flatten().copied().collect();
-                let buf = image::Rgb32FImage::from_raw(width, height, floats).ok_or_else(size_mismatch)?;
-                buf.write_to(&mut out, image::ImageFormat::OpenExr)
-            }
-        };
-        encoded.map_err(io_error)?;
-        out.flush()
-    };
-    Ok(output::write_with(path, encode)?)
+    // Encoded in memory first: encoders reword the I/O errors they meet, and a full disk
+    // must be reported as one (the bytes are no larger than the pixels already held).
+    let mut bytes = Cursor::new(Vec::new());
+    match format {
+        ImageFormat::Png => {
+            let rgb: Vec<u8> = image.pixels.iter().flat_map(|p| display_pixel(*p, exposure_ev)).collect();
+            let buf = image::RgbImage::from_raw(width, height, rgb).context("image size mismatch")?;
+            buf.write_to(&mut bytes, image::ImageFormat::Png)
+        }
+        ImageFormat::Exr => {
+            let floats: Vec<f32> = image.pixels.iter().flatten().copied().collect();
+            let buf = image::Rgb32FImage::from_raw(width, height, floats).context("image size mismatch")?;
+            buf.write_to(&mut bytes, image::ImageFormat::OpenExr)
+        }
+    }
+    .with_context(|| format!("{}: cannot encode the image", path.display()))?;
+    Ok(output::write_atomically(path, bytes.get_ref())?)
 }
 
 /// An 8-bit sRGB image (a screenshot, a plot) as a PNG, written atomically.
 pub fn write_png(image: &image::RgbImage, path: &Path) -> Result<()> {
-    let encode = |file: &mut std::fs::File| {
-        let mut out = BufWriter::new(file);
-        image.write_to(&mut out, image::ImageFormat::Png).map_err(io_error)?;
-        out.flush()
-    };
-    Ok(output::write_with(path, encode)?)
-}
-
-fn io_error(e: image::ImageError) -> std::io::Error {
-    match e {
-        image::ImageError::IoError(e) => e,
-        other => std::io::Error::other(other),
-    }
-}
-
-fn size_mismatch() -> std::io::Error {
-    std::io::Error::other("image size mismatch")
+    let mut bytes = Cursor::new(Vec::new());
+    image.write_to(&mut bytes, image::ImageFormat::Png).with_context(|| format!("{}: cannot encode", path.display()))?;
+    Ok(output::write_atomically(path, bytes.get_ref())?)
 }

@@ -49,9 +49,6 @@ impl AssetError {
 /// `.glb` file, or a built-in one (a path under [`builtin::BUILTIN_PREFIX`]).
 pub fn load_mesh(path: &Path) -> Result<MeshData, AssetError> {
     let files = AssetFiles::resolve(path)?;
-    if !files.main.starts_with(builtin::BUILTIN_PREFIX) && !files.main.exists() {
-        return Err(source::not_found(&files.main));
-    }
     let mesh = match files.kind {
         AssetKind::Obj => obj_import::load(&files.main)?,
         AssetKind::Gltf => gltf_import::load(&files.main)?,

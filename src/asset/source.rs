@@ -25,8 +25,9 @@ pub struct AssetFiles {
 
 impl AssetFiles {
     /// `NAME/` (a folder holding `NAME.rtmesh` and `NAME.gltf`), `X.rtmesh` (with `X.gltf`),
-    /// `X.obj`, `X.gltf` or `X.glb`. Files are not opened here: a missing one is reported
-    /// by whoever reads it.
+    /// `X.obj`, `X.gltf` or `X.glb`. Files are not opened here, but a main file that does
+    /// not exist is reported here, with a "did you mean" among its neighbours; a missing
+    /// sidecar (`.gltf`, `.mtl`, `.bin`) is reported by whoever reads it.
     pub fn resolve(path: &Path) -> Result<Self, AssetError> {
         if path.is_dir() {
             let Some(name) = path.file_name() else {
@@ -44,13 +45,15 @@ impl AssetFiles {
             }
             return Ok(Self::rtmesh(main));
         }
+        if !is_builtin(path) && !path.exists() {
+            return Err(not_found(path));
+        }
         let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
         let kind = match ext.as_deref() {
             Some("rtmesh") => return Ok(Self::rtmesh(path.to_path_buf())),
             Some("obj") => AssetKind::Obj,
             // Built-in assets are OBJ only; glTF reads from disk.
             Some("gltf" | "glb") if !is_builtin(path) => AssetKind::Gltf,
-            _ if !is_builtin(path) && !path.exists() => return Err(not_found(path)),
             _ => {
                 return Err(AssetError::new(
                     path,
@@ -101,7 +104,7 @@ impl AssetFiles {
 }
 
 /// A path that does not exist, with a "did you mean" among the names beside it.
-pub fn not_found(path: &Path) -> AssetError {
+fn not_found(path: &Path) -> AssetError {
     AssetError::new(path, format!("no such file or folder{}", sibling_hint(path)))
 }
 
@@ -150,8 +153,11 @@ mod tests {
         assert_eq!(files.cache_path(), Some(folder.join("dragon.rtbvh")));
         assert_eq!(AssetFiles::resolve(&main).expect("file"), files);
 
-        let obj = AssetFiles::resolve(Path::new("a/foo.obj")).expect("obj");
-        assert_eq!(obj.cache_path(), Some(PathBuf::from("a/foo.rtbvh")));
+        let foo = dir.write("a/foo.obj", "");
+        let obj = AssetFiles::resolve(&foo).expect("obj");
+        assert_eq!(obj.cache_path(), Some(foo.with_extension("rtbvh")));
+        let message = AssetFiles::resolve(&foo.with_file_name("fo.obj")).expect_err("missing").to_string();
+        assert!(message.ends_with("fo.obj: no such file or folder; did you mean `foo.obj`?"), "{message}");
         let builtin = AssetFiles::resolve(Path::new("<built-in>/assets/bunny/bunny.obj")).expect("built-in");
         assert_eq!(builtin.cache_path(), None);
 

@@ -37,14 +37,21 @@ fn gpu_commands_start_quietly_without_a_runtime_dir() {
 fn every_render_option_has_help_text() {
     let out = Command::new(env!("CARGO_BIN_EXE_rt")).args(["render", "-h"]).output().expect("rt render -h");
     let help = String::from_utf8_lossy(&out.stdout);
-    let options: Vec<&str> = help.lines().map(str::trim).filter(|l| l.starts_with("--") || l.starts_with('-')).collect();
-    assert!(options.len() > 10, "{help}");
-    for line in options {
-        // The short help puts the text on the option's line, after its value name.
-        let words = line.split_whitespace().count();
-        assert!(words >= 3, "no help text: {line:?}");
+    let lines: Vec<&str> = help.lines().collect();
+    let mut options = 0;
+    for (i, line) in lines.iter().enumerate() {
+        let option = line.trim_start();
+        if !option.starts_with('-') {
+            continue;
+        }
+        options += 1;
+        // The text follows the value name on the same line, or on the next, indented.
+        let same_line = option.split_whitespace().count() >= 3;
+        let next = lines.get(i + 1).map_or("", |l| l.trim_start());
+        assert!(same_line || !(next.is_empty() || next.starts_with('-')), "no help text: {option:?}");
     }
-    assert!(help.contains("--max-bounces <MAX_BOUNCES>  Longest path, in bounces"), "{help}");
+    assert!(options > 10, "{help}");
+    assert!(help.contains("--max-bounces <MAX_BOUNCES>\n          Longest path, in bounces"), "{help}");
 }
 
 #[test]

@@ -104,7 +104,12 @@ fn a_full_disk_is_named_and_leaves_nothing_behind() {
         return;
     }
     assert!(!outcome.stderr.contains("panicked"), "{}", outcome.stderr);
-    assert_eq!(outcome.stderr.matches("no space left on device (nothing was left behind)").count(), 2, "{}", outcome.stderr);
+    assert_eq!(
+        outcome.stderr.matches("no space left on device (nothing was left behind)").count(),
+        2,
+        "{}",
+        outcome.stderr
+    );
     assert!(outcome.stdout.contains("status=1\nstatus=1\n"), "{}", outcome.stdout);
     // The PNG that could not be replaced is still the older one, and no temporary is left.
     assert!(outcome.stdout.contains("files=filler kept.png\nan older render"), "{}", outcome.stdout);

@@ -73,7 +73,8 @@ fn a_fifo_or_device_as_a_material_library_or_buffer_is_refused() {
         .says("FIFO .mtl", &["m.mtl: is a FIFO, not a file"])
         .peak_below("FIFO .mtl", MEMORY_MIB);
 
-    let gltf = |uri: &str| format!(r#"{{"asset": {{"version": "2.0"}}, "buffers": [{{"byteLength": 36, "uri": "{uri}"}}]}}"#);
+    let gltf =
+        |uri: &str| format!(r#"{{"asset": {{"version": "2.0"}}, "buffers": [{{"byteLength": 36, "uri": "{uri}"}}]}}"#);
     write(&dir, "fifo.gltf", &gltf("fifo.bin"));
     mkfifo(&dir.join("fifo.bin"));
     rt(&dir, &["pack", "fifo.gltf"], DEADLINE)

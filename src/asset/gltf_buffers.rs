@@ -21,18 +21,26 @@ pub fn buffer_file(dir: &Path, uri: &str) -> Result<Option<PathBuf>, String> {
 }
 
 /// Every buffer of `document`: the GLB's binary chunk, an embedded `data:` URI, or a file.
-pub fn load(document: &gltf::Document, dir: &Path, mut blob: Option<Vec<u8>>) -> Result<Vec<gltf::buffer::Data>, String> {
+pub fn load(
+    document: &gltf::Document,
+    dir: &Path,
+    mut blob: Option<Vec<u8>>,
+) -> Result<Vec<gltf::buffer::Data>, String> {
     let mut buffers = Vec::new();
     for buffer in document.buffers() {
         let i = buffer.index();
         let mut data = match buffer.source() {
-            gltf::buffer::Source::Bin => blob.take().ok_or(format!("buffer {i} refers to a missing GLB binary chunk"))?,
+            gltf::buffer::Source::Bin => {
+                blob.take().ok_or(format!("buffer {i} refers to a missing GLB binary chunk"))?
+            }
             gltf::buffer::Source::Uri(uri) => match buffer_file(dir, uri).map_err(|e| format!("buffer {i}: {e}"))? {
                 Some(file) => crate::files::read(&file).map_err(|e| format!("buffer {i}: {e}"))?,
                 // Decoded in memory: the text is already read, so its size bounds the data.
-                None => gltf::buffer::Data::from_source(buffer.source(), None)
-                    .map_err(|e| format!("buffer {i}: bad data URI: {e}"))?
-                    .0,
+                None => {
+                    gltf::buffer::Data::from_source(buffer.source(), None)
+                        .map_err(|e| format!("buffer {i}: bad data URI: {e}"))?
+                        .0
+                }
             },
         };
         if data.len() < buffer.length() {

@@ -82,8 +82,7 @@ impl AssetFiles {
         match &self.kind {
             AssetKind::RtMesh { materials } => files.push(materials.clone()),
             AssetKind::Obj => {
-                let bytes =
-                    builtin::read(&self.main).map_err(|e| AssetError::new(&self.main, e.message()))?;
+                let bytes = builtin::read(&self.main).map_err(|e| AssetError::new(&self.main, e.message()))?;
                 files.extend(material_libraries(&bytes).map(|name| dir.join(name)));
             }
             AssetKind::Gltf => {

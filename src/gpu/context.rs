@@ -137,7 +137,8 @@ impl GpuContext {
 /// Must be called at the very start of `main`, before any thread is spawned.
 pub fn ensure_runtime_dir() {
     use std::os::unix::fs::{DirBuilderExt, MetadataExt, PermissionsExt};
-    let valid = std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| Path::new(&d).is_absolute() && Path::new(&d).is_dir());
+    let valid =
+        std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| Path::new(&d).is_absolute() && Path::new(&d).is_dir());
     let Ok(me) = std::fs::metadata("/proc/self").map(|m| m.uid()) else { return };
     if valid {
         return;

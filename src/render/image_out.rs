@@ -70,6 +70,8 @@ pub fn write_image(image: &Image, path: &Path, exposure_ev: f32) -> Result<()> {
 /// An 8-bit sRGB image (a screenshot, a plot) as a PNG, written atomically.
 pub fn write_png(image: &image::RgbImage, path: &Path) -> Result<()> {
     let mut bytes = Cursor::new(Vec::new());
-    image.write_to(&mut bytes, image::ImageFormat::Png).with_context(|| format!("{}: cannot encode", path.display()))?;
+    image
+        .write_to(&mut bytes, image::ImageFormat::Png)
+        .with_context(|| format!("{}: cannot encode", path.display()))?;
     Ok(output::write_atomically(path, bytes.get_ref())?)
 }

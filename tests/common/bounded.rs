@@ -51,13 +51,10 @@ pub fn run(command: Command, deadline: Duration) -> Outcome {
 }
 
 /// [`run`], sending `signal` to the process `after` it started (if it still runs).
+#[allow(clippy::zombie_processes, reason = "reaped by wait4 below, which also reports its peak memory")]
 pub fn run_signalled(mut command: Command, deadline: Duration, signal: Option<(Duration, i32)>) -> Outcome {
-    let mut child = command
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("start rt");
+    let mut child =
+        command.stdin(Stdio::null()).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().expect("start rt");
     let pipe = |mut r: Box<dyn Read + Send>| {
         std::thread::spawn(move || {
             let mut text = String::new();

@@ -65,6 +65,13 @@ fn a_mesh_of_degenerate_triangles_is_named_in_a_warning() {
     }
     let outcome = rt(&dir, &["pack", "flat.obj", "--force"], DEADLINE);
     outcome.expect("rt pack", 0).says("rt pack", &[warning]);
+    std::fs::write(dir.join("one.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 1 3\n").expect("write");
+    rt(&dir, &["pack", "one.obj"], DEADLINE)
+        .expect("one triangle", 0)
+        .says("one triangle", &["one.obj: its only triangle is degenerate (zero area): the mesh is invisible"]);
+    for name in ["one.obj", "one.rtbvh"] {
+        std::fs::remove_file(dir.join(name)).expect("remove");
+    }
     assert_eq!(names(&dir), ["flat.obj", "flat.rtbvh", "out.png", "scene.toml"]);
     std::fs::remove_dir_all(&dir).expect("clean up");
 }

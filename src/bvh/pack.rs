@@ -68,8 +68,11 @@ impl LoadedMesh {
 /// which must not pass without a word.
 fn warn_if_invisible(path: &Path, packed: &PackedMesh) {
     if packed.bvh.triangles.is_empty() && packed.triangle_count > 0 {
-        let n = packed.triangle_count;
-        log::warn!("{}: all {n} triangles are degenerate (zero area): the mesh is invisible", path.display());
+        let which = match packed.triangle_count {
+            1 => "its only triangle is".to_owned(),
+            n => format!("all {n} triangles are"),
+        };
+        log::warn!("{}: {which} degenerate (zero area): the mesh is invisible", path.display());
     }
 }
 

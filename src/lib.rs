@@ -3,11 +3,13 @@
 //! The pipeline flows down through these modules: `scene` reads the scene file,
 //! `asset` imports meshes, `bvh` builds acceleration structures, `gpu` owns the
 //! device and the specialised pipelines, `sky` builds the atmosphere's tables,
-//! `render` drives progressive rendering and writes images, `bench` measures.
+//! `render` drives progressive rendering and writes images, `bench` measures;
+//! `files` is how every one of them reads inputs and writes outputs.
 
 pub mod asset;
 pub mod bench;
 pub mod bvh;
+pub mod files;
 pub mod gpu;
 pub mod info;
 pub mod layout;

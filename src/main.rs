@@ -6,7 +6,7 @@ use anyhow::{Result, bail};
 use clap::{Args, Parser, Subcommand};
 use rt::bvh::{BuildQuality, PackOutcome, PackReport};
 use rt::gpu::GpuContext;
-use rt::render::{DroppedSamples, ImageFormat, RenderFlags, RenderRequest, Session, human, image_format, write_image};
+use rt::render::{DroppedSamples, ImageFormat, RenderFlags, RenderRequest, Session, check_output, human, write_image};
 use rt::scene::{self, MAX_IMAGE_SIDE, RoughTransmission, Sampling, Scene};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -69,7 +69,7 @@ struct RenderArgs {
     /// Seed of the random numbers: the same seed gives the same image.
     #[arg(long, default_value_t = 0)]
     seed: u32,
-    /// Bounces of a path at most [default: the scene's].
+    /// Longest path, in bounces: 0 shows emitters and the sky only [default: the scene's].
     #[arg(long)]
     max_bounces: Option<u32>,
     /// Exposure in EV for PNG output [default: the scene's].
@@ -309,7 +309,7 @@ fn load_scene(path: Option<&Path>) -> Result<Scene> {
 struct StrictFinding(DroppedSamples);
 
 fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
-    image_format(&args.output)?;
+    check_output(&args.output)?;
     let mut scene = load_scene(args.scene.as_deref())?;
     let request = RenderRequest { progress: true, ..args.flags().apply(&mut scene)? };
     let exposure = scene.render.exposure;
@@ -410,6 +410,7 @@ fn pack(paths: &[PathBuf], quality: BuildQuality, force: bool) -> Result<()> {
 }
 
 fn main() -> ExitCode {
+    rt::gpu::ensure_runtime_dir();
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
     let cli = Cli::parse();
     let adapter = cli.adapter.as_deref();

@@ -1,6 +1,7 @@
 //! Meshes compiled into the binary, so the built-in default scene renders with no
 //! files beside the executable.
 
+use crate::files::input::{InputError, InputProblem};
 use crate::scene::BUILTIN_PREFIX;
 use std::borrow::Cow;
 use std::path::{Component, Path, PathBuf};
@@ -31,14 +32,16 @@ pub fn lookup(path: &Path) -> Option<&'static [u8]> {
     FILES.iter().find(|(name, _)| Path::new(name) == wanted).map(|&(_, bytes)| bytes)
 }
 
-/// Reads a file from disk, or from the binary for a built-in path.
-pub fn read(path: &Path) -> std::io::Result<Cow<'static, [u8]>> {
+/// Reads a file from disk (a regular file only, see [`crate::files::input`]), or from
+/// the binary for a built-in path.
+pub fn read(path: &Path) -> Result<Cow<'static, [u8]>, InputError> {
     if path.starts_with(BUILTIN_PREFIX) {
-        return lookup(path)
-            .map(Cow::Borrowed)
-            .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::NotFound, "no such built-in file"));
+        return lookup(path).map(Cow::Borrowed).ok_or_else(|| InputError {
+            path: path.to_path_buf(),
+            problem: InputProblem::Io(std::io::Error::new(std::io::ErrorKind::NotFound, "no such built-in file")),
+        });
     }
-    std::fs::read(path).map(Cow::Owned)
+    crate::files::read(path).map(Cow::Owned)
 }
 
 #[cfg(test)]

@@ -35,7 +35,7 @@ use std::path::Path;
 /// with node transforms applied. A file with no meshes yields its materials only.
 pub fn load(path: &Path) -> Result<MeshData, AssetError> {
     let err = |message: String| AssetError::new(path, message);
-    let bytes = std::fs::read(path).map_err(|e| err(format!("cannot read: {e}")))?;
+    let bytes = crate::files::read(path).map_err(|e| err(e.message()))?;
     let unchecked =
         gltf::Gltf::from_slice_without_validation(&bytes).map_err(|e| err(format!("cannot read glTF: {e}")))?;
     let json = unchecked.document.into_json();
@@ -44,8 +44,7 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
     let blob = unchecked.blob;
     // Only buffers: materials use factors, not textures, so images are never decoded
     // (a missing or exotic texture must not stop a mesh from loading).
-    let buffers =
-        gltf::import_buffers(&document, path.parent(), blob).map_err(|e| err(format!("cannot load buffers: {e}")))?;
+    let buffers = super::gltf_buffers::load(&document, path.parent().unwrap_or(Path::new("")), blob).map_err(err)?;
 
     let mut mesh = MeshData::default();
     for (i, m) in document.materials().enumerate() {

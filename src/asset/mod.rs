@@ -3,6 +3,7 @@
 //! binary for the built-in default scene.
 
 pub mod builtin;
+mod gltf_buffers;
 pub mod gltf_import;
 pub mod obj_import;
 pub mod rtmesh;
@@ -75,19 +76,10 @@ fn load_rtmesh(path: &Path, materials_path: &Path) -> Result<MeshData, AssetErro
     })
 }
 
-/// Writes `bytes` to a temporary name beside `path` and renames it into place, so that
-/// a reader (a watcher, a parallel render) never sees half a file.
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), AssetError> {
-    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-    // Unique per process and thread: two packers of the same asset never share a temp file.
-    let thread = format!("{:?}", std::thread::current().id()).replace(|c: char| !c.is_ascii_digit(), "");
-    let temp = path.with_file_name(format!(".{name}.{}-{thread}.tmp", std::process::id()));
-    let result = std::fs::write(&temp, bytes).and_then(|()| std::fs::rename(&temp, path));
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&temp);
-        return Err(AssetError::new(path, format!("cannot write: {e}")));
+impl From<crate::files::OutputError> for AssetError {
+    fn from(e: crate::files::OutputError) -> Self {
+        Self { path: e.path, message: e.message }
     }
-    Ok(())
 }
 
 impl MeshData {
@@ -271,6 +263,6 @@ mod tests {
     #[test]
     fn missing_file_is_an_error() {
         let message = load_mesh(Path::new("/nonexistent/rt/a.obj")).expect_err("no file").to_string();
-        assert!(message.starts_with("/nonexistent/rt/a.obj: cannot read"), "{message}");
+        assert_eq!(message, "/nonexistent/rt/a.obj: no such file or folder");
     }
 }

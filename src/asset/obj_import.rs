@@ -17,7 +17,7 @@ use std::path::Path;
 
 /// Loads an OBJ file and the material libraries (`mtllib`) it names.
 pub fn load(path: &Path) -> Result<MeshData, AssetError> {
-    let bytes = builtin::read(path).map_err(|e| AssetError::new(path, format!("cannot read: {e}")))?;
+    let bytes = builtin::read(path).map_err(|e| AssetError::new(path, e.message()))?;
     let dir = path.parent().unwrap_or(Path::new(""));
     // tobj's loader callback can only return its own error codes, so the
     // precise message waits here.
@@ -26,12 +26,13 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
         let mtl_path = dir.join(mtl);
         let text = match builtin::read(&mtl_path) {
             Ok(bytes) => String::from_utf8_lossy(&bytes).into_owned(),
+            Err(e) if e.is_not_found() => {
+                log::warn!("{}: material library {e}; using a default material", path.display());
+                return Err(tobj::LoadError::OpenFileFailed);
+            }
+            // A FIFO or device named as a library is a mistake to report, not to skip.
             Err(e) => {
-                log::warn!(
-                    "{}: cannot read material library {}: {e}; using a default material",
-                    path.display(),
-                    mtl_path.display()
-                );
+                mtl_error.replace(Some(AssetError::new(&mtl_path, e.message())));
                 return Err(tobj::LoadError::OpenFileFailed);
             }
         };

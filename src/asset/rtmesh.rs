@@ -13,7 +13,7 @@
 //! Little-endian, no padding. Sections are copied with bytemuck, which reads them as
 //! the host's byte order: rt runs on little-endian machines only (as wgpu's GPUs do).
 
-use super::{AssetError, MeshData, write_atomically};
+use super::{AssetError, MeshData};
 use std::path::Path;
 
 pub const MAGIC: [u8; 8] = *b"RTMESH\0\0";
@@ -88,7 +88,7 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<RtMesh, AssetError> {
 
 /// Reads a `.rtmesh` file's geometry; see [`parse`].
 pub fn read(path: &Path) -> Result<RtMesh, AssetError> {
-    let bytes = std::fs::read(path).map_err(|e| AssetError::new(path, format!("cannot read: {e}")))?;
+    let bytes = crate::files::read(path).map_err(|e| AssetError::new(path, e.message()))?;
     parse(path, &bytes)
 }
 
@@ -118,7 +118,7 @@ pub fn write(path: &Path, mesh: &MeshData) -> Result<(), AssetError> {
     if u32::try_from(mesh.positions.len()).is_err() || u32::try_from(mesh.indices.len()).is_err() {
         return Err(AssetError::new(path, "more than 2^32 vertices or triangles do not fit an .rtmesh"));
     }
-    write_atomically(path, &encode(mesh))
+    Ok(crate::files::write_atomically(path, &encode(mesh))?)
 }
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
 //! Which files an asset path stands for: the file to import, the files it reads
 //! besides (materials, buffers), and where its BVH cache lives.
 
-use super::{AssetError, builtin};
+use super::{AssetError, builtin, gltf_buffers};
 use std::path::{Path, PathBuf};
 
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -25,8 +25,9 @@ pub struct AssetFiles {
 
 impl AssetFiles {
     /// `NAME/` (a folder holding `NAME.rtmesh` and `NAME.gltf`), `X.rtmesh` (with `X.gltf`),
-    /// `X.obj`, `X.gltf` or `X.glb`. Files are not opened here: a missing one is reported
-    /// by whoever reads it.
+    /// `X.obj`, `X.gltf` or `X.glb`. Files are not opened here, but a main file that does
+    /// not exist is reported here, with a "did you mean" among its neighbours; a missing
+    /// sidecar (`.gltf`, `.mtl`, `.bin`) is reported by whoever reads it.
     pub fn resolve(path: &Path) -> Result<Self, AssetError> {
         if path.is_dir() {
             let Some(name) = path.file_name() else {
@@ -43,6 +44,9 @@ impl AssetFiles {
                 ));
             }
             return Ok(Self::rtmesh(main));
+        }
+        if !is_builtin(path) && !path.exists() {
+            return Err(not_found(path));
         }
         let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
         let kind = match ext.as_deref() {
@@ -78,24 +82,45 @@ impl AssetFiles {
         match &self.kind {
             AssetKind::RtMesh { materials } => files.push(materials.clone()),
             AssetKind::Obj => {
-                let bytes =
-                    builtin::read(&self.main).map_err(|e| AssetError::new(&self.main, format!("cannot read: {e}")))?;
+                let bytes = builtin::read(&self.main).map_err(|e| AssetError::new(&self.main, e.message()))?;
                 files.extend(material_libraries(&bytes).map(|name| dir.join(name)));
             }
             AssetKind::Gltf => {
-                let gltf = gltf::Gltf::open(&self.main)
+                let bytes = crate::files::read(&self.main).map_err(|e| AssetError::new(&self.main, e.message()))?;
+                let gltf = gltf::Gltf::from_slice_without_validation(&bytes)
                     .map_err(|e| AssetError::new(&self.main, format!("cannot read glTF: {e}")))?;
                 for buffer in gltf.document.buffers() {
                     if let gltf::buffer::Source::Uri(uri) = buffer.source()
-                        && !uri.starts_with("data:")
+                        && let Ok(Some(file)) = gltf_buffers::buffer_file(dir, uri)
                     {
-                        files.push(dir.join(percent_decode(uri)));
+                        files.push(file);
                     }
                 }
             }
         }
         Ok(files)
     }
+}
+
+/// A path that does not exist, with a "did you mean" among the names beside it.
+fn not_found(path: &Path) -> AssetError {
+    AssetError::new(path, format!("no such file or folder{}", sibling_hint(path)))
+}
+
+/// "; did you mean `dragon`?" among the names beside a path that does not exist.
+fn sibling_hint(path: &Path) -> String {
+    let (Some(name), Some(dir)) = (path.file_name(), path.parent()) else { return String::new() };
+    let dir = if dir.as_os_str().is_empty() { Path::new(".") } else { dir };
+    let Ok(entries) = std::fs::read_dir(dir) else { return String::new() };
+    let mut siblings: Vec<String> = entries
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| !n.starts_with('.'))
+        .collect();
+    siblings.sort();
+    let hint = crate::scene::did_you_mean(&name.to_string_lossy(), siblings.iter().map(String::as_str));
+    // A list of every file in the folder helps nobody; only a near name does.
+    if hint.contains("did you mean") { hint } else { String::new() }
 }
 
 fn is_builtin(path: &Path) -> bool {
@@ -109,27 +134,6 @@ fn material_libraries(obj: &[u8]) -> impl Iterator<Item = String> + '_ {
         let rest = line.trim_start().strip_prefix("mtllib")?;
         (rest.starts_with(char::is_whitespace) && !rest.trim().is_empty()).then(|| rest.trim().to_owned())
     })
-}
-
-/// glTF URIs are percent-encoded (RFC 3986); a file name with a space arrives as `%20`.
-fn percent_decode(uri: &str) -> String {
-    let bytes = uri.as_bytes();
-    let mut out = Vec::with_capacity(bytes.len());
-    let mut i = 0;
-    while i < bytes.len() {
-        let hex = |b: u8| (b as char).to_digit(16);
-        match (bytes[i], bytes.get(i + 1).copied().and_then(hex), bytes.get(i + 2).copied().and_then(hex)) {
-            (b'%', Some(hi), Some(lo)) => {
-                out.push((hi * 16 + lo) as u8);
-                i += 3;
-            }
-            (b, _, _) => {
-                out.push(b);
-                i += 1;
-            }
-        }
-    }
-    String::from_utf8_lossy(&out).into_owned()
 }
 
 #[cfg(test)]
@@ -148,8 +152,11 @@ mod tests {
         assert_eq!(files.cache_path(), Some(folder.join("dragon.rtbvh")));
         assert_eq!(AssetFiles::resolve(&main).expect("file"), files);
 
-        let obj = AssetFiles::resolve(Path::new("a/foo.obj")).expect("obj");
-        assert_eq!(obj.cache_path(), Some(PathBuf::from("a/foo.rtbvh")));
+        let foo = dir.write("a/foo.obj", "");
+        let obj = AssetFiles::resolve(&foo).expect("obj");
+        assert_eq!(obj.cache_path(), Some(foo.with_extension("rtbvh")));
+        let message = AssetFiles::resolve(&foo.with_file_name("fo.obj")).expect_err("missing").to_string();
+        assert!(message.ends_with("fo.obj: no such file or folder; did you mean `foo.obj`?"), "{message}");
         let builtin = AssetFiles::resolve(Path::new("<built-in>/assets/bunny/bunny.obj")).expect("built-in");
         assert_eq!(builtin.cache_path(), None);
 

@@ -6,7 +6,7 @@ use super::fireflies::FireflyOptions;
 use super::headline::HeadlineOptions;
 use crate::gpu::GpuContext;
 use crate::scene::Scene;
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use indicatif::ProgressBar;
 use std::path::{Path, PathBuf};
 
@@ -52,7 +52,7 @@ pub fn fireflies(
     bar.finish_and_clear();
     let md = report.markdown();
     if let Some(out) = out {
-        std::fs::write(out, &md).with_context(|| format!("could not write {}", out.display()))?;
+        crate::files::write_atomically(out, md.as_bytes())?;
     }
     print!("{md}");
     Ok(())

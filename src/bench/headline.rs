@@ -75,7 +75,7 @@ fn write(path: &Path, text: &str) -> Result<()> {
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }
-    std::fs::write(path, text).with_context(|| format!("could not write {}", path.display()))
+    Ok(crate::files::write_atomically(path, text.as_bytes())?)
 }
 
 fn scene_name(origin: &str) -> String {
@@ -154,7 +154,7 @@ fn approx(seconds: f64, extrapolated: bool) -> String {
 
 /// Replaces what lies between the headline markers of `readme` with `tables`.
 pub fn splice_readme(readme: &Path, tables: &str) -> Result<()> {
-    let text = std::fs::read_to_string(readme).with_context(|| format!("cannot read {}", readme.display()))?;
+    let text = crate::files::read_to_string(readme)?;
     let (Some(begin), Some(end)) = (text.find(README_BEGIN), text.find(README_END)) else {
         bail!("{}: no {README_BEGIN} … {README_END} section to replace", readme.display());
     };
@@ -162,9 +162,7 @@ pub fn splice_readme(readme: &Path, tables: &str) -> Result<()> {
         bail!("{}: {README_END} comes before {README_BEGIN}", readme.display());
     }
     let spliced = format!("{}{README_BEGIN}\n{tables}{}", &text[..begin], &text[end..]);
-    let tmp = readme.with_extension("partial");
-    std::fs::write(&tmp, spliced).with_context(|| format!("could not write {}", tmp.display()))?;
-    std::fs::rename(&tmp, readme).with_context(|| format!("could not move {} into place", readme.display()))
+    Ok(crate::files::write_atomically(readme, spliced.as_bytes())?)
 }
 
 #[cfg(test)]

@@ -103,11 +103,7 @@ pub fn error_vs_time(path: &Path, title: &str, curves: &[Curve], target: f64, bu
     for (text, x, y, color) in labels {
         draw_text(&mut image, &text, x, y, color);
     }
-    let tmp = path.with_extension("partial");
-    image
-        .save_with_format(&tmp, image::ImageFormat::Png)
-        .with_context(|| format!("could not write {}", tmp.display()))?;
-    std::fs::rename(&tmp, path).with_context(|| format!("could not move {} into place", path.display()))
+    crate::render::write_png(&image, path)
 }
 
 /// Whole decades around [lo, hi].

@@ -69,7 +69,7 @@ fn scene_name(sweep: &Sweep) -> String {
 }
 
 fn write_file(path: &Path, text: &str) -> Result<()> {
-    std::fs::write(path, text).with_context(|| format!("could not write {}", path.display()))
+    Ok(crate::files::write_atomically(path, text.as_bytes())?)
 }
 
 fn markdown(sweep: &Sweep, views: &[KnobView], baseline: &SettingView, targets: Targets) -> String {

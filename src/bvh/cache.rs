@@ -26,7 +26,7 @@ use super::cache_check::check_contents;
 use super::cached_material::CachedMaterial;
 use super::mesh_bvh::{BuildQuality, MeshBvh};
 use super::node::{BvhStats, NODE_LAYOUT};
-use crate::asset::{AssetError, AssetFiles, write_atomically};
+use crate::asset::{AssetError, AssetFiles};
 use crate::layout::{GpuBvhNode, GpuTriangle, GpuTriangleShading};
 use crate::scene::Material;
 use bytemuck::{Pod, Zeroable};
@@ -114,15 +114,17 @@ impl std::fmt::Display for CacheProblem {
 pub fn source_hash(files: &AssetFiles) -> Result<[u8; 32], AssetError> {
     let mut hasher = blake3::Hasher::new();
     for path in files.source_files()? {
-        match std::fs::read(&path) {
+        match crate::files::read(&path) {
             Ok(bytes) => {
                 hasher.update(&(bytes.len() as u64).to_le_bytes());
                 hasher.update(&bytes);
             }
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            Err(e) if e.is_not_found() => {
                 hasher.update(&u64::MAX.to_le_bytes());
             }
-            Err(e) => return Err(AssetError::new(&path, format!("cannot read: {e}"))),
+            // Named after the asset, so that a bad sidecar (an .mtl, a buffer) is traced to it.
+            Err(e) if path == files.main => return Err(AssetError::new(&path, e.message())),
+            Err(e) => return Err(AssetError::new(&files.main, e.to_string())),
         }
     }
     Ok(*hasher.finalize().as_bytes())
@@ -211,19 +213,19 @@ pub fn encode(mesh: &PackedMesh, source_hash: [u8; 32], params_hash: [u8; 32]) -
 
 /// Writes the cache atomically.
 pub fn write(path: &Path, mesh: &PackedMesh, source_hash: [u8; 32], params_hash: [u8; 32]) -> Result<(), AssetError> {
-    write_atomically(path, &encode(mesh, source_hash, params_hash))
+    Ok(crate::files::write_atomically(path, &encode(mesh, source_hash, params_hash))?)
 }
 
 /// Reads a cache that must match `source_hash` and `params_hash`, and checks every
 /// size, offset, link and index before anything of it is used.
 pub fn read(path: &Path, source_hash: [u8; 32], params_hash: [u8; 32]) -> Result<PackedMesh, CacheProblem> {
     let invalid = |m: String| CacheProblem::Invalid(m);
-    let mut file = match std::fs::File::open(path) {
-        Ok(f) => f,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Err(CacheProblem::Missing),
-        Err(e) => return Err(invalid(format!("cannot open: {e}"))),
+    // Reads below stop at this size: the header's sections are checked against it.
+    let (mut file, len) = match crate::files::input::open(path) {
+        Ok(opened) => opened,
+        Err(e) if e.is_not_found() => return Err(CacheProblem::Missing),
+        Err(e) => return Err(invalid(e.message())),
     };
-    let len = file.metadata().map_err(|e| invalid(format!("cannot read: {e}")))?.len();
     if len < HEADER_BYTES {
         return Err(invalid(format!("truncated: {len} bytes is shorter than the {HEADER_BYTES}-byte header")));
     }

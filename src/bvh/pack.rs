@@ -52,6 +52,7 @@ pub enum PackOutcome {
 
 impl LoadedMesh {
     fn new(path: &Path, packed: PackedMesh, provenance: Provenance) -> Self {
+        warn_if_invisible(path, &packed);
         Self {
             path: path.to_path_buf(),
             bvh: packed.bvh,
@@ -60,6 +61,18 @@ impl LoadedMesh {
             triangle_count: packed.triangle_count as usize,
             provenance,
         }
+    }
+}
+
+/// The build leaves zero-area triangles out; a mesh of nothing else renders nothing,
+/// which must not pass without a word.
+fn warn_if_invisible(path: &Path, packed: &PackedMesh) {
+    if packed.bvh.triangles.is_empty() && packed.triangle_count > 0 {
+        let which = match packed.triangle_count {
+            1 => "its only triangle is".to_owned(),
+            n => format!("all {n} triangles are"),
+        };
+        log::warn!("{}: {which} degenerate (zero area): the mesh is invisible", path.display());
     }
 }
 
@@ -110,6 +123,8 @@ pub fn pack(path: &Path, quality: BuildQuality, force: bool) -> Result<PackRepor
     let cache_path = files.cache_path().ok_or_else(|| AssetError::new(path, "built-in assets are not cached"))?;
     let (source_hash, params_hash) = (cache::source_hash(&files)?, cache::params_hash(quality));
     let report = |outcome| PackReport { asset: path.to_path_buf(), cache: cache_path.clone(), outcome };
+    // Even an up-to-date cache clears what a killed packer left beside it.
+    crate::files::output::remove_stale_temporaries(&cache_path);
     let reason = match force {
         true => "forced".to_owned(),
         false => match cache::read(&cache_path, source_hash, params_hash) {
@@ -119,6 +134,7 @@ pub fn pack(path: &Path, quality: BuildQuality, force: bool) -> Result<PackRepor
     };
     let start = Instant::now();
     let packed = import_and_build(&files, quality)?;
+    warn_if_invisible(path, &packed);
     cache::write(&cache_path, &packed, source_hash, params_hash)?;
     Ok(report(PackOutcome::Packed { reason, triangles: packed.triangle_count, time: start.elapsed() }))
 }
@@ -208,6 +224,16 @@ fn walk(dir: &Path, found: &mut Vec<PathBuf>) -> Result<(), AssetError> {
         if path.is_dir() {
             walk(&path, found)?;
             continue;
+        }
+        // A FIFO would block its reader forever, a device never ends: neither is an asset.
+        match std::fs::metadata(&path) {
+            Ok(m) if m.is_file() => {}
+            Ok(m) => {
+                log::warn!("{}: skipped: {}, not a file", path.display(), crate::files::input::describe(m.file_type()));
+                continue;
+            }
+            // A dangling link or a file that vanished: there is nothing to pack.
+            Err(_) => continue,
         }
         let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
         match ext.as_deref() {

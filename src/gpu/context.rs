@@ -1,6 +1,10 @@
-//! Adapter selection and device creation.
+//! Adapter selection and device creation, and what becomes of the device's errors:
+//! wgpu's default handler panics on an error no scope caught; rt's records it, and the
+//! next [`GpuContext::wait`] (or [`GpuContext::take_error`]) returns it as an `Err`.
 
 use anyhow::{Context as _, Result, anyhow, bail};
+use std::path::Path;
+use std::sync::{Arc, Mutex};
 
 /// The device rt renders with, and what it is.
 pub struct GpuContext {
@@ -11,6 +15,9 @@ pub struct GpuContext {
     pub queue: wgpu::Queue,
     pub adapter_info: wgpu::AdapterInfo,
     pub timestamps: bool,
+    /// Uncaught validation and out-of-memory errors, and a lost device, since the last
+    /// [`GpuContext::take_error`].
+    errors: Arc<Mutex<Vec<String>>>,
 }
 
 /// Storage buffers the integrator binds in one stage (see `shaders/common.wgsl`).
@@ -81,7 +88,32 @@ impl GpuContext {
             })
             .await
             .with_context(|| format!("could not open the GPU {:?}", info.name))?;
-        Ok(Self { instance, adapter, device, queue, adapter_info: info, timestamps })
+        let errors = Arc::new(Mutex::new(Vec::new()));
+        let record = |errors: &Arc<Mutex<Vec<String>>>, message: String| {
+            log::error!("{message}");
+            errors.lock().unwrap_or_else(|poisoned| poisoned.into_inner()).push(message);
+        };
+        let sink = errors.clone();
+        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| record(&sink, format!("GPU error: {e}"))));
+        let sink = errors.clone();
+        device.set_device_lost_callback(move |reason, message| {
+            // Dropping the device at exit is not a failure.
+            if reason != wgpu::DeviceLostReason::Destroyed {
+                record(&sink, format!("the GPU device was lost ({reason:?}): {message}"));
+            }
+        });
+        Ok(Self { instance, adapter, device, queue, adapter_info: info, timestamps, errors })
+    }
+
+    /// The GPU errors recorded since the last call, as one `Err`; `Ok` if there were none.
+    /// Work submitted before an error may have produced garbage: callers drop its results.
+    pub fn take_error(&self) -> Result<()> {
+        let errors = std::mem::take(&mut *self.errors.lock().unwrap_or_else(|poisoned| poisoned.into_inner()));
+        match errors.as_slice() {
+            [] => Ok(()),
+            [one] => bail!("{one}"),
+            [first, rest @ ..] => bail!("{first} (and {} more GPU errors)", rest.len()),
+        }
     }
 
     /// "NVIDIA H100 80GB HBM3 (DiscreteGpu, Vulkan, driver 580.159)".
@@ -90,7 +122,36 @@ impl GpuContext {
         format!("{} ({:?}, {:?}, {} {})", i.name, i.device_type, i.backend, i.driver, i.driver_info)
     }
 
+    /// Waits for the submitted work; an error it (or anything before it) raised is returned.
     pub fn wait(&self) -> Result<()> {
-        self.device.poll(wgpu::PollType::wait_indefinitely()).map(|_| ()).map_err(|e| anyhow!("GPU wait failed: {e}"))
+        self.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| anyhow!("GPU wait failed: {e}"))?;
+        self.take_error()
+    }
+}
+
+/// Mesa's Wayland code prints "XDG_RUNTIME_DIR is invalid or not set" (twice) on every
+/// Vulkan start without a valid one. When it is unset or not an absolute path to a
+/// folder, it is pointed at a private folder, `$TMPDIR/rt-runtime-UID` (mode 0700, owned
+/// by this user; left alone if someone else owns it), before any Vulkan instance exists.
+///
+/// Must be called at the very start of `main`, before any thread is spawned.
+pub fn ensure_runtime_dir() {
+    use std::os::unix::fs::{DirBuilderExt, MetadataExt, PermissionsExt};
+    let valid =
+        std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| Path::new(&d).is_absolute() && Path::new(&d).is_dir());
+    let Ok(me) = std::fs::metadata("/proc/self").map(|m| m.uid()) else { return };
+    if valid {
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("rt-runtime-{me}"));
+    let _ = std::fs::DirBuilder::new().mode(0o700).create(&dir);
+    // symlink_metadata: a link planted by another user must not be followed.
+    let ours = std::fs::symlink_metadata(&dir)
+        .is_ok_and(|m| m.is_dir() && m.uid() == me && m.permissions().mode() & 0o077 == 0);
+    if ours {
+        // SAFETY: `set_var` is unsound only while another thread reads or writes the
+        // environment. `main` calls this first, before it spawns any thread, and the
+        // Rust runtime starts none of its own before `main`.
+        unsafe { std::env::set_var("XDG_RUNTIME_DIR", &dir) };
     }
 }

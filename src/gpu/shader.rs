@@ -118,7 +118,7 @@ impl ShaderFiles {
                 .ok_or_else(|| format!("shaders/{name}: no such file among the built-in shaders")),
             ShaderFiles::Dir(dir) => {
                 let path = dir.join(name);
-                std::fs::read_to_string(&path).map_err(|e| format!("{}: cannot read: {e}", path.display()))
+                crate::files::read_to_string(&path).map_err(|e| e.to_string())
             }
         }
     }

@@ -15,7 +15,7 @@ mod trace;
 pub use accumulation::Accumulation;
 pub use camera::set_camera;
 pub use dropped::{DroppedSamples, NonFiniteCause};
-pub use image_out::{ImageFormat, image_format, write_image, write_png};
+pub use image_out::{ImageFormat, check_output, image_format, write_image, write_png};
 pub use pacing::Pacing;
 pub use request::{MAX_SAMPLES_PER_DISPATCH, RenderFlags, RenderRequest};
 pub use session::{GeometryUpdate, RenderReport, SceneUpdate, Session, Step};

@@ -17,7 +17,7 @@ pub use builtin::{BUILTIN_PREFIX, default_scene};
 pub use camera::{Camera, DepthOfField, Projection, SensorFit};
 pub use features::{ALPHA_DELTA, FeatureSet, GeometrySummary, SkyFeature, Transmission};
 pub use material::{Material, luminance};
-pub use parse::{SceneError, load, parse};
+pub use parse::{SceneError, hint as did_you_mean, load, parse};
 pub use validate::MAX_IMAGE_SIDE;
 
 use glam::{Mat4, Vec3};

@@ -50,9 +50,9 @@ impl SceneError {
 /// Reads and parses a scene file; asset paths resolve against its folder.
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
     let origin = path.display().to_string();
-    match std::fs::read_to_string(path) {
+    match crate::files::read_to_string(path) {
         Ok(text) => parse(&text, &origin, path.parent().unwrap_or(Path::new(""))),
-        Err(e) => Err(located(&origin, "", None, format!("cannot read: {e}"))),
+        Err(e) => Err(located(&origin, "", None, e.message())),
     }
 }
 
@@ -105,6 +105,8 @@ impl Source<'_> {
     ) -> Result<(), SceneError> {
         match values.iter().find(|v| !v.is_finite() || !ok(**v)) {
             Some(v) if !v.is_finite() => Err(self.error(base, field, format!("must be finite, got {v}"))),
+            // 1e20, not 100000000000000000000.
+            Some(v) if v.abs() >= 1e7 => Err(self.error(base, field, format!("must be {what}, got {v:e}"))),
             Some(v) => Err(self.error(base, field, format!("must be {what}, got {v}"))),
             None => Ok(()),
         }
@@ -192,7 +194,7 @@ fn describe(path: &[Seg]) -> (String, String) {
 }
 
 /// "; did you mean `x`?" when a candidate is close, else the list of candidates.
-pub(super) fn hint<'c>(name: &str, candidates: impl Iterator<Item = &'c str>) -> String {
+pub fn hint<'c>(name: &str, candidates: impl Iterator<Item = &'c str>) -> String {
     let candidates: Vec<&str> = candidates.collect();
     let near = |c: &str| 2.max(name.chars().count().max(c.chars().count()) / 3);
     match candidates.iter().min_by_key(|c| levenshtein(name, c)) {

@@ -143,7 +143,9 @@ fn assert_errors(cases: &str) {
 fn negative_radius_is_located() {
     assert_errors(
         r#"
-        [[sphere]] | center = [0.0, 0.0, 0.0] | radius = 1.0 | | [materials.a] | | | | | | [[sphere]] | radius = -1 | center = [1, 2, 3] => 12:10: sphere 2: radius must be positive, got -1
+        [[sphere]] | center = [0.0, 0.0, 0.0] | radius = 1.0 | | [materials.a] | | | | | | [[sphere]] | radius = -1 | center = [1, 2, 3] => 12:10: sphere 2: radius must be positive and at most 1e15 m (rt intersects spheres in f32), got -1
+        [[sphere]] | center = [0.0, 0.0, 0.0] | radius = 1e20 => 3:10: sphere 1: radius must be positive and at most 1e15 m (rt intersects spheres in f32), got 1e20
+        [[sphere]] | center = [0.0, -3e16, 0.0] | radius = 1.0 => 2:10: sphere 1: center must be within ±1e15 m (rt intersects spheres in f32), got -3e16
     "#,
     );
 }

@@ -7,6 +7,12 @@ use super::{Material, MeshInstance, RenderSettings, Scene, Sky, Sphere, Sun};
 use glam::{Mat3, Mat4, Vec3};
 use std::path::Path;
 
+/// Largest sphere radius and centre coordinate, in metres. The shaders square the
+/// radius and the distance to the centre in f32, which overflows (and the sphere
+/// silently vanishes) beyond about 1.8e19 m; 1e15 m (a tenth of a light year) keeps
+/// those squares, and the sums and products of them that light sampling forms, finite.
+pub const MAX_SPHERE_EXTENT: f32 = 1e15;
+
 pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, SceneError> {
     let render = file.render;
     if let Err((key, message)) = render.check() {
@@ -41,8 +47,10 @@ pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, 
     let mut spheres = Vec::new();
     for (i, s) in file.sphere.into_iter().enumerate() {
         let p = [Key("sphere"), Index(i)];
-        src.finite(&p, "center", &s.center)?;
-        src.check(&p, "radius", &[s.radius], "positive", |r| r > 0.0)?;
+        let within = format!("within ±{MAX_SPHERE_EXTENT:e} m (rt intersects spheres in f32)");
+        src.check(&p, "center", &s.center, &within, |c| c.abs() <= MAX_SPHERE_EXTENT)?;
+        let size = format!("positive and at most {MAX_SPHERE_EXTENT:e} m (rt intersects spheres in f32)");
+        src.check(&p, "radius", &[s.radius], &size, |r| r > 0.0 && r <= MAX_SPHERE_EXTENT)?;
         let material = material_ref(&p, s.material)?;
         spheres.push(Sphere { center: s.center.into(), radius: s.radius, material });
     }

@@ -168,7 +168,7 @@ fn pipelines(
     let source = match shader_dir {
         Some(dir) => {
             let path = dir.join(super::sources::DISPLAY_SHADER);
-            std::fs::read_to_string(&path).map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?
+            crate::files::read_to_string(&path)?
         }
         None => BUILT_IN.to_owned(),
     };

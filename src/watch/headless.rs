@@ -8,7 +8,7 @@ use super::live::LiveScene;
 use super::reload_log::ReloadLog;
 use crate::render::{ImageFormat, Pacing, write_image};
 use anyhow::Result;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender};
 use std::time::{Duration, Instant};
 
@@ -68,6 +68,8 @@ pub fn run(
             continue;
         }
         if stop_file.exists() {
+            // Consumed, so that the next run in this folder does not stop at once.
+            let _ = std::fs::remove_file(&stop_file);
             log.write("stop: the stop file appeared");
             return Ok(());
         }
@@ -97,6 +99,15 @@ pub fn run(
                 Err(RecvTimeoutError::Disconnected) => return Ok(()),
             }
         }
+    }
+}
+
+/// A stop file left from an earlier run (one that was killed before it saw it) must
+/// not stop this one.
+pub fn remove_stale_stop_file(frames_dir: &Path, log: &mut ReloadLog) {
+    let stop_file = frames_dir.join(STOP_FILE);
+    if stop_file.exists() && std::fs::remove_file(&stop_file).is_ok() {
+        log.write("removed a stale stop file left by an earlier run");
     }
 }
 

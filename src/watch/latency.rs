@@ -47,9 +47,7 @@ material = "paint"
 }
 
 fn write_by_rename(path: &Path, bytes: &[u8]) -> Result<()> {
-    let tmp = path.with_extension("bench-tmp");
-    std::fs::write(&tmp, bytes).with_context(|| format!("cannot write {}", tmp.display()))?;
-    std::fs::rename(&tmp, path).with_context(|| format!("cannot move {} into place", path.display()))
+    Ok(crate::files::write_atomically(path, bytes)?)
 }
 
 pub fn watch_latency(asset: &Path, (width, height): (u32, u32), runs: u32, adapter: Option<&str>) -> Result<()> {
@@ -63,11 +61,10 @@ pub fn watch_latency(asset: &Path, (width, height): (u32, u32), runs: u32, adapt
     let copy = dir.join(name);
     std::fs::create_dir_all(&copy).with_context(|| format!("cannot create {}", copy.display()))?;
     for file in [mesh_name.clone(), format!("{name}.gltf")] {
-        std::fs::copy(asset.join(&file), copy.join(&file))
-            .with_context(|| format!("cannot copy {}", asset.join(&file).display()))?;
+        crate::files::write_atomically(&copy.join(&file), &crate::files::read(&asset.join(&file))?)?;
     }
     let scene = dir.join("scene.toml");
-    std::fs::write(&scene, scene_text(name, 0.0, 0.8))?;
+    write_by_rename(&scene, scene_text(name, 0.0, 0.8).as_bytes())?;
     let ctx = GpuContext::new(adapter)?;
     println!("GPU       {}", ctx.describe());
     println!(
@@ -123,7 +120,7 @@ fn edit(
     };
     let (mut state, _) = first_frames.recv_timeout(timeout).context("the first frame never came")?;
     let mut latencies: [Vec<Duration>; 3] = Default::default();
-    let mut bytes = std::fs::read(mesh).with_context(|| format!("cannot read {}", mesh.display()))?;
+    let mut bytes = crate::files::read(mesh)?;
     if bytes.len() < FIRST_VERTEX_X + 4 {
         bail!("{}: too short for an .rtmesh with a vertex", mesh.display());
     }

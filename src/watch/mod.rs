@@ -49,8 +49,8 @@ pub fn run_headless(
     first_frames: Option<std::sync::mpsc::Sender<(u32, Instant)>>,
 ) -> Result<()> {
     let frames_dir = options.frames_dir.clone().context("--headless needs --frames-dir")?;
-    std::fs::create_dir_all(&frames_dir).with_context(|| format!("cannot create {}", frames_dir.display()))?;
     let mut log = ReloadLog::new(Some(&frames_dir))?;
+    headless::remove_stale_stop_file(&frames_dir, &mut log);
     let opened_at = Instant::now();
     let mut live = LiveScene::open(ctx, options)?;
     let (tx, rx) = std::sync::mpsc::channel::<Batch>();

@@ -27,11 +27,18 @@ pub struct ReloadLog {
 }
 
 impl ReloadLog {
-    /// Logs to standard output, and to `dir/watch.log` (started afresh) when given.
+    /// Logs to standard output, and to `dir/watch.log` when given (the folder is created
+    /// if missing); the previous run's log is kept as `watch.log.1`.
     pub fn new(dir: Option<&Path>) -> Result<Self> {
         let file = match dir {
             Some(dir) => {
+                crate::files::check_folder(dir).context("--frames-dir")?;
                 let path = dir.join(LOG_FILE);
+                if path.exists() {
+                    let previous = dir.join(format!("{LOG_FILE}.1"));
+                    std::fs::rename(&path, &previous)
+                        .with_context(|| format!("cannot keep the last log as {}", previous.display()))?;
+                }
                 Some(File::create(&path).with_context(|| format!("cannot create {}", path.display()))?)
             }
             None => None,

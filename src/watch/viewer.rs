@@ -13,7 +13,7 @@ use super::live::LiveScene;
 use super::reload_log::ReloadLog;
 use super::{WatchOptions, sources};
 use crate::gpu::{GpuContext, ms};
-use crate::render::{Pacing, Session, human, write_image, write_png};
+use crate::render::{Accumulation, Pacing, Session, human, write_image, write_png};
 use anyhow::{Context, Result, anyhow};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -61,6 +61,9 @@ pub fn run(adapter: Option<&str>, options: WatchOptions) -> Result<()> {
         failure: None,
     };
     app.log.write(HELP);
+    if let Some(dir) = app.options.frames_dir.clone() {
+        super::headless::remove_stale_stop_file(&dir, &mut app.log);
+    }
     event_loop.run_app(&mut app).context("the window's event loop failed")?;
     match app.failure {
         Some(e) => Err(e),
@@ -166,7 +169,8 @@ impl ApplicationHandler<Batch> for Viewer<'_> {
     }
 
     fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
-        if self.options.frames_dir.as_ref().is_some_and(|d| d.join(STOP_FILE).exists()) {
+        if let Some(stop_file) = self.options.frames_dir.as_ref().map(|d| d.join(STOP_FILE)).filter(|f| f.exists()) {
+            let _ = std::fs::remove_file(&stop_file);
             self.log.write("stop: the stop file appeared");
             event_loop.exit();
             return;
@@ -314,7 +318,7 @@ impl Viewer<'_> {
         let file = dir.join(format!("frame-{:04}.png", self.state.number));
         let acc = self.live.session.accumulation();
         let pixels = w.display.screenshot(self.ctx, acc, self.live.scene().render.exposure)?;
-        write_png(&pixels, acc.width, acc.height, &file)?;
+        write_png(&rgb_image(pixels, acc)?, &file)?;
         let first = self.state.first_frame.unwrap_or_default();
         self.log.frame(self.state.number, acc.samples, &file, first, self.state.since.elapsed());
         self.log.write(&format!("presented {} frames", self.presented));
@@ -335,7 +339,7 @@ impl Viewer<'_> {
             write_image(&self.live.session.image()?, &file, exposure)?;
         } else {
             let pixels = w.display.screenshot(self.ctx, acc, exposure)?;
-            write_png(&pixels, acc.width, acc.height, &file)?;
+            write_png(&rgb_image(pixels, acc)?, &file)?;
         }
         self.log.write(&format!("screenshot {} ({} spp)", file.display(), acc.samples));
         Ok(())
@@ -359,4 +363,9 @@ fn title(scene: &Path, session: &Session, last_reload: &str, error: Option<&str>
         ms(step.took),
         if last_reload.is_empty() { "" } else { " | " },
     )
+}
+
+/// A screenshot's pixels as an image of the accumulation's size.
+fn rgb_image(pixels: Vec<[u8; 3]>, acc: &Accumulation) -> Result<image::RgbImage> {
+    image::RgbImage::from_raw(acc.width, acc.height, pixels.concat()).context("screenshot size mismatch")
 }

@@ -1,6 +1,8 @@
 //! Shared by the GPU integration tests: one device per test binary, and scene helpers.
 #![allow(dead_code)]
 
+pub mod bounded;
+
 use rt::bvh::BuildQuality;
 use rt::gpu::GpuContext;
 use rt::render::{Image, RenderRequest, Session};

@@ -8,11 +8,15 @@ use std::time::{Duration, Instant};
 pub struct Watcher {
     child: Child,
     frames: PathBuf,
+    /// Its stderr: the errors the tests provoke on purpose stay out of the test log.
+    stderr: PathBuf,
 }
 
 impl Watcher {
     /// Watches `scene` at `size`×`size` pixels and `spp`, writing EXR frames into `frames`.
     pub fn start(scene: &Path, frames: &Path, spp: u32, size: u32, extra: &[&std::ffi::OsStr]) -> Self {
+        let stderr = frames.with_extension("stderr");
+        let stderr_file = std::fs::File::create(&stderr).expect("stderr file");
         let child = Command::new(env!("CARGO_BIN_EXE_rt"))
             .args(["watch", "--headless", "--format", "exr", "--spp", &spp.to_string()])
             .args(extra)
@@ -20,9 +24,14 @@ impl Watcher {
             .arg(frames)
             .arg(scene)
             .stdout(Stdio::null())
+            .stderr(stderr_file)
             .spawn()
             .expect("start rt watch");
-        Self { child, frames: frames.to_path_buf() }
+        Self { child, frames: frames.to_path_buf(), stderr }
+    }
+
+    fn stderr(&self) -> String {
+        std::fs::read_to_string(&self.stderr).unwrap_or_default()
     }
 
     pub fn log(&self) -> Vec<String> {
@@ -41,7 +50,11 @@ impl Watcher {
                 return line;
             }
             if let Ok(Some(status)) = self.child.try_wait() {
-                panic!("rt watch exited ({status}) before {prefix:?}; log:\n{}", self.log().join("\n"));
+                panic!(
+                    "rt watch exited ({status}) before {prefix:?}; log:\n{}\n{}",
+                    self.log().join("\n"),
+                    self.stderr()
+                );
             }
             assert!(Instant::now() < deadline, "no {prefix:?} after 120 s; log:\n{}", self.log().join("\n"));
             std::thread::sleep(Duration::from_millis(20));
@@ -57,7 +70,8 @@ impl Watcher {
     pub fn stop(mut self) {
         std::fs::write(self.frames.join(rt::watch::STOP_FILE), "").expect("stop file");
         let status = self.child.wait().expect("wait for rt watch");
-        assert!(status.success(), "rt watch: {status}");
+        assert!(status.success(), "rt watch: {status}\n{}", self.stderr());
+        assert!(!self.stderr().contains("panicked"), "rt watch panicked:\n{}", self.stderr());
     }
 }
 
@@ -65,5 +79,6 @@ impl Drop for Watcher {
     fn drop(&mut self) {
         let _ = std::fs::write(self.frames.join(rt::watch::STOP_FILE), "");
         let _ = self.child.kill();
+        let _ = std::fs::remove_file(&self.stderr);
     }
 }

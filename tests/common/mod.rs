@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod bounded;
+pub mod reference;
 
 use rt::bvh::BuildQuality;
 use rt::gpu::GpuContext;

@@ -1,11 +1,12 @@
 //! Everything a scene puts on the GPU: the meshes' bottom-level BVHs, a top
 //! level over instances and spheres, and the material table.
 
+use super::lights::{LampTable, lamp_table, scene_radius};
 use super::mesh_bvh::BuildQuality;
 use super::node::{BvhStats, convert_bvh2, stats};
 use super::pack::{LoadedMesh, build_all_in_memory, load_or_pack_all};
 use crate::gpu::layout::*;
-use crate::scene::{FeatureSet, Material, Scene};
+use crate::scene::{FeatureSet, LampKinds, Material, Scene};
 use anyhow::{Result, bail};
 use glam::{Mat4, Vec3, Vec3A};
 use obvhs::{BvhBuildParams, aabb::Aabb, bvh2::builder::build_bvh2};
@@ -27,6 +28,9 @@ pub struct SceneGeometry {
     pub emitters: Vec<GpuEmitter>,
     /// Sum of the emitters' powers (area × luminance of emission).
     pub emitter_total_power: f32,
+    /// `[[light]]` lamps, and how light sampling shares its samples when there are some.
+    pub lamps: Vec<GpuLamp>,
+    pub lamp_info: GpuLampInfo,
     pub tlas_root: u32,
     pub tlas_stats: BvhStats,
     pub meshes: Vec<LoadedMesh>,
@@ -152,6 +156,7 @@ impl SceneGeometry {
             &used,
             &scene.sky,
             scene.sun.is_some(),
+            LampKinds::of(&scene.lights),
             &scene.render,
         );
         let (emitters, emitter_total_power) =
@@ -172,6 +177,13 @@ impl SceneGeometry {
                 (lo.min(b.min.into()), hi.max(b.max.into()))
             });
 
+        let LampTable { lamps, info: lamp_info } = lamp_table(
+            &scene.lights,
+            scene.sun.is_some(),
+            !emitters.is_empty(),
+            scene_radius(bounds_min, bounds_max),
+        );
+
         Ok(Self {
             nodes,
             triangles,
@@ -182,6 +194,8 @@ impl SceneGeometry {
             materials: materials.iter().map(GpuMaterial::from).collect(),
             emitters,
             emitter_total_power,
+            lamps,
+            lamp_info,
             tlas_root,
             tlas_stats,
             meshes,

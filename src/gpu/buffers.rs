@@ -24,6 +24,8 @@ pub struct SceneBuffers {
     materials: wgpu::Buffer,
     pub stats: wgpu::Buffer,
     emitters: wgpu::Buffer,
+    lamps: wgpu::Buffer,
+    lamp_info: wgpu::Buffer,
     pub bind_group: wgpu::BindGroup,
     /// Group 2 of the integrator when the sky is an atmosphere: its parameters and
     /// tables (see `crate::sky`).
@@ -53,6 +55,8 @@ pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     entries.extend((1..=7).map(|b| entry(b, read)));
     entries.push(entry(8, wgpu::BufferBindingType::Storage { read_only: false }));
     entries.push(entry(9, read));
+    entries.push(entry(10, read));
+    entries.push(entry(11, wgpu::BufferBindingType::Uniform));
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some("scene"), entries: &entries })
 }
 
@@ -108,10 +112,14 @@ impl SceneBuffers {
         let instances = storage(ctx, "instances", &geometry.instances, none);
         let tlas = storage(ctx, "tlas primitives", &geometry.tlas_primitives, none);
         let spheres = storage(ctx, "spheres", &geometry.spheres, none);
+        let (lamps, lamp_info) = lamp_buffers(ctx, geometry);
         let bind_group = bind(
             ctx,
             layout,
-            [&frame, &nodes, &triangles, &shading, &instances, &tlas, &spheres, &materials, &stats, &emitters],
+            [
+                &frame, &nodes, &triangles, &shading, &instances, &tlas, &spheres, &materials, &stats, &emitters,
+                &lamps, &lamp_info,
+            ],
         );
         Ok(Self {
             frame,
@@ -124,6 +132,8 @@ impl SceneBuffers {
             materials,
             stats,
             emitters,
+            lamps,
+            lamp_info,
             bind_group,
             sky_bind_group: None,
         })
@@ -147,6 +157,7 @@ impl SceneBuffers {
         self.spheres = storage(ctx, "spheres", &geometry.spheres, none);
         self.materials = storage(ctx, "materials", &geometry.materials, wgpu::BufferUsages::COPY_DST);
         self.emitters = storage(ctx, "emitters", &geometry.emitters, wgpu::BufferUsages::COPY_DST);
+        (self.lamps, self.lamp_info) = lamp_buffers(ctx, geometry);
         self.rebind(ctx, layout);
         Ok(())
     }
@@ -156,6 +167,8 @@ impl SceneBuffers {
     pub fn replace_materials(&mut self, ctx: &GpuContext, geometry: &SceneGeometry, layout: &wgpu::BindGroupLayout) {
         let same_size = self.materials.size() == size_of_nonempty(&geometry.materials)
             && self.emitters.size() == size_of_nonempty(&geometry.emitters);
+        // Whether there are emitters changes the lamps' share of light samples.
+        ctx.queue.write_buffer(&self.lamp_info, 0, bytemuck::bytes_of(&geometry.lamp_info));
         if same_size {
             write_nonempty(ctx, &self.materials, &geometry.materials);
             write_nonempty(ctx, &self.emitters, &geometry.emitters);
@@ -178,6 +191,8 @@ impl SceneBuffers {
             &self.materials,
             &self.stats,
             &self.emitters,
+            &self.lamps,
+            &self.lamp_info,
         ];
         self.bind_group = bind(ctx, layout, buffers);
     }
@@ -194,6 +209,17 @@ impl SceneBuffers {
         out.copy_from_slice(&values[..STAT_COUNT]);
         Ok(out)
     }
+}
+
+/// The lamp table and its header (count and light-sampling shares).
+fn lamp_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer, wgpu::Buffer) {
+    let lamps = storage(ctx, "lamps", &geometry.lamps, wgpu::BufferUsages::empty());
+    let info = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("lamp info"),
+        contents: bytemuck::bytes_of(&geometry.lamp_info),
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+    });
+    (lamps, info)
 }
 
 fn check_sizes(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<()> {
@@ -215,7 +241,7 @@ fn check_sizes(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<()> {
 }
 
 /// The scene bind group: binding i is the i-th buffer.
-fn bind(ctx: &GpuContext, layout: &wgpu::BindGroupLayout, buffers: [&wgpu::Buffer; 10]) -> wgpu::BindGroup {
+fn bind(ctx: &GpuContext, layout: &wgpu::BindGroupLayout, buffers: [&wgpu::Buffer; 12]) -> wgpu::BindGroup {
     let entries: Vec<_> = buffers
         .iter()
         .enumerate()

@@ -33,6 +33,7 @@ const DIELECTRIC: Part = shader!("dielectric.wgsl");
 const SAMPLING: Part = shader!("sampling.wgsl");
 const SUN: Part = shader!("sun.wgsl");
 const LIGHTS: Part = shader!("lights.wgsl");
+const LAMPS: Part = shader!("lamps.wgsl");
 const SEGMENT: Part = shader!("segment.wgsl");
 const INTEGRATOR: Part = shader!("integrator.wgsl");
 const TRACE_KERNEL: Part = shader!("trace_kernel.wgsl");
@@ -66,6 +67,7 @@ pub const ALL_PARTS: &[Part] = &[
     SAMPLING,
     SUN,
     LIGHTS,
+    LAMPS,
     SEGMENT,
     INTEGRATOR,
     TRACE_KERNEL,
@@ -107,6 +109,9 @@ fn parts(program: Program, f: &FeatureSet) -> Vec<Part> {
     }
     if f.flag("nee") == Some(true) {
         parts.push(LIGHTS);
+    }
+    if f.lamps.any() {
+        parts.push(LAMPS);
     }
     if f.media || f.sky == SkyFeature::Atmosphere {
         parts.push(SEGMENT);
@@ -241,7 +246,7 @@ pub fn full_sources_for_layout_checks() -> [String; 4] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{RoughTransmission, Sampling};
+    use crate::scene::{LampKinds, RoughTransmission, Sampling};
 
     /// A spread of feature sets: each flag on and off, in many combinations.
     fn feature_sets() -> Vec<FeatureSet> {
@@ -267,6 +272,13 @@ mod tests {
                 glossy: on(7),
                 transmission,
                 media: on(1) && transmission != Transmission::None,
+                // Lamp kinds cycle with the bits, each on and off with the others.
+                lamps: LampKinds {
+                    point: bits % 3 == 1,
+                    spot: bits % 5 == 2,
+                    area: bits % 7 >= 5,
+                    sun: (bits / 8) % 3 == 1,
+                },
                 sampling: if on(0) { Sampling::Nee } else { Sampling::Seed },
             });
         }
@@ -314,6 +326,7 @@ mod tests {
             glossy: false,
             transmission: Transmission::None,
             media: false,
+            lamps: LampKinds::default(),
             sampling: Sampling::Nee,
         };
         let source = assemble(Program::Integrator, &plain);
@@ -329,9 +342,26 @@ mod tests {
             "var<uniform> atmosphere",
             "fn sun_limb_darkening",
             "@group(2)",
+            "struct Lamp",
+            "lamps",
+            "@binding(10)",
+            "@binding(11)",
         ] {
             assert!(!source.contains(absent), "{absent:?} is in the plain pipeline");
         }
+        // Each kind of lamp brings its own code only.
+        let only = |lamps: LampKinds| assemble(Program::Integrator, &FeatureSet { lamps, ..plain });
+        let point = only(LampKinds { point: true, ..Default::default() });
+        assert!(point.contains("fn lamps_seen") && point.contains("fn round_lamp_hit"));
+        for absent in ["fn spot_attenuation", "LAMP_AREA {", "LAMP_SUN {"] {
+            assert!(!point.contains(absent), "{absent:?} is in a pipeline with point lamps only");
+        }
+        let area = only(LampKinds { area: true, ..Default::default() });
+        assert!(area.contains("LAMP_AREA {") && !area.contains("fn round_lamp_hit") && !area.contains("LAMP_SUN {"));
+        let sun = only(LampKinds { sun: true, ..Default::default() });
+        assert!(sun.contains("LAMP_SUN {") && !sun.contains("fn round_lamp_hit") && !sun.contains("LAMP_AREA {"));
+        let spot = only(LampKinds { spot: true, ..Default::default() });
+        assert!(spot.contains("fn spot_attenuation") && spot.contains("fn round_lamp_hit"));
         let uniform_sun = FeatureSet { sky: SkyFeature::Uniform, sun: true, ..plain };
         for program in [Program::Integrator, Program::Trace] {
             let source = assemble(program, &uniform_sun);

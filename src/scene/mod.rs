@@ -4,6 +4,7 @@
 mod atmosphere;
 mod builtin;
 mod features;
+mod light;
 mod material;
 mod parse;
 mod schema;
@@ -13,7 +14,8 @@ mod validate;
 
 pub use atmosphere::Atmosphere;
 pub use builtin::default_scene;
-pub use features::{ALPHA_DELTA, FeatureSet, SkyFeature, Transmission};
+pub use features::{ALPHA_DELTA, FeatureSet, LampKinds, SkyFeature, Transmission};
+pub use light::{AreaShape, Light, LightShape};
 pub use material::{Material, luminance};
 pub use parse::{SceneError, load, parse};
 
@@ -135,6 +137,8 @@ pub struct Scene {
     pub materials: Vec<(String, Material)>,
     pub meshes: Vec<MeshInstance>,
     pub spheres: Vec<Sphere>,
+    /// `[[light]]` lamps, in file order.
+    pub lights: Vec<Light>,
 }
 
 impl Scene {

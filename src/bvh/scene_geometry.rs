@@ -177,12 +177,8 @@ impl SceneGeometry {
                 (lo.min(b.min.into()), hi.max(b.max.into()))
             });
 
-        let LampTable { lamps, info: lamp_info } = lamp_table(
-            &scene.lights,
-            scene.sun.is_some(),
-            !emitters.is_empty(),
-            scene_radius(bounds_min, bounds_max),
-        );
+        let LampTable { lamps, info: lamp_info } =
+            lamp_table(&scene.lights, scene.sun.is_some(), !emitters.is_empty(), scene_radius(bounds_min, bounds_max));
 
         Ok(Self {
             nodes,

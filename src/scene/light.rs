@@ -2,8 +2,8 @@
 //! validation. What each one emits is defined as Cycles defines it (see `shaders/lamps.wgsl`).
 
 use super::parse::{SceneError, Seg, Seg::*, Source};
-use super::schema::{self, LightKind};
 pub use super::schema::AreaShape;
+use super::schema::{self, LightKind};
 use super::validate::matrix;
 use glam::{Mat4, Vec3};
 

@@ -107,27 +107,27 @@ fn check_mean(name: &str, sampling: Sampling, spp: u32) {
 
 #[test]
 fn point_lamp_matches_cycles() {
-    check("point", Sampling::Nee, 256);
+    check("point", Sampling::Nee, 128);
 }
 
 #[test]
 fn spot_lamp_matches_cycles() {
-    check("spot", Sampling::Nee, 256);
+    check("spot", Sampling::Nee, 128);
 }
 
 #[test]
 fn area_lamp_matches_cycles() {
-    check("area", Sampling::Nee, 256);
+    check("area", Sampling::Nee, 128);
 }
 
 #[test]
 fn sun_lamp_matches_cycles() {
-    check("sun", Sampling::Nee, 256);
+    check("sun", Sampling::Nee, 128);
 }
 
 #[test]
 fn several_coloured_lamps_match_cycles() {
-    check("several", Sampling::Nee, 256);
+    check("several", Sampling::Nee, 128);
 }
 
 // Without light sampling only lamps with a shape light anything: BSDF rays must find
@@ -141,6 +141,6 @@ fn area_and_sun_lamps_match_cycles_without_light_sampling() {
 
 #[test]
 fn small_lamps_match_cycles_on_average_without_light_sampling() {
-    check_mean("point", Sampling::Seed, 256);
-    check_mean("spot", Sampling::Seed, 256);
+    check_mean("point", Sampling::Seed, 128);
+    check_mean("spot", Sampling::Seed, 128);
 }

@@ -6,7 +6,7 @@ use super::mesh_bvh::BuildQuality;
 use super::node::{BvhStats, convert_bvh2, stats};
 use super::pack::{LoadedMesh, build_all_in_memory, load_or_pack_all};
 use crate::gpu::layout::*;
-use crate::scene::{FeatureSet, LampKinds, Material, Scene};
+use crate::scene::{FeatureSet, LampKinds, Material, Sampling, Scene};
 use anyhow::{Result, bail};
 use glam::{Mat4, Vec3, Vec3A};
 use obvhs::{BvhBuildParams, aabb::Aabb, bvh2::builder::build_bvh2};
@@ -177,6 +177,15 @@ impl SceneGeometry {
                 (lo.min(b.min.into()), hi.max(b.max.into()))
             });
 
+        if scene.render.sampling == Sampling::Seed {
+            for (i, _) in scene.lights.iter().enumerate().filter(|(_, l)| l.is_delta()) {
+                log::warn!(
+                    "{}: light {} has no size (a point, or a sun of angle 0): with sampling = \"seed\" no ray finds it and it lights nothing",
+                    scene.origin,
+                    i + 1
+                );
+            }
+        }
         let LampTable { lamps, info: lamp_info } =
             lamp_table(&scene.lights, scene.sun.is_some(), !emitters.is_empty(), scene_radius(bounds_min, bounds_max));
 

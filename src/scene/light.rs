@@ -45,6 +45,15 @@ impl Light {
     pub fn position(&self) -> Vec3 {
         self.object_to_world.w_axis.truncate()
     }
+
+    /// A point, or a sun of angle 0: only light sampling reaches it, no ray can hit it.
+    pub fn is_delta(&self) -> bool {
+        match self.shape {
+            LightShape::Point { radius, .. } | LightShape::Spot { radius, .. } => radius == 0.0,
+            LightShape::Sun { angle_deg } => angle_deg == 0.0,
+            LightShape::Area { .. } => false,
+        }
+    }
 }
 
 /// Blender's defaults for a new lamp.

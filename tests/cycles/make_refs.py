@@ -121,7 +121,7 @@ SCENES = {"point": point, "spot": spot, "area": area, "sun": sun, "several": sev
 
 
 def cycles(scene, spp):
-    """Cycles as a reference (see FIELD-NOTES): box filter of one pixel, no clamping,
+    """Cycles as a reference: a box filter of one pixel (as rt samples pixels), no clamping,
     denoising, adaptive sampling or glossy blur, light threshold off."""
     scene.render.engine = "CYCLES"
     c = scene.cycles

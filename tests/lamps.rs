@@ -6,20 +6,27 @@ mod common;
 
 use common::{render, scene_from, temp_dir, write};
 use std::f64::consts::PI;
+use std::path::PathBuf;
+use std::sync::OnceLock;
 
 const ALBEDO: f64 = 0.8;
 const HEIGHT: f64 = 2.0;
 
 /// The mean of the image's luminance and its standard error.
 fn floor_radiance(light: &str, sampling: &str, spp: u32) -> (f64, f64) {
-    let dir = temp_dir("lamps");
-    write(&dir.join("floor.obj"), "v -20 0 -20\nv 20 0 -20\nv 20 0 20\nv -20 0 20\nf 1 3 2\nf 1 4 3\n");
+    // Written once: the tests run in parallel and share the file.
+    static FLOOR: OnceLock<PathBuf> = OnceLock::new();
+    let floor = FLOOR.get_or_init(|| {
+        let path = temp_dir("lamps").join("floor.obj");
+        write(&path, "v -20 0 -20\nv 20 0 -20\nv 20 0 20\nv -20 0 20\nf 1 3 2\nf 1 4 3\n");
+        path
+    });
     let text = format!(
         "[render]\nsampling = \"{sampling}\"\n\
          [camera]\nposition = [0.0, 1.0, 0.001]\nlook_at = [0.0, 0.0, 0.0]\nfov_y_deg = 0.05\n\
          [materials.floor]\nbase_color = [{ALBEDO}, {ALBEDO}, {ALBEDO}]\n\
          [[mesh]]\nasset = \"{}\"\nmaterial = \"floor\"\n[[light]]\n{light}\n",
-        dir.join("floor.obj").display()
+        floor.display()
     );
     let image = render(scene_from(&text), 8, 8, spp, 1);
     let n = image.pixels.len() as f64;
@@ -70,6 +77,26 @@ fn spot_edge_is_cycles_smoothstep() {
         );
         let e = 100.0 / (4.0 * PI * HEIGHT * HEIGHT) * attenuation;
         check(&format!("spot tilted {tilt_deg}°"), &light, e, &["nee"]);
+    }
+}
+
+#[test]
+fn a_spot_with_a_radius_is_the_point_it_is_made_of_inside_its_cone() {
+    // Blender's default spot: soft falloff, so a disk facing the shaded point.
+    let spot = format!("type = \"spot\"\npower = 100\nradius = 0.3\nspot_size_deg = 90\n{AT}");
+    check("spot with a radius", &spot, 100.0 / (4.0 * PI * (0.09 + HEIGHT * HEIGHT)), &["nee", "seed"]);
+}
+
+#[test]
+fn camera_rays_see_only_lamps_visible_to_the_camera() {
+    // A 1 m² area lamp between the camera and the floor, facing the camera: a path passes
+    // through it to the floor, which it does not light; the pixel is the lamp's radiance.
+    let facing_up = "type = \"area\"\nsize = 1.0\npower = 30\nposition = [0.0, 0.5, 0.0]\ndirection = [0.0, 1.0, 0.0]";
+    for sampling in ["nee", "seed"] {
+        let (seen, _) = floor_radiance(&format!("{facing_up}\nvisible_to_camera = true"), sampling, 4);
+        assert!((seen - 30.0 / PI).abs() < 1e-4 * seen, "{sampling}: a visible lamp shows {seen}, not {}", 30.0 / PI);
+        let (hidden, _) = floor_radiance(facing_up, sampling, 4);
+        assert_eq!(hidden, 0.0, "{sampling}: a lamp hidden from the camera shows");
     }
 }
 

@@ -1,6 +1,6 @@
 """Exports a Blender scene for rt: one asset folder per mesh (`NAME/NAME.rtmesh` with the
 evaluated geometry, `NAME/NAME.gltf` with its materials) and, optionally, a scene TOML
-that places them with the camera, the sun and the sky.
+that places them with the camera, the lamps and the sky.
 
 Three ways to run it:
 
@@ -433,14 +433,23 @@ def camera_toml(scene):
     return "[camera]\n" + "\n".join(lines) + "\n\n"
 
 
+def lamps(scene):
+    return sorted(
+        (o for o in scene.objects if o.type == "LIGHT" and not o.hide_render and o.data.type in LAMP_TYPES),
+        key=lambda o: o.name,
+    )
+
+
+def sky_is_atmosphere(scene):
+    return sky_toml(scene).startswith('[sky]\nkind = "atmosphere"')
+
+
 def sun_toml(scene):
-    suns = [o for o in scene.objects if o.type == "LIGHT" and o.data.type == "SUN" and not o.hide_render]
-    others = [o.name for o in scene.objects if o.type == "LIGHT" and o.data.type != "SUN"]
-    if others:
-        log(f"lights other than a sun are not exported (use emissive meshes): {', '.join(sorted(others))}")
-    if not suns:
+    """Under a Sky Texture, the first Sun lamp lights rt's atmosphere as its `[sun]`."""
+    suns = [o for o in lamps(scene) if o.data.type == "SUN"]
+    if not suns or not sky_is_atmosphere(scene):
         return ""
-    sun = sorted(suns, key=lambda o: o.name)[0]
+    sun = suns[0]
     # A sun shines along its local -Z, so the sun itself lies along +Z.
     to_sun = (TO_RT.to_3x3() @ sun.matrix_world.to_3x3() @ Vector((0, 0, 1))).normalized()
     elevation = math.degrees(math.asin(max(-1.0, min(1.0, to_sun.y))))
@@ -450,6 +459,79 @@ def sun_toml(scene):
         f"[sun]\nelevation_deg = {fmt(elevation)}\nazimuth_deg = {fmt(azimuth)}\n"
         f"angular_diameter_deg = {fmt(diameter)}\n\n"
     )
+
+
+LAMP_TYPES = {"POINT": "point", "SPOT": "spot", "AREA": "area", "SUN": "sun"}
+
+
+def lamp_area(obj):
+    """Cycles' Light::area, by which it divides a lamp's power when "Normalize" is on."""
+    data = obj.data
+    if data.type in ("POINT", "SPOT"):
+        area = 4.0 * math.pi * data.shadow_soft_size**2
+        return area if area > 0.0 else 4.0
+    if data.type == "AREA":
+        size_y = data.size_y if data.shape in ("RECTANGLE", "ELLIPSE") else data.size
+        u, v = obj.matrix_world.col[0].to_3d().length, obj.matrix_world.col[1].to_3d().length
+        area = u * data.size * v * size_y
+        return area * math.pi / 4.0 if data.shape in ("DISK", "ELLIPSE") else area
+    half = data.angle / 2.0
+    return math.pi * math.sin(half) ** 2 if half > 0.0 else 1.0
+
+
+def light_toml(obj):
+    """One lamp as a [[light]]: Blender's units, its matrix with the lamp's local frame kept
+    (it shines along local -Z), only the world turned Y-up."""
+    data = obj.data
+    kind = LAMP_TYPES[data.type]
+    for unsupported, what in (
+        (getattr(data, "use_nodes", False), "a node tree (its emission nodes are ignored)"),
+        (getattr(data, "use_temperature", False), "a blackbody temperature (its colour is used)"),
+        (not getattr(data, "use_shadow", True), "shadows off"),
+        (data.type == "AREA" and data.spread < math.pi - 1e-6, "a spread under 180 degrees"),
+    ):
+        if unsupported:
+            log(f"light {obj.name}: rt does not render {what}")
+    power = data.energy * 2.0 ** getattr(data, "exposure", 0.0)
+    if not getattr(data, "normalize", True):
+        power *= lamp_area(obj)
+    lines = [f"# {obj.name}", "[[light]]", f'type = "{kind}"', f"color = {vec(data.color)}"]
+    lines.append(f"{'strength' if kind == 'sun' else 'power'} = {fmt(power)}")
+    if kind in ("point", "spot"):
+        lines.append(f"radius = {fmt(data.shadow_soft_size)}")
+        lines.append(f"soft_falloff = {'true' if getattr(data, 'use_soft_falloff', True) else 'false'}")
+    if kind == "spot":
+        lines.append(f"spot_size_deg = {fmt(min(max(math.degrees(data.spot_size), 1.0), 180.0))}")
+        lines.append(f"spot_blend = {fmt(data.spot_blend)}")
+    if kind == "area":
+        lines.append(f'shape = "{data.shape.lower()}"')
+        lines.append(f"size = {fmt(data.size)}")
+        if data.shape in ("RECTANGLE", "ELLIPSE"):
+            lines.append(f"size_y = {fmt(data.size_y)}")
+    if kind == "sun":
+        lines.append(f"angle_deg = {fmt(math.degrees(data.angle))}")
+    if obj.visible_camera:
+        lines.append("visible_to_camera = true")
+    m = TO_RT @ obj.matrix_world
+    rows = [m[r][c] for r in range(4) for c in range(4)]
+    rows[12:16] = [0.0, 0.0, 0.0, 1.0]
+    lines.append(f"matrix = {vec(rows)}")
+    return "\n".join(lines) + "\n\n"
+
+
+def lights_toml(scene):
+    atmosphere_sun = sun_toml(scene) != ""
+    text = []
+    for obj in lamps(scene):
+        # The first sun is already the atmosphere's `[sun]`.
+        if atmosphere_sun and obj.data.type == "SUN":
+            atmosphere_sun = False
+            continue
+        if obj.data.type == "AREA" and abs(obj.matrix_world.to_3x3().determinant()) < 1e-12:
+            log(f"light {obj.name}: scaled to nothing; left out of the scene")
+            continue
+        text.append(light_toml(obj))
+    return "".join(text)
 
 
 def sky_toml(scene):
@@ -478,6 +560,7 @@ def scene_toml(scene, export, scene_path, objects):
         camera_toml(scene),
         sky_toml(scene),
         sun_toml(scene),
+        lights_toml(scene),
     ]
     scene_dir = os.path.dirname(os.path.abspath(scene_path))
     for obj in objects:

@@ -16,6 +16,9 @@
 //#if nee
 //#include "lights.wgsl"
 //#endif
+//#if lamps
+//#include "lamps.wgsl"
+//#endif
 //#if media
 //#include "segment.wgsl"
 //#endif
@@ -105,7 +108,7 @@ fn sun_seen(origin: vec3f, direction: vec3f, bsdf_pdf: f32) -> vec3f {
     var weight = 1.0;
     //#if nee
     if bsdf_pdf > 0.0 {
-        weight = power_heuristic(bsdf_pdf, frame.sun_select_probability / sun_solid_angle());
+        weight = power_heuristic(bsdf_pdf, sun_share() / sun_solid_angle());
     }
     //#endif
     return sun_radiance_at(origin, direction) * weight;
@@ -159,6 +162,12 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
             }
             continue;
         }
+        //#endif
+        //#if lamps
+        // Lamps are not in the BVH: the path meets those before the surface and goes on.
+        // (Seen through a medium, they skip its absorption.)
+        let lamp_light = lamps_seen(origin, direction, hit.t, hit.kind == HIT_NONE, bsdf_pdf, bounce == 0u);
+        gather(&radiance, throughput * lamp_light, EVENT_EMISSION);
         //#endif
         //#if media
         let segment = integrate_segment(medium_absorption, medium_emission, hit.t);

@@ -1,6 +1,6 @@
-// Next-event estimation: a light sample towards the sun or an emitter (picked
-// in proportion to power: area × luminance of emission), weighed against BSDF
-// sampling by the power heuristic (Veach 1997).
+// Next-event estimation: a light sample towards the sun, an emitter (picked
+// in proportion to power: area × luminance of emission) or a lamp, weighed against
+// BSDF sampling by the power heuristic (Veach 1997).
 
 //#include "constants.wgsl"
 //#include "common.wgsl"
@@ -11,6 +11,9 @@
 //#include "hit.wgsl"
 //#include "bsdf.wgsl"
 //#include "bsdf_eval.wgsl"
+//#if lamps
+//#include "lamps.wgsl"
+//#endif
 //#if spheres
 //#include "sphere.wgsl"
 //#endif
@@ -28,8 +31,10 @@ struct LightSample {
     direction: vec3f,
     distance: f32,
     radiance: vec3f,
-    // Solid-angle density, selection included.
+    // Solid-angle density, selection included; for a delta light, the selection probability.
     pdf: f32,
+    // A point or a sun of angle 0: no BSDF sample finds it, so no MIS weight.
+    delta: bool,
 }
 
 fn power_heuristic(a: f32, b: f32) -> f32 {
@@ -37,8 +42,21 @@ fn power_heuristic(a: f32, b: f32) -> f32 {
     return a2 / (a2 + b * b);
 }
 
+// Probabilities that a light sample goes to the [sun], and to an emitter.
+fn sun_share() -> f32 {
+    //#if lamps
+    return lamp_info.sun_share;
+    //#else
+    return frame.sun_select_probability;
+    //#endif
+}
+
 fn emitter_share() -> f32 {
+    //#if lamps
+    return lamp_info.emitter_share;
+    //#else
     return 1.0 - frame.sun_select_probability;
+    //#endif
 }
 
 // 1 − cos of the half-angle under which a sphere is seen from `p`; < 0 from inside.
@@ -90,7 +108,7 @@ fn find_emitter(u: f32) -> u32 {
 }
 
 fn sample_emitter(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
-    let none = LightSample(vec3f(0.0, 1.0, 0.0), 0.0, vec3f(0.0), 0.0);
+    let none = LightSample(vec3f(0.0, 1.0, 0.0), 0.0, vec3f(0.0), 0.0, false);
     let e = emitters[find_emitter(rng_next(rng))];
     let u = vec2f(rng_next(rng), rng_next(rng));
     if (e.primitive & SPHERE_BIT) != 0u {
@@ -110,7 +128,7 @@ fn sample_emitter(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
             return none;
         }
         let m = materials[s.material];
-        return LightSample(d, t, m.emission, sphere_emitter_pdf(p, s, m.emission_luminance));
+        return LightSample(d, t, m.emission, sphere_emitter_pdf(p, s, m.emission_luminance), false);
         //#endif
     }
     //#if triangles
@@ -133,21 +151,37 @@ fn sample_emitter(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
         material = inst.material_base + tri.material;
     }
     let m = materials[material];
-    return LightSample(d, t, m.emission, triangle_emitter_pdf(m.emission_luminance, t, abs(dot(n, d))));
+    return LightSample(d, t, m.emission, triangle_emitter_pdf(m.emission_luminance, t, abs(dot(n, d))), false);
     //#else
     return none;
     //#endif
 }
 
 fn sample_light(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
+    let none = LightSample(vec3f(0.0, 1.0, 0.0), 0.0, vec3f(0.0), 0.0, false);
+    //#if lamps
+    let u = rng_next(rng);
+    let sun_picked = u < sun_share();
+    if u >= lamp_info.sun_share + lamp_info.emitter_share {
+        if lamp_info.count == 0u {
+            return none;
+        }
+        return sample_lamp(p, rng);
+    }
+    //#else
+    var sun_picked = false;
     //#if sun
-    if rng_next(rng) < frame.sun_select_probability {
+    sun_picked = rng_next(rng) < sun_share();
+    //#endif
+    //#endif
+    //#if sun
+    if sun_picked {
         let d = sample_sun_direction(vec2f(rng_next(rng), rng_next(rng)));
-        return LightSample(d, INFINITY, sun_radiance_at(p, d), frame.sun_select_probability / sun_solid_angle());
+        return LightSample(d, INFINITY, sun_radiance_at(p, d), sun_share() / sun_solid_angle(), false);
     }
     //#endif
     if frame.emitter_count == 0u {
-        return LightSample(vec3f(0.0, 1.0, 0.0), 0.0, vec3f(0.0), 0.0);
+        return none;
     }
     return sample_emitter(p, rng);
 }
@@ -170,7 +204,7 @@ fn direct_light(ctx: ShadingContext, surface: Surface, n_geometric: vec3f, mediu
     let none = ShadowRay(vec3f(0.0), 0.0, vec3f(0.0, 1.0, 0.0), vec3f(0.0));
     let p = surface.position;
     let light = sample_light(p, rng);
-    if light.pdf <= 0.0 || all(light.radiance == vec3f(0.0)) {
+    if !(light.pdf > 0.0) || all(light.radiance == vec3f(0.0)) {
         return none;
     }
     let wi = transpose(ctx.basis) * light.direction;
@@ -191,6 +225,6 @@ fn direct_light(ctx: ShadingContext, surface: Surface, n_geometric: vec3f, mediu
         transmittance *= atmosphere_transmittance_along(origin, light.direction, light.distance);
     }
     //#endif
-    let weight = power_heuristic(light.pdf, bsdf_pdf(ctx, wi));
+    let weight = select(power_heuristic(light.pdf, bsdf_pdf(ctx, wi)), 1.0, light.delta);
     return ShadowRay(origin, t_max, light.direction, f * light.radiance * transmittance * (weight / light.pdf));
 }

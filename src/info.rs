@@ -10,12 +10,13 @@ pub fn print_info(scene: Scene, quality: BuildQuality, adapter: Option<&str>) ->
     println!("scene      {}", scene.origin);
     println!("features   {}", crate::scene::FeatureSet::analyse(&scene, &g.summary()));
     println!(
-        "contents   {} mesh instances of {} assets, {} spheres, {} triangles, {} materials",
+        "contents   {} mesh instances of {} assets, {} spheres, {} triangles, {} materials, {} lamps",
         g.instances.len(),
         g.meshes.len(),
         g.spheres.len(),
         g.meshes.iter().map(|m| m.triangle_count).sum::<usize>(),
-        g.materials.len()
+        g.materials.len(),
+        g.lamps.len()
     );
     println!("bounds     {:?} .. {:?}", g.bounds_min.to_array(), g.bounds_max.to_array());
     for m in &g.meshes {

@@ -132,6 +132,55 @@ pub struct GpuEmitter {
     pub _pad0: u32,
 }
 
+/// A `[[light]]` lamp (see `shaders/lamps.wgsl` for what each field holds per kind).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuLamp {
+    /// Point, spot, area: the centre; sun: the unit vector towards it.
+    pub position: [f32; 3],
+    /// `LAMP_*` kind, with the `LAMP_SPHERE`, `LAMP_ELLIPSE` and `LAMP_CAMERA` bits.
+    pub kind: u32,
+    /// Radiance of the lamp's shape; intensity (W/sr) for a point of radius 0, irradiance
+    /// for a sun of angle 0.
+    pub emission: [f32; 3],
+    /// Point, spot: the radius; sun: 1 − cos of the half-angle.
+    pub radius: f32,
+    /// Area: the unit X axis; spot: the unit direction of the cone.
+    pub axis_u: [f32; 3],
+    /// Area: the length along X; spot: cos of the cone's half-angle.
+    pub len_u: f32,
+    /// Area: the unit Y axis.
+    pub axis_v: [f32; 3],
+    /// Area: the length along Y; spot: the smoothstep's scale 1 / ((1 − cos) · blend).
+    pub len_v: f32,
+    /// Area: the unit normal of the emitting side.
+    pub normal: [f32; 3],
+    /// Cumulative selection probability among lamps, up to and including this one.
+    pub cdf: f32,
+}
+
+/// How next-event estimation splits its samples between the `[sun]`, emissive
+/// surfaces and lamps, when the scene has lamps.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuLampInfo {
+    pub count: u32,
+    pub sun_share: f32,
+    pub emitter_share: f32,
+    pub lamp_share: f32,
+}
+
+pub const LAMP_POINT: u32 = 0;
+pub const LAMP_SPOT: u32 = 1;
+pub const LAMP_AREA: u32 = 2;
+pub const LAMP_SUN: u32 = 3;
+/// A point or spot lamp that is a sphere rather than a disk facing the shaded point.
+pub const LAMP_SPHERE: u32 = 0x100;
+/// An area lamp that is an ellipse rather than a rectangle.
+pub const LAMP_ELLIPSE: u32 = 0x200;
+/// Camera rays see the lamp.
+pub const LAMP_CAMERA: u32 = 0x400;
+
 /// The atmosphere's parameters (`shaders/atmosphere.wgsl`), group 2 of the
 /// integrator and group 0 of the table passes.
 #[repr(C)]

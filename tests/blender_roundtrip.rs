@@ -134,7 +134,9 @@ fn blender_scene_exports_packs_and_renders() {
 
     cameras_come_through(&python, &out, &expected, &scene);
     assert_eq!(scene.sky, rt::scene::Sky::Uniform { color: Vec3::new(0.2, 0.25, 0.3) });
-    assert!(scene.sun.is_some());
+    // Under a plain sky, every lamp is a [[light]] (the sun too), with Blender's units.
+    assert!(scene.sun.is_none());
+    check_lights(&scene, &expected["lights"]);
 
     // The packed caches are what the renderer loads, with the same materials.
     let geometry = SceneGeometry::build(&scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
@@ -220,6 +222,54 @@ fn cameras_come_through(python: &Path, out: &Path, expected: &Value, scene: &Sce
     check_frame(&ortho, &expected["ortho"]["matrix_world"]);
     assert_eq!((ortho.projection, ortho.sensor_fit), (Projection::Orthographic { scale: 5.0 }, SensorFit::Vertical));
     assert_eq!((ortho.shift.y, ortho.depth_of_field), (0.2, None));
+}
+
+/// Each lamp's type, colour, power (exposure and "Normalize" folded in), shape and
+/// placement, against the raw Blender values.
+fn check_lights(scene: &rt::scene::Scene, expected: &Value) {
+    use rt::scene::{AreaShape, LightShape};
+    assert_eq!(scene.lights.len(), 4, "one [[light]] per lamp");
+    let close =
+        |a: f32, b: f64, what: &str| assert!((f64::from(a) - b).abs() < 1e-4 * b.abs().max(1.0), "{what}: {a} vs {b}");
+    // Lamps are exported in name order: area, point, spot, sun.
+    for (light, name) in scene.lights.iter().zip(["area", "point", "spot", "sun"]) {
+        let e = &expected[name];
+        let f = |k: &str| e[k].as_f64().unwrap_or_else(|| panic!("{name}.{k}"));
+        let m = e["matrix_world"].as_array().expect("matrix");
+        let column = |c: usize| y_up(&Value::from((0..3).map(|r| m[r][c].clone()).collect::<Vec<_>>()));
+        assert!(light.position().distance(column(3)) < 1e-5, "{name}: at {}", light.position());
+        let shines = -column(2).normalize();
+        assert!(light.direction().distance(shines) < 1e-5, "{name}: shines along {}", light.direction());
+        for (got, want) in light.color.to_array().iter().zip(e["color"].as_array().expect("colour")) {
+            close(*got, want.as_f64().expect("number"), &format!("{name} colour"));
+        }
+        let mut power = f("energy") * 2f64.powf(f("exposure"));
+        if !e["normalize"].as_bool().expect("normalize") {
+            // Cycles' area of an area lamp: the sizes times the object's scale.
+            power *= f("size") * column(0).length() as f64 * f("size_y") * column(1).length() as f64;
+        }
+        close(light.power, power, &format!("{name} power"));
+        assert_eq!(light.visible_to_camera, e["visible_camera"].as_bool().expect("visibility"), "{name}");
+        match (name, light.shape) {
+            ("point", LightShape::Point { radius, soft_falloff }) => {
+                close(radius, f("radius"), "point radius");
+                assert!(soft_falloff);
+            }
+            ("spot", LightShape::Spot { radius, soft_falloff, size_deg, blend }) => {
+                close(radius, f("radius"), "spot radius");
+                assert!(!soft_falloff);
+                close(size_deg, f("spot_size").to_degrees(), "spot size");
+                close(blend, f("spot_blend"), "spot blend");
+            }
+            ("area", LightShape::Area { shape, size, size_y }) => {
+                assert_eq!(shape, AreaShape::Rectangle);
+                close(size, f("size"), "area size");
+                close(size_y, f("size_y"), "area size_y");
+            }
+            ("sun", LightShape::Sun { angle_deg }) => close(angle_deg, f("angle").to_degrees(), "sun angle"),
+            (name, shape) => panic!("{name} exported as {shape:?}"),
+        }
+    }
 }
 
 fn live_export_writes_only_what_changed(python: &Path, script: &Path, out: &Path) {

@@ -20,6 +20,7 @@ fn every_scene_renders_finite() {
         "far_spheres",
         "flight",
         "furnace",
+        "lamps",
         "showcase",
         "specular_pillars",
         "sunset",

@@ -4,6 +4,7 @@
 pub mod cache;
 mod cache_check;
 mod cached_material;
+mod lights;
 mod mesh_bvh;
 mod node;
 pub mod pack;

@@ -1,11 +1,12 @@
 //! Everything a scene puts on the GPU: the meshes' bottom-level BVHs, a top
 //! level over instances and spheres, and the material table.
 
+use super::lights::{LampTable, lamp_table, scene_radius};
 use super::mesh_bvh::BuildQuality;
 use super::node::{BvhStats, convert_bvh2, stats};
 use super::pack::{LoadedMesh, build_all_in_memory, load_or_pack_all};
 use crate::layout::*;
-use crate::scene::{GeometrySummary, Material, Scene};
+use crate::scene::{GeometrySummary, Material, Sampling, Scene};
 use anyhow::{Result, bail};
 use glam::{Mat4, Vec3, Vec3A};
 use obvhs::{BvhBuildParams, aabb::Aabb, bvh2::builder::build_bvh2};
@@ -27,6 +28,9 @@ pub struct SceneGeometry {
     pub emitters: Vec<GpuEmitter>,
     /// Sum of the emitters' powers (area × luminance of emission).
     pub emitter_total_power: f32,
+    /// `[[light]]` lamps, and how light sampling shares its samples when there are some.
+    pub lamps: Vec<GpuLamp>,
+    pub lamp_info: GpuLampInfo,
     pub tlas_root: u32,
     pub tlas_stats: BvhStats,
     pub meshes: Vec<LoadedMesh>,
@@ -174,6 +178,18 @@ impl SceneGeometry {
                 (lo.min(b.min.into()), hi.max(b.max.into()))
             });
 
+        if scene.render.sampling == Sampling::Resampled {
+            for (i, _) in scene.lights.iter().enumerate().filter(|(_, l)| l.is_delta()) {
+                log::warn!(
+                    "{}: light {} has no size (a point, or a sun of angle 0): with sampling = \"seed\" no ray finds it and it lights nothing",
+                    scene.origin,
+                    i + 1
+                );
+            }
+        }
+        let LampTable { lamps, info: lamp_info } =
+            lamp_table(&scene.lights, scene.sun.is_some(), !emitters.is_empty(), scene_radius(bounds_min, bounds_max));
+
         Ok(Self {
             nodes,
             triangles,
@@ -184,6 +200,8 @@ impl SceneGeometry {
             materials: materials.iter().map(GpuMaterial::from).collect(),
             emitters,
             emitter_total_power,
+            lamps,
+            lamp_info,
             tlas_root,
             tlas_stats,
             meshes,

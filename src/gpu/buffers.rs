@@ -17,7 +17,10 @@ const STAT_COUNT: usize = 1;
 /// [`SceneData::bindings`].
 pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     use Binding::*;
-    let bindings = [Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadWrite, ReadOnly];
+    let bindings = [
+        Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadWrite, ReadOnly, ReadOnly,
+        Uniform,
+    ];
     sequential_layout(device, "scene", wgpu::ShaderStages::COMPUTE, &bindings)
 }
 
@@ -45,11 +48,14 @@ struct SceneData {
     materials: wgpu::Buffer,
     stats: wgpu::Buffer,
     emitters: wgpu::Buffer,
+    lamps: wgpu::Buffer,
+    /// The lamps' count and share of light samples.
+    lamp_info: wgpu::Buffer,
 }
 
 impl SceneData {
     /// The buffers in binding order (see [`scene_bind_group_layout`]).
-    fn bindings(&self) -> [&wgpu::Buffer; 10] {
+    fn bindings(&self) -> [&wgpu::Buffer; 12] {
         [
             &self.frame,
             &self.nodes,
@@ -61,6 +67,8 @@ impl SceneData {
             &self.materials,
             &self.stats,
             &self.emitters,
+            &self.lamps,
+            &self.lamp_info,
         ]
     }
 }
@@ -100,6 +108,17 @@ fn geometry_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<Geomet
     ))
 }
 
+/// The lamp table and its header (count and light-sampling shares).
+fn lamp_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer, wgpu::Buffer) {
+    let lamps = storage(ctx, "lamps", &geometry.lamps, wgpu::BufferUsages::empty());
+    let info = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("lamp info"),
+        contents: bytemuck::bytes_of(&geometry.lamp_info),
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+    });
+    (lamps, info)
+}
+
 fn material_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer, wgpu::Buffer) {
     let writable = wgpu::BufferUsages::COPY_DST;
     (storage(ctx, "materials", &geometry.materials, writable), storage(ctx, "emitters", &geometry.emitters, writable))
@@ -116,7 +135,21 @@ impl SceneBuffers {
         });
         let counters = wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST;
         let stats = storage(ctx, "stats", &[0u32; STAT_COUNT], counters);
-        let data = SceneData { frame, nodes, triangles, shading, instances, tlas, spheres, materials, stats, emitters };
+        let (lamps, lamp_info) = lamp_buffers(ctx, geometry);
+        let data = SceneData {
+            frame,
+            nodes,
+            triangles,
+            shading,
+            instances,
+            tlas,
+            spheres,
+            materials,
+            stats,
+            emitters,
+            lamps,
+            lamp_info,
+        };
         let bind_group = bind_group(ctx, "scene", layout, &data.bindings());
         Ok(Self { data, bind_group, sky_bind_group: None })
     }
@@ -132,6 +165,7 @@ impl SceneBuffers {
         let d = &mut self.data;
         (d.nodes, d.triangles, d.shading, d.instances, d.tlas, d.spheres) = geometry_buffers(ctx, geometry)?;
         (d.materials, d.emitters) = material_buffers(ctx, geometry);
+        (d.lamps, d.lamp_info) = lamp_buffers(ctx, geometry);
         self.bind_group = bind_group(ctx, "scene", layout, &self.data.bindings());
         Ok(())
     }
@@ -142,6 +176,8 @@ impl SceneBuffers {
         let d = &mut self.data;
         let same_size = d.materials.size() == size_of_nonempty(&geometry.materials)
             && d.emitters.size() == size_of_nonempty(&geometry.emitters);
+        // Whether there are emitters changes the lamps' share of light samples.
+        ctx.queue.write_buffer(&d.lamp_info, 0, bytemuck::bytes_of(&geometry.lamp_info));
         if same_size {
             write_nonempty(ctx, &d.materials, &geometry.materials);
             write_nonempty(ctx, &d.emitters, &geometry.emitters);

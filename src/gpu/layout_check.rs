@@ -93,6 +93,8 @@ fn host_structs_match_wgsl_layouts() {
             ]
         ),
         host_layout!("Emitter", GpuEmitter, [primitive, instance, cdf]),
+        host_layout!("Lamp", GpuLamp, [position, kind, emission, radius, axis_u, len_u, axis_v, len_v, normal, cdf]),
+        host_layout!("LampInfo", GpuLampInfo, [count, sun_share, emitter_share, lamp_share]),
         host_layout!(
             "Atmosphere",
             GpuAtmosphere,

@@ -58,6 +58,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("directions.wgsl"),
     shader!("hit.wgsl"),
     shader!("integrator.wgsl"),
+    shader!("lamps.wgsl"),
     shader!("lights.wgsl"),
     shader!("microfacet.wgsl"),
     shader!("ray.wgsl"),

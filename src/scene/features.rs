@@ -1,6 +1,6 @@
 //! Feature analysis: which effects a scene needs, so that the GPU runs only their code.
 
-use super::{Material, RoughTransmission, Sampling, Scene, Sky};
+use super::{Light, LightShape, Material, RoughTransmission, Sampling, Scene, Sky};
 use std::fmt;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -20,6 +20,37 @@ pub enum Transmission {
     Rough(RoughTransmission),
 }
 
+/// Which kinds of `[[light]]` lamps a scene has: each kind's code is in the pipeline only
+/// when one is present.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct LampKinds {
+    pub point: bool,
+    pub spot: bool,
+    pub area: bool,
+    pub sun: bool,
+}
+
+impl LampKinds {
+    pub fn of(lights: &[Light]) -> Self {
+        let mut kinds = Self::default();
+        for l in lights {
+            match l.shape {
+                LightShape::Point { .. } => kinds.point = true,
+                LightShape::Spot { .. } => kinds.spot = true,
+                LightShape::Area { .. } => kinds.area = true,
+                LightShape::Sun { .. } => kinds.sun = true,
+            }
+        }
+        kinds
+    }
+
+    pub fn any(&self) -> bool {
+        self.point || self.spot || self.area || self.sun
+    }
+
+    pub const ALL: Self = Self { point: true, spot: true, area: true, sun: true };
+}
+
 /// The effects a scene calls for. Each one selects shader code; an absent
 /// effect's code is not in the pipeline that runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -34,6 +65,8 @@ pub struct FeatureSet {
     pub transmission: Transmission,
     /// Absorption or emission inside transmissive materials.
     pub media: bool,
+    /// `[[light]]` lamps, by kind.
+    pub lamps: LampKinds,
     pub sampling: Sampling,
     /// A thin-lens camera: rays start across the aperture.
     pub depth_of_field: bool,
@@ -80,6 +113,7 @@ impl FeatureSet {
             glossy: materials_in_use.iter().any(|m| (m.specular > 0.0 || m.reflection > 0.0) && rough(&m)),
             transmission,
             media: transmissive.iter().any(|m| m.has_medium()),
+            lamps: LampKinds::of(&scene.lights),
             sampling: settings.sampling,
             depth_of_field: scene.camera.depth_of_field.is_some(),
         }
@@ -96,6 +130,7 @@ impl FeatureSet {
             glossy: true,
             transmission: Transmission::Rough(rough),
             media: true,
+            lamps: LampKinds::ALL,
             sampling,
             depth_of_field: true,
         }
@@ -116,6 +151,13 @@ impl FeatureSet {
             "rough_glass_ggx" => self.transmission == Transmission::Rough(RoughTransmission::Ggx),
             "rough_glass_cone" => self.transmission == Transmission::Rough(RoughTransmission::Cone),
             "media" => self.media,
+            "lamps" => self.lamps.any(),
+            "lamp_point" => self.lamps.point,
+            "lamp_spot" => self.lamps.spot,
+            // Point and spot lamps share their shapes (a point, a facing disk, a sphere).
+            "lamp_round" => self.lamps.point || self.lamps.spot,
+            "lamp_area" => self.lamps.area,
+            "lamp_sun" => self.lamps.sun,
             "nee" => self.sampling == Sampling::Nee,
             "depth_of_field" => self.depth_of_field,
             _ => return None,
@@ -144,6 +186,19 @@ impl fmt::Display for FeatureSet {
             Transmission::Smooth => parts.push("glass".into()),
             Transmission::Rough(RoughTransmission::Ggx) => parts.push("rough-glass=ggx".into()),
             Transmission::Rough(RoughTransmission::Cone) => parts.push("rough-glass=cone".into()),
+        }
+        let lamps: Vec<&str> = [
+            (self.lamps.point, "point"),
+            (self.lamps.spot, "spot"),
+            (self.lamps.area, "area"),
+            (self.lamps.sun, "sun"),
+        ]
+        .iter()
+        .filter(|(on, _)| *on)
+        .map(|(_, name)| *name)
+        .collect();
+        if !lamps.is_empty() {
+            parts.push(format!("lamps={}", lamps.join(",")));
         }
         parts.push(format!("sky={}", format!("{:?}", self.sky).to_lowercase()));
         parts.push(format!("sampling={}", format!("{:?}", self.sampling).to_lowercase()));

@@ -5,6 +5,7 @@ mod atmosphere;
 mod builtin;
 mod camera;
 mod features;
+mod light;
 mod material;
 mod parse;
 mod schema;
@@ -15,7 +16,8 @@ mod validate;
 pub use atmosphere::Atmosphere;
 pub use builtin::{BUILTIN_PREFIX, default_scene};
 pub use camera::{Camera, DepthOfField, Projection, SensorFit};
-pub use features::{ALPHA_DELTA, FeatureSet, GeometrySummary, SkyFeature, Transmission};
+pub use features::{ALPHA_DELTA, FeatureSet, GeometrySummary, LampKinds, SkyFeature, Transmission};
+pub use light::{AreaShape, Light, LightShape};
 pub use material::{Material, luminance};
 pub use parse::{SceneError, hint as did_you_mean, load, parse};
 pub use validate::MAX_IMAGE_SIDE;
@@ -132,6 +134,8 @@ pub struct Scene {
     pub materials: Vec<(String, Material)>,
     pub meshes: Vec<MeshInstance>,
     pub spheres: Vec<Sphere>,
+    /// `[[light]]` lamps, in file order.
+    pub lights: Vec<Light>,
 }
 
 impl Scene {

@@ -22,6 +22,8 @@ pub(super) struct File {
     pub mesh: Vec<Mesh>,
     #[serde(default)]
     pub sphere: Vec<Sphere>,
+    #[serde(default)]
+    pub light: Vec<Light>,
 }
 
 /// Each key may be left out, and so may the whole `[camera]` table; `scene::camera`
@@ -176,4 +178,47 @@ pub(super) struct Sphere {
     pub center: [f32; 3],
     pub radius: f32,
     pub material: Option<String>,
+}
+
+/// One `[[light]]`: a Blender lamp. Which keys apply depends on `type`; `validate` says
+/// which do not.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct Light {
+    #[serde(rename = "type")]
+    pub kind: LightKind,
+    pub color: Option<Color>,
+    pub power: Option<f32>,
+    pub strength: Option<f32>,
+    pub radius: Option<f32>,
+    pub soft_falloff: Option<bool>,
+    pub spot_size_deg: Option<f32>,
+    pub spot_blend: Option<f32>,
+    pub shape: Option<AreaShape>,
+    pub size: Option<f32>,
+    pub size_y: Option<f32>,
+    pub angle_deg: Option<f32>,
+    pub visible_to_camera: Option<bool>,
+    pub position: Option<[f32; 3]>,
+    pub direction: Option<[f32; 3]>,
+    /// Row-major; excludes `position` and `direction`.
+    pub matrix: Option<[f32; 16]>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum LightKind {
+    Point,
+    Spot,
+    Area,
+    Sun,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AreaShape {
+    Square,
+    Rectangle,
+    Disk,
+    Ellipse,
 }

@@ -1,4 +1,5 @@
 use super::*;
+use super::{AreaShape, LightShape};
 use glam::{Mat4, Vec3};
 use std::path::Path;
 
@@ -275,4 +276,45 @@ fn seed_is_read_as_resampled_sampling() {
         let scene = parse_ok(&format!("[render]\nsampling = \"{name}\"\n"));
         assert_eq!(scene.render.sampling, Sampling::Resampled, "{name}");
     }
+}
+
+#[test]
+fn lights_parse_with_blender_defaults() {
+    let s = parse_ok(
+        "[[light]]\ntype = \"point\"\n\
+         [[light]]\ntype = \"spot\"\ncolor = [1.0, 0.5, 0.25]\npower = 400\nradius = 0.1\nsoft_falloff = false\n\
+         spot_size_deg = 30\nspot_blend = 0.5\nposition = [1, 2, 3]\ndirection = [0, 0, -2]\nvisible_to_camera = true\n\
+         [[light]]\ntype = \"area\"\nshape = \"ellipse\"\nsize = 2\nsize_y = 0.5\n\
+         [[light]]\ntype = \"sun\"\nstrength = 3\nangle_deg = 1.5\nmatrix = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]\n",
+    );
+    let [point, spot, area, sun] = &s.lights[..] else { panic!("{:?}", s.lights) };
+    assert_eq!(point.shape, LightShape::Point { radius: 0.0, soft_falloff: true });
+    assert_eq!((point.power, point.color, point.visible_to_camera), (10.0, Vec3::ONE, false));
+    assert_eq!((point.position(), point.direction()), (Vec3::ZERO, Vec3::NEG_Y));
+    assert_eq!(spot.shape, LightShape::Spot { radius: 0.1, soft_falloff: false, size_deg: 30.0, blend: 0.5 });
+    assert_eq!((spot.power, spot.color, spot.visible_to_camera), (400.0, Vec3::new(1.0, 0.5, 0.25), true));
+    assert_eq!((spot.position(), spot.direction()), (Vec3::new(1.0, 2.0, 3.0), Vec3::NEG_Z));
+    // With `direction`, the lamp's local X is horizontal.
+    assert!(spot.object_to_world.x_axis.y.abs() < 1e-6);
+    assert_eq!(area.shape, LightShape::Area { shape: AreaShape::Ellipse, size: 2.0, size_y: 0.5 });
+    let square = parse_ok("[[light]]\ntype = \"area\"\n").lights[0].shape;
+    assert_eq!(square, LightShape::Area { shape: AreaShape::Square, size: 0.25, size_y: 0.25 });
+    assert_eq!((sun.shape, sun.power, sun.direction()), (LightShape::Sun { angle_deg: 1.5 }, 3.0, Vec3::NEG_Z));
+}
+
+#[test]
+fn light_errors_are_located_and_suggest() {
+    assert_errors(
+        r#"
+        [[light]] | type = "spot" | spot_sise_deg = 30 => 3:1: unknown key `spot_sise_deg` in light 1; did you mean `spot_size_deg`?
+        [[light]] | type = "pont" => 2:8: light 1: unknown type `pont`; did you mean `point`?
+        [[light]] | type = "point" | [[light]] | type = "point" | angle_deg = 1 => 5:13: light 2: angle_deg only applies to type = "sun", not to type = "point"
+        [[light]] | type = "sun" | power = 1 => 3:9: light 1: power only applies to point, spot and area lamps (a sun has `strength`), not to type = "sun"
+        [[light]] | type = "area" | size_y = 1 => 3:10: light 1: size_y only applies to shape = "rectangle" or "ellipse"
+        [[light]] | type = "spot" | spot_size_deg = 200 => 3:17: light 1: spot_size_deg must be in [1, 180], got 200
+        [[light]] | type = "point" | power = -1 => 3:9: light 1: power must be non-negative, got -1
+        [[light]] | type = "point" | direction = [0, 0, 0] => 3:13: light 1: direction must not be zero
+        [[light]] | type = "point" | position = [0, 0, 0] | matrix = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1] => 4:10: light 1: matrix excludes position and direction
+    "#,
+    );
 }

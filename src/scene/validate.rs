@@ -1,6 +1,7 @@
 //! Semantic checks on the deserialized file, and its conversion into a [`Scene`].
 
 use super::atmosphere;
+use super::light;
 use super::parse::{SceneError, Seg, Seg::*, Source, hint};
 use super::schema::{self, File, Scale, SkyKind};
 use super::{Material, MeshInstance, RenderSettings, Scene, Sky, Sphere, Sun};
@@ -55,6 +56,11 @@ pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, 
         spheres.push(Sphere { center: s.center.into(), radius: s.radius, material });
     }
 
+    let mut lights = Vec::new();
+    for (i, l) in file.light.into_iter().enumerate() {
+        lights.push(light::validate(src, i, l)?);
+    }
+
     Ok(Scene {
         origin: src.origin.to_owned(),
         render,
@@ -64,6 +70,7 @@ pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, 
         materials,
         meshes,
         spheres,
+        lights,
     })
 }
 
@@ -138,20 +145,7 @@ fn transform(src: &Source, p: &[Seg], m: &schema::Mesh) -> Result<Mat4, SceneErr
         if m.rotate_deg.is_some() || m.translate.is_some() || m.scale.is_some() {
             return Err(src.error(p, "matrix", "excludes rotate_deg, translate and scale"));
         }
-        src.finite(p, "matrix", rows)?;
-        if rows[12..] != [0.0, 0.0, 0.0, 1.0] {
-            let last = &rows[12..];
-            return Err(src.error(p, "matrix", format!("last row must be [0, 0, 0, 1], got {last:?}")));
-        }
-        let matrix = Mat4::from_cols_array(rows).transpose();
-        let [a, b, c] = [matrix.x_axis, matrix.y_axis, matrix.z_axis].map(|v| v.truncate());
-        // Relative to the largest determinant columns of these lengths can have, so that
-        // a uniform millimetre scale passes and a nearly flat matrix does not.
-        let det = Mat3::from_cols(a, b, c).determinant().abs();
-        if det <= 1e-6 * a.length() * b.length() * c.length() {
-            return Err(src.error(p, "matrix", "must be invertible"));
-        }
-        return Ok(matrix);
+        return matrix(src, p, rows);
     }
     let r = m.rotate_deg.unwrap_or_default();
     let t = m.translate.unwrap_or_default();
@@ -189,4 +183,22 @@ impl RenderSettings {
         }
         Ok(())
     }
+}
+
+/// A row-major `matrix` key: finite, affine and invertible.
+pub(super) fn matrix(src: &Source, p: &[Seg], rows: &[f32; 16]) -> Result<Mat4, SceneError> {
+    src.finite(p, "matrix", rows)?;
+    if rows[12..] != [0.0, 0.0, 0.0, 1.0] {
+        let last = &rows[12..];
+        return Err(src.error(p, "matrix", format!("last row must be [0, 0, 0, 1], got {last:?}")));
+    }
+    let matrix = Mat4::from_cols_array(rows).transpose();
+    let [a, b, c] = [matrix.x_axis, matrix.y_axis, matrix.z_axis].map(|v| v.truncate());
+    // Relative to the largest determinant columns of these lengths can have, so that
+    // a uniform millimetre scale passes and a nearly flat matrix does not.
+    let det = Mat3::from_cols(a, b, c).determinant().abs();
+    if det <= 1e-6 * a.length() * b.length() * c.length() {
+        return Err(src.error(p, "matrix", "must be invertible"));
+    }
+    Ok(matrix)
 }

@@ -14,7 +14,7 @@
 //! Materials, placement and assets can also change the feature set (glass appears, the
 //! last sphere goes); that is found when the geometry is reassembled.
 
-use crate::scene::{RenderSettings, Scene};
+use crate::scene::{LampKinds, RenderSettings, Scene};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -136,8 +136,11 @@ pub fn plan(old: &Scene, new: &Scene, old_assets: &AssetPrints, new_assets: &Ass
             changes.push(Change::Placement);
         }
     }
-    if old.meshes != new.meshes || old.spheres != new.spheres {
+    if old.meshes != new.meshes || old.spheres != new.spheres || old.lights != new.lights {
         changes.push(Change::Placement);
+    }
+    if LampKinds::of(&old.lights) != LampKinds::of(&new.lights) {
+        changes.push(Change::Features);
     }
     for (path, print) in new_assets {
         if old_assets.get(path) != Some(print) {
@@ -278,6 +281,21 @@ mod tests {
         assert_eq!(reload.changes, [Change::Placement]);
         assert_eq!(kind_after(|s| s.spheres[0].radius = 0.7).changes, [Change::Placement]);
         assert_eq!(kind_after(|s| s.meshes[0].material = None).changes, [Change::Placement]);
+    }
+
+    #[test]
+    fn editing_a_lamp_is_placement_and_a_new_kind_a_feature() {
+        let point = "[[light]]\ntype = \"point\"\nposition = [0.0, 2.0, 0.0]\n";
+        let with_lamp = crate::scene::parse(point, "s.toml", Path::new("/s")).expect("a lamp");
+        let mut brighter = with_lamp.clone();
+        brighter.lights[0].power *= 2.0;
+        assert_eq!(
+            plan(&with_lamp, &brighter, &AssetPrints::new(), &AssetPrints::new(), false).changes,
+            [Change::Placement]
+        );
+        let none = crate::scene::parse("", "s.toml", Path::new("/s")).expect("no lamp");
+        let added = plan(&none, &with_lamp, &AssetPrints::new(), &AssetPrints::new(), false);
+        assert_eq!(added.changes, [Change::Features, Change::Placement]);
     }
 
     #[test]

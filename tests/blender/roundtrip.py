@@ -87,6 +87,26 @@ def build(out):
     ortho.data.type, ortho.data.ortho_scale, ortho.data.sensor_fit = "ORTHO", 5.0, "VERTICAL"
     ortho.data.shift_y = 0.2
     bpy.ops.object.light_add(type="SUN", rotation=(0.6, 0.0, 0.8))
+    lamps = {"sun": bpy.context.object}
+    lamps["sun"].data.energy = 2.5
+    lamps["sun"].data.angle = 0.05
+    bpy.ops.object.light_add(type="POINT", location=(1.0, -2.0, 3.0))
+    lamps["point"] = bpy.context.object
+    lamps["point"].data.energy, lamps["point"].data.shadow_soft_size = 150.0, 0.2
+    lamps["point"].data.color = (1.0, 0.8, 0.6)
+    lamps["point"].data.exposure = 1.0
+    bpy.ops.object.light_add(type="SPOT", location=(-2.0, 1.0, 4.0), rotation=(0.2, -0.4, 0.0))
+    lamps["spot"] = bpy.context.object
+    lamps["spot"].data.spot_size, lamps["spot"].data.spot_blend = 1.0, 0.3
+    lamps["spot"].data.use_soft_falloff = False
+    bpy.ops.object.light_add(type="AREA", location=(0.0, 2.0, 3.5), rotation=(0.0, 0.3, 1.0))
+    lamps["area"] = bpy.context.object
+    lamps["area"].data.shape, lamps["area"].data.size, lamps["area"].data.size_y = "RECTANGLE", 1.0, 0.5
+    lamps["area"].scale = (2.0, 1.0, 1.0)
+    lamps["area"].data.normalize = False
+    lamps["area"].visible_camera = True
+    for name, obj in lamps.items():
+        obj.name = name
 
     world = bpy.data.worlds.new("sky")
     world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.4, 0.5, 0.6, 1)
@@ -118,6 +138,25 @@ def build(out):
         "focus_object_location": list(lamp.matrix_world.translation),
     }
     expected["ortho"] = {"matrix_world": [list(row) for row in ortho.matrix_world]}
+    expected["lights"] = {
+        name: {
+            "type": obj.data.type,
+            "energy": obj.data.energy,
+            "exposure": obj.data.exposure,
+            "normalize": obj.data.normalize,
+            "color": list(obj.data.color),
+            "matrix_world": [list(row) for row in obj.matrix_world],
+            "radius": obj.data.shadow_soft_size,
+            "soft_falloff": getattr(obj.data, "use_soft_falloff", True),
+            "spot_size": getattr(obj.data, "spot_size", 0.0),
+            "spot_blend": getattr(obj.data, "spot_blend", 0.0),
+            "size": getattr(obj.data, "size", 0.0),
+            "size_y": getattr(obj.data, "size_y", 0.0),
+            "angle": getattr(obj.data, "angle", 0.0),
+            "visible_camera": obj.visible_camera,
+        }
+        for name, obj in lamps.items()
+    }
     with open(os.path.join(out, "expected.json"), "w") as f:
         json.dump(expected, f)
 

@@ -1,6 +1,6 @@
 use super::resolve::{include_of, kept_lines, resolve};
 use super::*;
-use crate::scene::{RoughTransmission, Sampling, SkyFeature, Transmission};
+use crate::scene::{LampKinds, RoughTransmission, Sampling, SkyFeature, Transmission};
 use std::collections::{BTreeSet, HashSet};
 use std::path::Path;
 
@@ -28,6 +28,13 @@ fn feature_sets() -> Vec<FeatureSet> {
             glossy: on(7),
             transmission,
             media: on(1) && transmission != Transmission::None,
+            // Lamp kinds cycle with the bits, each on and off with the others.
+            lamps: LampKinds {
+                point: bits % 3 == 1,
+                spot: bits % 5 == 2,
+                area: bits % 7 >= 5,
+                sun: (bits / 8) % 3 == 1,
+            },
             sampling: if on(0) { Sampling::Nee } else { Sampling::Resampled },
             depth_of_field: on(4) != on(6),
         });
@@ -49,6 +56,7 @@ fn plain() -> FeatureSet {
         glossy: false,
         transmission: Transmission::None,
         media: false,
+        lamps: LampKinds::default(),
         sampling: Sampling::Nee,
         depth_of_field: false,
     }
@@ -187,9 +195,26 @@ fn absent_effects_leave_no_code() {
         "@group(2)",
         "fn sample_aperture",
         "frame.aperture_radius",
+        "struct Lamp",
+        "lamps",
+        "@binding(10)",
+        "@binding(11)",
     ] {
         assert!(!source.contains(absent), "{absent:?} is in the plain pipeline");
     }
+    // Each kind of lamp brings its own code only.
+    let only = |lamps: LampKinds| assemble(Program::Integrator, &FeatureSet { lamps, ..plain });
+    let point = only(LampKinds { point: true, ..Default::default() });
+    assert!(point.contains("fn lamps_seen") && point.contains("fn round_lamp_hit"));
+    for absent in ["fn spot_attenuation", "LAMP_AREA {", "LAMP_SUN {"] {
+        assert!(!point.contains(absent), "{absent:?} is in a pipeline with point lamps only");
+    }
+    let area = only(LampKinds { area: true, ..Default::default() });
+    assert!(area.contains("LAMP_AREA {") && !area.contains("fn round_lamp_hit") && !area.contains("LAMP_SUN {"));
+    let sun = only(LampKinds { sun: true, ..Default::default() });
+    assert!(sun.contains("LAMP_SUN {") && !sun.contains("fn round_lamp_hit") && !sun.contains("LAMP_AREA {"));
+    let spot = only(LampKinds { spot: true, ..Default::default() });
+    assert!(spot.contains("fn spot_attenuation") && spot.contains("fn round_lamp_hit"));
     for program in [Program::Integrator, Program::Trace] {
         let lens = assemble(program, &FeatureSet { depth_of_field: true, ..plain });
         assert!(lens.contains("fn sample_aperture"), "no aperture in the depth-of-field {program:?} pipeline");

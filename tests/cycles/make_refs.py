@@ -1,0 +1,167 @@
+"""Cycles references for tests/cycles_lamps.rs: small scenes lit by Blender's lamps.
+
+    /work/main/.venv-bpy/bin/python tests/cycles/make_refs.py [--spp 4096] [NAME ...]
+
+Each scene is built here in bpy (a diffuse floor and wall, a box and a ball; one kind
+of lamp per scene, and one with several coloured lamps under a grey sky), rendered by
+Cycles at 64x64 into tests/cycles/NAME.exr (linear, 32-bit), and exported with
+blender/rt_export.py into tests/cycles/scenes/NAME/ (NAME.toml and its assets). CI
+does not run Cycles: it compares rt against the committed files.
+
+Cycles counts bounces after the first hit (0 = direct light only), rt counts hits:
+Cycles' max_bounces = BOUNCES is rt's max_bounces = BOUNCES + 1 (cycles_lamps.rs).
+"""
+
+import argparse
+import math
+import os
+import sys
+
+import bpy
+from mathutils import Vector
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(REPO, "blender"))
+import rt_export  # noqa: E402
+
+SIZE = 64
+BOUNCES = 4
+
+
+def diffuse(name, color):
+    """A Principled BSDF with no specular layer: Lambertian in Cycles and in rt."""
+    material = bpy.data.materials.new(name)
+    node = material.node_tree.nodes["Principled BSDF"]
+    node.inputs["Base Color"].default_value = (*color, 1.0)
+    node.inputs["Specular IOR Level"].default_value = 0.0
+    node.inputs["Roughness"].default_value = 1.0
+    return material
+
+
+def add(obj, name, material):
+    obj.name = obj.data.name = name
+    obj.data.materials.append(material)
+    return obj
+
+
+def room(background):
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    bpy.ops.mesh.primitive_plane_add(size=8)
+    add(bpy.context.object, "floor", diffuse("floor", (0.5, 0.5, 0.5)))
+    bpy.ops.mesh.primitive_plane_add(size=8, location=(0.0, 2.0, 4.0), rotation=(math.pi / 2, 0.0, 0.0))
+    add(bpy.context.object, "wall", diffuse("wall", (0.7, 0.7, 0.6)))
+    bpy.ops.mesh.primitive_cube_add(size=0.8, location=(-0.7, 0.3, 0.4), rotation=(0.0, 0.0, 0.5))
+    add(bpy.context.object, "box", diffuse("box", (0.8, 0.3, 0.2)))
+    bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=3, radius=0.45, location=(0.7, -0.3, 0.45))
+    add(bpy.context.object, "ball", diffuse("ball", (0.2, 0.4, 0.8)))
+    bpy.ops.object.camera_add(location=(0.0, -4.5, 2.0))
+    camera = bpy.context.object
+    camera.rotation_euler = (Vector((0.0, 0.0, 0.5)) - camera.location).to_track_quat("-Z", "Y").to_euler()
+    camera.data.lens = 30
+    scene.camera = camera
+    world = bpy.data.worlds.new("sky")
+    world.node_tree.nodes["Background"].inputs["Color"].default_value = (*background, 1.0)
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
+    scene.world = world
+    return scene
+
+
+def lamp(kind, name, location, target=None, **settings):
+    bpy.ops.object.light_add(type=kind, location=location)
+    obj = bpy.context.object
+    obj.name = obj.data.name = name
+    if target is not None:
+        obj.rotation_euler = (Vector(target) - Vector(location)).to_track_quat("-Z", "Y").to_euler()
+    for key, value in settings.items():
+        if key == "visible_camera":
+            obj.visible_camera = value
+        else:
+            setattr(obj.data, key, value)
+    return obj
+
+
+def point():
+    room((0.0, 0.0, 0.0))
+    lamp("POINT", "bulb", (0.4, -0.9, 1.8), energy=150.0, shadow_soft_size=0.1, color=(1.0, 0.9, 0.8),
+         visible_camera=True)
+
+
+def spot():
+    room((0.0, 0.0, 0.0))
+    lamp("SPOT", "spot", (-1.6, -1.8, 2.6), (0.2, 0.0, 0.3), energy=600.0, shadow_soft_size=0.15,
+         use_soft_falloff=False, spot_size=math.radians(50.0), spot_blend=0.3)
+
+
+def area():
+    room((0.0, 0.0, 0.0))
+    light = lamp("AREA", "panel", (0.3, -0.6, 2.3), (0.0, 0.2, 0.0), energy=250.0, shape="RECTANGLE",
+                 size=1.2, size_y=0.5)
+    light.rotation_euler.rotate_axis("Z", 0.4)
+
+
+def sun():
+    room((0.0, 0.0, 0.0))
+    lamp("SUN", "sun", (0.0, 0.0, 5.0), (1.2, 1.5, 0.0), energy=3.0, angle=math.radians(10.0))
+
+
+def several():
+    """Coloured lamps of every kind at once, under a grey sky."""
+    room((0.05, 0.05, 0.05))
+    lamp("POINT", "red", (-1.4, -1.0, 1.4), energy=60.0, shadow_soft_size=0.0, color=(1.0, 0.2, 0.1))
+    lamp("SPOT", "green", (1.8, -1.2, 2.4), (0.7, -0.3, 0.45), energy=300.0, shadow_soft_size=0.0,
+         spot_size=math.radians(35.0), spot_blend=0.0, color=(0.2, 1.0, 0.3))
+    lamp("AREA", "blue", (0.0, 0.6, 2.4), (0.0, 0.6, 0.0), energy=120.0, shape="DISK", size=0.8,
+         color=(0.3, 0.4, 1.0))
+    lamp("SUN", "sun", (0.0, 0.0, 5.0), (-1.0, 2.0, 0.0), energy=0.6, angle=0.0, color=(1.0, 0.95, 0.8))
+
+
+SCENES = {"point": point, "spot": spot, "area": area, "sun": sun, "several": several}
+
+
+def cycles(scene, spp):
+    """Cycles as a reference: a box filter of one pixel (as rt samples pixels), no clamping,
+    denoising, adaptive sampling or glossy blur, light threshold off."""
+    scene.render.engine = "CYCLES"
+    c = scene.cycles
+    c.device = "CPU"
+    c.samples = spp
+    c.use_adaptive_sampling = False
+    c.use_denoising = False
+    c.pixel_filter_type = "BOX"
+    scene.render.filter_size = 1.0
+    c.sample_clamp_direct = 0.0
+    c.sample_clamp_indirect = 0.0
+    c.blur_glossy = 0.0
+    c.light_sampling_threshold = 0.0
+    c.max_bounces = c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = BOUNCES
+    c.volume_bounces = 0
+    c.seed = 1
+    scene.render.resolution_x = scene.render.resolution_y = SIZE
+    scene.render.resolution_percentage = 100
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.image_settings.color_depth = "32"
+    scene.render.image_settings.exr_codec = "ZIP"
+    scene.view_settings.view_transform = "Standard"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--spp", type=int, default=4096)
+    parser.add_argument("names", nargs="*", default=sorted(SCENES))
+    args = parser.parse_args()
+    for name in args.names:
+        SCENES[name]()
+        scene = bpy.context.scene
+        cycles(scene, args.spp)
+        folder = os.path.join(HERE, "scenes", name)
+        os.makedirs(folder, exist_ok=True)
+        rt_export.export_scene(scene, os.path.join(folder, "assets"), os.path.join(folder, f"{name}.toml"))
+        scene.render.filepath = os.path.join(HERE, f"{name}.exr")
+        bpy.ops.render.render(write_still=True)
+        print(f"make_refs: {name}: {args.spp} spp written", flush=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -5,6 +5,7 @@
 pub mod builtin;
 pub mod gltf_import;
 pub mod obj_import;
+pub mod rtinst;
 pub mod rtmesh;
 mod source;
 

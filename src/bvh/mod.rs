@@ -7,6 +7,7 @@ mod cached_material;
 mod mesh_bvh;
 mod node;
 pub mod pack;
+mod placement;
 mod scene_geometry;
 
 pub use mesh_bvh::{BuildQuality, MeshBvh};

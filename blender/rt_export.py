@@ -379,8 +379,9 @@ def instance_materials(inst):
     for collection, particle and linked-duplicate instances; the instanced geometry's
     own for geometry-nodes instances, whose object is the one running the nodes."""
     obj = inst.object
-    own_data = obj.original.data
-    if own_data is not None and obj.data is not None and obj.data.original == own_data:
+    own, shown = obj.original.data, obj.data.original
+    # Compared by name and library: the two references to one mesh need not be one Python object.
+    if own is not None and (shown.name, shown.library) == (own.name, own.library):
         return object_slot_materials(obj.original)
     return list(obj.data.materials) or [None]
 

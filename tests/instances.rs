@@ -155,7 +155,7 @@ fn tile_records(count: usize) -> Vec<InstanceRecord> {
             let h = (k as u32).wrapping_mul(2_654_435_761) as f32 / u32::MAX as f32;
             let m = Mat4::from_scale_rotation_translation(
                 Vec3::splat(0.8 + 0.3 * h),
-                Quat::from_rotation_y(6.283 * h),
+                Quat::from_rotation_y(std::f32::consts::TAU * h),
                 Vec3::new(i - side as f32 / 2.0, 0.0, j - side as f32 / 2.0),
             );
             InstanceRecord::new(&m, if k % 7 == 0 { 0 } else { OWN_MATERIALS })

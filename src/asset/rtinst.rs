@@ -70,8 +70,9 @@ pub fn matrix_problem(m: &Mat4) -> Option<&'static str> {
     }
     let [a, b, c]: [Vec3; 3] = [m.x_axis, m.y_axis, m.z_axis].map(Vec4::truncate);
     let det = Mat3::from_cols(a, b, c).determinant().abs();
-    // `!(x > y)` and not `x <= y`: a product that overflows to infinity must not pass.
-    if !(det > 1e-6 * a.length() * b.length() * c.length()) || !det.is_finite() {
+    let bound = 1e-6 * a.length() * b.length() * c.length();
+    // Finite entries can still overflow these products: such a matrix is refused too.
+    if !det.is_finite() || !bound.is_finite() || det <= bound {
         return Some("is singular (not invertible)");
     }
     None

@@ -1,6 +1,8 @@
 """Exports a Blender scene for rt: one asset folder per mesh (`NAME/NAME.rtmesh` with the
 evaluated geometry, `NAME/NAME.gltf` with its materials) and, optionally, a scene TOML
-that places them with the camera, the sun and the sky.
+that places them with the camera, the sun and the sky. Instances that the depsgraph
+generates (collections, geometry nodes, particles) go into one `.rtinst` instance file
+per distinct mesh, beside the scene TOML in `SCENE_instances/`.
 
 Three ways to run it:
 

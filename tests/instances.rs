@@ -214,3 +214,52 @@ fn a_million_instances_of_ten_thousand_triangles_pack_and_render() {
         assert!(per_instance < 200.0, "{per_instance} GPU bytes per instance");
     }
 }
+
+#[test]
+fn an_edited_instance_file_re_places_instances_without_repacking_the_mesh() {
+    let dir = temp_dir("instances-live");
+    let asset = sphere_asset(&dir);
+    let file = dir.join("spheres.rtinst");
+    let records = |dx: f32| -> Vec<InstanceRecord> {
+        placements().iter().map(|(m, _)| InstanceRecord::new(&(Mat4::from_translation(Vec3::X * dx) * *m), 0)).collect()
+    };
+    rtinst::write(&file, &records(0.0)).expect("write .rtinst");
+    let scene_path = dir.join("scene.toml");
+    let text = format!("{HEADER}[[instances]]\nasset = {asset:?}\nfile = \"spheres.rtinst\"\nmaterials = [\"red\"]\n");
+    write(&scene_path, &text);
+    let options = rt::watch::WatchOptions {
+        scene: scene_path,
+        quality: BuildQuality::Medium,
+        shader_dir: None,
+        frames_dir: None,
+        flags: Default::default(),
+        format: rt::render::ImageFormat::Exr,
+        max_reloads: None,
+    };
+    let mut live = rt::watch::LiveScene::open(gpu(), &options).unwrap_or_else(|e| panic!("{e:#}"));
+    assert!(live.watched_files().contains(&file), "the instance file is not watched");
+    let before = live.session.geometry().bounds_min;
+    let mesh_before = live.session.geometry().meshes[0].provenance;
+
+    rtinst::write(&file, &records(1.5)).expect("rewrite .rtinst");
+    let report = live.reload(std::slice::from_ref(&file)).unwrap_or_else(|e| panic!("{e:#}"));
+    let after = live.session.geometry().bounds_min;
+    println!(
+        "moved instances: reload {} in {:.1?}; bounds min x {} -> {}",
+        report.reload.kind(),
+        report.elapsed,
+        before.x,
+        after.x
+    );
+    assert_eq!(report.reload.kind(), "placement");
+    assert!(report.reload.assets().next().is_none(), "the mesh was re-packed");
+    // The same loaded BVH, not a fresh load: its provenance (and load time) is the one from opening.
+    assert_eq!(live.session.geometry().meshes[0].provenance, mesh_before);
+    assert!((after.x - before.x - 1.5).abs() < 1e-3, "instances did not move by 1.5: {} -> {}", before.x, after.x);
+
+    // A broken instance file is refused, naming it, and the scene stays as it was.
+    std::fs::write(&file, b"RTINST\0\0").expect("truncate");
+    let message = format!("{:#}", live.reload(std::slice::from_ref(&file)).err().expect("a truncated file is refused"));
+    assert!(message.contains("spheres.rtinst: truncated"), "{message}");
+    assert_eq!(live.session.geometry().bounds_min, after);
+}

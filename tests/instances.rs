@@ -263,3 +263,29 @@ fn an_edited_instance_file_re_places_instances_without_repacking_the_mesh() {
     assert!(message.contains("spheres.rtinst: truncated"), "{message}");
     assert_eq!(live.session.geometry().bounds_min, after);
 }
+
+#[test]
+fn more_instances_than_the_gpu_binds_is_an_error_not_a_crash() {
+    let max = gpu().device.limits().max_storage_buffer_binding_size;
+    let count = (max / size_of::<rt::layout::GpuInstance>() as u64 + 1) as usize;
+    if count > 5_000_000 {
+        println!("this GPU binds {} MiB per buffer: {count} instances would take too long here", max >> 20);
+        return;
+    }
+    let dir = temp_dir("instances-too-many");
+    let obj = dir.join("tile.obj");
+    write(&obj, &icosphere_obj(0).0);
+    let file = dir.join("many.rtinst");
+    rtinst::write(&file, &tile_records(count)).expect("write .rtinst");
+    let scene = common::scene_from(&format!(
+        "[materials.red]\n[[instances]]\nasset = {:?}\nfile = {:?}\nmaterials = [\"red\"]\n",
+        obj.display().to_string(),
+        file.display().to_string()
+    ));
+    let message = match Session::open(gpu(), scene, BuildQuality::Medium) {
+        Ok(_) => panic!("{count} instances were bound in buffers of at most {max} bytes"),
+        Err(e) => format!("{e:#}"),
+    };
+    println!("{count} instances: {message}");
+    assert!(message.contains("the scene's instances take"), "{message}");
+}

@@ -177,9 +177,8 @@ fn check_sizes(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<()> {
     for (what, bytes) in sizes {
         if bytes as u64 > max {
             return Err(anyhow!(
-                "the scene's {what} take {:.1} MiB; this GPU binds at most {:.1} MiB per buffer",
-                bytes as f64 / 1048576.0,
-                max as f64 / 1048576.0
+                "the scene's {what} take {:.1} MiB ({bytes} bytes); this GPU binds at most {max} bytes per buffer",
+                bytes as f64 / 1048576.0
             ));
         }
     }

@@ -411,10 +411,20 @@ def add_instances(export, depsgraph):
         folder = meshes[key]
         if folder is None:
             continue
-        if abs(inst.matrix_world.to_3x3().determinant()) < 1e-12:
-            log(f"an instance of {obj.data.name} is scaled to nothing; left out of the scene")
+        if not invertible(inst.matrix_world):
+            log(f"an instance of {obj.data.name} is scaled to nothing or not finite; left out of the scene")
             continue
         export.instances.setdefault(folder, []).append(rt_rows(inst.matrix_world))
+
+
+def invertible(matrix):
+    """rt's rule for an instance matrix: finite, with a determinant above 1e-6 of the
+    largest that columns of these lengths can have."""
+    m = matrix.to_3x3()
+    if not all(math.isfinite(v) for row in matrix for v in row):
+        return False
+    lengths = m.col[0].length * m.col[1].length * m.col[2].length
+    return abs(m.determinant()) > 1e-6 * lengths
 
 
 def rtinst_bytes(rows):

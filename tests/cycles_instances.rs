@@ -97,5 +97,10 @@ fn nested_collection_instances_with_a_material_override_match_cycles() {
 
 #[test]
 fn geometry_nodes_scatter_and_hair_particles_match_cycles() {
+    // "pile" runs nodes that output only instances: its cones are placed, it is not a mesh.
+    let folder = repo().join("tests/cycles/scenes/instances_scatter");
+    assert!(!folder.join("assets/pile").exists(), "an object with only instances was exported as a mesh");
+    let cones = rt::asset::rtinst::read(&folder.join("scene_instances/cone.rtinst")).unwrap_or_else(|e| panic!("{e}"));
+    assert!(cones.len() > 40, "{} cones: the pile's instances are missing (the lawn's hair has 40)", cones.len());
     check("scatter");
 }

@@ -12,8 +12,9 @@ not run Cycles: commit both.
   object-linked material (a material override), instanced three times, rotated and
   scaled, by a second collection, itself instanced twice (nested), rotated and scaled.
 - scatter: a geometry-nodes scatter (Distribute Points on Faces, then Instance on Points
-  with the points' rotations) of an icosphere over one plane, and a hair particle
-  system rendering a cone as its object over another; both emitters show their faces.
+  with the points' rotations) of an icosphere over one plane, whose faces stay as
+  realized geometry; a hair particle system rendering a cone as its object over another;
+  and a small plane whose nodes output only instances of the cone (its faces are gone).
 
 Every surface is diffuse (no specular layer) under a uniform world, so the comparison
 tests where the instances are and which material they show.
@@ -110,7 +111,7 @@ def build_collections(scene):
     return Vector((0.0, -8.5, 6.5)), Vector((0.0, 0.0, 0.4)), 35.0
 
 
-def scatter_modifier(obj, instance, density, scale):
+def scatter_modifier(obj, instance, density, scale, keep_surface=True):
     tree = bpy.data.node_groups.new("scatter", "GeometryNodeTree")
     tree.interface.new_socket("Geometry", in_out="INPUT", socket_type="NodeSocketGeometry")
     tree.interface.new_socket("Geometry", in_out="OUTPUT", socket_type="NodeSocketGeometry")
@@ -128,9 +129,10 @@ def scatter_modifier(obj, instance, density, scale):
     links.new(distribute.outputs["Points"], on_points.inputs["Points"])
     links.new(distribute.outputs["Rotation"], on_points.inputs["Rotation"])
     links.new(info.outputs["Geometry"], on_points.inputs["Instance"])
-    # The instances, and the surface they stand on as realized geometry.
+    # The instances, and (with `keep_surface`) the surface they stand on as realized geometry.
     links.new(on_points.outputs["Instances"], join.inputs[0])
-    links.new(group_in.outputs[0], join.inputs[0])
+    if keep_surface:
+        links.new(group_in.outputs[0], join.inputs[0])
     links.new(join.outputs[0], group_out.inputs[0])
     obj.modifiers.new("scatter", "NODES").node_group = tree
 
@@ -152,6 +154,10 @@ def build_scatter(scene):
     bed = ground("bed", 2.6, (-1.3, 0.2, 0.0), (0.7, 0.7, 0.7))
     bed.rotation_euler = (0.0, 0.0, 0.3)
     scatter_modifier(bed, pebble, 6.0, 0.4)
+
+    # Nodes that output only instances: the object itself must not become an empty mesh.
+    pile = ground("pile", 0.8, (0.2, 1.8, 0.3), (1.0, 0.0, 1.0))
+    scatter_modifier(pile, cone, 30.0, 1.0, keep_surface=False)
 
     lawn = ground("lawn", 2.4, (1.5, -0.3, 0.0), (0.3, 0.25, 0.2))
     lawn.modifiers.new("hair", "PARTICLE_SYSTEM")

@@ -1,6 +1,8 @@
 """Exports a Blender scene for rt: one asset folder per mesh (`NAME/NAME.rtmesh` with the
 evaluated geometry, `NAME/NAME.gltf` with its materials) and, optionally, a scene TOML
-that places them with the camera, the lamps and the sky.
+that places them with the camera, the lamps and the sky. Instances that the depsgraph
+generates (collections, geometry nodes, particles) go into one `.rtinst` instance file
+per distinct mesh, beside the scene TOML in `SCENE_instances/`.
 
 Three ways to run it:
 
@@ -43,6 +45,9 @@ bl_info = {
 
 RTMESH_MAGIC = b"RTMESH\0\0"
 RTMESH_VERSION = 1
+RTINST_MAGIC = b"RTINST\0\0"
+RTINST_VERSION = 1
+RTINST_OWN_MATERIALS = 0xFFFFFFFF
 
 # Blender (Z up) to rt (Y up): a rotation of -90 degrees about X.
 TO_RT = Matrix(((1, 0, 0, 0), (0, 0, 1, 0), (0, -1, 0, 0), (0, 0, 0, 1)))
@@ -301,10 +306,14 @@ def export_object_mesh(obj, depsgraph):
     evaluated = obj.evaluated_get(depsgraph)
     mesh = evaluated.to_mesh()
     try:
-        materials = object_slot_materials(obj)
-        arrays = mesh_arrays(mesh, len(materials))
+        return export_mesh(mesh, object_slot_materials(obj))
     finally:
         evaluated.to_mesh_clear()
+
+
+def export_mesh(mesh, materials):
+    """(rtmesh bytes, gltf text, triangle count) of an evaluated mesh shown with `materials`."""
+    arrays = mesh_arrays(mesh, len(materials))
     extent = arrays["positions"].max(axis=0) - arrays["positions"].min(axis=0) if len(arrays["positions"]) else [1]
     thickness = float(max(min(extent), 1e-3))
     gltf = gltf_text([gltf_material(m, thickness) for m in materials], thickness)
@@ -325,6 +334,7 @@ class Export:
         self.content = {}  # folder name -> (rtmesh bytes, gltf text)
         self.written = []  # files actually rewritten
         self.triangles = {}
+        self.instances = {}  # folder name -> [rt matrix rows] of its instances
 
     def add(self, obj, depsgraph):
         base = sanitize(obj.data.name)
@@ -336,16 +346,24 @@ class Export:
                     self.folder_of[obj.name] = folder
                     return
         rtmesh, gltf, triangles = export_object_mesh(obj, depsgraph)
+        if triangles == 0:
+            # Geometry nodes that output only instances leave the object itself empty.
+            return
+        self.folder_of[obj.name] = self.store(base, rtmesh, gltf, triangles)
+
+    def store(self, base, rtmesh, gltf, triangles):
+        """The folder holding these bytes: an existing one with the same content, or a new
+        one named after `base`."""
         folder = base
         suffix = 1
         while folder in self.content and self.content[folder] != (rtmesh, gltf):
             suffix += 1
             folder = f"{base}_{suffix}"
-        self.folder_of[obj.name] = folder
         if folder not in self.content:
             self.content[folder] = (rtmesh, gltf)
             self.triangles[folder] = triangles
             self.write(folder)
+        return folder
 
     def write(self, folder):
         rtmesh, gltf = self.content[folder]
@@ -353,6 +371,85 @@ class Export:
             path = os.path.join(self.out_dir, folder, folder + ext)
             if write_if_changed(path, data):
                 self.written.append(path)
+
+
+# --- instances --------------------------------------------------------------------
+
+
+def instance_materials(inst):
+    """The materials an instance shows: its object's slots (object-linked ones included)
+    for collection, particle and linked-duplicate instances; the instanced geometry's
+    own for geometry-nodes instances, whose object is the one running the nodes."""
+    obj = inst.object
+    own, shown = obj.original.data, obj.data.original
+    # Compared by name and library: the two references to one mesh need not be one Python object.
+    if own is not None and (shown.name, shown.library) == (own.name, own.library):
+        return object_slot_materials(obj.original)
+    return list(obj.data.materials) or [None]
+
+
+def rt_rows(matrix_world):
+    """The top three rows of a Blender object matrix in rt's axes, row-major."""
+    m = TO_RT @ matrix_world @ FROM_RT
+    return [m[r][c] for r in range(3) for c in range(4)]
+
+
+def add_instances(export, depsgraph):
+    """Every instance that `depsgraph` generates (collection instances, nested ones,
+    geometry-nodes instances, particles): each distinct evaluated mesh with its
+    materials is exported once, and each instance's matrix is kept for its folder."""
+    meshes = {}  # (mesh identity, material names) -> folder, or None for an empty mesh
+    for inst in depsgraph.object_instances:
+        obj = inst.object
+        if not inst.is_instance or obj.type != "MESH" or obj.data is None or obj.original.hide_render:
+            continue
+        materials = instance_materials(inst)
+        key = (obj.data.as_pointer(), tuple(m.name if m else "" for m in materials))
+        if key not in meshes:
+            rtmesh, gltf, triangles = export_mesh(obj.data, materials)
+            meshes[key] = export.store(sanitize(obj.data.name), rtmesh, gltf, triangles) if triangles else None
+        folder = meshes[key]
+        if folder is None:
+            continue
+        if not invertible(inst.matrix_world):
+            log(f"an instance of {obj.data.name} is scaled to nothing or not finite; left out of the scene")
+            continue
+        export.instances.setdefault(folder, []).append(rt_rows(inst.matrix_world))
+
+
+def invertible(matrix):
+    """rt's rule for an instance matrix: finite, with a determinant above 1e-6 of the
+    largest that columns of these lengths can have."""
+    m = matrix.to_3x3()
+    if not all(math.isfinite(v) for row in matrix for v in row):
+        return False
+    lengths = m.col[0].length * m.col[1].length * m.col[2].length
+    return abs(m.determinant()) > 1e-6 * lengths
+
+
+def rtinst_bytes(rows):
+    """The instance file: magic, version, count, then (12 f32, u32) per instance."""
+    records = np.zeros(len(rows), dtype=[("rows", "<f4", 12), ("material", "<u4")])
+    records["rows"] = np.asarray(rows, dtype=np.float32).reshape(-1, 12)
+    records["material"] = RTINST_OWN_MATERIALS
+    return RTINST_MAGIC + struct.pack("<2I", RTINST_VERSION, len(rows)) + records.tobytes()
+
+
+def instances_toml(export, scene_path):
+    """One [[instances]] per folder with instances, writing its instance file into
+    SCENE_instances/ beside the scene file."""
+    scene_dir = os.path.dirname(os.path.abspath(scene_path))
+    stem = os.path.splitext(os.path.basename(scene_path))[0]
+    text = []
+    for folder in sorted(export.instances):
+        path = os.path.join(scene_dir, f"{stem}_instances", folder + ".rtinst")
+        if write_if_changed(path, rtinst_bytes(export.instances[folder])):
+            export.written.append(path)
+        asset = os.path.relpath(os.path.join(export.out_dir, folder), scene_dir).replace(os.sep, "/")
+        file = os.path.relpath(path, scene_dir).replace(os.sep, "/")
+        count = len(export.instances[folder])
+        text.append(f"# {count} instances\n[[instances]]\nasset = {json.dumps(asset)}\nfile = {json.dumps(file)}\n\n")
+    return "".join(text)
 
 
 # --- scene TOML -------------------------------------------------------------------
@@ -575,6 +672,7 @@ def scene_toml(scene, export, scene_path, objects):
         rows = [m[r][c] for r in range(4) for c in range(4)]
         rows[12:16] = [0.0, 0.0, 0.0, 1.0]
         text.append(f"# {obj.name}\n[[mesh]]\nasset = {json.dumps(asset)}\nmatrix = {vec(rows)}\n\n")
+    text.append(instances_toml(export, scene_path))
     return "".join(text).rstrip("\n") + "\n"
 
 
@@ -595,6 +693,7 @@ def export_scene(scene, out_dir, scene_path=None, only=None, previous=None):
             export.content.setdefault(folder, previous.content[folder])
             continue
         export.add(obj, depsgraph)
+    add_instances(export, depsgraph)
     if scene_path:
         path = bpy.path.abspath(scene_path) if scene_path.startswith("//") else scene_path
         if write_if_changed(path, scene_toml(scene, export, path, objects)):

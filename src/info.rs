@@ -37,7 +37,17 @@ pub fn print_info(scene: Scene, quality: BuildQuality, adapter: Option<&str>) ->
         );
     }
     let t = g.tlas_stats;
-    println!("top level  {} nodes, {} leaves, depth {}, SAH cost {:.2}", t.nodes, t.leaves, t.depth, t.sah_cost);
+    println!(
+        "top level  {} nodes, {} leaves, depth {}, SAH cost {:.2}, built in {:.1?}",
+        t.nodes, t.leaves, t.depth, t.sah_cost, g.tlas_build_time
+    );
+    let placed = (g.instances.len() + g.spheres.len()).max(1);
+    println!(
+        "GPU memory {:.1} MiB of meshes, {:.1} MiB of instances and top level ({:.1} bytes per instance)",
+        g.mesh_bytes() as f64 / 1048576.0,
+        g.top_level_bytes() as f64 / 1048576.0,
+        g.top_level_bytes() as f64 / placed as f64
+    );
     match GpuContext::new(adapter) {
         Ok(ctx) => println!("GPU        {}", ctx.describe()),
         Err(e) => println!("GPU        none: {e:#}"),

@@ -8,7 +8,7 @@
 mod common;
 
 use common::{TestRng, repo, temp_dir};
-use rt::asset::{MeshData, load_mesh, rtmesh};
+use rt::asset::{MeshData, load_mesh, rtinst, rtmesh};
 use rt::bvh::cache::{self, PackedMesh};
 use rt::bvh::{BuildQuality, MeshBvh};
 use rt::scene::Material;
@@ -180,6 +180,18 @@ fn rtmesh_files() {
     let seed = rtmesh::encode(&small_mesh());
     fuzz("rtmesh", &[seed], false, &|b| {
         let _ = rtmesh::parse(Path::new("fuzz.rtmesh"), b);
+    });
+}
+
+#[test]
+fn rtinst_files() {
+    let spin = glam::Mat4::from_rotation_y(0.5) * glam::Mat4::from_scale(glam::Vec3::splat(2.0));
+    let records = [
+        rtinst::InstanceRecord::new(&glam::Mat4::IDENTITY, rtinst::OWN_MATERIALS),
+        rtinst::InstanceRecord::new(&spin, 0),
+    ];
+    fuzz("rtinst", &[rtinst::encode(&records)], false, &|b| {
+        let _ = rtinst::parse(Path::new("fuzz.rtinst"), b);
     });
 }
 

@@ -6,6 +6,7 @@ pub mod builtin;
 mod gltf_buffers;
 pub mod gltf_import;
 pub mod obj_import;
+pub mod rtinst;
 pub mod rtmesh;
 mod source;
 

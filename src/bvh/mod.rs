@@ -8,6 +8,7 @@ mod lights;
 mod mesh_bvh;
 mod node;
 pub mod pack;
+mod placement;
 mod scene_geometry;
 
 pub use mesh_bvh::{BuildQuality, MeshBvh};

@@ -5,14 +5,15 @@ use super::lights::{LampTable, lamp_table, scene_radius};
 use super::mesh_bvh::BuildQuality;
 use super::node::{BvhStats, convert_bvh2, stats};
 use super::pack::{LoadedMesh, build_all_in_memory, load_or_pack_all};
+use super::placement::{MeshSlot, Placement};
 use crate::layout::*;
 use crate::scene::{GeometrySummary, Material, Sampling, Scene};
 use anyhow::{Result, bail};
-use glam::{Mat4, Vec3, Vec3A};
+use glam::{Vec3, Vec3A};
 use obvhs::{BvhBuildParams, aabb::Aabb, bvh2::builder::build_bvh2};
 use std::collections::HashMap;
 use std::path::PathBuf;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 pub struct SceneGeometry {
     /// Bottom levels of every mesh, then the top level (from `tlas_root`).
@@ -33,6 +34,8 @@ pub struct SceneGeometry {
     pub lamp_info: GpuLampInfo,
     pub tlas_root: u32,
     pub tlas_stats: BvhStats,
+    /// Building the top level over the instances' and spheres' boxes (obvhs, then the GPU layout).
+    pub tlas_build_time: Duration,
     pub meshes: Vec<LoadedMesh>,
     /// Every material some triangle or sphere uses.
     pub materials_in_use: Vec<Material>,
@@ -48,6 +51,25 @@ impl SceneGeometry {
             spheres: !self.spheres.is_empty(),
             materials_in_use: self.materials_in_use.clone(),
         }
+    }
+
+    /// GPU bytes of the meshes (bottom levels, triangles, shading), counted once
+    /// however many instances place them.
+    pub fn mesh_bytes(&self) -> usize {
+        let bottom_nodes = self.tlas_root as usize;
+        bottom_nodes * size_of::<GpuBvhNode>()
+            + self.triangles.len() * size_of::<GpuTriangle>()
+            + self.shading.len() * size_of::<GpuTriangleShading>()
+    }
+
+    /// GPU bytes that grow with the instances and spheres: their records, the top
+    /// level's nodes and its leaf entries.
+    pub fn top_level_bytes(&self) -> usize {
+        let top_nodes = self.nodes.len() - self.tlas_root as usize;
+        self.instances.len() * size_of::<GpuInstance>()
+            + self.spheres.len() * size_of::<GpuSphere>()
+            + top_nodes * size_of::<GpuBvhNode>()
+            + self.tlas_primitives.len() * size_of::<u32>()
     }
 
     /// Loads every asset's BVH once (from its cache, or packing it when the cache is
@@ -75,8 +97,8 @@ impl SceneGeometry {
     pub fn assemble(scene: &Scene, meshes: Vec<LoadedMesh>) -> Result<Self> {
         let mesh_of_path: HashMap<PathBuf, usize> =
             meshes.iter().enumerate().map(|(i, m)| (m.path.clone(), i)).collect();
-        if let Some(m) = scene.meshes.iter().find(|m| !mesh_of_path.contains_key(&m.asset)) {
-            bail!("{}: the asset {} was not loaded", scene.origin, m.asset.display());
+        if let Some(a) = asset_paths(scene).iter().find(|a| !mesh_of_path.contains_key(*a)) {
+            bail!("{}: the asset {} was not loaded", scene.origin, a.display());
         }
 
         let mut materials: Vec<Material> = vec![Material::default()];
@@ -94,53 +116,41 @@ impl SceneGeometry {
         let mut nodes = Vec::new();
         let mut triangles = Vec::new();
         let mut shading = Vec::new();
-        // (node offset, triangle offset, material base) of each mesh.
-        let mut placed = Vec::new();
+        let mut slots = Vec::new();
         for mesh in &meshes {
-            placed.push((nodes.len() as u32, triangles.len() as u32, materials.len() as u32));
+            slots.push(MeshSlot {
+                node_offset: nodes.len() as u32,
+                triangle_offset: triangles.len() as u32,
+                material_base: materials.len() as u32,
+            });
             nodes.extend_from_slice(&mesh.bvh.nodes);
             triangles.extend_from_slice(&mesh.bvh.triangles);
             shading.extend_from_slice(&mesh.bvh.shading);
             materials.extend(mesh.materials.iter().map(|(_, m)| m.clone()));
         }
 
-        let mut in_use = vec![false; materials.len()];
-        let mut instances = Vec::new();
-        // (first triangle, triangle count) of each instance's mesh.
-        let mut instance_triangles = Vec::new();
-        let mut boxes = Vec::new();
-        // Top-level primitive of each box: instance index, or sphere index | SPHERE_BIT.
-        let mut entries = Vec::new();
+        let mut placement = Placement::new(&meshes, &slots, materials.len());
         for m in &scene.meshes {
-            let mesh_index = mesh_of_path[&m.asset];
-            let mesh = &meshes[mesh_index];
-            if mesh.triangle_count == 0 {
-                continue;
-            }
-            let (node_offset, triangle_offset, material_base) = placed[mesh_index];
             let material_override = match &m.material {
                 Some(_) => scene_material(&m.material)?,
                 None => NO_MATERIAL,
             };
-            if material_override == NO_MATERIAL {
-                for i in 0..mesh.materials.len() {
-                    in_use[material_base as usize + i] = true;
-                }
-            } else {
-                in_use[material_override as usize] = true;
-            }
-            entries.push(instances.len() as u32);
-            instance_triangles.push(triangle_offset..triangle_offset + mesh.bvh.triangles.len() as u32);
-            boxes.push(transformed_box(&m.object_to_world, mesh.bvh.bounds_min, mesh.bvh.bounds_max));
-            instances.push(GpuInstance {
-                world_to_object: affine_rows(&m.object_to_world.inverse()),
-                object_to_world: affine_rows(&m.object_to_world),
-                node_offset,
-                triangle_offset,
-                material_base,
-                material_override,
-            });
+            placement.place(mesh_of_path[&m.asset], &m.object_to_world, material_override);
         }
+        for set in &scene.instance_sets {
+            let named = |n: &str| scene_material(&Some(n.to_owned()));
+            placement.place_file(scene, set, mesh_of_path[&set.asset], named)?;
+        }
+        let mut in_use = placement.override_used.clone();
+        for (mesh_index, slot) in slots.iter().enumerate() {
+            if placement.own_materials_shown[mesh_index] {
+                let base = slot.material_base as usize;
+                in_use[base..base + meshes[mesh_index].materials.len()].fill(true);
+            }
+        }
+        let Placement { instances, instance_mesh, mut boxes, .. } = placement;
+        // Top-level primitive of each box: instance index, or sphere index | SPHERE_BIT.
+        let mut entries: Vec<u32> = (0..instances.len() as u32).collect();
         let mut spheres = Vec::new();
         for s in &scene.spheres {
             let material = scene_material(&s.material)?;
@@ -160,9 +170,21 @@ impl SceneGeometry {
         }
 
         let materials_in_use = materials.iter().zip(&in_use).filter(|(_, u)| **u).map(|(m, _)| m.clone()).collect();
-        let (emitters, emitter_total_power) =
-            emitter_table(&instances, &instance_triangles, &triangles, &spheres, &materials);
+        let mesh_triangles: Vec<_> = slots
+            .iter()
+            .zip(&meshes)
+            .map(|(s, m)| s.triangle_offset..s.triangle_offset + m.bvh.triangles.len() as u32)
+            .collect();
+        let material_bases: Vec<u32> = slots.iter().map(|s| s.material_base).collect();
+        let emissive = EmissiveTriangles {
+            mesh_triangles: &mesh_triangles,
+            material_bases: &material_bases,
+            triangles: &triangles,
+            materials: &materials,
+        };
+        let (emitters, emitter_total_power) = emissive.table(&instances, &instance_mesh, &spheres);
 
+        let build_start = Instant::now();
         let (tlas_nodes, tlas_primitives) = if boxes.is_empty() {
             (convert_bvh2(&obvhs::bvh2::Bvh2::default()), Vec::new())
         } else {
@@ -170,6 +192,7 @@ impl SceneGeometry {
             let prims = bvh.primitive_indices.iter().map(|&i| entries[i as usize]).collect();
             (convert_bvh2(&bvh), prims)
         };
+        let tlas_build_time = build_start.elapsed();
         let tlas_root = nodes.len() as u32;
         let tlas_stats = stats(&tlas_nodes);
         nodes.extend_from_slice(&tlas_nodes);
@@ -204,6 +227,7 @@ impl SceneGeometry {
             lamp_info,
             tlas_root,
             tlas_stats,
+            tlas_build_time,
             meshes,
             materials_in_use,
             bounds_min,
@@ -212,94 +236,102 @@ impl SceneGeometry {
     }
 }
 
-/// The distinct assets that a scene's meshes place, in file order.
+/// The distinct assets that a scene's meshes and instance files place, in file order.
 pub fn asset_paths(scene: &Scene) -> Vec<PathBuf> {
     let mut seen = std::collections::HashSet::new();
-    scene.meshes.iter().filter(|m| seen.insert(&m.asset)).map(|m| m.asset.clone()).collect()
+    let placed = scene.meshes.iter().map(|m| &m.asset).chain(scene.instance_sets.iter().map(|s| &s.asset));
+    placed.filter(|a| seen.insert(*a)).cloned().collect()
 }
 
-/// Every emissive triangle of every instance, and every emissive sphere, with
-/// selection probabilities in proportion to power: world area × luminance of
-/// emission (the GPU's light pdfs assume exactly this).
-fn emitter_table(
-    instances: &[GpuInstance],
-    instance_triangles: &[std::ops::Range<u32>],
-    triangles: &[GpuTriangle],
-    spheres: &[GpuSphere],
-    materials: &[Material],
-) -> (Vec<GpuEmitter>, f32) {
-    let mut entries: Vec<(GpuEmitter, f64)> = Vec::new();
-    for (index, (inst, range)) in instances.iter().zip(instance_triangles).enumerate() {
-        let to_world = |v: [f32; 3]| {
-            let p = glam::DVec3::from(v.map(f64::from));
-            let r = inst.object_to_world.map(|row| glam::DVec4::from(row.map(f64::from)));
-            glam::DVec3::new(
-                r[0].truncate().dot(p) + r[0].w,
-                r[1].truncate().dot(p) + r[1].w,
-                r[2].truncate().dot(p) + r[2].w,
-            )
-        };
-        for t in range.clone() {
-            let tri = &triangles[t as usize];
-            let material = if inst.material_override == NO_MATERIAL {
-                inst.material_base + tri.material
-            } else {
-                inst.material_override
+/// The triangles that can emit, per mesh, to find emitters without visiting every
+/// triangle of every instance.
+struct EmissiveTriangles<'a> {
+    /// The range of each mesh's triangles in `triangles`.
+    mesh_triangles: &'a [std::ops::Range<u32>],
+    /// Each mesh's first material in `materials`.
+    material_bases: &'a [u32],
+    triangles: &'a [GpuTriangle],
+    materials: &'a [Material],
+}
+
+impl EmissiveTriangles<'_> {
+    fn luminance(&self, material: u32) -> f64 {
+        crate::scene::luminance(self.materials[material as usize].emission) as f64
+    }
+
+    /// Every emissive triangle of every instance, and every emissive sphere, with
+    /// selection probabilities in proportion to power: world area × luminance of
+    /// emission (the GPU's light pdfs assume exactly this).
+    fn table(&self, instances: &[GpuInstance], instance_mesh: &[u32], spheres: &[GpuSphere]) -> (Vec<GpuEmitter>, f32) {
+        // Triangles emissive by their own material, per mesh: an instance without an
+        // override emits from these, one with an emissive override from all its triangles.
+        let own: Vec<Vec<u32>> = self
+            .mesh_triangles
+            .iter()
+            .zip(self.material_bases)
+            .map(|(range, &base)| {
+                range.clone().filter(|&t| self.luminance(base + self.triangles[t as usize].material) > 0.0).collect()
+            })
+            .collect();
+        let mut entries: Vec<(GpuEmitter, f64)> = Vec::new();
+        for (index, (inst, &mesh)) in instances.iter().zip(instance_mesh).enumerate() {
+            let to_world = |v: [f32; 3]| {
+                let p = glam::DVec3::from(v.map(f64::from));
+                let r = inst.object_to_world.map(|row| glam::DVec4::from(row.map(f64::from)));
+                glam::DVec3::new(
+                    r[0].truncate().dot(p) + r[0].w,
+                    r[1].truncate().dot(p) + r[1].w,
+                    r[2].truncate().dot(p) + r[2].w,
+                )
             };
-            let lum = crate::scene::luminance(materials[material as usize].emission) as f64;
-            if lum <= 0.0 {
-                continue;
-            }
-            let (a, b, c) = (to_world(tri.v0), to_world(tri.v1), to_world(tri.v2));
-            let area = 0.5 * (b - a).cross(c - a).length();
-            if area > 0.0 {
-                entries.push((GpuEmitter { primitive: t, instance: index as u32, cdf: 0.0, _pad0: 0 }, area * lum));
+            let all: Vec<u32>;
+            let emitting: &[u32] = if inst.material_override == NO_MATERIAL {
+                &own[mesh as usize]
+            } else if self.luminance(inst.material_override) > 0.0 {
+                all = self.mesh_triangles[mesh as usize].clone().collect();
+                &all
+            } else {
+                &[]
+            };
+            for &t in emitting {
+                let tri = &self.triangles[t as usize];
+                let material = if inst.material_override == NO_MATERIAL {
+                    inst.material_base + tri.material
+                } else {
+                    inst.material_override
+                };
+                let (a, b, c) = (to_world(tri.v0), to_world(tri.v1), to_world(tri.v2));
+                let area = 0.5 * (b - a).cross(c - a).length();
+                if area > 0.0 {
+                    let emitter = GpuEmitter { primitive: t, instance: index as u32, cdf: 0.0, _pad0: 0 };
+                    entries.push((emitter, area * self.luminance(material)));
+                }
             }
         }
-    }
-    for (index, s) in spheres.iter().enumerate() {
-        let lum = crate::scene::luminance(materials[s.material as usize].emission) as f64;
-        if lum > 0.0 {
-            let area = 4.0 * std::f64::consts::PI * (s.radius as f64).powi(2);
-            entries.push((
-                GpuEmitter { primitive: index as u32 | SPHERE_BIT, instance: 0, cdf: 0.0, _pad0: 0 },
-                area * lum,
-            ));
+        for (index, s) in spheres.iter().enumerate() {
+            let lum = self.luminance(s.material);
+            if lum > 0.0 {
+                let area = 4.0 * std::f64::consts::PI * (s.radius as f64).powi(2);
+                entries.push((
+                    GpuEmitter { primitive: index as u32 | SPHERE_BIT, instance: 0, cdf: 0.0, _pad0: 0 },
+                    area * lum,
+                ));
+            }
         }
+        let total: f64 = entries.iter().map(|(_, p)| p).sum();
+        let mut running = 0.0;
+        let mut emitters: Vec<GpuEmitter> = entries
+            .into_iter()
+            .map(|(mut e, p)| {
+                running += p;
+                e.cdf = (running / total) as f32;
+                e
+            })
+            .collect();
+        // Rounding must not leave u ∈ [cdf_last, 1) without an emitter.
+        if let Some(last) = emitters.last_mut() {
+            last.cdf = 1.0;
+        }
+        (emitters, total as f32)
     }
-    let total: f64 = entries.iter().map(|(_, p)| p).sum();
-    let mut running = 0.0;
-    let mut emitters: Vec<GpuEmitter> = entries
-        .into_iter()
-        .map(|(mut e, p)| {
-            running += p;
-            e.cdf = (running / total) as f32;
-            e
-        })
-        .collect();
-    // Rounding must not leave u ∈ [cdf_last, 1) without an emitter.
-    if let Some(last) = emitters.last_mut() {
-        last.cdf = 1.0;
-    }
-    (emitters, total as f32)
-}
-
-fn affine_rows(m: &Mat4) -> [[f32; 4]; 3] {
-    [m.row(0).to_array(), m.row(1).to_array(), m.row(2).to_array()]
-}
-
-fn transformed_box(m: &Mat4, lo: Vec3, hi: Vec3) -> Aabb {
-    let mut b = Aabb::empty();
-    for i in 0..8 {
-        let corner = Vec3::new(
-            if i & 1 == 0 { lo.x } else { hi.x },
-            if i & 2 == 0 { lo.y } else { hi.y },
-            if i & 4 == 0 { lo.z } else { hi.z },
-        );
-        b.extend(m.transform_point3(corner).into());
-    }
-    // The GPU transforms rays with its own rounding; a margin of a few ULPs of
-    // the box's magnitude keeps the box conservative for them.
-    let margin = (b.min.abs().max(b.max.abs())).max_element() * 4.0 * f32::EPSILON;
-    Aabb::new(b.min - Vec3A::splat(margin), b.max + Vec3A::splat(margin))
 }

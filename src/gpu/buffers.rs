@@ -206,13 +206,15 @@ fn check_sizes(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<()> {
     let sizes = [
         ("BVH nodes", std::mem::size_of_val(geometry.nodes.as_slice())),
         ("triangles", std::mem::size_of_val(geometry.triangles.as_slice())),
+        ("triangle shading", std::mem::size_of_val(geometry.shading.as_slice())),
+        ("instances", std::mem::size_of_val(geometry.instances.as_slice())),
+        ("emitters", std::mem::size_of_val(geometry.emitters.as_slice())),
     ];
     for (what, bytes) in sizes {
         if bytes as u64 > max {
             return Err(anyhow!(
-                "the scene's {what} take {} MiB; this GPU binds at most {} MiB per buffer",
-                bytes >> 20,
-                max >> 20
+                "the scene's {what} take {:.1} MiB ({bytes} bytes); this GPU binds at most {max} bytes per buffer",
+                bytes as f64 / 1048576.0
             ));
         }
     }

@@ -114,6 +114,18 @@ pub struct MeshInstance {
     pub object_to_world: Mat4,
 }
 
+/// One `[[instances]]`: an asset placed once per record of an instance file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InstanceSet {
+    /// Resolved against the scene file's folder, as a `[[mesh]]`'s.
+    pub asset: PathBuf,
+    /// The `.rtinst` file, resolved against the scene file's folder.
+    pub file: PathBuf,
+    /// Scene materials by name: a record's material index `i` overrides the asset's
+    /// own materials with `materials[i]`.
+    pub materials: Vec<String>,
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Sphere {
     pub center: Vec3,
@@ -136,6 +148,7 @@ pub struct Scene {
     pub spheres: Vec<Sphere>,
     /// `[[light]]` lamps, in file order.
     pub lights: Vec<Light>,
+    pub instance_sets: Vec<InstanceSet>,
 }
 
 impl Scene {

@@ -179,7 +179,7 @@ fn describe(path: &[Seg]) -> (String, String) {
     let (item, rest) = match path {
         [Key(s @ ("render" | "camera" | "sky" | "sun")), rest @ ..] => (format!("[{s}]"), rest),
         [Key("materials"), Key(name), rest @ ..] => (format!("[materials.{name}]"), rest),
-        [Key(s @ ("mesh" | "sphere" | "light")), Index(i), rest @ ..] => (format!("{s} {}", i + 1), rest),
+        [Key(s @ ("mesh" | "sphere" | "light" | "instances")), Index(i), rest @ ..] => (format!("{s} {}", i + 1), rest),
         _ => ("the top-level table".to_owned(), path),
     };
     let mut field = String::new();

@@ -24,6 +24,8 @@ pub(super) struct File {
     pub sphere: Vec<Sphere>,
     #[serde(default)]
     pub light: Vec<Light>,
+    #[serde(default)]
+    pub instances: Vec<Instances>,
 }
 
 /// Each key may be left out, and so may the whole `[camera]` table; `scene::camera`
@@ -154,6 +156,17 @@ pub(super) struct Mesh {
     pub scale: Option<Scale>,
     /// Row-major; excludes `rotate_deg`, `translate` and `scale`.
     pub matrix: Option<[f32; 16]>,
+}
+
+/// One asset placed by an instance file (`.rtinst`).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct Instances {
+    pub asset: String,
+    pub file: String,
+    /// Scene materials that the file's material indices name, in order.
+    #[serde(default)]
+    pub materials: Vec<String>,
 }
 
 #[derive(Clone, Copy, Deserialize)]

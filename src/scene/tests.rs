@@ -318,3 +318,30 @@ fn light_errors_are_located_and_suggest() {
     "#,
     );
 }
+
+#[test]
+fn instance_sets_resolve_paths_and_name_their_materials() {
+    let s = parse_ok(
+        "[materials.bark]\n[materials.leaf]\n[[instances]]\nasset = \"../assets/tree\"\nfile = \"trees.rtinst\"\n\
+         materials = [\"leaf\", \"bark\"]\n",
+    );
+    assert_eq!(s.instance_sets.len(), 1);
+    let set = &s.instance_sets[0];
+    assert_eq!(set.asset, Path::new("/scenes/../assets/tree"));
+    assert_eq!(set.file, Path::new("/scenes/trees.rtinst"));
+    assert_eq!(set.materials, ["leaf", "bark"]);
+    assert!(parse_ok("[[instances]]\nasset = \"a\"\nfile = \"b.rtinst\"\n").instance_sets[0].materials.is_empty());
+}
+
+#[test]
+fn instance_set_mistakes_are_located() {
+    assert_errors(
+        r#"
+        [[instances]] | asset = "a" | fille = "b.rtinst" => 3:1: unknown key `fille` in instances 1; did you mean `file`?
+        [[instances]] | asset = "a" | file = "" => 3:8: instances 1: file must name a file or folder, got ""
+        [[instances]] | file = "b.rtinst" => 1:1: instances 1: missing field `asset`
+        [materials.bark] | [[instances]] | asset = "a" | file = "b" | materials = ["bark", "brak"] => 5:13: instances 1: materials entry 1: `brak` names no [materials.*] table; did you mean `bark`?
+        | instance = [] => 2:1: unknown key `instance` in the top-level table; did you mean `instances`?
+    "#,
+    );
+}

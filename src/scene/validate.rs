@@ -4,7 +4,7 @@ use super::atmosphere;
 use super::light;
 use super::parse::{SceneError, Seg, Seg::*, Source, hint};
 use super::schema::{self, File, Scale, SkyKind};
-use super::{Material, MeshInstance, RenderSettings, Scene, Sky, Sphere, Sun};
+use super::{InstanceSet, Material, MeshInstance, RenderSettings, Scene, Sky, Sphere, Sun};
 use glam::{Mat3, Mat4, Vec3};
 use std::path::Path;
 
@@ -60,6 +60,27 @@ pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, 
     for (i, l) in file.light.into_iter().enumerate() {
         lights.push(light::validate(src, i, l)?);
     }
+    let mut instance_sets = Vec::new();
+    for (i, set) in file.instances.into_iter().enumerate() {
+        let p = [Key("instances"), Index(i)];
+        for (field, value) in [("asset", &set.asset), ("file", &set.file)] {
+            if value.is_empty() {
+                return Err(src.error(&p, field, "must name a file or folder, got \"\""));
+            }
+        }
+        for (j, name) in set.materials.iter().enumerate() {
+            if !materials.iter().any(|(m, _)| m == name) {
+                let names = hint(name, materials.iter().map(|(m, _)| m.as_str()));
+                let message = format!("entry {j}: `{name}` names no [materials.*] table{names}");
+                return Err(src.error(&p, "materials", message));
+            }
+        }
+        instance_sets.push(InstanceSet {
+            asset: base_dir.join(&set.asset),
+            file: base_dir.join(&set.file),
+            materials: set.materials,
+        });
+    }
 
     Ok(Scene {
         origin: src.origin.to_owned(),
@@ -71,6 +92,7 @@ pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, 
         meshes,
         spheres,
         lights,
+        instance_sets,
     })
 }
 

@@ -6,7 +6,7 @@
 //! | camera, sun, sky colour, render settings | new frame constants, accumulation reset |
 //! | exposure | none on the GPU's path tracer: the display applies it |
 //! | materials | material and emitter tables re-uploaded |
-//! | placement (meshes, spheres) | top level rebuilt, geometry re-uploaded |
+//! | placement (meshes, spheres, instance sets, an instance file's bytes) | top level rebuilt, geometry re-uploaded |
 //! | an asset's files | that asset's BVH re-packed, top level rebuilt |
 //! | features (sky kind, sun on/off, sampling) | the specialised pipeline for the new set |
 //! | shaders (`--dev`) | pipelines rebuilt from `shaders/` on disk |
@@ -136,7 +136,11 @@ pub fn plan(old: &Scene, new: &Scene, old_assets: &AssetPrints, new_assets: &Ass
             changes.push(Change::Placement);
         }
     }
-    if old.meshes != new.meshes || old.spheres != new.spheres || old.lights != new.lights {
+    if old.meshes != new.meshes
+        || old.spheres != new.spheres
+        || old.lights != new.lights
+        || old.instance_sets != new.instance_sets
+    {
         changes.push(Change::Placement);
     }
     if LampKinds::of(&old.lights) != LampKinds::of(&new.lights) {
@@ -144,7 +148,9 @@ pub fn plan(old: &Scene, new: &Scene, old_assets: &AssetPrints, new_assets: &Ass
     }
     for (path, print) in new_assets {
         if old_assets.get(path) != Some(print) {
-            changes.push(Change::Asset(path.clone()));
+            // An edited instance file moves instances: only the top level is rebuilt.
+            let instance_file = new.instance_sets.iter().any(|s| s.file == *path);
+            changes.push(if instance_file { Change::Placement } else { Change::Asset(path.clone()) });
         }
     }
     if shaders {
@@ -337,6 +343,24 @@ mod tests {
         };
         let reload = kind_after(|s| s.camera.depth_of_field = Some(dof));
         assert_eq!(reload.changes, [Change::Camera, Change::Features]);
+    }
+
+    #[test]
+    fn an_edited_instance_file_is_placement_not_an_asset() {
+        let mut old = scene();
+        old.instance_sets.push(crate::scene::InstanceSet {
+            asset: PathBuf::from("/s/box.obj"),
+            file: PathBuf::from("/s/boxes.rtinst"),
+            materials: vec![],
+        });
+        let with_file = |hash: u8| {
+            let mut p = prints(1);
+            p.insert(PathBuf::from("/s/boxes.rtinst"), Ok([hash; 32]));
+            p
+        };
+        let reload = plan(&old, &old, &with_file(1), &with_file(2), false);
+        assert_eq!(reload.changes, [Change::Placement]);
+        assert!(reload.replaces_geometry() && reload.assets().next().is_none());
     }
 
     #[test]

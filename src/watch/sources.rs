@@ -11,23 +11,27 @@ use std::path::{Path, PathBuf};
 /// The display shader, read from disk with `--dev` like the path tracer's.
 pub const DISPLAY_SHADER: &str = "display.wgsl";
 
-/// BLAKE3 of every asset's source files (the same hash that keys its BVH cache).
+/// BLAKE3 of every asset's source files (the same hash that keys its BVH cache), and
+/// of every instance file.
 pub fn asset_prints(scene: &Scene) -> AssetPrints {
-    asset_paths(scene)
-        .into_iter()
-        .map(|path| {
-            let print = AssetFiles::resolve(&path).and_then(|f| cache::source_hash(&f)).map_err(|e| e.to_string());
-            (path, print)
-        })
-        .collect()
+    let assets = asset_paths(scene).into_iter().map(|path| {
+        let print = AssetFiles::resolve(&path).and_then(|f| cache::source_hash(&f)).map_err(|e| e.to_string());
+        (path, print)
+    });
+    let instance_files = scene.instance_sets.iter().map(|s| {
+        let print = crate::files::read(&s.file).map(|b| *blake3::hash(&b).as_bytes());
+        (s.file.clone(), print.map_err(|e| e.to_string()))
+    });
+    assets.chain(instance_files).collect()
 }
 
-/// The scene file, every asset's source files, and with `shaders` the shader files.
+/// The scene file, every asset's source files, every instance file, and with `shaders` the shader files.
 pub fn watched_files(scene_path: &Path, scene: &Scene, shaders: Option<&Path>) -> Vec<PathBuf> {
     let mut files = vec![scene_path.to_path_buf()];
     for asset in asset_paths(scene) {
         files.extend(asset_files(&asset));
     }
+    files.extend(scene.instance_sets.iter().map(|s| s.file.clone()));
     if let Some(dir) = shaders {
         files.extend(ALL_PARTS.iter().map(|(name, _)| dir.join(name)));
         files.push(dir.join(DISPLAY_SHADER));

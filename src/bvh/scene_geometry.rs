@@ -14,8 +14,10 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 pub struct SceneGeometry {
-    /// Bottom levels of every mesh, then the top level (from `tlas_root`).
+    /// The top level (binary, from `tlas_root`).
     pub nodes: Vec<GpuBvhNode>,
+    /// The bottom levels of every mesh (8-wide), each mesh's root first.
+    pub wide_nodes: Vec<GpuWideNode>,
     pub triangles: Vec<GpuTriangle>,
     pub shading: Vec<GpuTriangleShading>,
     pub instances: Vec<GpuInstance>,
@@ -87,14 +89,14 @@ impl SceneGeometry {
             }
         };
 
-        let mut nodes = Vec::new();
+        let mut wide_nodes = Vec::new();
         let mut triangles = Vec::new();
         let mut shading = Vec::new();
         // (node offset, triangle offset, material base) of each mesh.
         let mut placed = Vec::new();
         for mesh in &meshes {
-            placed.push((nodes.len() as u32, triangles.len() as u32, materials.len() as u32));
-            nodes.extend_from_slice(&mesh.bvh.nodes);
+            placed.push((wide_nodes.len() as u32, triangles.len() as u32, materials.len() as u32));
+            wide_nodes.extend_from_slice(&mesh.bvh.nodes);
             triangles.extend_from_slice(&mesh.bvh.triangles);
             shading.extend_from_slice(&mesh.bvh.shading);
             materials.extend(mesh.materials.iter().map(|(_, m)| m.clone()));
@@ -159,16 +161,15 @@ impl SceneGeometry {
         let (emitters, emitter_total_power) =
             emitter_table(&instances, &instance_triangles, &triangles, &spheres, &materials);
 
-        let (tlas_nodes, tlas_primitives) = if boxes.is_empty() {
+        let (nodes, tlas_primitives) = if boxes.is_empty() {
             (convert_bvh2(&obvhs::bvh2::Bvh2::default()), Vec::new())
         } else {
             let bvh = build_bvh2(&boxes, BvhBuildParams::medium_build(), &mut Duration::default());
             let prims = bvh.primitive_indices.iter().map(|&i| entries[i as usize]).collect();
             (convert_bvh2(&bvh), prims)
         };
-        let tlas_root = nodes.len() as u32;
-        let tlas_stats = stats(&tlas_nodes);
-        nodes.extend_from_slice(&tlas_nodes);
+        let tlas_root = 0;
+        let tlas_stats = stats(&nodes);
         let (bounds_min, bounds_max) =
             boxes.iter().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), b| {
                 (lo.min(b.min.into()), hi.max(b.max.into()))
@@ -176,6 +177,7 @@ impl SceneGeometry {
 
         Ok(Self {
             nodes,
+            wide_nodes,
             triangles,
             shading,
             instances,

@@ -17,7 +17,8 @@ const STAT_COUNT: usize = 1;
 /// [`SceneData::bindings`].
 pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     use Binding::*;
-    let bindings = [Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadWrite, ReadOnly];
+    let bindings =
+        [Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadWrite, ReadOnly, ReadOnly];
     sequential_layout(device, "scene", wgpu::ShaderStages::COMPUTE, &bindings)
 }
 
@@ -45,11 +46,12 @@ struct SceneData {
     materials: wgpu::Buffer,
     stats: wgpu::Buffer,
     emitters: wgpu::Buffer,
+    wide_nodes: wgpu::Buffer,
 }
 
 impl SceneData {
     /// The buffers in binding order (see [`scene_bind_group_layout`]).
-    fn bindings(&self) -> [&wgpu::Buffer; 10] {
+    fn bindings(&self) -> [&wgpu::Buffer; 11] {
         [
             &self.frame,
             &self.nodes,
@@ -61,6 +63,7 @@ impl SceneData {
             &self.materials,
             &self.stats,
             &self.emitters,
+            &self.wide_nodes,
         ]
     }
 }
@@ -84,8 +87,10 @@ fn storage<T: Pod + Default>(ctx: &GpuContext, label: &str, data: &[T], extra: w
     })
 }
 
-/// The geometry's buffers: (nodes, triangles, shading, instances, top-level primitives, spheres).
-type GeometryBuffers = (wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer);
+/// The geometry's buffers: (top-level nodes, triangles, shading, instances, top-level primitives,
+/// spheres, bottom-level nodes).
+type GeometryBuffers =
+    (wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer);
 
 fn geometry_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<GeometryBuffers> {
     check_sizes(ctx, geometry)?;
@@ -97,6 +102,7 @@ fn geometry_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<Geomet
         storage(ctx, "instances", &geometry.instances, none),
         storage(ctx, "tlas primitives", &geometry.tlas_primitives, none),
         storage(ctx, "spheres", &geometry.spheres, none),
+        storage(ctx, "wide nodes", &geometry.wide_nodes, none),
     ))
 }
 
@@ -107,7 +113,7 @@ fn material_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer
 
 impl SceneBuffers {
     pub fn new(ctx: &GpuContext, geometry: &SceneGeometry, layout: &wgpu::BindGroupLayout) -> Result<Self> {
-        let (nodes, triangles, shading, instances, tlas, spheres) = geometry_buffers(ctx, geometry)?;
+        let (nodes, triangles, shading, instances, tlas, spheres, wide_nodes) = geometry_buffers(ctx, geometry)?;
         let (materials, emitters) = material_buffers(ctx, geometry);
         let frame = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("frame"),
@@ -116,7 +122,8 @@ impl SceneBuffers {
         });
         let counters = wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST;
         let stats = storage(ctx, "stats", &[0u32; STAT_COUNT], counters);
-        let data = SceneData { frame, nodes, triangles, shading, instances, tlas, spheres, materials, stats, emitters };
+        let data =
+            SceneData { frame, nodes, triangles, shading, instances, tlas, spheres, materials, stats, emitters, wide_nodes };
         let bind_group = bind_group(ctx, "scene", layout, &data.bindings());
         Ok(Self { data, bind_group, sky_bind_group: None })
     }
@@ -130,7 +137,8 @@ impl SceneBuffers {
         layout: &wgpu::BindGroupLayout,
     ) -> Result<()> {
         let d = &mut self.data;
-        (d.nodes, d.triangles, d.shading, d.instances, d.tlas, d.spheres) = geometry_buffers(ctx, geometry)?;
+        (d.nodes, d.triangles, d.shading, d.instances, d.tlas, d.spheres, d.wide_nodes) =
+            geometry_buffers(ctx, geometry)?;
         (d.materials, d.emitters) = material_buffers(ctx, geometry);
         self.bind_group = bind_group(ctx, "scene", layout, &self.data.bindings());
         Ok(())
@@ -168,7 +176,8 @@ impl SceneBuffers {
 fn check_sizes(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<()> {
     let max = ctx.device.limits().max_storage_buffer_binding_size;
     let sizes = [
-        ("BVH nodes", std::mem::size_of_val(geometry.nodes.as_slice())),
+        ("top-level BVH nodes", std::mem::size_of_val(geometry.nodes.as_slice())),
+        ("mesh BVH nodes", std::mem::size_of_val(geometry.wide_nodes.as_slice())),
         ("triangles", std::mem::size_of_val(geometry.triangles.as_slice())),
     ];
     for (what, bytes) in sizes {

@@ -61,7 +61,9 @@ pub(super) fn check_contents(
             }
         }
         if leaf_triangles > MAX_NODE_TRIANGLES {
-            return Err(format!("node {i}: its leaves hold {leaf_triangles} triangles, more than {MAX_NODE_TRIANGLES}"));
+            return Err(format!(
+                "node {i}: its leaves hold {leaf_triangles} triangles, more than {MAX_NODE_TRIANGLES}"
+            ));
         }
     }
     for (i, t) in triangles.iter().enumerate() {
@@ -84,9 +86,9 @@ pub(super) fn check_contents(
 #[cfg(test)]
 mod tests {
     use super::super::cache::{self, CacheProblem, PackedMesh};
+    use super::super::wide_node::{Slot, imask, slot};
     use super::super::{BuildQuality, MeshBvh};
     use crate::asset::load_mesh;
-    use super::super::wide_node::{Slot, imask, slot};
     use std::path::Path;
 
     fn packed() -> PackedMesh {
@@ -144,10 +146,15 @@ mod tests {
         let mut mesh = packed();
         let inner = (0..8).find(|&s| imask(&mesh.bvh.nodes[0]) & (1 << s) != 0).expect("an inner child");
         mesh.bvh.nodes[0].child_base = 0;
-        assert!(invalid("cycle", &mesh).contains(&format!("node 0 slot {inner}: Inner(")), "{}", invalid("cycle", &mesh));
+        assert!(
+            invalid("cycle", &mesh).contains(&format!("node 0 slot {inner}: Inner(")),
+            "{}",
+            invalid("cycle", &mesh)
+        );
 
         let mut mesh = packed();
-        let leaf = mesh.bvh.nodes.iter().position(|n| (0..8).any(|s| matches!(slot(n, s), Slot::Leaf(..)))).expect("a leaf");
+        let leaf =
+            mesh.bvh.nodes.iter().position(|n| (0..8).any(|s| matches!(slot(n, s), Slot::Leaf(..)))).expect("a leaf");
         mesh.bvh.nodes[leaf].primitive_base = mesh.bvh.triangles.len() as u32;
         assert!(invalid("leaf", &mesh).contains("is out of range"));
 

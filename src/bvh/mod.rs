@@ -13,6 +13,6 @@ mod wide_node;
 
 pub use mesh_bvh::{BuildQuality, MeshBvh};
 pub use node::{BvhStats, convert_bvh2, stats};
-pub use wide_node::NODE_LAYOUT;
 pub use pack::{LoadedMesh, PackOutcome, PackReport, Provenance};
 pub use scene_geometry::{SceneGeometry, asset_paths};
+pub use wide_node::NODE_LAYOUT;

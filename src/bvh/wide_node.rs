@@ -94,9 +94,7 @@ impl Bounds {
 /// node with eight empty slots.
 pub fn convert_cwbvh(bvh: &CwBvh, triangles: &[GpuTriangle]) -> Vec<GpuWideNode> {
     if bvh.nodes.is_empty() || triangles.is_empty() {
-        let mut empty = GpuWideNode::default();
-        empty.exponents_imask = [127, 127, 127, 0];
-        return vec![empty];
+        return vec![GpuWideNode { exponents_imask: [127, 127, 127, 0], ..Default::default() }];
     }
     let mut nodes: Vec<GpuWideNode> = bytemuck::cast_slice(&bvh.nodes).to_vec();
     requantise(&mut nodes, triangles);
@@ -125,7 +123,7 @@ fn requantise(nodes: &mut [GpuWideNode], triangles: &[GpuTriangle]) {
 fn quantise(node: &mut GpuWideNode, node_box: &Bounds, children: &[Option<Bounds>; WIDTH]) {
     node.origin = node_box.min;
     let mut planes = [[[0u8; WIDTH]; 2]; 3];
-    for axis in 0..3 {
+    for (axis, [axis_lo, axis_hi]) in planes.iter_mut().enumerate() {
         let origin = node_box.min[axis] as f64;
         let top = node_box.max[axis] as f64;
         // A step far below the coordinates' rounding would gain nothing; keeping it above
@@ -149,8 +147,8 @@ fn quantise(node: &mut GpuWideNode, node_box: &Bounds, children: &[Option<Bounds
             while q_hi < 255.0 && origin + q_hi * step < hi {
                 q_hi += 1.0;
             }
-            planes[axis][0][s] = q_lo as u8;
-            planes[axis][1][s] = q_hi as u8;
+            axis_lo[s] = q_lo as u8;
+            axis_hi[s] = q_hi as u8;
         }
     }
     [node.child_min_x, node.child_max_x] = planes[0];
@@ -241,7 +239,8 @@ mod tests {
             .map(|i| {
                 let scale = [1e-4f32, 1.0, 300.0][i % 3];
                 let c = [1000.0 + next() * 10.0, -7.0 + next(), 0.1 * next()];
-                let v = |c: [f32; 3], s: f32, k: &mut dyn FnMut() -> f32| [c[0] + s * k(), c[1] + s * k(), c[2] + s * k()];
+                let v =
+                    |c: [f32; 3], s: f32, k: &mut dyn FnMut() -> f32| [c[0] + s * k(), c[1] + s * k(), c[2] + s * k()];
                 GpuTriangle {
                     v0: v(c, scale, &mut next),
                     v1: v(c, scale, &mut next),
@@ -253,18 +252,17 @@ mod tests {
     }
 
     fn build(triangles: &[GpuTriangle]) -> (Vec<GpuWideNode>, Vec<GpuTriangle>) {
-        let tris: Vec<Triangle> = triangles
-            .iter()
-            .map(|t| Triangle { v0: t.v0.into(), v1: t.v1.into(), v2: t.v2.into() })
-            .collect();
+        let tris: Vec<Triangle> =
+            triangles.iter().map(|t| Triangle { v0: t.v0.into(), v1: t.v1.into(), v2: t.v2.into() }).collect();
         let bvh = build_cwbvh_from_tris(&tris, BvhBuildParams::medium_build(), &mut Duration::default());
         let ordered: Vec<GpuTriangle> = bvh.primitive_indices.iter().map(|&i| triangles[i as usize]).collect();
         (convert_cwbvh(&bvh, &ordered), ordered)
     }
 
-    #[test]
-    fn every_dequantised_box_contains_its_subtree() {
-        let (nodes, triangles) = build(&awkward_triangles());
+    /// Vertex coordinates that lie outside a slot box on the way from the root to their
+    /// leaf, after checking that every slot is well formed and every triangle in one leaf.
+    fn uncontained(nodes: &[GpuWideNode], triangles: &[GpuTriangle]) -> usize {
+        let mut outside = 0;
         let mut seen = vec![0u32; triangles.len()];
         // (node, the intersection of the boxes its ancestors' slots promise)
         let mut work = vec![(0u32, ([f64::MIN; 3], [f64::MAX; 3]))];
@@ -281,10 +279,8 @@ mod tests {
                     Slot::Leaf(first, count) => {
                         for t in &triangles[first as usize..][..count as usize] {
                             for v in [t.v0, t.v1, t.v2] {
-                                for a in 0..3 {
-                                    let x = v[a] as f64;
-                                    assert!(inner_lo[a] <= x && x <= inner_hi[a], "node {i} slot {c} axis {a}: {x}");
-                                }
+                                outside +=
+                                    (0..3).filter(|&a| !(inner_lo[a]..=inner_hi[a]).contains(&(v[a] as f64))).count();
                             }
                         }
                         (first..first + count).for_each(|k| seen[k as usize] += 1);
@@ -293,8 +289,38 @@ mod tests {
             }
         }
         assert!(seen.iter().all(|&k| k == 1), "every triangle is in exactly one leaf");
+        outside
+    }
+
+    #[test]
+    fn every_dequantised_box_contains_its_subtree() {
+        let (nodes, triangles) = build(&awkward_triangles());
+        assert_eq!(uncontained(&nodes, &triangles), 0);
         let stats = wide_stats(&nodes);
         assert!(stats.depth > 2 && stats.sah_cost > 1.0, "{stats:?}");
+    }
+
+    /// A child whose box starts just below a grid line of a node whose origin is tiny and
+    /// negative: obvhs's f32 `floor((min − origin) / step)` rounds onto the grid line, and
+    /// its plane cuts 2·10⁻⁸ into the child.
+    #[test]
+    fn a_plane_that_f32_rounding_moves_into_its_child_is_moved_out() {
+        let p = -(2f32.powi(-25) + 2f32.powi(-27));
+        let m = 1.0 - 2f32.powi(-24);
+        let tri = |v0, v1, v2| GpuTriangle { v0, v1, v2, ..Default::default() };
+        let triangles = [
+            tri([p, 0.0, 0.0], [p + 0.01, 0.0, 0.01], [p, 0.01, 0.0]),
+            tri([m, 5.0, 0.0], [1.5, 5.0, 0.0], [1.2, 5.5, 0.5]),
+        ];
+        let (nodes, ordered) = build(&triangles);
+        assert_eq!(uncontained(&nodes, &ordered), 0);
+        let tris: Vec<Triangle> =
+            triangles.iter().map(|t| Triangle { v0: t.v0.into(), v1: t.v1.into(), v2: t.v2.into() }).collect();
+        let raw = build_cwbvh_from_tris(&tris, BvhBuildParams::medium_build(), &mut Duration::default());
+        assert!(
+            uncontained(bytemuck::cast_slice(&raw.nodes), &ordered) > 0,
+            "obvhs's own planes held: the case is gone"
+        );
     }
 
     #[test]

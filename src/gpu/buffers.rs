@@ -122,8 +122,19 @@ impl SceneBuffers {
         });
         let counters = wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST;
         let stats = storage(ctx, "stats", &[0u32; STAT_COUNT], counters);
-        let data =
-            SceneData { frame, nodes, triangles, shading, instances, tlas, spheres, materials, stats, emitters, wide_nodes };
+        let data = SceneData {
+            frame,
+            nodes,
+            triangles,
+            shading,
+            instances,
+            tlas,
+            spheres,
+            materials,
+            stats,
+            emitters,
+            wide_nodes,
+        };
         let bind_group = bind_group(ctx, "scene", layout, &data.bindings());
         Ok(Self { data, bind_group, sky_bind_group: None })
     }

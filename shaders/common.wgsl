@@ -57,6 +57,29 @@ struct BvhNode {
     b_count: u32,
 }
 
+// A compressed 8-wide BVH node of a mesh (Ylitie, Karras & Laine 2017; obvhs's
+// CwBvhNode): child boxes on a grid origin + q · 2^(e − 127) per axis, q one byte per
+// child and plane; see shaders/wide_bvh.wgsl.
+struct WideNode {
+    origin: vec3f,
+    // Bytes 0..3: the biased exponents e of the x, y, z steps; byte 3: imask (bit i: slot i is an inner node).
+    exponents_imask: u32,
+    // Inner children are contiguous from here, in slot order (relative to the mesh's first node).
+    child_base: u32,
+    // Leaf triangles are contiguous from here (relative to the mesh's first triangle).
+    primitive_base: u32,
+    // One byte per slot: 0 empty; inner: 0b001_11000 + slot; leaf: the triangle count
+    // in unary in bits 5..8 and its first triangle's offset from primitive_base in bits 0..5.
+    child_meta: vec2u,
+    // One byte per slot: children 0..4 in .x, 4..8 in .y.
+    child_min_x: vec2u,
+    child_max_x: vec2u,
+    child_min_y: vec2u,
+    child_max_y: vec2u,
+    child_min_z: vec2u,
+    child_max_z: vec2u,
+}
+
 struct Triangle {
     v0: vec3f,
     material: u32,
@@ -141,3 +164,4 @@ const STAT_STACK_OVERFLOW: u32 = 0u;
 @group(0) @binding(7) var<storage, read> materials: array<Material>;
 @group(0) @binding(8) var<storage, read_write> stats: array<atomic<u32>>;
 @group(0) @binding(9) var<storage, read> emitters: array<Emitter>;
+@group(0) @binding(12) var<storage, read> wide_nodes: array<WideNode>;

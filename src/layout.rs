@@ -57,6 +57,30 @@ pub struct GpuBvhNode {
     pub b_count: u32,
 }
 
+/// A compressed 8-wide BVH node (Ylitie, Karras & Laine 2017) in obvhs's `CwBvhNode`
+/// layout (see `shaders/common.wgsl`): child boxes quantised to 8 bits on a grid of
+/// origin + q · 2^e per axis.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuWideNode {
+    /// The quantisation grid's origin: the node box's minimum.
+    pub origin: [f32; 3],
+    /// Biased exponents of the grid steps along x, y, z, then `imask` (bit i: slot i is an inner node).
+    pub exponents_imask: [u8; 4],
+    /// Index of the first inner child (relative to the mesh's first node); inner children are contiguous.
+    pub child_base: u32,
+    /// Index of the first triangle of the leaf children (relative to the mesh's first triangle).
+    pub primitive_base: u32,
+    /// Per slot: 0 empty; inner: 0b001_11000 + slot; leaf: unary count in bits 5..8, triangle offset in bits 0..5.
+    pub child_meta: [u8; 8],
+    pub child_min_x: [u8; 8],
+    pub child_max_x: [u8; 8],
+    pub child_min_y: [u8; 8],
+    pub child_max_y: [u8; 8],
+    pub child_min_z: [u8; 8],
+    pub child_max_z: [u8; 8],
+}
+
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuTriangle {

@@ -7,7 +7,7 @@
 //!     (with this checksum field zeroed), the node layout's name, the mesh's bounds,
 //!     vertex and triangle counts of the source, BvhStats, and the section table
 //! sections, each at a 16-byte-aligned offset, zero padding between them:
-//!     nodes       GpuBvhNode × n       (root first)
+//!     nodes       GpuWideNode × n      (root first; layout `NODE_LAYOUT`)
 //!     triangles   GpuTriangle × m      (leaf order; material index in each)
 //!     shading     GpuTriangleShading × m
 //!     materials   CachedMaterial × k      (the asset's materials, in its own order)
@@ -25,9 +25,10 @@
 use super::cache_check::check_contents;
 use super::cached_material::CachedMaterial;
 use super::mesh_bvh::{BuildQuality, MeshBvh};
-use super::node::{BvhStats, NODE_LAYOUT};
+use super::node::BvhStats;
+use super::wide_node::NODE_LAYOUT;
 use crate::asset::{AssetError, AssetFiles};
-use crate::layout::{GpuBvhNode, GpuTriangle, GpuTriangleShading};
+use crate::layout::{GpuTriangle, GpuTriangleShading, GpuWideNode};
 use crate::scene::Material;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
@@ -37,7 +38,7 @@ use std::path::Path;
 use std::time::Duration;
 
 pub const MAGIC: [u8; 8] = *b"RTBVH\0\0\0";
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 const ALIGN: u64 = 16;
 
 #[repr(C)]
@@ -132,7 +133,7 @@ pub fn source_hash(files: &AssetFiles) -> Result<[u8; 32], AssetError> {
 
 /// BLAKE3 of everything besides the sources that decides the cache's bytes.
 pub fn params_hash(quality: BuildQuality) -> [u8; 32] {
-    let sizes = [size_of::<GpuBvhNode>(), size_of::<GpuTriangle>(), size_of::<GpuTriangleShading>()];
+    let sizes = [size_of::<GpuWideNode>(), size_of::<GpuTriangle>(), size_of::<GpuTriangleShading>()];
     let params = format!("rtbvh {FORMAT_VERSION} {NODE_LAYOUT} {quality:?} {sizes:?} {}", size_of::<CachedMaterial>());
     *blake3::hash(params.as_bytes()).as_bytes()
 }
@@ -256,7 +257,7 @@ pub fn read(path: &Path, source_hash: [u8; 32], params_hash: [u8; 32]) -> Result
         let s = header.sections[i];
         &words[(s.offset / 4) as usize..((s.offset + s.bytes) / 4) as usize]
     };
-    let nodes: Vec<GpuBvhNode> = bytemuck::cast_slice(section(NODES)).to_vec();
+    let nodes: Vec<GpuWideNode> = bytemuck::cast_slice(section(NODES)).to_vec();
     let triangles: Vec<GpuTriangle> = bytemuck::cast_slice(section(TRIANGLES)).to_vec();
     let shading: Vec<GpuTriangleShading> = bytemuck::cast_slice(section(SHADING)).to_vec();
     let materials: &[CachedMaterial] = bytemuck::cast_slice(section(MATERIALS));
@@ -304,7 +305,7 @@ fn check_header(header: &Header, len: u64) -> Result<(), CacheProblem> {
         return Err(CacheProblem::Stale(format!("node layout `{found}`, not `{NODE_LAYOUT}`")));
     }
     let element_sizes = [
-        size_of::<GpuBvhNode>(),
+        size_of::<GpuWideNode>(),
         size_of::<GpuTriangle>(),
         size_of::<GpuTriangleShading>(),
         size_of::<CachedMaterial>(),

@@ -3,13 +3,14 @@
 //! hostile writer must still stop here, not as out-of-bounds reads or an endless loop.
 
 use super::cached_material::CachedMaterial;
-use crate::layout::{EMPTY_LINK, GpuBvhNode, GpuTriangle, GpuTriangleShading};
+use super::wide_node::{MAX_NODE_TRIANGLES, Slot, WIDTH, slot, slot_is_well_formed};
+use crate::layout::{GpuTriangle, GpuTriangleShading, GpuWideNode};
 
-/// Every node link points forward to an existing node (so traversal terminates), every
-/// leaf's triangle range is in bounds, every triangle's material exists, and every
-/// number is finite.
+/// Every node's child slots decode as the shader decodes them, every child link points
+/// forward to an existing node (so traversal terminates), every leaf's triangle range is
+/// in bounds, every triangle's material exists, and every number is finite.
 pub(super) fn check_contents(
-    nodes: &[GpuBvhNode],
+    nodes: &[GpuWideNode],
     triangles: &[GpuTriangle],
     shading: &[GpuTriangleShading],
     materials: &[CachedMaterial],
@@ -30,27 +31,39 @@ pub(super) fn check_contents(
     }
     let triangle_count = triangles.len() as u64;
     for (i, n) in nodes.iter().enumerate() {
-        for (slot, (min, max, link, count)) in
-            [("a", (n.a_min, n.a_max, n.a_link, n.a_count)), ("b", (n.b_min, n.b_max, n.b_link, n.b_count))]
-        {
-            let at = || format!("node {i} child {slot}");
-            if !min.iter().chain(&max).all(|v| v.is_finite()) {
-                return Err(format!("{}: non-finite box", at()));
+        if !n.origin.iter().all(|v| v.is_finite()) {
+            return Err(format!("node {i}: non-finite origin"));
+        }
+        // Steps of 2^(e − 127) with e in 1..=254: normal floats, never zero or infinite.
+        if n.exponents_imask[..3].iter().any(|&e| e == 0 || e == 255) {
+            return Err(format!("node {i}: step exponents {:?} out of range", &n.exponents_imask[..3]));
+        }
+        let mut leaf_triangles = 0;
+        for s in 0..WIDTH {
+            if !slot_is_well_formed(n, s) {
+                return Err(format!("node {i} slot {s}: malformed child meta {:#010b}", n.child_meta[s]));
             }
-            let ok = match (link, count) {
-                (EMPTY_LINK, 0) => true,
-                (EMPTY_LINK, _) => false,
-                (first, count @ 1..) => first as u64 + count as u64 <= triangle_count,
+            let ok = match slot(n, s) {
+                Slot::Empty => true,
                 // Children are stored after their parents, which also rules out cycles.
-                (child, 0) => (child as usize) > i && (child as usize) < nodes.len(),
+                Slot::Inner(child) => (child as usize) > i && (child as usize) < nodes.len(),
+                Slot::Leaf(first, count) => {
+                    leaf_triangles += count;
+                    first as u64 + count as u64 <= triangle_count
+                }
             };
             if !ok {
                 return Err(format!(
-                    "{}: link {link} with count {count} is out of range ({} nodes, {triangle_count} triangles)",
-                    at(),
+                    "node {i} slot {s}: {:?} is out of range ({} nodes, {triangle_count} triangles)",
+                    slot(n, s),
                     nodes.len()
                 ));
             }
+        }
+        if leaf_triangles > MAX_NODE_TRIANGLES {
+            return Err(format!(
+                "node {i}: its leaves hold {leaf_triangles} triangles, more than {MAX_NODE_TRIANGLES}"
+            ));
         }
     }
     for (i, t) in triangles.iter().enumerate() {
@@ -73,9 +86,9 @@ pub(super) fn check_contents(
 #[cfg(test)]
 mod tests {
     use super::super::cache::{self, CacheProblem, PackedMesh};
+    use super::super::wide_node::{Slot, imask, slot};
     use super::super::{BuildQuality, MeshBvh};
     use crate::asset::load_mesh;
-    use crate::layout::EMPTY_LINK;
     use std::path::Path;
 
     fn packed() -> PackedMesh {
@@ -131,19 +144,28 @@ mod tests {
     #[test]
     fn out_of_range_contents_are_refused_despite_a_valid_checksum() {
         let mut mesh = packed();
-        mesh.bvh.nodes[0].a_count = 0;
-        mesh.bvh.nodes[0].a_link = 0;
-        assert!(invalid("cycle", &mesh).contains("node 0 child a: link 0 with count 0 is out of range"));
+        let inner = (0..8).find(|&s| imask(&mesh.bvh.nodes[0]) & (1 << s) != 0).expect("an inner child");
+        mesh.bvh.nodes[0].child_base = 0;
+        assert!(
+            invalid("cycle", &mesh).contains(&format!("node 0 slot {inner}: Inner(")),
+            "{}",
+            invalid("cycle", &mesh)
+        );
 
         let mut mesh = packed();
-        let leaf = mesh.bvh.nodes.iter().position(|n| n.b_count > 0).expect("a leaf");
-        mesh.bvh.nodes[leaf].b_link = mesh.bvh.triangles.len() as u32;
+        let leaf =
+            mesh.bvh.nodes.iter().position(|n| (0..8).any(|s| matches!(slot(n, s), Slot::Leaf(..)))).expect("a leaf");
+        mesh.bvh.nodes[leaf].primitive_base = mesh.bvh.triangles.len() as u32;
         assert!(invalid("leaf", &mesh).contains("is out of range"));
 
         let mut mesh = packed();
-        mesh.bvh.nodes[0].b_link = EMPTY_LINK;
-        mesh.bvh.nodes[0].b_count = 3;
-        assert!(invalid("empty", &mesh).contains("is out of range"));
+        let not_inner = (0..8).find(|&s| imask(&mesh.bvh.nodes[leaf]) & (1 << s) == 0).expect("slot");
+        mesh.bvh.nodes[leaf].child_meta[not_inner] = 0b1011_0000;
+        assert!(invalid("meta", &mesh).contains("malformed child meta"));
+
+        let mut mesh = packed();
+        mesh.bvh.nodes[0].exponents_imask[1] = 255;
+        assert!(invalid("exponent", &mesh).contains("node 0: step exponents"));
 
         let mut mesh = packed();
         mesh.bvh.triangles[7].material = 1;

@@ -1,10 +1,15 @@
 //! One bottom-level BVH per mesh, with its triangles reordered for the GPU.
 
-use super::node::{BvhStats, convert_bvh2, stats};
+use super::node::BvhStats;
+use super::wide_node::{convert_cwbvh, wide_stats};
 use crate::asset::MeshData;
-use crate::layout::{GpuBvhNode, GpuTriangle, GpuTriangleShading};
+use crate::layout::{GpuTriangle, GpuTriangleShading, GpuWideNode};
 use glam::{Vec3, Vec3A};
-use obvhs::{BvhBuildParams, bvh2::builder::build_bvh2_from_tris, triangle::Triangle};
+use obvhs::{
+    BvhBuildParams,
+    cwbvh::{CwBvh, builder::build_cwbvh_from_tris},
+    triangle::Triangle,
+};
 use std::time::{Duration, Instant};
 
 /// obvhs's build presets, from fastest build to fastest traversal.
@@ -28,10 +33,10 @@ impl BuildQuality {
     }
 }
 
-/// A mesh ready for upload: nodes (root first), and triangles in leaf order.
+/// A mesh ready for upload: wide nodes (root first), and triangles in leaf order.
 #[derive(Clone, Debug)]
 pub struct MeshBvh {
-    pub nodes: Vec<GpuBvhNode>,
+    pub nodes: Vec<GpuWideNode>,
     pub triangles: Vec<GpuTriangle>,
     pub shading: Vec<GpuTriangleShading>,
     pub bounds_min: Vec3,
@@ -55,14 +60,14 @@ impl MeshBvh {
                 Triangle { v0: p(t[0]), v1: p(t[1]), v2: p(t[2]) }
             })
             .collect();
-        let (nodes, order): (Vec<_>, Vec<u32>) = if tris.is_empty() {
-            (convert_bvh2(&obvhs::bvh2::Bvh2::default()), Vec::new())
+        let bvh = if tris.is_empty() {
+            CwBvh::default()
         } else {
-            let bvh = build_bvh2_from_tris(&tris, quality.params(), &mut Duration::default());
-            // With spatial splits a triangle may appear in several leaves; each gets its copy.
-            (convert_bvh2(&bvh), bvh.primitive_indices.iter().map(|&i| kept[i as usize]).collect())
+            build_cwbvh_from_tris(&tris, quality.params(), &mut Duration::default())
         };
-        let triangles = order
+        // With spatial splits a triangle may appear in several leaves; each gets its copy.
+        let order: Vec<u32> = bvh.primitive_indices.iter().map(|&i| kept[i as usize]).collect();
+        let triangles: Vec<GpuTriangle> = order
             .iter()
             .map(|&i| {
                 let t = mesh.indices[i as usize];
@@ -76,9 +81,10 @@ impl MeshBvh {
                 }
             })
             .collect();
+        let nodes = convert_cwbvh(&bvh, &triangles);
         let shading = order.iter().map(|&i| triangle_shading(mesh, i as usize)).collect();
         let (bounds_min, bounds_max) = bounds(&mesh.positions);
-        let stats = stats(&nodes);
+        let stats = wide_stats(&nodes);
         Self { nodes, triangles, shading, bounds_min, bounds_max, stats, build_time: start.elapsed() }
     }
 }

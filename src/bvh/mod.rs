@@ -1,5 +1,6 @@
-//! Acceleration structures: a BVH per mesh (obvhs), converted to the GPU node
-//! layout and cached in `.rtbvh` files, and a top level over instances and spheres.
+//! Acceleration structures: a compressed 8-wide BVH per mesh (obvhs), converted to the
+//! GPU node layout and cached in `.rtbvh` files, and a binary top level over instances
+//! and spheres.
 
 pub mod cache;
 mod cache_check;
@@ -10,8 +11,10 @@ mod node;
 pub mod pack;
 mod placement;
 mod scene_geometry;
+mod wide_node;
 
 pub use mesh_bvh::{BuildQuality, MeshBvh};
-pub use node::{BvhStats, NODE_LAYOUT, convert_bvh2, stats};
+pub use node::{BvhStats, convert_bvh2, stats};
 pub use pack::{LoadedMesh, PackOutcome, PackReport, Provenance};
 pub use scene_geometry::{SceneGeometry, asset_paths};
+pub use wide_node::NODE_LAYOUT;

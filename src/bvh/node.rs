@@ -1,12 +1,10 @@
-//! The GPU node layout: obvhs's `Bvh2` (one box per node) converted into
+//! The top level's node layout: obvhs's `Bvh2` (one box per node) converted into
 //! nodes that hold both children's boxes, as the seed renderer's 64-byte node did.
 //! Leaves live in their parent's child slot, so traversal never fetches a leaf node.
+//! (Meshes use the wide layout of `wide_node`.)
 
 use crate::layout::{EMPTY_LINK, GpuBvhNode};
 use obvhs::{aabb::Aabb, bvh2::Bvh2};
-
-/// The layout's name, recorded in caches so that a new layout invalidates old files.
-pub const NODE_LAYOUT: &str = "bvh2-wide-child-boxes-64";
 
 struct Child {
     min: [f32; 3],

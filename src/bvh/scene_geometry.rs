@@ -16,8 +16,10 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 pub struct SceneGeometry {
-    /// Bottom levels of every mesh, then the top level (from `tlas_root`).
+    /// The top level (binary, from `tlas_root`).
     pub nodes: Vec<GpuBvhNode>,
+    /// The bottom levels of every mesh (8-wide), each mesh's root first.
+    pub wide_nodes: Vec<GpuWideNode>,
     pub triangles: Vec<GpuTriangle>,
     pub shading: Vec<GpuTriangleShading>,
     pub instances: Vec<GpuInstance>,
@@ -113,17 +115,17 @@ impl SceneGeometry {
             }
         };
 
-        let mut nodes = Vec::new();
+        let mut wide_nodes = Vec::new();
         let mut triangles = Vec::new();
         let mut shading = Vec::new();
         let mut slots = Vec::new();
         for mesh in &meshes {
             slots.push(MeshSlot {
-                node_offset: nodes.len() as u32,
+                node_offset: wide_nodes.len() as u32,
                 triangle_offset: triangles.len() as u32,
                 material_base: materials.len() as u32,
             });
-            nodes.extend_from_slice(&mesh.bvh.nodes);
+            wide_nodes.extend_from_slice(&mesh.bvh.nodes);
             triangles.extend_from_slice(&mesh.bvh.triangles);
             shading.extend_from_slice(&mesh.bvh.shading);
             materials.extend(mesh.materials.iter().map(|(_, m)| m.clone()));
@@ -185,7 +187,7 @@ impl SceneGeometry {
         let (emitters, emitter_total_power) = emissive.table(&instances, &instance_mesh, &spheres);
 
         let build_start = Instant::now();
-        let (tlas_nodes, tlas_primitives) = if boxes.is_empty() {
+        let (nodes, tlas_primitives) = if boxes.is_empty() {
             (convert_bvh2(&obvhs::bvh2::Bvh2::default()), Vec::new())
         } else {
             let bvh = build_bvh2(&boxes, BvhBuildParams::medium_build(), &mut Duration::default());
@@ -193,9 +195,8 @@ impl SceneGeometry {
             (convert_bvh2(&bvh), prims)
         };
         let tlas_build_time = build_start.elapsed();
-        let tlas_root = nodes.len() as u32;
-        let tlas_stats = stats(&tlas_nodes);
-        nodes.extend_from_slice(&tlas_nodes);
+        let tlas_root = 0;
+        let tlas_stats = stats(&nodes);
         let (bounds_min, bounds_max) =
             boxes.iter().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), b| {
                 (lo.min(b.min.into()), hi.max(b.max.into()))
@@ -215,6 +216,7 @@ impl SceneGeometry {
 
         Ok(Self {
             nodes,
+            wide_nodes,
             triangles,
             shading,
             instances,

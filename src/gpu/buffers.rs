@@ -19,7 +19,7 @@ pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     use Binding::*;
     let bindings = [
         Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadWrite, ReadOnly, ReadOnly,
-        Uniform,
+        Uniform, ReadOnly,
     ];
     sequential_layout(device, "scene", wgpu::ShaderStages::COMPUTE, &bindings)
 }
@@ -51,11 +51,12 @@ struct SceneData {
     lamps: wgpu::Buffer,
     /// The lamps' count and share of light samples.
     lamp_info: wgpu::Buffer,
+    wide_nodes: wgpu::Buffer,
 }
 
 impl SceneData {
     /// The buffers in binding order (see [`scene_bind_group_layout`]).
-    fn bindings(&self) -> [&wgpu::Buffer; 12] {
+    fn bindings(&self) -> [&wgpu::Buffer; 13] {
         [
             &self.frame,
             &self.nodes,
@@ -69,6 +70,7 @@ impl SceneData {
             &self.emitters,
             &self.lamps,
             &self.lamp_info,
+            &self.wide_nodes,
         ]
     }
 }
@@ -92,8 +94,10 @@ fn storage<T: Pod + Default>(ctx: &GpuContext, label: &str, data: &[T], extra: w
     })
 }
 
-/// The geometry's buffers: (nodes, triangles, shading, instances, top-level primitives, spheres).
-type GeometryBuffers = (wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer);
+/// The geometry's buffers: (top-level nodes, triangles, shading, instances, top-level primitives,
+/// spheres, bottom-level nodes).
+type GeometryBuffers =
+    (wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer);
 
 fn geometry_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<GeometryBuffers> {
     check_sizes(ctx, geometry)?;
@@ -105,6 +109,7 @@ fn geometry_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<Geomet
         storage(ctx, "instances", &geometry.instances, none),
         storage(ctx, "tlas primitives", &geometry.tlas_primitives, none),
         storage(ctx, "spheres", &geometry.spheres, none),
+        storage(ctx, "wide nodes", &geometry.wide_nodes, none),
     ))
 }
 
@@ -126,7 +131,7 @@ fn material_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer
 
 impl SceneBuffers {
     pub fn new(ctx: &GpuContext, geometry: &SceneGeometry, layout: &wgpu::BindGroupLayout) -> Result<Self> {
-        let (nodes, triangles, shading, instances, tlas, spheres) = geometry_buffers(ctx, geometry)?;
+        let (nodes, triangles, shading, instances, tlas, spheres, wide_nodes) = geometry_buffers(ctx, geometry)?;
         let (materials, emitters) = material_buffers(ctx, geometry);
         let frame = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("frame"),
@@ -149,6 +154,7 @@ impl SceneBuffers {
             emitters,
             lamps,
             lamp_info,
+            wide_nodes,
         };
         let bind_group = bind_group(ctx, "scene", layout, &data.bindings());
         Ok(Self { data, bind_group, sky_bind_group: None })
@@ -163,7 +169,8 @@ impl SceneBuffers {
         layout: &wgpu::BindGroupLayout,
     ) -> Result<()> {
         let d = &mut self.data;
-        (d.nodes, d.triangles, d.shading, d.instances, d.tlas, d.spheres) = geometry_buffers(ctx, geometry)?;
+        (d.nodes, d.triangles, d.shading, d.instances, d.tlas, d.spheres, d.wide_nodes) =
+            geometry_buffers(ctx, geometry)?;
         (d.materials, d.emitters) = material_buffers(ctx, geometry);
         (d.lamps, d.lamp_info) = lamp_buffers(ctx, geometry);
         self.bind_group = bind_group(ctx, "scene", layout, &self.data.bindings());
@@ -204,7 +211,8 @@ impl SceneBuffers {
 fn check_sizes(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<()> {
     let max = ctx.device.limits().max_storage_buffer_binding_size;
     let sizes = [
-        ("BVH nodes", std::mem::size_of_val(geometry.nodes.as_slice())),
+        ("top-level BVH nodes", std::mem::size_of_val(geometry.nodes.as_slice())),
+        ("mesh BVH nodes", std::mem::size_of_val(geometry.wide_nodes.as_slice())),
         ("triangles", std::mem::size_of_val(geometry.triangles.as_slice())),
         ("triangle shading", std::mem::size_of_val(geometry.shading.as_slice())),
         ("instances", std::mem::size_of_val(geometry.instances.as_slice())),

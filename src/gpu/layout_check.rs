@@ -67,6 +67,23 @@ fn host_structs_match_wgsl_layouts() {
             ]
         ),
         host_layout!("BvhNode", GpuBvhNode, [a_min, a_link, a_max, a_count, b_min, b_link, b_max, b_count]),
+        host_layout!(
+            "WideNode",
+            GpuWideNode,
+            [
+                origin,
+                exponents_imask,
+                child_base,
+                primitive_base,
+                child_meta,
+                child_min_x,
+                child_max_x,
+                child_min_y,
+                child_max_y,
+                child_min_z,
+                child_max_z
+            ]
+        ),
         host_layout!("Triangle", GpuTriangle, [v0, material, v1, v2]),
         host_layout!("TriangleShading", GpuTriangleShading, [n0, n1, n2]),
         host_layout!(

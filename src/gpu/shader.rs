@@ -74,6 +74,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("transform.wgsl"),
     shader!("traverse.wgsl"),
     shader!("triangle.wgsl"),
+    shader!("wide_bvh.wgsl"),
 ];
 
 /// Which entry points a module carries.

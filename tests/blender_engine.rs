@@ -137,10 +137,8 @@ fn rt_errors_reach_the_report() {
     let report = json(&out.join("error.json"));
     // The engine's ERROR report fails bpy.ops.render.render with it, as in Blender's UI.
     let reported = report["reported"].as_array().expect("reports");
-    let error = reported
-        .iter()
-        .find(|r| r[0][0] == "RuntimeError")
-        .unwrap_or_else(|| panic!("F12 did not fail: {report}"));
+    let error =
+        reported.iter().find(|r| r[0][0] == "RuntimeError").unwrap_or_else(|| panic!("F12 did not fail: {report}"));
     let message = error[1].as_str().expect("message");
     assert!(message.starts_with("Error: rt: "), "an error report from the engine: {message}");
     assert!(message.contains("scene.toml:") && message.contains("power must be non-negative"), "{message}");

@@ -6,7 +6,10 @@ use anyhow::{Result, bail};
 use clap::{Args, Parser, Subcommand};
 use rt::bvh::{BuildQuality, PackOutcome, PackReport};
 use rt::gpu::GpuContext;
-use rt::render::{DroppedSamples, ImageFormat, RenderFlags, RenderRequest, Session, check_output, human, write_image};
+use rt::render::{
+    DroppedSamples, ImageFormat, Progress, RenderFlags, RenderRequest, Session, check_output, human, json_event,
+    write_image,
+};
 use rt::scene::{self, MAX_IMAGE_SIDE, RoughTransmission, Sampling, Scene};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -101,6 +104,10 @@ struct RenderArgs {
     /// the number [default: as many as keep the GPU busy, 1 on a CPU].
     #[arg(long)]
     sample_lanes: Option<u32>,
+    /// What stderr shows while rendering: a bar, nothing, or JSON lines for a program
+    /// that drives rt (progress, warning, done, error events).
+    #[arg(long, value_enum, default_value_t)]
+    progress: Progress,
 }
 
 impl RenderArgs {
@@ -310,20 +317,27 @@ struct StrictFinding(DroppedSamples);
 
 fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
     check_output(&args.output)?;
+    let json = args.progress == Progress::Json;
+    // With JSON progress, stderr holds JSON lines only.
+    let say = |line: String| {
+        if !json {
+            eprintln!("{line}");
+        }
+    };
     let mut scene = load_scene(args.scene.as_deref())?;
-    let request = RenderRequest { progress: true, ..args.flags().apply(&mut scene)? };
+    let request = RenderRequest { progress: args.progress, ..args.flags().apply(&mut scene)? };
     let exposure = scene.render.exposure;
     let ctx = GpuContext::new(adapter)?;
-    eprintln!("GPU: {}", ctx.describe());
+    say(format!("GPU: {}", ctx.describe()));
     let origin = scene.origin.clone();
     let mut session = Session::open(&ctx, scene, args.quality)?;
-    eprintln!("{origin}: features [{}]", session.features());
+    say(format!("{origin}: features [{}]", session.features()));
     if let Some(tables) = session.atmosphere() {
-        eprintln!("atmosphere tables built in {:.1} ms", tables.build_time.as_secs_f64() * 1e3);
+        say(format!("atmosphere tables built in {:.1} ms", tables.build_time.as_secs_f64() * 1e3));
     }
     let (image, report) = session.render(&request, None)?;
     write_image(&image, &args.output, exposure)?;
-    eprintln!(
+    say(format!(
         "wrote {} ({}x{}, {} spp) in {:.2} s: {}samples/s",
         args.output.display(),
         request.width,
@@ -331,12 +345,21 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
         report.samples_per_pixel,
         report.elapsed.as_secs_f64(),
         human(report.samples_per_second)
-    );
+    ));
     if !report.dropped.is_clean() {
-        eprintln!("warning: {}", report.dropped);
+        match json {
+            true => {
+                eprintln!("{}", json_event("warning", serde_json::json!({ "message": report.dropped.to_string() })))
+            }
+            false => eprintln!("warning: {}", report.dropped),
+        }
         if args.strict {
             return Err(StrictFinding(report.dropped).into());
         }
+    }
+    if json {
+        let fields = serde_json::json!({ "file": args.output, "seconds": report.elapsed.as_secs_f64() });
+        eprintln!("{}", json_event("done", fields));
     }
     Ok(())
 }
@@ -411,8 +434,16 @@ fn pack(paths: &[PathBuf], quality: BuildQuality, force: bool) -> Result<()> {
 
 fn main() -> ExitCode {
     rt::gpu::ensure_runtime_dir();
-    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
     let cli = Cli::parse();
+    let json = matches!(&cli.command, Command::Render(args) if args.progress == Progress::Json);
+    let mut logger = env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn"));
+    if json {
+        logger.format(|out, record| {
+            use std::io::Write;
+            writeln!(out, "{}", json_event("warning", serde_json::json!({ "message": record.args().to_string() })))
+        });
+    }
+    logger.init();
     let adapter = cli.adapter.as_deref();
     let result = match cli.command {
         Command::Pack { paths, quality, force } => pack(&paths, quality, force),
@@ -447,7 +478,10 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            match json {
+                true => eprintln!("{}", json_event("error", serde_json::json!({ "message": format!("{e:#}") }))),
+                false => eprintln!("error: {e:#}"),
+            }
             if e.is::<StrictFinding>() { ExitCode::from(EXIT_STRICT) } else { ExitCode::FAILURE }
         }
     }

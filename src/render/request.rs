@@ -1,6 +1,7 @@
 //! What a render is asked for, resolved once: the scene's `[render]` table gives the
 //! defaults, the command line's flags override them and are checked like the keys.
 
+use super::Progress;
 use crate::scene::{FeatureSet, RoughTransmission, Sampling, Scene};
 use anyhow::{Result, bail};
 
@@ -28,7 +29,8 @@ pub struct RenderRequest {
     /// Invocations each pixel's samples are spread over; `None`: as many as keep the GPU
     /// busy (small images on a GPU). The image is the same whatever the number.
     pub sample_lanes: Option<u32>,
-    pub progress: bool,
+    /// What stderr shows while the session renders.
+    pub progress: Progress,
 }
 
 impl RenderRequest {
@@ -45,14 +47,19 @@ impl RenderRequest {
             features: None,
             samples_per_dispatch: None,
             sample_lanes: None,
-            progress: false,
+            progress: Progress::Hidden,
         }
     }
 
     /// Whether `other` renders the same image as `self` (only how it is reached differs).
     pub fn same_image(&self, other: &Self) -> bool {
-        let driver_only =
-            |r: &Self| Self { spp: 0, samples_per_dispatch: None, sample_lanes: None, progress: false, ..r.clone() };
+        let driver_only = |r: &Self| Self {
+            spp: 0,
+            samples_per_dispatch: None,
+            sample_lanes: None,
+            progress: Progress::Hidden,
+            ..r.clone()
+        };
         driver_only(self) == driver_only(other)
     }
 }

@@ -11,6 +11,7 @@ pub use update::{GeometryUpdate, SceneUpdate};
 use super::accumulation::{Accumulation, check_image_size};
 use super::dropped::DroppedSamples;
 use super::pacing::{DispatchSizer, Pacing};
+use super::progress::ProgressReporter;
 use super::{Image, RenderRequest, camera, sun};
 use crate::bvh::{BuildQuality, SceneGeometry};
 use crate::gpu::shader::Program;
@@ -19,7 +20,6 @@ use crate::layout::GpuFrame;
 use crate::scene::{FeatureSet, Scene, Sky};
 use crate::sky::AtmosphereTables;
 use anyhow::Result;
-use indicatif::{ProgressBar, ProgressStyle};
 use std::rc::Rc;
 use std::time::{Duration, Instant};
 
@@ -273,26 +273,21 @@ impl<'a> Session<'a> {
         Ok(self.last_step)
     }
 
-    /// Renders `request` from no samples to its spp, with a progress bar if it asks for one.
+    /// Renders `request` from no samples to its spp, showing its progress as it asks.
     pub fn render(&mut self, request: &RenderRequest, timer: Option<&GpuTimer>) -> Result<(Image, RenderReport)> {
         self.set_request(request)?;
         self.reset();
         self.buffers.take_stats(self.ctx)?;
-        let bar = if request.progress { ProgressBar::new(request.spp as u64) } else { ProgressBar::hidden() };
-        bar.set_style(
-            ProgressStyle::with_template("{bar:40} {pos}/{len} spp  {msg}  ETA {eta}")
-                .unwrap_or_else(|_| ProgressStyle::default_bar()),
-        );
+        let mut progress = ProgressReporter::new(request.progress, request.spp);
         let start = Instant::now();
         let pixels = request.width as f64 * request.height as f64;
         let mut dispatch_time = Duration::ZERO;
         while !self.converged() {
             dispatch_time += self.step(timer)?.took;
             let rate = self.acc.samples as f64 * pixels / start.elapsed().as_secs_f64();
-            bar.set_position(self.acc.samples as u64);
-            bar.set_message(format!("{} samples/s", super::human(rate)));
+            progress.update(self.acc.samples, start.elapsed(), rate);
         }
-        bar.finish_and_clear();
+        progress.finish();
         let elapsed = start.elapsed();
         let report = RenderReport {
             samples_per_pixel: self.acc.samples,

@@ -157,6 +157,7 @@ fn small_mesh() -> MeshData {
             ("a".into(), Material::default()),
             ("b".into(), Material { emission: [1.0; 3], ..Default::default() }),
         ],
+        ..Default::default()
     }
 }
 

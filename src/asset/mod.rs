@@ -22,6 +22,9 @@ pub struct MeshData {
     /// Per-vertex texture coordinates with the origin at the bottom left (the OBJ and
     /// Blender convention); glTF's top-left ones are flipped on import.
     pub uvs: Option<Vec<[f32; 2]>>,
+    /// Per-vertex MikkTSpace tangents (xyz) with the bitangent's sign (w, ±1):
+    /// bitangent = w · cross(normal, tangent). Only with `uvs`.
+    pub tangents: Option<Vec<[f32; 4]>>,
     pub indices: Vec<[u32; 3]>,
     /// Index into `materials` for each triangle.
     pub material_ids: Vec<u32>,
@@ -69,6 +72,7 @@ fn load_rtmesh(path: &Path, materials_path: &Path) -> Result<MeshData, AssetErro
         positions: geometry.positions,
         normals: geometry.normals,
         uvs: geometry.uvs,
+        tangents: geometry.tangents,
         indices: geometry.indices,
         material_ids: geometry.material_ids,
         materials,
@@ -115,6 +119,15 @@ impl MeshData {
             }
             if let Some((i, bad)) = first_non_finite(uvs) {
                 return fail(format!("vertex {i} has a non-finite texture coordinate ({bad:?})"));
+            }
+        }
+
+        if let Some(tangents) = &self.tangents {
+            if tangents.len() != vertex_count {
+                return fail(format!("{} tangents for {vertex_count} vertices", tangents.len()));
+            }
+            if let Some((i, bad)) = first_non_finite(tangents) {
+                return fail(format!("vertex {i} has a non-finite tangent ({bad:?})"));
             }
         }
 

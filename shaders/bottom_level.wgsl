@@ -8,6 +8,9 @@
 //#include "transform.wgsl"
 //#include "hit.wgsl"
 //#include "bvh_walk.wgsl"
+//#if alpha_mask
+//#include "texture.wgsl"
+//#endif
 
 // Updates `hit` with a closer hit on the instance's triangles (with `any_hit`, the
 // first one found); sets `overflowed` when a stack was full (see `intersect_scene`).
@@ -57,6 +60,11 @@ fn test_triangles(inst: Instance, instance_index: u32, first: u32, count: u32, r
         let tri = triangles[index];
         let h = intersect_triangle(ray, tri.v0, tri.v1, tri.v2, (*hit).t);
         if h.t < INFINITY {
+            //#if alpha_mask
+            if !opaque_at(inst, index, h.b1, h.b2) {
+                continue;
+            }
+            //#endif
             *hit = Hit(h.t, HIT_TRIANGLE, index, instance_index, h.b1, h.b2);
         }
     }

@@ -267,6 +267,7 @@ fn rtbvh_files() {
     let packed = PackedMesh {
         bvh: MeshBvh::build(&mesh, BuildQuality::Medium),
         materials: mesh.materials.clone(),
+        textures: Vec::new(),
         vertex_count: mesh.positions.len() as u32,
         triangle_count: mesh.indices.len() as u32,
     };

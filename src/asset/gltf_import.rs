@@ -24,8 +24,10 @@
 //! default material (a rough white metal): rt treats a material-less mesh as plain
 //! geometry, the same as an OBJ without a `.mtl` and a scene material left at defaults.
 
+use super::gltf_textures::{ColorSpace, TextureLoader};
 use super::{AssetError, MeshData};
-use crate::scene::Material;
+use crate::scene::{Material, MaterialTextures};
+use gltf::material::AlphaMode;
 use glam::{Mat3, Mat4, Vec3};
 use gltf::json::Value;
 use gltf::mesh::{Mode, Semantic};
@@ -42,17 +44,25 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
     check_primitive_accessors(&json).map_err(err)?;
     let document = gltf::Document::from_json(json).map_err(|e| err(format!("invalid glTF: {e}")))?;
     let blob = unchecked.blob;
-    // Only buffers: materials use factors, not textures, so images are never decoded
-    // (a missing or exotic texture must not stop a mesh from loading).
     let buffers =
         gltf::import_buffers(&document, path.parent(), blob).map_err(|e| err(format!("cannot load buffers: {e}")))?;
 
     let mut mesh = MeshData::default();
+    // Images are decoded by rt (not by gltf's importer), and only those that a material
+    // uses, so that an error names the material and the image.
+    let dir = path.parent().unwrap_or(Path::new(""));
+    let mut loader = TextureLoader::new(&buffers, dir);
     for (i, m) in document.materials().enumerate() {
         let name = m.name().map_or_else(|| format!("material_{i}"), str::to_owned);
-        let material = map_material(&m).map_err(|e| err(format!("material `{name}`: {e}")))?;
+        let mut material = map_material(&m).map_err(|e| err(format!("material `{name}`: {e}")))?;
+        material.textures = material_textures(&m, &mut loader).map_err(|e| err(format!("material `{name}`: {e}")))?;
+        if material.textures.metallic_roughness.is_some() {
+            // The lobe weights become those of the non-metal part; the texture sets the metal.
+            material = Material { textures: material.textures, ..map_material_dielectric(&m).map_err(|e| err(format!("material `{name}`: {e}")))? };
+        }
         mesh.materials.push((name, material));
     }
+    mesh.textures = loader.textures;
 
     let roots: Vec<gltf::Node> = match document.default_scene().or_else(|| document.scenes().next()) {
         Some(scene) => scene.nodes().collect(),
@@ -223,10 +233,49 @@ impl Walk<'_> {
     }
 }
 
+/// The textures of a material; unsupported ones (occlusion: a path tracer finds
+/// occlusion itself) are left out, normal maps with a warning.
+fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<MaterialTextures, String> {
+    let pbr = m.pbr_metallic_roughness();
+    let mut load = |info: Option<gltf::texture::Info>, space, slot: &str| {
+        info.map(|i| loader.load(&i.texture(), i.tex_coord(), space).map_err(|e| format!("{slot} texture: {e}")))
+            .transpose()
+    };
+    let base_color = load(pbr.base_color_texture(), ColorSpace::Srgb, "base colour")?;
+    let metallic_roughness = load(pbr.metallic_roughness_texture(), ColorSpace::Linear, "metallic-roughness")?;
+    let emission = load(m.emissive_texture(), ColorSpace::Srgb, "emissive")?;
+    if m.normal_texture().is_some() {
+        log::warn!("material {:?}: normal textures are not supported yet; left out", m.name().unwrap_or(""));
+    }
+    let alpha_cutoff = match m.alpha_mode() {
+        AlphaMode::Opaque => 0.0,
+        AlphaMode::Mask => m.alpha_cutoff().unwrap_or(0.5),
+        // Blended surfaces are drawn as cut-outs at half coverage (no order-independent blending).
+        AlphaMode::Blend => 0.5,
+    };
+    Ok(MaterialTextures {
+        base_color,
+        metallic_roughness,
+        emission,
+        metallic: pbr.metallic_factor().clamp(0.0, 1.0),
+        base_alpha: pbr.base_color_factor()[3],
+        alpha_cutoff,
+    })
+}
+
+/// [`map_material`] as if `metallicFactor` were 0: the non-metal part of a material
+/// whose metal comes from a texture.
+fn map_material_dielectric(m: &gltf::Material) -> Result<Material, String> {
+    map_material_with_metallic(m, 0.0)
+}
+
 fn map_material(m: &gltf::Material) -> Result<Material, String> {
+    map_material_with_metallic(m, m.pbr_metallic_roughness().metallic_factor().clamp(0.0, 1.0))
+}
+
+fn map_material_with_metallic(m: &gltf::Material, metallic: f32) -> Result<Material, String> {
     let pbr = m.pbr_metallic_roughness();
     let [r, g, b, _] = pbr.base_color_factor();
-    let metallic = pbr.metallic_factor().clamp(0.0, 1.0);
     let dielectric = 1.0 - metallic;
     let transmission = m.transmission().map_or(0.0, |t| t.transmission_factor()).clamp(0.0, 1.0);
     let strength = m.emissive_strength().unwrap_or(1.0);
@@ -386,6 +435,7 @@ mod tests {
                 emission: [4.0, 2.0, 0.0],
                 absorption: [ln2 / 2.0, 2.0 * ln2 / 2.0, 0.0],
                 volume_emission: [0.1, 0.2, 0.3],
+                textures: Default::default(),
             }
         );
     }

@@ -4,11 +4,14 @@
 
 pub mod builtin;
 pub mod gltf_import;
+mod gltf_textures;
 pub mod obj_import;
 pub mod rtmesh;
 mod source;
+pub mod texture;
 
 pub use source::{AssetFiles, AssetKind};
+pub use texture::{TextureImage, Wrap};
 
 use crate::scene::Material;
 use std::path::{Path, PathBuf};
@@ -30,6 +33,8 @@ pub struct MeshData {
     pub material_ids: Vec<u32>,
     /// The asset's own materials (at least one whenever there are triangles).
     pub materials: Vec<(String, Material)>,
+    /// The images the materials' textures index.
+    pub textures: Vec<TextureImage>,
 }
 
 /// An import failure, naming the file and what is wrong with it.
@@ -63,7 +68,7 @@ pub fn load_mesh(path: &Path) -> Result<MeshData, AssetError> {
 /// An `.rtmesh`'s geometry with the materials of its sibling glTF, which holds no meshes.
 fn load_rtmesh(path: &Path, materials_path: &Path) -> Result<MeshData, AssetError> {
     let geometry = rtmesh::read(path)?;
-    let mut materials = gltf_import::load(materials_path)?.materials;
+    let MeshData { mut materials, textures, .. } = gltf_import::load(materials_path)?;
     // An object with no material slots is exported with material index 0 throughout.
     if materials.is_empty() {
         materials.push(("default".into(), Material::default()));
@@ -76,6 +81,7 @@ fn load_rtmesh(path: &Path, materials_path: &Path) -> Result<MeshData, AssetErro
         indices: geometry.indices,
         material_ids: geometry.material_ids,
         materials,
+        textures,
     })
 }
 

@@ -154,6 +154,7 @@ mod tests {
             indices: vec![[0, 1, 2], [0, 2, 3]],
             material_ids: vec![0, 1],
             materials: vec![("a".into(), Material::default()), ("b".into(), Material::default())],
+            textures: Vec::new(),
         }
     }
 

@@ -1,7 +1,7 @@
 //! Which files an asset path stands for: the file to import, the files it reads
 //! besides (materials, buffers), and where its BVH cache lives.
 
-use super::{AssetError, builtin};
+use super::{AssetError, builtin, gltf_textures};
 use std::path::{Path, PathBuf};
 
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -76,7 +76,13 @@ impl AssetFiles {
         let mut files = vec![self.main.clone()];
         let dir = self.main.parent().unwrap_or(Path::new(""));
         match &self.kind {
-            AssetKind::RtMesh { materials } => files.push(materials.clone()),
+            AssetKind::RtMesh { materials } => {
+                files.push(materials.clone());
+                // A glTF that cannot be read has no images to list; the import reports it.
+                if let Ok(gltf) = gltf::Gltf::open(materials) {
+                    files.extend(gltf_textures::image_files(&gltf.document).map(|name| dir.join(name)));
+                }
+            }
             AssetKind::Obj => {
                 let bytes =
                     builtin::read(&self.main).map_err(|e| AssetError::new(&self.main, format!("cannot read: {e}")))?;
@@ -92,6 +98,7 @@ impl AssetFiles {
                         files.push(dir.join(percent_decode(uri)));
                     }
                 }
+                files.extend(gltf_textures::image_files(&gltf.document).map(|name| dir.join(name)));
             }
         }
         Ok(files)
@@ -112,7 +119,7 @@ fn material_libraries(obj: &[u8]) -> impl Iterator<Item = String> + '_ {
 }
 
 /// glTF URIs are percent-encoded (RFC 3986); a file name with a space arrives as `%20`.
-fn percent_decode(uri: &str) -> String {
+pub(super) fn percent_decode(uri: &str) -> String {
     let bytes = uri.as_bytes();
     let mut out = Vec::with_capacity(bytes.len());
     let mut i = 0;

@@ -4,6 +4,7 @@
 pub mod cache;
 mod cache_check;
 mod cached_material;
+mod cached_texture;
 mod mesh_bvh;
 mod node;
 pub mod pack;

@@ -3,6 +3,7 @@
 use super::GpuContext;
 use super::bind::{Binding, bind_group, sequential_layout};
 use super::readback::read_buffer;
+use super::textures::TextureStore;
 use crate::bvh::SceneGeometry;
 use crate::layout::GpuFrame;
 use anyhow::{Result, anyhow};
@@ -17,7 +18,8 @@ const STAT_COUNT: usize = 1;
 /// [`SceneData::bindings`].
 pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     use Binding::*;
-    let bindings = [Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadWrite, ReadOnly];
+    let bindings =
+        [Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadWrite, ReadOnly, ReadOnly, ReadOnly];
     sequential_layout(device, "scene", wgpu::ShaderStages::COMPUTE, &bindings)
 }
 
@@ -45,11 +47,14 @@ struct SceneData {
     materials: wgpu::Buffer,
     stats: wgpu::Buffer,
     emitters: wgpu::Buffer,
+    /// The texture store (see `super::textures`): its table and its texels.
+    textures: wgpu::Buffer,
+    texels: wgpu::Buffer,
 }
 
 impl SceneData {
     /// The buffers in binding order (see [`scene_bind_group_layout`]).
-    fn bindings(&self) -> [&wgpu::Buffer; 10] {
+    fn bindings(&self) -> [&wgpu::Buffer; 12] {
         [
             &self.frame,
             &self.nodes,
@@ -61,6 +66,8 @@ impl SceneData {
             &self.materials,
             &self.stats,
             &self.emitters,
+            &self.textures,
+            &self.texels,
         ]
     }
 }
@@ -100,6 +107,13 @@ fn geometry_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<Geomet
     ))
 }
 
+fn texture_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer, wgpu::Buffer) {
+    let max = ctx.device.limits().max_storage_buffer_binding_size;
+    let store = TextureStore::pack(geometry.textures(), max);
+    let none = wgpu::BufferUsages::empty();
+    (storage(ctx, "textures", &store.table, none), storage(ctx, "texels", &store.texels, none))
+}
+
 fn material_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer, wgpu::Buffer) {
     let writable = wgpu::BufferUsages::COPY_DST;
     (storage(ctx, "materials", &geometry.materials, writable), storage(ctx, "emitters", &geometry.emitters, writable))
@@ -116,7 +130,21 @@ impl SceneBuffers {
         });
         let counters = wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST;
         let stats = storage(ctx, "stats", &[0u32; STAT_COUNT], counters);
-        let data = SceneData { frame, nodes, triangles, shading, instances, tlas, spheres, materials, stats, emitters };
+        let (textures, texels) = texture_buffers(ctx, geometry);
+        let data = SceneData {
+            frame,
+            nodes,
+            triangles,
+            shading,
+            instances,
+            tlas,
+            spheres,
+            materials,
+            stats,
+            emitters,
+            textures,
+            texels,
+        };
         let bind_group = bind_group(ctx, "scene", layout, &data.bindings());
         Ok(Self { data, bind_group, sky_bind_group: None })
     }
@@ -132,6 +160,7 @@ impl SceneBuffers {
         let d = &mut self.data;
         (d.nodes, d.triangles, d.shading, d.instances, d.tlas, d.spheres) = geometry_buffers(ctx, geometry)?;
         (d.materials, d.emitters) = material_buffers(ctx, geometry);
+        (d.textures, d.texels) = texture_buffers(ctx, geometry);
         self.bind_group = bind_group(ctx, "scene", layout, &self.data.bindings());
         Ok(())
     }

@@ -34,6 +34,10 @@ pub struct FeatureSet {
     pub transmission: Transmission,
     /// Absorption or emission inside transmissive materials.
     pub media: bool,
+    /// Image textures on some material.
+    pub textures: bool,
+    /// Cut-outs: some material's alpha can remove parts of its surface, for every ray.
+    pub alpha_mask: bool,
     pub sampling: Sampling,
 }
 
@@ -75,9 +79,14 @@ impl FeatureSet {
                 Sky::Atmosphere(_) => SkyFeature::Atmosphere,
             },
             sun: scene.sun.is_some(),
-            glossy: materials_in_use.iter().any(|m| (m.specular > 0.0 || m.reflection > 0.0) && rough(&m)),
+            // A metallic-roughness texture may make any texel a rough metal.
+            glossy: materials_in_use.iter().any(|m| {
+                ((m.specular > 0.0 || m.reflection > 0.0) && rough(&m)) || m.textures.metallic_roughness.is_some()
+            }),
             transmission,
             media: transmissive.iter().any(|m| m.has_medium()),
+            textures: materials_in_use.iter().any(|m| m.textures.any()),
+            alpha_mask: materials_in_use.iter().any(|m| m.textures.alpha_cutoff > 0.0),
             sampling: settings.sampling,
         }
     }
@@ -93,6 +102,8 @@ impl FeatureSet {
             glossy: true,
             transmission: Transmission::Rough(rough),
             media: true,
+            textures: true,
+            alpha_mask: true,
             sampling,
         }
     }
@@ -112,6 +123,8 @@ impl FeatureSet {
             "rough_glass_ggx" => self.transmission == Transmission::Rough(RoughTransmission::Ggx),
             "rough_glass_cone" => self.transmission == Transmission::Rough(RoughTransmission::Cone),
             "media" => self.media,
+            "textures" => self.textures,
+            "alpha_mask" => self.alpha_mask,
             "nee" => self.sampling == Sampling::Nee,
             _ => return None,
         })
@@ -128,6 +141,8 @@ impl fmt::Display for FeatureSet {
             (self.sun, "sun"),
             (self.glossy, "glossy"),
             (self.media, "media"),
+            (self.textures, "textures"),
+            (self.alpha_mask, "alpha-mask"),
         ] {
             if on {
                 parts.push(name.to_string());

@@ -14,7 +14,7 @@ mod validate;
 pub use atmosphere::Atmosphere;
 pub use builtin::{BUILTIN_PREFIX, default_scene};
 pub use features::{ALPHA_DELTA, FeatureSet, GeometrySummary, SkyFeature, Transmission};
-pub use material::{Material, luminance};
+pub use material::{Material, MaterialTextures, luminance};
 pub use parse::{SceneError, load, parse};
 pub use validate::MAX_IMAGE_SIDE;
 

@@ -28,6 +28,8 @@ fn feature_sets() -> Vec<FeatureSet> {
             glossy: on(7),
             transmission,
             media: on(1) && transmission != Transmission::None,
+            textures: on(0) != on(4),
+            alpha_mask: on(0) != on(4) && on(6),
             sampling: if on(0) { Sampling::Nee } else { Sampling::Resampled },
         });
     }
@@ -48,6 +50,8 @@ fn plain() -> FeatureSet {
         glossy: false,
         transmission: Transmission::None,
         media: false,
+        textures: false,
+        alpha_mask: false,
         sampling: Sampling::Nee,
     }
 }
@@ -183,11 +187,23 @@ fn absent_effects_leave_no_code() {
         "var<uniform> atmosphere",
         "fn sun_limb_darkening",
         "@group(2)",
+        "fn sample_texture",
+        "var<storage, read> texels",
+        "fn opaque_at",
+        "uv_lod",
     ] {
         assert!(!source.contains(absent), "{absent:?} is in the plain pipeline");
     }
     // Includes inside dropped blocks are not followed: the files are not there at all.
-    for file in ["sphere.wgsl", "sphere_test.wgsl", "microfacet.wgsl", "dielectric.wgsl", "sun.wgsl", "segment.wgsl"] {
+    for file in [
+        "sphere.wgsl",
+        "sphere_test.wgsl",
+        "microfacet.wgsl",
+        "dielectric.wgsl",
+        "sun.wgsl",
+        "segment.wgsl",
+        "texture.wgsl",
+    ] {
         assert!(!files_in(&source).contains(&file), "{file} is in the plain pipeline");
     }
     let uniform_sun = FeatureSet { sky: SkyFeature::Uniform, sun: true, ..plain };

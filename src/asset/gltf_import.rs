@@ -27,9 +27,9 @@
 use super::gltf_textures::{ColorSpace, TextureLoader};
 use super::{AssetError, MeshData};
 use crate::scene::{Material, MaterialTextures};
-use gltf::material::AlphaMode;
 use glam::{Mat3, Mat4, Vec3};
 use gltf::json::Value;
+use gltf::material::AlphaMode;
 use gltf::mesh::{Mode, Semantic};
 use std::path::Path;
 
@@ -58,7 +58,10 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
         material.textures = material_textures(&m, &mut loader).map_err(|e| err(format!("material `{name}`: {e}")))?;
         if material.textures.metallic_roughness.is_some() {
             // The lobe weights become those of the non-metal part; the texture sets the metal.
-            material = Material { textures: material.textures, ..map_material_dielectric(&m).map_err(|e| err(format!("material `{name}`: {e}")))? };
+            material = Material {
+                textures: material.textures,
+                ..map_material_dielectric(&m).map_err(|e| err(format!("material `{name}`: {e}")))?
+            };
         }
         mesh.materials.push((name, material));
     }

@@ -76,7 +76,8 @@ impl TextureImage {
     /// A texture from `width × height` RGBA8 pixels (rows from the top), with its mip chain.
     pub fn new(width: u32, height: u32, rgba: &[u8], wrap: [Wrap; 2], srgb: bool) -> Self {
         debug_assert_eq!(rgba.len() as u64, 4 * width as u64 * height as u64);
-        let mut texels: Vec<u32> = Vec::with_capacity(texels_in_levels(width, height, level_count(width, height)) as usize);
+        let mut texels: Vec<u32> =
+            Vec::with_capacity(texels_in_levels(width, height, level_count(width, height)) as usize);
         texels.extend(rgba.chunks_exact(4).map(|p| u32::from_le_bytes([p[0], p[1], p[2], p[3]])));
         // Averaged as floats in the space the shader interpolates in: linear for colour.
         let to_float = |c: u8, channel: usize| if srgb && channel < 3 { srgb_to_linear(c) } else { c as f32 / 255.0 };

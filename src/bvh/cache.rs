@@ -282,10 +282,15 @@ pub fn read(path: &Path, source_hash: [u8; 32], params_hash: [u8; 32]) -> Result
         decode_names(&names_bytes[names_section.offset as usize..][..names_section.bytes as usize]).map_err(invalid)?;
     let bounds = [header.bounds_min, header.bounds_max];
     // CachedTexture holds u64s: copied out rather than cast in place from u32 words.
-    let texture_table: Vec<CachedTexture> = bytemuck::pod_collect_to_vec(bytemuck::cast_slice::<u32, u8>(section(TEXTURES)));
+    let texture_table: Vec<CachedTexture> =
+        bytemuck::pod_collect_to_vec(bytemuck::cast_slice::<u32, u8>(section(TEXTURES)));
     let textures = cached_texture::decode(&texture_table, section(TEXELS)).map_err(invalid)?;
     check_contents(&nodes, &triangles, &shading, materials, names.len(), bounds).map_err(invalid)?;
-    if let Some((i, t)) = materials.iter().enumerate().find_map(|(i, m)| m.textures().find(|&t| t as usize >= textures.len()).map(|t| (i, t))) {
+    if let Some((i, t)) = materials
+        .iter()
+        .enumerate()
+        .find_map(|(i, m)| m.textures().find(|&t| t as usize >= textures.len()).map(|t| (i, t)))
+    {
         return Err(invalid(format!("material {i} uses texture {t} of {}", textures.len())));
     }
 

@@ -18,8 +18,10 @@ const STAT_COUNT: usize = 1;
 /// [`SceneData::bindings`].
 pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     use Binding::*;
-    let bindings =
-        [Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadWrite, ReadOnly, ReadOnly, ReadOnly];
+    let bindings = [
+        Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadWrite, ReadOnly, ReadOnly,
+        ReadOnly,
+    ];
     sequential_layout(device, "scene", wgpu::ShaderStages::COMPUTE, &bindings)
 }
 

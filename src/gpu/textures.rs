@@ -26,7 +26,8 @@ impl TextureStore {
         let budget = (max_bytes / 4).min(MAX_TEXELS);
         let total = |set: &[Cow<TextureImage>]| set.iter().map(|t| t.texels.len() as u64).sum::<u64>();
         while total(&fitted) > budget {
-            let Some(largest) = (0..fitted.len()).filter(|&i| fitted[i].levels() > 1).max_by_key(|&i| fitted[i].texels.len())
+            let Some(largest) =
+                (0..fitted.len()).filter(|&i| fitted[i].levels() > 1).max_by_key(|&i| fitted[i].texels.len())
             else {
                 break;
             };

@@ -46,7 +46,14 @@ pub struct MaterialTextures {
 
 impl Default for MaterialTextures {
     fn default() -> Self {
-        Self { base_color: None, metallic_roughness: None, emission: None, metallic: 0.0, base_alpha: 1.0, alpha_cutoff: 0.0 }
+        Self {
+            base_color: None,
+            metallic_roughness: None,
+            emission: None,
+            metallic: 0.0,
+            base_alpha: 1.0,
+            alpha_cutoff: 0.0,
+        }
     }
 }
 

@@ -1,7 +1,9 @@
 // The scene's image textures: every texel of every texture, mip levels included, in
 // one storage buffer of packed RGBA8 (no binding arrays: lavapipe has none), and a
 // table of where each texture lies (`Texture` in common.wgsl). Filtering is bilinear
-// within a level and linear between two levels; the level comes from a ray cone's
+// within a level and linear between two levels, on the stored values: a colour
+// texture's sRGB codes are filtered and then decoded, once, as Cycles does with 8-bit
+// images (its mips are averaged in linear light on the host). The level comes from a ray cone's
 // footprint (Akenine-Möller et al., Ray Tracing Gems ch. 20): log2 of the cone's width
 // over |cos| at the hit, plus the triangle's texture-to-world density.
 
@@ -72,16 +74,21 @@ fn wrap_texel(i: i32, size: i32, mode: u32) -> i32 {
     return ((i % size) + size) % size;
 }
 
-fn fetch_texel(t: Texture, level_offset: u32, width: u32, x: i32, y: i32) -> vec4f {
-    let c = unpack4x8unorm(texels[level_offset + u32(y) * width + u32(x)]);
+fn fetch_texel(level_offset: u32, width: u32, x: i32, y: i32) -> vec4f {
+    return unpack4x8unorm(texels[level_offset + u32(y) * width + u32(x)]);
+}
+
+// What a texture's stored (filtered) values mean: colour in linear light, or data.
+fn decoded(t: Texture, c: vec4f) -> vec4f {
     if (t.flags & TEXTURE_SRGB) != 0u {
         return vec4f(srgb_to_linear(c.rgb), c.a);
     }
     return c;
 }
 
-// Bilinear filtering within one mip level (rows from the top; v from the bottom).
-fn sample_level(t: Texture, level: u32, uv: vec2f) -> vec4f {
+// Bilinear filtering of the stored values within one mip level (rows from the top; v
+// from the bottom).
+fn filter_level(t: Texture, level: u32, uv: vec2f) -> vec4f {
     var offset = t.offset;
     var w = t.width;
     var h = t.height;
@@ -102,9 +109,14 @@ fn sample_level(t: Texture, level: u32, uv: vec2f) -> vec4f {
     let xb = wrap_texel(i32(x0) + 1, size.x, wrap_u);
     let ya = wrap_texel(i32(y0), size.y, wrap_v);
     let yb = wrap_texel(i32(y0) + 1, size.y, wrap_v);
-    let top = mix(fetch_texel(t, offset, w, xa, ya), fetch_texel(t, offset, w, xb, ya), f.x);
-    let bottom = mix(fetch_texel(t, offset, w, xa, yb), fetch_texel(t, offset, w, xb, yb), f.x);
+    let top = mix(fetch_texel(offset, w, xa, ya), fetch_texel(offset, w, xb, ya), f.x);
+    let bottom = mix(fetch_texel(offset, w, xa, yb), fetch_texel(offset, w, xb, yb), f.x);
     return mix(top, bottom, f.y);
+}
+
+// One mip level, bilinear, decoded.
+fn sample_level(t: Texture, level: u32, uv: vec2f) -> vec4f {
+    return decoded(t, filter_level(t, level, uv));
 }
 
 // Texture `index` at `uv`, filtered over a footprint of level `lod` (see the top).
@@ -117,11 +129,11 @@ fn sample_texture(index: u32, uv: vec2f, lod: f32) -> vec4f {
     }
     let fine = u32(lambda);
     let coarse_weight = lambda - f32(fine);
-    let a = sample_level(t, fine, uv);
+    let a = filter_level(t, fine, uv);
     if coarse_weight <= 0.0 || fine + 1u >= t.levels {
-        return a;
+        return decoded(t, a);
     }
-    return mix(a, sample_level(t, fine + 1u, uv), coarse_weight);
+    return decoded(t, mix(a, filter_level(t, fine + 1u, uv), coarse_weight));
 }
 
 // The material at a point, its textures applied; `footprint_lod` is log2 of the ray

@@ -151,3 +151,37 @@ fn a_missing_or_truncated_image_is_an_error_naming_the_material_and_the_file() {
     let message = import_error(&dir, "cut.png");
     assert!(message.contains("material `leaf`") && message.contains("cut.png: cannot decode image"), "{message}");
 }
+
+#[test]
+fn a_texture_larger_than_the_gpu_binds_is_downscaled_and_still_renders() {
+    // 8192² RGBA8 with its mips is 341 MiB: over lavapipe's 128 MiB per binding, so the
+    // store drops its finest levels (a warning says so) rather than failing.
+    let gpu = common::gpu();
+    let side = 8192u32;
+    let texture_bytes = 4 * rt::asset::texture::texels_in_levels(side, side, 14);
+    let max = gpu.device.limits().max_storage_buffer_binding_size;
+    if texture_bytes <= max {
+        println!("this GPU binds {} MiB: the texture fits, nothing to downscale", max >> 20);
+    }
+    let dir = temp_dir("texture-huge");
+    let image = image::RgbaImage::from_pixel(side, side, image::Rgba([128, 128, 128, 255]));
+    image.save(dir.join("huge.png")).expect("write PNG");
+    let corners = [[-1.0, 1.0, 0.0], [1.0, 1.0, 0.0], [1.0, -1.0, 0.0], [-1.0, -1.0, 0.0]];
+    let material =
+        r#"{ "name": "huge", "pbrMetallicRoughness": { "baseColorTexture": { "index": 0 }, "metallicFactor": 0.0 } }"#;
+    write(&dir.join("quad.gltf"), &quad_gltf(corners, material, "huge.png"));
+    let scene = scene_from(&format!(
+        "[sky]\nkind = \"uniform\"\ncolor = [1.0, 1.0, 1.0]\n\
+         [camera]\nposition = [0.0, 0.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y_deg = 30.0\n\
+         [[mesh]]\nasset = {:?}\n",
+        dir.join("quad.gltf").display().to_string()
+    ));
+    let image = render(scene, 16, 16, 4, 2);
+    let (mean, se) = block(&image, 4, 4);
+    let expected = srgb_to_linear(128);
+    println!("{side}² texture on a GPU binding {} MiB: {mean:.4?} ± {se:.1e}, expected {expected:.4}", max >> 20);
+    for m in mean {
+        assert!((m - expected).abs() <= 5.0 * se + 2e-3, "{mean:?}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -218,6 +218,18 @@ def scene_emissive(scene):
     camera(scene, (0.0, -2.8, 1.6), (0.0, 0.2, 0.4), 45.0)
 
 
+def blender_gltf(scene, out):
+    """The same scene through Blender's own glTF exporter (a .glb with its textures
+    embedded), placed by a copy of the exported scene file: for the test that rt reads
+    textured glTF files as Blender writes them."""
+    path = os.path.join(out, "blender.glb")
+    bpy.ops.export_scene.gltf(filepath=path, export_format="GLB", export_cameras=False, export_lights=False)
+    with open(os.path.join(out, "scene.toml")) as f:
+        header = f.read().split("\n# ", 1)[0]
+    with open(os.path.join(out, "scene_blender_gltf.toml"), "w") as f:
+        f.write(header.rstrip("\n") + '\n\n[[mesh]]\nasset = "blender.glb"\n')
+
+
 SCENES = {
     "checker": scene_checker,
     "rough_metal": scene_rough_metal,
@@ -237,6 +249,8 @@ def main():
         scene.cycles.samples = args.spp
         out = os.path.join(HERE, "scenes", f"texture_{name}")
         rt_export.export_scene(scene, os.path.join(out, "assets"), os.path.join(out, "scene.toml"))
+        if name == "leaves":
+            blender_gltf(scene, out)
         scene.render.filepath = os.path.join(HERE, f"texture_{name}.exr")
         bpy.ops.render.render(write_still=True)
         print(f"texture_{name}: {args.spp} spp -> {scene.render.filepath}", file=sys.stderr)

@@ -185,3 +185,21 @@ fn a_texture_larger_than_the_gpu_binds_is_downscaled_and_still_renders() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn khr_texture_transform_is_baked_into_the_uvs() {
+    let dir = temp_dir("texture-transform");
+    std::fs::write(dir.join("t.png"), png(|_, _| [9, 9, 9, 255])).expect("png");
+    let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+    // Offset, then a quarter turn (glTF: translation · rotation · scale), then a scale of 2 in u.
+    let material = r#"{ "name": "moved", "pbrMetallicRoughness": { "baseColorTexture": { "index": 0,
+        "extensions": { "KHR_texture_transform": { "offset": [0.5, 0.25], "rotation": 1.5707963, "scale": [2, 1] } } } } }"#;
+    write(&dir.join("q.gltf"), &quad_gltf(corners, material, "t.png"));
+    let mesh = load_mesh(&dir.join("q.gltf")).expect("loads");
+    // glTF uv (u, v) → (0.5 - v, 0.25 + 2u); rt stores v from the bottom: 1 - that.
+    let expected = [[0.0f32, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]].map(|[u, v]| [0.5 - v, 1.0 - (0.25 + 2.0 * u)]);
+    let uvs = mesh.uvs.expect("uvs");
+    for (got, want) in uvs.iter().zip(expected) {
+        assert!((got[0] - want[0]).abs() < 1e-6 && (got[1] - want[1]).abs() < 1e-6, "{uvs:?} vs {expected:?}");
+    }
+}

@@ -52,6 +52,7 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
     // uses, so that an error names the material and the image.
     let dir = path.parent().unwrap_or(Path::new(""));
     let mut loader = TextureLoader::new(&buffers, dir);
+    let mut uv_transforms = Vec::new();
     for (i, m) in document.materials().enumerate() {
         let name = m.name().map_or_else(|| format!("material_{i}"), str::to_owned);
         let mut material = map_material(&m).map_err(|e| err(format!("material `{name}`: {e}")))?;
@@ -63,6 +64,7 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
                 ..map_material_dielectric(&m).map_err(|e| err(format!("material `{name}`: {e}")))?
             };
         }
+        uv_transforms.push(uv_transform(&m, &name));
         mesh.materials.push((name, material));
     }
     mesh.textures = loader.textures;
@@ -87,6 +89,7 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
         all_normals: true,
         all_uvs: true,
         default_material: None,
+        uv_transforms: &uv_transforms,
     };
     for root in &roots {
         walk.visit(root, Mat4::IDENTITY, 0).map_err(err)?;
@@ -113,6 +116,8 @@ struct Walk<'a> {
     all_normals: bool,
     all_uvs: bool,
     default_material: Option<u32>,
+    /// Per material, its textures' `KHR_texture_transform`, baked into the uvs of its primitives.
+    uv_transforms: &'a [Option<UvTransform>],
 }
 
 impl Walk<'_> {
@@ -199,7 +204,9 @@ impl Walk<'_> {
             } else {
                 let uvs = reader.read_tex_coords(0).ok_or_else(|| unreadable("TEXCOORD_0"))?;
                 let start = self.uvs.len();
-                self.uvs.extend(uvs.into_f32().map(|[u, v]| [u, 1.0 - v]));
+                let transform = prim.material().index().and_then(|i| self.uv_transforms.get(i).copied().flatten());
+                let transformed = uvs.into_f32().map(|uv| transform.map_or(uv, |t| t.apply(uv)));
+                self.uvs.extend(transformed.map(|[u, v]| [u, 1.0 - v]));
                 if self.uvs.len() - start != count {
                     return Err(format!("{at}: TEXCOORD_0 and POSITION counts differ"));
                 }
@@ -234,6 +241,45 @@ impl Walk<'_> {
         }
         Ok(())
     }
+}
+
+/// glTF's `KHR_texture_transform` as a 2×3 affine map of glTF texture coordinates:
+/// translation · rotation · scale.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct UvTransform([[f32; 3]; 2]);
+
+impl UvTransform {
+    fn apply(self, [u, v]: [f32; 2]) -> [f32; 2] {
+        let [a, b] = self.0;
+        [a[0] * u + a[1] * v + a[2], b[0] * u + b[1] * v + b[2]]
+    }
+}
+
+/// The texture transform of a material's textures, baked into the uvs of its triangles:
+/// rt keeps one set of uvs, so every texture of a material shares the first one's
+/// (a material whose textures differ gets a warning).
+fn uv_transform(m: &gltf::Material, name: &str) -> Option<UvTransform> {
+    let pbr = m.pbr_metallic_roughness();
+    let infos = [pbr.base_color_texture(), pbr.metallic_roughness_texture(), m.emissive_texture()];
+    let transforms: Vec<Option<UvTransform>> = infos
+        .iter()
+        .flatten()
+        .map(|info| {
+            info.texture_transform().map(|t| {
+                let ([ox, oy], r, [sx, sy]) = (t.offset(), t.rotation(), t.scale());
+                let (sin, cos) = r.sin_cos();
+                // The extension's GLSL matrices are column-major: its rotation is [[c, -s], [s, c]].
+                UvTransform([[cos * sx, -sin * sy, ox], [sin * sx, cos * sy, oy]])
+            })
+        })
+        .collect();
+    let first = transforms.first().copied().flatten();
+    if transforms.iter().any(|t| *t != first) {
+        log::warn!(
+            "material `{name}`: its textures have different texture transforms; rt uses the first one's for all"
+        );
+    }
+    first
 }
 
 /// The textures of a material; unsupported ones (occlusion: a path tracer finds

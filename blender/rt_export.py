@@ -187,8 +187,10 @@ def socket_value(node, name, default):
     if source is not None:
         if source.type in {"RGB", "VALUE"}:
             return source.outputs[0].default_value
-        if source.type in {"TEX_IMAGE", "SEPARATE_COLOR", "NORMAL_MAP"}:
-            # Followed (or warned about) by `texture_channel`.
+        if source.type in {"TEX_IMAGE", "SEPARATE_COLOR", "NORMAL_MAP"} or (
+            node.type == "BSDF_PRINCIPLED" and name in TEXTURE_SOCKETS
+        ):
+            # Followed, or warned about, by `texture_channel`.
             return socket.default_value
         log(f"{node.id_data.name}: {node.name}.{name} is linked to {source.type}; using its own value")
     return socket.default_value
@@ -245,6 +247,7 @@ def volume_emission(volume):
 # What cannot be followed (procedural textures, Mix, Color Ramp ...) is named in a
 # warning and the socket's own value is used.
 
+TEXTURE_SOCKETS = ("Base Color", "Alpha", "Roughness", "Metallic", "Normal", "Emission Color")
 GLTF_WRAP = {"REPEAT": 10497, "EXTEND": 33071, "CLIP": 33071, "MIRROR": 33648}
 LUMA = np.array([0.2126, 0.7152, 0.0722])
 
@@ -415,8 +418,7 @@ def material_textures(material, surface, out, textures, factors):
     """Adds the textures of a Principled BSDF to glTF material `out`; returns the uv
     transform its textures share (or None)."""
     pbr = out["pbrMetallicRoughness"]
-    found = {name: texture_channel(material, surface, name) for name in
-             ("Base Color", "Alpha", "Roughness", "Metallic", "Normal", "Emission Color")}
+    found = {name: texture_channel(material, surface, name) for name in TEXTURE_SOCKETS}
     transforms = [c.transform for c in found.values() if c is not None and c.transform is not None]
     transform = transforms[0] if transforms else None
     if any(not np.allclose(t, transform) for t in transforms):
@@ -565,17 +567,20 @@ def export_object_mesh(obj, depsgraph, base_name="mesh"):
     evaluated mesh. The materials come first: their Mapping nodes transform the uvs."""
     materials = object_slot_materials(obj)
     textures = Textures(base_name)
-    # Thickness (of volumes) needs the mesh's extent: materials are made twice, cheaply.
-    uv_transforms = [gltf_material(m, 1.0, Textures(base_name))[1] for m in materials]
     evaluated = obj.evaluated_get(depsgraph)
     mesh = evaluated.to_mesh()
     try:
-        arrays = mesh_arrays(mesh, len(materials), uv_transforms)
+        # The thickness of volumes is the mesh's smallest extent (an axis swap keeps it).
+        co = np.empty(len(mesh.vertices) * 3, np.float32)
+        mesh.vertices.foreach_get("co", co)
+        co = co.reshape(-1, 3)
+        extent = co.max(axis=0) - co.min(axis=0) if len(co) else [1]
+        thickness = float(max(min(extent), 1e-3))
+        exported = [gltf_material(m, thickness, textures) for m in materials]
+        arrays = mesh_arrays(mesh, len(materials), [transform for _, transform in exported])
     finally:
         evaluated.to_mesh_clear()
-    extent = arrays["positions"].max(axis=0) - arrays["positions"].min(axis=0) if len(arrays["positions"]) else [1]
-    thickness = float(max(min(extent), 1e-3))
-    gltf = gltf_text([gltf_material(m, thickness, textures)[0] for m in materials], thickness, textures)
+    gltf = gltf_text([material for material, _ in exported], thickness, textures)
     return rtmesh_bytes(arrays), gltf, textures.images, len(arrays["indices"])
 
 

@@ -27,6 +27,7 @@ import os
 import re
 import struct
 import sys
+import zlib
 
 import bpy
 import numpy as np
@@ -44,7 +45,7 @@ bl_info = {
 }
 
 RTMESH_MAGIC = b"RTMESH\0\0"
-RTMESH_VERSION = 1
+RTMESH_VERSION = 2
 RTINST_MAGIC = b"RTINST\0\0"
 RTINST_VERSION = 1
 RTINST_OWN_MATERIALS = 0xFFFFFFFF
@@ -90,9 +91,11 @@ def to_rt(v):
     return np.stack([v[:, 0], v[:, 2], -v[:, 1]], axis=1)
 
 
-def mesh_arrays(mesh, material_count):
-    """Positions, normals, uvs (per vertex, rt axes), triangle indices and material
-    indices of an evaluated mesh. Corners that share position, normal and uv share a vertex."""
+def mesh_arrays(mesh, material_count, uv_transforms=None):
+    """Positions, normals, uvs, tangents (per vertex, rt axes), triangle indices and material
+    indices of an evaluated mesh. Corners that share all of them share a vertex.
+    `uv_transforms[m]`, a 2x3 affine map or None, is applied to the uvs of material m's
+    triangles: a Mapping node in front of that material's textures."""
     mesh.calc_loop_triangles()
     tri_count = len(mesh.loop_triangles)
     corners = np.empty(tri_count * 3, np.int32)
@@ -114,7 +117,15 @@ def mesh_arrays(mesh, material_count):
     if has_uvs:
         uvs = np.empty(loop_count * 2, np.float32)
         mesh.uv_layers[0].uv.foreach_get("vector", uvs)
-        columns.append(uvs.reshape(-1, 2)[corners])
+        corner_uvs = uvs.reshape(-1, 2)[corners]
+        for m, transform in enumerate(uv_transforms or []):
+            if transform is not None:
+                at = np.repeat(materials == m, 3)
+                corner_uvs[at] = corner_uvs[at] @ transform[:, :2].T + transform[:, 2]
+        columns.append(corner_uvs)
+        tangents = mesh_tangents(mesh, loop_count)
+        if tangents is not None:
+            columns.append(np.concatenate([to_rt(tangents[:, :3]), tangents[:, 3:4]], axis=1)[corners])
     records = np.ascontiguousarray(np.concatenate(columns, axis=1), dtype=np.float32)
     keys = records.view(np.dtype((np.void, records.itemsize * records.shape[1]))).ravel()
     _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
@@ -128,20 +139,38 @@ def mesh_arrays(mesh, material_count):
         "positions": vertices[:, 0:3],
         "normals": vertices[:, 3:6],
         "uvs": vertices[:, 6:8] if has_uvs else None,
+        "tangents": vertices[:, 8:12] if vertices.shape[1] >= 12 else None,
         "indices": indices,
         "materials": materials,
     }
 
 
+def mesh_tangents(mesh, loop_count):
+    """Per-corner MikkTSpace tangents and bitangent signs (n, 4) of the first uv map, as
+    Cycles computes them for normal maps, or None where Blender cannot compute them."""
+    try:
+        mesh.calc_tangents(uvmap=mesh.uv_layers[0].name)
+    except RuntimeError as e:
+        log(f"{mesh.name}: no tangents ({e})")
+        return None
+    tangents = np.empty(loop_count * 3, np.float32)
+    mesh.loops.foreach_get("tangent", tangents)
+    signs = np.empty(loop_count, np.float32)
+    mesh.loops.foreach_get("bitangent_sign", signs)
+    return np.concatenate([tangents.reshape(-1, 3), signs.reshape(-1, 1)], axis=1)
+
+
 def rtmesh_bytes(arrays):
     """Contract 1: magic, version, flags, counts, then the sections, little-endian."""
-    flags = 1 | (2 if arrays["uvs"] is not None else 0)
+    flags = 1 | (2 if arrays["uvs"] is not None else 0) | (4 if arrays.get("tangents") is not None else 0)
     header = RTMESH_MAGIC + struct.pack(
         "<4I", RTMESH_VERSION, flags, len(arrays["positions"]), len(arrays["indices"])
     )
     sections = [arrays["positions"].astype("<f4"), arrays["normals"].astype("<f4")]
     if arrays["uvs"] is not None:
         sections.append(arrays["uvs"].astype("<f4"))
+    if arrays.get("tangents") is not None:
+        sections.append(arrays["tangents"].astype("<f4"))
     sections += [arrays["indices"].astype("<u4"), arrays["materials"].astype("<u4")]
     return header + b"".join(np.ascontiguousarray(s).tobytes() for s in sections)
 
@@ -163,6 +192,11 @@ def socket_value(node, name, default):
     if source is not None:
         if source.type in {"RGB", "VALUE"}:
             return source.outputs[0].default_value
+        if source.type in {"TEX_IMAGE", "SEPARATE_COLOR", "NORMAL_MAP"} or (
+            node.type == "BSDF_PRINCIPLED" and name in TEXTURE_SOCKETS
+        ):
+            # Followed, or warned about, by `texture_channel`.
+            return socket.default_value
         log(f"{node.id_data.name}: {node.name}.{name} is linked to {source.type}; using its own value")
     return socket.default_value
 
@@ -204,9 +238,233 @@ def volume_emission(volume):
     return np.zeros(3)
 
 
-def gltf_material(material, thickness):
-    """One glTF material (with KHR extensions) from a Blender material; every factor is
-    written, since rt's importer applies glTF's defaults to absent ones."""
+# --- textures ---------------------------------------------------------------------
+#
+# Image Texture nodes linked into the Principled BSDF become glTF textures: directly, or
+# through Separate Color (one channel), Normal Map (Normal) or a Mapping node in front of
+# the image (its transform is baked into the uvs of the material's triangles: every
+# texture of a material must share it). Each glTF image is composed from the channels
+# that feed it, as the linear values Cycles reads (an sRGB image's codes decoded, a
+# Non-Color one's taken as they are), then encoded for its glTF slot (sRGB for base
+# colour and emission, linear for the rest) and written as NAME-HASH.png, the hash
+# of its pixels, so that an unchanged image is never rewritten. Roughness and Metallic
+# images are combined into glTF's metallic-roughness image (G roughness, B metallic).
+# What cannot be followed (procedural textures, Mix, Color Ramp ...) is named in a
+# warning and the socket's own value is used.
+
+TEXTURE_SOCKETS = ("Base Color", "Alpha", "Roughness", "Metallic", "Normal", "Emission Color")
+GLTF_WRAP = {"REPEAT": 10497, "EXTEND": 33071, "CLIP": 33071, "MIRROR": 33648}
+LUMA = np.array([0.2126, 0.7152, 0.0722])
+
+
+def srgb_to_linear(c):
+    return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+
+
+def linear_to_srgb(c):
+    c = np.clip(c, 0.0, 1.0)
+    return np.where(c <= 0.0031308, 12.92 * c, 1.055 * c ** (1.0 / 2.4) - 0.055)
+
+
+def png_bytes(rgba):
+    """An 8-bit RGBA PNG of an (h, w, 4) uint8 array, rows from the top."""
+    h, w, _ = rgba.shape
+    raw = b"".join(b"\0" + rgba[y].tobytes() for y in range(h))
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+    header = struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0)
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b"")
+
+
+_linear_pixels = {}
+
+
+def linear_pixels(image):
+    """(h, w, 4) float array of the values Cycles reads from `image`, rows from the top."""
+    key = (image.name, image.size[0], image.size[1], image.colorspace_settings.name, image.is_dirty)
+    if key not in _linear_pixels:
+        w, h = image.size
+        channels = image.channels
+        pixels = np.empty(w * h * channels, np.float32)
+        image.pixels.foreach_get(pixels)
+        pixels = pixels.reshape(h, w, channels)[::-1]
+        if channels < 4:
+            grey = np.repeat(pixels[:, :, :1], 3, axis=2) if channels < 3 else pixels[:, :, :3]
+            pixels = np.concatenate([grey, np.ones((h, w, 1), np.float32)], axis=2)
+        if image.colorspace_settings.name == "sRGB" and not image.is_float:
+            pixels = np.concatenate([srgb_to_linear(pixels[:, :, :3]), pixels[:, :, 3:]], axis=2)
+        _linear_pixels[key] = pixels
+    return _linear_pixels[key]
+
+
+def mapping_transform(node):
+    """A Mapping node (Point) as a 2x3 map of uvs: location + rotation (scale * uv)."""
+    if node.vector_type != "POINT":
+        return None
+    values = {name: node.inputs[name].default_value for name in ("Location", "Rotation", "Scale")}
+    if any(node.inputs[name].is_linked for name in values):
+        return None
+    from mathutils import Euler
+
+    a = np.array(Euler(values["Rotation"], "XYZ").to_matrix()) @ np.diag(values["Scale"])
+    return np.concatenate([a[:2, :2], np.array(values["Location"][:2]).reshape(2, 1)], axis=1)
+
+
+class Channel:
+    """One channel that feeds a socket: an Image Texture node's output, one of its
+    channels or all three (colour), and the uv transform in front of it."""
+
+    def __init__(self, node, output, component, transform):
+        self.node, self.output, self.component, self.transform = node, output, component, transform
+
+    def values(self):
+        """(h, w, 3) for colour, (h, w) for one channel."""
+        pixels = linear_pixels(self.node.image)
+        if self.output == "Alpha":
+            return pixels[:, :, 3]
+        if self.component is None:
+            return pixels[:, :, :3]
+        if self.component == "luma":
+            return pixels[:, :, :3] @ LUMA
+        return pixels[:, :, self.component]
+
+
+def texture_channel(material, node, socket_name):
+    """The image channel linked into `node.inputs[socket_name]`, or None (then the
+    socket's own value is used; a link rt cannot follow is warned about)."""
+    socket = node.inputs.get(socket_name)
+    if socket is None or not socket.is_linked:
+        return None
+    link = socket.links[0]
+    source, output, component = link.from_node, link.from_socket.name, None
+    if source.type == "NORMAL_MAP" and socket_name == "Normal":
+        inner = source.inputs["Color"]
+        if not inner.is_linked:
+            return None
+        source, output = inner.links[0].from_node, inner.links[0].from_socket.name
+    if source.type == "SEPARATE_COLOR" and source.mode == "RGB":
+        component = {"Red": 0, "Green": 1, "Blue": 2}[output]
+        inner = source.inputs["Color"]
+        if not inner.is_linked:
+            return None
+        source, output = inner.links[0].from_node, inner.links[0].from_socket.name
+    if source.type != "TEX_IMAGE" or source.image is None:
+        if source.type not in {"RGB", "VALUE"}:
+            log(f"{material.name}: {socket_name} is linked to {source.type}, which rt cannot follow; using its own value")
+        return None
+    if component is None and output == "Color" and socket.type == "VALUE":
+        component = "luma"
+    transform = None
+    vector = source.inputs["Vector"]
+    if vector.is_linked:
+        mapping = vector.links[0].from_node
+        transform = mapping_transform(mapping) if mapping.type == "MAPPING" else None
+        if transform is None and mapping.type != "UVMAP" and mapping.type != "TEX_COORD":
+            log(f"{material.name}: {socket_name}'s image coordinates come from {mapping.type}; using the uvs as they are")
+    if source.extension == "CLIP":
+        log(f"{material.name}: image {source.image.name} clips; rt clamps it to its edge")
+    return Channel(source, output, component, transform)
+
+
+class Textures:
+    """The images and textures of one asset's glTF, built material by material."""
+
+    def __init__(self, base_name):
+        self.base_name = base_name
+        self.images = {}  # file name -> PNG bytes
+        self.gltf_images, self.gltf_textures, self.samplers = [], [], []
+
+    def add(self, channels, srgb, wrap):
+        """A glTF texture index for an image made of `channels` ([r, g, b, a], each a
+        Channel, a (Channel of colour, index) pair or a constant)."""
+        sized = [c[0] if isinstance(c, tuple) else c for c in channels if not isinstance(c, (int, float))]
+        h, w = max((c.values().shape[:2] for c in sized), key=lambda s: s[0] * s[1])
+        planes = []
+        for c in channels:
+            if isinstance(c, (int, float)):
+                planes.append(np.full((h, w), float(c), np.float32))
+                continue
+            channel, index = c if isinstance(c, tuple) else (c, None)
+            values = channel.values()
+            values = values[:, :, index] if index is not None else values
+            if values.shape != (h, w):
+                # Nearest texel of the largest image's grid.
+                ys = np.arange(h) * values.shape[0] // h
+                xs = np.arange(w) * values.shape[1] // w
+                values = values[ys][:, xs]
+            planes.append(values)
+        rgba = np.stack(planes, axis=2)
+        if srgb:
+            rgba[:, :, :3] = linear_to_srgb(rgba[:, :, :3])
+        codes = np.round(np.clip(rgba, 0.0, 1.0) * 255.0).astype(np.uint8)
+        name = f"{self.base_name}-{blake(codes.tobytes())}.png"
+        self.images.setdefault(name, png_bytes(codes))
+        if name not in [i["uri"] for i in self.gltf_images]:
+            self.gltf_images.append({"uri": name})
+        image = [i["uri"] for i in self.gltf_images].index(name)
+        sampler = {"wrapS": GLTF_WRAP[wrap], "wrapT": GLTF_WRAP[wrap]}
+        if sampler not in self.samplers:
+            self.samplers.append(sampler)
+        texture = {"source": image, "sampler": self.samplers.index(sampler)}
+        if texture not in self.gltf_textures:
+            self.gltf_textures.append(texture)
+        return self.gltf_textures.index(texture)
+
+
+def blake(data):
+    import hashlib
+
+    return hashlib.blake2b(data, digest_size=8).hexdigest()
+
+
+def material_textures(material, surface, out, textures, factors):
+    """Adds the textures of a Principled BSDF to glTF material `out`; returns the uv
+    transform its textures share (or None)."""
+    pbr = out["pbrMetallicRoughness"]
+    found = {name: texture_channel(material, surface, name) for name in TEXTURE_SOCKETS}
+    transforms = [c.transform for c in found.values() if c is not None and c.transform is not None]
+    transform = transforms[0] if transforms else None
+    if any(not np.allclose(t, transform) for t in transforms):
+        log(f"{material.name}: its textures use different Mapping nodes; rt uses the first one's for all")
+    wrap_of = lambda c: c.node.extension  # noqa: E731
+    base, alpha = found["Base Color"], found["Alpha"]
+    if base is not None or alpha is not None:
+        rgb_source = [(base, i) for i in range(3)] if base is not None else [float(v) for v in factors["base"]]
+        pbr["baseColorFactor"] = [1.0, 1.0, 1.0, 1.0]
+        pbr["baseColorTexture"] = {"index": textures.add(rgb_source + [alpha if alpha is not None else 1.0], True,
+                                                          wrap_of(base or alpha))}
+        if alpha is not None:
+            # Cycles blends by alpha; rt cuts out below one half (the same for leaves' 0/1 alpha).
+            out["alphaMode"], out["alphaCutoff"] = "MASK", 0.5
+    rough, metal = found["Roughness"], found["Metallic"]
+    if rough is not None or metal is not None:
+        pbr["metallicRoughnessTexture"] = {"index": textures.add(
+            [0.0, rough if rough is not None else factors["roughness"],
+             metal if metal is not None else factors["metallic"], 1.0], False, wrap_of(rough or metal))}
+        pbr["roughnessFactor"], pbr["metallicFactor"] = 1.0, 1.0
+    normal = found["Normal"]
+    if normal is not None:
+        node = surface.inputs["Normal"].links[0].from_node
+        strength = float(node.inputs["Strength"].default_value) if node.type == "NORMAL_MAP" else 1.0
+        out["normalTexture"] = {"index": textures.add([(normal, i) for i in range(3)] + [1.0], False,
+                                                      wrap_of(normal)), "scale": strength}
+    emission = found["Emission Color"]
+    if emission is not None:
+        out["emissiveTexture"] = {"index": textures.add([(emission, i) for i in range(3)] + [1.0], True,
+                                                        wrap_of(emission))}
+        strength = factors["strength"]
+        if strength > 0.0:
+            out["emissiveFactor"] = [1.0, 1.0, 1.0]
+            out.setdefault("extensions", {})["KHR_materials_emissive_strength"] = {"emissiveStrength": strength}
+    return transform
+
+
+def gltf_material(material, thickness, textures=None):
+    """One glTF material (with KHR extensions) from a Blender material, and the uv
+    transform of its textures (or None); every factor is written, since rt's importer
+    applies glTF's defaults to absent ones. Its textures go into `textures`."""
     name = material.name if material else "default"
     base, metallic, roughness, ior, transmission = [0.8, 0.8, 0.8], 0.0, 0.5, 1.5, 0.0
     emission, strength, specular_level = [0.0, 0.0, 0.0], 0.0, 0.5
@@ -271,16 +529,24 @@ def gltf_material(material, thickness):
         if glow.max() > 0.0:
             out["extras"] = {"rt_volume_emission": [float(g) for g in glow]}
     out["extensions"] = extensions
-    return out
+    transform = None
+    if textures is not None and surface is not None and surface.type == "BSDF_PRINCIPLED":
+        factors = {"base": base, "roughness": roughness, "metallic": metallic, "strength": strength}
+        transform = material_textures(material, surface, out, textures, factors)
+    return out, transform
 
 
-def gltf_text(materials, thickness):
+def gltf_text(materials, thickness, textures=None):
     used = sorted({ext for m in materials for ext in m.get("extensions", {})})
     document = {
         "asset": {"version": "2.0", "generator": "rt_export.py"},
         "extensionsUsed": used,
         "materials": materials,
     }
+    if textures is not None and textures.gltf_textures:
+        document["images"] = textures.gltf_images
+        document["samplers"] = textures.samplers
+        document["textures"] = textures.gltf_textures
     return json.dumps(document, indent=1, sort_keys=True) + "\n"
 
 
@@ -301,23 +567,33 @@ def object_slot_materials(obj):
     return [slot.material for slot in obj.material_slots] or [None]
 
 
-def export_object_mesh(obj, depsgraph):
-    """(rtmesh bytes, gltf text, triangle count) of an object's evaluated mesh."""
+def export_object_mesh(obj, depsgraph, base_name="mesh"):
+    """(rtmesh bytes, gltf text, {image file: PNG bytes}, triangle count) of an object's
+    evaluated mesh. The materials come first: their Mapping nodes transform the uvs."""
+    materials = object_slot_materials(obj)
+    textures = Textures(base_name)
     evaluated = obj.evaluated_get(depsgraph)
     mesh = evaluated.to_mesh()
     try:
-        return export_mesh(mesh, object_slot_materials(obj))
+        return export_mesh(mesh, materials, textures)
     finally:
         evaluated.to_mesh_clear()
 
 
-def export_mesh(mesh, materials):
-    """(rtmesh bytes, gltf text, triangle count) of an evaluated mesh shown with `materials`."""
-    arrays = mesh_arrays(mesh, len(materials))
-    extent = arrays["positions"].max(axis=0) - arrays["positions"].min(axis=0) if len(arrays["positions"]) else [1]
+def export_mesh(mesh, materials, textures):
+    """(rtmesh bytes, gltf text, {image file: PNG bytes}, triangle count) of an evaluated
+    mesh shown with `materials`, its images collected by `textures`. The materials come
+    first: their Mapping nodes transform the uvs."""
+    # The thickness of volumes is the mesh's smallest extent (an axis swap keeps it).
+    co = np.empty(len(mesh.vertices) * 3, np.float32)
+    mesh.vertices.foreach_get("co", co)
+    co = co.reshape(-1, 3)
+    extent = co.max(axis=0) - co.min(axis=0) if len(co) else [1]
     thickness = float(max(min(extent), 1e-3))
-    gltf = gltf_text([gltf_material(m, thickness) for m in materials], thickness)
-    return rtmesh_bytes(arrays), gltf, len(arrays["indices"])
+    exported = [gltf_material(m, thickness, textures) for m in materials]
+    arrays = mesh_arrays(mesh, len(materials), [transform for _, transform in exported])
+    gltf = gltf_text([material for material, _ in exported], thickness, textures)
+    return rtmesh_bytes(arrays), gltf, textures.images, len(arrays["indices"])
 
 
 def plain_instance(obj):
@@ -335,6 +611,7 @@ class Export:
         self.written = []  # files actually rewritten
         self.triangles = {}
         self.instances = {}  # folder name -> [rt matrix rows] of its instances
+        self.images = {}  # folder name -> {image file name: PNG bytes}
 
     def add(self, obj, depsgraph):
         base = sanitize(obj.data.name)
@@ -345,13 +622,13 @@ class Export:
                 if o is not None and o.data == obj.data and plain_instance(o):
                     self.folder_of[obj.name] = folder
                     return
-        rtmesh, gltf, triangles = export_object_mesh(obj, depsgraph)
+        rtmesh, gltf, images, triangles = export_object_mesh(obj, depsgraph, base)
         if triangles == 0:
             # Geometry nodes that output only instances leave the object itself empty.
             return
-        self.folder_of[obj.name] = self.store(base, rtmesh, gltf, triangles)
+        self.folder_of[obj.name] = self.store(base, rtmesh, gltf, images, triangles)
 
-    def store(self, base, rtmesh, gltf, triangles):
+    def store(self, base, rtmesh, gltf, images, triangles):
         """The folder holding these bytes: an existing one with the same content, or a new
         one named after `base`."""
         folder = base
@@ -361,14 +638,16 @@ class Export:
             folder = f"{base}_{suffix}"
         if folder not in self.content:
             self.content[folder] = (rtmesh, gltf)
+            self.images[folder] = images
             self.triangles[folder] = triangles
             self.write(folder)
         return folder
 
     def write(self, folder):
         rtmesh, gltf = self.content[folder]
-        for ext, data in ((".rtmesh", rtmesh), (".gltf", gltf)):
-            path = os.path.join(self.out_dir, folder, folder + ext)
+        files = [(folder + ".rtmesh", rtmesh), (folder + ".gltf", gltf)] + sorted(self.images[folder].items())
+        for name, data in files:
+            path = os.path.join(self.out_dir, folder, name)
             if write_if_changed(path, data):
                 self.written.append(path)
 
@@ -406,8 +685,9 @@ def add_instances(export, depsgraph):
         materials = instance_materials(inst)
         key = (obj.data.as_pointer(), tuple(m.name if m else "" for m in materials))
         if key not in meshes:
-            rtmesh, gltf, triangles = export_mesh(obj.data, materials)
-            meshes[key] = export.store(sanitize(obj.data.name), rtmesh, gltf, triangles) if triangles else None
+            base = sanitize(obj.data.name)
+            rtmesh, gltf, images, triangles = export_mesh(obj.data, materials, Textures(base))
+            meshes[key] = export.store(base, rtmesh, gltf, images, triangles) if triangles else None
         folder = meshes[key]
         if folder is None:
             continue
@@ -684,6 +964,8 @@ def export_scene(scene, out_dir, scene_path=None, only=None, previous=None):
     to `scene_path` if given. With `only` (a set of object names) and the `previous`
     export, objects outside `only` keep the folder they had and are not evaluated."""
     depsgraph = bpy.context.evaluated_depsgraph_get()
+    # Images may have been painted or reloaded since the last export.
+    _linear_pixels.clear()
     export = Export(out_dir)
     objects = exported_objects(scene)
     for obj in objects:
@@ -691,6 +973,7 @@ def export_scene(scene, out_dir, scene_path=None, only=None, previous=None):
             folder = previous.folder_of[obj.name]
             export.folder_of[obj.name] = folder
             export.content.setdefault(folder, previous.content[folder])
+            export.images.setdefault(folder, previous.images.get(folder, {}))
             continue
         export.add(obj, depsgraph)
     add_instances(export, depsgraph)

@@ -89,14 +89,17 @@ struct Triangle {
     _pad2: u32,
 }
 
-// Per-vertex shading normals of one triangle (the geometric normal when the mesh has none).
+// Per-vertex shading normals of one triangle (the geometric normal when the mesh has
+// none), and texture coordinates: u in the normals' spare words, the three v together.
 struct TriangleShading {
     n0: vec3f,
-    _pad0: u32,
+    u0: f32,
     n1: vec3f,
-    _pad1: u32,
+    u1: f32,
     n2: vec3f,
-    _pad2: u32,
+    u2: f32,
+    v: vec3f,
+    _pad0: u32,
 }
 
 struct Instance {
@@ -133,7 +136,32 @@ struct Material {
     alpha: f32,
     // Luminance of `emission`, for light selection probabilities.
     emission_luminance: f32,
+    // Indices into `textures`, or NO_TEXTURE (see texture.wgsl).
+    base_color_texture: u32,
+    metallic_roughness_texture: u32,
+    emission_texture: u32,
+    // With `metallic_roughness_texture`: metal = metallic × B, roughness = roughness × G.
+    metallic: f32,
+    roughness: f32,
+    // Opacity = base_alpha × the base colour texture's alpha; below alpha_cutoff
+    // (0: opaque) the surface is not there.
+    base_alpha: f32,
+    alpha_cutoff: f32,
     _pad0: u32,
+    _pad1: u32,
+}
+
+// One texture of the texture store: its texels start at `offset` in `texels`, levels
+// finest first. flags: bit 0 sRGB; bits 1-2 wrap of u, bits 3-4 wrap of v.
+struct Texture {
+    offset: u32,
+    width: u32,
+    height: u32,
+    levels: u32,
+    flags: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 // An emissive triangle (of one instance) or sphere, for next-event estimation.
@@ -150,6 +178,7 @@ const EMPTY_LINK: u32 = 0xffffffffu;
 const NO_MATERIAL: u32 = 0xffffffffu;
 // Top-level leaves hold instances and spheres; the top bit says which.
 const SPHERE_BIT: u32 = 0x80000000u;
+const NO_TEXTURE: u32 = 0xffffffffu;
 
 // Counters in the statistics buffer.
 const STAT_STACK_OVERFLOW: u32 = 0u;
@@ -165,3 +194,8 @@ const STAT_STACK_OVERFLOW: u32 = 0u;
 @group(0) @binding(8) var<storage, read_write> stats: array<atomic<u32>>;
 @group(0) @binding(9) var<storage, read> emitters: array<Emitter>;
 @group(0) @binding(12) var<storage, read> wide_nodes: array<WideNode>;
+//#if textures
+@group(0) @binding(13) var<storage, read> textures: array<Texture>;
+// RGBA8 texels, red in the low byte.
+@group(0) @binding(14) var<storage, read> texels: array<u32>;
+//#endif

@@ -28,6 +28,9 @@
 //#if sky_atmosphere
 //#include "atmosphere_sky.wgsl"
 //#endif
+//#if textures
+//#include "texture.wgsl"
+//#endif
 
 // rgb: the running mean of radiance; w: the running sum of squared deviations
 // of luminance (Welford), for the standard error. Means rather than sums: a sum
@@ -138,6 +141,15 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
     var path_ended = false;
     // Set by the traversal when a stack was full (it counts that in `stats` itself).
     var stack_overflowed = false;
+    //#if textures
+    // The ray cone (Ray Tracing Gems ch. 20): its width grows by the pixel's angle per
+    // unit of distance; later bounces keep widening it by the path's length, a
+    // lower bound on their footprint (a finer level than ideal: noise, never blur).
+    // A pixel's angle seen from the camera (view_half_extent is the image plane's half size
+    // at distance 1); an orthographic camera's rays do not spread.
+    let cone_spread = select(2.0 * frame.view_half_extent.y / f32(frame.height), 0.0, frame.orthographic != 0u);
+    var cone_width = 0.0;
+    //#endif
     loop {
         var ray_origin = origin;
         var ray_direction = direction;
@@ -187,7 +199,12 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
         attenuate(&throughput, air.transmittance, EVENT_AIR);
         //#endif
         let surface = surface_at(hit, origin, direction);
-        let m = materials[surface.material];
+        var m = materials[surface.material];
+        //#if textures
+        cone_width += cone_spread * hit.t;
+        let cos_hit = max(abs(dot(surface.geometric_normal, direction)), 1e-4);
+        m = textured_material(m, texture_point(hit), log2(cone_width / cos_hit));
+        //#endif
         //#if emission
         gather(&radiance, throughput * emission_seen(m, hit, surface, origin, direction, bsdf_pdf), EVENT_EMISSION);
         //#endif

@@ -19,6 +19,9 @@
 //#endif
 //#if sun
 //#include "sun.wgsl"
+//#if textures
+//#include "texture.wgsl"
+//#endif
 //#endif
 //#if media
 //#include "segment.wgsl"
@@ -151,7 +154,11 @@ fn sample_emitter(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
         material = inst.material_base + tri.material;
     }
     let m = materials[material];
-    return LightSample(d, t, m.emission, triangle_emitter_pdf(m.emission_luminance, t, abs(dot(n, d))), false);
+    var emission = m.emission;
+    //#if textures
+    emission = textured_emission(m, e.primitive, su * (1.0 - u.y), su * u.y);
+    //#endif
+    return LightSample(d, t, emission, triangle_emitter_pdf(m.emission_luminance, t, abs(dot(n, d))), false);
     //#else
     return none;
     //#endif

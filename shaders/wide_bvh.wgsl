@@ -14,6 +14,9 @@
 //#include "triangle.wgsl"
 //#include "transform.wgsl"
 //#include "hit.wgsl"
+//#if alpha_mask
+//#include "texture.wgsl"
+//#endif
 
 // Depth of the stack of node groups: an 8-wide BVH of 16 levels holds 8^16 leaves.
 // A push beyond it is counted, never silent.
@@ -145,6 +148,12 @@ fn intersect_instance(
             let tri = triangles[index];
             let h = intersect_triangle(sheared, tri.v0, tri.v1, tri.v2, (*hit).t);
             if h.t < INFINITY {
+                //#if alpha_mask
+                // A cut-out texel lets every ray through, shadow rays too.
+                if !opaque_at(inst, index, h.b1, h.b2) {
+                    continue;
+                }
+                //#endif
                 *hit = Hit(h.t, HIT_TRIANGLE, index, instance_index, h.b1, h.b2);
                 if any_hit {
                     break;

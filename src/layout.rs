@@ -96,11 +96,14 @@ pub struct GpuTriangle {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuTriangleShading {
     pub n0: [f32; 3],
-    pub _pad0: u32,
+    /// Texture coordinates of the three vertices: u in the normals' spare words, v together.
+    pub u0: f32,
     pub n1: [f32; 3],
-    pub _pad1: u32,
+    pub u1: f32,
     pub n2: [f32; 3],
-    pub _pad2: u32,
+    pub u2: f32,
+    pub v: [f32; 3],
+    pub _pad0: u32,
 }
 
 #[repr(C)]
@@ -141,7 +144,32 @@ pub struct GpuMaterial {
     pub ior: f32,
     pub alpha: f32,
     pub emission_luminance: f32,
-    pub _pad0: u32,
+    /// Indices into the scene's texture table, or `NO_TEXTURE`.
+    pub base_color_texture: u32,
+    pub metallic_roughness_texture: u32,
+    pub emission_texture: u32,
+    /// Used with `metallic_roughness_texture`: metal = metallic × B, roughness = roughness × G.
+    pub metallic: f32,
+    pub roughness: f32,
+    /// Opacity = base_alpha × the base colour texture's alpha; below `alpha_cutoff`
+    /// (0: opaque) the surface is not there.
+    pub base_alpha: f32,
+    pub alpha_cutoff: f32,
+    pub _pad0: [u32; 2],
+}
+
+/// One texture of the scene's texture store (`shaders/texture.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuTexture {
+    /// Index of its first texel in the texel buffer; levels follow, finest first.
+    pub offset: u32,
+    pub width: u32,
+    pub height: u32,
+    pub levels: u32,
+    /// Bit 0: sRGB; bits 1–2: wrap of u, bits 3–4: wrap of v (`Wrap::code`).
+    pub flags: u32,
+    pub _pad: [u32; 3],
 }
 
 /// An emissive triangle or sphere, for next-event estimation.
@@ -260,6 +288,7 @@ pub struct GpuTraceHit {
 pub const EMPTY_LINK: u32 = u32::MAX;
 pub const NO_MATERIAL: u32 = u32::MAX;
 pub const SPHERE_BIT: u32 = 0x8000_0000;
+pub const NO_TEXTURE: u32 = u32::MAX;
 
 impl From<&crate::scene::Material> for GpuMaterial {
     fn from(m: &crate::scene::Material) -> Self {
@@ -276,7 +305,14 @@ impl From<&crate::scene::Material> for GpuMaterial {
             ior: m.ior,
             alpha: m.alpha(),
             emission_luminance: crate::scene::luminance(m.emission),
-            _pad0: 0,
+            base_color_texture: m.textures.base_color.unwrap_or(NO_TEXTURE),
+            metallic_roughness_texture: m.textures.metallic_roughness.unwrap_or(NO_TEXTURE),
+            emission_texture: m.textures.emission.unwrap_or(NO_TEXTURE),
+            metallic: m.textures.metallic,
+            roughness: m.roughness,
+            base_alpha: m.textures.base_alpha,
+            alpha_cutoff: m.textures.alpha_cutoff,
+            _pad0: [0; 2],
         }
     }
 }

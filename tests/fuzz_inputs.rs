@@ -157,6 +157,7 @@ fn small_mesh() -> MeshData {
             ("a".into(), Material::default()),
             ("b".into(), Material { emission: [1.0; 3], ..Default::default() }),
         ],
+        ..Default::default()
     }
 }
 
@@ -278,6 +279,7 @@ fn rtbvh_files() {
     let packed = PackedMesh {
         bvh: MeshBvh::build(&mesh, BuildQuality::Medium),
         materials: mesh.materials.clone(),
+        textures: Vec::new(),
         vertex_count: mesh.positions.len() as u32,
         triangle_count: mesh.indices.len() as u32,
     };

@@ -24,10 +24,12 @@
 //! default material (a rough white metal): rt treats a material-less mesh as plain
 //! geometry, the same as an OBJ without a `.mtl` and a scene material left at defaults.
 
+use super::gltf_textures::{ColorSpace, TextureLoader};
 use super::{AssetError, MeshData};
-use crate::scene::Material;
+use crate::scene::{Material, MaterialTextures};
 use glam::{Mat3, Mat4, Vec3};
 use gltf::json::Value;
+use gltf::material::AlphaMode;
 use gltf::mesh::{Mode, Semantic};
 use std::path::Path;
 
@@ -42,16 +44,29 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
     check_primitive_accessors(&json).map_err(err)?;
     let document = gltf::Document::from_json(json).map_err(|e| err(format!("invalid glTF: {e}")))?;
     let blob = unchecked.blob;
-    // Only buffers: materials use factors, not textures, so images are never decoded
-    // (a missing or exotic texture must not stop a mesh from loading).
     let buffers = super::gltf_buffers::load(&document, path.parent().unwrap_or(Path::new("")), blob).map_err(err)?;
 
     let mut mesh = MeshData::default();
+    // Images are decoded by rt (not by gltf's importer), and only those that a material
+    // uses, so that an error names the material and the image.
+    let dir = path.parent().unwrap_or(Path::new(""));
+    let mut loader = TextureLoader::new(&buffers, dir);
+    let mut uv_transforms = Vec::new();
     for (i, m) in document.materials().enumerate() {
         let name = m.name().map_or_else(|| format!("material_{i}"), str::to_owned);
-        let material = map_material(&m).map_err(|e| err(format!("material `{name}`: {e}")))?;
+        let mut material = map_material(&m).map_err(|e| err(format!("material `{name}`: {e}")))?;
+        material.textures = material_textures(&m, &mut loader).map_err(|e| err(format!("material `{name}`: {e}")))?;
+        if material.textures.metallic_roughness.is_some() {
+            // The lobe weights become those of the non-metal part; the texture sets the metal.
+            material = Material {
+                textures: material.textures,
+                ..map_material_dielectric(&m).map_err(|e| err(format!("material `{name}`: {e}")))?
+            };
+        }
+        uv_transforms.push(uv_transform(&m, &name));
         mesh.materials.push((name, material));
     }
+    mesh.textures = loader.textures;
 
     let roots: Vec<gltf::Node> = match document.default_scene().or_else(|| document.scenes().next()) {
         Some(scene) => scene.nodes().collect(),
@@ -73,6 +88,7 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
         all_normals: true,
         all_uvs: true,
         default_material: None,
+        uv_transforms: &uv_transforms,
     };
     for root in &roots {
         walk.visit(root, Mat4::IDENTITY, 0).map_err(err)?;
@@ -99,6 +115,8 @@ struct Walk<'a> {
     all_normals: bool,
     all_uvs: bool,
     default_material: Option<u32>,
+    /// Per material, its textures' `KHR_texture_transform`, baked into the uvs of its primitives.
+    uv_transforms: &'a [Option<UvTransform>],
 }
 
 impl Walk<'_> {
@@ -185,7 +203,9 @@ impl Walk<'_> {
             } else {
                 let uvs = reader.read_tex_coords(0).ok_or_else(|| unreadable("TEXCOORD_0"))?;
                 let start = self.uvs.len();
-                self.uvs.extend(uvs.into_f32().map(|[u, v]| [u, 1.0 - v]));
+                let transform = prim.material().index().and_then(|i| self.uv_transforms.get(i).copied().flatten());
+                let transformed = uvs.into_f32().map(|uv| transform.map_or(uv, |t| t.apply(uv)));
+                self.uvs.extend(transformed.map(|[u, v]| [u, 1.0 - v]));
                 if self.uvs.len() - start != count {
                     return Err(format!("{at}: TEXCOORD_0 and POSITION counts differ"));
                 }
@@ -222,10 +242,88 @@ impl Walk<'_> {
     }
 }
 
+/// glTF's `KHR_texture_transform` as a 2×3 affine map of glTF texture coordinates:
+/// translation · rotation · scale.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct UvTransform([[f32; 3]; 2]);
+
+impl UvTransform {
+    fn apply(self, [u, v]: [f32; 2]) -> [f32; 2] {
+        let [a, b] = self.0;
+        [a[0] * u + a[1] * v + a[2], b[0] * u + b[1] * v + b[2]]
+    }
+}
+
+/// The texture transform of a material's textures, baked into the uvs of its triangles:
+/// rt keeps one set of uvs, so every texture of a material shares the first one's
+/// (a material whose textures differ gets a warning).
+fn uv_transform(m: &gltf::Material, name: &str) -> Option<UvTransform> {
+    let pbr = m.pbr_metallic_roughness();
+    let infos = [pbr.base_color_texture(), pbr.metallic_roughness_texture(), m.emissive_texture()];
+    let transforms: Vec<Option<UvTransform>> = infos
+        .iter()
+        .flatten()
+        .map(|info| {
+            info.texture_transform().map(|t| {
+                let ([ox, oy], r, [sx, sy]) = (t.offset(), t.rotation(), t.scale());
+                let (sin, cos) = r.sin_cos();
+                // The extension's GLSL matrices are column-major: its rotation is [[c, -s], [s, c]].
+                UvTransform([[cos * sx, -sin * sy, ox], [sin * sx, cos * sy, oy]])
+            })
+        })
+        .collect();
+    let first = transforms.first().copied().flatten();
+    if transforms.iter().any(|t| *t != first) {
+        log::warn!(
+            "material `{name}`: its textures have different texture transforms; rt uses the first one's for all"
+        );
+    }
+    first
+}
+
+/// The textures of a material; unsupported ones (occlusion: a path tracer finds
+/// occlusion itself) are left out, normal maps with a warning.
+fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<MaterialTextures, String> {
+    let pbr = m.pbr_metallic_roughness();
+    let mut load = |info: Option<gltf::texture::Info>, space, slot: &str| {
+        info.map(|i| loader.load(&i.texture(), i.tex_coord(), space).map_err(|e| format!("{slot} texture: {e}")))
+            .transpose()
+    };
+    let base_color = load(pbr.base_color_texture(), ColorSpace::Srgb, "base colour")?;
+    let metallic_roughness = load(pbr.metallic_roughness_texture(), ColorSpace::Linear, "metallic-roughness")?;
+    let emission = load(m.emissive_texture(), ColorSpace::Srgb, "emissive")?;
+    if m.normal_texture().is_some() {
+        log::warn!("material {:?}: normal textures are not supported yet; left out", m.name().unwrap_or(""));
+    }
+    let alpha_cutoff = match m.alpha_mode() {
+        AlphaMode::Opaque => 0.0,
+        AlphaMode::Mask => m.alpha_cutoff().unwrap_or(0.5),
+        // Blended surfaces are drawn as cut-outs at half coverage (no order-independent blending).
+        AlphaMode::Blend => 0.5,
+    };
+    Ok(MaterialTextures {
+        base_color,
+        metallic_roughness,
+        emission,
+        metallic: pbr.metallic_factor().clamp(0.0, 1.0),
+        base_alpha: pbr.base_color_factor()[3],
+        alpha_cutoff,
+    })
+}
+
+/// [`map_material`] as if `metallicFactor` were 0: the non-metal part of a material
+/// whose metal comes from a texture.
+fn map_material_dielectric(m: &gltf::Material) -> Result<Material, String> {
+    map_material_with_metallic(m, 0.0)
+}
+
 fn map_material(m: &gltf::Material) -> Result<Material, String> {
+    map_material_with_metallic(m, m.pbr_metallic_roughness().metallic_factor().clamp(0.0, 1.0))
+}
+
+fn map_material_with_metallic(m: &gltf::Material, metallic: f32) -> Result<Material, String> {
     let pbr = m.pbr_metallic_roughness();
     let [r, g, b, _] = pbr.base_color_factor();
-    let metallic = pbr.metallic_factor().clamp(0.0, 1.0);
     let dielectric = 1.0 - metallic;
     let transmission = m.transmission().map_or(0.0, |t| t.transmission_factor()).clamp(0.0, 1.0);
     let strength = m.emissive_strength().unwrap_or(1.0);
@@ -385,6 +483,7 @@ mod tests {
                 emission: [4.0, 2.0, 0.0],
                 absorption: [ln2 / 2.0, 2.0 * ln2 / 2.0, 0.0],
                 volume_emission: [0.1, 0.2, 0.3],
+                textures: Default::default(),
             }
         );
     }

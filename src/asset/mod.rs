@@ -5,12 +5,15 @@
 pub mod builtin;
 mod gltf_buffers;
 pub mod gltf_import;
+mod gltf_textures;
 pub mod obj_import;
 pub mod rtinst;
 pub mod rtmesh;
 mod source;
+pub mod texture;
 
 pub use source::{AssetFiles, AssetKind};
+pub use texture::{TextureImage, Wrap};
 
 use crate::scene::Material;
 use std::path::{Path, PathBuf};
@@ -24,11 +27,16 @@ pub struct MeshData {
     /// Per-vertex texture coordinates with the origin at the bottom left (the OBJ and
     /// Blender convention); glTF's top-left ones are flipped on import.
     pub uvs: Option<Vec<[f32; 2]>>,
+    /// Per-vertex MikkTSpace tangents (xyz) with the bitangent's sign (w, ±1):
+    /// bitangent = w · cross(normal, tangent). Only with `uvs`.
+    pub tangents: Option<Vec<[f32; 4]>>,
     pub indices: Vec<[u32; 3]>,
     /// Index into `materials` for each triangle.
     pub material_ids: Vec<u32>,
     /// The asset's own materials (at least one whenever there are triangles).
     pub materials: Vec<(String, Material)>,
+    /// The images the materials' textures index.
+    pub textures: Vec<TextureImage>,
 }
 
 /// An import failure, naming the file and what is wrong with it.
@@ -62,7 +70,7 @@ pub fn load_mesh(path: &Path) -> Result<MeshData, AssetError> {
 /// An `.rtmesh`'s geometry with the materials of its sibling glTF, which holds no meshes.
 fn load_rtmesh(path: &Path, materials_path: &Path) -> Result<MeshData, AssetError> {
     let geometry = rtmesh::read(path)?;
-    let mut materials = gltf_import::load(materials_path)?.materials;
+    let MeshData { mut materials, textures, .. } = gltf_import::load(materials_path)?;
     // An object with no material slots is exported with material index 0 throughout.
     if materials.is_empty() {
         materials.push(("default".into(), Material::default()));
@@ -71,9 +79,11 @@ fn load_rtmesh(path: &Path, materials_path: &Path) -> Result<MeshData, AssetErro
         positions: geometry.positions,
         normals: geometry.normals,
         uvs: geometry.uvs,
+        tangents: geometry.tangents,
         indices: geometry.indices,
         material_ids: geometry.material_ids,
         materials,
+        textures,
     })
 }
 
@@ -108,6 +118,15 @@ impl MeshData {
             }
             if let Some((i, bad)) = first_non_finite(uvs) {
                 return fail(format!("vertex {i} has a non-finite texture coordinate ({bad:?})"));
+            }
+        }
+
+        if let Some(tangents) = &self.tangents {
+            if tangents.len() != vertex_count {
+                return fail(format!("{} tangents for {vertex_count} vertices", tangents.len()));
+            }
+            if let Some((i, bad)) = first_non_finite(tangents) {
+                return fail(format!("vertex {i} has a non-finite tangent ({bad:?})"));
             }
         }
 

@@ -2,13 +2,16 @@
 //!
 //! ```text
 //! bytes 0..8   magic b"RTMESH\0\0"
-//! u32 version (=1) · u32 flags (bit0 normals, bit1 uvs) · u32 vertex_count · u32 triangle_count
+//! u32 version (=2) · u32 flags (bit0 normals, bit1 uvs, bit2 tangents) · u32 vertex_count · u32 triangle_count
 //! f32[3] × vertex_count     positions (object space, metres, Y up)
 //! f32[3] × vertex_count     normals            (if bit0)
 //! f32[2] × vertex_count     uvs                (if bit1)
+//! f32[4] × vertex_count     tangents           (if bit2: xyz MikkTSpace tangent, w bitangent sign ±1)
 //! u32[3] × triangle_count   indices
 //! u32    × triangle_count   material index into the sibling .gltf's `materials` array
 //! ```
+//!
+//! Version 1 files (no tangents flag) are still read.
 //!
 //! Little-endian, no padding. Sections are copied with bytemuck, which reads them as
 //! the host's byte order: rt runs on little-endian machines only (as wgpu's GPUs do).
@@ -17,10 +20,13 @@ use super::{AssetError, MeshData};
 use std::path::Path;
 
 pub const MAGIC: [u8; 8] = *b"RTMESH\0\0";
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
+/// The oldest version this rt reads: version 1 differs only in having no tangents.
+const OLDEST_VERSION: u32 = 1;
 const HEADER_BYTES: u64 = 24;
 const FLAG_NORMALS: u32 = 1;
 const FLAG_UVS: u32 = 2;
+const FLAG_TANGENTS: u32 = 4;
 
 /// Geometry read from a `.rtmesh`: everything but the materials, which live in the
 /// sibling `.gltf`.
@@ -28,13 +34,15 @@ pub struct RtMesh {
     pub positions: Vec<[f32; 3]>,
     pub normals: Option<Vec<[f32; 3]>>,
     pub uvs: Option<Vec<[f32; 2]>>,
+    pub tangents: Option<Vec<[f32; 4]>>,
     pub indices: Vec<[u32; 3]>,
     pub material_ids: Vec<u32>,
 }
 
 /// The size a header implies, in u64 so that no count can overflow it.
 fn implied_size(flags: u32, vertices: u32, triangles: u32) -> u64 {
-    let per_vertex = 12 + if flags & FLAG_NORMALS != 0 { 12 } else { 0 } + if flags & FLAG_UVS != 0 { 8 } else { 0 };
+    let bytes_if = |flag: u32, bytes: u64| if flags & flag != 0 { bytes } else { 0 };
+    let per_vertex = 12 + bytes_if(FLAG_NORMALS, 12) + bytes_if(FLAG_UVS, 8) + bytes_if(FLAG_TANGENTS, 16);
     HEADER_BYTES + per_vertex * vertices as u64 + 16 * triangles as u64
 }
 
@@ -54,11 +62,16 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<RtMesh, AssetError> {
         return fail("not an .rtmesh file (bad magic bytes)".into());
     }
     let [version, flags, vertex_count, triangle_count] = [8, 12, 16, 20].map(|o| u32_at(bytes, o));
-    if version != VERSION {
-        return fail(format!("unsupported .rtmesh version {version} (this rt reads version {VERSION})"));
+    if !(OLDEST_VERSION..=VERSION).contains(&version) {
+        return fail(format!(
+            "unsupported .rtmesh version {version} (this rt reads versions {OLDEST_VERSION} to {VERSION})"
+        ));
     }
-    if flags & !(FLAG_NORMALS | FLAG_UVS) != 0 {
-        return fail(format!("unknown flags {flags:#x} (known: bit 0 normals, bit 1 uvs)"));
+    let known = if version == 1 { FLAG_NORMALS | FLAG_UVS } else { FLAG_NORMALS | FLAG_UVS | FLAG_TANGENTS };
+    if flags & !known != 0 {
+        return fail(format!(
+            "unknown flags {flags:#x} for version {version} (known: bit 0 normals, bit 1 uvs, bit 2 tangents from version 2)"
+        ));
     }
     // Checked before anything is allocated: a header cannot make rt reserve memory the
     // file does not back.
@@ -81,9 +94,10 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<RtMesh, AssetError> {
     let positions = bytemuck::pod_collect_to_vec(take(12 * v));
     let normals = (flags & FLAG_NORMALS != 0).then(|| bytemuck::pod_collect_to_vec(take(12 * v)));
     let uvs = (flags & FLAG_UVS != 0).then(|| bytemuck::pod_collect_to_vec(take(8 * v)));
+    let tangents = (flags & FLAG_TANGENTS != 0).then(|| bytemuck::pod_collect_to_vec(take(16 * v)));
     let indices = bytemuck::pod_collect_to_vec(take(12 * t));
     let material_ids = bytemuck::pod_collect_to_vec(take(4 * t));
-    Ok(RtMesh { positions, normals, uvs, indices, material_ids })
+    Ok(RtMesh { positions, normals, uvs, tangents, indices, material_ids })
 }
 
 /// Reads a `.rtmesh` file's geometry; see [`parse`].
@@ -94,7 +108,9 @@ pub fn read(path: &Path) -> Result<RtMesh, AssetError> {
 
 /// The bytes of `mesh`'s geometry as a `.rtmesh`.
 pub fn encode(mesh: &MeshData) -> Vec<u8> {
-    let flags = mesh.normals.as_ref().map_or(0, |_| FLAG_NORMALS) | mesh.uvs.as_ref().map_or(0, |_| FLAG_UVS);
+    let flags = mesh.normals.as_ref().map_or(0, |_| FLAG_NORMALS)
+        | mesh.uvs.as_ref().map_or(0, |_| FLAG_UVS)
+        | mesh.tangents.as_ref().map_or(0, |_| FLAG_TANGENTS);
     let (v, t) = (mesh.positions.len() as u32, mesh.indices.len() as u32);
     let mut out = Vec::with_capacity(implied_size(flags, v, t) as usize);
     out.extend_from_slice(&MAGIC);
@@ -107,6 +123,9 @@ pub fn encode(mesh: &MeshData) -> Vec<u8> {
     }
     if let Some(uvs) = &mesh.uvs {
         out.extend_from_slice(bytemuck::cast_slice(uvs));
+    }
+    if let Some(tangents) = &mesh.tangents {
+        out.extend_from_slice(bytemuck::cast_slice(tangents));
     }
     out.extend_from_slice(bytemuck::cast_slice(&mesh.indices));
     out.extend_from_slice(bytemuck::cast_slice(&mesh.material_ids));
@@ -131,9 +150,11 @@ mod tests {
             positions: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
             normals: Some(vec![[0.0, 0.0, 1.0]; 4]),
             uvs: Some(vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]),
+            tangents: Some(vec![[1.0, 0.0, 0.0, -1.0]; 4]),
             indices: vec![[0, 1, 2], [0, 2, 3]],
             material_ids: vec![0, 1],
             materials: vec![("a".into(), Material::default()), ("b".into(), Material::default())],
+            textures: Vec::new(),
         }
     }
 
@@ -145,17 +166,18 @@ mod tests {
     fn round_trips_every_section() {
         let mesh = quad();
         let bytes = encode(&mesh);
-        assert_eq!(bytes.len(), 24 + 4 * 32 + 2 * 16);
+        assert_eq!(bytes.len(), 24 + 4 * 48 + 2 * 16);
         let back = parse(Path::new("m.rtmesh"), &bytes).expect("parses");
         assert_eq!(back.positions, mesh.positions);
         assert_eq!(back.normals, mesh.normals);
         assert_eq!(back.uvs, mesh.uvs);
+        assert_eq!(back.tangents, mesh.tangents);
         assert_eq!(back.indices, mesh.indices);
         assert_eq!(back.material_ids, mesh.material_ids);
 
-        let bare = MeshData { normals: None, uvs: None, ..quad() };
+        let bare = MeshData { normals: None, uvs: None, tangents: None, ..quad() };
         let back = parse(Path::new("m.rtmesh"), &encode(&bare)).expect("parses");
-        assert!(back.normals.is_none() && back.uvs.is_none());
+        assert!(back.normals.is_none() && back.uvs.is_none() && back.tangents.is_none());
         assert_eq!(back.indices, bare.indices);
     }
 
@@ -183,10 +205,30 @@ mod tests {
         bytes[0] = b'X';
         assert!(error(&bytes).contains("bad magic"));
         let mut bytes = good.clone();
-        bytes[8] = 2;
-        assert!(error(&bytes).contains("unsupported .rtmesh version 2"));
+        bytes[8] = 3;
+        assert!(error(&bytes).contains("unsupported .rtmesh version 3"));
         let mut bytes = good;
-        bytes[12] = 7;
-        assert!(error(&bytes).contains("unknown flags 0x7"));
+        bytes[12] = 15;
+        assert!(error(&bytes).contains("unknown flags 0xf"));
+    }
+
+    /// A version 1 file: the header says 1 and there is no tangents section.
+    fn version_1(mesh: &MeshData) -> Vec<u8> {
+        let mut bytes = encode(&MeshData { tangents: None, ..mesh.clone() });
+        bytes[8..12].copy_from_slice(&1u32.to_le_bytes());
+        bytes
+    }
+
+    #[test]
+    fn version_1_files_are_still_read() {
+        let mesh = quad();
+        let back = parse(Path::new("m.rtmesh"), &version_1(&mesh)).expect("version 1 parses");
+        assert_eq!((back.normals, back.uvs, back.tangents), (mesh.normals.clone(), mesh.uvs.clone(), None));
+        assert_eq!(back.indices, mesh.indices);
+
+        // Bit 2 meant nothing in version 1.
+        let mut bytes = version_1(&mesh);
+        bytes[12] |= 4;
+        assert!(error(&bytes).contains("unknown flags 0x7 for version 1"), "{}", error(&bytes));
     }
 }

@@ -1,7 +1,7 @@
 //! Which files an asset path stands for: the file to import, the files it reads
 //! besides (materials, buffers), and where its BVH cache lives.
 
-use super::{AssetError, builtin, gltf_buffers};
+use super::{AssetError, builtin, gltf_buffers, gltf_textures};
 use std::path::{Path, PathBuf};
 
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -80,7 +80,13 @@ impl AssetFiles {
         let mut files = vec![self.main.clone()];
         let dir = self.main.parent().unwrap_or(Path::new(""));
         match &self.kind {
-            AssetKind::RtMesh { materials } => files.push(materials.clone()),
+            AssetKind::RtMesh { materials } => {
+                files.push(materials.clone());
+                // A glTF that cannot be read has no images to list; the import reports it.
+                if let Ok(gltf) = gltf::Gltf::open(materials) {
+                    files.extend(gltf_textures::image_files(&gltf.document).map(|name| dir.join(name)));
+                }
+            }
             AssetKind::Obj => {
                 let bytes = builtin::read(&self.main).map_err(|e| AssetError::new(&self.main, e.message()))?;
                 files.extend(material_libraries(&bytes).map(|name| dir.join(name)));
@@ -96,6 +102,7 @@ impl AssetFiles {
                         files.push(file);
                     }
                 }
+                files.extend(gltf_textures::image_files(&gltf.document).map(|name| dir.join(name)));
             }
         }
         Ok(files)
@@ -134,6 +141,27 @@ fn material_libraries(obj: &[u8]) -> impl Iterator<Item = String> + '_ {
         let rest = line.trim_start().strip_prefix("mtllib")?;
         (rest.starts_with(char::is_whitespace) && !rest.trim().is_empty()).then(|| rest.trim().to_owned())
     })
+}
+
+/// glTF URIs are percent-encoded (RFC 3986); a file name with a space arrives as `%20`.
+pub(super) fn percent_decode(uri: &str) -> String {
+    let bytes = uri.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        let hex = |b: u8| (b as char).to_digit(16);
+        match (bytes[i], bytes.get(i + 1).copied().and_then(hex), bytes.get(i + 2).copied().and_then(hex)) {
+            (b'%', Some(hi), Some(lo)) => {
+                out.push((hi * 16 + lo) as u8);
+                i += 3;
+            }
+            (b, _, _) => {
+                out.push(b);
+                i += 1;
+            }
+        }
+    }
+    String::from_utf8_lossy(&out).into_owned()
 }
 
 #[cfg(test)]

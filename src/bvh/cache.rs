@@ -12,7 +12,13 @@
 //!     shading     GpuTriangleShading × m
 //!     materials   CachedMaterial × k      (the asset's materials, in its own order)
 //!     names       k × (u32 byte length, UTF-8 bytes): the materials' names
+//!     textures    CachedTexture × j      (size, wrap modes, colour space, texel range)
+//!     texels      u32 × (every texture's mip chain, RGBA8, in table order)
 //! ```
+//!
+//! Textures are decoded and their mips built at pack time, so a render never decodes
+//! an image; the source hash covers the image files, so a changed image re-packs the
+//! assets that use it, and only those.
 //!
 //! Materials are in the cache rather than read from the `.gltf`/`.mtl` at load time:
 //! an OBJ's material table depends on its faces (the default material it appends), so
@@ -24,10 +30,11 @@
 
 use super::cache_check::check_contents;
 use super::cached_material::CachedMaterial;
+use super::cached_texture::{self, CachedTexture};
 use super::mesh_bvh::{BuildQuality, MeshBvh};
 use super::node::BvhStats;
 use super::wide_node::NODE_LAYOUT;
-use crate::asset::{AssetError, AssetFiles};
+use crate::asset::{AssetError, AssetFiles, TextureImage};
 use crate::layout::{GpuTriangle, GpuTriangleShading, GpuWideNode};
 use crate::scene::Material;
 use bytemuck::{Pod, Zeroable};
@@ -38,7 +45,7 @@ use std::path::Path;
 use std::time::Duration;
 
 pub const MAGIC: [u8; 8] = *b"RTBVH\0\0\0";
-pub const FORMAT_VERSION: u32 = 3;
+pub const FORMAT_VERSION: u32 = 4;
 const ALIGN: u64 = 16;
 
 #[repr(C)]
@@ -53,7 +60,9 @@ const TRIANGLES: usize = 1;
 const SHADING: usize = 2;
 const MATERIALS: usize = 3;
 const NAMES: usize = 4;
-const SECTION_COUNT: usize = 5;
+const TEXTURES: usize = 5;
+const TEXELS: usize = 6;
+const SECTION_COUNT: usize = 7;
 
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
@@ -85,6 +94,8 @@ const HEADER_BYTES: u64 = size_of::<Header>() as u64;
 pub struct PackedMesh {
     pub bvh: MeshBvh,
     pub materials: Vec<(String, Material)>,
+    /// The images the materials' textures index, with their mips.
+    pub textures: Vec<TextureImage>,
     /// Of the source mesh, for `rt info`.
     pub vertex_count: u32,
     pub triangle_count: u32,
@@ -134,7 +145,11 @@ pub fn source_hash(files: &AssetFiles) -> Result<[u8; 32], AssetError> {
 /// BLAKE3 of everything besides the sources that decides the cache's bytes.
 pub fn params_hash(quality: BuildQuality) -> [u8; 32] {
     let sizes = [size_of::<GpuWideNode>(), size_of::<GpuTriangle>(), size_of::<GpuTriangleShading>()];
-    let params = format!("rtbvh {FORMAT_VERSION} {NODE_LAYOUT} {quality:?} {sizes:?} {}", size_of::<CachedMaterial>());
+    let params = format!(
+        "rtbvh {FORMAT_VERSION} {NODE_LAYOUT} {quality:?} {sizes:?} {} {}",
+        size_of::<CachedMaterial>(),
+        size_of::<CachedTexture>()
+    );
     *blake3::hash(params.as_bytes()).as_bytes()
 }
 
@@ -167,12 +182,15 @@ fn decode_names(mut bytes: &[u8]) -> Result<Vec<String>, String> {
 pub fn encode(mesh: &PackedMesh, source_hash: [u8; 32], params_hash: [u8; 32]) -> Vec<u8> {
     let materials: Vec<CachedMaterial> = mesh.materials.iter().map(|(_, m)| CachedMaterial::from(m)).collect();
     let names = encode_names(&mesh.materials);
+    let (texture_table, texels) = cached_texture::encode(&mesh.textures);
     let payloads: [&[u8]; SECTION_COUNT] = [
         bytemuck::cast_slice(&mesh.bvh.nodes),
         bytemuck::cast_slice(&mesh.bvh.triangles),
         bytemuck::cast_slice(&mesh.bvh.shading),
         bytemuck::cast_slice(&materials),
         &names,
+        bytemuck::cast_slice(&texture_table),
+        bytemuck::cast_slice(&texels),
     ];
     let mut sections = [Section::default(); SECTION_COUNT];
     let mut offset = align(HEADER_BYTES);
@@ -266,7 +284,18 @@ pub fn read(path: &Path, source_hash: [u8; 32], params_hash: [u8; 32]) -> Result
     let names =
         decode_names(&names_bytes[names_section.offset as usize..][..names_section.bytes as usize]).map_err(invalid)?;
     let bounds = [header.bounds_min, header.bounds_max];
+    // CachedTexture holds u64s: copied out rather than cast in place from u32 words.
+    let texture_table: Vec<CachedTexture> =
+        bytemuck::pod_collect_to_vec(bytemuck::cast_slice::<u32, u8>(section(TEXTURES)));
+    let textures = cached_texture::decode(&texture_table, section(TEXELS)).map_err(invalid)?;
     check_contents(&nodes, &triangles, &shading, materials, names.len(), bounds).map_err(invalid)?;
+    if let Some((i, t)) = materials
+        .iter()
+        .enumerate()
+        .find_map(|(i, m)| m.textures().find(|&t| t as usize >= textures.len()).map(|t| (i, t)))
+    {
+        return Err(invalid(format!("material {i} uses texture {t} of {}", textures.len())));
+    }
 
     let stats = BvhStats {
         nodes: header.stats_nodes as usize,
@@ -284,7 +313,13 @@ pub fn read(path: &Path, source_hash: [u8; 32], params_hash: [u8; 32]) -> Result
         build_time: Duration::ZERO,
     };
     let materials = names.into_iter().zip(materials.iter().map(Material::from)).collect();
-    Ok(PackedMesh { bvh, materials, vertex_count: header.source_vertices, triangle_count: header.source_triangles })
+    Ok(PackedMesh {
+        bvh,
+        materials,
+        textures,
+        vertex_count: header.source_vertices,
+        triangle_count: header.source_triangles,
+    })
 }
 
 /// Magic, version, layout and a section table that tiles the file exactly.
@@ -310,6 +345,8 @@ fn check_header(header: &Header, len: u64) -> Result<(), CacheProblem> {
         size_of::<GpuTriangleShading>(),
         size_of::<CachedMaterial>(),
         1,
+        size_of::<CachedTexture>(),
+        4,
     ];
     let mut end = align(HEADER_BYTES);
     for (i, (s, size)) in header.sections.iter().zip(element_sizes).enumerate() {

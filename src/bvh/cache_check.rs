@@ -77,6 +77,9 @@ pub(super) fn check_contents(
     if let Some(i) = shading.iter().position(|s| ![s.n0, s.n1, s.n2].as_flattened().iter().all(|v| v.is_finite())) {
         return Err(format!("triangle {i} has a non-finite shading normal"));
     }
+    if let Some(i) = shading.iter().position(|s| ![s.u0, s.u1, s.u2].iter().chain(&s.v).all(|v| v.is_finite())) {
+        return Err(format!("triangle {i} has a non-finite texture coordinate"));
+    }
     if let Some(i) = materials.iter().position(|m| !m.all_finite()) {
         return Err(format!("material {i} has a non-finite value"));
     }
@@ -98,6 +101,7 @@ mod tests {
             vertex_count: mesh.positions.len() as u32,
             triangle_count: mesh.indices.len() as u32,
             materials: mesh.materials,
+            textures: mesh.textures,
         }
     }
 

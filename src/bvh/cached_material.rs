@@ -1,7 +1,18 @@
 //! Materials as a cache file stores them: every field of [`Material`], as
 //! written, so that loading a cache gives exactly what importing the source gives.
 
-use crate::scene::Material;
+use crate::scene::{Material, MaterialTextures};
+
+/// A texture slot left empty.
+pub const NO_TEXTURE: u32 = u32::MAX;
+
+fn slot(index: Option<u32>) -> u32 {
+    index.unwrap_or(NO_TEXTURE)
+}
+
+fn unslot(index: u32) -> Option<u32> {
+    (index != NO_TEXTURE).then_some(index)
+}
 use bytemuck::{Pod, Zeroable};
 
 #[repr(C)]
@@ -20,6 +31,13 @@ pub struct CachedMaterial {
     pub absorption: [f32; 3],
     pub volume_emission: [f32; 3],
     pub _pad: f32,
+    /// Texture indices into the asset's textures, or [`NO_TEXTURE`].
+    pub base_color_texture: u32,
+    pub metallic_roughness_texture: u32,
+    pub emission_texture: u32,
+    pub metallic: f32,
+    pub base_alpha: f32,
+    pub alpha_cutoff: f32,
 }
 
 impl From<&Material> for CachedMaterial {
@@ -37,6 +55,12 @@ impl From<&Material> for CachedMaterial {
             absorption: m.absorption,
             volume_emission: m.volume_emission,
             _pad: 0.0,
+            base_color_texture: slot(m.textures.base_color),
+            metallic_roughness_texture: slot(m.textures.metallic_roughness),
+            emission_texture: slot(m.textures.emission),
+            metallic: m.textures.metallic,
+            base_alpha: m.textures.base_alpha,
+            alpha_cutoff: m.textures.alpha_cutoff,
         }
     }
 }
@@ -55,6 +79,14 @@ impl From<&CachedMaterial> for Material {
             emission: m.emission,
             absorption: m.absorption,
             volume_emission: m.volume_emission,
+            textures: MaterialTextures {
+                base_color: unslot(m.base_color_texture),
+                metallic_roughness: unslot(m.metallic_roughness_texture),
+                emission: unslot(m.emission_texture),
+                metallic: m.metallic,
+                base_alpha: m.base_alpha,
+                alpha_cutoff: m.alpha_cutoff,
+            },
         }
     }
 }
@@ -62,8 +94,25 @@ impl From<&CachedMaterial> for Material {
 impl CachedMaterial {
     pub fn all_finite(&self) -> bool {
         let vectors = [self.base_color, self.emission, self.absorption, self.volume_emission];
-        let scalars =
-            [self.diffuse, self.specular, self.reflection, self.transmission, self.ior, self.roughness, self.hardness];
+        let scalars = [
+            self.diffuse,
+            self.specular,
+            self.reflection,
+            self.transmission,
+            self.ior,
+            self.roughness,
+            self.hardness,
+            self.metallic,
+            self.base_alpha,
+            self.alpha_cutoff,
+        ];
         vectors.into_iter().flatten().chain(scalars).all(f32::is_finite)
+    }
+
+    /// The texture slots that are filled.
+    pub fn textures(&self) -> impl Iterator<Item = u32> {
+        [self.base_color_texture, self.metallic_roughness_texture, self.emission_texture]
+            .into_iter()
+            .filter(|&t| t != NO_TEXTURE)
     }
 }

@@ -107,7 +107,20 @@ fn triangle_shading(mesh: &MeshData, triangle: usize) -> GpuTriangleShading {
             [g; 3]
         }
     };
-    GpuTriangleShading { n0: n[0], n1: n[1], n2: n[2], ..Default::default() }
+    let uv = match &mesh.uvs {
+        Some(uvs) => t.map(|k| uvs[k as usize]),
+        None => [[0.0; 2]; 3],
+    };
+    GpuTriangleShading {
+        n0: n[0],
+        u0: uv[0][0],
+        n1: n[1],
+        u1: uv[1][0],
+        n2: n[2],
+        u2: uv[2][0],
+        v: uv.map(|c| c[1]),
+        _pad0: 0,
+    }
 }
 
 fn bounds(points: &[[f32; 3]]) -> (Vec3, Vec3) {

@@ -5,6 +5,7 @@
 pub mod cache;
 mod cache_check;
 mod cached_material;
+mod cached_texture;
 mod lights;
 mod mesh_bvh;
 mod node;

@@ -19,6 +19,7 @@ pub struct LoadedMesh {
     pub path: PathBuf,
     pub bvh: MeshBvh,
     pub materials: Vec<(String, Material)>,
+    pub textures: Vec<crate::asset::TextureImage>,
     /// Of the source mesh.
     pub vertex_count: usize,
     pub triangle_count: usize,
@@ -57,6 +58,7 @@ impl LoadedMesh {
             path: path.to_path_buf(),
             bvh: packed.bvh,
             materials: packed.materials,
+            textures: packed.textures,
             vertex_count: packed.vertex_count as usize,
             triangle_count: packed.triangle_count as usize,
             provenance,
@@ -84,6 +86,7 @@ fn import_and_build(files: &AssetFiles, quality: BuildQuality) -> Result<PackedM
         vertex_count: mesh.positions.len() as u32,
         triangle_count: mesh.indices.len() as u32,
         materials: mesh.materials,
+        textures: mesh.textures,
     })
 }
 

@@ -46,6 +46,11 @@ pub struct SceneGeometry {
 }
 
 impl SceneGeometry {
+    /// The scene's textures in the order the materials index them: each mesh's in turn.
+    pub fn textures(&self) -> impl Iterator<Item = &crate::asset::TextureImage> {
+        self.meshes.iter().flat_map(|m| &m.textures)
+    }
+
     /// What the feature analysis needs to know of the geometry.
     pub fn summary(&self) -> GeometrySummary {
         GeometrySummary {
@@ -119,6 +124,8 @@ impl SceneGeometry {
         let mut triangles = Vec::new();
         let mut shading = Vec::new();
         let mut slots = Vec::new();
+        // Each mesh's textures follow the previous meshes' in the scene's texture table.
+        let mut texture_base = 0u32;
         for mesh in &meshes {
             slots.push(MeshSlot {
                 node_offset: wide_nodes.len() as u32,
@@ -128,7 +135,14 @@ impl SceneGeometry {
             wide_nodes.extend_from_slice(&mesh.bvh.nodes);
             triangles.extend_from_slice(&mesh.bvh.triangles);
             shading.extend_from_slice(&mesh.bvh.shading);
-            materials.extend(mesh.materials.iter().map(|(_, m)| m.clone()));
+            materials.extend(mesh.materials.iter().map(|(_, m)| {
+                let mut m = m.clone();
+                for index in m.textures.indices_mut().into_iter().flatten() {
+                    *index += texture_base;
+                }
+                m
+            }));
+            texture_base += mesh.textures.len() as u32;
         }
 
         let mut placement = Placement::new(&meshes, &slots, materials.len());

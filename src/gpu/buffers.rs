@@ -3,6 +3,7 @@
 use super::GpuContext;
 use super::bind::{Binding, bind_group, sequential_layout};
 use super::readback::read_buffer;
+use super::textures::TextureStore;
 use crate::bvh::SceneGeometry;
 use crate::layout::GpuFrame;
 use anyhow::{Result, anyhow};
@@ -19,7 +20,7 @@ pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     use Binding::*;
     let bindings = [
         Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadWrite, ReadOnly, ReadOnly,
-        Uniform, ReadOnly,
+        Uniform, ReadOnly, ReadOnly, ReadOnly,
     ];
     sequential_layout(device, "scene", wgpu::ShaderStages::COMPUTE, &bindings)
 }
@@ -52,11 +53,14 @@ struct SceneData {
     /// The lamps' count and share of light samples.
     lamp_info: wgpu::Buffer,
     wide_nodes: wgpu::Buffer,
+    /// The texture store (see `super::textures`): its table and its texels.
+    textures: wgpu::Buffer,
+    texels: wgpu::Buffer,
 }
 
 impl SceneData {
     /// The buffers in binding order (see [`scene_bind_group_layout`]).
-    fn bindings(&self) -> [&wgpu::Buffer; 13] {
+    fn bindings(&self) -> [&wgpu::Buffer; 15] {
         [
             &self.frame,
             &self.nodes,
@@ -71,6 +75,8 @@ impl SceneData {
             &self.lamps,
             &self.lamp_info,
             &self.wide_nodes,
+            &self.textures,
+            &self.texels,
         ]
     }
 }
@@ -124,6 +130,13 @@ fn lamp_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer, wg
     (lamps, info)
 }
 
+fn texture_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer, wgpu::Buffer) {
+    let max = ctx.device.limits().max_storage_buffer_binding_size;
+    let store = TextureStore::pack(geometry.textures(), max);
+    let none = wgpu::BufferUsages::empty();
+    (storage(ctx, "textures", &store.table, none), storage(ctx, "texels", &store.texels, none))
+}
+
 fn material_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer, wgpu::Buffer) {
     let writable = wgpu::BufferUsages::COPY_DST;
     (storage(ctx, "materials", &geometry.materials, writable), storage(ctx, "emitters", &geometry.emitters, writable))
@@ -141,6 +154,7 @@ impl SceneBuffers {
         let counters = wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST;
         let stats = storage(ctx, "stats", &[0u32; STAT_COUNT], counters);
         let (lamps, lamp_info) = lamp_buffers(ctx, geometry);
+        let (textures, texels) = texture_buffers(ctx, geometry);
         let data = SceneData {
             frame,
             nodes,
@@ -155,6 +169,8 @@ impl SceneBuffers {
             lamps,
             lamp_info,
             wide_nodes,
+            textures,
+            texels,
         };
         let bind_group = bind_group(ctx, "scene", layout, &data.bindings());
         Ok(Self { data, bind_group, sky_bind_group: None })
@@ -173,6 +189,7 @@ impl SceneBuffers {
             geometry_buffers(ctx, geometry)?;
         (d.materials, d.emitters) = material_buffers(ctx, geometry);
         (d.lamps, d.lamp_info) = lamp_buffers(ctx, geometry);
+        (d.textures, d.texels) = texture_buffers(ctx, geometry);
         self.bind_group = bind_group(ctx, "scene", layout, &self.data.bindings());
         Ok(())
     }

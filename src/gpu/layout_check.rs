@@ -85,7 +85,8 @@ fn host_structs_match_wgsl_layouts() {
             ]
         ),
         host_layout!("Triangle", GpuTriangle, [v0, material, v1, v2]),
-        host_layout!("TriangleShading", GpuTriangleShading, [n0, n1, n2]),
+        host_layout!("TriangleShading", GpuTriangleShading, [n0, u0, n1, u1, n2, u2, v]),
+        host_layout!("Texture", GpuTexture, [offset, width, height, levels, flags]),
         host_layout!(
             "Instance",
             GpuInstance,
@@ -106,7 +107,14 @@ fn host_structs_match_wgsl_layouts() {
                 transmission,
                 ior,
                 alpha,
-                emission_luminance
+                emission_luminance,
+                base_color_texture,
+                metallic_roughness_texture,
+                emission_texture,
+                metallic,
+                roughness,
+                base_alpha,
+                alpha_cutoff
             ]
         ),
         host_layout!("Emitter", GpuEmitter, [primitive, instance, cdf]),

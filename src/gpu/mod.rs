@@ -10,6 +10,7 @@ mod layout_check;
 mod pipelines;
 mod readback;
 pub mod shader;
+mod textures;
 mod timer;
 
 pub use bind::{Binding, bind_group, sequential_layout};

@@ -69,6 +69,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("sphere.wgsl"),
     shader!("sphere_test.wgsl"),
     shader!("sun.wgsl"),
+    shader!("texture.wgsl"),
     shader!("surface.wgsl"),
     shader!("trace_kernel.wgsl"),
     shader!("transform.wgsl"),

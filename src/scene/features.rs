@@ -67,6 +67,10 @@ pub struct FeatureSet {
     pub media: bool,
     /// `[[light]]` lamps, by kind.
     pub lamps: LampKinds,
+    /// Image textures on some material.
+    pub textures: bool,
+    /// Cut-outs: some material's alpha can remove parts of its surface, for every ray.
+    pub alpha_mask: bool,
     pub sampling: Sampling,
     /// A thin-lens camera: rays start across the aperture.
     pub depth_of_field: bool,
@@ -110,10 +114,15 @@ impl FeatureSet {
                 Sky::Atmosphere(_) => SkyFeature::Atmosphere,
             },
             sun: scene.sun.is_some(),
-            glossy: materials_in_use.iter().any(|m| (m.specular > 0.0 || m.reflection > 0.0) && rough(&m)),
+            // A metallic-roughness texture may make any texel a rough metal.
+            glossy: materials_in_use.iter().any(|m| {
+                ((m.specular > 0.0 || m.reflection > 0.0) && rough(&m)) || m.textures.metallic_roughness.is_some()
+            }),
             transmission,
             media: transmissive.iter().any(|m| m.has_medium()),
             lamps: LampKinds::of(&scene.lights),
+            textures: materials_in_use.iter().any(|m| m.textures.any()),
+            alpha_mask: materials_in_use.iter().any(|m| m.textures.alpha_cutoff > 0.0),
             sampling: settings.sampling,
             depth_of_field: scene.camera.depth_of_field.is_some(),
         }
@@ -131,6 +140,8 @@ impl FeatureSet {
             transmission: Transmission::Rough(rough),
             media: true,
             lamps: LampKinds::ALL,
+            textures: true,
+            alpha_mask: true,
             sampling,
             depth_of_field: true,
         }
@@ -158,6 +169,8 @@ impl FeatureSet {
             "lamp_round" => self.lamps.point || self.lamps.spot,
             "lamp_area" => self.lamps.area,
             "lamp_sun" => self.lamps.sun,
+            "textures" => self.textures,
+            "alpha_mask" => self.alpha_mask,
             "nee" => self.sampling == Sampling::Nee,
             "depth_of_field" => self.depth_of_field,
             _ => return None,
@@ -176,6 +189,8 @@ impl fmt::Display for FeatureSet {
             (self.glossy, "glossy"),
             (self.media, "media"),
             (self.depth_of_field, "depth-of-field"),
+            (self.textures, "textures"),
+            (self.alpha_mask, "alpha-mask"),
         ] {
             if on {
                 parts.push(name.to_string());

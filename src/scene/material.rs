@@ -19,6 +19,53 @@ pub struct Material {
     pub emission: [f32; 3],
     pub absorption: [f32; 3],
     pub volume_emission: [f32; 3],
+    /// Image textures, from the asset importers (scene files give none).
+    #[serde(skip)]
+    pub textures: MaterialTextures,
+}
+
+/// A material's image textures, as indices into its asset's texture list, and the
+/// factors that go with them (glTF's metallic-roughness model).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MaterialTextures {
+    /// RGB multiplies `base_color`; A multiplies `base_alpha` for cut-outs.
+    pub base_color: Option<u32>,
+    /// G × `roughness` is the roughness, B × `metallic` the metal fraction. With it, the
+    /// lobe weights are those of the non-metal part (as if `metallic` were 0).
+    pub metallic_roughness: Option<u32>,
+    /// RGB multiplies `emission`.
+    pub emission: Option<u32>,
+    /// glTF's `metallicFactor`, used with `metallic_roughness` only.
+    pub metallic: f32,
+    /// glTF's `baseColorFactor` alpha.
+    pub base_alpha: f32,
+    /// glTF `alphaMode` MASK's `alphaCutoff`: texels whose alpha is below it are not
+    /// there at all, for every ray. 0: opaque.
+    pub alpha_cutoff: f32,
+}
+
+impl Default for MaterialTextures {
+    fn default() -> Self {
+        Self {
+            base_color: None,
+            metallic_roughness: None,
+            emission: None,
+            metallic: 0.0,
+            base_alpha: 1.0,
+            alpha_cutoff: 0.0,
+        }
+    }
+}
+
+impl MaterialTextures {
+    pub fn any(&self) -> bool {
+        self.base_color.is_some() || self.metallic_roughness.is_some() || self.emission.is_some()
+    }
+
+    /// The indices, for offsetting into a scene-wide texture list.
+    pub fn indices_mut(&mut self) -> [&mut Option<u32>; 3] {
+        [&mut self.base_color, &mut self.metallic_roughness, &mut self.emission]
+    }
 }
 
 impl Default for Material {
@@ -35,6 +82,7 @@ impl Default for Material {
             emission: [0.0; 3],
             absorption: [0.0; 3],
             volume_emission: [0.0; 3],
+            textures: MaterialTextures::default(),
         }
     }
 }

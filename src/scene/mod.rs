@@ -18,7 +18,7 @@ pub use builtin::{BUILTIN_PREFIX, default_scene};
 pub use camera::{Camera, DepthOfField, Projection, SensorFit};
 pub use features::{ALPHA_DELTA, FeatureSet, GeometrySummary, LampKinds, SkyFeature, Transmission};
 pub use light::{AreaShape, Light, LightShape};
-pub use material::{Material, luminance};
+pub use material::{Material, MaterialTextures, luminance};
 pub use parse::{SceneError, hint as did_you_mean, load, parse};
 pub use validate::MAX_IMAGE_SIDE;
 

@@ -35,6 +35,8 @@ fn feature_sets() -> Vec<FeatureSet> {
                 area: bits % 7 >= 5,
                 sun: (bits / 8) % 3 == 1,
             },
+            textures: on(0) != on(4),
+            alpha_mask: on(0) != on(4) && on(6),
             sampling: if on(0) { Sampling::Nee } else { Sampling::Resampled },
             depth_of_field: on(4) != on(6),
         });
@@ -57,6 +59,8 @@ fn plain() -> FeatureSet {
         transmission: Transmission::None,
         media: false,
         lamps: LampKinds::default(),
+        textures: false,
+        alpha_mask: false,
         sampling: Sampling::Nee,
         depth_of_field: false,
     }
@@ -199,6 +203,10 @@ fn absent_effects_leave_no_code() {
         "lamps",
         "@binding(10)",
         "@binding(11)",
+        "fn sample_texture",
+        "var<storage, read> texels",
+        "fn opaque_at",
+        "uv_lod",
     ] {
         assert!(!source.contains(absent), "{absent:?} is in the plain pipeline");
     }
@@ -220,7 +228,15 @@ fn absent_effects_leave_no_code() {
         assert!(lens.contains("fn sample_aperture"), "no aperture in the depth-of-field {program:?} pipeline");
     }
     // Includes inside dropped blocks are not followed: the files are not there at all.
-    for file in ["sphere.wgsl", "sphere_test.wgsl", "microfacet.wgsl", "dielectric.wgsl", "sun.wgsl", "segment.wgsl"] {
+    for file in [
+        "sphere.wgsl",
+        "sphere_test.wgsl",
+        "microfacet.wgsl",
+        "dielectric.wgsl",
+        "sun.wgsl",
+        "segment.wgsl",
+        "texture.wgsl",
+    ] {
         assert!(!files_in(&source).contains(&file), "{file} is in the plain pipeline");
     }
     let uniform_sun = FeatureSet { sky: SkyFeature::Uniform, sun: true, ..plain };

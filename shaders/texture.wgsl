@@ -1,0 +1,194 @@
+// The scene's image textures: every texel of every texture, mip levels included, in
+// one storage buffer of packed RGBA8 (no binding arrays: lavapipe has none), and a
+// table of where each texture lies (`Texture` in common.wgsl). Filtering is bilinear
+// within a level and linear between two levels, on the stored values: a colour
+// texture's sRGB codes are filtered and then decoded, once, as Cycles does with 8-bit
+// images (its mips are averaged in linear light on the host). The level comes from a ray cone's
+// footprint (Akenine-Möller et al., Ray Tracing Gems ch. 20): log2 of the cone's width
+// over |cos| at the hit, plus the triangle's texture-to-world density.
+
+//#include "common.wgsl"
+//#include "hit.wgsl"
+//#include "transform.wgsl"
+
+const TEXTURE_SRGB: u32 = 1u;
+const WRAP_REPEAT: u32 = 0u;
+const WRAP_CLAMP: u32 = 1u;
+const WRAP_MIRROR: u32 = 2u;
+
+struct TexturePoint {
+    uv: vec2f,
+    // log2 √(texture-space area / world-space area) of the triangle, texture space
+    // counted in whole textures: a texture adds log2 √(width·height) to it.
+    uv_lod: f32,
+}
+
+fn triangle_uvs(triangle: u32) -> array<vec2f, 3> {
+    let sh = shading[triangle];
+    return array<vec2f, 3>(vec2f(sh.u0, sh.v.x), vec2f(sh.u1, sh.v.y), vec2f(sh.u2, sh.v.z));
+}
+
+fn triangle_uv(triangle: u32, b1: f32, b2: f32) -> vec2f {
+    let uv = triangle_uvs(triangle);
+    return (1.0 - b1 - b2) * uv[0] + b1 * uv[1] + b2 * uv[2];
+}
+
+fn texture_point(hit: Hit) -> TexturePoint {
+    if hit.kind != HIT_TRIANGLE {
+        return TexturePoint(vec2f(0.0), 0.0);
+    }
+    let uv = triangle_uvs(hit.primitive);
+    let tri = triangles[hit.primitive];
+    let to_world = instances[hit.instance].object_to_world;
+    let world_area = length(cross(transform_vector(to_world, tri.v1 - tri.v0), transform_vector(to_world, tri.v2 - tri.v0)));
+    let d1 = uv[1] - uv[0];
+    let d2 = uv[2] - uv[0];
+    let uv_area = abs(d1.x * d2.y - d1.y * d2.x);
+    return TexturePoint(triangle_uv(hit.primitive, hit.b1, hit.b2), 0.5 * log2(uv_area / world_area));
+}
+
+fn srgb_to_linear(c: vec3f) -> vec3f {
+    return select(pow((c + 0.055) / 1.055, vec3f(2.4)), c / 12.92, c <= vec3f(0.04045));
+}
+
+// Brings a coordinate into one period of its wrap mode, so that texel indices stay small.
+fn wrap_coordinate(u: f32, mode: u32) -> f32 {
+    if mode == WRAP_CLAMP {
+        return clamp(u, 0.0, 1.0);
+    }
+    if mode == WRAP_MIRROR {
+        return u - 2.0 * floor(u * 0.5);
+    }
+    return u - floor(u);
+}
+
+fn wrap_texel(i: i32, size: i32, mode: u32) -> i32 {
+    if mode == WRAP_CLAMP {
+        return clamp(i, 0, size - 1);
+    }
+    if mode == WRAP_MIRROR {
+        let period = 2 * size;
+        let j = ((i % period) + period) % period;
+        return select(j, period - 1 - j, j >= size);
+    }
+    return ((i % size) + size) % size;
+}
+
+fn fetch_texel(level_offset: u32, width: u32, x: i32, y: i32) -> vec4f {
+    return unpack4x8unorm(texels[level_offset + u32(y) * width + u32(x)]);
+}
+
+// What a texture's stored (filtered) values mean: colour in linear light, or data.
+fn decoded(t: Texture, c: vec4f) -> vec4f {
+    if (t.flags & TEXTURE_SRGB) != 0u {
+        return vec4f(srgb_to_linear(c.rgb), c.a);
+    }
+    return c;
+}
+
+// Bilinear filtering of the stored values within one mip level (rows from the top; v
+// from the bottom).
+fn filter_level(t: Texture, level: u32, uv: vec2f) -> vec4f {
+    var offset = t.offset;
+    var w = t.width;
+    var h = t.height;
+    for (var l = 0u; l < level; l++) {
+        offset += w * h;
+        w = max(w / 2u, 1u);
+        h = max(h / 2u, 1u);
+    }
+    let wrap_u = (t.flags >> 1u) & 3u;
+    let wrap_v = (t.flags >> 3u) & 3u;
+    let x = wrap_coordinate(uv.x, wrap_u) * f32(w) - 0.5;
+    let y = (1.0 - wrap_coordinate(uv.y, wrap_v)) * f32(h) - 0.5;
+    let x0 = floor(x);
+    let y0 = floor(y);
+    let f = vec2f(x - x0, y - y0);
+    let size = vec2i(i32(w), i32(h));
+    let xa = wrap_texel(i32(x0), size.x, wrap_u);
+    let xb = wrap_texel(i32(x0) + 1, size.x, wrap_u);
+    let ya = wrap_texel(i32(y0), size.y, wrap_v);
+    let yb = wrap_texel(i32(y0) + 1, size.y, wrap_v);
+    let top = mix(fetch_texel(offset, w, xa, ya), fetch_texel(offset, w, xb, ya), f.x);
+    let bottom = mix(fetch_texel(offset, w, xa, yb), fetch_texel(offset, w, xb, yb), f.x);
+    return mix(top, bottom, f.y);
+}
+
+// One mip level, bilinear, decoded.
+fn sample_level(t: Texture, level: u32, uv: vec2f) -> vec4f {
+    return decoded(t, filter_level(t, level, uv));
+}
+
+// Texture `index` at `uv`, filtered over a footprint of level `lod` (see the top).
+fn sample_texture(index: u32, uv: vec2f, lod: f32) -> vec4f {
+    let t = textures[index];
+    var lambda = min(lod + 0.5 * log2(f32(t.width) * f32(t.height)), f32(t.levels - 1u));
+    // Also catches a NaN level, from a triangle whose texture coordinates are all alike.
+    if !(lambda > 0.0) {
+        lambda = 0.0;
+    }
+    let fine = u32(lambda);
+    let coarse_weight = lambda - f32(fine);
+    let a = filter_level(t, fine, uv);
+    if coarse_weight <= 0.0 || fine + 1u >= t.levels {
+        return decoded(t, a);
+    }
+    return decoded(t, mix(a, filter_level(t, fine + 1u, uv), coarse_weight));
+}
+
+// The material at a point, its textures applied; `footprint_lod` is log2 of the ray
+// cone's width over |cos| there.
+fn textured_material(material: Material, p: TexturePoint, footprint_lod: f32) -> Material {
+    var m = material;
+    let lod = p.uv_lod + footprint_lod;
+    if m.base_color_texture != NO_TEXTURE {
+        m.base_color *= sample_texture(m.base_color_texture, p.uv, lod).rgb;
+    }
+    if m.metallic_roughness_texture != NO_TEXTURE {
+        // glTF's packing: G roughness, B metal. The host's lobe weights are the non-metal part's.
+        let mr = sample_texture(m.metallic_roughness_texture, p.uv, lod);
+        let metal = m.metallic * mr.b;
+        let dielectric = 1.0 - metal;
+        m.diffuse *= dielectric;
+        m.specular *= dielectric;
+        m.transmission *= dielectric;
+        m.reflection = metal;
+        let roughness = m.roughness * mr.g;
+        m.alpha = roughness * roughness;
+    }
+    if m.emission_texture != NO_TEXTURE {
+        m.emission *= sample_texture(m.emission_texture, p.uv, lod).rgb;
+    }
+    return m;
+}
+
+// The emission of an emissive triangle at barycentrics (b1, b2), at the finest level
+// (a light sample has no footprint).
+fn textured_emission(m: Material, triangle: u32, b1: f32, b2: f32) -> vec3f {
+    if m.emission_texture == NO_TEXTURE {
+        return m.emission;
+    }
+    return m.emission * sample_level(textures[m.emission_texture], 0u, triangle_uv(triangle, b1, b2)).rgb;
+}
+
+//#if alpha_mask
+// Whether a candidate hit on a triangle is there at all: where the opacity (base
+// alpha × the base colour texture's alpha) is below the material's cutoff, every ray,
+// shadow rays included, passes through. At the finest level, so that the cut's shape
+// does not change with distance.
+fn opaque_at(inst: Instance, triangle: u32, b1: f32, b2: f32) -> bool {
+    var material = inst.material_override;
+    if material == NO_MATERIAL {
+        material = inst.material_base + triangles[triangle].material;
+    }
+    let m = materials[material];
+    if m.alpha_cutoff <= 0.0 {
+        return true;
+    }
+    var alpha = m.base_alpha;
+    if m.base_color_texture != NO_TEXTURE {
+        alpha *= sample_level(textures[m.base_color_texture], 0u, triangle_uv(triangle, b1, b2)).a;
+    }
+    return alpha >= m.alpha_cutoff;
+}
+//#endif

@@ -1,0 +1,95 @@
+//! The image textures of a glTF file's materials: images embedded in a buffer view
+//! (`.glb`), in data URIs, or in PNG/JPEG files beside the glTF, with their samplers'
+//! wrap modes. Each (image, colour space, wrap modes) becomes one [`TextureImage`],
+//! however many materials use it.
+
+use super::texture::{TextureImage, Wrap, decode};
+use gltf::texture::WrappingMode;
+use std::collections::HashMap;
+use std::path::Path;
+
+/// How a texture's bytes are meant: colour (sRGB-encoded) or linear data.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ColorSpace {
+    Srgb,
+    Linear,
+}
+
+pub struct TextureLoader<'a> {
+    buffers: &'a [gltf::buffer::Data],
+    /// The glTF's folder, where relative image URIs point.
+    dir: &'a Path,
+    loaded: HashMap<(usize, ColorSpace, [u32; 2]), u32>,
+    pub textures: Vec<TextureImage>,
+}
+
+fn wrap(mode: WrappingMode) -> Wrap {
+    match mode {
+        WrappingMode::Repeat => Wrap::Repeat,
+        WrappingMode::ClampToEdge => Wrap::Clamp,
+        WrappingMode::MirroredRepeat => Wrap::Mirror,
+    }
+}
+
+impl<'a> TextureLoader<'a> {
+    pub fn new(buffers: &'a [gltf::buffer::Data], dir: &'a Path) -> Self {
+        Self { buffers, dir, loaded: HashMap::new(), textures: Vec::new() }
+    }
+
+    /// The index of `texture` in [`Self::textures`], decoding its image on first use.
+    /// `tex_coord` other than 0 is read as 0 (rt keeps one set of texture coordinates).
+    pub fn load(&mut self, texture: &gltf::Texture, tex_coord: u32, space: ColorSpace) -> Result<u32, String> {
+        if tex_coord != 0 {
+            log::warn!("texture {} uses TEXCOORD_{tex_coord}; rt reads TEXCOORD_0 instead", texture.index());
+        }
+        let sampler = texture.sampler();
+        let wraps = [wrap(sampler.wrap_s()), wrap(sampler.wrap_t())];
+        let image = texture.source();
+        let key = (image.index(), space, wraps.map(Wrap::code));
+        if let Some(&index) = self.loaded.get(&key) {
+            return Ok(index);
+        }
+        let (what, bytes) = self.image_bytes(&image)?;
+        let (width, height, rgba) = decode(&bytes, &what)?;
+        self.textures.push(TextureImage::new(width, height, &rgba, wraps, space == ColorSpace::Srgb));
+        let index = (self.textures.len() - 1) as u32;
+        self.loaded.insert(key, index);
+        Ok(index)
+    }
+
+    /// The encoded bytes of an image and a name for it in messages.
+    fn image_bytes(&self, image: &gltf::Image) -> Result<(String, Vec<u8>), String> {
+        match image.source() {
+            gltf::image::Source::View { view, .. } => {
+                let what = format!("image {} (buffer view {})", image.index(), view.index());
+                let buffer = self.buffers.get(view.buffer().index()).ok_or_else(|| format!("{what}: no buffer"))?;
+                let bytes = buffer
+                    .0
+                    .get(view.offset()..view.offset() + view.length())
+                    .ok_or_else(|| format!("{what}: the view runs past its buffer"))?;
+                Ok((what, bytes.to_vec()))
+            }
+            gltf::image::Source::Uri { uri, .. } => {
+                if let Some(data) = uri.strip_prefix("data:") {
+                    let what = format!("image {} (data URI)", image.index());
+                    let (_, encoded) =
+                        data.split_once(";base64,").ok_or_else(|| format!("{what}: only base64 data URIs are read"))?;
+                    let bytes = base64::decode(encoded).map_err(|e| format!("{what}: bad base64: {e}"))?;
+                    return Ok((what, bytes));
+                }
+                let path = self.dir.join(super::source::percent_decode(uri));
+                let what = path.display().to_string();
+                let bytes = crate::files::read(&path).map_err(|e| format!("cannot read image {e}"))?;
+                Ok((what, bytes))
+            }
+        }
+    }
+}
+
+/// The file names of a document's images that live in files beside it.
+pub fn image_files(document: &gltf::Document) -> impl Iterator<Item = String> + '_ {
+    document.images().filter_map(|image| match image.source() {
+        gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => Some(super::source::percent_decode(uri)),
+        _ => None,
+    })
+}

@@ -1,0 +1,176 @@
+//! Image textures as rt keeps them: RGBA8 texels with their whole mip chain, built
+//! once at import (so at pack time: the chain is part of the asset's cache), and the
+//! sampler state the shader needs (wrap modes, colour space).
+//!
+//! Texels are packed one `u32` each, red in the low byte (WGSL's `unpack4x8unorm`
+//! order), rows from the top of the image down. Level `l` is
+//! `max(1, width >> l) × max(1, height >> l)`, levels stored finest first, down to 1×1.
+//! Colour textures are stored as sRGB bytes and decoded in the shader; their mips
+//! are averaged in linear light, so that a checker fades to its true mean, not to
+//! the darker mean of its sRGB codes.
+
+/// What a texture coordinate outside [0, 1] does (glTF sampler wrap modes).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Wrap {
+    #[default]
+    Repeat,
+    Clamp,
+    Mirror,
+}
+
+impl Wrap {
+    /// The code the shader reads (`WRAP_*` in `shaders/texture.wgsl`).
+    pub fn code(self) -> u32 {
+        match self {
+            Wrap::Repeat => 0,
+            Wrap::Clamp => 1,
+            Wrap::Mirror => 2,
+        }
+    }
+
+    pub fn from_code(code: u32) -> Option<Self> {
+        [Wrap::Repeat, Wrap::Clamp, Wrap::Mirror].into_iter().find(|w| w.code() == code)
+    }
+}
+
+/// An image with its mip chain, ready to be placed in the scene's texture store.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextureImage {
+    pub width: u32,
+    pub height: u32,
+    /// Horizontal (u) and vertical (v) wrap modes.
+    pub wrap: [Wrap; 2],
+    /// The bytes are sRGB-encoded colour (decoded by the shader); otherwise linear data.
+    pub srgb: bool,
+    /// Every level's texels, finest first (see the module's documentation).
+    pub texels: Vec<u32>,
+}
+
+/// The size of mip level `level` of a `width × height` image.
+pub fn level_size(width: u32, height: u32, level: u32) -> (u32, u32) {
+    ((width >> level).max(1), (height >> level).max(1))
+}
+
+/// How many levels a full chain of a `width × height` image has, down to 1×1.
+pub fn level_count(width: u32, height: u32) -> u32 {
+    32 - width.max(height).max(1).leading_zeros()
+}
+
+/// Texels in levels `0..levels` of a `width × height` image.
+pub fn texels_in_levels(width: u32, height: u32, levels: u32) -> u64 {
+    (0..levels).map(|l| level_size(width, height, l)).map(|(w, h)| w as u64 * h as u64).sum()
+}
+
+fn srgb_to_linear(c: u8) -> f32 {
+    let c = c as f32 / 255.0;
+    if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
+}
+
+fn linear_to_srgb(c: f32) -> u8 {
+    let c = c.clamp(0.0, 1.0);
+    let s = if c <= 0.003_130_8 { 12.92 * c } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
+    (s * 255.0).round() as u8
+}
+
+impl TextureImage {
+    /// A texture from `width × height` RGBA8 pixels (rows from the top), with its mip chain.
+    pub fn new(width: u32, height: u32, rgba: &[u8], wrap: [Wrap; 2], srgb: bool) -> Self {
+        debug_assert_eq!(rgba.len() as u64, 4 * width as u64 * height as u64);
+        let mut texels: Vec<u32> =
+            Vec::with_capacity(texels_in_levels(width, height, level_count(width, height)) as usize);
+        texels.extend(rgba.chunks_exact(4).map(|p| u32::from_le_bytes([p[0], p[1], p[2], p[3]])));
+        // Averaged as floats in the space the shader interpolates in: linear for colour.
+        let to_float = |c: u8, channel: usize| if srgb && channel < 3 { srgb_to_linear(c) } else { c as f32 / 255.0 };
+        let to_byte = |v: f32, channel: usize| {
+            if srgb && channel < 3 { linear_to_srgb(v) } else { (v.clamp(0.0, 1.0) * 255.0).round() as u8 }
+        };
+        let (mut w, mut h, mut start) = (width, height, 0usize);
+        for level in 1..level_count(width, height) {
+            let (nw, nh) = level_size(width, height, level);
+            let next_start = texels.len();
+            for y in 0..nh {
+                for x in 0..nw {
+                    // A 2×2 box, or 2×1 / 1×2 once one side is a single texel; an odd
+                    // side's last row or column is left out (a box filter, not a tent).
+                    let xs = [2 * x, (2 * x + 1).min(w - 1)];
+                    let ys = [2 * y, (2 * y + 1).min(h - 1)];
+                    let mut sum = [0.0f32; 4];
+                    for &sy in &ys {
+                        for &sx in &xs {
+                            let bytes = texels[start + (sy * w + sx) as usize].to_le_bytes();
+                            for (c, s) in sum.iter_mut().enumerate() {
+                                *s += to_float(bytes[c], c);
+                            }
+                        }
+                    }
+                    let bytes: [u8; 4] = std::array::from_fn(|c| to_byte(sum[c] / 4.0, c));
+                    texels.push(u32::from_le_bytes(bytes));
+                }
+            }
+            (w, h, start) = (nw, nh, next_start);
+        }
+        Self { width, height, wrap, srgb, texels }
+    }
+
+    pub fn levels(&self) -> u32 {
+        level_count(self.width, self.height)
+    }
+
+    /// The same texture without its `dropped` finest levels: half the size per level.
+    pub fn without_finest_levels(&self, dropped: u32) -> Self {
+        let dropped = dropped.min(self.levels() - 1);
+        let skip = texels_in_levels(self.width, self.height, dropped) as usize;
+        let (width, height) = level_size(self.width, self.height, dropped);
+        Self { width, height, wrap: self.wrap, srgb: self.srgb, texels: self.texels[skip..].to_vec() }
+    }
+}
+
+/// Decodes PNG or JPEG bytes into RGBA8 (a grey or RGB image gets alpha 1).
+/// `what` names the image in the error: its file or the glTF image it is.
+pub fn decode(bytes: &[u8], what: &str) -> Result<(u32, u32, Vec<u8>), String> {
+    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes));
+    reader = reader.with_guessed_format().map_err(|e| format!("{what}: cannot read: {e}"))?;
+    // The decoder's default limit (512 MiB) refuses 16k × 16k images outright; the
+    // texture store downscales what the GPU cannot hold instead (see `gpu::textures`).
+    let mut limits = image::Limits::default();
+    limits.max_alloc = Some(4 << 30);
+    reader.limits(limits);
+    let image = reader.decode().map_err(|e| format!("{what}: cannot decode image: {e}"))?;
+    let rgba = image.into_rgba8();
+    Ok((rgba.width(), rgba.height(), rgba.into_raw()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mip_chain_sizes_and_offsets() {
+        assert_eq!(level_count(1, 1), 1);
+        assert_eq!(level_count(4, 3), 3);
+        assert_eq!(level_count(5, 1), 3);
+        assert_eq!(texels_in_levels(4, 3, 3), 12 + 2 + 1);
+        let t = TextureImage::new(4, 3, &[128; 48], [Wrap::Repeat; 2], false);
+        assert_eq!((t.levels(), t.texels.len()), (3, 15));
+        let smaller = t.without_finest_levels(1);
+        assert_eq!((smaller.width, smaller.height, smaller.texels.len()), (2, 1, 3));
+    }
+
+    #[test]
+    fn colour_mips_average_in_linear_light() {
+        // A black and white checker of 2×2: its one-texel mip is mid grey in linear
+        // light, sRGB code 188, not the code 128 that averaging the bytes gives.
+        let (b, w) = ([0u8, 0, 0, 255], [255u8, 255, 255, 255]);
+        let pixels: Vec<u8> = [b, w, w, b].concat();
+        let colour = TextureImage::new(2, 2, &pixels, [Wrap::Repeat; 2], true);
+        assert_eq!(colour.texels[4].to_le_bytes(), [188, 188, 188, 255]);
+        let data = TextureImage::new(2, 2, &pixels, [Wrap::Repeat; 2], false);
+        assert_eq!(data.texels[4].to_le_bytes(), [128, 128, 128, 255]);
+    }
+
+    #[test]
+    fn truncated_image_is_an_error_naming_it() {
+        let message = decode(b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR", "leaf.png").expect_err("truncated");
+        assert!(message.starts_with("leaf.png: cannot decode image"), "{message}");
+    }
+}

@@ -1,0 +1,260 @@
+#!/usr/bin/env python3
+"""Builds small textured scenes in bpy, renders them with Cycles and exports them with
+blender/rt_export.py, for `tests/cycles_textures.rs`:
+
+    /work/main/.venv-bpy/bin/python tests/cycles/make_texture_refs.py [--spp 1024] [NAME...]
+
+For each NAME it writes `tests/cycles/texture_NAME.exr` (Cycles, linear, 32-bit) and
+`tests/cycles/scenes/texture_NAME/` (the exported assets, their images and
+`scene.toml`). Images are generated in bpy and packed into the (unsaved) .blend.
+
+Cycles is set up as a reference: box pixel filter of width 1, no clamping, no
+denoising, no adaptive sampling, blur_glossy 0, bounce limits raised, single-scatter
+GGX (rt's model), Specular IOR Level 0 on non-metals (rt's diffuse is plain Lambert).
+"""
+
+import argparse
+import math
+import os
+import sys
+
+import bpy
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "blender"))
+import rt_export  # noqa: E402
+
+SIZE = 64
+
+
+def reset():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "CYCLES"
+    scene.render.resolution_x = scene.render.resolution_y = SIZE
+    scene.render.resolution_percentage = 100
+    c = scene.cycles
+    c.device = "CPU"
+    c.use_adaptive_sampling = False
+    c.use_denoising = False
+    c.pixel_filter_type = "BOX"
+    c.filter_width = 1.0
+    c.sample_clamp_direct = 0.0
+    c.sample_clamp_indirect = 0.0
+    c.blur_glossy = 0.0
+    c.max_bounces = c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = 12
+    c.transparent_max_bounces = 64
+    c.caustics_reflective = c.caustics_refractive = True
+    scene.view_settings.view_transform = "Standard"
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.image_settings.color_depth = "32"
+    return scene
+
+
+def world(scene, color):
+    w = bpy.data.worlds.new("world")
+    scene.world = w
+    bg = w.node_tree.nodes["Background"]
+    bg.inputs["Color"].default_value = (*color, 1.0)
+    bg.inputs["Strength"].default_value = 1.0
+
+
+def camera(scene, location, look_at, fov_deg=40.0):
+    from mathutils import Vector
+
+    data = bpy.data.cameras.new("camera")
+    data.sensor_fit = "VERTICAL"
+    data.angle_y = math.radians(fov_deg)
+    obj = bpy.data.objects.new("camera", data)
+    scene.collection.objects.link(obj)
+    obj.location = location
+    direction = Vector(look_at) - Vector(location)
+    obj.rotation_euler = direction.to_track_quat("-Z", "Y").to_euler()
+    data.dof.focus_distance = direction.length
+    scene.camera = obj
+
+
+def image(name, pixels, srgb=True):
+    """A packed image from an (h, w, 4) array of values in [0, 1], rows from the top."""
+    h, w, _ = pixels.shape
+    img = bpy.data.images.new(name, w, h, alpha=True)
+    img.colorspace_settings.name = "sRGB" if srgb else "Non-Color"
+    img.pixels.foreach_set(np.ascontiguousarray(pixels[::-1], dtype=np.float32).ravel())
+    img.update()
+    img.pack()
+    return img
+
+
+def principled(name):
+    m = bpy.data.materials.new(name)
+    tree = m.node_tree
+    bsdf = tree.nodes["Principled BSDF"]
+    bsdf.inputs["Specular IOR Level"].default_value = 0.0
+    bsdf.distribution = "GGX"
+    return m, tree, bsdf
+
+
+def image_node(tree, img, extension="REPEAT"):
+    node = tree.nodes.new("ShaderNodeTexImage")
+    node.image = img
+    node.extension = extension
+    node.interpolation = "Linear"
+    return node
+
+
+def add_object(scene, name, mesh_op, material, **kwargs):
+    mesh_op(**kwargs)
+    obj = bpy.context.active_object
+    obj.name = name
+    obj.data.materials.append(material)
+    return obj
+
+
+def checker(n, a, b):
+    y, x = np.mgrid[0:n, 0:n]
+    on = ((x + y) % 2 == 0)[:, :, None]
+    return np.where(on, np.array([*a, 1.0]), np.array([*b, 1.0]))
+
+
+def scene_checker(scene):
+    """A checker base colour through a Mapping node (scale, rotation, offset) on a tilted plane."""
+    world(scene, (1.0, 1.0, 1.0))
+    m, tree, bsdf = principled("checker")
+    tex = image_node(tree, image("checker", checker(8, (0.9, 0.1, 0.05), (0.95, 0.95, 0.9))))
+    mapping = tree.nodes.new("ShaderNodeMapping")
+    mapping.inputs["Scale"].default_value = (2.0, 1.5, 1.0)
+    mapping.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(20.0))
+    mapping.inputs["Location"].default_value = (0.1, 0.25, 0.0)
+    coords = tree.nodes.new("ShaderNodeTexCoord")
+    tree.links.new(coords.outputs["UV"], mapping.inputs["Vector"])
+    tree.links.new(mapping.outputs["Vector"], tex.inputs["Vector"])
+    tree.links.new(tex.outputs["Color"], bsdf.inputs["Base Color"])
+    bsdf.inputs["Roughness"].default_value = 1.0
+    add_object(scene, "plane", bpy.ops.mesh.primitive_plane_add, m, size=2.0, rotation=(math.radians(60), 0, 0))
+    camera(scene, (0.0, -3.0, 1.2), (0.0, 0.0, 0.0), 40.0)
+
+
+def sun(scene, rotation):
+    light = bpy.data.lights.new("sun", "SUN")
+    # rt's default sun: irradiance pi at normal incidence.
+    light.energy = math.pi
+    light.angle = math.radians(0.53)
+    obj = bpy.data.objects.new("sun", light)
+    scene.collection.objects.link(obj)
+    obj.rotation_euler = rotation
+
+
+def scene_rough_metal(scene):
+    """Roughness and metallic maps (separate images, combined by the exporter) on a sunlit
+    sphere. The base colour is near white: there rt's conductor Fresnel (exact, of a
+    dielectric of that reflectance) and Cycles' (F82 tint) agree, so what differs is the
+    maps' doing (highlights of rough and sharp metal against diffuse stripes)."""
+    world(scene, (0.3, 0.3, 0.3))
+    sun(scene, (math.radians(40), 0.0, math.radians(-35)))
+    m, tree, bsdf = principled("rough_metal")
+    bsdf.inputs["Base Color"].default_value = (0.95, 0.95, 0.95, 1.0)
+    y, x = np.mgrid[0:32, 0:32]
+    rough = np.where((x // 8) % 2 == 0, 0.25, 0.7)[:, :, None].repeat(3, 2)
+    metal = np.where((y // 8) % 2 == 0, 1.0, 0.0)[:, :, None].repeat(3, 2)
+    ones = np.ones((32, 32, 1))
+    rough_tex = image_node(tree, image("roughness", np.concatenate([rough, ones], 2), srgb=False))
+    metal_tex = image_node(tree, image("metallic", np.concatenate([metal, ones], 2), srgb=False))
+    tree.links.new(rough_tex.outputs["Color"], bsdf.inputs["Roughness"])
+    tree.links.new(metal_tex.outputs["Color"], bsdf.inputs["Metallic"])
+    sphere = add_object(scene, "sphere", bpy.ops.mesh.primitive_uv_sphere_add, m, radius=1.0, segments=48, ring_count=24)
+    bpy.ops.object.shade_smooth()
+    floor_m, _, floor_bsdf = principled("floor")
+    floor_bsdf.inputs["Base Color"].default_value = (0.5, 0.5, 0.5, 1.0)
+    add_object(scene, "floor", bpy.ops.mesh.primitive_plane_add, floor_m, size=8.0, location=(0, 0, -1.0))
+    sphere.rotation_euler = (0.0, 0.0, math.radians(30.0))
+    camera(scene, (0.0, -3.6, 0.8), (0.0, 0.0, -0.1), 45.0)
+
+
+def scene_leaves(scene):
+    """An alpha-masked leaf (a disc with a notch) over a floor, casting its shape's shadow."""
+    world(scene, (0.05, 0.05, 0.05))
+    m, tree, bsdf = principled("leaf")
+    n = 64
+    y, x = (np.mgrid[0:n, 0:n] + 0.5) / n - 0.5
+    inside = (x * x + y * y < 0.2) & ~((np.abs(x) < 0.08) & (y > 0.0))
+    pixels = np.zeros((n, n, 4))
+    pixels[:, :, 0], pixels[:, :, 1], pixels[:, :, 2] = 0.15, 0.55, 0.1
+    pixels[:, :, 3] = inside
+    tex = image_node(tree, image("leaf", pixels), "EXTEND")
+    tree.links.new(tex.outputs["Color"], bsdf.inputs["Base Color"])
+    tree.links.new(tex.outputs["Alpha"], bsdf.inputs["Alpha"])
+    bsdf.inputs["Roughness"].default_value = 1.0
+    add_object(scene, "leaf", bpy.ops.mesh.primitive_plane_add, m, size=1.6, location=(0, 0, 0.8),
+               rotation=(math.radians(10), 0, 0))
+    floor_m, _, floor_bsdf = principled("floor")
+    floor_bsdf.inputs["Base Color"].default_value = (0.8, 0.8, 0.8, 1.0)
+    floor_bsdf.inputs["Roughness"].default_value = 1.0
+    add_object(scene, "floor", bpy.ops.mesh.primitive_plane_add, floor_m, size=6.0)
+    sun(scene, (math.radians(25), 0.0, math.radians(30)))
+    camera(scene, (0.0, -2.6, 3.2), (0.0, 0.0, 0.2), 45.0)
+
+
+def scene_emissive(scene):
+    """An emission texture (strength 3) on a panel that lights a floor."""
+    world(scene, (0.0, 0.0, 0.0))
+    m, tree, bsdf = principled("screen")
+    bsdf.inputs["Base Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+    y, x = np.mgrid[0:16, 0:16]
+    pixels = np.zeros((16, 16, 4))
+    pixels[:, :, 0] = np.where(x < 8, 1.0, 0.1)
+    pixels[:, :, 1] = np.where(y < 8, 0.8, 0.2)
+    pixels[:, :, 2] = 0.3
+    pixels[:, :, 3] = 1.0
+    tex = image_node(tree, image("screen", pixels), "EXTEND")
+    tree.links.new(tex.outputs["Color"], bsdf.inputs["Emission Color"])
+    bsdf.inputs["Emission Strength"].default_value = 3.0
+    add_object(scene, "screen", bpy.ops.mesh.primitive_plane_add, m, size=1.2, location=(0, 0.6, 0.7),
+               rotation=(math.radians(80), 0, 0))
+    floor_m, _, floor_bsdf = principled("floor")
+    floor_bsdf.inputs["Base Color"].default_value = (0.8, 0.8, 0.8, 1.0)
+    floor_bsdf.inputs["Roughness"].default_value = 1.0
+    add_object(scene, "floor", bpy.ops.mesh.primitive_plane_add, floor_m, size=6.0)
+    camera(scene, (0.0, -2.8, 1.6), (0.0, 0.2, 0.4), 45.0)
+
+
+def blender_gltf(scene, out):
+    """The same scene through Blender's own glTF exporter (a .glb with its textures
+    embedded), placed by a copy of the exported scene file: for the test that rt reads
+    textured glTF files as Blender writes them."""
+    path = os.path.join(out, "blender.glb")
+    bpy.ops.export_scene.gltf(filepath=path, export_format="GLB", export_cameras=False, export_lights=False)
+    with open(os.path.join(out, "scene.toml")) as f:
+        header = f.read().split("\n# ", 1)[0]
+    with open(os.path.join(out, "scene_blender_gltf.toml"), "w") as f:
+        f.write(header.rstrip("\n") + '\n\n[[mesh]]\nasset = "blender.glb"\n')
+
+
+SCENES = {
+    "checker": scene_checker,
+    "rough_metal": scene_rough_metal,
+    "leaves": scene_leaves,
+    "emissive": scene_emissive,
+}
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--spp", type=int, default=1024)
+    parser.add_argument("names", nargs="*", default=list(SCENES))
+    args = parser.parse_args()
+    for name in args.names:
+        scene = reset()
+        SCENES[name](scene)
+        scene.cycles.samples = args.spp
+        out = os.path.join(HERE, "scenes", f"texture_{name}")
+        rt_export.export_scene(scene, os.path.join(out, "assets"), os.path.join(out, "scene.toml"))
+        if name == "leaves":
+            blender_gltf(scene, out)
+        scene.render.filepath = os.path.join(HERE, f"texture_{name}.exr")
+        bpy.ops.render.render(write_still=True)
+        print(f"texture_{name}: {args.spp} spp -> {scene.render.filepath}", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,205 @@
+//! Image textures through the whole pipeline on the GPU: a glTF's base colour
+//! texture shows its texels (sRGB decoded, the right way up), alpha cut-outs let
+//! camera and shadow rays through, and bad images are errors naming the material
+//! and the file.
+
+mod common;
+
+use common::{render, scene_from, temp_dir, write};
+use rt::asset::load_mesh;
+use rt::render::Image;
+use std::path::Path;
+
+/// A 64×64 PNG whose texel (x, y), y from the top, is `texel(x, y)`.
+fn png(texel: impl Fn(u32, u32) -> [u8; 4]) -> Vec<u8> {
+    let image = image::RgbaImage::from_fn(64, 64, |x, y| image::Rgba(texel(x, y)));
+    let mut bytes = Vec::new();
+    image.write_to(&mut std::io::Cursor::new(&mut bytes), image::ImageFormat::Png).expect("encode PNG");
+    bytes
+}
+
+/// One quad with texture coordinates (glTF's: origin at the top left of the image),
+/// `corners` in order (0,0), (1,0), (1,1), (0,1); its one material is `material`, whose
+/// textures all use image 0 at `image_uri`.
+fn quad_gltf(corners: [[f32; 3]; 4], material: &str, image_uri: &str) -> String {
+    let mut bytes = Vec::new();
+    corners.iter().flatten().for_each(|f| bytes.extend(f.to_le_bytes()));
+    [[0.0f32, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]].iter().flatten().for_each(|f| bytes.extend(f.to_le_bytes()));
+    [0u32, 1, 2, 0, 2, 3].iter().for_each(|i| bytes.extend(i.to_le_bytes()));
+    let data = base64::encode(&bytes);
+    format!(
+        r#"{{
+  "asset": {{ "version": "2.0" }}, "scene": 0, "scenes": [{{ "nodes": [0] }}], "nodes": [{{ "mesh": 0 }}],
+  "meshes": [{{ "primitives": [{{ "attributes": {{ "POSITION": 0, "TEXCOORD_0": 1 }}, "indices": 2, "material": 0 }}] }}],
+  "materials": [{material}],
+  "textures": [{{ "source": 0 }}],
+  "images": [{{ "uri": "{image_uri}" }}],
+  "buffers": [{{ "byteLength": {len}, "uri": "data:application/octet-stream;base64,{data}" }}],
+  "bufferViews": [{{ "buffer": 0, "byteLength": 48 }}, {{ "buffer": 0, "byteOffset": 48, "byteLength": 32 }},
+    {{ "buffer": 0, "byteOffset": 80, "byteLength": 24 }}],
+  "accessors": [
+    {{ "bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, -1, -1], "max": [1, 1, 1] }},
+    {{ "bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2" }},
+    {{ "bufferView": 2, "componentType": 5125, "count": 6, "type": "SCALAR" }}]
+}}"#,
+        len = bytes.len()
+    )
+}
+
+fn srgb_to_linear(c: u8) -> f64 {
+    let c = c as f64 / 255.0;
+    if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
+}
+
+/// Mean colour of the 8×8 block at (x0, y0), and the standard error of its luminance.
+fn block(image: &Image, x0: usize, y0: usize) -> ([f64; 3], f64) {
+    let (mut sum, mut var) = ([0.0; 3], 0.0);
+    for y in y0..y0 + 8 {
+        for x in x0..x0 + 8 {
+            let i = y * image.width as usize + x;
+            for (s, p) in sum.iter_mut().zip(image.pixels[i]) {
+                *s += p as f64 / 64.0;
+            }
+            var += (image.std_error[i] as f64).powi(2);
+        }
+    }
+    (sum, var.sqrt() / 64.0)
+}
+
+#[test]
+fn base_colour_texture_shows_its_texels_in_linear_light_the_right_way_up() {
+    // Quadrants, rows from the top: grey (sRGB 128), orange; blue, white.
+    let quadrants = [[[128, 128, 128, 255], [255, 64, 0, 255]], [[0, 0, 255, 255], [255, 255, 255, 255]]];
+    let dir = temp_dir("texture-quadrants");
+    std::fs::write(dir.join("quadrants.png"), png(|x, y| quadrants[(y / 32) as usize][(x / 32) as usize]))
+        .expect("png");
+    let corners = [[-1.0, 1.0, 0.0], [1.0, 1.0, 0.0], [1.0, -1.0, 0.0], [-1.0, -1.0, 0.0]];
+    let material = r#"{ "name": "painted", "pbrMetallicRoughness": { "baseColorTexture": { "index": 0 }, "metallicFactor": 0.0 } }"#;
+    write(&dir.join("quad.gltf"), &quad_gltf(corners, material, "quadrants.png"));
+    // A diffuse plane under a uniform white sky that it alone sees has radiance = albedo.
+    let scene = scene_from(&format!(
+        "[sky]\nkind = \"uniform\"\ncolor = [1.0, 1.0, 1.0]\n\
+         [camera]\nposition = [0.0, 0.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y_deg = 30.0\n\
+         [[mesh]]\nasset = {:?}\n",
+        dir.join("quad.gltf").display().to_string()
+    ));
+    let image = render(scene, 64, 64, 16, 2);
+    for (row, texels) in quadrants.iter().enumerate() {
+        for (column, texel) in texels.iter().enumerate() {
+            let (mean, se) = block(&image, 12 + 32 * column, 12 + 32 * row);
+            let expected: [f64; 3] = std::array::from_fn(|c| srgb_to_linear(texel[c]));
+            println!("quadrant ({row}, {column}): rt {mean:.4?} ± {se:.1e}, texel {expected:.4?}");
+            for c in 0..3 {
+                assert!(
+                    (mean[c] - expected[c]).abs() <= 5.0 * se + 2e-3,
+                    "quadrant ({row}, {column}): {mean:?} vs {expected:?}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn alpha_cut_outs_let_camera_and_shadow_rays_through() {
+    // A black quad 1 m above a white floor, with a square hole (alpha 0) in its middle;
+    // the sun straight above. Seen from above, through the hole, the floor is sunlit
+    // (radiance 1: the default sun's irradiance is π) only if shadow rays pass the hole
+    // too; around it the quad's black top.
+    let dir = temp_dir("texture-cut-out");
+    let hole = |x: u32, y: u32| (16..48).contains(&x) && (16..48).contains(&y);
+    std::fs::write(dir.join("hole.png"), png(|x, y| [255, 255, 255, if hole(x, y) { 0 } else { 255 }])).expect("png");
+    let corners = [[-1.0, 1.0, -1.0], [1.0, 1.0, -1.0], [1.0, 1.0, 1.0], [-1.0, 1.0, 1.0]];
+    let material = r#"{ "name": "leaf", "alphaMode": "MASK", "alphaCutoff": 0.5,
+        "pbrMetallicRoughness": { "baseColorFactor": [0, 0, 0, 1], "baseColorTexture": { "index": 0 }, "metallicFactor": 0.0 } }"#;
+    write(&dir.join("leaf.gltf"), &quad_gltf(corners, material, "hole.png"));
+    write(&dir.join("floor.obj"), "v -100 0 -100\nv -100 0 100\nv 100 0 100\nv 100 0 -100\nf 1 2 3 4\n");
+    let scene = scene_from(&format!(
+        "[sky]\nkind = \"black\"\n[sun]\nelevation_deg = 90.0\nazimuth_deg = 0.0\n\
+         [camera]\nposition = [0.0, 3.0, 0.01]\nlook_at = [0.0, 0.0, 0.0]\nfov_y_deg = 45.0\n\
+         [[mesh]]\nasset = {:?}\n[[mesh]]\nasset = {:?}\n",
+        dir.join("leaf.gltf").display().to_string(),
+        dir.join("floor.obj").display().to_string()
+    ));
+    let image = render(scene, 64, 64, 16, 4);
+    let (through, se) = block(&image, 28, 28);
+    let (quad, quad_se) = block(&image, 4, 28);
+    println!(
+        "through the hole: {through:.4?} ± {se:.1e} (expected 1); the quad: {quad:.4?} ± {quad_se:.1e} (expected 0)"
+    );
+    for c in 0..3 {
+        assert!((through[c] - 1.0).abs() <= 5.0 * se + 2e-3, "through the hole: {through:?}");
+        assert!(quad[c].abs() <= 5.0 * quad_se + 1e-3, "the quad: {quad:?}");
+    }
+}
+
+fn import_error(dir: &Path, image_uri: &str) -> String {
+    let material = r#"{ "name": "leaf", "pbrMetallicRoughness": { "baseColorTexture": { "index": 0 } } }"#;
+    let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+    write(&dir.join("leaf.gltf"), &quad_gltf(corners, material, image_uri));
+    load_mesh(&dir.join("leaf.gltf")).expect_err("a bad image must not load").to_string()
+}
+
+#[test]
+fn a_missing_or_truncated_image_is_an_error_naming_the_material_and_the_file() {
+    let dir = temp_dir("texture-bad-images");
+    let message = import_error(&dir, "missing.png");
+    assert!(message.contains("leaf.gltf") && message.contains("material `leaf`"), "{message}");
+    assert!(message.contains("missing.png") && message.contains("cannot read image"), "{message}");
+
+    let full = png(|_, _| [1, 2, 3, 255]);
+    std::fs::write(dir.join("cut.png"), &full[..full.len() / 2]).expect("png");
+    let message = import_error(&dir, "cut.png");
+    assert!(message.contains("material `leaf`") && message.contains("cut.png: cannot decode image"), "{message}");
+}
+
+#[test]
+fn a_texture_larger_than_the_gpu_binds_is_downscaled_and_still_renders() {
+    // 8192² RGBA8 with its mips is 341 MiB: over lavapipe's 128 MiB per binding, so the
+    // store drops its finest levels (a warning says so) rather than failing.
+    let gpu = common::gpu();
+    let side = 8192u32;
+    let texture_bytes = 4 * rt::asset::texture::texels_in_levels(side, side, 14);
+    let max = gpu.device.limits().max_storage_buffer_binding_size;
+    if texture_bytes <= max {
+        println!("this GPU binds {} MiB: the texture fits, nothing to downscale", max >> 20);
+    }
+    let dir = temp_dir("texture-huge");
+    let image = image::RgbaImage::from_pixel(side, side, image::Rgba([128, 128, 128, 255]));
+    image.save(dir.join("huge.png")).expect("write PNG");
+    let corners = [[-1.0, 1.0, 0.0], [1.0, 1.0, 0.0], [1.0, -1.0, 0.0], [-1.0, -1.0, 0.0]];
+    let material =
+        r#"{ "name": "huge", "pbrMetallicRoughness": { "baseColorTexture": { "index": 0 }, "metallicFactor": 0.0 } }"#;
+    write(&dir.join("quad.gltf"), &quad_gltf(corners, material, "huge.png"));
+    let scene = scene_from(&format!(
+        "[sky]\nkind = \"uniform\"\ncolor = [1.0, 1.0, 1.0]\n\
+         [camera]\nposition = [0.0, 0.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y_deg = 30.0\n\
+         [[mesh]]\nasset = {:?}\n",
+        dir.join("quad.gltf").display().to_string()
+    ));
+    let image = render(scene, 16, 16, 4, 2);
+    let (mean, se) = block(&image, 4, 4);
+    let expected = srgb_to_linear(128);
+    println!("{side}² texture on a GPU binding {} MiB: {mean:.4?} ± {se:.1e}, expected {expected:.4}", max >> 20);
+    for m in mean {
+        assert!((m - expected).abs() <= 5.0 * se + 2e-3, "{mean:?}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn khr_texture_transform_is_baked_into_the_uvs() {
+    let dir = temp_dir("texture-transform");
+    std::fs::write(dir.join("t.png"), png(|_, _| [9, 9, 9, 255])).expect("png");
+    let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+    // Offset, then a quarter turn (glTF: translation · rotation · scale), then a scale of 2 in u.
+    let material = r#"{ "name": "moved", "pbrMetallicRoughness": { "baseColorTexture": { "index": 0,
+        "extensions": { "KHR_texture_transform": { "offset": [0.5, 0.25], "rotation": 1.5707963, "scale": [2, 1] } } } } }"#;
+    write(&dir.join("q.gltf"), &quad_gltf(corners, material, "t.png"));
+    let mesh = load_mesh(&dir.join("q.gltf")).expect("loads");
+    // glTF uv (u, v) → (0.5 - v, 0.25 + 2u); rt stores v from the bottom: 1 - that.
+    let expected = [[0.0f32, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]].map(|[u, v]| [0.5 - v, 1.0 - (0.25 + 2.0 * u)]);
+    let uvs = mesh.uvs.expect("uvs");
+    for (got, want) in uvs.iter().zip(expected) {
+        assert!((got[0] - want[0]).abs() < 1e-6 && (got[1] - want[1]).abs() < 1e-6, "{uvs:?} vs {expected:?}");
+    }
+}

@@ -6,6 +6,7 @@
 
 mod common;
 
+use common::reference::{self, Noiseless};
 use common::{render, repo};
 
 /// Samples per pixel of the committed references (`make_texture_refs.py --spp`).
@@ -17,63 +18,14 @@ const BLOCK: usize = 8;
 fn luminance(p: [f32; 3]) -> f64 {
     0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64
 }
-
 fn check(name: &str) {
     let dir = repo().join(format!("tests/cycles/scenes/texture_{name}"));
     let scene = rt::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
     let (w, h) = (scene.render.width, scene.render.height);
-    let reference = image::open(repo().join(format!("tests/cycles/texture_{name}.exr")))
-        .unwrap_or_else(|e| panic!("texture_{name}.exr: {e}"))
-        .into_rgb32f();
-    assert_eq!((reference.width(), reference.height()), (w, h), "{name}: reference size");
     let ours = render(scene, w, h, SPP, MAX_BOUNCES);
-    // The reference's own noise, estimated from ours: similar estimators, more samples.
-    let noise_scale = (1.0 + SPP as f64 / REFERENCE_SPP).sqrt();
-    let reference: Vec<[f32; 3]> = reference.pixels().map(|p| p.0).collect();
-
-    let n = ours.pixels.len() as f64;
-    let ours_mean = ours.pixels.iter().map(|p| luminance(*p)).sum::<f64>() / n;
-    let ref_mean = reference.iter().map(|p| luminance(*p)).sum::<f64>() / n;
-    let global_sigma = ours.std_error.iter().map(|e| (*e as f64).powi(2)).sum::<f64>().sqrt() / n * noise_scale;
-    let global_z = (ours_mean - ref_mean).abs() / global_sigma.max(1e-12);
-
-    let (mut worst_z, mut worst) = (0.0f64, (0, 0, 0.0, 0.0));
-    for by in 0..h as usize / BLOCK {
-        for bx in 0..w as usize / BLOCK {
-            let (mut a, mut b, mut var) = (0.0, 0.0, 0.0);
-            for y in by * BLOCK..(by + 1) * BLOCK {
-                for x in bx * BLOCK..(bx + 1) * BLOCK {
-                    let i = y * w as usize + x;
-                    a += luminance(ours.pixels[i]);
-                    b += luminance(reference[i]);
-                    var += (ours.std_error[i] as f64).powi(2);
-                }
-            }
-            let count = (BLOCK * BLOCK) as f64;
-            let sigma = var.sqrt() / count * noise_scale;
-            let diff = (a - b).abs() / count;
-            // Blocks with no noise at all must match to rounding.
-            let z = if sigma > 0.0 {
-                diff / sigma
-            } else if diff < 1e-4 {
-                0.0
-            } else {
-                f64::INFINITY
-            };
-            if z > worst_z {
-                (worst_z, worst) = (z, (bx, by, a / count, b / count));
-            }
-        }
-    }
-    let (bx, by, a, b) = worst;
-    println!(
-        "texture_{name:12} mean {ours_mean:.5} vs Cycles {ref_mean:.5}: {:+.3}% ({global_z:.2} σ); \
-         worst 8x8 block ({bx}, {by}): {a:.5} vs {b:.5}, {worst_z:.2} σ",
-        100.0 * (ours_mean - ref_mean) / ref_mean
-    );
-    // 64 blocks per image: at 5 σ a block fails by chance with probability ~6e-7.
-    assert!(global_z <= 4.0, "texture_{name}: global mean is {global_z:.2} σ from Cycles'");
-    assert!(worst_z <= 5.0, "texture_{name}: a block is {worst_z:.2} σ from Cycles'");
+    let file = repo().join(format!("tests/cycles/texture_{name}.exr"));
+    reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4))
+        .check(&format!("texture_{name}"), "Cycles");
 }
 
 #[test]

@@ -77,7 +77,7 @@ impl<'a> TextureLoader<'a> {
                     let bytes = base64::decode(encoded).map_err(|e| format!("{what}: bad base64: {e}"))?;
                     return Ok((what, bytes));
                 }
-                let path = self.dir.join(super::source::percent_decode(uri));
+                let path = self.dir.join(super::gltf_buffers::percent_decode(uri));
                 let what = path.display().to_string();
                 let bytes = crate::files::read(&path).map_err(|e| format!("cannot read image {e}"))?;
                 Ok((what, bytes))
@@ -89,7 +89,9 @@ impl<'a> TextureLoader<'a> {
 /// The file names of a document's images that live in files beside it.
 pub fn image_files(document: &gltf::Document) -> impl Iterator<Item = String> + '_ {
     document.images().filter_map(|image| match image.source() {
-        gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => Some(super::source::percent_decode(uri)),
+        gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
+            Some(super::gltf_buffers::percent_decode(uri))
+        }
         _ => None,
     })
 }

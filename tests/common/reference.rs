@@ -11,6 +11,15 @@ fn luminance(p: [f32; 3]) -> f64 {
     0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64
 }
 
+/// How closely blocks without noise in rt (background, emitters seen directly) must match.
+#[derive(Clone, Copy)]
+pub enum Noiseless {
+    /// Within this difference of mean luminance.
+    Absolute(f64),
+    /// Within this fraction of the reference's block mean (Cycles sums samples in f32).
+    Relative(f64),
+}
+
 pub struct Comparison {
     pub ours_mean: f64,
     pub reference_mean: f64,
@@ -26,6 +35,11 @@ pub struct Comparison {
 /// rendered with `reference_spp` samples per pixel. The reference's own noise is
 /// estimated from ours: similar estimators, more samples.
 pub fn compare(ours: &Image, reference: &Path, reference_spp: f64) -> Comparison {
+    compare_with(ours, reference, reference_spp, Noiseless::Absolute(1e-5))
+}
+
+/// [`compare`], with its own bound for blocks without noise.
+pub fn compare_with(ours: &Image, reference: &Path, reference_spp: f64, noiseless: Noiseless) -> Comparison {
     let image = image::open(reference).unwrap_or_else(|e| panic!("{}: {e}", reference.display())).into_rgb32f();
     let (w, h) = (ours.width as usize, ours.height as usize);
     assert_eq!((image.width() as usize, image.height() as usize), (w, h), "{}: size", reference.display());
@@ -55,9 +69,13 @@ pub fn compare(ours: &Image, reference: &Path, reference_spp: f64) -> Comparison
             let sigma = var.sqrt() / count * noise_scale;
             let diff = (a - b).abs() / count;
             // Blocks with no noise at all (background, emitters seen directly) must match to rounding.
+            let within = match noiseless {
+                Noiseless::Absolute(bound) => diff < bound,
+                Noiseless::Relative(fraction) => diff <= fraction * (b / count).abs(),
+            };
             let z = if sigma > 0.0 {
                 diff / sigma
-            } else if diff < 1e-5 {
+            } else if within {
                 0.0
             } else {
                 f64::INFINITY

@@ -174,6 +174,27 @@ enum BenchCommand {
         /// Samples per pixel per integrator dispatch.
         #[arg(long, default_value_t = 4)]
         spp: u32,
+        /// Lanes each pixel's samples are spread over [default: the renderer's choice].
+        #[arg(long)]
+        sample_lanes: Option<u32>,
+    },
+    /// rt's throughput beside Mitsuba 3's (through its Python API, when importable) on the
+    /// same scenes in one run, with the ratios.
+    Compare {
+        /// Scenes to compare at --size [default: the held-in set: the Cornell box at 9 and
+        /// 65 path vertices, at 128x128 and 1024x1024, and the dragon in clay with trace rates].
+        scenes: Vec<PathBuf>,
+        #[arg(long, value_parser = parse_size, default_value = "1024x720")]
+        size: (u32, u32),
+        /// Timed repetitions of each measurement (the median is reported).
+        #[arg(long, default_value_t = 5)]
+        runs: u32,
+        /// The Python that imports `mitsuba`.
+        #[arg(long, env = "RT_MITSUBA_PYTHON", default_value = "python3")]
+        python: String,
+        /// Mitsuba variant [default: cuda_ad_rgb, else llvm_ad_rgb].
+        #[arg(long)]
+        variant: Option<String>,
     },
     /// Error and time of the atmosphere's march steps and table sizes, against
     /// far finer settings, on a scene whose sky is an atmosphere.
@@ -452,8 +473,13 @@ fn main() -> ExitCode {
         Command::Info { scene, quality } => {
             load_scene(scene.as_deref()).and_then(|s| rt::info::print_info(s, quality, adapter))
         }
-        Command::Bench(BenchCommand::Throughput { scene, size, runs, spp }) => {
-            load_scene(scene.as_deref()).and_then(|s| rt::bench::throughput(s, size, runs, spp, adapter))
+        Command::Bench(BenchCommand::Throughput { scene, size, runs, spp, sample_lanes }) => {
+            let options = rt::bench::ThroughputOptions { size, runs, spp, lanes: sample_lanes, rays: true };
+            load_scene(scene.as_deref()).and_then(|s| rt::bench::throughput(s, &options, adapter))
+        }
+        Command::Bench(BenchCommand::Compare { scenes, size, runs, python, variant }) => {
+            let options = rt::bench::CompareOptions { scenes, size, runs, python, variant, root: PathBuf::new() };
+            rt::bench::compare(&options, adapter)
         }
         Command::Bench(BenchCommand::Sky { scene, size, spp }) => {
             load_scene(Some(&scene)).and_then(|s| rt::bench::sky(s, size, spp, adapter))

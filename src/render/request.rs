@@ -8,7 +8,7 @@ use anyhow::{Result, bail};
 /// Samples per pixel in one GPU dispatch at most.
 pub const MAX_SAMPLES_PER_DISPATCH: u32 = 256;
 /// Invocations one pixel's samples are spread over at most.
-pub const MAX_LANES: u32 = 64;
+pub const MAX_LANES: u32 = MAX_SAMPLES_PER_DISPATCH;
 
 /// One render's settings, as the session runs them.
 #[derive(Clone, Debug, PartialEq)]

@@ -3,7 +3,7 @@
 
 use crate::bvh::BuildQuality;
 use crate::gpu::{GpuContext, GpuTimer, median, ms, read_buffer};
-use crate::layout::{EMPTY_LINK, GpuTraceHit, GpuTraceRay};
+use crate::layout::GpuTraceRay;
 use crate::render::{RenderRequest, Session, human};
 use crate::scene::Scene;
 use anyhow::Result;
@@ -92,27 +92,33 @@ pub fn measure(session: &mut Session, options: &ThroughputOptions, bar: &Progres
     let (mut camera, mut diffuse) = (None, None);
     if options.rays {
         let io = session.trace_buffers(&vec![GpuTraceRay::default(); pixels as usize]);
-        let (mut camera_times, mut diffuse_times) = (Vec::new(), Vec::new());
+        let mut camera_times = Vec::new();
         for run in 0..=runs {
-            let base = 2 * run;
-            session.trace_pass(&io, "generate_camera_rays", base, Some(&timer))?;
-            let camera = session.trace_pass(&io, "trace", base, Some(&timer))?;
-            session.trace_pass(&io, "generate_diffuse_rays", base, Some(&timer))?;
-            let diffuse = session.trace_pass(&io, "trace", base, Some(&timer))?;
+            session.trace_pass(&io, "generate_camera_rays", 2 * run, None)?;
+            let camera = session.trace_pass(&io, "trace", 2 * run, Some(&timer))?;
             if run > 0 {
                 camera_times.push(camera);
-                diffuse_times.push(diffuse);
             }
-            bar.inc(1);
         }
-        // The diffuse rays start where camera rays hit: count those once, after timing
-        // (reading 32 bytes per ray back between runs would leave the GPU idle).
-        session.trace_pass(&io, "generate_camera_rays", 0, None)?;
-        session.trace_pass(&io, "trace", 0, None)?;
-        let hits: Vec<GpuTraceHit> = read_buffer(ctx, &io.hits)?;
-        let with_hit = hits.iter().filter(|h| h.primitive != EMPTY_LINK).count() as u64;
+        // Bounce rays from the camera rays' hits, as a path's next rays start; misses
+        // start none and are left out, as `rt bench compare` has Mitsuba measure them.
+        session.trace_pass(&io, "generate_diffuse_rays", 0, None)?;
+        let rays: Vec<GpuTraceRay> = read_buffer(ctx, &io.rays)?;
+        let bounces: Vec<GpuTraceRay> = rays.into_iter().filter(|r| r.t_max > 0.0).collect();
+        let mut diffuse_times = Vec::new();
+        if !bounces.is_empty() {
+            let bounce_io = session.trace_buffers(&bounces);
+            warm_up(session)?;
+            for run in 0..=runs {
+                let diffuse = session.trace_pass(&bounce_io, "trace", 0, Some(&timer))?;
+                if run > 0 {
+                    diffuse_times.push(diffuse);
+                }
+                bar.inc(1);
+            }
+        }
         camera = Some(median(camera_times));
-        diffuse = Some((with_hit, median(diffuse_times)));
+        diffuse = (!diffuse_times.is_empty()).then(|| (bounces.len() as u64, median(diffuse_times)));
     }
     // Each run: dispatches until `spp` samples per pixel are taken; its time is scaled to
     // exactly `spp` where the last dispatch took more.

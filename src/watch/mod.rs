@@ -13,6 +13,7 @@ pub mod live;
 pub mod plan;
 pub mod reload_log;
 mod sources;
+pub mod stream;
 mod viewer;
 mod viewer_controls;
 

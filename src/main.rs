@@ -207,8 +207,11 @@ enum BenchCommand {
     /// `rt watch --stream` latency: camera command written → first frame that shows it,
     /// read by a client on the pipes; and a frame's time through the pipe.
     StreamLatency {
-        #[arg(long, default_value = "scenes/cornell_box.toml")]
-        scene: PathBuf,
+        /// Scene file [default: watch-latency's scene around --asset].
+        #[arg(long)]
+        scene: Option<PathBuf>,
+        #[arg(long, default_value = "assets/dragon")]
+        asset: PathBuf,
         #[arg(long, value_parser = parse_size, default_value = "320x240")]
         size: (u32, u32),
         /// Camera commands (the median and the worst are reported).
@@ -483,8 +486,8 @@ fn main() -> ExitCode {
         Command::Bench(BenchCommand::WatchLatency { asset, size, runs }) => {
             rt::watch::latency::watch_latency(&asset, size, runs, adapter)
         }
-        Command::Bench(BenchCommand::StreamLatency { scene, size, runs }) => {
-            rt::watch::stream::latency::stream_latency(&scene, size, runs, adapter)
+        Command::Bench(BenchCommand::StreamLatency { scene, asset, size, runs }) => {
+            rt::watch::stream::latency::stream_latency(scene.as_deref(), &asset, size, runs, adapter)
         }
         Command::Bench(BenchCommand::Accuracy(args)) => bench_accuracy(args, adapter),
         Command::Bench(BenchCommand::Effects { scene, size, spp, repeats }) => {

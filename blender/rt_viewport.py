@@ -221,6 +221,7 @@ class Viewport:
         )
         frame, count = self.client.latest() if self.client is not None else (None, 0)
         if frame is None:
+            self.show_if_stopped(engine)
             return
         if count != self.texture_frame:
             # Blender's textures start with the bottom row.
@@ -234,6 +235,12 @@ class Viewport:
         engine.unbind_display_space_shader()
         gpu.state.blend_set("NONE")
         engine.update_stats("", f"rt: {frame.spp}/{scene.rt_render.viewport_spp} spp")
+        self.show_if_stopped(engine)
+
+    def show_if_stopped(self, engine):
+        """rt's last words in the status bar, once it has stopped."""
+        if self.client is not None and self.client.closed:
+            engine.update_stats("", f"rt stopped: {self.client.stderr[-1] if self.client.stderr else 'no message'}")
 
     def close(self):
         if self.client is not None:

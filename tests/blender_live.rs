@@ -77,6 +77,7 @@ fn each_edit_in_blender_is_one_reload_in_rt_watch_without_saving() {
         let reload = watch.wait_for(&format!("reload #{step} "));
         assert!(reload.contains(expected), "step {step}: {reload}\n{}", watch.log().join("\n"));
         watch.wait_for(&format!("frame #{step} "));
+        assert!(watch.frame(step - 1) != watch.frame(step), "step {step} left the image as it was");
         if step < 5 {
             // One reload for one edit: nothing more comes before the next edit.
             std::thread::sleep(Duration::from_millis(500));

@@ -14,7 +14,8 @@
 //! ```
 //!
 //! A frame is the mean radiance so far, linear, as little-endian f32 RGBA (alpha 1), rows
-//! from the top; `line=L` says it shows every command up to the client's line L. Frames
+//! from the top; `line=L` says it shows every command up to the client's line L (a bad
+//! one is answered by its error line, and changes nothing). Frames
 //! follow each dispatch until the state reaches its spp. client → rt, one command a line:
 //!
 //! ```text
@@ -153,7 +154,10 @@ fn serve_client(live: &mut LiveScene, client: &mut Connection) -> Result<Ended, 
         while let Some(incoming) = next.take() {
             match incoming {
                 Incoming::Closed => return Ok(Ended::Gone),
-                Incoming::Command { line, command: Err(message) } => client.line(&error_line(Some(line), &message))?,
+                Incoming::Command { line, command: Err(message) } => {
+                    client.line(&error_line(Some(line), &message))?;
+                    shown_line = line;
+                }
                 Incoming::Command { line, command: Ok(Command::Quit) } => {
                     log::info!("stream: quit at line {line}");
                     client.line("bye")?;

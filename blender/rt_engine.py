@@ -22,9 +22,10 @@ import bpy
 import numpy as np
 
 try:
-    from . import rt_export
+    from . import rt_export, rt_viewport
 except ImportError:  # run from the blender/ folder, outside the packaged extension
     import rt_export
+    import rt_viewport
 
 # The add-on's name, which its preferences are registered under.
 ADDON = __package__ or __name__
@@ -80,6 +81,20 @@ class RtRenderSettings(bpy.types.PropertyGroup):
         default="nee",
     )
     seed: bpy.props.IntProperty(name="Seed", description="The same seed gives the same image", default=0, min=0)
+    viewport_spp: bpy.props.IntProperty(
+        name="Viewport Samples",
+        description="Samples per pixel the viewport's Rendered mode refines to",
+        default=64,
+        min=1,
+        soft_max=4096,
+    )
+    viewport_pixel_size: bpy.props.IntProperty(
+        name="Viewport Pixel Size",
+        description="The viewport renders one pixel of rt per this many screen pixels across (faster)",
+        default=2,
+        min=1,
+        max=8,
+    )
 
 
 class RT_PT_render(bpy.types.Panel):
@@ -97,7 +112,7 @@ class RT_PT_render(bpy.types.Panel):
         settings = context.scene.rt_render
         layout = self.layout
         layout.use_property_split = True
-        for name in ("spp", "max_bounces", "sampling", "seed"):
+        for name in ("spp", "max_bounces", "sampling", "seed", "viewport_spp", "viewport_pixel_size"):
             layout.prop(settings, name)
 
 
@@ -250,6 +265,39 @@ class RtRenderEngine(bpy.types.RenderEngine):
     bl_label = "rt"
     bl_use_preview = False
     bl_use_postprocess = True
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self.viewport = None
+
+    def __del__(self):
+        viewport = getattr(self, "viewport", None)
+        if viewport is not None:
+            viewport.close()
+
+    # The viewport's Rendered mode: a streaming rt child (rt_viewport).
+    def view_update(self, context, depsgraph):
+        if self.viewport is None:
+            self.viewport = rt_viewport.Viewport(rt_binary(), os.path.join(cache_dir(), "viewport"))
+            try:
+                self.viewport.update(depsgraph)
+            except (OSError, ValueError) as e:
+                self.viewport = None
+                self.update_stats("", f"rt: {e}")
+                return
+            rt_viewport.keep_redrawing(self, self.viewport)
+            return
+        try:
+            self.viewport.update(depsgraph)
+        except (OSError, ValueError) as e:
+            self.update_stats("", f"rt: {e}")
+        for message in self.viewport.client.take_messages():
+            if message.startswith("error "):
+                self.update_stats("", f"rt: {rt_viewport.fields(message).get('message', message)}")
+
+    def view_draw(self, context, depsgraph):
+        if self.viewport is not None:
+            self.viewport.draw(self, context, depsgraph)
 
     def render(self, depsgraph):
         scene = depsgraph.scene

@@ -27,6 +27,7 @@ import os
 import re
 import struct
 import sys
+import time
 import zlib
 
 import bpy
@@ -990,28 +991,55 @@ _changes = {"objects": set(), "meshes": set(), "materials": set()}
 _last_export = {}  # scene name -> Export
 
 
+def classify_updates(updates):
+    """What a depsgraph's updates changed, by kind: objects moved ("transform"), objects
+    whose evaluated mesh ("geometry") or materials ("shading") changed, and the mesh
+    data, materials and world edited. Only "geometry", "shading", "meshes" and
+    "materials" re-export meshes; everything else lands in the scene file."""
+    changes = {"transform": set(), "geometry": set(), "shading": set(), "meshes": set(), "materials": set()}
+    changes["world"] = False
+    for update in updates:
+        original = getattr(update.id, "original", update.id)
+        if isinstance(original, bpy.types.Object):
+            for kind in ("transform", "geometry", "shading"):
+                if getattr(update, f"is_updated_{kind}"):
+                    changes[kind].add(original.name)
+        elif isinstance(original, bpy.types.Mesh):
+            changes["meshes"].add(original.name)
+        elif isinstance(original, bpy.types.Material):
+            changes["materials"].add(original.name)
+        elif isinstance(original, bpy.types.World):
+            changes["world"] = True
+    return changes
+
+
+def any_change(changes):
+    return any(changes.values())
+
+
+def add_changes(into, changes):
+    """Merges `changes` into `into`, a dict of sets as `_changes` is."""
+    into["objects"] |= changes["geometry"] | changes["shading"]
+    into["meshes"] |= changes["meshes"]
+    into["materials"] |= changes["materials"]
+
+
 @persistent
 def _collect_changes(scene, depsgraph):
-    for update in depsgraph.updates:
-        original = getattr(update.id, "original", update.id)
-        if isinstance(original, bpy.types.Object) and (update.is_updated_geometry or update.is_updated_shading):
-            _changes["objects"].add(original.name)
-        elif isinstance(original, bpy.types.Mesh):
-            _changes["meshes"].add(original.name)
-        elif isinstance(original, bpy.types.Material):
-            _changes["materials"].add(original.name)
+    changes = classify_updates(depsgraph.updates)
+    add_changes(_changes, changes)
+    if any_change(changes) and scene.rt_export.live_edits:
+        _export_edit(scene)
 
 
-def changed_objects(scene):
-    """Objects whose exported mesh may differ since the last export."""
+def changed_objects(scene, changes=None):
+    """Objects whose exported mesh may differ since the last export (by `changes`, a dict
+    like `_changes`; by default what changed since the last live export)."""
+    changes = _changes if changes is None else changes
     out = set()
     for obj in exported_objects(scene):
         materials = {m.name for m in object_slot_materials(obj) if m is not None}
-        if (
-            obj.name in _changes["objects"]
-            or obj.data.name in _changes["meshes"]
-            or materials & _changes["materials"]
-        ):
+        if obj.name in changes["objects"] or obj.data.name in changes["meshes"] or materials & changes["materials"]:
             out.add(obj.name)
     return out
 
@@ -1036,6 +1064,44 @@ def _export_on_save(_filepath):
             log(f"live export of {scene.name}: {len(export.written)} files written")
 
 
+# --- add-on: live export on every edit ---------------------------------------------
+
+# At most one export this often while an edit goes on (an object dragged): the edits in
+# between wait, and a timer exports the last of them once the interval has passed.
+LIVE_EDIT_INTERVAL_S = 0.1
+_edits = {"last_export": -math.inf, "pending": set()}
+
+
+def _export_edit(scene):
+    """An edit of `scene`: exported now, or by the timer when the last export was too recent."""
+    wait = _edits["last_export"] + LIVE_EDIT_INTERVAL_S - time.monotonic()
+    if wait <= 0:
+        _edits["pending"].discard(scene.name)
+        _live_edit_export(scene)
+        return
+    _edits["pending"].add(scene.name)
+    if not bpy.app.timers.is_registered(flush_live_edits):
+        bpy.app.timers.register(flush_live_edits, first_interval=wait)
+
+
+def _live_edit_export(scene):
+    _edits["last_export"] = time.monotonic()
+    export = live_export(scene)
+    if export.written:
+        log(f"live export of {scene.name}: {len(export.written)} files written")
+
+
+def flush_live_edits():
+    """The timer: exports the scenes whose last edits were held back. Returns None (Blender's
+    timers run once then)."""
+    for name in sorted(_edits["pending"]):
+        scene = bpy.data.scenes.get(name)
+        if scene is not None and scene.rt_export.live_edits:
+            _live_edit_export(scene)
+    _edits["pending"].clear()
+    return None
+
+
 class RtExportSettings(bpy.types.PropertyGroup):
     out_dir: bpy.props.StringProperty(name="Assets", subtype="DIR_PATH", default="//assets/")
     scene_file: bpy.props.StringProperty(name="Scene", subtype="FILE_PATH", default="//scenes/scene.toml")
@@ -1043,6 +1109,14 @@ class RtExportSettings(bpy.types.PropertyGroup):
     live: bpy.props.BoolProperty(
         name="Live export on save",
         description="On every save, export the meshes and materials that changed since the last export",
+        default=False,
+    )
+    live_edits: bpy.props.BoolProperty(
+        name="Live export on every edit",
+        description=(
+            "On every edit, export what changed (at most every "
+            f"{LIVE_EDIT_INTERVAL_S:g} s while an edit goes on; the last state always lands)"
+        ),
         default=False,
     )
 
@@ -1098,6 +1172,7 @@ class RT_PT_panel(bpy.types.Panel):
         row.prop(settings, "scene_file")
         layout.operator(RT_OT_export_now.bl_idname)
         layout.prop(settings, "live")
+        layout.prop(settings, "live_edits")
 
 
 def _menu_entry(self, _context):
@@ -1117,6 +1192,8 @@ def register():
 
 
 def unregister():
+    if bpy.app.timers.is_registered(flush_live_edits):
+        bpy.app.timers.unregister(flush_live_edits)
     bpy.app.handlers.save_post.remove(_export_on_save)
     bpy.app.handlers.depsgraph_update_post.remove(_collect_changes)
     bpy.types.TOPBAR_MT_file_export.remove(_menu_entry)

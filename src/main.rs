@@ -136,6 +136,13 @@ struct WatchArgs {
     /// as frame-NNNN.png (NNNN: the reload's number); stops when FRAMES_DIR/stop appears.
     #[arg(long, requires = "frames_dir")]
     headless: bool,
+    /// No window: take commands on standard input and send frames on standard output
+    /// (the protocol: README.md, "Streaming to a client"); with --socket, on a Unix socket.
+    #[arg(long, conflicts_with = "headless")]
+    stream: bool,
+    /// With --stream: serve clients one after another on the Unix socket at this path.
+    #[arg(long, requires = "stream")]
+    socket: Option<PathBuf>,
     /// Where frames (headless), screenshots and watch.log go.
     #[arg(long)]
     frames_dir: Option<PathBuf>,
@@ -216,6 +223,20 @@ enum BenchCommand {
         size: (u32, u32),
         /// Edits of each kind (the median is reported).
         #[arg(long, default_value_t = 3)]
+        runs: u32,
+    },
+    /// `rt watch --stream` latency: camera command written → first frame that shows it,
+    /// read by a client on the pipes; and a frame's time through the pipe.
+    StreamLatency {
+        /// Scene file [default: watch-latency's scene around --asset].
+        #[arg(long)]
+        scene: Option<PathBuf>,
+        #[arg(long, default_value = "assets/dragon")]
+        asset: PathBuf,
+        #[arg(long, value_parser = parse_size, default_value = "320x240")]
+        size: (u32, u32),
+        /// Camera commands (the median and the worst are reported).
+        #[arg(long, default_value_t = 10)]
         runs: u32,
     },
     /// Error against a converged reference beside the time it cost, for every knob
@@ -395,7 +416,11 @@ fn watch(args: WatchArgs, adapter: Option<&str>) -> Result<()> {
         format: args.format,
         max_reloads: args.max_reloads,
     };
-    if args.headless {
+    if args.stream {
+        let ctx = GpuContext::new(adapter)?;
+        eprintln!("GPU: {}", ctx.describe());
+        rt::watch::stream::run(&ctx, &options, args.socket.as_deref())
+    } else if args.headless {
         let ctx = GpuContext::new(adapter)?;
         eprintln!("GPU: {}", ctx.describe());
         rt::watch::run_headless(&ctx, &options, None)
@@ -486,6 +511,9 @@ fn main() -> ExitCode {
         }
         Command::Bench(BenchCommand::WatchLatency { asset, size, runs }) => {
             rt::watch::latency::watch_latency(&asset, size, runs, adapter)
+        }
+        Command::Bench(BenchCommand::StreamLatency { scene, asset, size, runs }) => {
+            rt::watch::stream::latency::stream_latency(scene.as_deref(), &asset, size, runs, adapter)
         }
         Command::Bench(BenchCommand::Accuracy(args)) => bench_accuracy(args, adapter),
         Command::Bench(BenchCommand::Effects { scene, size, spp, repeats }) => {

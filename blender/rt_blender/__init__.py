@@ -1,9 +1,10 @@
 """rt for Blender, as an extension (Blender 4.2+): the exporter (File > Export > rt, the
-"rt" sidebar tab, live export on save) and the "rt" render engine (F12). Its preferences
+"rt" sidebar tab, live export on save or on every edit) and the "rt" render engine (F12,
+and the viewport's Rendered mode through a streaming rt). Its preferences
 are the path to the rt binary and the cache folder of F12 renders.
 
 In the repository, the modules live beside this folder (blender/rt_export.py,
-blender/rt_engine.py) so that they also run as scripts; scripts/package_blender copies
+blender/rt_engine.py, blender/rt_viewport.py) so that they also run as scripts; scripts/package_blender copies
 them next to this file into rt_blender.zip.
 """
 

@@ -18,7 +18,8 @@ use std::time::{Duration, Instant};
 /// Byte offset of the first vertex's x in an `.rtmesh` (contract 1: magic, 4 u32s).
 const FIRST_VERTEX_X: usize = 24;
 
-fn scene_text(asset: &str, camera_x: f32, red: f32) -> String {
+/// The benchmarks' scene: `asset` under a sun and a uniform sky, seen from `camera_x`.
+pub(super) fn scene_text(asset: &str, camera_x: f32, red: f32) -> String {
     format!(
         r#"[render]
 max_bounces = 4

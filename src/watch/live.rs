@@ -154,6 +154,14 @@ impl<'a> LiveScene<'a> {
         Ok(())
     }
 
+    /// Refines each state to `spp` samples per pixel from now on.
+    pub fn set_spp(&mut self, spp: u32) -> Result<()> {
+        self.flags.spp = Some(spp);
+        let (_, request) = self.rendered(&self.file_scene, &self.overrides)?;
+        self.session.set_request(&request)?;
+        Ok(())
+    }
+
     /// Reads the scene and its assets again after `changed` files changed, and brings the
     /// GPU to them with the least work. On an error nothing changes.
     pub fn reload(&mut self, changed: &[PathBuf]) -> Result<ReloadReport> {

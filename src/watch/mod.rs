@@ -1,7 +1,8 @@
 //! `rt watch`: the scene kept live while the artist edits it. Files are watched
 //! (`fs_watch`), each batch of changes is planned into the least work (`plan`) and
 //! applied to the scene on the GPU (`live`), which is refined frame by frame
-//! in a window (`viewer`) or headless, writing frames (`headless`).
+//! in a window (`viewer`) or headless, writing frames (`headless`), or for a client that
+//! drives it with commands and receives its frames (`stream`: Blender's viewport).
 
 mod camera_control;
 mod display;
@@ -13,6 +14,7 @@ pub mod live;
 pub mod plan;
 pub mod reload_log;
 mod sources;
+pub mod stream;
 mod viewer;
 mod viewer_controls;
 

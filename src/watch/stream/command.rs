@@ -1,0 +1,208 @@
+//! The commands a client of `rt watch --stream` sends, one per line, and their parsing.
+//! A line that does not parse is refused with a message that says what is wrong; it
+//! changes nothing.
+
+use super::view::{Lens, camera_from_view};
+use crate::scene::{Camera, SensorFit, did_you_mean};
+use glam::{Mat4, Vec2};
+use std::path::PathBuf;
+
+/// The longest image side a `size` command may ask for (the GPU may refuse less).
+const MAX_SIDE: u32 = 16384;
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Command {
+    /// Look through this camera from now on.
+    Camera(Camera),
+    /// Render `width`×`height` pixels from now on.
+    Size { width: u32, height: u32 },
+    /// Read the scene again: these files changed (none given: any may have).
+    Reload(Vec<PathBuf>),
+    /// Refine each state to this many samples per pixel.
+    Spp(u32),
+    /// Stop rt.
+    Quit,
+}
+
+const COMMANDS: [&str; 5] = ["camera", "size", "reload", "spp", "quit"];
+const CAMERA_KEYS: [&str; 8] = ["view", "lens", "fov", "ortho", "projection", "sensor", "fit", "shift"];
+
+/// One line of the protocol; `None` for a blank line or a `#` comment.
+pub fn parse(line: &str) -> Option<Result<Command, String>> {
+    let line = line.trim();
+    if line.is_empty() || line.starts_with('#') {
+        return None;
+    }
+    let (name, rest) = line.split_once(char::is_whitespace).unwrap_or((line, ""));
+    let args: Vec<&str> = rest.split_whitespace().collect();
+    Some(match name {
+        "camera" => camera(&args).map(Command::Camera),
+        "size" => size(&args),
+        "reload" => Ok(Command::Reload(args.iter().map(PathBuf::from).collect())),
+        "spp" => match args[..] {
+            [n] => number::<u32>(n, "spp").and_then(|n| positive(n, "spp")).map(Command::Spp),
+            _ => Err("spp takes one number: `spp 64`".into()),
+        },
+        "quit" if args.is_empty() => Ok(Command::Quit),
+        "quit" => Err("quit takes no arguments".into()),
+        other => Err(format!("unknown command `{other}`{}", did_you_mean(other, COMMANDS.into_iter()))),
+    })
+}
+
+fn number<T: std::str::FromStr>(text: &str, what: &str) -> Result<T, String> {
+    text.parse().map_err(|_| format!("{what}: `{text}` is not a number"))
+}
+
+fn positive(n: u32, what: &str) -> Result<u32, String> {
+    if n == 0 { Err(format!("{what} must be at least 1")) } else { Ok(n) }
+}
+
+fn size(args: &[&str]) -> Result<Command, String> {
+    let [w, h] = args[..] else {
+        return Err("size takes a width and a height: `size 640 480`".into());
+    };
+    let (width, height) = (number::<u32>(w, "width")?, number::<u32>(h, "height")?);
+    for (side, what) in [(width, "width"), (height, "height")] {
+        if side == 0 || side > MAX_SIDE {
+            return Err(format!("{what} {side} is not in 1..={MAX_SIDE}"));
+        }
+    }
+    Ok(Command::Size { width, height })
+}
+
+/// `n` comma-separated finite numbers.
+fn floats(text: &str, n: usize, key: &str) -> Result<Vec<f32>, String> {
+    let values: Vec<f32> = text
+        .split(',')
+        .map(|v| v.trim().parse::<f32>().ok().filter(|v| v.is_finite()))
+        .collect::<Option<_>>()
+        .ok_or_else(|| format!("{key}: `{text}` is not {n} comma-separated finite numbers"))?;
+    if values.len() != n {
+        return Err(format!("{key}: {} numbers, expected {n}", values.len()));
+    }
+    Ok(values)
+}
+
+/// A 4×4 matrix written row by row.
+fn matrix(text: &str, key: &str) -> Result<Mat4, String> {
+    let rows = floats(text, 16, key)?;
+    Ok(Mat4::from_cols_slice(&rows).transpose())
+}
+
+fn positive_float(text: &str, key: &str) -> Result<f32, String> {
+    let v = floats(text, 1, key)?[0];
+    if v > 0.0 { Ok(v) } else { Err(format!("{key} must be positive, not {v}")) }
+}
+
+fn camera(args: &[&str]) -> Result<Camera, String> {
+    let mut view = None;
+    let mut lens = None;
+    let mut sensor = Vec2::new(36.0, 24.0);
+    let mut fit = SensorFit::Auto;
+    let mut shift = Vec2::ZERO;
+    for arg in args {
+        let Some((key, value)) = arg.split_once('=') else {
+            return Err(format!("camera: `{arg}` is not key=value"));
+        };
+        let projection = match key {
+            "view" => {
+                view = Some(matrix(value, key)?);
+                None
+            }
+            "lens" => Some(Lens::FocalLength(positive_float(value, key)?)),
+            "fov" => {
+                let degrees = positive_float(value, key)?;
+                if degrees >= 180.0 {
+                    return Err(format!("fov must be below 180 degrees, not {degrees}"));
+                }
+                Some(Lens::FovY(degrees))
+            }
+            "ortho" => Some(Lens::Orthographic(positive_float(value, key)?)),
+            "projection" => Some(Lens::Matrix(matrix(value, key)?)),
+            "sensor" => {
+                let s = floats(value, 2, key)?;
+                if s.iter().any(|&v| v <= 0.0) {
+                    return Err(format!("sensor must be positive, not {value}"));
+                }
+                sensor = Vec2::new(s[0], s[1]);
+                None
+            }
+            "fit" => {
+                fit = match value {
+                    "auto" => SensorFit::Auto,
+                    "horizontal" => SensorFit::Horizontal,
+                    "vertical" => SensorFit::Vertical,
+                    _ => return Err(format!("fit: `{value}` is not auto, horizontal or vertical")),
+                };
+                None
+            }
+            "shift" => {
+                let s = floats(value, 2, key)?;
+                shift = Vec2::new(s[0], s[1]);
+                None
+            }
+            _ => return Err(format!("camera: unknown key `{key}`{}", did_you_mean(key, CAMERA_KEYS.into_iter()))),
+        };
+        if let Some(p) = projection {
+            if lens.is_some() {
+                return Err("camera: give one of lens=, fov=, ortho=, projection=".into());
+            }
+            lens = Some(p);
+        }
+    }
+    let view = view.ok_or("camera needs view=<16 numbers, the world-to-camera matrix row by row>")?;
+    camera_from_view(view, lens.unwrap_or(Lens::FocalLength(50.0)), sensor, fit, shift)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Projection;
+    use glam::Vec3;
+
+    const IDENTITY: &str = "1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1";
+
+    fn error(line: &str) -> String {
+        parse(line).expect("a command").expect_err("an error")
+    }
+
+    #[test]
+    fn commands_parse() {
+        assert_eq!(parse("size 64 32"), Some(Ok(Command::Size { width: 64, height: 32 })));
+        assert_eq!(parse("  quit "), Some(Ok(Command::Quit)));
+        assert_eq!(parse("reload a.toml b.gltf"), Some(Ok(Command::Reload(vec!["a.toml".into(), "b.gltf".into()]))));
+        assert_eq!(parse("spp 8"), Some(Ok(Command::Spp(8))));
+        assert_eq!(parse("# a comment"), None);
+        assert_eq!(parse(""), None);
+        let Some(Ok(Command::Camera(c))) = parse(&format!("camera view={IDENTITY} lens=35 sensor=36,24 fit=vertical"))
+        else {
+            panic!("camera")
+        };
+        assert_eq!(c.projection, Projection::FocalLength { mm: 35.0 });
+        assert_eq!(c.sensor_fit, SensorFit::Vertical);
+        assert!((c.look_at - c.position - Vec3::NEG_Z).length() < 1e-6);
+    }
+
+    #[test]
+    fn bad_lines_say_what_is_wrong() {
+        assert_eq!(error("camra view=1"), "unknown command `camra`; did you mean `camera`?");
+        assert_eq!(error("size 64"), "size takes a width and a height: `size 640 480`");
+        assert_eq!(error("size 0 64"), "width 0 is not in 1..=16384");
+        assert_eq!(error("size 64 x"), "height: `x` is not a number");
+        assert_eq!(error("spp 0"), "spp must be at least 1");
+        assert_eq!(
+            error(&format!("camera view={IDENTITY} lense=50")),
+            "camera: unknown key `lense`; did you mean `lens`?"
+        );
+        assert_eq!(error("camera view=1,2,3"), "view: 3 numbers, expected 16");
+        assert_eq!(error("camera lens=50"), "camera needs view=<16 numbers, the world-to-camera matrix row by row>");
+        assert_eq!(
+            error(&format!("camera view={IDENTITY} lens=50 fov=40")),
+            "camera: give one of lens=, fov=, ortho=, projection="
+        );
+        assert_eq!(
+            error("camera view=1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,nan"),
+            "view: `1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,nan` is not 16 comma-separated finite numbers"
+        );
+    }
+}

@@ -1,0 +1,238 @@
+//! `rt watch SCENE --stream`: no window; a client (Blender's viewport, a test) drives the
+//! scene with command lines and receives each refinement of the image as a frame.
+//!
+//! The transport is the standard streams of rt, or with `--socket PATH` a Unix socket
+//! that serves one client after another (a client that dies leaves rt and its scene up
+//! for the next). rt → client, text lines, `frame` ones followed by their bytes:
+//!
+//! ```text
+//! hello rt-stream version=1 width=640 height=480 spp=64
+//! frame line=3 spp=4 width=640 height=480 format=rgba32f bytes=4915200
+//! reload #1 line=5 kind=asset cause=cube.gltf ms=12.0
+//! error line=6 message="unknown command `camra`; did you mean `camera`?"
+//! bye
+//! ```
+//!
+//! A frame is the mean radiance so far, linear, as little-endian f32 RGBA (alpha 1), rows
+//! from the top; `line=L` says it shows every command up to the client's line L (a bad
+//! one is answered by its error line, and changes nothing). Frames
+//! follow each dispatch until the state reaches its spp. client → rt, one command a line:
+//!
+//! ```text
+//! camera view=<16 numbers> [lens=MM sensor=W,H fit=auto|horizontal|vertical | fov=DEG
+//!        | ortho=SCALE | projection=<16 numbers>] [shift=X,Y]
+//! size WIDTH HEIGHT
+//! reload [FILE...]
+//! spp N
+//! quit
+//! ```
+//!
+//! Matrices are row by row; `view` maps rt's world (Y up) to the camera (looking down −Z,
+//! +Y up); `projection` is an OpenGL projection matrix such as Blender's `window_matrix`.
+
+mod command;
+mod connection;
+pub mod latency;
+mod view;
+
+pub use command::Command;
+
+use super::WatchOptions;
+use super::live::LiveScene;
+use super::sources::names;
+use crate::gpu::{GpuContext, ms};
+use crate::render::{Image, Pacing};
+use anyhow::{Context, Result};
+use connection::{Connection, Gone, Incoming};
+use std::path::Path;
+use std::time::Duration;
+
+/// The protocol's version, in the hello line.
+pub const VERSION: u32 = 1;
+
+/// Dispatches aim at a viewport's frame rate.
+const PACING: Pacing = Pacing { target: Duration::from_millis(50), max_samples: 64 };
+
+/// How one client's session ended.
+enum Ended {
+    Quit,
+    Gone,
+}
+
+/// Serves `options.scene` to one client on the standard streams, or to clients of the
+/// Unix socket at `socket` one after another, until a client says `quit` (or, on the
+/// standard streams, goes away).
+pub fn run(ctx: &GpuContext, options: &WatchOptions, socket: Option<&Path>) -> Result<()> {
+    let mut live = LiveScene::open(ctx, options)?;
+    live.session.set_pacing(PACING);
+    let Some(path) = socket else {
+        serve(&mut live, Connection::new(std::io::stdin(), std::io::stdout()))?;
+        return Ok(());
+    };
+    let listener = bind(path)?;
+    eprintln!("rt watch --stream: listening on {}", path.display());
+    let result = loop {
+        let stream = match listener.accept() {
+            Ok((stream, _)) => stream,
+            Err(e) => break Err(e).with_context(|| format!("{}: cannot accept a client", path.display())),
+        };
+        let input = match stream.try_clone() {
+            Ok(input) => input,
+            Err(e) => break Err(e).context("cannot read from the client's socket"),
+        };
+        match serve(&mut live, Connection::new(input, stream)) {
+            Ok(Ended::Quit) => break Ok(()),
+            Ok(Ended::Gone) => eprintln!("rt watch --stream: the client left; waiting for the next"),
+            Err(e) => break Err(e),
+        }
+    };
+    let _ = std::fs::remove_file(path);
+    result
+}
+
+#[cfg(unix)]
+fn bind(path: &Path) -> Result<std::os::unix::net::UnixListener> {
+    use std::os::unix::fs::FileTypeExt;
+    // A socket left by a killed rt would make the bind fail; anything else is not ours to remove.
+    if std::fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_socket()) {
+        let _ = std::fs::remove_file(path);
+    }
+    std::os::unix::net::UnixListener::bind(path).with_context(|| format!("{}: cannot listen there", path.display()))
+}
+
+#[cfg(not(unix))]
+fn bind(path: &Path) -> Result<std::net::TcpListener> {
+    anyhow::bail!("{}: --socket needs a Unix system; use the standard streams", path.display())
+}
+
+/// One client's session: its commands applied as they come, frames sent after each dispatch.
+fn serve(live: &mut LiveScene, mut client: Connection) -> Result<Ended> {
+    match serve_client(live, &mut client) {
+        Ok(ended) => Ok(ended),
+        Err(Failure::Gone(Gone)) => Ok(Ended::Gone),
+        Err(Failure::Render(e)) => {
+            // The client hears why rt stops, if it still listens.
+            let _ = client.line(&error_line(None, &format!("{e:#}")));
+            Err(e)
+        }
+    }
+}
+
+enum Failure {
+    Gone(Gone),
+    Render(anyhow::Error),
+}
+
+impl From<Gone> for Failure {
+    fn from(gone: Gone) -> Self {
+        Failure::Gone(gone)
+    }
+}
+
+impl From<anyhow::Error> for Failure {
+    fn from(e: anyhow::Error) -> Self {
+        Failure::Render(e)
+    }
+}
+
+fn serve_client(live: &mut LiveScene, client: &mut Connection) -> Result<Ended, Failure> {
+    let request = live.session.request();
+    client.line(&format!(
+        "hello rt-stream version={VERSION} width={} height={} spp={}",
+        request.width, request.height, request.spp
+    ))?;
+    // A client that joins a converged scene gets its image at once.
+    let mut frame_due = live.session.samples() > 0;
+    let mut shown_line = 0;
+    loop {
+        // Waits for a command only when there is nothing to refine or send.
+        let mut next = if live.session.converged() && !frame_due {
+            Some(client.incoming.recv().unwrap_or(Incoming::Closed))
+        } else {
+            client.incoming.try_recv().ok()
+        };
+        while let Some(incoming) = next.take() {
+            match incoming {
+                Incoming::Closed => return Ok(Ended::Gone),
+                Incoming::Command { line, command: Err(message) } => {
+                    client.line(&error_line(Some(line), &message))?;
+                    shown_line = line;
+                }
+                Incoming::Command { line, command: Ok(Command::Quit) } => {
+                    log::info!("stream: quit at line {line}");
+                    client.line("bye")?;
+                    return Ok(Ended::Quit);
+                }
+                Incoming::Command { line, command: Ok(command) } => {
+                    if let Err(e) = apply(live, client, line, command)? {
+                        client.line(&error_line(Some(line), &format!("{e:#}")))?;
+                    }
+                    shown_line = line;
+                    frame_due = true;
+                }
+            }
+            next = client.incoming.try_recv().ok();
+        }
+        if !live.session.converged() {
+            live.session.step(None)?;
+            frame_due = true;
+        }
+        if frame_due {
+            let image = live.session.image()?;
+            let header = format!(
+                "frame line={shown_line} spp={} width={} height={} format=rgba32f",
+                image.samples, image.width, image.height
+            );
+            client.frame(&header, &rgba32f(&image))?;
+            frame_due = false;
+        }
+    }
+}
+
+/// Applies a command; the inner error is the client's (refused, nothing changed).
+fn apply(live: &mut LiveScene, client: &mut Connection, line: u64, command: Command) -> Result<Result<()>, Gone> {
+    Ok(match command {
+        Command::Camera(camera) => {
+            let mut overrides = live.overrides().clone();
+            overrides.camera = Some(camera);
+            live.set_overrides(overrides)
+        }
+        Command::Size { width, height } => {
+            live.session.check_image_size(width, height).and_then(|()| live.set_window_size(width, height))
+        }
+        Command::Spp(spp) => live.set_spp(spp),
+        Command::Reload(files) => match live.reload(&files) {
+            Ok(report) => {
+                let kind = report.reload.kind();
+                client.line(&format!(
+                    "reload #{} line={line} kind={kind} cause={} ms={:.1}",
+                    report.number,
+                    names(&files),
+                    ms(report.elapsed)
+                ))?;
+                Ok(())
+            }
+            Err(e) => Err(e),
+        },
+        Command::Quit => Ok(()),
+    })
+}
+
+fn error_line(line: Option<u64>, message: &str) -> String {
+    let message = message.replace(['\n', '"'], " ");
+    match line {
+        Some(line) => format!("error line={line} message=\"{message}\""),
+        None => format!("error message=\"{message}\""),
+    }
+}
+
+/// The image as the protocol's frame bytes: little-endian f32 RGBA, rows from the top.
+fn rgba32f(image: &Image) -> Vec<u8> {
+    let mut bytes = Vec::with_capacity(image.pixels.len() * 16);
+    for p in &image.pixels {
+        for c in [p[0], p[1], p[2], 1.0] {
+            bytes.extend_from_slice(&c.to_le_bytes());
+        }
+    }
+    bytes
+}

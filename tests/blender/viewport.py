@@ -1,0 +1,140 @@
+"""Blender side of tests/blender_live.rs, the viewport's Rendered mode without a display
+(run with the bpy venv's python, RT_BINARY naming rt): what view_update and view_draw do
+besides drawing, driven as Blender drives them.
+
+    viewport.py OUT
+
+1. The first update exports the scene and starts `rt watch --stream`; its first converged
+   frame (the exported camera) is kept.
+2. The viewport's camera is sent as view_draw sends it, from Blender's own matrices of the
+   scene camera (view = inverse of its world matrix, projection = calc_matrix_camera): the
+   converged frame must be the same image. A camera with a 10% longer lens must not be.
+3. Edits reach the viewport through a depsgraph handler calling the viewport's update,
+   as view_update is called: the cube moves, its material changes, its mesh changes.
+   Which files each rewrote and rt's reload line for each go to OUT/viewport.json.
+"""
+
+import json
+import os
+import sys
+import time
+
+import bpy
+import numpy as np
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(REPO, "blender"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import rt_engine  # noqa: E402
+import rt_viewport  # noqa: E402
+from live_edits import build  # noqa: E402
+
+SPP = 16
+TIMEOUT_S = 300
+
+
+def converged_frame(client, after_line):
+    """The first frame at SPP samples that shows every command up to `after_line`."""
+    deadline = time.monotonic() + TIMEOUT_S
+    while time.monotonic() < deadline:
+        frame, _ = client.latest()
+        if frame is not None and frame.line >= after_line and frame.spp >= SPP:
+            return frame
+        if client.closed:
+            sys.exit(f"rt stopped: {list(client.stderr)}")
+        time.sleep(0.02)
+    sys.exit(f"no converged frame after line {after_line}")
+
+
+def reload_line(client, line):
+    """rt's reload (or error) line for command line `line`."""
+    deadline = time.monotonic() + TIMEOUT_S
+    seen = []
+    while time.monotonic() < deadline:
+        seen += client.take_messages()
+        for message in seen:
+            if f" line={line} " in message + " ":
+                return message
+        time.sleep(0.02)
+    sys.exit(f"no reload line for line {line}; messages {seen}")
+
+
+def block_difference(a, b, block=8):
+    """The largest difference of 8x8-block mean luminance between two frames, over the mean."""
+    def blocks(frame):
+        lum = frame.pixels[..., :3].mean(axis=2)
+        h, w = (lum.shape[0] // block) * block, (lum.shape[1] // block) * block
+        return lum[:h, :w].reshape(h // block, block, w // block, block).mean(axis=(1, 3))
+
+    ba, bb = blocks(a), blocks(b)
+    return float(np.abs(ba - bb).max() / max(ba.mean(), 1e-6))
+
+
+def main(out):
+    scene, cube, paint = build()
+    rt_engine.register()
+    scene.rt_render.viewport_spp = SPP
+    viewport = rt_viewport.Viewport(os.environ["RT_BINARY"], os.path.join(out, "viewport"))
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    viewport.update(depsgraph)
+    client = viewport.client
+    exported = converged_frame(client, 0)
+
+    width, height = exported.width, exported.height
+    camera = scene.camera
+    view = camera.matrix_world.inverted()
+    projection = camera.calc_matrix_camera(depsgraph, x=width, y=height)
+    viewport.view(view, projection, width, height)
+    same = converged_frame(client, client.lines_sent)
+    # A 10% longer lens: the projection's scales, 2·lens/sensor, 10% larger.
+    longer = projection.copy()
+    longer[0][0] *= 1.1
+    longer[1][1] *= 1.1
+    viewport.view(view, longer, width, height)
+    zoomed = converged_frame(client, client.lines_sent)
+
+    updates = []
+
+    def view_update(_scene, graph):
+        written = viewport.update(graph)
+        if written:
+            updates.append({"written": written, "reload": reload_line(client, client.lines_sent)})
+
+    bpy.app.handlers.depsgraph_update_post.append(view_update)
+    def move():
+        cube.location.x += 0.5
+
+    def material():
+        paint.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (0.9, 0.1, 0.1, 1)
+
+    def mesh():
+        for vertex in cube.data.vertices:
+            if vertex.co.z > 0:
+                vertex.co.z += 0.5
+        cube.data.update()
+
+    steps = {"move": move, "material": material, "mesh": mesh}
+    by_step = {}
+    for name, edit in steps.items():
+        before = len(updates)
+        edit()
+        bpy.context.view_layer.update()
+        by_step[name] = updates[before:]
+    bpy.app.handlers.depsgraph_update_post.remove(view_update)
+
+    report = {
+        "size": [width, height],
+        "same_camera_difference": block_difference(exported, same),
+        "longer_lens_difference": block_difference(exported, zoomed),
+        "updates": by_step,
+        "errors": [m for m in client.take_messages() if m.startswith("error ")],
+    }
+    viewport.close()
+    report["rt_exit"] = client.process.returncode
+    with open(os.path.join(out, "viewport.json"), "w") as f:
+        json.dump(report, f, indent=1)
+    rt_engine.unregister()
+
+
+if __name__ == "__main__":
+    main(sys.argv[1])

@@ -1,0 +1,148 @@
+//! Blender live, without saves: "Live export on every edit" in a bpy session with
+//! `rt watch --headless` on what it exports (each scripted edit is one reload of the
+//! right kind; a drag is throttled and its last state lands), and the viewport's
+//! Rendered mode driven as Blender drives it (its camera from Blender's matrices gives
+//! the exported camera's image; each edit reaches the streaming rt as a reload of the
+//! right files). Needs RT_BPY_PYTHON, a Python with `bpy` (scripts/test sets one up).
+
+mod common;
+mod watch_harness;
+
+use common::{repo, temp_dir};
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command};
+use std::time::{Duration, Instant};
+use watch_harness::Watcher;
+
+fn bpy_python() -> PathBuf {
+    let python = std::env::var_os("RT_BPY_PYTHON").map(PathBuf::from).unwrap_or_else(|| {
+        panic!("RT_BPY_PYTHON is not set: it must name a Python 3.11 with bpy==5.0.1 (scripts/test sets it)")
+    });
+    if python.is_relative() { repo().join(python) } else { python }
+}
+
+fn fresh(name: &str) -> PathBuf {
+    let out = temp_dir(name);
+    let _ = std::fs::remove_dir_all(&out);
+    std::fs::create_dir_all(&out).expect("output folder");
+    out
+}
+
+fn json(path: &Path) -> Value {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// Waits for the Blender session to write `name` into `out`.
+fn wait_for_blender(blender: &mut Child, out: &Path, name: &str) {
+    let deadline = Instant::now() + Duration::from_secs(300);
+    while !out.join(name).exists() {
+        if let Ok(Some(status)) = blender.try_wait() {
+            panic!("the Blender session exited ({status}) before writing {name}");
+        }
+        assert!(Instant::now() < deadline, "the Blender session wrote no {name} in 300 s");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+/// Whether step `step`'s classified updates name `object` under `kind`.
+fn classified(report: &Value, step: usize, kind: &str, name: &str) -> bool {
+    report["classified"][step - 1]
+        .as_array()
+        .expect("the step's updates")
+        .iter()
+        .any(|u| u[kind].as_array().is_some_and(|names| names.iter().any(|n| n == name)))
+}
+
+#[test]
+fn each_edit_in_blender_is_one_reload_in_rt_watch_without_saving() {
+    let out = fresh("blender-live-edits");
+    let script = repo().join("tests/blender/live_edits.py");
+    let mut blender = Command::new(bpy_python()).arg(&script).arg(&out).spawn().expect("start the Blender session");
+    wait_for_blender(&mut blender, &out, "done-0");
+
+    let mut watch = Watcher::start(&out.join("scene.toml"), &out.join("frames"), 2, 32, &[]);
+    watch.wait_for("frame #0 ");
+    let steps = [
+        (1, "kind=placement cause=scene.toml"),
+        (2, "kind=asset cause=cube.gltf"),
+        (3, "kind=asset cause=cube.rtmesh"),
+        (4, "kind=camera cause=scene.toml"),
+        (5, "kind=placement cause=scene.toml"),
+    ];
+    for (step, expected) in steps {
+        std::fs::write(out.join(format!("go-{step}")), "").expect("signal the Blender session");
+        wait_for_blender(&mut blender, &out, &format!("done-{step}"));
+        let reload = watch.wait_for(&format!("reload #{step} "));
+        assert!(reload.contains(expected), "step {step}: {reload}\n{}", watch.log().join("\n"));
+        watch.wait_for(&format!("frame #{step} "));
+        assert!(watch.frame(step - 1) != watch.frame(step), "step {step} left the image as it was");
+        if step < 5 {
+            // One reload for one edit: nothing more comes before the next edit.
+            std::thread::sleep(Duration::from_millis(500));
+            let log = watch.log();
+            assert!(
+                !log.iter().any(|l| l.starts_with(&format!("reload #{} ", step + 1))),
+                "step {step} made more than one reload:\n{}",
+                log.join("\n")
+            );
+        }
+    }
+    let status = blender.wait().expect("the Blender session");
+    assert!(status.success(), "the Blender session: {status}");
+    // The drag's held-back last state lands as a reload of its own (or merged into the
+    // first one by the watcher's debouncing): placements only, at most two.
+    std::thread::sleep(Duration::from_millis(1000));
+    let log = watch.log();
+    let drag: Vec<&String> = log.iter().filter(|l| l.starts_with("reload #")).skip(4).collect();
+    assert!((1..=2).contains(&drag.len()), "{}", log.join("\n"));
+    assert!(drag.iter().all(|l| l.contains("kind=placement")), "{}", log.join("\n"));
+    assert!(!log.iter().any(|l| l.starts_with("error ")), "{}", log.join("\n"));
+
+    let report = json(&out.join("live_edits.json"));
+    for key in ["first_move_exported", "timer_scheduled", "last_state_held_back", "last_state_landed"] {
+        assert_eq!(report[key], true, "the drag: {key} is not true: {report}");
+    }
+    assert!(classified(&report, 1, "transform", "cube") && !classified(&report, 1, "geometry", "cube"), "{report}");
+    assert!(classified(&report, 2, "materials", "paint"), "{report}");
+    assert!(classified(&report, 3, "meshes", "cube") && classified(&report, 3, "geometry", "cube"), "{report}");
+    assert!(classified(&report, 4, "transform", "Camera") && !classified(&report, 4, "transform", "cube"), "{report}");
+    watch.stop();
+}
+
+#[test]
+fn the_viewport_streams_blenders_camera_and_each_edit() {
+    let out = fresh("blender-viewport");
+    let result = Command::new(bpy_python())
+        .arg(repo().join("tests/blender/viewport.py"))
+        .arg(&out)
+        .env("RT_BINARY", env!("CARGO_BIN_EXE_rt"))
+        .output()
+        .expect("run the Blender session");
+    let text = String::from_utf8_lossy(&result.stdout).into_owned() + &String::from_utf8_lossy(&result.stderr);
+    assert!(result.status.success(), "the Blender session failed:\n{text}");
+    let report = json(&out.join("viewport.json"));
+    println!("viewport: {report}");
+
+    // The same rays give the same samples: the two images agree to float rounding,
+    // while a 10% longer lens moves every edge.
+    let same = report["same_camera_difference"].as_f64().expect("a number");
+    let longer = report["longer_lens_difference"].as_f64().expect("a number");
+    assert!(same < 1e-3, "Blender's camera matrices give another image than the exported camera: {same}");
+    assert!(longer > 1e-2, "the comparison cannot tell a 10% longer lens: {longer}");
+
+    for (step, file, kind) in [
+        ("move", "scene.toml", "kind=placement cause=scene.toml"),
+        ("material", "assets/cube/cube.gltf", "kind=asset cause=cube.gltf"),
+        ("mesh", "assets/cube/cube.rtmesh", "kind=asset cause=cube.rtmesh"),
+    ] {
+        let updates = report["updates"][step].as_array().expect("the step's updates");
+        assert_eq!(updates.len(), 1, "{step}: {updates:?}");
+        assert_eq!(updates[0]["written"], serde_json::json!([file]), "{step}");
+        let reload = updates[0]["reload"].as_str().expect("rt's reload line");
+        assert!(reload.starts_with("reload #") && reload.contains(kind), "{step}: {reload}");
+    }
+    assert_eq!(report["errors"], serde_json::json!([]));
+    assert_eq!(report["rt_exit"], 0, "rt quits when the viewport closes");
+}

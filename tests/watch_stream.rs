@@ -1,0 +1,301 @@
+//! `rt watch --stream` driven by a client of the test's own, which reads the protocol as
+//! README.md documents it: frames arrive and refine, a camera command shows in the next
+//! frames, a size command resizes them, a reload re-reads the scene, a malformed command
+//! is reported and ignored, and a client that dies does not kill rt (on the standard
+//! streams rt exits cleanly; on a socket the next client is served).
+
+mod common;
+
+use common::temp_dir;
+use std::io::{BufRead, BufReader, Read, Write};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// A dark sphere in front of the camera under a uniform white sky: a camera ray that
+/// misses it sees exactly the sky's radiance 1, whatever the samples.
+fn scene(dir: &Path, sphere_color: f32) -> PathBuf {
+    let path = dir.join("scene.toml");
+    let text = format!(
+        "[render]\nmax_bounces = 2\n\n[camera]\nposition = [0.0, 0.0, 5.0]\nlook_at = [0.0, 0.0, 0.0]\n\
+         fov_y_deg = 30.0\n\n[sky]\nkind = \"uniform\"\ncolor = [1.0, 1.0, 1.0]\n\n[materials.dark]\n\
+         base_color = [{sphere_color}, {sphere_color}, {sphere_color}]\n\n\
+         [[sphere]]\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\nmaterial = \"dark\"\n"
+    );
+    std::fs::write(&path, text).expect("scene file");
+    path
+}
+
+/// The view matrix, row by row, of a camera at (0, 0, 5) looking along +Z: away from the sphere.
+const LOOK_AWAY: &str = "-1,0,0,0, 0,1,0,0, 0,0,-1,5, 0,0,0,1";
+
+fn rt_stream(scene: &Path, spp: u32, extra: &[&str], stderr: &Path) -> Child {
+    Command::new(env!("CARGO_BIN_EXE_rt"))
+        .args(["watch", "--stream", "--size", "24x24", "--spp", &spp.to_string()])
+        .args(extra)
+        .arg(scene)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(std::fs::File::create(stderr).expect("stderr file"))
+        .spawn()
+        .expect("start rt watch --stream")
+}
+
+#[derive(Debug)]
+struct Frame {
+    line: u64,
+    spp: u32,
+    width: u32,
+    height: u32,
+    rgba: Vec<[f32; 4]>,
+}
+
+impl Frame {
+    fn at(&self, x: u32, y: u32) -> [f32; 4] {
+        self.rgba[(y * self.width + x) as usize]
+    }
+
+    fn all_sky(&self) -> bool {
+        self.rgba.iter().all(|p| p.iter().all(|&c| (c - 1.0).abs() < 1e-5))
+    }
+}
+
+/// The test's own client: message lines, frames and their bytes.
+struct Client {
+    input: Box<dyn Write>,
+    output: BufReader<Box<dyn Read>>,
+    sent: u64,
+    /// Message lines other than frames, in order.
+    messages: Vec<String>,
+}
+
+impl Client {
+    fn new(input: Box<dyn Write>, output: Box<dyn Read>) -> Self {
+        let mut client = Self { input, output: BufReader::new(output), sent: 0, messages: Vec::new() };
+        let hello = client.line();
+        assert!(hello.starts_with("hello rt-stream version=1 "), "{hello}");
+        client
+    }
+
+    fn of(child: &mut Child) -> Self {
+        let input = child.stdin.take().expect("stdin");
+        let output = child.stdout.take().expect("stdout");
+        Self::new(Box::new(input), Box::new(output))
+    }
+
+    /// Sends a line; returns its number.
+    fn send(&mut self, line: &str) -> u64 {
+        writeln!(self.input, "{line}").and_then(|()| self.input.flush()).expect("rt reads");
+        self.sent += 1;
+        self.sent
+    }
+
+    fn line(&mut self) -> String {
+        let mut line = String::new();
+        let n = self.output.read_line(&mut line).expect("read from rt");
+        assert!(n > 0, "rt closed its output; messages so far: {:?}", self.messages);
+        line.trim_end().to_owned()
+    }
+
+    /// The next frame, or the next message line.
+    fn next(&mut self) -> Result<Frame, String> {
+        let line = self.line();
+        let Some(fields) = line.strip_prefix("frame ") else {
+            return Err(line);
+        };
+        let field = |name: &str| -> u64 {
+            let value = fields.split(' ').find_map(|f| f.strip_prefix(&format!("{name}=")));
+            value.and_then(|v| v.parse().ok()).unwrap_or_else(|| panic!("no {name} in {line}"))
+        };
+        assert!(fields.contains("format=rgba32f"), "{line}");
+        let (width, height, bytes) = (field("width") as u32, field("height") as u32, field("bytes") as usize);
+        assert_eq!(bytes, (width * height * 16) as usize, "{line}");
+        let mut data = vec![0u8; bytes];
+        self.output.read_exact(&mut data).expect("the frame's bytes");
+        let floats: Vec<f32> = data.chunks_exact(4).map(|b| f32::from_le_bytes(b.try_into().unwrap())).collect();
+        let rgba = floats.chunks_exact(4).map(|p| [p[0], p[1], p[2], p[3]]).collect();
+        Ok(Frame { line: field("line"), spp: field("spp") as u32, width, height, rgba })
+    }
+
+    /// The next frame; the messages before it are kept in `messages`.
+    fn frame(&mut self) -> Frame {
+        loop {
+            match self.next() {
+                Ok(frame) => return frame,
+                Err(message) => self.messages.push(message),
+            }
+        }
+    }
+
+    /// Frames until one shows line `line` (every command up to it) at `spp`.
+    fn frame_after(&mut self, line: u64, spp: u32) -> Frame {
+        let deadline = Instant::now() + Duration::from_secs(120);
+        loop {
+            let frame = self.frame();
+            if frame.line >= line && frame.spp >= spp {
+                return frame;
+            }
+            assert!(Instant::now() < deadline, "no frame after line {line} at {spp} spp in 120 s");
+        }
+    }
+
+    /// The next message that starts with `prefix`, skipping frames.
+    fn message(&mut self, prefix: &str) -> String {
+        loop {
+            if let Some(i) = self.messages.iter().position(|m| m.starts_with(prefix)) {
+                return self.messages.remove(i);
+            }
+            if let Err(message) = self.next() {
+                self.messages.push(message);
+            }
+        }
+    }
+}
+
+fn wait_exit(child: &mut Child, stderr: &Path) -> std::process::ExitStatus {
+    let deadline = Instant::now() + Duration::from_secs(60);
+    loop {
+        if let Some(status) = child.try_wait().expect("rt's status") {
+            let text = std::fs::read_to_string(stderr).unwrap_or_default();
+            assert!(!text.contains("panicked"), "rt panicked:\n{text}");
+            return status;
+        }
+        assert!(Instant::now() < deadline, "rt did not exit within 60 s");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+#[test]
+fn frames_refine_and_commands_take_effect_in_the_next_frames() {
+    let dir = temp_dir("stream-commands");
+    let scene = scene(&dir, 0.1);
+    let stderr = dir.join("rt.stderr");
+    let mut rt = rt_stream(&scene, 4, &[], &stderr);
+    let mut client = Client::of(&mut rt);
+
+    let first = client.frame();
+    assert_eq!((first.width, first.height, first.line), (24, 24, 0));
+    let converged = client.frame_after(0, 4);
+    assert_eq!(converged.spp, 4);
+    assert!(converged.at(12, 12)[0] < 0.5, "the sphere is dark: {:?}", converged.at(12, 12));
+    assert!((converged.at(0, 0)[0] - 1.0).abs() < 1e-5, "the corner is sky: {:?}", converged.at(0, 0));
+    assert!(converged.rgba.iter().all(|p| p[3] == 1.0));
+
+    // Every frame that shows the camera command looks away from the sphere: all sky.
+    let turned = client.send(&format!("camera view={} fov=30", LOOK_AWAY.replace(' ', "")));
+    let frame = client.frame_after(turned, 1);
+    assert!(frame.all_sky(), "the first frame after the camera command still shows the sphere");
+    let resized = client.send("size 16 8");
+    let frame = client.frame_after(resized, 1);
+    assert_eq!((frame.width, frame.height), (16, 8));
+    assert!(frame.all_sky(), "the camera stays after a resize");
+    let spp = client.send("spp 6");
+    assert_eq!(client.frame_after(spp, 6).spp, 6);
+
+    // A reload re-reads the scene: looking at the sphere again (the file's camera
+    // changed), its new colour shows.
+    std::fs::write(&scene, std::fs::read_to_string(&scene).unwrap().replace("fov_y_deg = 30.0", "fov_y_deg = 31.0"))
+        .unwrap();
+    let scene_text = std::fs::read_to_string(&scene).unwrap().replace("0.1, 0.1, 0.1", "0.9, 0.9, 0.9");
+    std::fs::write(&scene, scene_text).unwrap();
+    let reload = client.send(&format!("reload {}", scene.display()));
+    let frame = client.frame_after(reload, 6);
+    let message = client.message("reload ");
+    assert!(
+        message.starts_with(&format!("reload #1 line={reload} kind=camera+materials cause=scene.toml")),
+        "{message}"
+    );
+    assert!(frame.at(8, 4)[0] > 0.5, "the sphere turned light: {:?}", frame.at(8, 4));
+
+    assert_eq!(client.send("quit"), reload + 1);
+    assert_eq!(client.message("bye"), "bye");
+    assert!(wait_exit(&mut rt, &stderr).success());
+}
+
+#[test]
+fn a_malformed_command_is_reported_and_ignored() {
+    let dir = temp_dir("stream-errors");
+    let scene = scene(&dir, 0.1);
+    let stderr = dir.join("rt.stderr");
+    let mut rt = rt_stream(&scene, 4, &[], &stderr);
+    let mut client = Client::of(&mut rt);
+    client.frame_after(0, 4);
+    let typo = client.send("camra view=1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1");
+    let bad_size = client.send("size 16");
+    let no_camera = client.send("camera view=1,0,0,0,0,0,0,0,0,0,1,0,0,0,0,1");
+    std::fs::write(&scene, "[render]\nwidht = 3\n").unwrap();
+    let broken = client.send("reload scene.toml");
+    let fine = client.send("size 16 8");
+    let frame = client.frame_after(fine, 4);
+    assert_eq!((frame.width, frame.height), (16, 8), "rt went on after the errors");
+    assert!(frame.at(8, 4)[0] < 0.5, "the last good scene and camera still render");
+    let expected = [
+        format!("error line={typo} message=\"unknown command `camra`; did you mean `camera`?\""),
+        format!("error line={bad_size} message=\"size takes a width and a height: `size 640 480`\""),
+        format!("error line={no_camera} message=\"view: determinant 0: not a rotation and a translation\""),
+    ];
+    for line in expected {
+        assert_eq!(client.message("error "), line);
+    }
+    let reload_error = client.message("error ");
+    assert!(
+        reload_error.starts_with(&format!("error line={broken} message=\""))
+            && reload_error.contains("unknown key `widht` in [render]; did you mean `width`?"),
+        "{reload_error}"
+    );
+    client.send("quit");
+    assert!(wait_exit(&mut rt, &stderr).success());
+}
+
+#[test]
+fn a_client_that_dies_on_the_standard_streams_ends_rt_cleanly() {
+    let dir = temp_dir("stream-dead-stdio");
+    let scene = scene(&dir, 0.1);
+    let stderr = dir.join("rt.stderr");
+    // Many samples: rt is still sending frames when the client goes.
+    let mut rt = rt_stream(&scene, 100_000, &[], &stderr);
+    let mut client = Client::of(&mut rt);
+    client.frame();
+    // Half a frame read, then the client is gone: rt's next write meets a closed pipe.
+    let mut header = String::new();
+    client.output.read_line(&mut header).expect("a header");
+    drop(client);
+    let status = wait_exit(&mut rt, &stderr);
+    assert!(status.success(), "rt: {status}\n{}", std::fs::read_to_string(&stderr).unwrap_or_default());
+}
+
+#[cfg(unix)]
+#[test]
+fn a_client_that_dies_on_the_socket_leaves_rt_serving_the_next() {
+    use std::os::unix::net::UnixStream;
+    let dir = temp_dir("stream-dead-socket");
+    let scene = scene(&dir, 0.1);
+    let stderr = dir.join("rt.stderr");
+    let socket = dir.join("rt.sock");
+    let _ = std::fs::remove_file(&socket);
+    let mut rt = rt_stream(&scene, 100_000, &["--socket", socket.to_str().unwrap()], &stderr);
+    let deadline = Instant::now() + Duration::from_secs(120);
+    let connect = || loop {
+        match UnixStream::connect(&socket) {
+            Ok(stream) => return stream,
+            Err(_) if Instant::now() < deadline => std::thread::sleep(Duration::from_millis(50)),
+            Err(e) => panic!("{}: {e}", socket.display()),
+        }
+    };
+    let stream = connect();
+    let mut first = Client::new(Box::new(stream.try_clone().unwrap()), Box::new(stream));
+    let turned = first.send(&format!("camera view={} fov=30", LOOK_AWAY.replace(' ', "")));
+    first.frame_after(turned, 1);
+    drop(first);
+
+    let stream = connect();
+    let mut second = Client::new(Box::new(stream.try_clone().unwrap()), Box::new(stream));
+    let frame = second.frame();
+    assert!(frame.all_sky(), "the next client sees the scene as the last one left it");
+    let resized = second.send("size 8 8");
+    assert_eq!(second.frame_after(resized, 1).width, 8);
+    second.send("quit");
+    assert_eq!(second.message("bye"), "bye");
+    assert!(wait_exit(&mut rt, &stderr).success());
+    assert!(!socket.exists(), "rt removes its socket");
+}

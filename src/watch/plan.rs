@@ -172,6 +172,10 @@ fn settings(old: &RenderSettings, new: &RenderSettings, changes: &mut Vec<Change
     if (old.sampling, old.rough_transmission) != (new.sampling, new.rough_transmission) {
         changes.extend([Change::Settings, Change::Features]);
     }
+    if old.light_sampler != new.light_sampler {
+        // The lamps' table and the shares of light samples follow the sampler.
+        changes.extend([Change::Settings, Change::Features, Change::Placement]);
+    }
 }
 
 #[cfg(test)]

@@ -248,7 +248,7 @@ struct AccuracyArgs {
     /// Scene file; the built-in Cornell box when omitted.
     scene: Option<PathBuf>,
     /// Knob to sweep (repeatable) [default: all]: spp, max-bounces, sampling,
-    /// ris-candidates, rough-glass, bvh-quality, samples-per-dispatch.
+    /// light-sampler, ris-candidates, rough-glass, bvh-quality, samples-per-dispatch.
     #[arg(long = "knob")]
     knobs: Vec<String>,
     /// Folder of the report [default: out/bench/SCENE].

@@ -188,8 +188,8 @@ fn tree_and_power_agree_with_every_kind_of_light() {
     let power = render(scene.clone(), LightSampler::Power, false, size, spp, 1);
     let tree = render(scene.clone(), LightSampler::Tree, false, size, spp, 2);
     assert_same_image("every light, tree", &power, &tree, 4.5);
-    // The all-features pipeline runs the tree beside the lamps' table made for power:
-    // a lamp can be picked either way, and the densities must add up.
+    // The all-features pipeline runs the tree's code on power's tables and an empty
+    // tree: emitters are then found by BSDF rays alone, lamps by the lamps' table.
     let mixed = render(scene, LightSampler::Power, true, size, spp, 3);
     assert_same_image("every light, power's tables in the tree's pipeline", &power, &mixed, 4.5);
 }

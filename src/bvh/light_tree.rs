@@ -28,6 +28,13 @@ impl DirectionCone {
 
     /// The smallest cone about both (pbrt-v4 `Union(DirectionCone, DirectionCone)`).
     pub fn union(a: Self, b: Self) -> Self {
+        // The common cases of flat emitters and of points, without trigonometry.
+        if a.w == b.w {
+            return Self { w: a.w, cos_theta: a.cos_theta.min(b.cos_theta) };
+        }
+        if a.cos_theta <= -1.0 || b.cos_theta <= -1.0 {
+            return Self::ENTIRE_SPHERE;
+        }
         let (theta_a, theta_b) = (a.cos_theta.clamp(-1.0, 1.0).acos(), b.cos_theta.clamp(-1.0, 1.0).acos());
         let theta_d = a.w.angle_between(b.w);
         if (theta_d + theta_b).min(PI) <= theta_a {

@@ -9,7 +9,7 @@ use super::node::{BvhStats, convert_bvh2, stats};
 use super::pack::{LoadedMesh, build_all_in_memory, load_or_pack_all};
 use super::placement::{MeshSlot, Placement};
 use crate::layout::*;
-use crate::scene::{GeometrySummary, Material, Sampling, Scene};
+use crate::scene::{GeometrySummary, LightSampler, Material, Sampling, Scene};
 use anyhow::{Result, bail};
 use glam::{Vec3, Vec3A};
 use obvhs::{BvhBuildParams, aabb::Aabb, bvh2::builder::build_bvh2};
@@ -239,7 +239,13 @@ impl SceneGeometry {
             scene.render.light_sampler,
         );
         let tree_start = Instant::now();
-        let light_tree = tree_of(&emitter_bounds, &scene.lights, &lamps)?;
+        // Scenes that sample by power pay nothing for the tree: theirs is empty, and a
+        // pipeline with the tree's code (all features) then finds emitters by BSDF rays only.
+        let light_tree = if scene.render.light_sampler == LightSampler::Tree {
+            tree_of(&emitter_bounds, &scene.lights, &lamps)?
+        } else {
+            LightTree::build(&[], emitter_bounds.len() + lamps.len())?
+        };
         let light_tree_build_time = tree_start.elapsed();
         log::info!(
             "light tree: {} nodes over {} lights in {:.2} ms",

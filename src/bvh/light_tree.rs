@@ -209,7 +209,7 @@ fn split(lights: &mut [TreeLight], depth: u32) -> usize {
     };
     let mut best: Option<(f32, usize, usize)> = None;
     for axis in 0..3 {
-        if !(c_max[axis] > c_min[axis]) {
+        if c_max[axis] <= c_min[axis] {
             continue;
         }
         let mut buckets: [Option<LightBounds>; BUCKETS] = [None; BUCKETS];

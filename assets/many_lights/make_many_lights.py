@@ -1,5 +1,5 @@
 """Writes many_lights.obj and many_lights.mtl: a 32 x 32 grid of small emissive squares
-(2048 emissive triangles) 0.6 m above the ground, facing down, in six colours whose
+(2048 emissive triangles) 1 m above the ground, facing down, in six colours whose
 brightness varies over a decade. Deterministic: run it again to get the same files.
 
     python3 assets/many_lights/make_many_lights.py
@@ -10,7 +10,7 @@ from pathlib import Path
 GRID = 32
 SPACING = 0.35  # metres between square centres
 SIZE = 0.06  # side of each square
-HEIGHT = 0.6
+HEIGHT = 1.0
 COLOURS = {
     "warm": (1.0, 0.55, 0.2),
     "red": (1.0, 0.15, 0.1),

@@ -162,29 +162,64 @@ impl LightTree {
             tree.nodes.push(GpuLightTreeNode { flags: LIGHT_TREE_LEAF, ..Default::default() });
             return Ok(tree);
         }
-        tree.nodes.reserve(2 * lit.len() - 1);
-        tree.subtree(&mut lit, 0, 0);
+        let mut fragment = Fragment { nodes: Vec::with_capacity(2 * lit.len() - 1), trails: Vec::new() };
+        subtree(&mut lit, 0, 0, &mut fragment);
+        tree.nodes = fragment.nodes;
+        for (index, trail) in fragment.trails {
+            tree.trails[index as usize] = trail;
+        }
         Ok(tree)
     }
+}
 
-    /// Appends the subtree over `lights` at `depth`, reached by `trail`; returns its bounds.
-    fn subtree(&mut self, lights: &mut [TreeLight], depth: u32, trail: u32) -> LightBounds {
-        if let [light] = lights {
-            self.trails[light.trail_index as usize] = trail;
-            self.nodes.push(light.bounds.gpu(light.link, true));
-            return light.bounds;
-        }
-        let mid = split(lights, depth);
-        let at = self.nodes.len();
-        self.nodes.push(GpuLightTreeNode::default());
-        let (first, second) = lights.split_at_mut(mid);
-        let a = self.subtree(first, depth + 1, trail);
-        let second_index = self.nodes.len() as u32;
-        let b = self.subtree(second, depth + 1, trail | (1 << depth));
-        let bounds = LightBounds::union(&a, &b);
-        self.nodes[at] = bounds.gpu(second_index, false);
-        bounds
+/// Subtrees of this many lights or more, this near the root, are built on threads of their own.
+const PARALLEL_LIGHTS: usize = 8192;
+const PARALLEL_DEPTH: u32 = 3;
+
+/// Part of the tree: nodes whose links count from its first, and (trail index, trail) pairs.
+#[derive(Default)]
+struct Fragment {
+    nodes: Vec<GpuLightTreeNode>,
+    trails: Vec<(u32, u32)>,
+}
+
+/// Appends the subtree over `lights` at `depth`, reached by `trail`; returns its bounds.
+fn subtree(lights: &mut [TreeLight], depth: u32, trail: u32, out: &mut Fragment) -> LightBounds {
+    if let [light] = lights {
+        out.trails.push((light.trail_index, trail));
+        out.nodes.push(light.bounds.gpu(light.link, true));
+        return light.bounds;
     }
+    let parallel = lights.len() >= PARALLEL_LIGHTS && depth < PARALLEL_DEPTH;
+    let mid = split(lights, depth);
+    let at = out.nodes.len();
+    out.nodes.push(GpuLightTreeNode::default());
+    let (first, second) = lights.split_at_mut(mid);
+    let second_trail = trail | (1 << depth);
+    let (a, b, second_index) = if parallel {
+        let mut other = Fragment::default();
+        let (a, b) = std::thread::scope(|scope| {
+            let handle = scope.spawn(|| subtree(second, depth + 1, second_trail, &mut other));
+            let a = subtree(first, depth + 1, trail, out);
+            (a, handle.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
+        });
+        let offset = out.nodes.len() as u32;
+        out.nodes.extend(other.nodes.into_iter().map(|mut node| {
+            if node.flags & LIGHT_TREE_LEAF == 0 {
+                node.link += offset;
+            }
+            node
+        }));
+        out.trails.extend(other.trails);
+        (a, b, offset)
+    } else {
+        let a = subtree(first, depth + 1, trail, out);
+        let second_index = out.nodes.len() as u32;
+        (a, subtree(second, depth + 1, second_trail, out), second_index)
+    };
+    let bounds = LightBounds::union(&a, &b);
+    out.nodes[at] = bounds.gpu(second_index, false);
+    bounds
 }
 
 /// Levels a balanced tree over `n` leaves needs below its root.
@@ -198,11 +233,13 @@ fn levels(n: usize) -> u32 {
 /// for a trail.
 fn split(lights: &mut [TreeLight], depth: u32) -> usize {
     let n = lights.len();
-    let whole = lights[1..].iter().fold(lights[0].bounds, |acc, l| LightBounds::union(&acc, &l.bounds));
-    let (c_min, c_max) = lights.iter().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), l| {
-        (lo.min(l.bounds.centroid()), hi.max(l.bounds.centroid()))
-    });
-    let extent = whole.max - whole.min;
+    let (mut lo, mut hi) = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
+    let (mut c_min, mut c_max) = (lo, hi);
+    for l in lights.iter() {
+        (lo, hi) = (lo.min(l.bounds.min), hi.max(l.bounds.max));
+        (c_min, c_max) = (c_min.min(l.bounds.centroid()), c_max.max(l.bounds.centroid()));
+    }
+    let extent = hi - lo;
     let bucket_of = |l: &TreeLight, axis: usize| -> usize {
         let t = (l.bounds.centroid()[axis] - c_min[axis]) / (c_max[axis] - c_min[axis]);
         ((t * BUCKETS as f32) as usize).min(BUCKETS - 1)

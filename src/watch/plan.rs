@@ -252,6 +252,13 @@ mod tests {
     }
 
     #[test]
+    fn a_new_light_sampler_reassembles_the_lights() {
+        let reload = kind_after(|s| s.render.light_sampler = crate::scene::LightSampler::Tree);
+        assert_eq!(reload.changes, [Change::Settings, Change::Features, Change::Placement]);
+        assert!(reload.reassembles());
+    }
+
+    #[test]
     fn exposure_does_not_touch_the_samples() {
         let reload = kind_after(|s| s.render.exposure = 1.5);
         assert_eq!(reload.changes, [Change::Exposure]);

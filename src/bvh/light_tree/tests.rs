@@ -124,3 +124,16 @@ fn cone_union_holds_both_cones() {
         }
     }
 }
+
+#[test]
+fn subtrees_built_on_threads_join_into_one_tree() {
+    let lights = grid(40_000);
+    let tree = LightTree::build(&lights, lights.len()).expect("tree");
+    assert_eq!(tree.nodes.len(), 2 * lights.len() - 1);
+    for l in &lights {
+        assert_eq!(follow(&tree, tree.trails[l.trail_index as usize]).link, l.link);
+    }
+    let (root, _) = check_subtree(&tree, 0);
+    let total: f32 = lights.iter().map(|l| l.bounds.phi).sum();
+    assert!((root.power - total).abs() <= 1e-4 * total);
+}

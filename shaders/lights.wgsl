@@ -134,6 +134,7 @@ fn sphere_hit_pdf(p: vec3f, index: u32, emission_luminance: f32) -> f32 {
     return sphere_emitter_pdf(p, s, emitter_selection_per_area(emission_luminance, selection, 4.0 * PI * s.radius * s.radius));
 }
 
+//#if !light_tree
 // First emitter whose cumulative probability exceeds u.
 fn find_emitter(u: f32) -> u32 {
     var lo = 0u;
@@ -152,6 +153,7 @@ fn find_emitter(u: f32) -> u32 {
 fn sample_emitter(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
     return sample_emitter_at(emitters[find_emitter(rng_next(rng))], 0.0, p, rng);
 }
+//#endif
 
 // A light sample towards emitter `e`, picked with probability `tree_selection` by the
 // light tree (unused without it).

@@ -90,10 +90,10 @@ fn emission_seen(m: Material, hit: Hit, surface: Surface, origin: vec3f, directi
         var light_pdf = 0.0;
         if hit.kind == HIT_SPHERE {
             //#if spheres
-            light_pdf = sphere_emitter_pdf(origin, spheres[hit.primitive], m.emission_luminance);
+            light_pdf = sphere_hit_pdf(origin, hit.primitive, m.emission_luminance);
             //#endif
         } else {
-            light_pdf = triangle_emitter_pdf(m.emission_luminance, hit.t, abs(dot(surface.geometric_normal, direction)));
+            light_pdf = triangle_hit_pdf(m.emission_luminance, hit, abs(dot(surface.geometric_normal, direction)));
         }
         weight = power_heuristic(bsdf_pdf, light_pdf);
     }

@@ -10,6 +10,9 @@
 //#include "common.wgsl"
 //#include "rng.wgsl"
 //#include "directions.wgsl"
+//#if light_tree
+//#include "light_tree.wgsl"
+//#endif
 
 // Mirrored by `GpuLamp` in src/gpu/layout.rs; what each field holds per kind is said there.
 struct Lamp {
@@ -199,7 +202,7 @@ fn lamps_seen(origin: vec3f, direction: vec3f, t_max: f32, escaped: bool, bsdf_p
         var weight = 1.0;
         //#if nee
         if bsdf_pdf > 0.0 && seen.w > 0.0 {
-            weight = power_heuristic(bsdf_pdf, seen.w * lamp_probability(i));
+            weight = power_heuristic(bsdf_pdf, seen.w * lamp_selection(i));
         }
         //#endif
         total += seen.rgb * weight;
@@ -215,6 +218,15 @@ fn lamp_probability(i: u32) -> f32 {
         below = lamps[i - 1u].cdf;
     }
     return lamp_info.lamp_share * (lamps[i].cdf - below);
+}
+
+// Probability that light sampling picks lamp i, by the lamps' table or the light tree.
+fn lamp_selection(i: u32) -> f32 {
+    var p = lamp_probability(i);
+    //#if light_tree
+    p += lamp_info.emitter_share * light_tree_probability(frame.emitter_count + i);
+    //#endif
+    return p;
 }
 
 // First lamp whose cumulative probability exceeds u.
@@ -327,7 +339,7 @@ fn sample_lamp(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
     let i = find_lamp(rng_next(rng));
     let u = vec2f(rng_next(rng), rng_next(rng));
     var s = sample_lamp_shape(lamps[i], p, u);
-    s.pdf *= lamp_probability(i);
+    s.pdf *= lamp_selection(i);
     return s;
 }
 //#endif

@@ -14,6 +14,9 @@
 //#if lamps
 //#include "lamps.wgsl"
 //#endif
+//#if light_tree
+//#include "light_tree.wgsl"
+//#endif
 //#if spheres
 //#include "sphere.wgsl"
 //#endif
@@ -78,23 +81,60 @@ fn never_sampled(emission_luminance: f32) -> bool {
     return emission_luminance <= 0.0 || frame.emitter_total_power <= 0.0;
 }
 
-// Density of reaching an emissive triangle at distance t along `direction` by light sampling.
-fn triangle_emitter_pdf(emission_luminance: f32, t: f32, cos_light: f32) -> f32 {
+// Probability per unit area that light sampling picks a point of an emitter: by power,
+// or with the light tree, the probability `tree_selection` of the tree's walk (share
+// included) spread over the emitter's `area`.
+fn emitter_selection_per_area(emission_luminance: f32, tree_selection: f32, area: f32) -> f32 {
+    //#if light_tree
+    return tree_selection / area;
+    //#else
     if never_sampled(emission_luminance) {
         return 0.0;
     }
-    return emitter_share() * emission_luminance / frame.emitter_total_power * t * t / max(cos_light, 1e-12);
+    return emitter_share() * emission_luminance / frame.emitter_total_power;
+    //#endif
 }
 
-fn sphere_emitter_pdf(p: vec3f, s: Sphere, emission_luminance: f32) -> f32 {
+// The tree's probability (share included) of the emitter a ray hit; 0 without the tree.
+fn tree_selection_of_hit(instance: u32, primitive: u32) -> f32 {
+    //#if light_tree
+    let index = emitter_index_of(instance, primitive);
+    if index != LIGHT_TREE_ABSENT {
+        return emitter_share() * light_tree_probability(index);
+    }
+    //#endif
+    return 0.0;
+}
+
+// Density of reaching an emissive triangle at distance t along `direction` by light sampling.
+fn triangle_emitter_pdf(selection_per_area: f32, t: f32, cos_light: f32) -> f32 {
+    return selection_per_area * t * t / max(cos_light, 1e-12);
+}
+
+fn triangle_hit_pdf(emission_luminance: f32, hit: Hit, cos_light: f32) -> f32 {
+    var area = 1.0;
+    //#if light_tree
+    area = triangle_world_area(hit.instance, hit.primitive);
+    //#endif
+    let selection = tree_selection_of_hit(hit.instance, hit.primitive);
+    return triangle_emitter_pdf(emitter_selection_per_area(emission_luminance, selection, area), hit.t, cos_light);
+}
+
+fn sphere_emitter_pdf(p: vec3f, s: Sphere, selection_per_area: f32) -> f32 {
     let omc = sphere_cone_one_minus_cos(p, s);
-    if omc <= 0.0 || never_sampled(emission_luminance) {
+    if omc <= 0.0 {
         return 0.0;
     }
-    let power = 4.0 * PI * s.radius * s.radius * emission_luminance;
-    return emitter_share() * power / frame.emitter_total_power / (2.0 * PI * omc);
+    return selection_per_area * 4.0 * PI * s.radius * s.radius / (2.0 * PI * omc);
 }
 
+fn sphere_hit_pdf(p: vec3f, index: u32, emission_luminance: f32) -> f32 {
+    let s = spheres[index];
+    let selection = tree_selection_of_hit(0u, index | SPHERE_BIT);
+    return sphere_emitter_pdf(p, s, emitter_selection_per_area(emission_luminance, selection, 4.0 * PI * s.radius * s.radius));
+}
+
+//#if !light_tree
 // First emitter whose cumulative probability exceeds u.
 fn find_emitter(u: f32) -> u32 {
     var lo = 0u;
@@ -111,8 +151,14 @@ fn find_emitter(u: f32) -> u32 {
 }
 
 fn sample_emitter(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
+    return sample_emitter_at(emitters[find_emitter(rng_next(rng))], 0.0, p, rng);
+}
+//#endif
+
+// A light sample towards emitter `e`, picked with probability `tree_selection` by the
+// light tree (unused without it).
+fn sample_emitter_at(e: Emitter, tree_selection: f32, p: vec3f, rng: ptr<function, Rng>) -> LightSample {
     let none = LightSample(vec3f(0.0, 1.0, 0.0), 0.0, vec3f(0.0), 0.0, false);
-    let e = emitters[find_emitter(rng_next(rng))];
     let u = vec2f(rng_next(rng), rng_next(rng));
     if (e.primitive & SPHERE_BIT) != 0u {
         //#if spheres
@@ -131,7 +177,8 @@ fn sample_emitter(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
             return none;
         }
         let m = materials[s.material];
-        return LightSample(d, t, m.emission, sphere_emitter_pdf(p, s, m.emission_luminance), false);
+        let selection = emitter_selection_per_area(m.emission_luminance, tree_selection, 4.0 * PI * s.radius * s.radius);
+        return LightSample(d, t, m.emission, sphere_emitter_pdf(p, s, selection), false);
         //#endif
     }
     //#if triangles
@@ -148,7 +195,8 @@ fn sample_emitter(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
         return none;
     }
     let d = to_light / t;
-    let n = normalize(cross(v1 - v0, v2 - v0));
+    let normal = cross(v1 - v0, v2 - v0);
+    let n = normalize(normal);
     var material = inst.material_override;
     if material == NO_MATERIAL {
         material = inst.material_base + tri.material;
@@ -158,7 +206,8 @@ fn sample_emitter(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
     //#if textures
     emission = textured_emission(m, e.primitive, su * (1.0 - u.y), su * u.y);
     //#endif
-    return LightSample(d, t, emission, triangle_emitter_pdf(m.emission_luminance, t, abs(dot(n, d))), false);
+    let selection = emitter_selection_per_area(m.emission_luminance, tree_selection, 0.5 * length(normal));
+    return LightSample(d, t, emission, triangle_emitter_pdf(selection, t, abs(dot(n, d))), false);
     //#else
     return none;
     //#endif
@@ -187,11 +236,37 @@ fn sample_light(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
         return LightSample(d, INFINITY, sun_radiance_at(p, d), sun_share() / sun_solid_angle(), false);
     }
     //#endif
+    //#if light_tree
+    return sample_light_tree(p, rng);
+    //#else
     if frame.emitter_count == 0u {
         return none;
     }
     return sample_emitter(p, rng);
+    //#endif
 }
+
+//#if light_tree
+// A light sample towards the emitter or lamp that a walk down the light tree picks.
+fn sample_light_tree(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
+    let none = LightSample(vec3f(0.0, 1.0, 0.0), 0.0, vec3f(0.0), 0.0, false);
+    let pick = light_tree_pick(rng);
+    if !(pick.probability > 0.0) {
+        return none;
+    }
+    let selection = emitter_share() * pick.probability;
+    //#if lamps
+    if (pick.light & LIGHT_TREE_LAMP) != 0u {
+        let i = pick.light & ~LIGHT_TREE_LAMP;
+        var s = sample_lamp_shape(lamps[i], p, vec2f(rng_next(rng), rng_next(rng)));
+        // The lamps' own table may pick it too.
+        s.pdf *= selection + lamp_probability(i);
+        return s;
+    }
+    //#endif
+    return sample_emitter_at(emitters[pick.light], selection, p, rng);
+}
+//#endif
 
 // A light sample's contribution and the shadow ray that decides it.
 struct ShadowRay {
@@ -210,6 +285,9 @@ struct ShadowRay {
 fn direct_light(ctx: ShadingContext, surface: Surface, n_geometric: vec3f, medium_absorption: vec3f, rng: ptr<function, Rng>) -> ShadowRay {
     let none = ShadowRay(vec3f(0.0), 0.0, vec3f(0.0, 1.0, 0.0), vec3f(0.0));
     let p = surface.position;
+    //#if light_tree
+    light_tree_set_point(p, n_geometric);
+    //#endif
     let light = sample_light(p, rng);
     if !(light.pdf > 0.0) || all(light.radiance == vec3f(0.0)) {
         return none;

@@ -222,6 +222,36 @@ pub struct GpuLampInfo {
     pub lamp_share: f32,
 }
 
+/// A node of the light tree (`shaders/light_tree.wgsl`, built by `crate::bvh::light_tree`):
+/// the bounds of the lights below it, as pbrt-v4's `LightBounds`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuLightTreeNode {
+    pub bounds_min: [f32; 3],
+    /// Luminous power of the lights below, in the units of lamps' watts.
+    pub power: f32,
+    pub bounds_max: [f32; 3],
+    /// Cosine of the half-angle of the cone of surface normals (or spot axes) about `axis`.
+    pub cos_theta_o: f32,
+    pub axis: [f32; 3],
+    /// Cosine of the angle beyond `theta_o` into which the lights still emit.
+    pub cos_theta_e: f32,
+    /// Inner node: index of the second child (the first follows the node). Leaf: the
+    /// light, an emitter index or a lamp index | `LIGHT_TREE_LAMP`.
+    pub link: u32,
+    /// `LIGHT_TREE_LEAF`, `LIGHT_TREE_TWO_SIDED`.
+    pub flags: u32,
+    pub _pad: [u32; 2],
+}
+
+pub const LIGHT_TREE_LEAF: u32 = 1;
+/// The lights below emit from both sides of their surfaces.
+pub const LIGHT_TREE_TWO_SIDED: u32 = 2;
+/// A leaf's `link` names a lamp rather than an emitter.
+pub const LIGHT_TREE_LAMP: u32 = 0x8000_0000;
+/// The trail of a light that is not in the tree (it emits nothing, or is a sun).
+pub const LIGHT_TREE_ABSENT: u32 = u32::MAX;
+
 pub const LAMP_POINT: u32 = 0;
 pub const LAMP_SPOT: u32 = 1;
 pub const LAMP_AREA: u32 = 2;

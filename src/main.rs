@@ -10,7 +10,7 @@ use rt::render::{
     DroppedSamples, ImageFormat, Progress, RenderFlags, RenderRequest, Session, check_output, human, json_event,
     write_image,
 };
-use rt::scene::{self, MAX_IMAGE_SIDE, RoughTransmission, Sampling, Scene};
+use rt::scene::{self, LightSampler, MAX_IMAGE_SIDE, RoughTransmission, Sampling, Scene};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -90,6 +90,9 @@ struct RenderArgs {
     /// Model of rough refraction [default: the scene's].
     #[arg(long, value_enum)]
     rough_transmission: Option<RoughTransmission>,
+    /// How light sampling picks a lamp or emitter: by power, or down the light tree [default: the scene's].
+    #[arg(long, value_enum)]
+    light_sampler: Option<LightSampler>,
     /// Scale every sample down to at most this luminance. Hides fireflies at the
     /// price of bias (bright light goes missing); off by default.
     #[arg(long)]
@@ -120,6 +123,7 @@ impl RenderArgs {
             sampling: self.sampling,
             ris_candidates: self.ris_candidates,
             rough_transmission: self.rough_transmission,
+            light_sampler: self.light_sampler,
             seed: self.seed,
             clamp: self.clamp,
             samples_per_dispatch: self.samples_per_dispatch,
@@ -286,7 +290,7 @@ struct AccuracyArgs {
     /// Scene file; the built-in Cornell box when omitted.
     scene: Option<PathBuf>,
     /// Knob to sweep (repeatable) [default: all]: spp, max-bounces, sampling,
-    /// ris-candidates, rough-glass, bvh-quality, samples-per-dispatch.
+    /// light-sampler, ris-candidates, rough-glass, bvh-quality, samples-per-dispatch.
     #[arg(long = "knob")]
     knobs: Vec<String>,
     /// Folder of the report [default: out/bench/SCENE].

@@ -1,23 +1,25 @@
 //! rt against Cycles on scenes lit by Blender's lamps (`tests/cycles/make_refs.py`
 //! builds them in bpy, renders the references with Cycles and exports the scenes with
 //! `blender/rt_export.py`): the global mean and every 8×8 block's mean must agree
-//! within bounds derived from the noise, in both of rt's sampling modes.
+//! within bounds derived from the noise, in both of rt's sampling modes and with both
+//! light samplers.
 
 mod common;
 
 use common::{gpu, reference, repo};
 use rt::bvh::BuildQuality;
 use rt::render::{Image, RenderRequest, Session};
-use rt::scene::Sampling;
+use rt::scene::{LightSampler, Sampling};
 
 /// Samples per pixel of the committed references (`make_refs.py --spp`).
 const REFERENCE_SPP: f64 = 4096.0;
 /// Cycles' `max_bounces` in `make_refs.py` plus one: rt counts the first hit.
 const MAX_BOUNCES: u32 = 5;
-fn render(name: &str, sampling: Sampling, spp: u32) -> Image {
+fn render(name: &str, sampling: Sampling, spp: u32, sampler: LightSampler) -> Image {
     let path = repo().join(format!("tests/cycles/scenes/{name}/{name}.toml"));
     let mut scene = rt::scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
     scene.render.sampling = sampling;
+    scene.render.light_sampler = sampler;
     let mut session = Session::open(gpu(), scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
     assert!(session.features().lamps.any(), "{name}: no lamps");
     let mut request = RenderRequest::from_scene(session.scene());
@@ -27,20 +29,20 @@ fn render(name: &str, sampling: Sampling, spp: u32) -> Image {
     image
 }
 
-fn compare(name: &str, sampling: Sampling, spp: u32) -> reference::Comparison {
-    let ours = render(name, sampling, spp);
+fn compare(name: &str, sampling: Sampling, spp: u32, sampler: LightSampler) -> reference::Comparison {
+    let ours = render(name, sampling, spp, sampler);
     reference::compare(&ours, &repo().join(format!("tests/cycles/{name}.exr")), REFERENCE_SPP)
 }
 
 fn check(name: &str, sampling: Sampling, spp: u32) {
-    compare(name, sampling, spp).check(&format!("{name} {sampling:?} {spp} spp"), "Cycles");
+    compare(name, sampling, spp, LightSampler::Power).check(&format!("{name} {sampling:?} {spp} spp"), "Cycles");
 }
 
 /// Without light sampling a small lamp is found by rare BSDF rays: the noise has a long
 /// tail that 8×8 blocks at this sample count do not average out (their standard errors
 /// are estimated low), so only the global mean is held to 4 σ.
 fn check_mean(name: &str, sampling: Sampling, spp: u32) {
-    compare(name, sampling, spp).check_mean(&format!("{name} {sampling:?} {spp} spp"), "Cycles");
+    compare(name, sampling, spp, LightSampler::Power).check_mean(&format!("{name} {sampling:?} {spp} spp"), "Cycles");
 }
 
 #[test]
@@ -81,4 +83,17 @@ fn area_and_sun_lamps_match_cycles_without_light_sampling() {
 fn small_lamps_match_cycles_on_average_without_light_sampling() {
     check_mean("point", Sampling::Resampled, 128);
     check_mean("spot", Sampling::Resampled, 128);
+}
+
+#[test]
+fn lamps_match_cycles_with_the_light_tree() {
+    // The tree holds the point, spot and area lamps; the sun lamp keeps its own share.
+    for name in ["point", "spot", "area", "sun", "several"] {
+        let comparison = compare(name, Sampling::Nee, 128, LightSampler::Tree);
+        eprintln!(
+            "{name} with the light tree: global {:.2} σ, worst 8×8 block {:.2} σ",
+            comparison.global_z, comparison.worst_block_z
+        );
+        comparison.check(&format!("{name} light tree 128 spp"), "Cycles");
+    }
 }

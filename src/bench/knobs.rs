@@ -6,7 +6,9 @@
 
 use crate::bvh::BuildQuality;
 use crate::render::RenderRequest;
-use crate::scene::{Atmosphere, FeatureSet, RoughTransmission, Sampling, Scene, Sky, SkyFeature, Transmission};
+use crate::scene::{
+    Atmosphere, FeatureSet, LightSampler, RoughTransmission, Sampling, Scene, Sky, SkyFeature, Transmission,
+};
 use clap::ValueEnum;
 
 /// One configuration to measure: the scene as the session is built for it, the
@@ -84,6 +86,15 @@ fn without_atmosphere(f: &FeatureSet) -> Option<&'static str> {
     }
 }
 
+fn without_tree_lights(f: &FeatureSet) -> Option<&'static str> {
+    let lamps = f.lamps.point || f.lamps.spot || f.lamps.area;
+    match (f.sampling, f.emission || lamps) {
+        (Sampling::Nee, true) => None,
+        (Sampling::Nee, false) => Some("the scene has no emitters nor lamps other than suns"),
+        (Sampling::Resampled, _) => Some("resampled sampling samples no lights"),
+    }
+}
+
 /// Changes the scene's atmosphere, if its sky is one.
 fn with_atmosphere(trial: &mut Trial, change: impl Fn(&mut Atmosphere)) {
     if let Sky::Atmosphere(a) = &mut trial.scene.sky {
@@ -122,6 +133,16 @@ pub fn all_knobs(levels: &[u32]) -> Vec<Knob> {
                 .collect(),
             spp_levels: None,
             inapplicable: always,
+        },
+        Knob {
+            name: "light-sampler",
+            about: "how light sampling picks a lamp or emitter: by power, or down the light tree by importance",
+            settings: [LightSampler::Power, LightSampler::Tree]
+                .into_iter()
+                .map(|s| Setting::new(format!("{s:?}").to_lowercase(), move |t| t.scene.render.light_sampler = s))
+                .collect(),
+            spp_levels: None,
+            inapplicable: without_tree_lights,
         },
         Knob {
             name: "ris-candidates",

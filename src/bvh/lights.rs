@@ -3,7 +3,7 @@
 //! next-event estimation shares its samples between the sun, emitters and lamps.
 
 use crate::layout::*;
-use crate::scene::{AreaShape, Light, LightShape, luminance};
+use crate::scene::{AreaShape, Light, LightSampler, LightShape, luminance};
 use glam::Vec3;
 use std::f64::consts::PI;
 
@@ -13,10 +13,19 @@ pub struct LampTable {
 }
 
 /// `scene_radius` sizes the share of samples a sun lamp gets: the power it sends
-/// into a sphere of that radius.
-pub fn lamp_table(lights: &[Light], has_sun: bool, has_emitters: bool, scene_radius: f32) -> LampTable {
+/// into a sphere of that radius. With the light tree, the lamps' own table picks suns
+/// only and the emitters' share goes to the tree, which holds the other lamps.
+pub fn lamp_table(
+    lights: &[Light],
+    has_sun: bool,
+    has_emitters: bool,
+    scene_radius: f32,
+    sampler: LightSampler,
+) -> LampTable {
     let mut lamps: Vec<GpuLamp> = lights.iter().map(gpu_lamp).collect();
-    let weights: Vec<f64> = lights.iter().map(|l| selection_weight(l, scene_radius)).collect();
+    let in_tree = |l: &Light| sampler == LightSampler::Tree && !matches!(l.shape, LightShape::Sun { .. });
+    let weights: Vec<f64> =
+        lights.iter().map(|l| if in_tree(l) { 0.0 } else { selection_weight(l, scene_radius) }).collect();
     let total: f64 = weights.iter().sum();
     let mut running = 0.0;
     for (lamp, w) in lamps.iter_mut().zip(&weights) {
@@ -27,7 +36,20 @@ pub fn lamp_table(lights: &[Light], has_sun: bool, has_emitters: bool, scene_rad
     if let Some(last) = lamps.last_mut() {
         last.cdf = 1.0;
     }
-    LampTable { info: shares(lamps.len() as u32, has_sun, has_emitters), lamps }
+    let mut info = shares(lamps.len() as u32, has_sun, has_emitters);
+    if sampler == LightSampler::Tree && !lights.is_empty() {
+        let suns = lights.iter().any(|l| !in_tree(l));
+        info = tree_shares(info.count, has_sun, suns, has_emitters || lights.iter().any(in_tree));
+    }
+    LampTable { info, lamps }
+}
+
+/// With the light tree: an equal share to the `[sun]`, to sun lamps and to the tree
+/// (in `emitter_share`), of those present.
+fn tree_shares(count: u32, has_sun: bool, has_sun_lamps: bool, has_tree: bool) -> GpuLampInfo {
+    let kinds = [has_sun, has_tree, has_sun_lamps].iter().filter(|k| **k).count().max(1) as f32;
+    let share = |present: bool| if present { 1.0 / kinds } else { 0.0 };
+    GpuLampInfo { count, sun_share: share(has_sun), emitter_share: share(has_tree), lamp_share: share(has_sun_lamps) }
 }
 
 /// Without lamps, the split the frame constants use (half to the sun when there are
@@ -126,11 +148,24 @@ mod tests {
     #[test]
     fn shares_without_lamps_are_the_frames() {
         for (sun, emitters, expected) in [(false, false, 0.0), (true, false, 1.0), (true, true, 0.5)] {
-            let info = lamp_table(&[], sun, emitters, 1.0).info;
+            let info = lamp_table(&[], sun, emitters, 1.0, LightSampler::Power).info;
             assert_eq!((info.sun_share, info.emitter_share, info.lamp_share), (expected, 1.0 - expected, 0.0));
         }
-        let info = lamp_table(&[light(LightShape::Sun { angle_deg: 1.0 }, 1.0)], true, true, 1.0).info;
+        let info =
+            lamp_table(&[light(LightShape::Sun { angle_deg: 1.0 }, 1.0)], true, true, 1.0, LightSampler::Power).info;
         assert_eq!((info.sun_share, info.emitter_share, info.lamp_share), (1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0));
+    }
+
+    #[test]
+    fn with_the_tree_the_lamp_table_picks_suns_only() {
+        let sun = light(LightShape::Sun { angle_deg: 1.0 }, 1.0);
+        let point = light(LightShape::Point { radius: 0.1, soft_falloff: false }, 100.0);
+        let table = lamp_table(&[point.clone(), sun, point.clone()], true, false, 1.0, LightSampler::Tree);
+        assert_eq!(table.lamps.iter().map(|l| l.cdf).collect::<Vec<_>>(), [0.0, 1.0, 1.0]);
+        let info = table.info;
+        assert_eq!((info.sun_share, info.emitter_share, info.lamp_share), (1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0));
+        let info = lamp_table(&[point], false, false, 1.0, LightSampler::Tree).info;
+        assert_eq!((info.sun_share, info.emitter_share, info.lamp_share), (0.0, 1.0, 0.0));
     }
 
     #[test]
@@ -143,7 +178,7 @@ mod tests {
         assert!((l * PI * 4.0 * PI * 0.25 - 100.0).abs() < 1e-3);
         let area = light(LightShape::Area { shape: AreaShape::Disk, size: 2.0, size_y: 2.0 }, 100.0);
         assert!((gpu_lamp(&area).emission[0] as f64 * PI * PI - 100.0).abs() < 1e-3);
-        let lamps = lamp_table(&[point(0.0), point(0.0), area], false, false, 1.0).lamps;
+        let lamps = lamp_table(&[point(0.0), point(0.0), area], false, false, 1.0, LightSampler::Power).lamps;
         assert_eq!(lamps.iter().map(|l| l.cdf).collect::<Vec<_>>(), [1.0 / 3.0, 2.0 / 3.0, 1.0]);
     }
 }

@@ -6,6 +6,8 @@ pub mod cache;
 mod cache_check;
 mod cached_material;
 mod cached_texture;
+mod light_bounds;
+pub mod light_tree;
 mod lights;
 mod mesh_bvh;
 mod node;

@@ -1,13 +1,15 @@
 //! Everything a scene puts on the GPU: the meshes' bottom-level BVHs, a top
 //! level over instances and spheres, and the material table.
 
+use super::light_bounds::{lamp_bounds, sphere_bounds, triangle_bounds};
+use super::light_tree::{LightBounds, LightTree, TreeLight};
 use super::lights::{LampTable, lamp_table, scene_radius};
 use super::mesh_bvh::BuildQuality;
 use super::node::{BvhStats, convert_bvh2, stats};
 use super::pack::{LoadedMesh, build_all_in_memory, load_or_pack_all};
 use super::placement::{MeshSlot, Placement};
 use crate::layout::*;
-use crate::scene::{GeometrySummary, Material, Sampling, Scene};
+use crate::scene::{GeometrySummary, LightSampler, Material, Sampling, Scene};
 use anyhow::{Result, bail};
 use glam::{Vec3, Vec3A};
 use obvhs::{BvhBuildParams, aabb::Aabb, bvh2::builder::build_bvh2};
@@ -34,6 +36,10 @@ pub struct SceneGeometry {
     /// `[[light]]` lamps, and how light sampling shares its samples when there are some.
     pub lamps: Vec<GpuLamp>,
     pub lamp_info: GpuLampInfo,
+    /// The light tree over the emitters and the lamps other than suns.
+    pub light_tree: LightTree,
+    /// Building it (at every load: it is over the placed lights, not per asset).
+    pub light_tree_build_time: Duration,
     pub tlas_root: u32,
     pub tlas_stats: BvhStats,
     /// Building the top level over the instances' and spheres' boxes (obvhs, then the GPU layout).
@@ -198,7 +204,7 @@ impl SceneGeometry {
             triangles: &triangles,
             materials: &materials,
         };
-        let (emitters, emitter_total_power) = emissive.table(&instances, &instance_mesh, &spheres);
+        let (emitters, emitter_bounds, emitter_total_power) = emissive.table(&instances, &instance_mesh, &spheres);
 
         let build_start = Instant::now();
         let (nodes, tlas_primitives) = if boxes.is_empty() {
@@ -225,8 +231,28 @@ impl SceneGeometry {
                 );
             }
         }
-        let LampTable { lamps, info: lamp_info } =
-            lamp_table(&scene.lights, scene.sun.is_some(), !emitters.is_empty(), scene_radius(bounds_min, bounds_max));
+        let LampTable { lamps, info: lamp_info } = lamp_table(
+            &scene.lights,
+            scene.sun.is_some(),
+            !emitters.is_empty(),
+            scene_radius(bounds_min, bounds_max),
+            scene.render.light_sampler,
+        );
+        let tree_start = Instant::now();
+        // Scenes that sample by power pay nothing for the tree: theirs is empty, and a
+        // pipeline with the tree's code (all features) then finds emitters by BSDF rays only.
+        let light_tree = if scene.render.light_sampler == LightSampler::Tree {
+            tree_of(&emitter_bounds, &scene.lights, &lamps)?
+        } else {
+            LightTree::build(&[], emitter_bounds.len() + lamps.len())?
+        };
+        let light_tree_build_time = tree_start.elapsed();
+        log::info!(
+            "light tree: {} nodes over {} lights in {:.2} ms",
+            light_tree.nodes.len(),
+            light_tree.trails.len(),
+            light_tree_build_time.as_secs_f64() * 1e3
+        );
 
         Ok(Self {
             nodes,
@@ -241,6 +267,8 @@ impl SceneGeometry {
             emitter_total_power,
             lamps,
             lamp_info,
+            light_tree,
+            light_tree_build_time,
             tlas_root,
             tlas_stats,
             tlas_build_time,
@@ -250,6 +278,20 @@ impl SceneGeometry {
             bounds_max,
         })
     }
+}
+
+/// The light tree over emitters (trail and link `j` for emitter j) and lamps (link
+/// `i | LIGHT_TREE_LAMP`, trail `emitter count + i` for lamp i).
+fn tree_of(emitter_bounds: &[LightBounds], lights: &[crate::scene::Light], lamps: &[GpuLamp]) -> Result<LightTree> {
+    let count = emitter_bounds.len();
+    let emitters =
+        emitter_bounds.iter().enumerate().map(|(j, b)| TreeLight { bounds: *b, link: j as u32, trail_index: j as u32 });
+    let lamps = lights.iter().zip(lamps).enumerate().filter_map(|(i, (l, lamp))| {
+        let bounds = lamp_bounds(l, lamp)?;
+        Some(TreeLight { bounds, link: i as u32 | LIGHT_TREE_LAMP, trail_index: (count + i) as u32 })
+    });
+    let tree_lights: Vec<TreeLight> = emitters.chain(lamps).collect();
+    LightTree::build(&tree_lights, count + lights.len())
 }
 
 /// The distinct assets that a scene's meshes and instance files place, in file order.
@@ -277,8 +319,15 @@ impl EmissiveTriangles<'_> {
 
     /// Every emissive triangle of every instance, and every emissive sphere, with
     /// selection probabilities in proportion to power: world area × luminance of
-    /// emission (the GPU's light pdfs assume exactly this).
-    fn table(&self, instances: &[GpuInstance], instance_mesh: &[u32], spheres: &[GpuSphere]) -> (Vec<GpuEmitter>, f32) {
+    /// emission (the GPU's light pdfs assume exactly this), and each one's bounds for the
+    /// light tree. They come sorted by (sphere or not, instance, primitive), as the GPU's
+    /// search for the emitter a ray hits needs.
+    fn table(
+        &self,
+        instances: &[GpuInstance],
+        instance_mesh: &[u32],
+        spheres: &[GpuSphere],
+    ) -> (Vec<GpuEmitter>, Vec<LightBounds>, f32) {
         // Triangles emissive by their own material, per mesh: an instance without an
         // override emits from these, one with an emissive override from all its triangles.
         let own: Vec<Vec<u32>> = self
@@ -289,7 +338,7 @@ impl EmissiveTriangles<'_> {
                 range.clone().filter(|&t| self.luminance(base + self.triangles[t as usize].material) > 0.0).collect()
             })
             .collect();
-        let mut entries: Vec<(GpuEmitter, f64)> = Vec::new();
+        let mut entries: Vec<(GpuEmitter, f64, LightBounds)> = Vec::new();
         for (index, (inst, &mesh)) in instances.iter().zip(instance_mesh).enumerate() {
             let to_world = |v: [f32; 3]| {
                 let p = glam::DVec3::from(v.map(f64::from));
@@ -320,7 +369,8 @@ impl EmissiveTriangles<'_> {
                 let area = 0.5 * (b - a).cross(c - a).length();
                 if area > 0.0 {
                     let emitter = GpuEmitter { primitive: t, instance: index as u32, cdf: 0.0, _pad0: 0 };
-                    entries.push((emitter, area * self.luminance(material)));
+                    let luminance = self.luminance(material);
+                    entries.push((emitter, area * luminance, triangle_bounds(a, b, c, luminance)));
                 }
             }
         }
@@ -331,14 +381,16 @@ impl EmissiveTriangles<'_> {
                 entries.push((
                     GpuEmitter { primitive: index as u32 | SPHERE_BIT, instance: 0, cdf: 0.0, _pad0: 0 },
                     area * lum,
+                    sphere_bounds(s, lum),
                 ));
             }
         }
-        let total: f64 = entries.iter().map(|(_, p)| p).sum();
+        let total: f64 = entries.iter().map(|(_, p, _)| p).sum();
+        let bounds = entries.iter().map(|(_, _, b)| *b).collect();
         let mut running = 0.0;
         let mut emitters: Vec<GpuEmitter> = entries
             .into_iter()
-            .map(|(mut e, p)| {
+            .map(|(mut e, p, _)| {
                 running += p;
                 e.cdf = (running / total) as f32;
                 e
@@ -348,6 +400,6 @@ impl EmissiveTriangles<'_> {
         if let Some(last) = emitters.last_mut() {
             last.cdf = 1.0;
         }
-        (emitters, total as f32)
+        (emitters, bounds, total as f32)
     }
 }

@@ -20,7 +20,7 @@ pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     use Binding::*;
     let bindings = [
         Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadWrite, ReadOnly, ReadOnly,
-        Uniform, ReadOnly, ReadOnly, ReadOnly,
+        Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly,
     ];
     sequential_layout(device, "scene", wgpu::ShaderStages::COMPUTE, &bindings)
 }
@@ -56,11 +56,14 @@ struct SceneData {
     /// The texture store (see `super::textures`): its table and its texels.
     textures: wgpu::Buffer,
     texels: wgpu::Buffer,
+    /// The light tree's nodes and each light's trail (`shaders/light_tree.wgsl`).
+    light_tree_nodes: wgpu::Buffer,
+    light_tree_trails: wgpu::Buffer,
 }
 
 impl SceneData {
     /// The buffers in binding order (see [`scene_bind_group_layout`]).
-    fn bindings(&self) -> [&wgpu::Buffer; 15] {
+    fn bindings(&self) -> [&wgpu::Buffer; 17] {
         [
             &self.frame,
             &self.nodes,
@@ -77,6 +80,8 @@ impl SceneData {
             &self.wide_nodes,
             &self.textures,
             &self.texels,
+            &self.light_tree_nodes,
+            &self.light_tree_trails,
         ]
     }
 }
@@ -130,6 +135,12 @@ fn lamp_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer, wg
     (lamps, info)
 }
 
+fn light_tree_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer, wgpu::Buffer) {
+    let none = wgpu::BufferUsages::empty();
+    let tree = &geometry.light_tree;
+    (storage(ctx, "light tree nodes", &tree.nodes, none), storage(ctx, "light tree trails", &tree.trails, none))
+}
+
 fn texture_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer, wgpu::Buffer) {
     let max = ctx.device.limits().max_storage_buffer_binding_size;
     let store = TextureStore::pack(geometry.textures(), max);
@@ -155,6 +166,7 @@ impl SceneBuffers {
         let stats = storage(ctx, "stats", &[0u32; STAT_COUNT], counters);
         let (lamps, lamp_info) = lamp_buffers(ctx, geometry);
         let (textures, texels) = texture_buffers(ctx, geometry);
+        let (light_tree_nodes, light_tree_trails) = light_tree_buffers(ctx, geometry);
         let data = SceneData {
             frame,
             nodes,
@@ -171,6 +183,8 @@ impl SceneBuffers {
             wide_nodes,
             textures,
             texels,
+            light_tree_nodes,
+            light_tree_trails,
         };
         let bind_group = bind_group(ctx, "scene", layout, &data.bindings());
         Ok(Self { data, bind_group, sky_bind_group: None })
@@ -190,6 +204,7 @@ impl SceneBuffers {
         (d.materials, d.emitters) = material_buffers(ctx, geometry);
         (d.lamps, d.lamp_info) = lamp_buffers(ctx, geometry);
         (d.textures, d.texels) = texture_buffers(ctx, geometry);
+        (d.light_tree_nodes, d.light_tree_trails) = light_tree_buffers(ctx, geometry);
         self.bind_group = bind_group(ctx, "scene", layout, &self.data.bindings());
         Ok(())
     }
@@ -207,8 +222,10 @@ impl SceneBuffers {
             write_nonempty(ctx, &d.emitters, &geometry.emitters);
         } else {
             (d.materials, d.emitters) = material_buffers(ctx, geometry);
-            self.bind_group = bind_group(ctx, "scene", layout, &self.data.bindings());
         }
+        // Emission decides which triangles the light tree holds, and their power.
+        (d.light_tree_nodes, d.light_tree_trails) = light_tree_buffers(ctx, geometry);
+        self.bind_group = bind_group(ctx, "scene", layout, &self.data.bindings());
     }
 
     pub fn write_frame(&self, ctx: &GpuContext, frame: &GpuFrame) {
@@ -234,6 +251,7 @@ fn check_sizes(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<()> {
         ("triangle shading", std::mem::size_of_val(geometry.shading.as_slice())),
         ("instances", std::mem::size_of_val(geometry.instances.as_slice())),
         ("emitters", std::mem::size_of_val(geometry.emitters.as_slice())),
+        ("light tree nodes", std::mem::size_of_val(geometry.light_tree.nodes.as_slice())),
     ];
     for (what, bytes) in sizes {
         if bytes as u64 > max {

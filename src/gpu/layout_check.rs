@@ -121,6 +121,11 @@ fn host_structs_match_wgsl_layouts() {
         host_layout!("Lamp", GpuLamp, [position, kind, emission, radius, axis_u, len_u, axis_v, len_v, normal, cdf]),
         host_layout!("LampInfo", GpuLampInfo, [count, sun_share, emitter_share, lamp_share]),
         host_layout!(
+            "LightTreeNode",
+            GpuLightTreeNode,
+            [bounds_min, power, bounds_max, cos_theta_o, axis, cos_theta_e, link, flags]
+        ),
+        host_layout!(
             "Atmosphere",
             GpuAtmosphere,
             [

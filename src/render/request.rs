@@ -2,7 +2,7 @@
 //! defaults, the command line's flags override them and are checked like the keys.
 
 use super::Progress;
-use crate::scene::{FeatureSet, RoughTransmission, Sampling, Scene};
+use crate::scene::{FeatureSet, LightSampler, RoughTransmission, Sampling, Scene};
 use anyhow::{Result, bail};
 
 /// Samples per pixel in one GPU dispatch at most.
@@ -75,6 +75,7 @@ pub struct RenderFlags {
     pub sampling: Option<Sampling>,
     pub ris_candidates: Option<u32>,
     pub rough_transmission: Option<RoughTransmission>,
+    pub light_sampler: Option<LightSampler>,
     pub seed: u32,
     pub clamp: Option<f32>,
     pub samples_per_dispatch: Option<u32>,
@@ -96,6 +97,7 @@ impl RenderFlags {
         r.exposure = self.exposure.unwrap_or(r.exposure);
         r.sampling = self.sampling.unwrap_or(r.sampling);
         r.rough_transmission = self.rough_transmission.unwrap_or(r.rough_transmission);
+        r.light_sampler = self.light_sampler.unwrap_or(r.light_sampler);
         if let Err((key, message)) = r.check() {
             bail!("{}: {message}", flag_of(key));
         }

@@ -1,6 +1,6 @@
 //! Feature analysis: which effects a scene needs, so that the GPU runs only their code.
 
-use super::{Light, LightShape, Material, RoughTransmission, Sampling, Scene, Sky};
+use super::{Light, LightSampler, LightShape, Material, RoughTransmission, Sampling, Scene, Sky};
 use std::fmt;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -74,6 +74,8 @@ pub struct FeatureSet {
     pub sampling: Sampling,
     /// A thin-lens camera: rays start across the aperture.
     pub depth_of_field: bool,
+    /// Light sampling walks the light tree (`light_sampler = "tree"`, with lights to put in it).
+    pub light_tree: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -125,6 +127,9 @@ impl FeatureSet {
             alpha_mask: materials_in_use.iter().any(|m| m.textures.alpha_cutoff > 0.0),
             sampling: settings.sampling,
             depth_of_field: scene.camera.depth_of_field.is_some(),
+            light_tree: settings.light_sampler == LightSampler::Tree
+                && settings.sampling == Sampling::Nee
+                && (materials_in_use.iter().any(|m| m.is_emissive()) || scene.lights.iter().any(|l| !l.is_sun())),
         }
     }
 
@@ -144,6 +149,7 @@ impl FeatureSet {
             alpha_mask: true,
             sampling,
             depth_of_field: true,
+            light_tree: sampling == Sampling::Nee,
         }
     }
 
@@ -173,6 +179,7 @@ impl FeatureSet {
             "alpha_mask" => self.alpha_mask,
             "nee" => self.sampling == Sampling::Nee,
             "depth_of_field" => self.depth_of_field,
+            "light_tree" => self.light_tree,
             _ => return None,
         })
     }
@@ -191,6 +198,7 @@ impl fmt::Display for FeatureSet {
             (self.depth_of_field, "depth-of-field"),
             (self.textures, "textures"),
             (self.alpha_mask, "alpha-mask"),
+            (self.light_tree, "light-tree"),
         ] {
             if on {
                 parts.push(name.to_string());

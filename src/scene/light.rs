@@ -46,6 +46,10 @@ impl Light {
         self.object_to_world.w_axis.truncate()
     }
 
+    pub fn is_sun(&self) -> bool {
+        matches!(self.shape, LightShape::Sun { .. })
+    }
+
     /// A point, or a sun of angle 0: only light sampling reaches it, no ray can hit it.
     pub fn is_delta(&self) -> bool {
         match self.shape {

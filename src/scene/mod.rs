@@ -41,6 +41,7 @@ pub struct RenderSettings {
     /// Candidates per resampled direction in `resampled` sampling.
     pub ris_candidates: u32,
     pub rough_transmission: RoughTransmission,
+    pub light_sampler: LightSampler,
 }
 
 impl Default for RenderSettings {
@@ -54,6 +55,7 @@ impl Default for RenderSettings {
             sampling: Sampling::Nee,
             ris_candidates: 8,
             rough_transmission: RoughTransmission::Ggx,
+            light_sampler: LightSampler::Power,
         }
     }
 }
@@ -72,6 +74,18 @@ pub enum Sampling {
     /// sampling by multiple importance sampling (power heuristic).
     #[default]
     Nee,
+}
+
+/// How next-event estimation picks the lamp or emissive surface to sample.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum LightSampler {
+    /// In proportion to power, wherever the shaded point is.
+    #[default]
+    Power,
+    /// By a walk down the light tree, in proportion to each group's importance seen
+    /// from the shaded point (its power, distance and orientation): for many lights.
+    Tree,
 }
 
 /// The model of rough refraction.

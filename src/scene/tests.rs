@@ -279,6 +279,15 @@ fn seed_is_read_as_resampled_sampling() {
 }
 
 #[test]
+fn light_sampler_is_power_unless_the_tree_is_asked_for() {
+    assert_eq!(parse_ok("").render.light_sampler, crate::scene::LightSampler::Power);
+    assert_eq!(parse_ok("[render]\nlight_sampler = \"tree\"\n").render.light_sampler, crate::scene::LightSampler::Tree);
+    let e = crate::scene::parse("[render]\nlight_sampler = \"bvh\"\n", "s.toml", Path::new("."))
+        .expect_err("unknown sampler");
+    assert!(e.to_string().starts_with("s.toml:2:") && e.to_string().contains("tree"), "{e}");
+}
+
+#[test]
 fn lights_parse_with_blender_defaults() {
     let s = parse_ok(
         "[[light]]\ntype = \"point\"\n\

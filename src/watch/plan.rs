@@ -172,6 +172,10 @@ fn settings(old: &RenderSettings, new: &RenderSettings, changes: &mut Vec<Change
     if (old.sampling, old.rough_transmission) != (new.sampling, new.rough_transmission) {
         changes.extend([Change::Settings, Change::Features]);
     }
+    if old.light_sampler != new.light_sampler {
+        // The lamps' table and the shares of light samples follow the sampler.
+        changes.extend([Change::Settings, Change::Features, Change::Placement]);
+    }
 }
 
 #[cfg(test)]
@@ -245,6 +249,13 @@ mod tests {
         assert!(reload.reassembles() && !reload.replaces_geometry());
         let back = plan(&edited(|s| s.sun = None), &scene(), &prints(1), &prints(1), false);
         assert_eq!(back.kind(), "sun+features");
+    }
+
+    #[test]
+    fn a_new_light_sampler_reassembles_the_lights() {
+        let reload = kind_after(|s| s.render.light_sampler = crate::scene::LightSampler::Tree);
+        assert_eq!(reload.changes, [Change::Settings, Change::Features, Change::Placement]);
+        assert!(reload.reassembles());
     }
 
     #[test]

@@ -436,8 +436,9 @@ def material_textures(material, surface, out, textures, factors):
         pbr["baseColorTexture"] = {"index": textures.add(rgb_source + [alpha if alpha is not None else 1.0], True,
                                                           wrap_of(base or alpha))}
         if alpha is not None:
-            # Cycles blends by alpha; rt cuts out below one half (the same for leaves' 0/1 alpha).
-            out["alphaMode"], out["alphaCutoff"] = "MASK", 0.5
+            # Cycles blends by alpha (stochastically): so does rt with glTF's BLEND.
+            out["alphaMode"] = "BLEND"
+            out.pop("alphaCutoff", None)
     rough, metal = found["Roughness"], found["Metallic"]
     if rough is not None or metal is not None:
         pbr["metallicRoughnessTexture"] = {"index": textures.add(
@@ -468,6 +469,7 @@ def gltf_material(material, thickness, textures=None):
     name = material.name if material else "default"
     base, metallic, roughness, ior, transmission = [0.8, 0.8, 0.8], 0.0, 0.5, 1.5, 0.0
     emission, strength, specular_level = [0.0, 0.0, 0.0], 0.0, 0.5
+    alpha = 1.0
     output = active_output(material.node_tree, "OUTPUT_MATERIAL") if material and material.node_tree else None
     surface = linked_node(output.inputs["Surface"]) if output else None
     if surface is not None and surface.type != "BSDF_PRINCIPLED":
@@ -483,6 +485,7 @@ def gltf_material(material, thickness, textures=None):
         emission = rgb(socket_value(surface, "Emission Color", emission))
         strength = float(socket_value(surface, "Emission Strength", strength))
         specular_level = float(socket_value(surface, "Specular IOR Level", specular_level))
+        alpha = float(socket_value(surface, "Alpha", 1.0))
     elif surface is not None and surface.type == "EMISSION":
         base, roughness = [0.0, 0.0, 0.0], 1.0
         emission = rgb(socket_value(surface, "Color", (1, 1, 1)))
@@ -494,11 +497,13 @@ def gltf_material(material, thickness, textures=None):
     out = {
         "name": name,
         "pbrMetallicRoughness": {
-            "baseColorFactor": base + [1.0],
+            "baseColorFactor": base + [alpha],
             "metallicFactor": metallic,
             "roughnessFactor": roughness,
         },
     }
+    if alpha < 1.0:
+        out["alphaMode"] = "BLEND"
     extensions = {
         "KHR_materials_ior": {"ior": ior},
         # Blender's level 0.5 is the unscaled F0 of the IOR, glTF's factor 1.

@@ -216,7 +216,8 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
         let cos_hit = max(abs(dot(surface.geometric_normal, direction)), 1e-4);
         let texture_at = texture_point(hit);
         //#if normal_maps
-        surface.shading_normal = normal_mapped(m, hit, surface.shading_normal, texture_at, log2(cone_width / cos_hit));
+        let n_unmapped = surface.shading_normal;
+        surface.shading_normal = normal_mapped(m, hit, n_unmapped, surface.geometric_normal, -direction, texture_at.uv);
         //#endif
         m = textured_material(m, texture_at, log2(cone_width / cos_hit));
         //#endif
@@ -231,6 +232,9 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
         let entering = dot(surface.geometric_normal, direction) < 0.0;
         let n_geometric = select(-surface.geometric_normal, surface.geometric_normal, entering);
         let n_shading = select(-surface.shading_normal, surface.shading_normal, entering);
+        //#if normal_maps
+        set_unmapped_normal(select(-n_unmapped, n_unmapped, entering), m.normal_texture != NO_TEXTURE);
+        //#endif
         let ctx = shading_context(m, n_shading, n_geometric, -direction, entering);
         //#if nee
         shadow = direct_light(ctx, surface, n_geometric, medium_absorption, rng);

@@ -585,6 +585,19 @@ def export_object_mesh(obj, depsgraph, base_name="mesh"):
         evaluated.to_mesh_clear()
 
 
+def warn_other_uv_maps(mesh, materials):
+    """rt carries one uv map, the mesh's first: a UV Map or Normal Map node that names
+    another one is warned about (material and node), and the first one is used."""
+    first = mesh.uv_layers[0].name if len(mesh.uv_layers) else ""
+    for material in materials:
+        if material is None or material.node_tree is None:
+            continue
+        for node in material.node_tree.nodes:
+            if node.type in {"UVMAP", "NORMAL_MAP"} and node.uv_map not in ("", first):
+                log(f"{material.name}: node {node.name!r} reads uv map {node.uv_map!r}; rt carries only "
+                    f"the first one ({first!r}) and uses that")
+
+
 def export_mesh(mesh, materials, textures):
     """(rtmesh bytes, gltf text, {image file: PNG bytes}, triangle count) of an evaluated
     mesh shown with `materials`, its images collected by `textures`. The materials come
@@ -596,6 +609,7 @@ def export_mesh(mesh, materials, textures):
     extent = co.max(axis=0) - co.min(axis=0) if len(co) else [1]
     thickness = float(max(min(extent), 1e-3))
     exported = [gltf_material(m, thickness, textures) for m in materials]
+    warn_other_uv_maps(mesh, materials)
     arrays = mesh_arrays(mesh, len(materials), [transform for _, transform in exported])
     gltf = gltf_text([material for material, _ in exported], thickness, textures)
     return rtmesh_bytes(arrays), gltf, textures.images, len(arrays["indices"])

@@ -60,7 +60,14 @@ fn encode(n: DVec3) -> ([u8; 3], DVec3) {
 /// Mean radiance of the quad (the middle of the image) with a map tilting the normal
 /// by `tilt_deg` towards +u (`along_u`) or +v, of scale `scale`, under a sun at
 /// `azimuth_deg`; and what it must be.
-fn render_tilted(name: &str, tilt_deg: f64, along_u: bool, scale: f64, azimuth_deg: f64, sampling: &str) -> (f64, f64, f64) {
+fn render_tilted(
+    name: &str,
+    tilt_deg: f64,
+    along_u: bool,
+    scale: f64,
+    azimuth_deg: f64,
+    sampling: &str,
+) -> (f64, f64, f64) {
     let t = tilt_deg.to_radians();
     let tangent_space = if along_u { DVec3::new(t.sin(), 0.0, t.cos()) } else { DVec3::new(0.0, t.sin(), t.cos()) };
     let (codes, c) = encode(tangent_space);

@@ -319,7 +319,9 @@ fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<M
     let normal_info = m.normal_texture();
     let normal = normal_info
         .as_ref()
-        .map(|n| loader.load(&n.texture(), n.tex_coord(), ColorSpace::Linear).map_err(|e| format!("normal texture: {e}")))
+        .map(|n| {
+            loader.load(&n.texture(), n.tex_coord(), ColorSpace::Linear).map_err(|e| format!("normal texture: {e}"))
+        })
         .transpose()?;
     let alpha_cutoff = match m.alpha_mode() {
         AlphaMode::Opaque | AlphaMode::Blend => 0.0,

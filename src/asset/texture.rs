@@ -154,14 +154,18 @@ pub fn decode(bytes: &[u8], what: &str) -> Result<(u32, u32, Vec<u8>), String> {
     let image = reader.decode().map_err(|e| format!("{what}: cannot decode image: {e}"))?;
     // Float images (EXR) become 8-bit texels, where a NaN would turn silently into a
     // texel of 0: refused instead, with where it is.
-    if let Some(rgba) = image.as_rgba32f() {
-        if let Some((x, y, p)) = rgba.enumerate_pixels().find(|(_, _, p)| !p.0.iter().all(|c| c.is_finite())) {
-            return Err(format!("{what}: texel ({x}, {y}) is not finite ({:?})", p.0));
-        }
-    } else if let Some(rgb) = image.as_rgb32f() {
-        if let Some((x, y, p)) = rgb.enumerate_pixels().find(|(_, _, p)| !p.0.iter().all(|c| c.is_finite())) {
-            return Err(format!("{what}: texel ({x}, {y}) is not finite ({:?})", p.0));
-        }
+    let floats = match &image {
+        image::DynamicImage::ImageRgba32F(i) => Some((i.as_raw(), 4)),
+        image::DynamicImage::ImageRgb32F(i) => Some((i.as_raw(), 3)),
+        _ => None,
+    };
+    if let Some((values, channels)) = floats
+        && let Some(i) = values.iter().position(|c| !c.is_finite())
+    {
+        let pixel = i / channels;
+        let (x, y) = (pixel as u32 % image.width(), pixel as u32 / image.width());
+        let texel = &values[pixel * channels..(pixel + 1) * channels];
+        return Err(format!("{what}: texel ({x}, {y}) is not finite ({texel:?})"));
     }
     let rgba = image.into_rgba8();
     Ok((rgba.width(), rgba.height(), rgba.into_raw()))

@@ -69,7 +69,10 @@ impl Default for MaterialTextures {
 
 impl MaterialTextures {
     pub fn any(&self) -> bool {
-        self.base_color.is_some() || self.metallic_roughness.is_some() || self.emission.is_some() || self.normal.is_some()
+        self.base_color.is_some()
+            || self.metallic_roughness.is_some()
+            || self.emission.is_some()
+            || self.normal.is_some()
     }
 
     /// The indices, for offsetting into a scene-wide texture list.

@@ -437,8 +437,9 @@ def material_textures(material, surface, out, textures, factors):
         pbr["baseColorTexture"] = {"index": textures.add(rgb_source + [alpha if alpha is not None else 1.0], True,
                                                           wrap_of(base or alpha))}
         if alpha is not None:
-            # Cycles blends by alpha; rt cuts out below one half (the same for leaves' 0/1 alpha).
-            out["alphaMode"], out["alphaCutoff"] = "MASK", 0.5
+            # Cycles blends by alpha (stochastically): so does rt with glTF's BLEND.
+            out["alphaMode"] = "BLEND"
+            out.pop("alphaCutoff", None)
     rough, metal = found["Roughness"], found["Metallic"]
     if rough is not None or metal is not None:
         pbr["metallicRoughnessTexture"] = {"index": textures.add(
@@ -469,6 +470,7 @@ def gltf_material(material, thickness, textures=None):
     name = material.name if material else "default"
     base, metallic, roughness, ior, transmission = [0.8, 0.8, 0.8], 0.0, 0.5, 1.5, 0.0
     emission, strength, specular_level = [0.0, 0.0, 0.0], 0.0, 0.5
+    alpha = 1.0
     output = active_output(material.node_tree, "OUTPUT_MATERIAL") if material and material.node_tree else None
     surface = linked_node(output.inputs["Surface"]) if output else None
     if surface is not None and surface.type != "BSDF_PRINCIPLED":
@@ -484,6 +486,7 @@ def gltf_material(material, thickness, textures=None):
         emission = rgb(socket_value(surface, "Emission Color", emission))
         strength = float(socket_value(surface, "Emission Strength", strength))
         specular_level = float(socket_value(surface, "Specular IOR Level", specular_level))
+        alpha = float(socket_value(surface, "Alpha", 1.0))
     elif surface is not None and surface.type == "EMISSION":
         base, roughness = [0.0, 0.0, 0.0], 1.0
         emission = rgb(socket_value(surface, "Color", (1, 1, 1)))
@@ -495,11 +498,13 @@ def gltf_material(material, thickness, textures=None):
     out = {
         "name": name,
         "pbrMetallicRoughness": {
-            "baseColorFactor": base + [1.0],
+            "baseColorFactor": base + [alpha],
             "metallicFactor": metallic,
             "roughnessFactor": roughness,
         },
     }
+    if alpha < 1.0:
+        out["alphaMode"] = "BLEND"
     extensions = {
         "KHR_materials_ior": {"ior": ior},
         # Blender's level 0.5 is the unscaled F0 of the IOR, glTF's factor 1.
@@ -581,6 +586,19 @@ def export_object_mesh(obj, depsgraph, base_name="mesh"):
         evaluated.to_mesh_clear()
 
 
+def warn_other_uv_maps(mesh, materials):
+    """rt carries one uv map, the mesh's first: a UV Map or Normal Map node that names
+    another one is warned about (material and node), and the first one is used."""
+    first = mesh.uv_layers[0].name if len(mesh.uv_layers) else ""
+    for material in materials:
+        if material is None or material.node_tree is None:
+            continue
+        for node in material.node_tree.nodes:
+            if node.type in {"UVMAP", "NORMAL_MAP"} and node.uv_map not in ("", first):
+                log(f"{material.name}: node {node.name!r} reads uv map {node.uv_map!r}; rt carries only "
+                    f"the first one ({first!r}) and uses that")
+
+
 def export_mesh(mesh, materials, textures):
     """(rtmesh bytes, gltf text, {image file: PNG bytes}, triangle count) of an evaluated
     mesh shown with `materials`, its images collected by `textures`. The materials come
@@ -592,6 +610,7 @@ def export_mesh(mesh, materials, textures):
     extent = co.max(axis=0) - co.min(axis=0) if len(co) else [1]
     thickness = float(max(min(extent), 1e-3))
     exported = [gltf_material(m, thickness, textures) for m in materials]
+    warn_other_uv_maps(mesh, materials)
     arrays = mesh_arrays(mesh, len(materials), [transform for _, transform in exported])
     gltf = gltf_text([material for material, _ in exported], thickness, textures)
     return rtmesh_bytes(arrays), gltf, textures.images, len(arrays["indices"])

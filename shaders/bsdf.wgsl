@@ -102,11 +102,24 @@ fn shading_context(m: Material, n_shading: vec3f, n_geometric: vec3f, wo_world: 
     return ShadingContext(m, basis, vec3f(wo.xy, max(wo.z, 1e-6)), to_local * n_geometric, eta, probability, smooth_lobe);
 }
 
+// Whether lobes are folded above the surface (`fold_above`): everywhere but on
+// normal-mapped surfaces.
+fn folds_below_surface() -> bool {
+    //#if normal_maps
+    return !normal_is_mapped;
+    //#else
+    return true;
+    //#endif
+}
+
 // Mirrors a direction that the shading normal put below the true surface back
 // above it. Applied to sampling and evaluation alike, it folds the lobe's
 // leaking part onto the visible side: the BSDF stays consistent for MIS and a
 // white surface keeps all its energy.
 fn fold_above(w: vec3f, n_geometric: vec3f) -> vec3f {
+    if !folds_below_surface() {
+        return w;
+    }
     let d = dot(w, n_geometric);
     return select(w, w - 2.0 * d * n_geometric, d < 0.0);
 }
@@ -114,3 +127,44 @@ fn fold_above(w: vec3f, n_geometric: vec3f) -> vec3f {
 fn reflect_local(wo: vec3f, m: vec3f) -> vec3f {
     return 2.0 * dot(wo, m) * m - wo;
 }
+
+//#if normal_maps
+// Normal-mapped surfaces are shaded as Cycles shades them: lobes are not folded above
+// the surface (see `fold_above`); directions below it are cut instead, and diffuse
+// light is shadowed by `bump_shadowing`. Set by the integrator at each surface: the
+// interpolated normal before the normal map, on the viewer's side (world space), and
+// whether a map changed it.
+var<private> unmapped_normal: vec3f;
+var<private> normal_is_mapped: bool;
+
+fn set_unmapped_normal(n: vec3f, mapped: bool) {
+    unmapped_normal = n;
+    normal_is_mapped = mapped;
+}
+
+// Cycles' shadowing of a diffuse lobe whose normal a normal map tilted (Conty Estevez,
+// Lecocq & Stein, "A Microfacet-Based Shadowing Function to Solve the Bump Terminator
+// Problem", Ray Tracing Gems ch. 12): the mapped normal is read as one facet of a GGX
+// surface whose roughness grows with its tilt from the unmapped normal, and light is
+// shadowed as by that surface's masking; light on the far side of the unmapped
+// surface from the mapped normal is cut. Blender renders normal maps with it.
+fn bump_shadowing(ctx: ShadingContext, wi: vec3f) -> f32 {
+    let n = ctx.basis[2];
+    let cos_d = dot(unmapped_normal, n);
+    let cos_i = dot(unmapped_normal, ctx.basis * wi);
+    if cos_i * cos_d * wi.z < 0.0 {
+        return 0.0;
+    }
+    let cd = abs(cos_d);
+    let ci = abs(cos_i);
+    if cd >= 1.0 || ci >= 1.0 {
+        return 1.0;
+    }
+    if ci < 1e-6 {
+        return 0.0;
+    }
+    let alpha2 = saturate(0.125 * (1.0 / (cd * cd) - 1.0));
+    let tan2_i = (1.0 - ci * ci) / (ci * ci);
+    return 2.0 / (1.0 + sqrt(1.0 + alpha2 * tan2_i));
+}
+//#endif

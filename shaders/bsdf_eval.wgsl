@@ -10,13 +10,18 @@
 //#include "dielectric.wgsl"
 //#endif
 
+
 // f·|cos θi| of one reflection lobe, before folding.
 fn reflection_lobe_eval(ctx: ShadingContext, lobe: u32, wi: vec3f) -> vec3f {
     if wi.z <= 0.0 {
         return vec3f(0.0);
     }
     if lobe == LOBE_DIFFUSE {
-        return ctx.m.base_color * (ctx.m.diffuse * wi.z / PI);
+        var f = ctx.m.base_color * (ctx.m.diffuse * wi.z / PI);
+        //#if normal_maps
+        f *= bump_shadowing(ctx, wi);
+        //#endif
+        return f;
     }
     //#if glossy
     let m = normalize(ctx.wo + wi);
@@ -51,9 +56,10 @@ fn bsdf_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
     var f = vec3f(0.0);
     if dot(wi, ctx.n_geometric) > 0.0 {
         let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
+        let folded = f32(folds_below_surface());
         for (var lobe = LOBE_DIFFUSE; lobe <= LOBE_REFLECTION; lobe++) {
             if ctx.smooth_lobe[lobe] > 0.0 && ctx.lobe_probability[lobe] > 0.0 {
-                f += reflection_lobe_eval(ctx, lobe, wi) + reflection_lobe_eval(ctx, lobe, mirrored);
+                f += reflection_lobe_eval(ctx, lobe, wi) + folded * reflection_lobe_eval(ctx, lobe, mirrored);
             }
         }
     }
@@ -70,9 +76,10 @@ fn bsdf_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
     var pdf = 0.0;
     if dot(wi, ctx.n_geometric) > 0.0 {
         let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
+        let folded = f32(folds_below_surface());
         for (var lobe = LOBE_DIFFUSE; lobe <= LOBE_REFLECTION; lobe++) {
             if ctx.smooth_lobe[lobe] > 0.0 {
-                pdf += ctx.lobe_probability[lobe] * (reflection_lobe_pdf(ctx, lobe, wi) + reflection_lobe_pdf(ctx, lobe, mirrored));
+                pdf += ctx.lobe_probability[lobe] * (reflection_lobe_pdf(ctx, lobe, wi) + folded * reflection_lobe_pdf(ctx, lobe, mirrored));
             }
         }
     }

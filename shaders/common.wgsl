@@ -146,9 +146,19 @@ struct Material {
     // Opacity = base_alpha × the base colour texture's alpha; below alpha_cutoff
     // (0: opaque) the surface is not there.
     base_alpha: f32,
+    // Negative (ALPHA_BLEND): opacity is the probability that the surface is there.
     alpha_cutoff: f32,
-    _pad0: u32,
-    _pad1: u32,
+    // A tangent-space normal map, or NO_TEXTURE; its x and y are scaled by normal_scale.
+    normal_texture: u32,
+    normal_scale: f32,
+}
+
+// Object-space vertex tangents (xyz) and bitangent signs (w) of one triangle; zero
+// where its mesh has none.
+struct TriangleTangents {
+    t0: vec4f,
+    t1: vec4f,
+    t2: vec4f,
 }
 
 // One texture of the texture store: its texels start at `offset` in `texels`, levels
@@ -179,6 +189,7 @@ const NO_MATERIAL: u32 = 0xffffffffu;
 // Top-level leaves hold instances and spheres; the top bit says which.
 const SPHERE_BIT: u32 = 0x80000000u;
 const NO_TEXTURE: u32 = 0xffffffffu;
+const ALPHA_BLEND: f32 = -1.0;
 
 // Counters in the statistics buffer.
 const STAT_STACK_OVERFLOW: u32 = 0u;
@@ -198,4 +209,7 @@ const STAT_STACK_OVERFLOW: u32 = 0u;
 @group(0) @binding(13) var<storage, read> textures: array<Texture>;
 // RGBA8 texels, red in the low byte.
 @group(0) @binding(14) var<storage, read> texels: array<u32>;
+//#endif
+//#if normal_maps
+@group(0) @binding(17) var<storage, read> tangent_frames: array<TriangleTangents>;
 //#endif

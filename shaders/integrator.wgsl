@@ -31,6 +31,9 @@
 //#if textures
 //#include "texture.wgsl"
 //#endif
+//#if normal_maps
+//#include "normal_map.wgsl"
+//#endif
 
 // rgb: the running mean of radiance; w: the running sum of squared deviations
 // of luminance (Welford), for the standard error. Means rather than sums: a sum
@@ -150,6 +153,11 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
     let cone_spread = select(2.0 * frame.view_half_extent.y / f32(frame.height), 0.0, frame.orthographic != 0u);
     var cone_width = 0.0;
     //#endif
+    //#if alpha_blend
+    // The sample's identity (its random stream's start: pixel, sample and seed) for the
+    // coins of blended surfaces.
+    let path_key = (*rng).state;
+    //#endif
     loop {
         var ray_origin = origin;
         var ray_direction = direction;
@@ -160,6 +168,9 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
             ray_direction = shadow.direction;
             ray_t_max = shadow.t_max;
         }
+        //#endif
+        //#if alpha_blend
+        set_alpha_ray_key(pcg_hash(path_key ^ pcg_hash(2u * bounce + u32(shadow_pending))));
         //#endif
         // A shadow ray only asks whether anything is in the way.
         let hit = intersect_scene(ray_origin, ray_direction, ray_t_max, shadow_pending, &stack_overflowed);
@@ -198,12 +209,17 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
         gather(&radiance, throughput * air.radiance, EVENT_AIR);
         attenuate(&throughput, air.transmittance, EVENT_AIR);
         //#endif
-        let surface = surface_at(hit, origin, direction);
+        var surface = surface_at(hit, origin, direction);
         var m = materials[surface.material];
         //#if textures
         cone_width += cone_spread * hit.t;
         let cos_hit = max(abs(dot(surface.geometric_normal, direction)), 1e-4);
-        m = textured_material(m, texture_point(hit), log2(cone_width / cos_hit));
+        let texture_at = texture_point(hit);
+        //#if normal_maps
+        let n_unmapped = surface.shading_normal;
+        surface.shading_normal = normal_mapped(m, hit, n_unmapped, surface.geometric_normal, -direction, texture_at.uv);
+        //#endif
+        m = textured_material(m, texture_at, log2(cone_width / cos_hit));
         //#endif
         //#if emission
         gather(&radiance, throughput * emission_seen(m, hit, surface, origin, direction, bsdf_pdf), EVENT_EMISSION);
@@ -216,6 +232,9 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
         let entering = dot(surface.geometric_normal, direction) < 0.0;
         let n_geometric = select(-surface.geometric_normal, surface.geometric_normal, entering);
         let n_shading = select(-surface.shading_normal, surface.shading_normal, entering);
+        //#if normal_maps
+        set_unmapped_normal(select(-n_unmapped, n_unmapped, entering), m.normal_texture != NO_TEXTURE);
+        //#endif
         let ctx = shading_context(m, n_shading, n_geometric, -direction, entering);
         //#if nee
         shadow = direct_light(ctx, surface, n_geometric, medium_absorption, rng);

@@ -10,6 +10,7 @@
 //#include "common.wgsl"
 //#include "hit.wgsl"
 //#include "transform.wgsl"
+//#include "rng.wgsl"
 
 const TEXTURE_SRGB: u32 = 1u;
 const WRAP_REPEAT: u32 = 0u;
@@ -182,13 +183,36 @@ fn opaque_at(inst: Instance, triangle: u32, b1: f32, b2: f32) -> bool {
         material = inst.material_base + triangles[triangle].material;
     }
     let m = materials[material];
-    if m.alpha_cutoff <= 0.0 {
+    if m.alpha_cutoff == 0.0 {
         return true;
     }
     var alpha = m.base_alpha;
     if m.base_color_texture != NO_TEXTURE {
         alpha *= sample_level(textures[m.base_color_texture], 0u, triangle_uv(triangle, b1, b2)).a;
     }
+    //#if alpha_blend
+    if m.alpha_cutoff < 0.0 {
+        return alpha_coin(triangle) < alpha;
+    }
+    //#endif
     return alpha >= m.alpha_cutoff;
+}
+//#endif
+
+//#if alpha_blend
+// Stochastic transparency (glTF BLEND): a blended surface is there for a ray with
+// probability equal to its opacity, so that the converged image is the opacity-weighted
+// mix of the surface and what lies behind it, in shadows too. The coin is a hash of the
+// ray (`alpha_ray_key`: pixel, sample, bounce and kind of ray, set by the integrator)
+// and the triangle, not a draw from the path's random stream: the traversal may test
+// one triangle more than once (in several leaves), and must get the same answer.
+var<private> alpha_ray_key: u32;
+
+fn set_alpha_ray_key(key: u32) {
+    alpha_ray_key = key;
+}
+
+fn alpha_coin(triangle: u32) -> f32 {
+    return f32(pcg_hash(alpha_ray_key ^ pcg_hash(triangle)) >> 8u) * (1.0 / 16777216.0);
 }
 //#endif

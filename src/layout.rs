@@ -154,8 +154,22 @@ pub struct GpuMaterial {
     /// Opacity = base_alpha × the base colour texture's alpha; below `alpha_cutoff`
     /// (0: opaque) the surface is not there.
     pub base_alpha: f32,
+    /// Negative ([`ALPHA_BLEND`]): opacity is a probability of being there.
     pub alpha_cutoff: f32,
-    pub _pad0: [u32; 2],
+    /// A tangent-space normal map (index into the texture table), or `NO_TEXTURE`.
+    pub normal_texture: u32,
+    /// glTF's `normalTexture.scale`: the map's x and y are multiplied by it.
+    pub normal_scale: f32,
+}
+
+/// The object-space tangents of a triangle's vertices (xyz, MikkTSpace) with the
+/// bitangent's sign (w), in the triangles' order; zero where a mesh has none.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuTriangleTangents {
+    pub t0: [f32; 4],
+    pub t1: [f32; 4],
+    pub t2: [f32; 4],
 }
 
 /// One texture of the scene's texture store (`shaders/texture.wgsl`).
@@ -319,6 +333,8 @@ pub const EMPTY_LINK: u32 = u32::MAX;
 pub const NO_MATERIAL: u32 = u32::MAX;
 pub const SPHERE_BIT: u32 = 0x8000_0000;
 pub const NO_TEXTURE: u32 = u32::MAX;
+/// `GpuMaterial::alpha_cutoff` of glTF's `BLEND`: stochastic transparency.
+pub const ALPHA_BLEND: f32 = -1.0;
 
 impl From<&crate::scene::Material> for GpuMaterial {
     fn from(m: &crate::scene::Material) -> Self {
@@ -341,8 +357,9 @@ impl From<&crate::scene::Material> for GpuMaterial {
             metallic: m.textures.metallic,
             roughness: m.roughness,
             base_alpha: m.textures.base_alpha,
-            alpha_cutoff: m.textures.alpha_cutoff,
-            _pad0: [0; 2],
+            alpha_cutoff: if m.textures.alpha_blend { ALPHA_BLEND } else { m.textures.alpha_cutoff },
+            normal_texture: m.textures.normal.unwrap_or(NO_TEXTURE),
+            normal_scale: m.textures.normal_scale,
         }
     }
 }

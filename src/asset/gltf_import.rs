@@ -85,7 +85,9 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
         mesh,
         normals: Vec::new(),
         uvs: Vec::new(),
+        tangents: Vec::new(),
         all_normals: true,
+        all_tangents: true,
         all_uvs: true,
         default_material: None,
         uv_transforms: &uv_transforms,
@@ -100,6 +102,9 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
     if !mesh.positions.is_empty() {
         mesh.normals = walk.all_normals.then_some(walk.normals);
         mesh.uvs = walk.all_uvs.then_some(walk.uvs);
+        // Tangents without the normals and uvs they belong to mean nothing.
+        let frame = mesh.normals.is_some() && mesh.uvs.is_some();
+        mesh.tangents = (walk.all_tangents && frame).then_some(walk.tangents);
     }
     Ok(mesh)
 }
@@ -111,8 +116,10 @@ struct Walk<'a> {
     mesh: MeshData,
     normals: Vec<[f32; 3]>,
     uvs: Vec<[f32; 2]>,
+    tangents: Vec<[f32; 4]>,
     /// Shading attributes are kept only if every primitive has them.
     all_normals: bool,
+    all_tangents: bool,
     all_uvs: bool,
     default_material: Option<u32>,
     /// Per material, its textures' `KHR_texture_transform`, baked into the uvs of its primitives.
@@ -166,6 +173,7 @@ impl Walk<'_> {
                 (Semantic::Positions, "POSITION", &[T::F32][..], D::Vec3),
                 (Semantic::Normals, "NORMAL", &[T::F32][..], D::Vec3),
                 (Semantic::TexCoords(0), "TEXCOORD_0", &[T::F32, T::U8, T::U16][..], D::Vec2),
+                (Semantic::Tangents, "TANGENT", &[T::F32][..], D::Vec4),
             ];
             for (semantic, name, types, dimensions) in attributes {
                 if let Some(a) = prim.get(&semantic) {
@@ -196,6 +204,22 @@ impl Walk<'_> {
                 self.normals.extend(normals.map(|n| (normal_matrix * Vec3::from(n)).normalize_or_zero().to_array()));
                 if self.normals.len() - start != count {
                     return Err(format!("{at}: NORMAL and POSITION counts differ"));
+                }
+            }
+            if prim.get(&Semantic::Tangents).is_none() {
+                self.all_tangents = false;
+            } else {
+                let tangents = reader.read_tangents().ok_or_else(|| unreadable("TANGENT"))?;
+                let start = self.tangents.len();
+                let to_world = Mat3::from_mat4(world);
+                // A mirroring transform flips the bitangent against n × t.
+                let handedness = if flip { -1.0 } else { 1.0 };
+                self.tangents.extend(tangents.map(|[x, y, z, w]| {
+                    let t = (to_world * Vec3::new(x, y, z)).normalize_or_zero();
+                    [t.x, t.y, t.z, if w < 0.0 { -handedness } else { handedness }]
+                }));
+                if self.tangents.len() - start != count {
+                    return Err(format!("{at}: TANGENT and POSITION counts differ"));
                 }
             }
             if prim.get(&Semantic::TexCoords(0)).is_none() {
@@ -292,14 +316,16 @@ fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<M
     let base_color = load(pbr.base_color_texture(), ColorSpace::Srgb, "base colour")?;
     let metallic_roughness = load(pbr.metallic_roughness_texture(), ColorSpace::Linear, "metallic-roughness")?;
     let emission = load(m.emissive_texture(), ColorSpace::Srgb, "emissive")?;
-    if m.normal_texture().is_some() {
-        log::warn!("material {:?}: normal textures are not supported yet; left out", m.name().unwrap_or(""));
-    }
+    let normal_info = m.normal_texture();
+    let normal = normal_info
+        .as_ref()
+        .map(|n| {
+            loader.load(&n.texture(), n.tex_coord(), ColorSpace::Linear).map_err(|e| format!("normal texture: {e}"))
+        })
+        .transpose()?;
     let alpha_cutoff = match m.alpha_mode() {
-        AlphaMode::Opaque => 0.0,
+        AlphaMode::Opaque | AlphaMode::Blend => 0.0,
         AlphaMode::Mask => m.alpha_cutoff().unwrap_or(0.5),
-        // Blended surfaces are drawn as cut-outs at half coverage (no order-independent blending).
-        AlphaMode::Blend => 0.5,
     };
     Ok(MaterialTextures {
         base_color,
@@ -308,6 +334,9 @@ fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<M
         metallic: pbr.metallic_factor().clamp(0.0, 1.0),
         base_alpha: pbr.base_color_factor()[3],
         alpha_cutoff,
+        alpha_blend: m.alpha_mode() == AlphaMode::Blend,
+        normal,
+        normal_scale: normal_info.map_or(1.0, |n| n.scale()),
     })
 }
 

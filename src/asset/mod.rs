@@ -10,6 +10,7 @@ pub mod obj_import;
 pub mod rtinst;
 pub mod rtmesh;
 mod source;
+mod tangents;
 pub mod texture;
 
 pub use source::{AssetFiles, AssetKind};
@@ -58,13 +59,35 @@ impl AssetError {
 /// `.glb` file, or a built-in one (a path under [`crate::scene::BUILTIN_PREFIX`]).
 pub fn load_mesh(path: &Path) -> Result<MeshData, AssetError> {
     let files = AssetFiles::resolve(path)?;
-    let mesh = match files.kind {
+    let mut mesh = match files.kind {
         AssetKind::Obj => obj_import::load(&files.main)?,
         AssetKind::Gltf => gltf_import::load(&files.main)?,
         AssetKind::RtMesh { ref materials } => load_rtmesh(&files.main, materials)?,
     };
     mesh.validate(&files.main)?;
+    give_normal_maps_tangents(&mut mesh, &files.main);
     Ok(mesh)
+}
+
+/// A normal map needs a tangent frame: a mesh that uses one and brings no tangents
+/// gets MikkTSpace's (which a mesh without uvs cannot have: its maps are left out).
+fn give_normal_maps_tangents(mesh: &mut MeshData, path: &Path) {
+    let normal_mapped: Vec<&str> =
+        mesh.materials.iter().filter(|(_, m)| m.textures.normal.is_some()).map(|(name, _)| name.as_str()).collect();
+    if normal_mapped.is_empty() || mesh.tangents.is_some() {
+        return;
+    }
+    if mesh.uvs.is_none() {
+        log::warn!(
+            "{}: material {:?} has a normal map but the mesh has no texture coordinates; the map is left out",
+            path.display(),
+            normal_mapped[0]
+        );
+    } else if tangents::generate(mesh) {
+        log::info!("{}: no tangents for its normal maps; generated MikkTSpace tangents", path.display());
+    } else {
+        log::warn!("{}: MikkTSpace could not make tangents for its normal maps; they are left out", path.display());
+    }
 }
 
 /// An `.rtmesh`'s geometry with the materials of its sibling glTF, which holds no meshes.

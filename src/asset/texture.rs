@@ -9,6 +9,9 @@
 //! are averaged in linear light, so that a checker fades to its true mean, not to
 //! the darker mean of its sRGB codes.
 
+/// The largest width or height of a texture rt reads.
+pub const MAX_TEXTURE_SIDE: u32 = 8192;
+
 /// What a texture coordinate outside [0, 1] does (glTF sampler wrap modes).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Wrap {
@@ -128,14 +131,42 @@ impl TextureImage {
 /// Decodes PNG or JPEG bytes into RGBA8 (a grey or RGB image gets alpha 1).
 /// `what` names the image in the error: its file or the glTF image it is.
 pub fn decode(bytes: &[u8], what: &str) -> Result<(u32, u32, Vec<u8>), String> {
-    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes));
-    reader = reader.with_guessed_format().map_err(|e| format!("{what}: cannot read: {e}"))?;
-    // The decoder's default limit (512 MiB) refuses 16k × 16k images outright; the
+    let reader = || {
+        image::ImageReader::new(std::io::Cursor::new(bytes))
+            .with_guessed_format()
+            .map_err(|e| format!("{what}: cannot read: {e}"))
+    };
+    // Checked on the header, before anything is decoded: a 16k × 16k image would take
+    // 1 GiB to decode and more for its mips, where the GPU binds far less anyway.
+    let (width, height) = reader()?.into_dimensions().map_err(|e| format!("{what}: cannot decode image: {e}"))?;
+    if width > MAX_TEXTURE_SIDE || height > MAX_TEXTURE_SIDE {
+        return Err(format!(
+            "{what}: the image is {width}×{height}; rt reads textures of at most \
+             {MAX_TEXTURE_SIDE}×{MAX_TEXTURE_SIDE} (scale it down)"
+        ));
+    }
+    let mut reader = reader()?;
+    // The decoder's default limit (512 MiB) refuses 8k × 8k images outright; the
     // texture store downscales what the GPU cannot hold instead (see `gpu::textures`).
     let mut limits = image::Limits::default();
     limits.max_alloc = Some(4 << 30);
     reader.limits(limits);
     let image = reader.decode().map_err(|e| format!("{what}: cannot decode image: {e}"))?;
+    // Float images (EXR) become 8-bit texels, where a NaN would turn silently into a
+    // texel of 0: refused instead, with where it is.
+    let floats = match &image {
+        image::DynamicImage::ImageRgba32F(i) => Some((i.as_raw(), 4)),
+        image::DynamicImage::ImageRgb32F(i) => Some((i.as_raw(), 3)),
+        _ => None,
+    };
+    if let Some((values, channels)) = floats
+        && let Some(i) = values.iter().position(|c| !c.is_finite())
+    {
+        let pixel = i / channels;
+        let (x, y) = (pixel as u32 % image.width(), pixel as u32 / image.width());
+        let texel = &values[pixel * channels..(pixel + 1) * channels];
+        return Err(format!("{what}: texel ({x}, {y}) is not finite ({texel:?})"));
+    }
     let rgba = image.into_rgba8();
     Ok((rgba.width(), rgba.height(), rgba.into_raw()))
 }

@@ -94,6 +94,8 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
     // Media live inside glass: forcing them on forces (at least smooth) glass too.
     let glass = if own.transmission == Transmission::None { Transmission::Smooth } else { own.transmission };
     force("media", own.media, FeatureSet { media: true, transmission: glass, ..own });
+    // Normal maps are texture lookups: forcing them on forces the texture code too.
+    force("normal maps", own.normal_maps, FeatureSet { normal_maps: true, textures: true, ..own });
     v
 }
 

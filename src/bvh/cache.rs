@@ -2,7 +2,7 @@
 //! render loads it with a read and a copy instead of importing and building again.
 //!
 //! ```text
-//! header (280 bytes, see `Header`): magic b"RTBVH\0\0\0", format version, header size,
+//! header (296 bytes, see `Header`): magic b"RTBVH\0\0\0", format version, header size,
 //!     BLAKE3 of the source files, of the build parameters, and of the whole file
 //!     (with this checksum field zeroed), the node layout's name, the mesh's bounds,
 //!     vertex and triangle counts of the source, BvhStats, and the section table
@@ -14,6 +14,8 @@
 //!     names       k × (u32 byte length, UTF-8 bytes): the materials' names
 //!     textures    CachedTexture × j      (size, wrap modes, colour space, texel range)
 //!     texels      u32 × (every texture's mip chain, RGBA8, in table order)
+//!     tangents    GpuTriangleTangents × m, or none: only a mesh with tangents and a
+//!                 normal-mapped material keeps them (version 5 on)
 //! ```
 //!
 //! Textures are decoded and their mips built at pack time, so a render never decodes
@@ -35,7 +37,7 @@ use super::mesh_bvh::{BuildQuality, MeshBvh};
 use super::node::BvhStats;
 use super::wide_node::NODE_LAYOUT;
 use crate::asset::{AssetError, AssetFiles, TextureImage};
-use crate::layout::{GpuTriangle, GpuTriangleShading, GpuWideNode};
+use crate::layout::{GpuTriangle, GpuTriangleShading, GpuTriangleTangents, GpuWideNode};
 use crate::scene::Material;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
@@ -45,7 +47,7 @@ use std::path::Path;
 use std::time::Duration;
 
 pub const MAGIC: [u8; 8] = *b"RTBVH\0\0\0";
-pub const FORMAT_VERSION: u32 = 4;
+pub const FORMAT_VERSION: u32 = 5;
 const ALIGN: u64 = 16;
 
 #[repr(C)]
@@ -62,7 +64,8 @@ const MATERIALS: usize = 3;
 const NAMES: usize = 4;
 const TEXTURES: usize = 5;
 const TEXELS: usize = 6;
-const SECTION_COUNT: usize = 7;
+const TANGENTS: usize = 7;
+const SECTION_COUNT: usize = 8;
 
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
@@ -144,7 +147,12 @@ pub fn source_hash(files: &AssetFiles) -> Result<[u8; 32], AssetError> {
 
 /// BLAKE3 of everything besides the sources that decides the cache's bytes.
 pub fn params_hash(quality: BuildQuality) -> [u8; 32] {
-    let sizes = [size_of::<GpuWideNode>(), size_of::<GpuTriangle>(), size_of::<GpuTriangleShading>()];
+    let sizes = [
+        size_of::<GpuWideNode>(),
+        size_of::<GpuTriangle>(),
+        size_of::<GpuTriangleShading>(),
+        size_of::<GpuTriangleTangents>(),
+    ];
     let params = format!(
         "rtbvh {FORMAT_VERSION} {NODE_LAYOUT} {quality:?} {sizes:?} {} {}",
         size_of::<CachedMaterial>(),
@@ -191,6 +199,7 @@ pub fn encode(mesh: &PackedMesh, source_hash: [u8; 32], params_hash: [u8; 32]) -
         &names,
         bytemuck::cast_slice(&texture_table),
         bytemuck::cast_slice(&texels),
+        bytemuck::cast_slice(&mesh.bvh.tangents),
     ];
     let mut sections = [Section::default(); SECTION_COUNT];
     let mut offset = align(HEADER_BYTES);
@@ -288,6 +297,13 @@ pub fn read(path: &Path, source_hash: [u8; 32], params_hash: [u8; 32]) -> Result
     let texture_table: Vec<CachedTexture> =
         bytemuck::pod_collect_to_vec(bytemuck::cast_slice::<u32, u8>(section(TEXTURES)));
     let textures = cached_texture::decode(&texture_table, section(TEXELS)).map_err(invalid)?;
+    let tangents: Vec<GpuTriangleTangents> = bytemuck::cast_slice(section(TANGENTS)).to_vec();
+    if !tangents.is_empty() && tangents.len() != triangles.len() {
+        return Err(invalid(format!("{} triangle tangents for {} triangles", tangents.len(), triangles.len())));
+    }
+    if let Some(i) = tangents.iter().position(|t| ![t.t0, t.t1, t.t2].into_iter().flatten().all(f32::is_finite)) {
+        return Err(invalid(format!("triangle {i} has a non-finite tangent")));
+    }
     check_contents(&nodes, &triangles, &shading, materials, names.len(), bounds).map_err(invalid)?;
     if let Some((i, t)) = materials
         .iter()
@@ -307,6 +323,7 @@ pub fn read(path: &Path, source_hash: [u8; 32], params_hash: [u8; 32]) -> Result
         nodes,
         triangles,
         shading,
+        tangents,
         bounds_min: Vec3::from_array(header.bounds_min),
         bounds_max: Vec3::from_array(header.bounds_max),
         stats,
@@ -347,6 +364,7 @@ fn check_header(header: &Header, len: u64) -> Result<(), CacheProblem> {
         1,
         size_of::<CachedTexture>(),
         4,
+        size_of::<GpuTriangleTangents>(),
     ];
     let mut end = align(HEADER_BYTES);
     for (i, (s, size)) in header.sections.iter().zip(element_sizes).enumerate() {

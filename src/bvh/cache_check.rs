@@ -178,5 +178,26 @@ mod tests {
         let mut mesh = packed();
         mesh.bvh.shading[3].n1[2] = f32::NAN;
         assert!(invalid("normal", &mesh).contains("triangle 3 has a non-finite shading normal"));
+
+        let mut mesh = packed();
+        mesh.bvh.tangents = vec![crate::layout::GpuTriangleTangents::default(); 5];
+        assert!(invalid("tangent count", &mesh).contains("5 triangle tangents for"));
+        let mut mesh = packed();
+        mesh.bvh.tangents = vec![crate::layout::GpuTriangleTangents::default(); mesh.bvh.triangles.len()];
+        mesh.bvh.tangents[4].t2[3] = f32::INFINITY;
+        assert!(invalid("tangent", &mesh).contains("triangle 4 has a non-finite tangent"));
+    }
+
+    #[test]
+    fn tangents_round_trip() {
+        let mut mesh = packed();
+        let tangent = |i: usize| [i as f32, 0.0, 1.0, -1.0];
+        mesh.bvh.tangents = (0..mesh.bvh.triangles.len())
+            .map(|i| crate::layout::GpuTriangleTangents { t0: tangent(i), t1: tangent(i + 1), t2: tangent(i + 2) })
+            .collect();
+        let back = read_back("tangents", &mesh).expect("valid");
+        assert_eq!(back.bvh.tangents, mesh.bvh.tangents);
+        // The bunny has no normal map: it keeps no tangents.
+        assert!(packed().bvh.tangents.is_empty());
     }
 }

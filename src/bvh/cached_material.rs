@@ -38,6 +38,10 @@ pub struct CachedMaterial {
     pub metallic: f32,
     pub base_alpha: f32,
     pub alpha_cutoff: f32,
+    /// 1: glTF `alphaMode` BLEND.
+    pub alpha_blend: u32,
+    pub normal_texture: u32,
+    pub normal_scale: f32,
 }
 
 impl From<&Material> for CachedMaterial {
@@ -61,6 +65,9 @@ impl From<&Material> for CachedMaterial {
             metallic: m.textures.metallic,
             base_alpha: m.textures.base_alpha,
             alpha_cutoff: m.textures.alpha_cutoff,
+            alpha_blend: u32::from(m.textures.alpha_blend),
+            normal_texture: slot(m.textures.normal),
+            normal_scale: m.textures.normal_scale,
         }
     }
 }
@@ -86,6 +93,9 @@ impl From<&CachedMaterial> for Material {
                 metallic: m.metallic,
                 base_alpha: m.base_alpha,
                 alpha_cutoff: m.alpha_cutoff,
+                alpha_blend: m.alpha_blend != 0,
+                normal: unslot(m.normal_texture),
+                normal_scale: m.normal_scale,
             },
         }
     }
@@ -105,13 +115,14 @@ impl CachedMaterial {
             self.metallic,
             self.base_alpha,
             self.alpha_cutoff,
+            self.normal_scale,
         ];
         vectors.into_iter().flatten().chain(scalars).all(f32::is_finite)
     }
 
     /// The texture slots that are filled.
     pub fn textures(&self) -> impl Iterator<Item = u32> {
-        [self.base_color_texture, self.metallic_roughness_texture, self.emission_texture]
+        [self.base_color_texture, self.metallic_roughness_texture, self.emission_texture, self.normal_texture]
             .into_iter()
             .filter(|&t| t != NO_TEXTURE)
     }

@@ -3,7 +3,7 @@
 use super::node::BvhStats;
 use super::wide_node::{convert_cwbvh, wide_stats};
 use crate::asset::MeshData;
-use crate::layout::{GpuTriangle, GpuTriangleShading, GpuWideNode};
+use crate::layout::{GpuTriangle, GpuTriangleShading, GpuTriangleTangents, GpuWideNode};
 use glam::{Vec3, Vec3A};
 use obvhs::{
     BvhBuildParams,
@@ -39,6 +39,9 @@ pub struct MeshBvh {
     pub nodes: Vec<GpuWideNode>,
     pub triangles: Vec<GpuTriangle>,
     pub shading: Vec<GpuTriangleShading>,
+    /// Per triangle (in `triangles`' order), for normal maps: empty unless the mesh has
+    /// tangents and some material of it has a normal map.
+    pub tangents: Vec<GpuTriangleTangents>,
     pub bounds_min: Vec3,
     pub bounds_max: Vec3,
     pub stats: BvhStats,
@@ -83,9 +86,20 @@ impl MeshBvh {
             .collect();
         let nodes = convert_cwbvh(&bvh, &triangles);
         let shading = order.iter().map(|&i| triangle_shading(mesh, i as usize)).collect();
+        let normal_mapped = mesh.materials.iter().any(|(_, m)| m.textures.normal.is_some());
+        let tangents = match &mesh.tangents {
+            Some(tangents) if normal_mapped => order
+                .iter()
+                .map(|&i| {
+                    let [t0, t1, t2] = mesh.indices[i as usize].map(|k| tangents[k as usize]);
+                    GpuTriangleTangents { t0, t1, t2 }
+                })
+                .collect(),
+            _ => Vec::new(),
+        };
         let (bounds_min, bounds_max) = bounds(&mesh.positions);
         let stats = wide_stats(&nodes);
-        Self { nodes, triangles, shading, bounds_min, bounds_max, stats, build_time: start.elapsed() }
+        Self { nodes, triangles, shading, tangents, bounds_min, bounds_max, stats, build_time: start.elapsed() }
     }
 }
 

@@ -24,6 +24,9 @@ pub struct SceneGeometry {
     pub wide_nodes: Vec<GpuWideNode>,
     pub triangles: Vec<GpuTriangle>,
     pub shading: Vec<GpuTriangleShading>,
+    /// Per triangle, for normal maps: empty when no mesh has tangents, else zero for
+    /// the triangles of meshes that have none.
+    pub tangents: Vec<GpuTriangleTangents>,
     pub instances: Vec<GpuInstance>,
     pub tlas_primitives: Vec<u32>,
     pub spheres: Vec<GpuSphere>,
@@ -73,6 +76,7 @@ impl SceneGeometry {
         bottom_nodes * size_of::<GpuBvhNode>()
             + self.triangles.len() * size_of::<GpuTriangle>()
             + self.shading.len() * size_of::<GpuTriangleShading>()
+            + self.tangents.len() * size_of::<GpuTriangleTangents>()
     }
 
     /// GPU bytes that grow with the instances and spheres: their records, the top
@@ -129,6 +133,8 @@ impl SceneGeometry {
         let mut wide_nodes = Vec::new();
         let mut triangles = Vec::new();
         let mut shading = Vec::new();
+        let mut tangents = Vec::new();
+        let any_tangents = meshes.iter().any(|m| !m.bvh.tangents.is_empty());
         let mut slots = Vec::new();
         // Each mesh's textures follow the previous meshes' in the scene's texture table.
         let mut texture_base = 0u32;
@@ -141,6 +147,12 @@ impl SceneGeometry {
             wide_nodes.extend_from_slice(&mesh.bvh.nodes);
             triangles.extend_from_slice(&mesh.bvh.triangles);
             shading.extend_from_slice(&mesh.bvh.shading);
+            if any_tangents {
+                match mesh.bvh.tangents.is_empty() {
+                    true => tangents.resize(triangles.len(), GpuTriangleTangents::default()),
+                    false => tangents.extend_from_slice(&mesh.bvh.tangents),
+                }
+            }
             materials.extend(mesh.materials.iter().map(|(_, m)| {
                 let mut m = m.clone();
                 for index in m.textures.indices_mut().into_iter().flatten() {
@@ -259,6 +271,7 @@ impl SceneGeometry {
             wide_nodes,
             triangles,
             shading,
+            tangents,
             instances,
             tlas_primitives,
             spheres,

@@ -20,7 +20,7 @@ pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     use Binding::*;
     let bindings = [
         Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadWrite, ReadOnly, ReadOnly,
-        Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly,
+        Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly,
     ];
     sequential_layout(device, "scene", wgpu::ShaderStages::COMPUTE, &bindings)
 }
@@ -59,11 +59,13 @@ struct SceneData {
     /// The light tree's nodes and each light's trail (`shaders/light_tree.wgsl`).
     light_tree_nodes: wgpu::Buffer,
     light_tree_trails: wgpu::Buffer,
+    /// Per-triangle tangents, for normal maps.
+    tangents: wgpu::Buffer,
 }
 
 impl SceneData {
     /// The buffers in binding order (see [`scene_bind_group_layout`]).
-    fn bindings(&self) -> [&wgpu::Buffer; 17] {
+    fn bindings(&self) -> [&wgpu::Buffer; 18] {
         [
             &self.frame,
             &self.nodes,
@@ -82,6 +84,7 @@ impl SceneData {
             &self.texels,
             &self.light_tree_nodes,
             &self.light_tree_trails,
+            &self.tangents,
         ]
     }
 }
@@ -106,9 +109,9 @@ fn storage<T: Pod + Default>(ctx: &GpuContext, label: &str, data: &[T], extra: w
 }
 
 /// The geometry's buffers: (top-level nodes, triangles, shading, instances, top-level primitives,
-/// spheres, bottom-level nodes).
+/// spheres, bottom-level nodes, tangents).
 type GeometryBuffers =
-    (wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer);
+    (wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer);
 
 fn geometry_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<GeometryBuffers> {
     check_sizes(ctx, geometry)?;
@@ -121,6 +124,7 @@ fn geometry_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<Geomet
         storage(ctx, "tlas primitives", &geometry.tlas_primitives, none),
         storage(ctx, "spheres", &geometry.spheres, none),
         storage(ctx, "wide nodes", &geometry.wide_nodes, none),
+        storage(ctx, "tangents", &geometry.tangents, none),
     ))
 }
 
@@ -155,7 +159,8 @@ fn material_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer
 
 impl SceneBuffers {
     pub fn new(ctx: &GpuContext, geometry: &SceneGeometry, layout: &wgpu::BindGroupLayout) -> Result<Self> {
-        let (nodes, triangles, shading, instances, tlas, spheres, wide_nodes) = geometry_buffers(ctx, geometry)?;
+        let (nodes, triangles, shading, instances, tlas, spheres, wide_nodes, tangents) =
+            geometry_buffers(ctx, geometry)?;
         let (materials, emitters) = material_buffers(ctx, geometry);
         let frame = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("frame"),
@@ -185,6 +190,7 @@ impl SceneBuffers {
             texels,
             light_tree_nodes,
             light_tree_trails,
+            tangents,
         };
         let bind_group = bind_group(ctx, "scene", layout, &data.bindings());
         Ok(Self { data, bind_group, sky_bind_group: None })
@@ -199,7 +205,7 @@ impl SceneBuffers {
         layout: &wgpu::BindGroupLayout,
     ) -> Result<()> {
         let d = &mut self.data;
-        (d.nodes, d.triangles, d.shading, d.instances, d.tlas, d.spheres, d.wide_nodes) =
+        (d.nodes, d.triangles, d.shading, d.instances, d.tlas, d.spheres, d.wide_nodes, d.tangents) =
             geometry_buffers(ctx, geometry)?;
         (d.materials, d.emitters) = material_buffers(ctx, geometry);
         (d.lamps, d.lamp_info) = lamp_buffers(ctx, geometry);
@@ -249,6 +255,7 @@ fn check_sizes(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<()> {
         ("mesh BVH nodes", std::mem::size_of_val(geometry.wide_nodes.as_slice())),
         ("triangles", std::mem::size_of_val(geometry.triangles.as_slice())),
         ("triangle shading", std::mem::size_of_val(geometry.shading.as_slice())),
+        ("triangle tangents", std::mem::size_of_val(geometry.tangents.as_slice())),
         ("instances", std::mem::size_of_val(geometry.instances.as_slice())),
         ("emitters", std::mem::size_of_val(geometry.emitters.as_slice())),
         ("light tree nodes", std::mem::size_of_val(geometry.light_tree.nodes.as_slice())),

@@ -114,9 +114,12 @@ fn host_structs_match_wgsl_layouts() {
                 metallic,
                 roughness,
                 base_alpha,
-                alpha_cutoff
+                alpha_cutoff,
+                normal_texture,
+                normal_scale
             ]
         ),
+        host_layout!("TriangleTangents", GpuTriangleTangents, [t0, t1, t2]),
         host_layout!("Emitter", GpuEmitter, [primitive, instance, cdf]),
         host_layout!("Lamp", GpuLamp, [position, kind, emission, radius, axis_u, len_u, axis_v, len_v, normal, cdf]),
         host_layout!("LampInfo", GpuLampInfo, [count, sun_share, emitter_share, lamp_share]),

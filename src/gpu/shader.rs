@@ -71,6 +71,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("sphere_test.wgsl"),
     shader!("sun.wgsl"),
     shader!("texture.wgsl"),
+    shader!("normal_map.wgsl"),
     shader!("surface.wgsl"),
     shader!("trace_kernel.wgsl"),
     shader!("transform.wgsl"),

@@ -71,6 +71,10 @@ pub struct FeatureSet {
     pub textures: bool,
     /// Cut-outs: some material's alpha can remove parts of its surface, for every ray.
     pub alpha_mask: bool,
+    /// Stochastic transparency: some material's opacity is a probability (glTF BLEND).
+    pub alpha_blend: bool,
+    /// Tangent-space normal maps on some material.
+    pub normal_maps: bool,
     pub sampling: Sampling,
     /// A thin-lens camera: rays start across the aperture.
     pub depth_of_field: bool,
@@ -124,7 +128,9 @@ impl FeatureSet {
             media: transmissive.iter().any(|m| m.has_medium()),
             lamps: LampKinds::of(&scene.lights),
             textures: materials_in_use.iter().any(|m| m.textures.any()),
-            alpha_mask: materials_in_use.iter().any(|m| m.textures.alpha_cutoff > 0.0),
+            alpha_mask: materials_in_use.iter().any(|m| m.textures.has_alpha()),
+            alpha_blend: materials_in_use.iter().any(|m| m.textures.alpha_blend),
+            normal_maps: materials_in_use.iter().any(|m| m.textures.normal.is_some()),
             sampling: settings.sampling,
             depth_of_field: scene.camera.depth_of_field.is_some(),
             light_tree: settings.light_sampler == LightSampler::Tree
@@ -147,6 +153,8 @@ impl FeatureSet {
             lamps: LampKinds::ALL,
             textures: true,
             alpha_mask: true,
+            alpha_blend: true,
+            normal_maps: true,
             sampling,
             depth_of_field: true,
             light_tree: sampling == Sampling::Nee,
@@ -177,6 +185,8 @@ impl FeatureSet {
             "lamp_sun" => self.lamps.sun,
             "textures" => self.textures,
             "alpha_mask" => self.alpha_mask,
+            "alpha_blend" => self.alpha_blend,
+            "normal_maps" => self.normal_maps,
             "nee" => self.sampling == Sampling::Nee,
             "depth_of_field" => self.depth_of_field,
             "light_tree" => self.light_tree,
@@ -199,6 +209,8 @@ impl fmt::Display for FeatureSet {
             (self.textures, "textures"),
             (self.alpha_mask, "alpha-mask"),
             (self.light_tree, "light-tree"),
+            (self.alpha_blend, "alpha-blend"),
+            (self.normal_maps, "normal-maps"),
         ] {
             if on {
                 parts.push(name.to_string());

@@ -42,6 +42,13 @@ pub struct MaterialTextures {
     /// glTF `alphaMode` MASK's `alphaCutoff`: texels whose alpha is below it are not
     /// there at all, for every ray. 0: opaque.
     pub alpha_cutoff: f32,
+    /// glTF `alphaMode` BLEND: the opacity is the probability that a ray meets the
+    /// surface (stochastic transparency), for every ray; `alpha_cutoff` is then unused.
+    pub alpha_blend: bool,
+    /// A tangent-space normal map (glTF `normalTexture`, linear RGB: xyz = 2·RGB − 1).
+    pub normal: Option<u32>,
+    /// glTF's `normalTexture.scale`: multiplies the map's x and y.
+    pub normal_scale: f32,
 }
 
 impl Default for MaterialTextures {
@@ -53,18 +60,29 @@ impl Default for MaterialTextures {
             metallic: 0.0,
             base_alpha: 1.0,
             alpha_cutoff: 0.0,
+            alpha_blend: false,
+            normal: None,
+            normal_scale: 1.0,
         }
     }
 }
 
 impl MaterialTextures {
     pub fn any(&self) -> bool {
-        self.base_color.is_some() || self.metallic_roughness.is_some() || self.emission.is_some()
+        self.base_color.is_some()
+            || self.metallic_roughness.is_some()
+            || self.emission.is_some()
+            || self.normal.is_some()
     }
 
     /// The indices, for offsetting into a scene-wide texture list.
-    pub fn indices_mut(&mut self) -> [&mut Option<u32>; 3] {
-        [&mut self.base_color, &mut self.metallic_roughness, &mut self.emission]
+    pub fn indices_mut(&mut self) -> [&mut Option<u32>; 4] {
+        [&mut self.base_color, &mut self.metallic_roughness, &mut self.emission, &mut self.normal]
+    }
+
+    /// Some of the surface may be missing: a cut-out or a blend.
+    pub fn has_alpha(&self) -> bool {
+        self.alpha_cutoff > 0.0 || self.alpha_blend
     }
 }
 

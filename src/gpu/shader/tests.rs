@@ -37,6 +37,8 @@ fn feature_sets() -> Vec<FeatureSet> {
             },
             textures: on(0) != on(4),
             alpha_mask: on(0) != on(4) && on(6),
+            alpha_blend: on(0) != on(4) && on(6) && on(1),
+            normal_maps: on(0) != on(4) && on(7),
             sampling: if on(0) { Sampling::Nee } else { Sampling::Resampled },
             depth_of_field: on(4) != on(6),
             light_tree: on(0) && on(4) != on(7),
@@ -62,6 +64,8 @@ fn plain() -> FeatureSet {
         lamps: LampKinds::default(),
         textures: false,
         alpha_mask: false,
+        alpha_blend: false,
+        normal_maps: false,
         sampling: Sampling::Nee,
         depth_of_field: false,
         light_tree: false,
@@ -208,6 +212,9 @@ fn absent_effects_leave_no_code() {
         "fn sample_texture",
         "var<storage, read> texels",
         "fn opaque_at",
+        "fn normal_mapped",
+        "tangent_frames",
+        "fn alpha_coin",
         "uv_lod",
     ] {
         assert!(!source.contains(absent), "{absent:?} is in the plain pipeline");

@@ -1,0 +1,75 @@
+// Tangent-space normal maps (glTF `normalTexture`; Blender's Normal Map node in tangent
+// space). A texel's RGB is a direction 2·RGB − 1 in the frame of the vertex tangent,
+// the bitangent and the shading normal, as MikkTSpace defines it: tangent and normal
+// interpolated across the triangle, bitangent = sign · normal × tangent, the mapped
+// normal normalised only after the sum (so a map baked by any MikkTSpace tool
+// reproduces its source). The frame is built in object space, as Cycles does, and the
+// result is carried to the world as a normal: that is right under any instance
+// transform, mirrors included.
+
+//#include "common.wgsl"
+//#include "hit.wgsl"
+//#include "transform.wgsl"
+//#include "texture.wgsl"
+
+// The shading normal (outward, world space) at a hit, perturbed by the material's
+// normal map; unchanged where there is none, or no tangent to orient it by. The map is
+// read at its finest level, whatever the ray cone: shading is not linear in the normal,
+// and an averaged (shorter, flatter) normal would shade bumps away where many texels
+// share a pixel. The pixel's samples do the averaging, as in Cycles.
+// `wo` points to the viewer, `geometric_normal` is the surface's outward one.
+fn normal_mapped(m: Material, hit: Hit, shading_normal: vec3f, geometric_normal: vec3f, wo: vec3f, uv: vec2f) -> vec3f {
+    if m.normal_texture == NO_TEXTURE || hit.kind != HIT_TRIANGLE {
+        return shading_normal;
+    }
+    let frame = tangent_frames[hit.primitive];
+    let b0 = 1.0 - hit.b1 - hit.b2;
+    let t = b0 * frame.t0 + hit.b1 * frame.t1 + hit.b2 * frame.t2;
+    if dot(t.xyz, t.xyz) == 0.0 {
+        return shading_normal;
+    }
+    let sh = shading[hit.primitive];
+    // Normalised: a mesh without normals stores its face normal unnormalised.
+    let n = normalize(b0 * sh.n0 + hit.b1 * sh.n1 + hit.b2 * sh.n2);
+    let bitangent = select(-1.0, 1.0, t.w >= 0.0) * cross(n, t.xyz);
+    let c = sample_level(textures[m.normal_texture], 0u, uv).rgb * 2.0 - 1.0;
+    let mapped = (c.x * m.normal_scale) * t.xyz + (c.y * m.normal_scale) * bitangent + c.z * n;
+    let world = transform_normal_to_world(instances[hit.instance].world_to_object, mapped);
+    let length_squared = dot(world, world);
+    // A texel of (0.5, 0.5, 0.5) or a NaN points nowhere: keep the interpolated normal.
+    if !(length_squared > 0.0) {
+        return shading_normal;
+    }
+    // Bent on the viewer's side, then turned back outward.
+    let side = select(-1.0, 1.0, dot(geometric_normal, wo) >= 0.0);
+    return side * valid_for_reflection(side * world * inverseSqrt(length_squared), side * geometric_normal, wo);
+}
+
+// Cycles' `ensure_valid_specular_reflection` (Schüßler et al., "Microfacet-based Normal
+// Mapping for Robust Monte Carlo Path Tracing", 2017, as Blender applies it to mapped
+// normals): a normal that would mirror the viewer's direction below the surface is
+// tilted towards the geometric normal `ng` (on the viewer's side) until the mirrored
+// direction clears it by min(0.9 cos θ_o, 0.01). Blender's images of normal maps are made
+// with it, so rt's are too; the rest of rt's shading-normal handling (the fallback to
+// the geometric normal and the folding of leaking directions in bsdf.wgsl) still holds.
+fn valid_for_reflection(n: vec3f, ng: vec3f, wo: vec3f) -> vec3f {
+    let r = 2.0 * dot(n, wo) * n - wo;
+    let iz = dot(wo, ng);
+    let threshold = min(0.9 * iz, 0.01);
+    if dot(ng, r) >= threshold {
+        return n;
+    }
+    let tangential = n - dot(n, ng) * ng;
+    let tangential_length = length(tangential);
+    if !(tangential_length > 0.0) || iz <= 0.0 {
+        return n;
+    }
+    let x = tangential / tangential_length;
+    let ix = dot(wo, x);
+    let a = ix * ix + iz * iz;
+    let b = 2.0 * (a + iz * threshold);
+    let c = (threshold + iz) * (threshold + iz);
+    let root = sqrt(max(b * b - 4.0 * a * c, 0.0));
+    let nz2 = select(0.25 * (b - root) / a, 0.25 * (b + root) / a, ix < 0.0);
+    return sqrt(max(1.0 - nz2, 0.0)) * x + sqrt(max(nz2, 0.0)) * ng;
+}

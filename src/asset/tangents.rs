@@ -1,0 +1,173 @@
+//! MikkTSpace tangents (Mikkelsen 2008, the `mikktspace` crate) for meshes that have a
+//! normal-mapped material but no tangents of their own: the tangent space that Blender,
+//! glTF and the tools that bake normal maps agree on, so that a map looks as it was made.
+//!
+//! MikkTSpace gives a tangent per triangle corner; corners that share a vertex may get
+//! different ones (at a mirror seam of the uvs), and such a vertex is split in two.
+
+use super::MeshData;
+use glam::Vec3;
+use std::collections::HashMap;
+
+/// A mesh as MikkTSpace reads it, with the tangent it writes per corner.
+struct Corners<'a> {
+    mesh: &'a MeshData,
+    uvs: &'a [[f32; 2]],
+    tangents: Vec<[f32; 4]>,
+}
+
+impl Corners<'_> {
+    fn vertex(&self, face: usize, corner: usize) -> usize {
+        self.mesh.indices[face][corner] as usize
+    }
+
+    /// A mesh without normals is shaded flat: its face normals.
+    fn face_normal(&self, face: usize) -> [f32; 3] {
+        let p = self.mesh.indices[face].map(|k| Vec3::from_array(self.mesh.positions[k as usize]));
+        (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero().to_array()
+    }
+}
+
+impl mikktspace::Geometry for Corners<'_> {
+    fn num_faces(&self) -> usize {
+        self.mesh.indices.len()
+    }
+
+    fn num_vertices_of_face(&self, _face: usize) -> usize {
+        3
+    }
+
+    fn position(&self, face: usize, corner: usize) -> [f32; 3] {
+        self.mesh.positions[self.vertex(face, corner)]
+    }
+
+    fn normal(&self, face: usize, corner: usize) -> [f32; 3] {
+        match &self.mesh.normals {
+            Some(normals) => normals[self.vertex(face, corner)],
+            None => self.face_normal(face),
+        }
+    }
+
+    fn tex_coord(&self, face: usize, corner: usize) -> [f32; 2] {
+        self.uvs[self.vertex(face, corner)]
+    }
+
+    fn set_tangent_encoded(&mut self, tangent: [f32; 4], face: usize, corner: usize) {
+        self.tangents[face * 3 + corner] = tangent;
+    }
+}
+
+/// Gives `mesh` MikkTSpace tangents (it must have uvs), splitting the vertices whose
+/// corners disagree. Returns false, leaving the mesh as it was, when MikkTSpace refuses it.
+pub fn generate(mesh: &mut MeshData) -> bool {
+    let Some(uvs) = mesh.uvs.as_deref() else {
+        return false;
+    };
+    let mut corners = Corners { mesh: &*mesh, uvs, tangents: vec![[0.0; 4]; mesh.indices.len() * 3] };
+    if !mikktspace::generate_tangents(&mut corners) {
+        return false;
+    }
+    let per_corner = corners.tangents;
+    // Non-finite output (degenerate uvs) becomes "no tangent": the shader then leaves the
+    // normal alone there.
+    let clean = |t: [f32; 4]| if t.iter().all(|c| c.is_finite()) { t } else { [0.0; 4] };
+    let mut tangents: Vec<Option<[f32; 4]>> = vec![None; mesh.positions.len()];
+    let mut splits: HashMap<(u32, [u32; 4]), u32> = HashMap::new();
+    for (face, triangle) in mesh.indices.iter_mut().enumerate() {
+        for (corner, vertex) in triangle.iter_mut().enumerate() {
+            let t = clean(per_corner[face * 3 + corner]);
+            let v = *vertex as usize;
+            match tangents[v] {
+                None => tangents[v] = Some(t),
+                Some(existing) if existing == t => {}
+                Some(_) => {
+                    *vertex = *splits.entry((*vertex, t.map(f32::to_bits))).or_insert_with(|| {
+                        tangents.push(Some(t));
+                        split_vertex(&mut mesh.positions, &mut mesh.normals, &mut mesh.uvs, v)
+                    });
+                }
+            }
+        }
+    }
+    mesh.tangents = Some(tangents.into_iter().map(|t| t.unwrap_or([0.0; 4])).collect());
+    true
+}
+
+/// Appends a copy of vertex `v`'s attributes; returns its index.
+fn split_vertex(
+    positions: &mut Vec<[f32; 3]>,
+    normals: &mut Option<Vec<[f32; 3]>>,
+    uvs: &mut Option<Vec<[f32; 2]>>,
+    v: usize,
+) -> u32 {
+    positions.push(positions[v]);
+    if let Some(n) = normals {
+        n.push(n[v]);
+    }
+    if let Some(uv) = uvs {
+        uv.push(uv[v]);
+    }
+    (positions.len() - 1) as u32
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A unit quad in the xy plane facing +z, u along +x and v along +y.
+    fn quad(uvs: Vec<[f32; 2]>) -> MeshData {
+        MeshData {
+            positions: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+            normals: Some(vec![[0.0, 0.0, 1.0]; 4]),
+            uvs: Some(uvs),
+            indices: vec![[0, 1, 2], [0, 2, 3]],
+            material_ids: vec![0, 0],
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn tangent_follows_u_and_sign_follows_v() {
+        let mut mesh = quad(vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]);
+        assert!(generate(&mut mesh));
+        for t in mesh.tangents.as_ref().expect("tangents") {
+            assert!((Vec3::new(t[0], t[1], t[2]) - Vec3::X).length() < 1e-5, "{t:?}");
+            // bitangent = w · n × t = +y, where v grows.
+            assert_eq!(t[3], 1.0);
+        }
+        // v running down the quad instead mirrors the frame: the sign flips.
+        let mut mirrored = quad(vec![[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]]);
+        assert!(generate(&mut mirrored));
+        assert!(mirrored.tangents.expect("tangents").iter().all(|t| t[3] == -1.0));
+    }
+
+    #[test]
+    fn a_uv_mirror_seam_splits_the_shared_vertices() {
+        // Two quads side by side sharing the edge x = 1; the right one's u runs backwards.
+        let mut mesh = MeshData {
+            positions: vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [2.0, 0.0, 0.0],
+                [2.0, 1.0, 0.0],
+            ],
+            normals: Some(vec![[0.0, 0.0, 1.0]; 6]),
+            uvs: Some(vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.0, 0.0], [0.0, 1.0]]),
+            indices: vec![[0, 1, 2], [0, 2, 3], [1, 4, 5], [1, 5, 2]],
+            material_ids: vec![0; 4],
+            materials: vec![("flat".into(), crate::scene::Material::default())],
+            ..Default::default()
+        };
+        assert!(generate(&mut mesh));
+        assert_eq!(mesh.positions.len(), 8, "the two seam vertices are split");
+        let tangents = mesh.tangents.as_ref().expect("tangents");
+        for (face, expected_x) in [(0, 1.0), (1, 1.0), (2, -1.0), (3, -1.0)] {
+            for &v in &mesh.indices[face] {
+                assert!((tangents[v as usize][0] - expected_x).abs() < 1e-5, "face {face}: {:?}", tangents[v as usize]);
+            }
+        }
+        assert!(mesh.validate(std::path::Path::new("seam")).is_ok());
+    }
+}

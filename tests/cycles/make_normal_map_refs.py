@@ -1,0 +1,137 @@
+#!/usr/bin/env python3
+"""Normal-mapped and alpha-blended scenes built in bpy, rendered by Cycles and exported
+with blender/rt_export.py, for `tests/cycles_normal_maps.rs`:
+
+    /work/main/.venv-bpy/bin/python tests/cycles/make_normal_map_refs.py [--spp 4096] [NAME...]
+
+For each NAME it writes `tests/cycles/texture_NAME.exr` and
+`tests/cycles/scenes/texture_NAME/`, with the Cycles settings and helpers of
+`make_texture_refs.py`. The normal maps are baked here from a height field with numpy:
+for h(u, v), the tangent-space normal is (−∂h/∂u, −∂h/∂v, 1) normalised, stored as
+RGB = (n + 1) / 2 in a Non-Color image, and read by a Normal Map node (tangent space,
+the mesh's uv map, strength 1) linked into the Principled BSDF's Normal.
+"""
+
+import argparse
+import math
+import os
+import sys
+
+import bpy
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import make_texture_refs as refs  # noqa: E402
+
+rt_export = refs.rt_export
+
+
+def bump_normals(n, bumps_u, bumps_v, amplitude):
+    """An (n, n, 4) normal map of h = a·sin(2π bu u)·sin(2π bv v): rows from the top, v up."""
+    y, x = np.mgrid[0:n, 0:n]
+    u = (x + 0.5) / n
+    v = 1.0 - (y + 0.5) / n
+    ku, kv = 2.0 * math.pi * bumps_u, 2.0 * math.pi * bumps_v
+    dh_du = amplitude * ku * np.cos(ku * u) * np.sin(kv * v)
+    dh_dv = amplitude * kv * np.sin(ku * u) * np.cos(kv * v)
+    normal = np.stack([-dh_du, -dh_dv, np.ones_like(u)], axis=2)
+    normal /= np.linalg.norm(normal, axis=2, keepdims=True)
+    pixels = np.ones((n, n, 4))
+    pixels[:, :, :3] = 0.5 * (normal + 1.0)
+    return pixels
+
+
+def normal_mapped(name, pixels, base_color, roughness):
+    m, tree, bsdf = refs.principled(name)
+    bsdf.inputs["Base Color"].default_value = (*base_color, 1.0)
+    bsdf.inputs["Roughness"].default_value = roughness
+    tex = refs.image_node(tree, refs.image(f"{name}_normal", pixels, srgb=False))
+    node = tree.nodes.new("ShaderNodeNormalMap")
+    node.space = "TANGENT"
+    node.inputs["Strength"].default_value = 1.0
+    tree.links.new(tex.outputs["Color"], node.inputs["Color"])
+    tree.links.new(node.outputs["Normal"], bsdf.inputs["Normal"])
+    return m
+
+
+def floor(scene, size=8.0, z=-1.0):
+    m, _, bsdf = refs.principled("floor")
+    bsdf.inputs["Base Color"].default_value = (0.5, 0.5, 0.5, 1.0)
+    bsdf.inputs["Roughness"].default_value = 1.0
+    refs.add_object(scene, "floor", bpy.ops.mesh.primitive_plane_add, m, size=size, location=(0, 0, z))
+
+
+def scene_normal_sphere(scene):
+    """A smooth diffuse sphere with a normal map of 8 × 4 bumps, lit by a low sun."""
+    refs.world(scene, (0.2, 0.2, 0.2))
+    refs.sun(scene, (math.radians(55), 0.0, math.radians(-40)))
+    m = normal_mapped("bumpy", bump_normals(128, 8, 4, 0.01), (0.8, 0.8, 0.8), 1.0)
+    refs.add_object(scene, "sphere", bpy.ops.mesh.primitive_uv_sphere_add, m, radius=1.0, segments=48,
+                    ring_count=24)
+    bpy.ops.object.shade_smooth()
+    floor(scene)
+    refs.camera(scene, (0.0, -3.6, 0.8), (0.0, 0.0, -0.1), 45.0)
+
+
+def scene_normal_cube(scene):
+    """A diffuse cube (each face its own uv island and orientation) with a normal map of
+    3 × 3 bumps, under a sun and a grey sky: every face's tangent frame shows."""
+    refs.world(scene, (0.25, 0.25, 0.25))
+    refs.sun(scene, (math.radians(50), 0.0, math.radians(-25)))
+    m = normal_mapped("bumpy", bump_normals(128, 3, 3, 0.025), (0.7, 0.55, 0.4), 0.4)
+    cube = refs.add_object(scene, "cube", bpy.ops.mesh.primitive_cube_add, m, size=1.4, location=(0, 0, -0.3))
+    cube.rotation_euler = (0.0, 0.0, math.radians(35.0))
+    floor(scene)
+    refs.camera(scene, (0.0, -3.4, 1.6), (0.0, 0.0, -0.3), 45.0)
+
+
+def scene_alpha_blend(scene):
+    """A quad whose base colour texture has alpha 0.25 and 0.75 in stripes, over a floor
+    under a sun: Cycles mixes by alpha, for the camera and for the shadow alike."""
+    refs.world(scene, (0.1, 0.1, 0.1))
+    m, tree, bsdf = refs.principled("veil")
+    n = 32
+    y, x = np.mgrid[0:n, 0:n]
+    pixels = np.zeros((n, n, 4))
+    pixels[:, :, 0] = np.where(x < n // 2, 0.9, 0.1)
+    pixels[:, :, 1] = 0.3
+    pixels[:, :, 2] = np.where(x < n // 2, 0.1, 0.9)
+    pixels[:, :, 3] = np.where((y // 8) % 2 == 0, 0.25, 0.75)
+    tex = refs.image_node(tree, refs.image("veil", pixels), "EXTEND")
+    tex.interpolation = "Closest"
+    tree.links.new(tex.outputs["Color"], bsdf.inputs["Base Color"])
+    tree.links.new(tex.outputs["Alpha"], bsdf.inputs["Alpha"])
+    bsdf.inputs["Roughness"].default_value = 1.0
+    refs.add_object(scene, "veil", bpy.ops.mesh.primitive_plane_add, m, size=1.6, location=(0, 0, 0.7),
+                    rotation=(math.radians(10), 0, 0))
+    floor(scene, 6.0, 0.0)
+    refs.sun(scene, (math.radians(25), 0.0, math.radians(30)))
+    refs.camera(scene, (0.0, -2.6, 3.2), (0.0, 0.0, 0.2), 45.0)
+
+
+SCENES = {
+    "normal_sphere": scene_normal_sphere,
+    "normal_cube": scene_normal_cube,
+    "alpha_blend": scene_alpha_blend,
+}
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--spp", type=int, default=4096)
+    parser.add_argument("names", nargs="*", default=list(SCENES))
+    args = parser.parse_args()
+    for name in args.names:
+        scene = refs.reset()
+        SCENES[name](scene)
+        scene.cycles.samples = args.spp
+        out = os.path.join(HERE, "scenes", f"texture_{name}")
+        rt_export.export_scene(scene, os.path.join(out, "assets"), os.path.join(out, "scene.toml"))
+        scene.render.filepath = os.path.join(HERE, f"texture_{name}.exr")
+        bpy.ops.render.render(write_still=True)
+        print(f"texture_{name}: {args.spp} spp -> {scene.render.filepath}", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()

@@ -214,7 +214,7 @@ fn lamp_probability(i: u32) -> f32 {
     if i > 0u {
         below = lamps[i - 1u].cdf;
     }
-    return lamp_info.lamp_share * (lamps[i].cdf - below);
+    return lamp_info.lamp_share * non_environment_share() * (lamps[i].cdf - below);
 }
 
 // First lamp whose cumulative probability exceeds u.

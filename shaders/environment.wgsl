@@ -61,9 +61,12 @@ fn environment_radiance(d: vec3f) -> vec3f {
     let x1 = (x0 + 1u) % w;
     let y0 = u32(clamp(i32(base.y), 0, i32(h) - 1));
     let y1 = u32(clamp(i32(base.y) + 1, 0, i32(h) - 1));
-    let top = mix(environment_texel(x0, y0), environment_texel(x1, y0), f.x);
-    let bottom = mix(environment_texel(x0, y1), environment_texel(x1, y1), f.x);
-    return mix(top, bottom, f.y) * environment.strength;
+    // a + (b − a) f rather than mix(): exact where neighbouring texels are equal.
+    let t00 = environment_texel(x0, y0);
+    let t01 = environment_texel(x0, y1);
+    let top = t00 + (environment_texel(x1, y0) - t00) * f.x;
+    let bottom = t01 + (environment_texel(x1, y1) - t01) * f.x;
+    return (top + (bottom - top) * f.y) * environment.strength;
 }
 
 // Cumulative probability of rows 0..=y.

@@ -22,6 +22,7 @@ fn feature_sets() -> Vec<FeatureSet> {
             sky: match (on(5), on(2)) {
                 (true, _) => SkyFeature::Uniform,
                 (false, true) => SkyFeature::Atmosphere,
+                (false, false) if on(7) => SkyFeature::Environment,
                 (false, false) => SkyFeature::Black,
             },
             sun: on(6),
@@ -207,6 +208,9 @@ fn absent_effects_leave_no_code() {
         "var<storage, read> texels",
         "fn opaque_at",
         "uv_lod",
+        "fn environment_radiance",
+        "fn sample_environment",
+        "var<uniform> environment",
     ] {
         assert!(!source.contains(absent), "{absent:?} is in the plain pipeline");
     }
@@ -236,6 +240,7 @@ fn absent_effects_leave_no_code() {
         "sun.wgsl",
         "segment.wgsl",
         "texture.wgsl",
+        "environment.wgsl",
     ] {
         assert!(!files_in(&source).contains(&file), "{file} is in the plain pipeline");
     }

@@ -45,15 +45,19 @@ impl EnvironmentImage {
             let (x, y) = (i as u32 % width, i as u32 / width);
             bail!("texel ({x}, {y}) is {:?}: an environment's texels must be finite", texels[i]);
         }
-        let mut negative = 0usize;
+        let (mut negative, mut lowest) = (0usize, 0.0f32);
         for c in texels.iter_mut().flatten() {
             if *c < 0.0 {
+                lowest = lowest.min(*c);
                 *c = 0.0;
                 negative += 1;
             }
         }
-        if negative > 0 {
-            log::warn!("{negative} negative texel components of the environment read as 0");
+        // Lossy compression (DWAB) leaves tiny negatives in real HDRIs: not worth a warning.
+        if lowest < -1e-3 {
+            log::warn!("{negative} negative texel components (down to {lowest}) read as 0");
+        } else if negative > 0 {
+            log::debug!("{negative} slightly negative texel components read as 0");
         }
         Ok(Self { width, height, texels })
     }

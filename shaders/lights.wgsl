@@ -49,7 +49,7 @@ fn power_heuristic(a: f32, b: f32) -> f32 {
 }
 
 // Probability that a light sample goes to a light other than the environment: the
-// shares of the sun, emitters and lamps are parts of it.
+// other shares are fractions of it.
 fn non_environment_share() -> f32 {
     //#if sky_environment
     return 1.0 - environment.light_share;

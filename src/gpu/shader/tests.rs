@@ -149,7 +149,7 @@ fn every_shader_file_is_built_in_and_used_by_a_program() {
     let built_in: BTreeSet<String> = ALL_PARTS.iter().map(|(name, _)| name.to_string()).collect();
     assert_eq!(on_disk, built_in, "the files of shaders/ and the built-in ones differ");
     let mut used = BTreeSet::new();
-    for sky in [SkyFeature::Uniform, SkyFeature::Atmosphere] {
+    for sky in [SkyFeature::Uniform, SkyFeature::Atmosphere, SkyFeature::Environment] {
         for sampling in [Sampling::Nee, Sampling::Resampled] {
             for rough in [RoughTransmission::Ggx, RoughTransmission::Cone] {
                 let features = FeatureSet::all(sky, sampling, rough);

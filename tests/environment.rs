@@ -164,3 +164,37 @@ fn scene_errors_name_the_key() {
     let e = parse("[sky]\nkind = \"environment\"\nimage = \"a.exr\"\nrotation = [0.0, 0.0, 1.0]\n");
     assert!(e.contains("rotation_deg"), "did you mean: {e}");
 }
+
+/// Light adds up: the environment with a sun, or with a lamp, renders as the sum of
+/// each alone (every 8×8 block within 5 σ). Light samples are shared between them, so
+/// this fails if either's density leaves out its share.
+#[test]
+fn environment_and_other_lights_add_up() {
+    let map = map_path("sky.exr");
+    write_map(&map, 32, 16, |x, y| [0.2 + 0.1 * (x % 4) as f32, 0.3, if y < 6 { 1.0 } else { 0.1 }]);
+    let objects = "[camera]\nposition = [0.0, 2.0, 3.0]\nlook_at = [0.0, 0.3, 0.0]\nfov_y_deg = 45.0\n\
+                   [[sphere]]\ncenter = [0.0, 0.5, 0.0]\nradius = 0.5\n\
+                   [[sphere]]\ncenter = [0.0, -1000.0, 0.0]\nradius = 1000.0\n";
+    let sun = "[sun]\nelevation_deg = 40.0\nazimuth_deg = 30.0\nangular_diameter_deg = 5.0\n";
+    let lamp = "[[light]]\ntype = \"point\"\npower = 40.0\nradius = 0.1\nposition = [1.0, 1.5, 1.0]\n";
+    let frame = |text: String| render(scene_from(&text), 32, 32, 64, 3);
+    let env_alone = frame(format!("{}{objects}", environment(&map, "")));
+    for (name, other) in [("sun", sun), ("lamp", lamp)] {
+        let both = frame(format!("{}{objects}{other}", environment(&map, "")));
+        let alone = frame(format!("{objects}{other}"));
+        let mut worst: f64 = 0.0;
+        for by in 0..4 {
+            for bx in 0..4 {
+                let (mut diff, mut var) = (0.0, 0.0);
+                for i in (by * 8..by * 8 + 8).flat_map(|y| (bx * 8..bx * 8 + 8).map(move |x| y * 32 + x)) {
+                    let lum = |p: [f32; 3]| 0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64;
+                    diff += lum(both.pixels[i]) - lum(env_alone.pixels[i]) - lum(alone.pixels[i]);
+                    var += [&both, &env_alone, &alone].iter().map(|im| (im.std_error[i] as f64).powi(2)).sum::<f64>();
+                }
+                worst = worst.max(diff.abs() / var.sqrt().max(1e-9));
+            }
+        }
+        println!("environment + {name} against the sum of each alone: worst 8x8 block {worst:.2} σ");
+        assert!(worst <= 5.0, "environment + {name}: a block is {worst:.2} σ from the sum");
+    }
+}

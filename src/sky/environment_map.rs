@@ -13,8 +13,8 @@ pub struct EnvironmentMap {
     /// What the buffers were made from.
     params: Environment,
     info: GpuEnvironment,
-    /// Whether the image emits anything (else light sampling leaves it out).
-    emits: bool,
+    /// Whether the image has any light in it (else light sampling leaves it out).
+    image_emits: bool,
     uniform: wgpu::Buffer,
     /// Group 2 of the integrator.
     pub bind_group: wgpu::BindGroup,
@@ -79,8 +79,8 @@ impl EnvironmentMap {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let bind_group = bind_group(ctx, "environment", layout, &[&uniform, &data]);
-        let emits = distribution.total > 0.0 && params.strength > 0.0;
-        Ok(Self { params: params.clone(), info, emits, uniform, bind_group })
+        let image_emits = distribution.total > 0.0;
+        Ok(Self { params: params.clone(), info, image_emits, uniform, bind_group })
     }
 
     pub fn params(&self) -> &Environment {
@@ -91,14 +91,13 @@ impl EnvironmentMap {
     pub fn set_constants(&mut self, ctx: &GpuContext, params: &Environment) {
         self.info.strength = params.strength;
         self.info.importance = u32::from(params.importance_sampling);
-        self.emits = self.emits || params.strength > 0.0;
         self.params = params.clone();
         ctx.queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&self.info));
     }
 
     /// Shares light samples with the scene's other lights, if it has any.
     pub fn set_other_lights(&mut self, ctx: &GpuContext, other_lights: bool) {
-        let share = light_share(self.emits, other_lights);
+        let share = light_share(self.image_emits && self.info.strength > 0.0, other_lights);
         if share != self.info.light_share {
             self.info.light_share = share;
             ctx.queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&self.info));

@@ -9,9 +9,10 @@ use rt::sky::EnvironmentImage;
 use serde_json::Value;
 use std::process::Command;
 
-fn run_export() -> (std::path::PathBuf, Value) {
+/// Runs the export script into a folder of its own named `name`.
+fn run_export(name: &str) -> (std::path::PathBuf, Value) {
     let python = std::env::var_os("RT_BPY_PYTHON").expect("RT_BPY_PYTHON names a Python with bpy==5.0.1");
-    let out = temp_dir("blender-environment");
+    let out = temp_dir(name);
     let result =
         Command::new(python).arg(repo().join("tests/blender/environment.py")).arg(&out).output().expect("bpy runs");
     assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
@@ -28,7 +29,7 @@ fn environment(scene: &rt::scene::Scene) -> &rt::scene::Environment {
 
 #[test]
 fn environment_textures_export_with_their_image_strength_and_rotation() {
-    let (out, report) = run_export();
+    let (out, report) = run_export("environment-export");
     let scene = rt::scene::load(&out.join("hdri.toml")).unwrap_or_else(|e| panic!("{e}"));
     let env = environment(&scene);
     assert!((env.strength - 2.5).abs() < 1e-6, "{}", env.strength);
@@ -56,4 +57,25 @@ fn environment_textures_export_with_their_image_strength_and_rotation() {
             assert!(got.iter().all(|c| (c - want).abs() < 0.01), "texel ({x}, {y}): {got:?} against {want}");
         }
     }
+}
+
+#[test]
+fn exr_compressions_read_alike() {
+    let (out, _) = run_export("environment-codecs");
+    let read = |codec: &str| {
+        EnvironmentImage::read(&out.join(format!("courtyard_{codec}.exr"))).unwrap_or_else(|e| panic!("{e:#}"))
+    };
+    let plain = read("none");
+    assert_eq!((plain.width, plain.height), (1024, 512));
+    for lossless in ["zip", "piz"] {
+        assert_eq!(read(lossless), plain, "{lossless}");
+    }
+    // DWAB is lossy: the mean absolute difference stays within 1% of the mean.
+    let dwab = read("dwab");
+    let flat = |i: &EnvironmentImage| i.texels.iter().flatten().map(|c| *c as f64).collect::<Vec<_>>();
+    let (a, b) = (flat(&dwab), flat(&plain));
+    let mean = b.iter().sum::<f64>() / b.len() as f64;
+    let error = a.iter().zip(&b).map(|(x, y)| (x - y).abs()).sum::<f64>() / b.len() as f64;
+    println!("DWAB against uncompressed: mean absolute difference {:.3}% of the mean", 100.0 * error / mean);
+    assert!(error < 0.01 * mean, "DWAB differs by {error} on a mean of {mean}");
 }

@@ -44,7 +44,9 @@ impl EnvironmentMap {
     /// Reads the image (halved until the GPU can bind it), builds its distribution and
     /// uploads both; `layout` is the integrator's group 2 layout.
     pub fn new(ctx: &GpuContext, layout: &wgpu::BindGroupLayout, params: &Environment) -> Result<Self> {
+        let start = std::time::Instant::now();
         let mut image = EnvironmentImage::read(&params.image)?;
+        let read = start.elapsed();
         let max = ctx.device.limits().max_storage_buffer_binding_size;
         while gpu_bytes(image.width, image.height) > max && image.width > 1 {
             log::warn!(
@@ -56,6 +58,14 @@ impl EnvironmentMap {
             image = image.halved();
         }
         let distribution = Distribution::new(&image);
+        log::debug!(
+            "{}: {}×{} texels read in {:.1} ms, distribution built in {:.1} ms",
+            params.image.display(),
+            image.width,
+            image.height,
+            read.as_secs_f64() * 1e3,
+            (start.elapsed() - read).as_secs_f64() * 1e3
+        );
         let data = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("environment"),
             contents: bytemuck::cast_slice(&gpu_entries(&image, &distribution)),

@@ -5,7 +5,8 @@
 Two exports of a world with Blender's courtyard HDRI behind a Mapping node (Texture
 Coordinate → Mapping → Environment Texture → Background, strength 2.5), then one of a
 world whose Environment Texture shows an 8-bit sRGB image. Writes OUT/report.json with
-what each export wrote and the values the Rust side checks against.
+what each export wrote and the values the Rust side checks against, and the courtyard
+as Blender writes it with ZIP, PIZ, DWAB and no compression.
 """
 
 import json
@@ -71,6 +72,21 @@ def main():
     }
     with open(os.path.join(out, "report.json"), "w") as f:
         json.dump(report, f)
+    codecs(out)
+
+
+def codecs(out):
+    """The courtyard written by Blender with each EXR compression: 32-bit floats, but DWAB
+    in half floats (DWA compresses only half channels lossily)."""
+    scene = bpy.context.scene
+    image = bpy.data.images.load(COURTYARD)
+    settings = scene.render.image_settings
+    settings.file_format = "OPEN_EXR"
+    settings.color_mode = "RGB"
+    for codec in ("ZIP", "PIZ", "DWAB", "NONE"):
+        settings.color_depth = "16" if codec == "DWAB" else "32"
+        settings.exr_codec = codec
+        image.save_render(os.path.join(out, f"courtyard_{codec.lower()}.exr"), scene=scene)
 
 
 if __name__ == "__main__":

@@ -198,3 +198,28 @@ fn environment_and_other_lights_add_up() {
         assert!(worst <= 5.0, "environment + {name}: a block is {worst:.2} σ from the sum");
     }
 }
+
+/// A live edit (as `rt watch` applies it) from a uniform sky to an environment, then of
+/// its strength alone (the image is not read again), gives the images a fresh session
+/// gives, bit for bit.
+#[test]
+fn live_edits_of_the_environment_match_fresh_sessions() {
+    let map = map_path("live.exr");
+    write_map(&map, 16, 8, |x, y| [0.1 * x as f32, 0.5, 0.1 * y as f32]);
+    let with = |extra: &str| scene_from(&format!("{}{SPHERE}", environment(&map, extra)));
+    let draw = |session: &mut Session| {
+        let mut request = rt::render::RenderRequest::from_scene(session.scene());
+        (request.width, request.height, request.spp, request.max_bounces) = (32, 32, 4, 3);
+        session.render(&request, None).unwrap_or_else(|e| panic!("{e:#}")).0.pixels
+    };
+    let fresh = |scene| draw(&mut Session::open(gpu(), scene, BuildQuality::Medium).expect("a session"));
+    let mut live =
+        Session::open(gpu(), scene_from(&format!("[sky]\nkind = \"uniform\"\n{SPHERE}")), BuildQuality::Medium)
+            .expect("a session");
+    draw(&mut live);
+    for extra in ["", "strength = 3.0", "strength = 3.0\nimportance_sampling = false"] {
+        let update = rt::render::SceneUpdate { scene: with(extra), geometry: None, shaders: None };
+        live.apply(update).unwrap_or_else(|e| panic!("{e:#}"));
+        assert_eq!(draw(&mut live), fresh(with(extra)), "after the edit to {extra:?}");
+    }
+}

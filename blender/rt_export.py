@@ -931,7 +931,119 @@ def lights_toml(scene):
     return "".join(text)
 
 
-def sky_toml(scene):
+def environment_rotation(texture):
+    """The rotation (XYZ Euler, degrees) of a Mapping node in front of an Environment
+    Texture, as rt applies it to the direction before the lookup."""
+    mapping = linked_node(texture.inputs["Vector"])
+    if mapping is None or mapping.type == "TEX_COORD":
+        return [0.0, 0.0, 0.0]
+    if mapping.type != "MAPPING":
+        log(f"{texture.id_data.name}: {texture.name}.Vector comes from {mapping.type}; using the view direction")
+        return [0.0, 0.0, 0.0]
+    from mathutils import Euler
+
+    inputs = mapping.inputs
+    if any(inputs[n].is_linked for n in ("Rotation", "Location", "Scale") if n in inputs):
+        log(f"{mapping.id_data.name}: {mapping.name} has linked inputs; using their own values")
+    rotation = Euler(inputs["Rotation"].default_value, "XYZ")
+    if mapping.vector_type == "POINT" and any(abs(c) > 1e-6 for c in inputs["Location"].default_value):
+        log(f"{mapping.id_data.name}: {mapping.name}: a Location moves no direction of the world; left out")
+    scale = list(inputs["Scale"].default_value) if "Scale" in inputs else [1.0, 1.0, 1.0]
+    if max(scale) - min(scale) > 1e-6 * max(abs(c) for c in scale):
+        log(f"{mapping.id_data.name}: {mapping.name}: a non-uniform Scale is not supported; left out")
+    if mapping.vector_type == "TEXTURE":
+        rotation = rotation.to_matrix().inverted().to_euler("XYZ")
+    return [math.degrees(a) for a in rotation]
+
+
+def exr_bytes(rgb):
+    """An uncompressed 32-bit float OpenEXR of an (h, w, 3) array, rows from the top. Written
+    here because Blender's own writer may store display-encoded values for a generated image."""
+
+    def attribute(name, kind, data):
+        return name.encode() + b"\0" + kind.encode() + b"\0" + struct.pack("<i", len(data)) + data
+
+    h, w = rgb.shape[:2]
+    # Channels in alphabetical order, each FLOAT (2), not linear, sampled 1x1.
+    channels = b"".join(c + b"\0" + struct.pack("<iB3xii", 2, 0, 1, 1) for c in (b"B", b"G", b"R")) + b"\0"
+    window = struct.pack("<iiii", 0, 0, w - 1, h - 1)
+    header = b"".join(
+        [
+            struct.pack("<ii", 20000630, 2),
+            attribute("channels", "chlist", channels),
+            attribute("compression", "compression", b"\0"),
+            attribute("dataWindow", "box2i", window),
+            attribute("displayWindow", "box2i", window),
+            attribute("lineOrder", "lineOrder", b"\0"),
+            attribute("pixelAspectRatio", "float", struct.pack("<f", 1.0)),
+            attribute("screenWindowCenter", "v2f", struct.pack("<ff", 0.0, 0.0)),
+            attribute("screenWindowWidth", "float", struct.pack("<f", 1.0)),
+            b"\0",
+        ]
+    )
+    planar = np.ascontiguousarray(np.asarray(rgb, np.float32)[:, :, ::-1].transpose(0, 2, 1)).astype("<f4")
+    line_bytes = 3 * w * 4
+    first = len(header) + 8 * h
+    offsets = struct.pack(f"<{h}Q", *(first + y * (8 + line_bytes) for y in range(h)))
+    lines = b"".join(struct.pack("<ii", y, line_bytes) + planar[y].tobytes() for y in range(h))
+    return header + offsets + lines
+
+
+LINEAR_COLORSPACES = {"Linear Rec.709", "Non-Color", "Linear", "Linear CIE-XYZ E", "Linear CIE-XYZ D65"}
+
+
+def environment_image_bytes(image):
+    """(bytes, extension) of an Environment Texture's image: an unmodified linear .exr or
+    .hdr file as it is (packed or on disk), anything else as a float EXR of the linear
+    values Cycles reads."""
+    ext = os.path.splitext(image.filepath_raw or image.name)[1].lower()
+    linear = image.colorspace_settings.name in LINEAR_COLORSPACES or image.colorspace_settings.is_data
+    if ext in {".exr", ".hdr"} and linear and not image.is_dirty:
+        if image.packed_file is not None:
+            return bytes(image.packed_file.data), ext
+        path = bpy.path.abspath(image.filepath_raw, library=image.library)
+        if os.path.isfile(path):
+            with open(path, "rb") as f:
+                return f.read(), ext
+    return exr_bytes(linear_pixels(image)[:, :, :3]), ".exr"
+
+
+def environment_toml(background, texture, export, scene_dir):
+    """`[sky] kind = "environment"`: the image copied into the assets folder under a name
+    of its content's hash (so an unchanged image is not written again)."""
+    strength = float(socket_value(background, "Strength", 1.0))
+    rotation = environment_rotation(texture)
+    if texture.interpolation != "Linear":
+        log(f"{texture.id_data.name}: {texture.name}: {texture.interpolation} interpolation; rt interpolates linearly")
+    data, ext = environment_image_bytes(texture.image)
+    stem = sanitize(os.path.splitext(os.path.basename(texture.image.name))[0])
+    path = os.path.join(export.out_dir, "environment", f"{stem}-{blake(data)}{ext}")
+    if write_if_changed(path, data):
+        export.written.append(path)
+    image = os.path.relpath(path, scene_dir).replace(os.sep, "/")
+    text = f'[sky]\nkind = "environment"\nimage = {json.dumps(image)}\nstrength = {fmt(max(strength, 0.0))}\n'
+    if any(abs(a) > 1e-9 for a in rotation):
+        text += f"rotation_deg = {vec(rotation)}\n"
+    return text + "\n"
+
+
+def environment_texture(background):
+    """The Environment Texture (equirectangular, with an image) behind a Background node, or None."""
+    node = linked_node(background.inputs["Color"])
+    if node is None or node.type != "TEX_ENVIRONMENT":
+        return None
+    if node.image is None:
+        log(f"{node.id_data.name}: {node.name} has no image; using the Background's colour")
+        return None
+    if node.projection != "EQUIRECTANGULAR":
+        log(f"{node.id_data.name}: {node.name}: {node.projection} projection is not supported; using the Background's colour")
+        return None
+    return node
+
+
+def sky_toml(scene, export=None, scene_dir=None):
+    """The `[sky]` table; without `export` (only to ask what kind the sky is), an
+    environment's image is not written."""
     world = scene.world
     if world is None:
         return '[sky]\nkind = "black"\n\n'
@@ -944,6 +1056,11 @@ def sky_toml(scene):
         color_source = linked_node(background.inputs["Color"])
         if color_source is not None and color_source.type == "TEX_SKY":
             return '[sky]\nkind = "atmosphere"\n\n'
+        texture = environment_texture(background)
+        if texture is not None:
+            if export is None:
+                return '[sky]\nkind = "environment"\n\n'
+            return environment_toml(background, texture, export, scene_dir)
         strength = float(socket_value(background, "Strength", 1.0))
         color = [c * strength for c in rgb(socket_value(background, "Color", (0, 0, 0)))]
     return f'[sky]\nkind = "uniform"\ncolor = {vec(max(c, 0.0) for c in color)}\n\n'
@@ -951,15 +1068,15 @@ def sky_toml(scene):
 
 def scene_toml(scene, export, scene_path, objects):
     width, height = render_size(scene)
+    scene_dir = os.path.dirname(os.path.abspath(scene_path))
     text = [
         f"# Exported from Blender by blender/rt_export.py (scene {scene.name!r}).\n\n",
         f"[render]\nwidth = {width}\nheight = {height}\n\n",
         camera_toml(scene),
-        sky_toml(scene),
+        sky_toml(scene, export, scene_dir),
         sun_toml(scene),
         lights_toml(scene),
     ]
-    scene_dir = os.path.dirname(os.path.abspath(scene_path))
     for obj in objects:
         folder = export.folder_of.get(obj.name)
         if folder is None:

@@ -121,6 +121,20 @@ fn sun_seen(origin: vec3f, direction: vec3f, bsdf_pdf: f32) -> vec3f {
 }
 //#endif
 
+//#if sky_environment
+// The environment seen by a ray that leaves the scene, MIS-weighted against light
+// sampling after a BSDF sample (the camera's rays and delta lobes have bsdf_pdf 0).
+fn environment_seen(direction: vec3f, bsdf_pdf: f32) -> vec3f {
+    var weight = 1.0;
+    //#if nee
+    if bsdf_pdf > 0.0 {
+        weight = power_heuristic(bsdf_pdf, environment.light_share * environment_pdf(direction));
+    }
+    //#endif
+    return environment_radiance(direction) * weight;
+}
+//#endif
+
 // One path. Each turn of the loop traces exactly one ray, the path's next ray
 // or a pending shadow ray, through the loop's single call of the traversal: the
 // traversal code is then in the kernel once, not once per kind of ray.
@@ -198,7 +212,11 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
         attenuate(&throughput, segment.transmittance, EVENT_MEDIUM);
         //#endif
         if hit.kind == HIT_NONE {
+            //#if sky_environment
+            gather(&radiance, throughput * environment_seen(direction, bsdf_pdf), EVENT_SKY);
+            //#else
             gather(&radiance, throughput * sky_radiance(origin, direction), EVENT_SKY);
+            //#endif
             //#if sun
             gather(&radiance, throughput * sun_seen(origin, direction, bsdf_pdf), EVENT_SKY);
             //#endif

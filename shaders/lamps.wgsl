@@ -217,14 +217,14 @@ fn lamp_probability(i: u32) -> f32 {
     if i > 0u {
         below = lamps[i - 1u].cdf;
     }
-    return lamp_info.lamp_share * (lamps[i].cdf - below);
+    return lamp_info.lamp_share * non_environment_share() * (lamps[i].cdf - below);
 }
 
 // Probability that light sampling picks lamp i, by the lamps' table or the light tree.
 fn lamp_selection(i: u32) -> f32 {
     var p = lamp_probability(i);
     //#if light_tree
-    p += lamp_info.emitter_share * light_tree_probability(frame.emitter_count + i);
+    p += emitter_share() * light_tree_probability(frame.emitter_count + i);
     //#endif
     return p;
 }

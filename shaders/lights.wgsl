@@ -32,6 +32,9 @@
 //#if sky_atmosphere
 //#include "atmosphere_sky.wgsl"
 //#endif
+//#if sky_environment
+//#include "environment.wgsl"
+//#endif
 
 struct LightSample {
     direction: vec3f,
@@ -48,20 +51,30 @@ fn power_heuristic(a: f32, b: f32) -> f32 {
     return a2 / (a2 + b * b);
 }
 
+// Probability that a light sample goes to a light other than the environment: the
+// other shares are fractions of it.
+fn non_environment_share() -> f32 {
+    //#if sky_environment
+    return 1.0 - environment.light_share;
+    //#else
+    return 1.0;
+    //#endif
+}
+
 // Probabilities that a light sample goes to the [sun], and to an emitter.
 fn sun_share() -> f32 {
     //#if lamps
-    return lamp_info.sun_share;
+    return lamp_info.sun_share * non_environment_share();
     //#else
-    return frame.sun_select_probability;
+    return frame.sun_select_probability * non_environment_share();
     //#endif
 }
 
 fn emitter_share() -> f32 {
     //#if lamps
-    return lamp_info.emitter_share;
+    return lamp_info.emitter_share * non_environment_share();
     //#else
-    return 1.0 - frame.sun_select_probability;
+    return (1.0 - frame.sun_select_probability) * non_environment_share();
     //#endif
 }
 
@@ -215,9 +228,16 @@ fn sample_emitter_at(e: Emitter, tree_selection: f32, p: vec3f, rng: ptr<functio
 
 fn sample_light(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
     let none = LightSample(vec3f(0.0, 1.0, 0.0), 0.0, vec3f(0.0), 0.0, false);
+    //#if sky_environment
+    if rng_next(rng) < environment.light_share {
+        let e = sample_environment(rng);
+        return LightSample(e.direction, INFINITY, e.radiance, e.pdf * environment.light_share, false);
+    }
+    //#endif
+    // Below, the choice among the other lights (their shares without the environment's part).
     //#if lamps
     let u = rng_next(rng);
-    let sun_picked = u < sun_share();
+    let sun_picked = u < lamp_info.sun_share;
     if u >= lamp_info.sun_share + lamp_info.emitter_share {
         if lamp_info.count == 0u {
             return none;
@@ -227,7 +247,7 @@ fn sample_light(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
     //#else
     var sun_picked = false;
     //#if sun
-    sun_picked = rng_next(rng) < sun_share();
+    sun_picked = rng_next(rng) < frame.sun_select_probability;
     //#endif
     //#endif
     //#if sun

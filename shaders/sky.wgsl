@@ -4,6 +4,9 @@
 //#if sky_atmosphere
 //#include "atmosphere_sky.wgsl"
 //#endif
+//#if sky_environment
+//#include "environment.wgsl"
+//#endif
 
 fn sky_radiance(origin: vec3f, direction: vec3f) -> vec3f {
     //#if sky_uniform
@@ -11,6 +14,9 @@ fn sky_radiance(origin: vec3f, direction: vec3f) -> vec3f {
     //#endif
     //#if sky_atmosphere
     return atmosphere_sky_radiance(origin, direction);
+    //#endif
+    //#if sky_environment
+    return environment_radiance(direction);
     //#endif
     //#if sky_black
     return vec3f(0.0);

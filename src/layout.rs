@@ -277,6 +277,26 @@ pub const LAMP_ELLIPSE: u32 = 0x200;
 /// Camera rays see the lamp.
 pub const LAMP_CAMERA: u32 = 0x400;
 
+/// An environment image's constants (`shaders/environment.wgsl`), group 2 of the
+/// integrator; its texels and distribution are the group's storage buffer.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuEnvironment {
+    /// Rows of the rotation from rt's world to the image's frame (Blender's axes, the
+    /// Mapping node's rotation applied).
+    pub to_image_x: [f32; 3],
+    pub width: u32,
+    pub to_image_y: [f32; 3],
+    pub height: u32,
+    pub to_image_z: [f32; 3],
+    pub strength: f32,
+    /// Probability that a light sample goes to the environment.
+    pub light_share: f32,
+    /// 1: light samples follow the distribution; 0: uniform over the sphere.
+    pub importance: u32,
+    pub _pad: [u32; 2],
+}
+
 /// The atmosphere's parameters (`shaders/atmosphere.wgsl`), group 2 of the
 /// integrator and group 0 of the table passes.
 #[repr(C)]

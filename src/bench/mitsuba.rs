@@ -99,6 +99,7 @@ pub fn translate(case: &MitsubaCase, dir: &Path) -> Result<Value> {
         Sky::Black => Value::Null,
         Sky::Uniform { color } => json!(color.to_array()),
         Sky::Atmosphere(_) => return unsupported("an atmosphere"),
+        Sky::Environment(_) => return unsupported("an environment map"),
     };
     let cam = &scene.camera;
     if matches!(cam.projection, Projection::Orthographic { .. })

@@ -80,7 +80,7 @@ impl PipelineCache {
         let source = assemble_from(files, program, &features).map_err(|e| anyhow!(e))?;
         // Only the integrator reads the atmosphere; the trace program never calls the sky.
         let mut groups = vec![&self.scene_layout, io_layout];
-        if program == Program::Integrator && features.sky == SkyFeature::Atmosphere {
+        if program == Program::Integrator && matches!(features.sky, SkyFeature::Atmosphere | SkyFeature::Environment) {
             groups.push(&self.sky_layout);
         }
         let what = format!("the {program:?} pipeline for [{features}]");

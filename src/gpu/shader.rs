@@ -56,6 +56,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("constants.wgsl"),
     shader!("dielectric.wgsl"),
     shader!("directions.wgsl"),
+    shader!("environment.wgsl"),
     shader!("hit.wgsl"),
     shader!("integrator.wgsl"),
     shader!("lamps.wgsl"),
@@ -169,14 +170,16 @@ fn check_syntax(source: &str) -> Result<(), String> {
 /// Both programs with every flag on, under each sky that brings structs of its
 /// own, and the atmosphere's tables program: for the struct layout test.
 #[cfg(test)]
-pub fn full_sources_for_layout_checks() -> [String; 4] {
+pub fn full_sources_for_layout_checks() -> [String; 5] {
     use crate::scene::{RoughTransmission, Sampling, SkyFeature};
     let all = FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx);
     let atmosphere = FeatureSet { sky: SkyFeature::Atmosphere, ..all };
+    let environment = FeatureSet { sky: SkyFeature::Environment, ..all };
     [
         assemble(Program::Integrator, &all),
         assemble(Program::Trace, &all),
         assemble(Program::Integrator, &atmosphere),
+        assemble(Program::Integrator, &environment),
         atmosphere_tables_source(),
     ]
 }

@@ -8,6 +8,8 @@ pub enum SkyFeature {
     Black,
     Uniform,
     Atmosphere,
+    /// An equirectangular image, light-sampled by next-event estimation.
+    Environment,
 }
 
 /// What refraction the scene's materials need.
@@ -118,6 +120,7 @@ impl FeatureSet {
                 Sky::Black => SkyFeature::Black,
                 Sky::Uniform { .. } => SkyFeature::Uniform,
                 Sky::Atmosphere(_) => SkyFeature::Atmosphere,
+                Sky::Environment(_) => SkyFeature::Environment,
             },
             sun: scene.sun.is_some(),
             // A metallic-roughness texture may make any texel a rough metal.
@@ -170,6 +173,7 @@ impl FeatureSet {
             "sky_black" => self.sky == SkyFeature::Black,
             "sky_uniform" => self.sky == SkyFeature::Uniform,
             "sky_atmosphere" => self.sky == SkyFeature::Atmosphere,
+            "sky_environment" => self.sky == SkyFeature::Environment,
             "sun" => self.sun,
             "glossy" => self.glossy,
             "glass" => self.transmission != Transmission::None,

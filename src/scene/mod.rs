@@ -4,6 +4,7 @@
 mod atmosphere;
 mod builtin;
 mod camera;
+mod environment;
 mod features;
 mod light;
 mod material;
@@ -16,6 +17,7 @@ mod validate;
 pub use atmosphere::Atmosphere;
 pub use builtin::{BUILTIN_PREFIX, default_scene};
 pub use camera::{Camera, DepthOfField, Projection, SensorFit};
+pub use environment::Environment;
 pub use features::{ALPHA_DELTA, FeatureSet, GeometrySummary, LampKinds, SkyFeature, Transmission};
 pub use light::{AreaShape, Light, LightShape};
 pub use material::{Material, MaterialTextures, luminance};
@@ -103,8 +105,12 @@ pub enum RoughTransmission {
 #[derive(Clone, Debug, PartialEq)]
 pub enum Sky {
     Black,
-    Uniform { color: Vec3 },
+    Uniform {
+        color: Vec3,
+    },
     Atmosphere(Atmosphere),
+    /// An equirectangular image (HDRI) around the scene.
+    Environment(Environment),
 }
 
 #[derive(Clone, Debug, PartialEq)]

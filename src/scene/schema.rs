@@ -105,6 +105,11 @@ pub(super) struct Sky {
     pub steps: Option<u32>,
     pub transmittance_lut: Option<[u32; 2]>,
     pub multiple_scattering_lut: Option<[u32; 2]>,
+    // Only for `kind = "environment"` (see `scene::Environment`).
+    pub image: Option<String>,
+    pub strength: Option<f32>,
+    pub rotation_deg: Option<[f32; 3]>,
+    pub importance_sampling: Option<bool>,
 }
 
 /// A grey level or an RGB triple.
@@ -130,6 +135,7 @@ pub(super) enum SkyKind {
     Black,
     Uniform,
     Atmosphere,
+    Environment,
 }
 
 #[derive(Deserialize)]

@@ -1,6 +1,7 @@
 //! Semantic checks on the deserialized file, and its conversion into a [`Scene`].
 
 use super::atmosphere;
+use super::environment;
 use super::light;
 use super::parse::{SceneError, Seg, Seg::*, Source, hint};
 use super::schema::{self, File, Scale, SkyKind};
@@ -86,7 +87,7 @@ pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, 
         origin: src.origin.to_owned(),
         render,
         camera: super::camera::validate(src, file.camera)?,
-        sky: sky(src, file.sky)?,
+        sky: sky(src, file.sky, base_dir)?,
         sun: file.sun.map(|s| sun(src, s)).transpose()?,
         materials,
         meshes,
@@ -96,7 +97,7 @@ pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, 
     })
 }
 
-fn sky(src: &Source, sky: Option<schema::Sky>) -> Result<Sky, SceneError> {
+fn sky(src: &Source, sky: Option<schema::Sky>, base_dir: &Path) -> Result<Sky, SceneError> {
     let p = [Key("sky")];
     let Some(sky) = sky else {
         return Ok(Sky::Black);
@@ -109,9 +110,15 @@ fn sky(src: &Source, sky: Option<schema::Sky>) -> Result<Sky, SceneError> {
     {
         return Err(src.error(&p, key, "only applies to kind = \"atmosphere\""));
     }
+    if sky.kind != SkyKind::Environment
+        && let Some(key) = environment::keys_present(&sky)
+    {
+        return Err(src.error(&p, key, "only applies to kind = \"environment\""));
+    }
     Ok(match sky.kind {
         SkyKind::Black => Sky::Black,
         SkyKind::Atmosphere => Sky::Atmosphere(atmosphere::validate(src, &p, &sky)?),
+        SkyKind::Environment => Sky::Environment(environment::validate(src, &p, &sky, base_dir)?),
         SkyKind::Uniform => {
             let color = sky.color.unwrap_or([1.0; 3]);
             src.check(&p, "color", &color, "non-negative", |c| c >= 0.0)?;

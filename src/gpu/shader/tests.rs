@@ -22,6 +22,7 @@ fn feature_sets() -> Vec<FeatureSet> {
             sky: match (on(5), on(2)) {
                 (true, _) => SkyFeature::Uniform,
                 (false, true) => SkyFeature::Atmosphere,
+                (false, false) if on(7) => SkyFeature::Environment,
                 (false, false) => SkyFeature::Black,
             },
             sun: on(6),
@@ -154,7 +155,7 @@ fn every_shader_file_is_built_in_and_used_by_a_program() {
     let built_in: BTreeSet<String> = ALL_PARTS.iter().map(|(name, _)| name.to_string()).collect();
     assert_eq!(on_disk, built_in, "the files of shaders/ and the built-in ones differ");
     let mut used = BTreeSet::new();
-    for sky in [SkyFeature::Uniform, SkyFeature::Atmosphere] {
+    for sky in [SkyFeature::Uniform, SkyFeature::Atmosphere, SkyFeature::Environment] {
         for sampling in [Sampling::Nee, Sampling::Resampled] {
             for rough in [RoughTransmission::Ggx, RoughTransmission::Cone] {
                 let features = FeatureSet::all(sky, sampling, rough);
@@ -216,6 +217,9 @@ fn absent_effects_leave_no_code() {
         "tangent_frames",
         "fn alpha_coin",
         "uv_lod",
+        "fn environment_radiance",
+        "fn sample_environment",
+        "var<uniform> environment",
     ] {
         assert!(!source.contains(absent), "{absent:?} is in the plain pipeline");
     }
@@ -245,6 +249,7 @@ fn absent_effects_leave_no_code() {
         "sun.wgsl",
         "segment.wgsl",
         "texture.wgsl",
+        "environment.wgsl",
     ] {
         assert!(!files_in(&source).contains(&file), "{file} is in the plain pipeline");
     }

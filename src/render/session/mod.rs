@@ -18,7 +18,7 @@ use crate::gpu::shader::Program;
 use crate::gpu::{GpuContext, GpuTimer, PipelineCache, Pipelines, Readback, STAT_STACK_OVERFLOW, SceneBuffers};
 use crate::layout::GpuFrame;
 use crate::scene::{FeatureSet, Scene, Sky};
-use crate::sky::AtmosphereTables;
+use crate::sky::{AtmosphereTables, EnvironmentMap};
 use anyhow::Result;
 use std::rc::Rc;
 use std::time::{Duration, Instant};
@@ -53,6 +53,8 @@ pub struct Session<'a> {
     pipelines: PipelineCache,
     /// The atmosphere's parameters and tables, when the sky is one.
     sky: Option<AtmosphereTables>,
+    /// The environment image, when the sky is one.
+    environment: Option<EnvironmentMap>,
     request: RenderRequest,
     acc: Accumulation,
     sizer: DispatchSizer,
@@ -85,6 +87,7 @@ impl<'a> Session<'a> {
             buffers,
             pipelines,
             sky: None,
+            environment: None,
             request,
             acc,
             sizer: DispatchSizer::new(Pacing::RENDER),
@@ -92,6 +95,7 @@ impl<'a> Session<'a> {
             readback: Readback::new(),
         };
         session.set_sky(&sky)?;
+        session.share_light_samples();
         Ok(session)
     }
 

@@ -5,7 +5,7 @@ use super::Session;
 use crate::bvh::SceneGeometry;
 use crate::gpu::shader::{Program, ShaderFiles};
 use crate::scene::{Atmosphere, FeatureSet, RenderSettings, Scene, Sky};
-use crate::sky::AtmosphereTables;
+use crate::sky::{AtmosphereTables, EnvironmentMap};
 use anyhow::{Result, bail};
 
 /// New state for a session, all applied or none.
@@ -49,9 +49,24 @@ impl Session<'_> {
                 let tables = AtmosphereTables::new(self.ctx, &self.pipelines.sky_layout, params)?;
                 self.buffers.sky_bind_group = Some(tables.bind_group.clone());
                 self.sky = Some(tables);
+                self.environment = None;
+            }
+            Sky::Environment(params) => {
+                // The same image with other constants is not read again.
+                match self.environment.as_mut() {
+                    Some(map)
+                        if map.params().image == params.image && map.params().rotation_deg == params.rotation_deg =>
+                    {
+                        map.set_constants(self.ctx, params);
+                    }
+                    _ => self.environment = Some(EnvironmentMap::new(self.ctx, &self.pipelines.sky_layout, params)?),
+                }
+                self.buffers.sky_bind_group = self.environment.as_ref().map(|m| m.bind_group.clone());
+                self.sky = None;
             }
             _ => {
                 self.sky = None;
+                self.environment = None;
                 self.buffers.sky_bind_group = None;
             }
         }
@@ -92,10 +107,21 @@ impl Session<'_> {
         let reset = reshaded || regeometry || features != self.features || !same_image(&scene, &self.scene);
         self.scene = scene;
         self.features = features;
+        self.share_light_samples();
         if reset {
             self.reset();
         }
         Ok(reset)
+    }
+}
+
+impl Session<'_> {
+    /// Gives the environment its share of light samples beside the scene's other lights.
+    pub(super) fn share_light_samples(&mut self) {
+        let others = self.scene.sun.is_some() || !self.scene.lights.is_empty() || !self.geometry.emitters.is_empty();
+        if let Some(map) = self.environment.as_mut() {
+            map.set_other_lights(self.ctx, others);
+        }
     }
 }
 

@@ -31,6 +31,12 @@
 //#if textures
 //#include "texture.wgsl"
 //#endif
+//#if aovs
+//#include "aovs.wgsl"
+//#endif
+//#if adaptive
+//#include "adaptive.wgsl"
+//#endif
 
 // rgb: the running mean of radiance; w: the running sum of squared deviations
 // of luminance (Welford), for the standard error. Means rather than sums: a sum
@@ -150,6 +156,9 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
     let cone_spread = select(2.0 * frame.view_half_extent.y / f32(frame.height), 0.0, frame.orthographic != 0u);
     var cone_width = 0.0;
     //#endif
+    //#if aovs
+    aov_begin();
+    //#endif
     loop {
         var ray_origin = origin;
         var ray_direction = direction;
@@ -185,6 +194,11 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
         let segment = integrate_segment(medium_absorption, medium_emission, hit.t);
         gather(&radiance, throughput * segment.radiance, EVENT_MEDIUM);
         attenuate(&throughput, segment.transmittance, EVENT_MEDIUM);
+        //#endif
+        //#if aovs
+        if bounce == 0u && hit.kind != HIT_NONE {
+            aov.depth = hit.t;
+        }
         //#endif
         if hit.kind == HIT_NONE {
             gather(&radiance, throughput * sky_radiance(origin, direction), EVENT_SKY);
@@ -223,6 +237,9 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
         shadow_pending = any(shadow.contribution != vec3f(0.0));
         //#endif
         let s = bsdf_sample(ctx, rng);
+        //#if aovs
+        aov_surface(s, n_shading);
+        //#endif
         if !s.valid {
             path_ended = true;
         } else {
@@ -288,15 +305,35 @@ fn render(@builtin(global_invocation_id) id: vec3u) {
     let pixel_index = id.y * frame.width + id.x;
     var acc = accumulation[pixel_index];
     var bad = non_finite[pixel_index];
+    var sample_base = frame.sample_base;
+    //#if adaptive
+    // Pixels stop at different counts: each keeps its own.
+    sample_base = pixel_samples[pixel_index];
+    if pixel_converged(acc, sample_base, bad) {
+        return;
+    }
+    //#endif
+    //#if aovs
+    var aovs = aov_load(pixel_index);
+    //#endif
     for (var s = 0u; s < frame.samples_per_dispatch; s++) {
-        let sample_index = frame.sample_base + s;
+        let sample_index = sample_base + s;
         var rng = rng_for_sample(pixel_index, sample_index, frame.seed);
         first_bad_event = EVENT_NONE;
         let l = trace_path(id.xy, &rng);
         accumulate(&acc, &bad, l, first_bad_event, sample_index);
+        //#if aovs
+        aov_add(&aovs, sample_index);
+        //#endif
     }
     accumulation[pixel_index] = acc;
     non_finite[pixel_index] = bad;
+    //#if aovs
+    aov_store(pixel_index, aovs);
+    //#endif
+    //#if adaptive
+    pixel_samples[pixel_index] = sample_base + frame.samples_per_dispatch;
+    //#endif
 }
 
 // Small images leave most of a GPU idle with one invocation per pixel: there, each

@@ -111,8 +111,14 @@ pub fn obtain(
         bail!("{}: the reference image is black or not finite; nothing to measure errors against", paths[0].display());
     }
     let samples = 2 * request.spp;
-    let image =
-        Image { width: request.width, height: request.height, samples, std_error: vec![0.0; pixels.len()], pixels };
+    let image = Image {
+        width: request.width,
+        height: request.height,
+        samples,
+        std_error: vec![0.0; pixels.len()],
+        sample_counts: vec![samples; pixels.len()],
+        pixels,
+    };
     let noise_mse = half_difference / values / 4.0;
     let path = paths[0].clone();
     Ok(Reference { image, mean, noise_mse, settings, path, origin })

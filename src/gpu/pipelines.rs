@@ -35,7 +35,8 @@ impl PipelineCache {
     pub fn new(ctx: &GpuContext) -> Self {
         Self {
             scene_layout: scene_bind_group_layout(&ctx.device),
-            accumulation_layout: io_bind_group_layout(&ctx.device, 3),
+            // Means, non-finite counts, lane scratch, AOVs, adaptive sampling's counts.
+            accumulation_layout: io_bind_group_layout(&ctx.device, 5),
             trace_layout: io_bind_group_layout(&ctx.device, 2),
             sky_layout: sky_bind_group_layout(&ctx.device, false),
             files: ShaderFiles::BuiltIn,

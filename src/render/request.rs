@@ -31,6 +31,12 @@ pub struct RenderRequest {
     pub sample_lanes: Option<u32>,
     /// What stderr shows while the session renders.
     pub progress: Progress,
+    /// Albedo, normal and depth images beside the radiance (see [`super::Aovs`]).
+    pub aovs: bool,
+    /// Adaptive sampling's relative standard error at which a pixel stops (0: off).
+    pub noise_threshold: f32,
+    /// Samples a pixel takes before adaptive sampling may stop it.
+    pub adaptive_min_samples: u32,
 }
 
 impl RenderRequest {
@@ -48,7 +54,15 @@ impl RenderRequest {
             samples_per_dispatch: None,
             sample_lanes: None,
             progress: Progress::Hidden,
+            aovs: false,
+            noise_threshold: r.noise_threshold,
+            adaptive_min_samples: r.adaptive_min_samples,
         }
+    }
+
+    /// Whether pixels stop taking samples once their noise is below the threshold.
+    pub fn adaptive(&self) -> bool {
+        self.noise_threshold > 0.0
     }
 
     /// Whether `other` renders the same image as `self` (only how it is reached differs).
@@ -79,6 +93,7 @@ pub struct RenderFlags {
     pub clamp: Option<f32>,
     pub samples_per_dispatch: Option<u32>,
     pub sample_lanes: Option<u32>,
+    pub noise_threshold: Option<f32>,
 }
 
 impl RenderFlags {
@@ -96,6 +111,7 @@ impl RenderFlags {
         r.exposure = self.exposure.unwrap_or(r.exposure);
         r.sampling = self.sampling.unwrap_or(r.sampling);
         r.rough_transmission = self.rough_transmission.unwrap_or(r.rough_transmission);
+        r.noise_threshold = self.noise_threshold.unwrap_or(r.noise_threshold);
         if let Err((key, message)) = r.check() {
             bail!("{}: {message}", flag_of(key));
         }

@@ -74,6 +74,10 @@ pub struct FeatureSet {
     pub sampling: Sampling,
     /// A thin-lens camera: rays start across the aperture.
     pub depth_of_field: bool,
+    /// Albedo, normal and depth images beside the radiance (asked for by a render, not a scene).
+    pub aovs: bool,
+    /// Pixels stop taking samples once their noise is below a threshold (asked for by a render).
+    pub adaptive: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -125,6 +129,8 @@ impl FeatureSet {
             alpha_mask: materials_in_use.iter().any(|m| m.textures.alpha_cutoff > 0.0),
             sampling: settings.sampling,
             depth_of_field: scene.camera.depth_of_field.is_some(),
+            aovs: false,
+            adaptive: false,
         }
     }
 
@@ -144,6 +150,8 @@ impl FeatureSet {
             alpha_mask: true,
             sampling,
             depth_of_field: true,
+            aovs: false,
+            adaptive: false,
         }
     }
 
@@ -173,6 +181,8 @@ impl FeatureSet {
             "alpha_mask" => self.alpha_mask,
             "nee" => self.sampling == Sampling::Nee,
             "depth_of_field" => self.depth_of_field,
+            "aovs" => self.aovs,
+            "adaptive" => self.adaptive,
             _ => return None,
         })
     }
@@ -191,6 +201,8 @@ impl fmt::Display for FeatureSet {
             (self.depth_of_field, "depth-of-field"),
             (self.textures, "textures"),
             (self.alpha_mask, "alpha-mask"),
+            (self.aovs, "aovs"),
+            (self.adaptive, "adaptive"),
         ] {
             if on {
                 parts.push(name.to_string());

@@ -41,6 +41,10 @@ pub struct RenderSettings {
     /// Candidates per resampled direction in `resampled` sampling.
     pub ris_candidates: u32,
     pub rough_transmission: RoughTransmission,
+    /// Adaptive sampling: a pixel stops once the relative standard error of its mean
+    /// luminance is below this (0: off), after `adaptive_min_samples` samples.
+    pub noise_threshold: f32,
+    pub adaptive_min_samples: u32,
 }
 
 impl Default for RenderSettings {
@@ -54,6 +58,8 @@ impl Default for RenderSettings {
             sampling: Sampling::Nee,
             ris_candidates: 8,
             rough_transmission: RoughTransmission::Ggx,
+            noise_threshold: 0.0,
+            adaptive_min_samples: 16,
         }
     }
 }

@@ -39,6 +39,8 @@ fn feature_sets() -> Vec<FeatureSet> {
             alpha_mask: on(0) != on(4) && on(6),
             sampling: if on(0) { Sampling::Nee } else { Sampling::Resampled },
             depth_of_field: on(4) != on(6),
+            aovs: on(3) != on(7),
+            adaptive: on(1) != on(5),
         });
     }
     sets
@@ -63,6 +65,8 @@ fn plain() -> FeatureSet {
         alpha_mask: false,
         sampling: Sampling::Nee,
         depth_of_field: false,
+        aovs: false,
+        adaptive: false,
     }
 }
 
@@ -207,6 +211,8 @@ fn absent_effects_leave_no_code() {
         "var<storage, read> texels",
         "fn opaque_at",
         "uv_lod",
+        "aov",
+        "pixel_samples",
     ] {
         assert!(!source.contains(absent), "{absent:?} is in the plain pipeline");
     }

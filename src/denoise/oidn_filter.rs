@@ -16,8 +16,8 @@ impl OidnDenoiser {
         let device = oidn::Device::new().map_err(|e| {
             anyhow!(
                 "Open Image Denoise could make no device ({e}); its device libraries \
-                 (libOpenImageDenoise_device_cpu.so and others) must lie beside libOpenImageDenoise.so: {}",
-                super::HOW_TO_GET_OIDN
+                 (libOpenImageDenoise_device_cpu.so.2.5.1 and others) must lie beside libOpenImageDenoise.so.2: \
+                 scripts/fetch_oidn installs them into .oidn/lib"
             )
         })?;
         // SAFETY: the handle is the live device's; "type" is one of its integer parameters.

@@ -308,8 +308,8 @@ fn render(@builtin(global_invocation_id) id: vec3u) {
     var sample_base = frame.sample_base;
     //#if adaptive
     // Pixels stop at different counts: each keeps its own.
-    sample_base = pixel_samples[pixel_index];
-    if pixel_converged(acc, sample_base, bad) {
+    sample_base = pixel_samples[2u * pixel_index];
+    if pixel_samples[2u * pixel_index + 1u] != 0u {
         return;
     }
     //#endif
@@ -332,7 +332,7 @@ fn render(@builtin(global_invocation_id) id: vec3u) {
     aov_store(pixel_index, aovs);
     //#endif
     //#if adaptive
-    pixel_samples[pixel_index] = sample_base + frame.samples_per_dispatch;
+    pixel_samples[2u * pixel_index] = sample_base + frame.samples_per_dispatch;
     //#endif
 }
 

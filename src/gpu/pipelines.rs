@@ -71,8 +71,12 @@ impl PipelineCache {
         program: Program,
         features: FeatureSet,
     ) -> Result<Pipelines> {
+        let adaptive: &[&'static str] = match features.adaptive {
+            true => &["render", "render_lanes", "reduce_lanes", "adaptive_mask"],
+            false => &["render", "render_lanes", "reduce_lanes"],
+        };
         let (io_layout, entry_names): (&wgpu::BindGroupLayout, &[&'static str]) = match program {
-            Program::Integrator => (&self.accumulation_layout, &["render", "render_lanes", "reduce_lanes"]),
+            Program::Integrator => (&self.accumulation_layout, adaptive),
             Program::Trace => (
                 &self.trace_layout,
                 &["trace", "generate_camera_rays", "generate_diffuse_rays", "generate_through_rays"],

@@ -143,7 +143,7 @@ impl Accumulation {
             grow(&mut self.aovs, "aovs", pixels * AOV_BYTES);
         }
         if adaptive {
-            grow(&mut self.pixel_samples, "pixel samples", pixels * 4);
+            grow(&mut self.pixel_samples, "pixel samples", pixels * 8);
         }
         if changed {
             self.rebind(ctx, layout);
@@ -211,6 +211,10 @@ impl Accumulation {
             pass.set_pipeline(pipelines.entry("reduce_lanes"));
             pass.dispatch_workgroups(x, y, 1);
         } else {
+            if let Some(mask) = pipelines.entries.get("adaptive_mask") {
+                pass.set_pipeline(mask);
+                pass.dispatch_workgroups(x, y, 1);
+            }
             pass.set_pipeline(pipelines.entry("render"));
             pass.dispatch_workgroups(x, y, 1);
         }
@@ -223,7 +227,8 @@ impl Accumulation {
         let means: Vec<[f32; 4]> = readback.read(ctx, &self.means)?;
         let dropped = self.non_finite(ctx, readback)?;
         let taken: Vec<u32> = match adaptive {
-            true => readback.read(ctx, &self.pixel_samples)?,
+            // Per pixel: samples taken, and whether it stopped.
+            true => readback.read::<[u32; 2]>(ctx, &self.pixel_samples)?.iter().map(|p| p[0]).collect(),
             false => vec![self.samples; means.len()],
         };
         let mut pixels = Vec::with_capacity(means.len());

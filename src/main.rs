@@ -138,6 +138,7 @@ impl RenderArgs {
             samples_per_dispatch: self.samples_per_dispatch,
             sample_lanes: self.sample_lanes,
             noise_threshold: self.noise_threshold,
+            aovs: self.aovs || self.denoise,
         }
     }
 }
@@ -172,6 +173,13 @@ struct WatchArgs {
     dev: Option<PathBuf>,
     #[arg(long, value_enum, default_value_t)]
     quality: BuildQuality,
+    /// Show the image denoised with Open Image Denoise once it has 4 samples per pixel
+    /// (`N` toggles it; the window only).
+    #[arg(long)]
+    denoise: bool,
+    /// Adaptive sampling's noise threshold (0: off) [default: the scene's].
+    #[arg(long)]
+    noise_threshold: Option<f32>,
 }
 
 #[derive(Subcommand)]
@@ -344,8 +352,7 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
     // Before any rendering: a missing denoiser is known at once.
     let denoiser = if args.denoise { Some(Denoiser::new().context("--denoise")?) } else { None };
     let mut scene = load_scene(args.scene.as_deref())?;
-    let request =
-        RenderRequest { progress: args.progress, aovs: args.aovs || args.denoise, ..args.flags().apply(&mut scene)? };
+    let request = RenderRequest { progress: args.progress, ..args.flags().apply(&mut scene)? };
     let exposure = scene.render.exposure;
     let ctx = GpuContext::new(adapter)?;
     say(format!("GPU: {}", ctx.describe()));
@@ -408,7 +415,14 @@ fn watch(args: WatchArgs, adapter: Option<&str>) -> Result<()> {
         quality: args.quality,
         shader_dir: args.dev,
         frames_dir: args.frames_dir,
-        flags: RenderFlags { spp: args.spp, size: args.size, seed: args.seed, ..Default::default() },
+        flags: RenderFlags {
+            spp: args.spp,
+            size: args.size,
+            seed: args.seed,
+            noise_threshold: args.noise_threshold,
+            aovs: args.denoise,
+            ..Default::default()
+        },
         format: args.format,
         max_reloads: args.max_reloads,
     };

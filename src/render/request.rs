@@ -94,6 +94,8 @@ pub struct RenderFlags {
     pub samples_per_dispatch: Option<u32>,
     pub sample_lanes: Option<u32>,
     pub noise_threshold: Option<f32>,
+    /// Ask for AOVs (what `--aovs` and `--denoise` need).
+    pub aovs: bool,
 }
 
 impl RenderFlags {
@@ -135,6 +137,7 @@ impl RenderFlags {
             clamp: self.clamp,
             samples_per_dispatch: self.samples_per_dispatch,
             sample_lanes: self.sample_lanes,
+            aovs: self.aovs,
             ..RenderRequest::from_scene(scene)
         })
     }

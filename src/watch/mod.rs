@@ -4,6 +4,7 @@
 //! in a window (`viewer`) or headless, writing frames (`headless`).
 
 mod camera_control;
+mod denoised_view;
 mod display;
 pub mod fs_watch;
 pub mod headless;

@@ -23,6 +23,11 @@ fn aov_begin() {
     aov = AovSample(vec3f(0.0), vec3f(0.0), -1.0, true, vec3f(1.0));
 }
 
+// The camera ray met a surface at distance `t`.
+fn aov_first_hit(t: f32) {
+    aov.depth = t;
+}
+
 // A BSDF sample taken at a surface of shading normal `normal` (facing the viewer):
 // a delta lobe's is followed; any other's weight is an estimate of the surface's albedo.
 fn aov_surface(s: BsdfSample, normal: vec3f) {

@@ -197,7 +197,7 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
         //#endif
         //#if aovs
         if bounce == 0u && hit.kind != HIT_NONE {
-            aov.depth = hit.t;
+            aov_first_hit(hit.t);
         }
         //#endif
         if hit.kind == HIT_NONE {

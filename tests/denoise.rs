@@ -93,3 +93,27 @@ fn a_build_without_open_image_denoise_says_how_to_get_it() {
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert!(stderr.contains("built without Open Image Denoise") && stderr.contains("--features denoise"), "{stderr}");
 }
+
+/// `rt bench accuracy` prices denoising and adaptive sampling as knobs.
+#[cfg(feature = "denoise")]
+#[test]
+fn bench_accuracy_has_denoise_and_adaptive_knobs() {
+    let out = temp_dir("bench-knobs");
+    let scene = rt::scene::default_scene().unwrap_or_else(|e| panic!("{e}"));
+    let options = rt::bench::AccuracyOptions {
+        knobs: vec!["denoise".into(), "adaptive".into()],
+        out: out.clone(),
+        size: Some((32, 24)),
+        levels: Some(vec![1, 2, 4]),
+        repeats: Some(1),
+        reference_spp: Some(16),
+        ..Default::default()
+    };
+    let summary = rt::bench::accuracy(common::gpu(), &scene, &options).unwrap_or_else(|e| panic!("{e:#}"));
+    let report = std::fs::read_to_string(&summary.report).expect("report.md");
+    for section in ["## denoise", "## adaptive", "| on |", "| 0.05 |"] {
+        assert!(report.contains(section), "no {section:?} in the report:\n{report}");
+    }
+    assert!(!report.contains("cannot denoise"), "the denoise knob was skipped:\n{report}");
+    let _ = std::fs::remove_dir_all(out);
+}

@@ -41,6 +41,11 @@ struct Frame {
     ris_candidates: u32,
     // Samples whose luminance exceeds this are scaled down to it (0: off). Biased: off by default.
     clamp_luminance: f32,
+    // Adaptive sampling: the relative standard error at which a pixel stops, after this many samples.
+    noise_threshold: f32,
+    adaptive_min_samples: u32,
+    _pad_adaptive0: u32,
+    _pad_adaptive1: u32,
 }
 
 // A BVH2 node holding both children's boxes, so that one fetch decides where to go.

@@ -33,6 +33,11 @@
 //#endif
 //#if normal_maps
 //#include "normal_map.wgsl"
+//#if aovs
+//#include "aovs.wgsl"
+//#endif
+//#if adaptive
+//#include "adaptive.wgsl"
 //#endif
 
 // rgb: the running mean of radiance; w: the running sum of squared deviations
@@ -172,6 +177,9 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
     // coins of blended surfaces.
     let path_key = (*rng).state;
     //#endif
+    //#if aovs
+    aov_begin();
+    //#endif
     loop {
         var ray_origin = origin;
         var ray_direction = direction;
@@ -210,6 +218,11 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
         let segment = integrate_segment(medium_absorption, medium_emission, hit.t);
         gather(&radiance, throughput * segment.radiance, EVENT_MEDIUM);
         attenuate(&throughput, segment.transmittance, EVENT_MEDIUM);
+        //#endif
+        //#if aovs
+        if bounce == 0u && hit.kind != HIT_NONE {
+            aov_first_hit(hit.t);
+        }
         //#endif
         if hit.kind == HIT_NONE {
             //#if sky_environment
@@ -260,6 +273,9 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
         shadow_pending = any(shadow.contribution != vec3f(0.0));
         //#endif
         let s = bsdf_sample(ctx, rng);
+        //#if aovs
+        aov_surface(s, n_shading);
+        //#endif
         if !s.valid {
             path_ended = true;
         } else {
@@ -325,15 +341,35 @@ fn render(@builtin(global_invocation_id) id: vec3u) {
     let pixel_index = id.y * frame.width + id.x;
     var acc = accumulation[pixel_index];
     var bad = non_finite[pixel_index];
+    var sample_base = frame.sample_base;
+    //#if adaptive
+    // Pixels stop at different counts: each keeps its own.
+    sample_base = pixel_samples[2u * pixel_index];
+    if pixel_samples[2u * pixel_index + 1u] != 0u {
+        return;
+    }
+    //#endif
+    //#if aovs
+    var aovs = aov_load(pixel_index);
+    //#endif
     for (var s = 0u; s < frame.samples_per_dispatch; s++) {
-        let sample_index = frame.sample_base + s;
+        let sample_index = sample_base + s;
         var rng = rng_for_sample(pixel_index, sample_index, frame.seed);
         first_bad_event = EVENT_NONE;
         let l = trace_path(id.xy, &rng);
         accumulate(&acc, &bad, l, first_bad_event, sample_index);
+        //#if aovs
+        aov_add(&aovs, sample_index);
+        //#endif
     }
     accumulation[pixel_index] = acc;
     non_finite[pixel_index] = bad;
+    //#if aovs
+    aov_store(pixel_index, aovs);
+    //#endif
+    //#if adaptive
+    pixel_samples[2u * pixel_index] = sample_base + frame.samples_per_dispatch;
+    //#endif
 }
 
 // Small images leave most of a GPU idle with one invocation per pixel: there, each

@@ -41,6 +41,11 @@ pub struct GpuFrame {
     pub emitter_total_power: f32,
     pub ris_candidates: u32,
     pub clamp_luminance: f32,
+    /// Adaptive sampling: the relative standard error at which a pixel stops, after
+    /// `adaptive_min_samples` samples.
+    pub noise_threshold: f32,
+    pub adaptive_min_samples: u32,
+    pub _pad_adaptive: [u32; 2],
 }
 
 /// A BVH2 node with both children's boxes (see `shaders/common.wgsl`).

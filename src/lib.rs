@@ -9,6 +9,7 @@
 pub mod asset;
 pub mod bench;
 pub mod bvh;
+pub mod denoise;
 pub mod files;
 pub mod gpu;
 pub mod info;

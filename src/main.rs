@@ -2,13 +2,14 @@
 //! 0 success, 1 a bad input or a failed render, 2 a usage error (clap's), 3 a render that
 //! `--strict` found dropping samples or rays.
 
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
 use clap::{Args, Parser, Subcommand};
 use rt::bvh::{BuildQuality, PackOutcome, PackReport};
+use rt::denoise::Denoiser;
 use rt::gpu::GpuContext;
 use rt::render::{
-    DroppedSamples, ImageFormat, Progress, RenderFlags, RenderRequest, Session, check_output, human, json_event,
-    write_image,
+    DroppedSamples, Image, ImageFormat, Progress, RenderFlags, RenderRequest, Session, aov_channels, check_output,
+    human, image_format, json_event, write_image, write_layered_exr,
 };
 use rt::scene::{self, LightSampler, MAX_IMAGE_SIDE, RoughTransmission, Sampling, Scene};
 use std::path::{Path, PathBuf};
@@ -111,6 +112,18 @@ struct RenderArgs {
     /// that drives rt (progress, warning, done, error events).
     #[arg(long, value_enum, default_value_t)]
     progress: Progress,
+    /// Also write the albedo, normal, depth, standard error and sample count per pixel:
+    /// the output is then one multi-layer OpenEXR (README: AOVs).
+    #[arg(long)]
+    aovs: bool,
+    /// Denoise the image with Open Image Denoise, guided by albedo and normals (with
+    /// --aovs, the raw image is kept as the `noisy` layer).
+    #[arg(long)]
+    denoise: bool,
+    /// Adaptive sampling: a pixel stops once the relative standard error of its mean
+    /// luminance is below this, e.g. 0.01 (0: off) [default: the scene's].
+    #[arg(long)]
+    noise_threshold: Option<f32>,
 }
 
 impl RenderArgs {
@@ -128,6 +141,8 @@ impl RenderArgs {
             clamp: self.clamp,
             samples_per_dispatch: self.samples_per_dispatch,
             sample_lanes: self.sample_lanes,
+            noise_threshold: self.noise_threshold,
+            aovs: self.aovs || self.denoise,
         }
     }
 }
@@ -169,6 +184,13 @@ struct WatchArgs {
     dev: Option<PathBuf>,
     #[arg(long, value_enum, default_value_t)]
     quality: BuildQuality,
+    /// Show the image denoised with Open Image Denoise once it has 4 samples per pixel
+    /// (`N` toggles it; the window only).
+    #[arg(long)]
+    denoise: bool,
+    /// Adaptive sampling's noise threshold (0: off) [default: the scene's].
+    #[arg(long)]
+    noise_threshold: Option<f32>,
 }
 
 #[derive(Subcommand)]
@@ -370,6 +392,11 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
             eprintln!("{line}");
         }
     };
+    if args.aovs && image_format(&args.output)? != ImageFormat::Exr {
+        bail!("--aovs: AOVs are written as one multi-layer OpenEXR; give -o an .exr path");
+    }
+    // Before any rendering: a missing denoiser is known at once.
+    let denoiser = if args.denoise { Some(Denoiser::new().context("--denoise")?) } else { None };
     let mut scene = load_scene(args.scene.as_deref())?;
     let request = RenderRequest { progress: args.progress, ..args.flags().apply(&mut scene)? };
     let exposure = scene.render.exposure;
@@ -382,7 +409,25 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
         say(format!("atmosphere tables built in {:.1} ms", tables.build_time.as_secs_f64() * 1e3));
     }
     let (image, report) = session.render(&request, None)?;
-    write_image(&image, &args.output, exposure)?;
+    let aovs = if request.aovs { Some(session.aovs()?) } else { None };
+    let denoised = match (&denoiser, &aovs) {
+        (Some(denoiser), Some(aovs)) => {
+            let start = std::time::Instant::now();
+            let clean = denoiser.denoise(&image, aovs)?;
+            let took = start.elapsed().as_secs_f64();
+            say(format!("denoised with Open Image Denoise ({} device) in {took:.2} s", denoiser.device()));
+            Some(clean)
+        }
+        _ => None,
+    };
+    match (&aovs, denoised) {
+        (Some(aovs), denoised) if args.aovs => {
+            let channels = aov_channels(&image, aovs, denoised.as_deref());
+            write_layered_exr(&args.output, image.width, image.height, channels)?
+        }
+        (_, Some(clean)) => write_image(&Image { pixels: clean, ..image.clone() }, &args.output, exposure)?,
+        _ => write_image(&image, &args.output, exposure)?,
+    }
     say(format!(
         "wrote {} ({}x{}, {} spp) in {:.2} s: {}samples/s",
         args.output.display(),
@@ -416,7 +461,14 @@ fn watch(args: WatchArgs, adapter: Option<&str>) -> Result<()> {
         quality: args.quality,
         shader_dir: args.dev,
         frames_dir: args.frames_dir,
-        flags: RenderFlags { spp: args.spp, size: args.size, seed: args.seed, ..Default::default() },
+        flags: RenderFlags {
+            spp: args.spp,
+            size: args.size,
+            seed: args.seed,
+            noise_threshold: args.noise_threshold,
+            aovs: args.denoise,
+            ..Default::default()
+        },
         format: args.format,
         max_reloads: args.max_reloads,
     };

@@ -20,6 +20,8 @@ pub struct Trial {
     pub quality: BuildQuality,
     /// Build every BVH afresh in memory (and time it) rather than load caches.
     pub fresh_bvh: bool,
+    /// Denoise each image with Open Image Denoise (its time counts) before measuring it.
+    pub denoise: bool,
 }
 
 impl Trial {
@@ -27,7 +29,7 @@ impl Trial {
     pub fn baseline(scene: &Scene, (width, height): (u32, u32)) -> Self {
         let mut request = RenderRequest::from_scene(scene);
         (request.width, request.height) = (width, height);
-        Self { scene: scene.clone(), request, quality: BuildQuality::default(), fresh_bvh: false }
+        Self { scene: scene.clone(), request, quality: BuildQuality::default(), fresh_bvh: false, denoise: false }
     }
 
     /// Whether `other` renders the same thing the same way (so its measurements can be reused).
@@ -35,6 +37,7 @@ impl Trial {
         self.scene == other.scene
             && self.quality == other.quality
             && self.fresh_bvh == other.fresh_bvh
+            && self.denoise == other.denoise
             && self.request == other.request
     }
 }
@@ -92,6 +95,13 @@ fn without_tree_lights(f: &FeatureSet) -> Option<&'static str> {
         (Sampling::Nee, true) => None,
         (Sampling::Nee, false) => Some("the scene has no emitters nor lamps other than suns"),
         (Sampling::Resampled, _) => Some("resampled sampling samples no lights"),
+    }
+}
+
+fn without_denoiser(_: &FeatureSet) -> Option<&'static str> {
+    match crate::denoise::Denoiser::new() {
+        Ok(_) => None,
+        Err(_) => Some("this rt cannot denoise (built without Open Image Denoise, or it has no device)"),
     }
 }
 
@@ -193,6 +203,34 @@ pub fn all_knobs(levels: &[u32]) -> Vec<Knob> {
                 .map(|n| {
                     let label = n.map_or("auto".to_string(), |n| n.to_string());
                     Setting::new(label, move |t| t.request.samples_per_dispatch = n)
+                })
+                .collect(),
+            spp_levels: None,
+            inapplicable: always,
+        },
+        Knob {
+            name: "denoise",
+            about: "Open Image Denoise on the image, guided by albedo and normal AOVs (its time counts)",
+            settings: [false, true]
+                .into_iter()
+                .map(|on| {
+                    Setting::new(if on { "on" } else { "off" }, move |t| {
+                        t.denoise = on;
+                        t.request.aovs = on;
+                    })
+                })
+                .collect(),
+            spp_levels: None,
+            inapplicable: without_denoiser,
+        },
+        Knob {
+            name: "adaptive",
+            about: "adaptive sampling: pixels stop at this relative standard error (after 16 samples)",
+            settings: [0.0f32, 0.05, 0.02, 0.01]
+                .into_iter()
+                .map(|threshold| {
+                    let label = if threshold == 0.0 { "off".to_string() } else { format!("{threshold}") };
+                    Setting::new(label, move |t| t.request.noise_threshold = threshold)
                 })
                 .collect(),
             spp_levels: None,

@@ -172,6 +172,7 @@ fn measure(
     bar: &ProgressBar,
 ) -> Result<SettingResult> {
     warm_up(session, &trial.request, timer)?;
+    let denoiser = if trial.denoise { Some(crate::denoise::Denoiser::new()?) } else { None };
     let features = trial.request.features.unwrap_or(session.features());
     let exposure = session.scene().render.exposure;
     let pixels = (trial.request.width * trial.request.height) as f64;
@@ -182,7 +183,12 @@ fn measure(
         let mut dropped = 0;
         for repeat in 0..repeats.max(1) {
             let request = crate::render::RenderRequest { spp, seed: repeat + 1, ..trial.request.clone() };
-            let render = render_timed(session, &request, timer)?;
+            let mut render = render_timed(session, &request, timer)?;
+            if let Some(denoiser) = &denoiser {
+                let start = std::time::Instant::now();
+                render.image.pixels = denoiser.denoise(&render.image, &session.aovs()?)?;
+                render.time += start.elapsed();
+            }
             errors.push(ErrorMetrics::of(&render.image, reference, exposure));
             times.push(render.time);
             dropped += render.dropped;

@@ -21,8 +21,9 @@ pub struct GpuContext {
 }
 
 /// Storage buffers the integrator binds in one stage: 16 in the scene group (see
-/// `shaders/common.wgsl`), 3 of the accumulation and the atmosphere's tables.
-const STORAGE_BUFFERS_NEEDED: u32 = 20;
+/// `shaders/common.wgsl`), 5 of the accumulation (with AOVs and adaptive sampling's
+/// counts) and the atmosphere's tables.
+const STORAGE_BUFFERS_NEEDED: u32 = 22;
 
 const NO_ADAPTER_HELP: &str = "no GPU adapter found. rt needs Vulkan; on a machine without a GPU, \
 install Mesa's CPU driver (lavapipe): `sudo apt-get install mesa-vulkan-drivers`";

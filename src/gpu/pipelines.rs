@@ -35,7 +35,8 @@ impl PipelineCache {
     pub fn new(ctx: &GpuContext) -> Self {
         Self {
             scene_layout: scene_bind_group_layout(&ctx.device),
-            accumulation_layout: io_bind_group_layout(&ctx.device, 3),
+            // Means, non-finite counts, lane scratch, AOVs, adaptive sampling's counts.
+            accumulation_layout: io_bind_group_layout(&ctx.device, 5),
             trace_layout: io_bind_group_layout(&ctx.device, 2),
             sky_layout: sky_bind_group_layout(&ctx.device, false),
             files: ShaderFiles::BuiltIn,
@@ -70,8 +71,12 @@ impl PipelineCache {
         program: Program,
         features: FeatureSet,
     ) -> Result<Pipelines> {
+        let adaptive: &[&'static str] = match features.adaptive {
+            true => &["render", "render_lanes", "reduce_lanes", "adaptive_mask"],
+            false => &["render", "render_lanes", "reduce_lanes"],
+        };
         let (io_layout, entry_names): (&wgpu::BindGroupLayout, &[&'static str]) = match program {
-            Program::Integrator => (&self.accumulation_layout, &["render", "render_lanes", "reduce_lanes"]),
+            Program::Integrator => (&self.accumulation_layout, adaptive),
             Program::Trace => (
                 &self.trace_layout,
                 &["trace", "generate_camera_rays", "generate_diffuse_rays", "generate_through_rays"],

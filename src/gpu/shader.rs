@@ -40,6 +40,8 @@ type Part = (&'static str, &'static str);
 /// includes decide it): the built-in copies the assembler reads, and with `--dev` the
 /// files that `rt watch` watches. `display.wgsl`, the viewer's own, is not one.
 pub const ALL_PARTS: &[Part] = &[
+    shader!("adaptive.wgsl"),
+    shader!("aovs.wgsl"),
     shader!("atmosphere.wgsl"),
     shader!("atmosphere_lut.wgsl"),
     shader!("atmosphere_path.wgsl"),

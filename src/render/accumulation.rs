@@ -12,6 +12,8 @@ use anyhow::{Result, bail};
 const MEAN_BYTES: u64 = 16;
 /// Bytes of one sample in the lanes' scratch (radiance, and the event of a non-finite one).
 const SAMPLE_BYTES: u64 = 16;
+/// Bytes per pixel of the AOVs' means (albedo and depth, normal and hit count).
+const AOV_BYTES: u64 = 32;
 /// The lanes' scratch at most: it holds pixels × samples per dispatch.
 const LANE_SCRATCH_BYTES: u64 = 64 << 20;
 /// Invocations that keep a large GPU busy (an H200 holds 132 × 2048 resident threads;
@@ -29,6 +31,10 @@ pub struct Accumulation {
     /// Samples spread over lanes wait here for `reduce_lanes` (a token buffer when
     /// the image is large enough to keep the GPU busy on its own).
     lane_samples: wgpu::Buffer,
+    /// The AOVs' running means (a token buffer until a render asks for them).
+    aovs: wgpu::Buffer,
+    /// Samples taken per pixel under adaptive sampling (a token buffer until then).
+    pixel_samples: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     /// Lanes per pixel that keep the GPU busy; 1 on a CPU adapter.
     lanes_wanted: u32,
@@ -71,8 +77,22 @@ impl Accumulation {
         let cpu = ctx.adapter_info.device_type == wgpu::DeviceType::Cpu;
         let lanes_wanted = if cpu { 1 } else { GPU_INVOCATIONS.div_ceil(pixels).min(MAX_LANES as u64) as u32 };
         let lane_samples = buffer("lane samples", SAMPLE_BYTES);
-        let bind_group = crate::gpu::bind_group(ctx, "accumulation", layout, &[&means, &non_finite, &lane_samples]);
-        let mut acc = Self { width, height, samples: 0, means, non_finite, lane_samples, bind_group, lanes_wanted };
+        let aovs = buffer("aovs", AOV_BYTES);
+        let pixel_samples = buffer("pixel samples", 16);
+        let buffers = [&means, &non_finite, &lane_samples, &aovs, &pixel_samples];
+        let bind_group = crate::gpu::bind_group(ctx, "accumulation", layout, &buffers);
+        let mut acc = Self {
+            width,
+            height,
+            samples: 0,
+            means,
+            non_finite,
+            lane_samples,
+            aovs,
+            pixel_samples,
+            bind_group,
+            lanes_wanted,
+        };
         if lanes_wanted > 1 {
             acc.prepare_lanes(ctx, layout);
         }
@@ -95,8 +115,40 @@ impl Accumulation {
             usage: wgpu::BufferUsages::STORAGE,
             mapped_at_creation: false,
         });
-        let buffers = [&self.means, &self.non_finite, &self.lane_samples];
+        self.rebind(ctx, layout);
+    }
+
+    fn rebind(&mut self, ctx: &GpuContext, layout: &wgpu::BindGroupLayout) {
+        let buffers = [&self.means, &self.non_finite, &self.lane_samples, &self.aovs, &self.pixel_samples];
         self.bind_group = crate::gpu::bind_group(ctx, "accumulation", layout, &buffers);
+    }
+
+    /// Makes room for the AOVs and the per-pixel sample counts of adaptive sampling, as
+    /// asked and if there is none yet. Their contents start at zero: call before the
+    /// first sample (they are kept from then on, like the means).
+    pub fn prepare_outputs(&mut self, ctx: &GpuContext, layout: &wgpu::BindGroupLayout, aovs: bool, adaptive: bool) {
+        let pixels = self.width as u64 * self.height as u64;
+        let mut changed = false;
+        let mut grow = |buffer: &mut wgpu::Buffer, label, size| {
+            if buffer.size() < size {
+                *buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some(label),
+                    size,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                });
+                changed = true;
+            }
+        };
+        if aovs {
+            grow(&mut self.aovs, "aovs", pixels * AOV_BYTES);
+        }
+        if adaptive {
+            grow(&mut self.pixel_samples, "pixel samples", pixels * 8);
+        }
+        if changed {
+            self.rebind(ctx, layout);
+        }
     }
 
     /// The running means per pixel (RGB, then the luminance's sum of squared deviations),
@@ -109,6 +161,8 @@ impl Accumulation {
     pub fn clear(&mut self, encoder: &mut wgpu::CommandEncoder) {
         encoder.clear_buffer(&self.means, 0, None);
         encoder.clear_buffer(&self.non_finite, 0, None);
+        encoder.clear_buffer(&self.aovs, 0, None);
+        encoder.clear_buffer(&self.pixel_samples, 0, None);
         self.samples = 0;
     }
 
@@ -158,6 +212,10 @@ impl Accumulation {
             pass.set_pipeline(pipelines.entry("reduce_lanes"));
             pass.dispatch_workgroups(x, y, 1);
         } else {
+            if let Some(mask) = pipelines.entries.get("adaptive_mask") {
+                pass.set_pipeline(mask);
+                pass.dispatch_workgroups(x, y, 1);
+            }
             pass.set_pipeline(pipelines.entry("render"));
             pass.dispatch_workgroups(x, y, 1);
         }
@@ -165,19 +223,34 @@ impl Accumulation {
     }
 
     /// The mean radiance per pixel and the standard error of each pixel's mean luminance.
-    pub fn image(&self, ctx: &GpuContext, readback: &Readback) -> Result<Image> {
+    /// `adaptive`: the samples were taken with adaptive sampling (each pixel counts its own).
+    pub fn image(&self, ctx: &GpuContext, readback: &Readback, adaptive: bool) -> Result<Image> {
         let means: Vec<[f32; 4]> = readback.read(ctx, &self.means)?;
         let dropped = self.non_finite(ctx, readback)?;
+        let taken: Vec<u32> = match adaptive {
+            // Per pixel: samples taken, and whether it stopped.
+            true => readback.read::<[u32; 2]>(ctx, &self.pixel_samples)?.iter().map(|p| p[0]).collect(),
+            false => vec![self.samples; means.len()],
+        };
         let mut pixels = Vec::with_capacity(means.len());
         let mut std_error = Vec::with_capacity(means.len());
-        for (m, (bad, _)) in means.iter().zip(&dropped) {
+        let mut sample_counts = Vec::with_capacity(means.len());
+        for ((m, (bad, _)), taken) in means.iter().zip(&dropped).zip(&taken) {
             // Dropped samples are not part of the mean: it is over the finite ones.
-            let n = self.samples.saturating_sub(*bad).max(1) as f64;
+            let finite = taken.saturating_sub(*bad);
+            let n = finite.max(1) as f64;
             let variance = m[3].max(0.0) as f64 / (n - 1.0).max(1.0);
             pixels.push([m[0], m[1], m[2]]);
             std_error.push((variance / n).sqrt() as f32);
+            sample_counts.push(finite);
         }
-        Ok(Image { width: self.width, height: self.height, samples: self.samples, pixels, std_error })
+        Ok(Image { width: self.width, height: self.height, samples: self.samples, pixels, std_error, sample_counts })
+    }
+
+    /// The AOVs' means per pixel, two vec4 each (see `shaders/aovs.wgsl`); call only
+    /// after [`Self::prepare_outputs`] asked for them.
+    pub fn aov_means(&self, ctx: &GpuContext, readback: &Readback) -> Result<Vec<[f32; 4]>> {
+        readback.read(ctx, &self.aovs)
     }
 
     /// Dropped non-finite samples: per pixel, (count, the event that produced the first).

@@ -2,9 +2,11 @@
 //! images it makes.
 
 mod accumulation;
+mod aovs;
 mod camera;
 mod dropped;
 mod image_out;
+mod layers_out;
 mod pacing;
 mod progress;
 mod request;
@@ -14,9 +16,11 @@ pub mod tonemap;
 mod trace;
 
 pub use accumulation::Accumulation;
+pub use aovs::Aovs;
 pub use camera::set_camera;
 pub use dropped::{DroppedSamples, NonFiniteCause};
 pub use image_out::{ImageFormat, check_output, image_format, write_image, write_png};
+pub use layers_out::{aov_channels, write_layered_exr};
 pub use pacing::Pacing;
 pub use progress::{Progress, json_event};
 pub use request::{MAX_SAMPLES_PER_DISPATCH, RenderFlags, RenderRequest};
@@ -33,6 +37,8 @@ pub struct Image {
     pub samples: u32,
     pub pixels: Vec<[f32; 3]>,
     pub std_error: Vec<f32>,
+    /// Finite samples each pixel's mean is over (they differ with adaptive sampling).
+    pub sample_counts: Vec<u32>,
 }
 
 /// 12.3 M, 4.56 G: rates at a glance.

@@ -31,6 +31,12 @@ pub struct RenderRequest {
     pub sample_lanes: Option<u32>,
     /// What stderr shows while the session renders.
     pub progress: Progress,
+    /// Albedo, normal and depth images beside the radiance (see [`super::Aovs`]).
+    pub aovs: bool,
+    /// Adaptive sampling's relative standard error at which a pixel stops (0: off).
+    pub noise_threshold: f32,
+    /// Samples a pixel takes before adaptive sampling may stop it.
+    pub adaptive_min_samples: u32,
 }
 
 impl RenderRequest {
@@ -48,7 +54,15 @@ impl RenderRequest {
             samples_per_dispatch: None,
             sample_lanes: None,
             progress: Progress::Hidden,
+            aovs: false,
+            noise_threshold: r.noise_threshold,
+            adaptive_min_samples: r.adaptive_min_samples,
         }
+    }
+
+    /// Whether pixels stop taking samples once their noise is below the threshold.
+    pub fn adaptive(&self) -> bool {
+        self.noise_threshold > 0.0
     }
 
     /// Whether `other` renders the same image as `self` (only how it is reached differs).
@@ -80,6 +94,9 @@ pub struct RenderFlags {
     pub clamp: Option<f32>,
     pub samples_per_dispatch: Option<u32>,
     pub sample_lanes: Option<u32>,
+    pub noise_threshold: Option<f32>,
+    /// Ask for AOVs (what `--aovs` and `--denoise` need).
+    pub aovs: bool,
 }
 
 impl RenderFlags {
@@ -98,6 +115,7 @@ impl RenderFlags {
         r.sampling = self.sampling.unwrap_or(r.sampling);
         r.rough_transmission = self.rough_transmission.unwrap_or(r.rough_transmission);
         r.light_sampler = self.light_sampler.unwrap_or(r.light_sampler);
+        r.noise_threshold = self.noise_threshold.unwrap_or(r.noise_threshold);
         if let Err((key, message)) = r.check() {
             bail!("{}: {message}", flag_of(key));
         }
@@ -121,6 +139,7 @@ impl RenderFlags {
             clamp: self.clamp,
             samples_per_dispatch: self.samples_per_dispatch,
             sample_lanes: self.sample_lanes,
+            aovs: self.aovs,
             ..RenderRequest::from_scene(scene)
         })
     }

@@ -82,6 +82,10 @@ pub struct FeatureSet {
     pub depth_of_field: bool,
     /// Light sampling walks the light tree (`light_sampler = "tree"`, with lights to put in it).
     pub light_tree: bool,
+    /// Albedo, normal and depth images beside the radiance (asked for by a render, not a scene).
+    pub aovs: bool,
+    /// Pixels stop taking samples once their noise is below a threshold (asked for by a render).
+    pub adaptive: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -139,6 +143,8 @@ impl FeatureSet {
             light_tree: settings.light_sampler == LightSampler::Tree
                 && settings.sampling == Sampling::Nee
                 && (materials_in_use.iter().any(|m| m.is_emissive()) || scene.lights.iter().any(|l| !l.is_sun())),
+            aovs: false,
+            adaptive: false,
         }
     }
 
@@ -161,6 +167,8 @@ impl FeatureSet {
             sampling,
             depth_of_field: true,
             light_tree: sampling == Sampling::Nee,
+            aovs: false,
+            adaptive: false,
         }
     }
 
@@ -194,6 +202,8 @@ impl FeatureSet {
             "nee" => self.sampling == Sampling::Nee,
             "depth_of_field" => self.depth_of_field,
             "light_tree" => self.light_tree,
+            "aovs" => self.aovs,
+            "adaptive" => self.adaptive,
             _ => return None,
         })
     }
@@ -215,6 +225,8 @@ impl fmt::Display for FeatureSet {
             (self.light_tree, "light-tree"),
             (self.alpha_blend, "alpha-blend"),
             (self.normal_maps, "normal-maps"),
+            (self.aovs, "aovs"),
+            (self.adaptive, "adaptive"),
         ] {
             if on {
                 parts.push(name.to_string());

@@ -44,6 +44,10 @@ pub struct RenderSettings {
     pub ris_candidates: u32,
     pub rough_transmission: RoughTransmission,
     pub light_sampler: LightSampler,
+    /// Adaptive sampling: a pixel stops once the relative standard error of its mean
+    /// luminance is below this (0: off), after `adaptive_min_samples` samples.
+    pub noise_threshold: f32,
+    pub adaptive_min_samples: u32,
 }
 
 impl Default for RenderSettings {
@@ -58,6 +62,8 @@ impl Default for RenderSettings {
             ris_candidates: 8,
             rough_transmission: RoughTransmission::Ggx,
             light_sampler: LightSampler::Power,
+            noise_threshold: 0.0,
+            adaptive_min_samples: 16,
         }
     }
 }

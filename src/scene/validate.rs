@@ -210,6 +210,12 @@ impl RenderSettings {
         if !(1..=64).contains(&self.ris_candidates) {
             return Err(("ris_candidates", format!("must be in 1..=64, got {}", self.ris_candidates)));
         }
+        if !(self.noise_threshold.is_finite() && (0.0..1.0).contains(&self.noise_threshold)) {
+            return Err(("noise_threshold", format!("must be in [0, 1) (0: off), got {}", self.noise_threshold)));
+        }
+        if self.adaptive_min_samples < 2 {
+            return Err(("adaptive_min_samples", format!("must be at least 2, got {}", self.adaptive_min_samples)));
+        }
         Ok(())
     }
 }

@@ -68,12 +68,35 @@ impl Display {
         exposure_ev: f32,
         error: bool,
     ) {
+        self.encode_from(ctx, encoder, target, acc, acc.means(), exposure_ev, error);
+    }
+
+    /// Records drawing `means` (of `acc`'s size, in its layout) into `target`: the
+    /// denoised image instead of the running mean.
+    #[allow(clippy::too_many_arguments)]
+    pub fn encode_from(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::TextureView,
+        acc: &Accumulation,
+        means: &wgpu::Buffer,
+        exposure_ev: f32,
+        error: bool,
+    ) {
         self.write_uniform(ctx, acc, exposure_ev, error, !self.surface_format.is_srgb());
-        self.draw(ctx, encoder, target, acc, &self.to_surface);
+        self.draw(ctx, encoder, target, means, &self.to_surface);
     }
 
     /// The display of `acc` as 8-bit sRGB pixels, rows from the top, without the error frame.
-    pub fn screenshot(&self, ctx: &GpuContext, acc: &Accumulation, exposure_ev: f32) -> Result<Vec<[u8; 3]>> {
+    /// `means`: `acc`'s own, or an image of its size in its layout (the denoised one).
+    pub fn screenshot(
+        &self,
+        ctx: &GpuContext,
+        acc: &Accumulation,
+        means: &wgpu::Buffer,
+        exposure_ev: f32,
+    ) -> Result<Vec<[u8; 3]>> {
         let (width, height) = (acc.width, acc.height);
         let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
             label: Some("screenshot"),
@@ -96,7 +119,7 @@ impl Display {
         self.write_uniform(ctx, acc, exposure_ev, false, true);
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         let view = texture.create_view(&Default::default());
-        self.draw(ctx, &mut encoder, &view, acc, &self.to_screenshot);
+        self.draw(ctx, &mut encoder, &view, means, &self.to_screenshot);
         encoder.copy_texture_to_buffer(
             texture.as_image_copy(),
             wgpu::TexelCopyBufferInfo {
@@ -139,10 +162,10 @@ impl Display {
         ctx: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         target: &wgpu::TextureView,
-        acc: &Accumulation,
+        means: &wgpu::Buffer,
         pipeline: &wgpu::RenderPipeline,
     ) {
-        let bind_group = bind_group(ctx, "display", &self.layout, &[&self.uniform, acc.means()]);
+        let bind_group = bind_group(ctx, "display", &self.layout, &[&self.uniform, means]);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("display"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -236,7 +259,7 @@ mod tests {
         acc.samples = samples;
         let display = Display::new(&ctx, wgpu::TextureFormat::Bgra8Unorm, None).expect("display pipelines");
         for exposure in [0.0, -2.0, 1.5] {
-            let shown = display.screenshot(&ctx, &acc, exposure).expect("screenshot");
+            let shown = display.screenshot(&ctx, &acc, acc.means(), exposure).expect("screenshot");
             for (i, (shown, linear)) in shown.iter().zip(&radiance).enumerate() {
                 let expected = display_pixel(*linear, exposure);
                 let worst = shown.iter().zip(expected).map(|(a, b)| (*a as i32 - b as i32).abs()).max();

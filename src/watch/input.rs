@@ -16,6 +16,7 @@ rt watch keys and mouse:
   F                    focus (with depth of field) on what is under the mouse
   R                    back to the scene file's camera, sun and exposure
   P / X                screenshot: PNG as shown / linear EXR
+  N                    denoised / raw image (with --denoise)
   H                    this help
   Esc                  quit";
 
@@ -28,6 +29,7 @@ pub enum Action {
     Reset,
     ScreenshotPng,
     ScreenshotExr,
+    ToggleDenoise,
     Help,
     Quit,
 }
@@ -44,6 +46,7 @@ pub fn action(key: KeyCode) -> Option<Action> {
         KeyCode::KeyR => Action::Reset,
         KeyCode::KeyP => Action::ScreenshotPng,
         KeyCode::KeyX => Action::ScreenshotExr,
+        KeyCode::KeyN => Action::ToggleDenoise,
         KeyCode::KeyH | KeyCode::F1 => Action::Help,
         KeyCode::Escape => Action::Quit,
         _ => return None,

@@ -5,6 +5,7 @@
 //! drives it with commands and receives its frames (`stream`: Blender's viewport).
 
 mod camera_control;
+mod denoised_view;
 mod display;
 pub mod fs_watch;
 pub mod headless;

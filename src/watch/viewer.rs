@@ -5,6 +5,7 @@
 //! and stops on `DIR/stop` or `--max-reloads`, like headless mode.
 
 use super::camera_control::dolly;
+use super::denoised_view::DenoisedView;
 use super::display::Display;
 use super::fs_watch::{Batch, FileWatcher};
 use super::headless::STOP_FILE;
@@ -59,7 +60,11 @@ pub fn run(adapter: Option<&str>, options: WatchOptions) -> Result<()> {
         presented: 0,
         screenshots: 0,
         failure: None,
+        denoised: None,
     };
+    if app.options.flags.aovs {
+        app.denoised = Some(DenoisedView::new());
+    }
     app.log.write(HELP);
     if let Some(dir) = app.options.frames_dir.clone() {
         super::headless::remove_stale_stop_file(&dir, &mut app.log);
@@ -107,6 +112,8 @@ pub(super) struct Viewer<'a> {
     screenshots: u32,
     /// Why the window closed on its own, if it did.
     failure: Option<anyhow::Error>,
+    /// With `--denoise`: the denoised image, refreshed beside refinement.
+    pub(super) denoised: Option<DenoisedView>,
 }
 
 impl ApplicationHandler<Batch> for Viewer<'_> {
@@ -281,16 +288,20 @@ impl Viewer<'_> {
             _ => None,
         };
         let exposure = self.live.scene().render.exposure;
+        if let Some(denoised) = &mut self.denoised
+            && let Err(e) = denoised.update(ctx, &self.live.session)
+        {
+            self.log.write(&format!("{e:#}"));
+            self.denoised = None;
+        }
         if let Some(texture) = &texture {
             let view = texture.texture.create_view(&Default::default());
-            w.display.encode(
-                ctx,
-                &mut encoder,
-                &view,
-                self.live.session.accumulation(),
-                exposure,
-                self.error.is_some(),
-            );
+            let acc = self.live.session.accumulation();
+            let error = self.error.is_some();
+            match self.denoised.as_ref().and_then(|d| d.means(acc.width, acc.height)) {
+                Some(means) => w.display.encode_from(ctx, &mut encoder, &view, acc, means, exposure, error),
+                None => w.display.encode(ctx, &mut encoder, &view, acc, exposure, error),
+            }
         }
         let submitted = Instant::now();
         ctx.queue.submit([encoder.finish()]);
@@ -303,7 +314,11 @@ impl Viewer<'_> {
         if self.state.first_frame.is_none() {
             self.state.first_frame = Some(self.state.since.elapsed());
         }
-        let title = title(&self.options.scene, &self.live.session, &self.last_reload, self.error.as_deref());
+        let mut title = title(&self.options.scene, &self.live.session, &self.last_reload, self.error.as_deref());
+        if let Some(d) = &self.denoised {
+            let acc = self.live.session.accumulation();
+            title.push_str(if d.means(acc.width, acc.height).is_some() { " | denoised" } else { " | raw" });
+        }
         w.window.set_title(&title);
         if self.live.session.converged() && !self.state.written {
             self.state.written = true;
@@ -317,7 +332,8 @@ impl Viewer<'_> {
         let (Some(dir), Some(w)) = (&self.options.frames_dir, &self.window) else { return Ok(()) };
         let file = dir.join(format!("frame-{:04}.png", self.state.number));
         let acc = self.live.session.accumulation();
-        let pixels = w.display.screenshot(self.ctx, acc, self.live.scene().render.exposure)?;
+        let means = self.denoised.as_ref().and_then(|d| d.means(acc.width, acc.height)).unwrap_or(acc.means());
+        let pixels = w.display.screenshot(self.ctx, acc, means, self.live.scene().render.exposure)?;
         write_png(&rgb_image(pixels, acc)?, &file)?;
         let first = self.state.first_frame.unwrap_or_default();
         self.log.frame(self.state.number, acc.samples, &file, first, self.state.since.elapsed());
@@ -338,7 +354,8 @@ impl Viewer<'_> {
         if exr {
             write_image(&self.live.session.image()?, &file, exposure)?;
         } else {
-            let pixels = w.display.screenshot(self.ctx, acc, exposure)?;
+            let means = self.denoised.as_ref().and_then(|d| d.means(acc.width, acc.height)).unwrap_or(acc.means());
+            let pixels = w.display.screenshot(self.ctx, acc, means, exposure)?;
             write_png(&rgb_image(pixels, acc)?, &file)?;
         }
         self.log.write(&format!("screenshot {} ({} spp)", file.display(), acc.samples));

@@ -35,6 +35,13 @@ impl Viewer<'_> {
                 self.log.write(HELP);
                 return;
             }
+            Action::ToggleDenoise => {
+                match &mut self.denoised {
+                    Some(view) => view.shown = !view.shown,
+                    None => self.log.write("start rt watch with --denoise to see the denoised image"),
+                }
+                return self.request_redraw();
+            }
             Action::Focus => match self.focus_under_cursor() {
                 Ok(Some(camera)) => overrides.camera = Some(camera),
                 Ok(None) => return,

@@ -43,6 +43,8 @@ fn feature_sets() -> Vec<FeatureSet> {
             sampling: if on(0) { Sampling::Nee } else { Sampling::Resampled },
             depth_of_field: on(4) != on(6),
             light_tree: on(0) && on(4) != on(7),
+            aovs: on(3) != on(7),
+            adaptive: on(1) != on(5),
         });
     }
     sets
@@ -70,6 +72,8 @@ fn plain() -> FeatureSet {
         sampling: Sampling::Nee,
         depth_of_field: false,
         light_tree: false,
+        aovs: false,
+        adaptive: false,
     }
 }
 
@@ -158,7 +162,8 @@ fn every_shader_file_is_built_in_and_used_by_a_program() {
     for sky in [SkyFeature::Uniform, SkyFeature::Atmosphere, SkyFeature::Environment] {
         for sampling in [Sampling::Nee, Sampling::Resampled] {
             for rough in [RoughTransmission::Ggx, RoughTransmission::Cone] {
-                let features = FeatureSet::all(sky, sampling, rough);
+                // AOVs and adaptive sampling are asked for by a render, not in the set of effects.
+                let features = FeatureSet { aovs: true, adaptive: true, ..FeatureSet::all(sky, sampling, rough) };
                 for program in [Program::Integrator, Program::Trace] {
                     used.extend(files_in(&assemble(program, &features)).into_iter().map(str::to_owned));
                 }
@@ -220,6 +225,8 @@ fn absent_effects_leave_no_code() {
         "fn environment_radiance",
         "fn sample_environment",
         "var<uniform> environment",
+        "aov",
+        "pixel_samples",
     ] {
         assert!(!source.contains(absent), "{absent:?} is in the plain pipeline");
     }

@@ -12,7 +12,7 @@ use super::accumulation::{Accumulation, check_image_size};
 use super::dropped::DroppedSamples;
 use super::pacing::{DispatchSizer, Pacing};
 use super::progress::ProgressReporter;
-use super::{Image, RenderRequest, camera, sun};
+use super::{Aovs, Image, RenderRequest, camera, sun};
 use crate::bvh::{BuildQuality, SceneGeometry};
 use crate::gpu::shader::Program;
 use crate::gpu::{GpuContext, GpuTimer, PipelineCache, Pipelines, Readback, STAT_STACK_OVERFLOW, SceneBuffers};
@@ -72,7 +72,8 @@ impl<'a> Session<'a> {
     pub fn with_geometry(ctx: &'a GpuContext, scene: Scene, geometry: SceneGeometry) -> Result<Self> {
         let request = RenderRequest::from_scene(&scene);
         let pipelines = PipelineCache::new(ctx);
-        let acc = Accumulation::new(ctx, &pipelines.accumulation_layout, request.width, request.height)?;
+        let mut acc = Accumulation::new(ctx, &pipelines.accumulation_layout, request.width, request.height)?;
+        acc.prepare_outputs(ctx, &pipelines.accumulation_layout, request.aovs, request.adaptive());
         let buffers = SceneBuffers::new(ctx, &geometry, &pipelines.scene_layout)?;
         if matches!(scene.sky, Sky::Atmosphere(_)) && scene.sun.is_none() {
             log::warn!("{}: the atmosphere has no [sun] to light it: only its extinction shows", scene.origin);
@@ -168,6 +169,7 @@ impl<'a> Session<'a> {
         if resized {
             self.acc = Accumulation::new(self.ctx, &self.pipelines.accumulation_layout, request.width, request.height)?;
         }
+        self.acc.prepare_outputs(self.ctx, &self.pipelines.accumulation_layout, request.aovs, request.adaptive());
         let reset = resized || !self.request.same_image(request);
         self.sizer.fix(request.samples_per_dispatch);
         self.request = request.clone();
@@ -191,8 +193,15 @@ impl<'a> Session<'a> {
         self.sizer.restart();
     }
 
-    fn integrator(&mut self) -> Result<Rc<Pipelines>> {
+    /// The feature set the pipeline runs: the scene's (or the request's) with the
+    /// outputs and sampling strategy the request asks for.
+    pub fn pipeline_features(&self) -> FeatureSet {
         let features = self.request.features.unwrap_or(self.features);
+        FeatureSet { aovs: self.request.aovs, adaptive: self.request.adaptive(), ..features }
+    }
+
+    fn integrator(&mut self) -> Result<Rc<Pipelines>> {
+        let features = self.pipeline_features();
         self.pipelines.get(self.ctx, Program::Integrator, features)
     }
 
@@ -214,6 +223,8 @@ impl<'a> Session<'a> {
         frame.emitter_total_power = self.geometry.emitter_total_power;
         frame.ris_candidates = request.ris_candidates;
         frame.clamp_luminance = request.clamp.unwrap_or(0.0);
+        frame.noise_threshold = request.noise_threshold;
+        frame.adaptive_min_samples = request.adaptive_min_samples;
         frame
     }
 
@@ -231,6 +242,10 @@ impl<'a> Session<'a> {
         let remaining = self.request.spp - self.acc.samples;
         let n = self.sizer.next(remaining);
         let mut lanes = self.acc.lanes(n, self.request.sample_lanes);
+        if self.request.aovs || self.request.adaptive() {
+            // AOVs and per-pixel counts are kept by the one-invocation-per-pixel kernel only.
+            lanes = 1;
+        }
         if lanes > 1 {
             self.acc.prepare_lanes(self.ctx, &self.pipelines.accumulation_layout);
         }
@@ -299,14 +314,23 @@ impl<'a> Session<'a> {
             dispatch_time,
             samples_per_second: self.acc.samples as f64 * pixels / elapsed.as_secs_f64(),
             dropped: self.dropped()?,
-            features: request.features.unwrap_or(self.features),
+            features: self.pipeline_features(),
         };
         Ok((self.image()?, report))
     }
 
     /// The mean radiance per pixel so far, with each pixel's standard error.
     pub fn image(&self) -> Result<Image> {
-        self.acc.image(self.ctx, &self.readback)
+        self.acc.image(self.ctx, &self.readback, self.request.adaptive())
+    }
+
+    /// The AOVs so far; an error unless the request asked for them.
+    pub fn aovs(&self) -> Result<Aovs> {
+        if !self.request.aovs {
+            anyhow::bail!("the render did not ask for AOVs");
+        }
+        let means = self.acc.aov_means(self.ctx, &self.readback)?;
+        Ok(Aovs::from_means(self.acc.width, self.acc.height, &means))
     }
 
     /// What was dropped since the last reset; the stack-overflow counter starts again.

@@ -1,0 +1,72 @@
+// Auxiliary images for a denoiser, as Open Image Denoise expects them: the albedo and
+// the shading normal of the first surface that is not a perfect mirror or interface
+// (those are followed, their tint carried along), and the distance along the camera
+// ray to the first surface. Averaged over the pixel's samples like the radiance.
+
+// Two per pixel: (albedo, mean depth over the samples that hit), (normal, samples that hit).
+@group(1) @binding(3) var<storage, read_write> aov_means: array<vec4f>;
+
+struct AovSample {
+    albedo: vec3f,
+    normal: vec3f,
+    // < 0: the camera ray left the scene.
+    depth: f32,
+    // The first non-delta surface is still to be found.
+    open: bool,
+    // The tint of the perfect mirrors and interfaces followed so far.
+    weight: vec3f,
+}
+
+var<private> aov: AovSample;
+
+fn aov_begin() {
+    aov = AovSample(vec3f(0.0), vec3f(0.0), -1.0, true, vec3f(1.0));
+}
+
+// The camera ray met a surface at distance `t`.
+fn aov_first_hit(t: f32) {
+    aov.depth = t;
+}
+
+// A BSDF sample taken at a surface of shading normal `normal` (facing the viewer):
+// a delta lobe's is followed; any other's weight is an estimate of the surface's albedo.
+fn aov_surface(s: BsdfSample, normal: vec3f) {
+    if !aov.open {
+        return;
+    }
+    if s.valid && s.pdf == 0.0 {
+        aov.weight *= s.weight;
+        return;
+    }
+    aov.albedo = aov.weight * select(vec3f(0.0), s.weight, s.valid);
+    aov.normal = normal;
+    aov.open = false;
+}
+
+struct AovMeans {
+    a: vec4f,
+    b: vec4f,
+}
+
+fn aov_load(pixel_index: u32) -> AovMeans {
+    return AovMeans(aov_means[2u * pixel_index], aov_means[2u * pixel_index + 1u]);
+}
+
+fn aov_store(pixel_index: u32, m: AovMeans) {
+    aov_means[2u * pixel_index] = m.a;
+    aov_means[2u * pixel_index + 1u] = m.b;
+}
+
+// Adds the sample just traced, the pixel's sample `sample_index` (from 0).
+fn aov_add(m: ptr<function, AovMeans>, sample_index: u32) {
+    let n = f32(sample_index + 1u);
+    let albedo = (*m).a.rgb + (aov.albedo - (*m).a.rgb) / n;
+    let normal = (*m).b.xyz + (aov.normal - (*m).b.xyz) / n;
+    var depth = (*m).a.w;
+    var hits = (*m).b.w;
+    if aov.depth >= 0.0 {
+        hits += 1.0;
+        depth += (aov.depth - depth) / hits;
+    }
+    *m = AovMeans(vec4f(albedo, depth), vec4f(normal, hits));
+}

@@ -1,0 +1,33 @@
+//! Arbitrary output variables: what a denoiser is guided by, and what a compositor
+//! reads beside the radiance.
+
+/// Per pixel, rows from the top: the albedo and the shading normal (facing the camera,
+/// world space) of the first surface that is not a perfect mirror or interface, as Open
+/// Image Denoise expects them, and the distance along the camera ray to the first
+/// surface. Each is the mean over the pixel's samples; depth is over the samples that
+/// hit something (infinite where none did).
+#[derive(Clone, Debug, Default)]
+pub struct Aovs {
+    pub width: u32,
+    pub height: u32,
+    pub albedo: Vec<[f32; 3]>,
+    pub normal: Vec<[f32; 3]>,
+    pub depth: Vec<f32>,
+}
+
+impl Aovs {
+    /// From the GPU's running means: two vec4 per pixel (albedo and depth, normal and
+    /// the count of samples that hit), see `shaders/aovs.wgsl`.
+    pub fn from_means(width: u32, height: u32, means: &[[f32; 4]]) -> Self {
+        let pixels = width as usize * height as usize;
+        let mut aovs = Self { width, height, ..Default::default() };
+        for pair in means.chunks_exact(2).take(pixels) {
+            let [a, b] = [pair[0], pair[1]];
+            // Per sample, albedo estimates may exceed 1; their mean does not, but for rounding.
+            aovs.albedo.push([a[0], a[1], a[2]].map(|v| v.clamp(0.0, 1.0)));
+            aovs.normal.push([b[0], b[1], b[2]]);
+            aovs.depth.push(if b[3] > 0.0 { a[3] } else { f32::INFINITY });
+        }
+        aovs
+    }
+}

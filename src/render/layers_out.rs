@@ -1,0 +1,65 @@
+//! A render with its AOVs as one multi-layer OpenEXR: the beauty as R, G, B and each
+//! AOV as a layer of conventionally named channels (`albedo.R`, `normal.X`, `depth.Z`,
+//! ...), linear 32-bit floats, written atomically like every output.
+
+use super::{Aovs, Image};
+use crate::files::output;
+use anyhow::{Context, Result, bail};
+use exr::prelude::{
+    AnyChannel, AnyChannels, Encoding, FlatSamples, Layer, LayerAttributes, SmallVec, Vec2, WritableImage,
+};
+use std::io::Cursor;
+use std::path::Path;
+
+/// The channels of a render with AOVs, by name, rows from the top. With `denoised`,
+/// the beauty is the denoised image and the raw one is kept as `noisy.R/G/B`.
+pub fn aov_channels(image: &Image, aovs: &Aovs, denoised: Option<&[[f32; 3]]>) -> Vec<(String, Vec<f32>)> {
+    let mut channels = Vec::new();
+    let mut rgb = |layer: &str, names: [&str; 3], pixels: &[[f32; 3]]| {
+        for (c, name) in names.iter().enumerate() {
+            let full = if layer.is_empty() { name.to_string() } else { format!("{layer}.{name}") };
+            channels.push((full, pixels.iter().map(|p| p[c]).collect()));
+        }
+    };
+    const RGB: [&str; 3] = ["R", "G", "B"];
+    match denoised {
+        Some(clean) => {
+            rgb("", RGB, clean);
+            rgb("noisy", RGB, &image.pixels);
+        }
+        None => rgb("", RGB, &image.pixels),
+    }
+    rgb("albedo", RGB, &aovs.albedo);
+    rgb("normal", ["X", "Y", "Z"], &aovs.normal);
+    channels.push(("depth.Z".into(), aovs.depth.clone()));
+    channels.push(("error.Y".into(), image.std_error.clone()));
+    channels.push(("samples.Y".into(), image.sample_counts.iter().map(|&n| n as f32).collect()));
+    channels
+}
+
+/// Writes `channels` (each `width`×`height` values) as one OpenEXR at `path`.
+pub fn write_layered_exr(path: &Path, width: u32, height: u32, channels: Vec<(String, Vec<f32>)>) -> Result<()> {
+    if !path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")) {
+        bail!("{}: AOVs are written as a multi-layer OpenEXR: give an .exr path", path.display());
+    }
+    let pixels = width as usize * height as usize;
+    let list: SmallVec<[AnyChannel<FlatSamples>; 4]> = channels
+        .into_iter()
+        .map(|(name, values)| {
+            debug_assert_eq!(values.len(), pixels);
+            AnyChannel::new(name.as_str(), FlatSamples::F32(values))
+        })
+        .collect();
+    let layer = Layer::new(
+        Vec2(width as usize, height as usize),
+        LayerAttributes::default(),
+        Encoding::SMALL_LOSSLESS,
+        AnyChannels::sort(list),
+    );
+    let mut bytes = Cursor::new(Vec::new());
+    exr::prelude::Image::from_layer(layer)
+        .write()
+        .to_buffered(&mut bytes)
+        .with_context(|| format!("{}: cannot encode the image", path.display()))?;
+    Ok(output::write_atomically(path, bytes.get_ref())?)
+}

@@ -1,0 +1,125 @@
+//! Denoising with Open Image Denoise: a 16-sample image denoised is closer to the
+//! converged one than the raw image at four times the samples, and a missing library
+//! is a clear message, not a crash.
+
+mod common;
+
+use common::temp_dir;
+use std::process::Command;
+
+/// Squared error of the displayed (tone-mapped, 8-bit sRGB) images, in 0..255 per
+/// value: what a viewer sees, so that the emitters' radiance does not drown the rest.
+#[cfg(feature = "denoise")]
+fn display_mse(a: &[[f32; 3]], b: &[[f32; 3]]) -> f64 {
+    use rt::render::tonemap::display_pixel;
+    let sum: f64 = a
+        .iter()
+        .zip(b)
+        .flat_map(|(a, b)| {
+            let (a, b) = (display_pixel(*a, 0.0), display_pixel(*b, 0.0));
+            (0..3).map(move |c| (a[c] as f64 - b[c] as f64).powi(2))
+        })
+        .sum();
+    sum / (a.len() * 3) as f64
+}
+
+#[cfg(feature = "denoise")]
+#[test]
+fn sixteen_samples_denoised_beat_four_times_the_samples_raw() {
+    use common::{gpu, repo};
+    use rt::bvh::BuildQuality;
+    use rt::render::{Image, RenderRequest, Session};
+    let denoiser = rt::denoise::Denoiser::new().unwrap_or_else(|e| panic!("{e:#}"));
+    for name in ["cornell_box", "cornell_glass", "lamps"] {
+        let scene = rt::scene::load(&repo().join(format!("scenes/{name}.toml"))).unwrap_or_else(|e| panic!("{e}"));
+        let mut session = Session::open(gpu(), scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
+        let base = RenderRequest { width: 64, height: 64, ..RenderRequest::from_scene(session.scene()) };
+        let mut render = |spp: u32, seed: u32, aovs: bool| -> Image {
+            let request = RenderRequest { spp, seed, aovs, ..base.clone() };
+            session.render(&request, None).unwrap_or_else(|e| panic!("{name}: {e:#}")).0
+        };
+        // The reference as two halves of independent samples: their difference measures
+        // its own noise, taken off every error (as `rt bench accuracy` does).
+        let (half_a, half_b) = (render(192, 1, false), render(192, 4, false));
+        let converged: Vec<[f32; 3]> =
+            half_a.pixels.iter().zip(&half_b.pixels).map(|(a, b)| [0, 1, 2].map(|c| 0.5 * (a[c] + b[c]))).collect();
+        let own_noise = display_mse(&half_a.pixels, &half_b.pixels) / 4.0;
+        let error = |pixels: &[[f32; 3]]| (display_mse(pixels, &converged) - own_noise).max(0.0).sqrt();
+        let raw = render(64, 2, false);
+        let few = render(16, 3, true);
+        let aovs = session.aovs().unwrap_or_else(|e| panic!("{e:#}"));
+        let denoised = denoiser.denoise(&few, &aovs).unwrap_or_else(|e| panic!("{name}: {e:#}"));
+        let (raw_error, denoised_error, noisy_error) = (error(&raw.pixels), error(&denoised), error(&few.pixels));
+        eprintln!(
+            "{name}: display RMSE against 384 spp (its own noise {:.2} taken off): 16 spp {noisy_error:.2}, \
+             16 spp denoised ({}) {denoised_error:.2}, 64 spp {raw_error:.2}",
+            own_noise.sqrt(),
+            denoiser.device()
+        );
+        assert!(denoised_error < raw_error, "{name}: denoised 16 spp {denoised_error:.2} vs raw 64 spp {raw_error:.2}");
+    }
+}
+
+/// Open Image Denoise loads its devices from beside its library: with the library found
+/// but no device beside it, `--denoise` must say what is missing, before rendering.
+#[cfg(feature = "denoise")]
+#[test]
+fn missing_device_libraries_are_a_clear_message() {
+    let installed = std::path::PathBuf::from(env!("OIDN_DIR")).join("lib");
+    let lib = temp_dir("oidn-missing").join("lib");
+    std::fs::create_dir_all(&lib).expect("dir");
+    for name in ["libOpenImageDenoise.so.2", "libOpenImageDenoise_core.so.2.5.1", "libtbb.so.12"] {
+        let _ = std::fs::remove_file(lib.join(name));
+        std::os::unix::fs::symlink(installed.join(name), lib.join(name)).expect("link");
+    }
+    let out = Command::new(env!("CARGO_BIN_EXE_rt"))
+        .args(["render", "--size", "8x8", "--spp", "1", "--denoise", "-o"])
+        .arg(lib.join("x.png"))
+        .env("LD_LIBRARY_PATH", &lib)
+        .output()
+        .expect("run rt");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("Open Image Denoise could make no device") && stderr.contains("scripts/fetch_oidn"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("panicked") && !lib.join("x.png").exists(), "{stderr}");
+}
+
+#[cfg(not(feature = "denoise"))]
+#[test]
+fn a_build_without_open_image_denoise_says_how_to_get_it() {
+    let out = Command::new(env!("CARGO_BIN_EXE_rt"))
+        .args(["render", "--size", "8x8", "--spp", "1", "--denoise", "-o"])
+        .arg(temp_dir("no-oidn").join("x.png"))
+        .output()
+        .expect("run rt");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("built without Open Image Denoise") && stderr.contains("--features denoise"), "{stderr}");
+}
+
+/// `rt bench accuracy` prices denoising and adaptive sampling as knobs.
+#[cfg(feature = "denoise")]
+#[test]
+fn bench_accuracy_has_denoise_and_adaptive_knobs() {
+    let out = temp_dir("bench-knobs");
+    let scene = rt::scene::default_scene().unwrap_or_else(|e| panic!("{e}"));
+    let options = rt::bench::AccuracyOptions {
+        knobs: vec!["denoise".into(), "adaptive".into()],
+        out: out.clone(),
+        size: Some((32, 24)),
+        levels: Some(vec![1, 2, 4]),
+        repeats: Some(1),
+        reference_spp: Some(16),
+        ..Default::default()
+    };
+    let summary = rt::bench::accuracy(common::gpu(), &scene, &options).unwrap_or_else(|e| panic!("{e:#}"));
+    let report = std::fs::read_to_string(&summary.report).expect("report.md");
+    for section in ["## denoise", "## adaptive", "| on |", "| 0.05 |"] {
+        assert!(report.contains(section), "no {section:?} in the report:\n{report}");
+    }
+    assert!(!report.contains("cannot denoise"), "the denoise knob was skipped:\n{report}");
+    let _ = std::fs::remove_dir_all(out);
+}

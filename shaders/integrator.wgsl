@@ -33,6 +33,7 @@
 //#endif
 //#if normal_maps
 //#include "normal_map.wgsl"
+//#endif
 //#if aovs
 //#include "aovs.wgsl"
 //#endif

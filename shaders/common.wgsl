@@ -104,7 +104,6 @@ struct TriangleShading {
 
 struct Instance {
     world_to_object: array<vec4f, 3>,
-    object_to_world: array<vec4f, 3>,
     node_offset: u32,
     triangle_offset: u32,
     material_base: u32,

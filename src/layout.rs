@@ -109,9 +109,10 @@ pub struct GpuTriangleShading {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuInstance {
-    /// Rows of the affine 3×4 matrix.
+    /// Rows of the affine 3×4 matrix. Its inverse is derived where a hit or a light
+    /// sample needs it (`affine_inverse` in `shaders/transform.wgsl`): traversal, the
+    /// hot path, needs only this one, and an instance stays at 64 bytes.
     pub world_to_object: [[f32; 4]; 3],
-    pub object_to_world: [[f32; 4]; 3],
     pub node_offset: u32,
     pub triangle_offset: u32,
     pub material_base: u32,

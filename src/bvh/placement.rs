@@ -8,7 +8,7 @@ use crate::asset::{AssetError, rtinst};
 use crate::layout::{GpuInstance, NO_MATERIAL};
 use crate::scene::{InstanceSet, Scene};
 use anyhow::{Result, bail};
-use glam::{Mat4, Vec3, Vec3A};
+use glam::{DMat4, Mat4, Vec3, Vec3A};
 use obvhs::aabb::Aabb;
 
 /// Where a mesh's data sits in the scene's concatenated buffers.
@@ -63,7 +63,6 @@ impl<'m> Placement<'m> {
         self.instance_mesh.push(mesh_index as u32);
         self.instances.push(GpuInstance {
             world_to_object: affine_rows(&object_to_world.inverse()),
-            object_to_world: affine_rows(object_to_world),
             node_offset: slot.node_offset,
             triangle_offset: slot.triangle_offset,
             material_base: slot.material_base,
@@ -105,6 +104,13 @@ impl<'m> Placement<'m> {
         }
         Ok(())
     }
+}
+
+/// An instance's object-to-world matrix, derived in f64 from the world-to-object one
+/// that the GPU record keeps.
+pub fn object_to_world(instance: &GpuInstance) -> DMat4 {
+    let [r0, r1, r2] = instance.world_to_object.map(|r| r.map(f64::from));
+    DMat4::from_cols_array_2d(&[r0, r1, r2, [0.0, 0.0, 0.0, 1.0]]).transpose().inverse()
 }
 
 fn affine_rows(m: &Mat4) -> [[f32; 4]; 3] {

@@ -291,15 +291,6 @@ impl EmissiveTriangles<'_> {
             .collect();
         let mut entries: Vec<(GpuEmitter, f64)> = Vec::new();
         for (index, (inst, &mesh)) in instances.iter().zip(instance_mesh).enumerate() {
-            let to_world = |v: [f32; 3]| {
-                let p = glam::DVec3::from(v.map(f64::from));
-                let r = inst.object_to_world.map(|row| glam::DVec4::from(row.map(f64::from)));
-                glam::DVec3::new(
-                    r[0].truncate().dot(p) + r[0].w,
-                    r[1].truncate().dot(p) + r[1].w,
-                    r[2].truncate().dot(p) + r[2].w,
-                )
-            };
             let all: Vec<u32>;
             let emitting: &[u32] = if inst.material_override == NO_MATERIAL {
                 &own[mesh as usize]
@@ -309,6 +300,11 @@ impl EmissiveTriangles<'_> {
             } else {
                 &[]
             };
+            if emitting.is_empty() {
+                continue;
+            }
+            let m = super::placement::object_to_world(inst);
+            let to_world = |v: [f32; 3]| m.transform_point3(glam::DVec3::from(v.map(f64::from)));
             for &t in emitting {
                 let tri = &self.triangles[t as usize];
                 let material = if inst.material_override == NO_MATERIAL {

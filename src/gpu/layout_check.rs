@@ -90,7 +90,7 @@ fn host_structs_match_wgsl_layouts() {
         host_layout!(
             "Instance",
             GpuInstance,
-            [world_to_object, object_to_world, node_offset, triangle_offset, material_base, material_override]
+            [world_to_object, node_offset, triangle_offset, material_base, material_override]
         ),
         host_layout!("Sphere", GpuSphere, [center, radius, material, k]),
         host_layout!(

@@ -23,7 +23,7 @@ fn check(name: &str) {
     let instances: usize = scene
         .instance_sets
         .iter()
-        .map(|s| rt::asset::rtinst::read(&s.file).unwrap_or_else(|e| panic!("{e}")).len())
+        .map(|s| rt::asset::rtinst::read(&s.file).unwrap_or_else(|e| panic!("{e}")).records.len())
         .sum();
     let (w, h) = (scene.render.width, scene.render.height);
     let ours = render(scene, w, h, SPP, MAX_BOUNCES);
@@ -44,7 +44,8 @@ fn geometry_nodes_scatter_and_hair_particles_match_cycles() {
     // "pile" runs nodes that output only instances: its cones are placed, it is not a mesh.
     let folder = repo().join("tests/cycles/scenes/instances_scatter");
     assert!(!folder.join("assets/pile").exists(), "an object with only instances was exported as a mesh");
-    let cones = rt::asset::rtinst::read(&folder.join("scene_instances/cone.rtinst")).unwrap_or_else(|e| panic!("{e}"));
+    let cones =
+        rt::asset::rtinst::read(&folder.join("scene_instances/cone.rtinst")).unwrap_or_else(|e| panic!("{e}")).records;
     assert!(cones.len() > 40, "{} cones: the pile's instances are missing (the lawn's hair has 40)", cones.len());
     check("scatter");
 }

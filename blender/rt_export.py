@@ -47,8 +47,9 @@ bl_info = {
 RTMESH_MAGIC = b"RTMESH\0\0"
 RTMESH_VERSION = 2
 RTINST_MAGIC = b"RTINST\0\0"
-RTINST_VERSION = 1
+RTINST_VERSION = 2
 RTINST_OWN_MATERIALS = 0xFFFFFFFF
+RTINST_MATERIAL_SET = 0x80000000
 
 # Blender (Z up) to rt (Y up): a rotation of -90 degrees about X.
 TO_RT = Matrix(((1, 0, 0, 0), (0, 0, 1, 0), (0, -1, 0, 0), (0, 0, 0, 1)))
@@ -580,16 +581,20 @@ def export_object_mesh(obj, depsgraph, base_name="mesh"):
         evaluated.to_mesh_clear()
 
 
-def export_mesh(mesh, materials, textures):
-    """(rtmesh bytes, gltf text, {image file: PNG bytes}, triangle count) of an evaluated
-    mesh shown with `materials`, its images collected by `textures`. The materials come
-    first: their Mapping nodes transform the uvs."""
-    # The thickness of volumes is the mesh's smallest extent (an axis swap keeps it).
+def mesh_thickness(mesh):
+    """The thickness of volumes: the mesh's smallest extent (an axis swap keeps it)."""
     co = np.empty(len(mesh.vertices) * 3, np.float32)
     mesh.vertices.foreach_get("co", co)
     co = co.reshape(-1, 3)
     extent = co.max(axis=0) - co.min(axis=0) if len(co) else [1]
-    thickness = float(max(min(extent), 1e-3))
+    return float(max(min(extent), 1e-3))
+
+
+def export_mesh(mesh, materials, textures):
+    """(rtmesh bytes, gltf text, {image file: PNG bytes}, triangle count) of an evaluated
+    mesh shown with `materials`, its images collected by `textures`. The materials come
+    first: their Mapping nodes transform the uvs."""
+    thickness = mesh_thickness(mesh)
     exported = [gltf_material(m, thickness, textures) for m in materials]
     arrays = mesh_arrays(mesh, len(materials), [transform for _, transform in exported])
     gltf = gltf_text([material for material, _ in exported], thickness, textures)
@@ -610,7 +615,7 @@ class Export:
         self.content = {}  # folder name -> (rtmesh bytes, gltf text)
         self.written = []  # files actually rewritten
         self.triangles = {}
-        self.instances = {}  # folder name -> [rt matrix rows] of its instances
+        self.instances = {}  # folder name -> Placements of its instances
         self.images = {}  # folder name -> {image file name: PNG bytes}
 
     def add(self, obj, depsgraph):
@@ -673,28 +678,118 @@ def rt_rows(matrix_world):
     return [m[r][c] for r in range(3) for c in range(4)]
 
 
+def same_uv_transform(a, b):
+    """Whether two uv transforms (2x3 arrays, or None for none) are one."""
+    if a is None or b is None:
+        return a is b
+    return bool(np.array_equal(a, b))
+
+
+class InstancedMesh:
+    """An evaluated mesh that instances place, exported once: its first instance's
+    materials are the asset's own, and an instance showing other materials picks a
+    material set of the instance file (slot i shows the set's i-th asset material), the
+    asset's .gltf holding every material some instance shows."""
+
+    def __init__(self, mesh, materials, base):
+        self.base = base
+        self.textures = Textures(base)
+        self.thickness = mesh_thickness(mesh)
+        self.index = {}  # material name -> index in the asset's materials
+        self.exported = []  # (glTF material, uv transform), the asset's own first
+        own = [self.material(m) for m in materials]
+        arrays = mesh_arrays(mesh, len(materials), [self.exported[i][1] for i in own])
+        self.rtmesh = rtmesh_bytes(arrays)
+        self.triangles = len(arrays["indices"])
+        self.slots = len(materials)
+        self.sets = []  # tuples of asset material indices, one per slot
+        self.rows = []  # rt matrix rows of each instance
+        self.codes = []  # each instance's .rtinst material
+
+    def material(self, m):
+        key = m.name if m else ""
+        if key not in self.index:
+            self.index[key] = len(self.exported)
+            self.exported.append(gltf_material(m, self.thickness, self.textures))
+        return self.index[key]
+
+    def code_of(self, materials):
+        """The .rtinst material of an instance showing `materials`: the asset's own, a
+        material set, or None when a set cannot show them (another slot count, or a
+        Mapping node whose uv transform differs from the slot's own material's)."""
+        if len(materials) != self.slots:
+            return None
+        indices = tuple(self.material(m) for m in materials)
+        if indices == tuple(range(self.slots)):
+            return RTINST_OWN_MATERIALS
+        if any(not same_uv_transform(self.exported[m][1], self.exported[slot][1]) for slot, m in enumerate(indices)):
+            return None
+        if indices not in self.sets:
+            self.sets.append(indices)
+        return RTINST_MATERIAL_SET | self.sets.index(indices)
+
+    def gltf(self):
+        return gltf_text([material for material, _ in self.exported], self.thickness, self.textures)
+
+
 def add_instances(export, depsgraph):
     """Every instance that `depsgraph` generates (collection instances, nested ones,
-    geometry-nodes instances, particles): each distinct evaluated mesh with its
-    materials is exported once, and each instance's matrix is kept for its folder."""
-    meshes = {}  # (mesh identity, material names) -> folder, or None for an empty mesh
+    geometry-nodes instances, particles): each distinct evaluated mesh is exported once,
+    and each instance's matrix and material set are kept for its folder."""
+    meshes = {}  # mesh identity (with material names for a set that cannot be) -> InstancedMesh, or None when empty
     for inst in depsgraph.object_instances:
         obj = inst.object
         if not inst.is_instance or obj.type != "MESH" or obj.data is None or obj.original.hide_render:
             continue
         materials = instance_materials(inst)
-        key = (obj.data.as_pointer(), tuple(m.name if m else "" for m in materials))
+        key = obj.data.as_pointer()
         if key not in meshes:
-            base = sanitize(obj.data.name)
-            rtmesh, gltf, images, triangles = export_mesh(obj.data, materials, Textures(base))
-            meshes[key] = export.store(base, rtmesh, gltf, images, triangles) if triangles else None
-        folder = meshes[key]
-        if folder is None:
+            meshes[key] = InstancedMesh(obj.data, materials, sanitize(obj.data.name))
+        entry = meshes[key]
+        code = entry.code_of(materials) if entry else None
+        if entry and code is None:
+            # Shown as no material set can show it: another asset folder (same geometry, other materials).
+            key = (key, tuple(m.name if m else "" for m in materials))
+            if key not in meshes:
+                meshes[key] = InstancedMesh(obj.data, materials, sanitize(obj.data.name))
+            entry, code = meshes[key], RTINST_OWN_MATERIALS
+        if entry is None or entry.triangles == 0:
+            meshes[key] = None
             continue
         if not invertible(inst.matrix_world):
             log(f"an instance of {obj.data.name} is scaled to nothing or not finite; left out of the scene")
             continue
-        export.instances.setdefault(folder, []).append(rt_rows(inst.matrix_world))
+        entry.rows.append(rt_rows(inst.matrix_world))
+        entry.codes.append(code)
+    for entry in meshes.values():
+        if entry is None or not entry.rows:
+            continue
+        folder = export.store(entry.base, entry.rtmesh, entry.gltf(), entry.textures.images, entry.triangles)
+        placed = export.instances.setdefault(folder, Placements(entry.slots))
+        placed.add(entry)
+
+
+class Placements:
+    """The instances of one asset folder: their matrices, materials and material sets."""
+
+    def __init__(self, slots):
+        self.slots = slots
+        self.rows = []
+        self.codes = []
+        self.sets = []
+
+    def __len__(self):
+        return len(self.rows)
+
+    def add(self, entry):
+        """`entry`'s instances, its sets renumbered into this folder's (a folder with the
+        same bytes has the same materials, in the same order)."""
+        for s in entry.sets:
+            if s not in self.sets:
+                self.sets.append(s)
+        renumber = [RTINST_MATERIAL_SET | self.sets.index(s) for s in entry.sets]
+        self.rows += entry.rows
+        self.codes += [c if c == RTINST_OWN_MATERIALS else renumber[c & ~RTINST_MATERIAL_SET] for c in entry.codes]
 
 
 def invertible(matrix):
@@ -707,12 +802,16 @@ def invertible(matrix):
     return abs(m.determinant()) > 1e-6 * lengths
 
 
-def rtinst_bytes(rows):
-    """The instance file: magic, version, count, then (12 f32, u32) per instance."""
-    records = np.zeros(len(rows), dtype=[("rows", "<f4", 12), ("material", "<u4")])
-    records["rows"] = np.asarray(rows, dtype=np.float32).reshape(-1, 12)
-    records["material"] = RTINST_OWN_MATERIALS
-    return RTINST_MAGIC + struct.pack("<2I", RTINST_VERSION, len(rows)) + records.tobytes()
+def rtinst_bytes(placements):
+    """The instance file (version 2): magic, version, instance, slot and set counts, the
+    material sets, then (12 f32, u32) per instance."""
+    records = np.zeros(len(placements.rows), dtype=[("rows", "<f4", 12), ("material", "<u4")])
+    records["rows"] = np.asarray(placements.rows, dtype=np.float32).reshape(-1, 12)
+    records["material"] = np.asarray(placements.codes, dtype=np.uint32)
+    slots = placements.slots if placements.sets else 0
+    header = struct.pack("<4I", RTINST_VERSION, len(placements.rows), slots, len(placements.sets))
+    sets = np.asarray(placements.sets, dtype="<u4").tobytes()
+    return RTINST_MAGIC + header + sets + records.tobytes()
 
 
 def instances_toml(export, scene_path):

@@ -672,10 +672,19 @@ def instance_materials(inst):
     return list(obj.data.materials) or [None]
 
 
-def rt_rows(matrix_world):
-    """The top three rows of a Blender object matrix in rt's axes, row-major."""
-    m = TO_RT @ matrix_world @ FROM_RT
-    return [m[r][c] for r in range(3) for c in range(4)]
+def rt_rows(matrices):
+    """The top three rows of Blender object matrices (an (n, 4, 4) array) in rt's axes,
+    row-major, as an (n, 12) array, and which of them rt can invert: finite, with a
+    determinant above 1e-6 of the largest that columns of these lengths can have."""
+    m = np.asarray(matrices, dtype=np.float64).reshape(-1, 4, 4)
+    rows = (np.asarray(TO_RT) @ m @ np.asarray(FROM_RT))[:, :3, :].reshape(-1, 12)
+    with np.errstate(all="ignore"):
+        linear = m[:, :3, :3]
+        lengths = np.prod(np.linalg.norm(linear, axis=1), axis=1)
+        finite = np.isfinite(m).all(axis=(1, 2))
+        det = np.linalg.det(np.where(finite[:, None, None], linear, 0.0))
+        invertible = finite & (np.abs(det) > 1e-6 * lengths)
+    return rows, invertible
 
 
 def same_uv_transform(a, b):
@@ -703,7 +712,8 @@ class InstancedMesh:
         self.triangles = len(arrays["indices"])
         self.slots = len(materials)
         self.sets = []  # tuples of asset material indices, one per slot
-        self.rows = []  # rt matrix rows of each instance
+        self.matrices = []  # Blender matrix of each instance
+        self.rows = None  # their rt matrix rows, an (n, 12) array, once invertible ones are kept
         self.codes = []  # each instance's .rtinst material
 
     def material(self, m):
@@ -732,37 +742,53 @@ class InstancedMesh:
         return gltf_text([material for material, _ in self.exported], self.thickness, self.textures)
 
 
+def instanced_mesh(meshes, obj, materials):
+    """(key into `meshes`, .rtinst material) of an instance of `obj` showing `materials`,
+    exporting its mesh at its first instance; `meshes[key]` is None for an empty mesh."""
+    key = obj.data.as_pointer()
+    if key not in meshes:
+        meshes[key] = InstancedMesh(obj.data, materials, sanitize(obj.data.name))
+    code = meshes[key].code_of(materials) if meshes[key] else RTINST_OWN_MATERIALS
+    if code is None:
+        # Shown as no material set can show it: another asset folder (same geometry, other materials).
+        key = (key, tuple(m.name if m else "" for m in materials))
+        if key not in meshes:
+            meshes[key] = InstancedMesh(obj.data, materials, sanitize(obj.data.name))
+        code = RTINST_OWN_MATERIALS
+    if meshes[key] and meshes[key].triangles == 0:
+        meshes[key] = None
+    return key, code
+
+
 def add_instances(export, depsgraph):
     """Every instance that `depsgraph` generates (collection instances, nested ones,
     geometry-nodes instances, particles): each distinct evaluated mesh is exported once,
     and each instance's matrix and material set are kept for its folder."""
     meshes = {}  # mesh identity (with material names for a set that cannot be) -> InstancedMesh, or None when empty
+    resolved = {}  # (object, mesh) identity -> what `instanced_mesh` said for it
     for inst in depsgraph.object_instances:
         obj = inst.object
         if not inst.is_instance or obj.type != "MESH" or obj.data is None or obj.original.hide_render:
             continue
-        materials = instance_materials(inst)
-        key = obj.data.as_pointer()
-        if key not in meshes:
-            meshes[key] = InstancedMesh(obj.data, materials, sanitize(obj.data.name))
+        identity = (obj.original.as_pointer(), obj.data.as_pointer())
+        if identity not in resolved:
+            resolved[identity] = instanced_mesh(meshes, obj, instance_materials(inst))
+        key, code = resolved[identity]
         entry = meshes[key]
-        code = entry.code_of(materials) if entry else None
-        if entry and code is None:
-            # Shown as no material set can show it: another asset folder (same geometry, other materials).
-            key = (key, tuple(m.name if m else "" for m in materials))
-            if key not in meshes:
-                meshes[key] = InstancedMesh(obj.data, materials, sanitize(obj.data.name))
-            entry, code = meshes[key], RTINST_OWN_MATERIALS
-        if entry is None or entry.triangles == 0:
-            meshes[key] = None
+        if entry is None:
             continue
-        if not invertible(inst.matrix_world):
-            log(f"an instance of {obj.data.name} is scaled to nothing or not finite; left out of the scene")
-            continue
-        entry.rows.append(rt_rows(inst.matrix_world))
+        # A copy: the depsgraph reuses the instance's matrix for the next one.
+        entry.matrices.append(inst.matrix_world.copy())
         entry.codes.append(code)
     for entry in meshes.values():
-        if entry is None or not entry.rows:
+        if entry is None or not entry.matrices:
+            continue
+        rows, invertible = rt_rows(entry.matrices)
+        if not invertible.all():
+            log(f"{(~invertible).sum()} instances of {entry.base} are scaled to nothing or not finite; left out of the scene")
+        entry.rows = rows[invertible]
+        entry.codes = [c for c, keep in zip(entry.codes, invertible) if keep]
+        if not entry.codes:
             continue
         folder = export.store(entry.base, entry.rtmesh, entry.gltf(), entry.textures.images, entry.triangles)
         placed = export.instances.setdefault(folder, Placements(entry.slots))
@@ -779,7 +805,7 @@ class Placements:
         self.sets = []
 
     def __len__(self):
-        return len(self.rows)
+        return len(self.codes)
 
     def add(self, entry):
         """`entry`'s instances, its sets renumbered into this folder's (a folder with the
@@ -788,28 +814,18 @@ class Placements:
             if s not in self.sets:
                 self.sets.append(s)
         renumber = [RTINST_MATERIAL_SET | self.sets.index(s) for s in entry.sets]
-        self.rows += entry.rows
+        self.rows.append(entry.rows)
         self.codes += [c if c == RTINST_OWN_MATERIALS else renumber[c & ~RTINST_MATERIAL_SET] for c in entry.codes]
-
-
-def invertible(matrix):
-    """rt's rule for an instance matrix: finite, with a determinant above 1e-6 of the
-    largest that columns of these lengths can have."""
-    m = matrix.to_3x3()
-    if not all(math.isfinite(v) for row in matrix for v in row):
-        return False
-    lengths = m.col[0].length * m.col[1].length * m.col[2].length
-    return abs(m.determinant()) > 1e-6 * lengths
 
 
 def rtinst_bytes(placements):
     """The instance file (version 2): magic, version, instance, slot and set counts, the
     material sets, then (12 f32, u32) per instance."""
-    records = np.zeros(len(placements.rows), dtype=[("rows", "<f4", 12), ("material", "<u4")])
-    records["rows"] = np.asarray(placements.rows, dtype=np.float32).reshape(-1, 12)
+    records = np.zeros(len(placements), dtype=[("rows", "<f4", 12), ("material", "<u4")])
+    records["rows"] = np.concatenate(placements.rows).astype(np.float32)
     records["material"] = np.asarray(placements.codes, dtype=np.uint32)
     slots = placements.slots if placements.sets else 0
-    header = struct.pack("<4I", RTINST_VERSION, len(placements.rows), slots, len(placements.sets))
+    header = struct.pack("<4I", RTINST_VERSION, len(placements), slots, len(placements.sets))
     sets = np.asarray(placements.sets, dtype="<u4").tobytes()
     return RTINST_MAGIC + header + sets + records.tobytes()
 

@@ -883,8 +883,8 @@ def focus_distance(cam):
 
 
 def camera_toml(scene):
-    """The camera as Cycles sees it: its roll through `up`, projection, sensor, shift and
-    depth of field (Blender's camera looks down its local -Z with +Y up)."""
+    """The camera as Cycles sees it: its roll through `up`, projection, sensor, shift, clip
+    planes and depth of field (Blender's camera looks down its local -Z with +Y up)."""
     cam = scene.camera
     if cam is None:
         return ""
@@ -910,7 +910,12 @@ def camera_toml(scene):
         f"sensor_height_mm = {fmt(data.sensor_height)}",
         f"shift_x = {fmt(data.shift_x)}",
         f"shift_y = {fmt(data.shift_y)}",
+        f"clip_start = {fmt(data.clip_start)}",
     ]
+    if data.clip_end > data.clip_start:
+        lines.append(f"clip_end = {fmt(data.clip_end)}")
+    else:
+        log(f"camera {cam.name}: clip_end is not beyond clip_start; exported without a far clip")
     dof = data.dof
     if dof.use_dof:
         # Cycles clamps both to 1e-5 rather than refusing them.

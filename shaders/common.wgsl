@@ -41,6 +41,9 @@ struct Frame {
     ris_candidates: u32,
     // Samples whose luminance exceeds this are scaled down to it (0: off). Biased: off by default.
     clamp_luminance: f32,
+    // Camera rays start at the plane clip_start along the view and end at clip_end.
+    clip_start: f32,
+    clip_end: f32,
 }
 
 // A BVH2 node holding both children's boxes, so that one fetch decides where to go.

@@ -41,6 +41,12 @@ pub struct GpuFrame {
     pub emitter_total_power: f32,
     pub ris_candidates: u32,
     pub clamp_luminance: f32,
+    /// Cycles' clip_start and clip_end, in metres along the view (a plane at each, for
+    /// a perspective camera); the far one may be infinite.
+    pub clip_start: f32,
+    pub clip_end: f32,
+    /// WGSL rounds the struct's size up to 16 bytes.
+    pub _clip_pad: [u32; 2],
 }
 
 /// A BVH2 node with both children's boxes (see `shaders/common.wgsl`).

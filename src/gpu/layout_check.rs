@@ -63,7 +63,9 @@ fn host_structs_match_wgsl_layouts() {
                 emitter_count,
                 emitter_total_power,
                 ris_candidates,
-                clamp_luminance
+                clamp_luminance,
+                clip_start,
+                clip_end
             ]
         ),
         host_layout!("BvhNode", GpuBvhNode, [a_min, a_link, a_max, a_count, b_min, b_link, b_max, b_count]),

@@ -48,8 +48,9 @@ bl_info = {
 RTMESH_MAGIC = b"RTMESH\0\0"
 RTMESH_VERSION = 2
 RTINST_MAGIC = b"RTINST\0\0"
-RTINST_VERSION = 1
+RTINST_VERSION = 2
 RTINST_OWN_MATERIALS = 0xFFFFFFFF
+RTINST_MATERIAL_SET = 0x80000000
 
 # Blender (Z up) to rt (Y up): a rotation of -90 degrees about X.
 TO_RT = Matrix(((1, 0, 0, 0), (0, 0, 1, 0), (0, -1, 0, 0), (0, 0, 0, 1)))
@@ -599,16 +600,20 @@ def warn_other_uv_maps(mesh, materials):
                     f"the first one ({first!r}) and uses that")
 
 
-def export_mesh(mesh, materials, textures):
-    """(rtmesh bytes, gltf text, {image file: PNG bytes}, triangle count) of an evaluated
-    mesh shown with `materials`, its images collected by `textures`. The materials come
-    first: their Mapping nodes transform the uvs."""
-    # The thickness of volumes is the mesh's smallest extent (an axis swap keeps it).
+def mesh_thickness(mesh):
+    """The thickness of volumes: the mesh's smallest extent (an axis swap keeps it)."""
     co = np.empty(len(mesh.vertices) * 3, np.float32)
     mesh.vertices.foreach_get("co", co)
     co = co.reshape(-1, 3)
     extent = co.max(axis=0) - co.min(axis=0) if len(co) else [1]
-    thickness = float(max(min(extent), 1e-3))
+    return float(max(min(extent), 1e-3))
+
+
+def export_mesh(mesh, materials, textures):
+    """(rtmesh bytes, gltf text, {image file: PNG bytes}, triangle count) of an evaluated
+    mesh shown with `materials`, its images collected by `textures`. The materials come
+    first: their Mapping nodes transform the uvs."""
+    thickness = mesh_thickness(mesh)
     exported = [gltf_material(m, thickness, textures) for m in materials]
     warn_other_uv_maps(mesh, materials)
     arrays = mesh_arrays(mesh, len(materials), [transform for _, transform in exported])
@@ -630,7 +635,7 @@ class Export:
         self.content = {}  # folder name -> (rtmesh bytes, gltf text)
         self.written = []  # files actually rewritten
         self.triangles = {}
-        self.instances = {}  # folder name -> [rt matrix rows] of its instances
+        self.instances = {}  # folder name -> Placements of its instances
         self.images = {}  # folder name -> {image file name: PNG bytes}
 
     def add(self, obj, depsgraph):
@@ -687,52 +692,162 @@ def instance_materials(inst):
     return list(obj.data.materials) or [None]
 
 
-def rt_rows(matrix_world):
-    """The top three rows of a Blender object matrix in rt's axes, row-major."""
-    m = TO_RT @ matrix_world @ FROM_RT
-    return [m[r][c] for r in range(3) for c in range(4)]
+def rt_rows(matrices):
+    """The top three rows of Blender object matrices (an (n, 4, 4) array) in rt's axes,
+    row-major, as an (n, 12) array, and which of them rt can invert: finite, with a
+    determinant above 1e-6 of the largest that columns of these lengths can have."""
+    m = np.asarray(matrices, dtype=np.float64).reshape(-1, 4, 4)
+    rows = (np.asarray(TO_RT) @ m @ np.asarray(FROM_RT))[:, :3, :].reshape(-1, 12)
+    with np.errstate(all="ignore"):
+        linear = m[:, :3, :3]
+        lengths = np.prod(np.linalg.norm(linear, axis=1), axis=1)
+        finite = np.isfinite(m).all(axis=(1, 2))
+        det = np.linalg.det(np.where(finite[:, None, None], linear, 0.0))
+        invertible = finite & (np.abs(det) > 1e-6 * lengths)
+    return rows, invertible
+
+
+def same_uv_transform(a, b):
+    """Whether two uv transforms (2x3 arrays, or None for none) are one."""
+    if a is None or b is None:
+        return a is b
+    return bool(np.array_equal(a, b))
+
+
+class InstancedMesh:
+    """An evaluated mesh that instances place, exported once: its first instance's
+    materials are the asset's own, and an instance showing other materials picks a
+    material set of the instance file (slot i shows the set's i-th asset material), the
+    asset's .gltf holding every material some instance shows."""
+
+    def __init__(self, mesh, materials, base):
+        self.base = base
+        self.textures = Textures(base)
+        self.thickness = mesh_thickness(mesh)
+        self.index = {}  # material name -> index in the asset's materials
+        self.exported = []  # (glTF material, uv transform), the asset's own first
+        own = [self.material(m) for m in materials]
+        arrays = mesh_arrays(mesh, len(materials), [self.exported[i][1] for i in own])
+        self.rtmesh = rtmesh_bytes(arrays)
+        self.triangles = len(arrays["indices"])
+        self.slots = len(materials)
+        self.sets = []  # tuples of asset material indices, one per slot
+        self.matrices = []  # Blender matrix of each instance
+        self.rows = None  # their rt matrix rows, an (n, 12) array, once invertible ones are kept
+        self.codes = []  # each instance's .rtinst material
+
+    def material(self, m):
+        key = m.name if m else ""
+        if key not in self.index:
+            self.index[key] = len(self.exported)
+            self.exported.append(gltf_material(m, self.thickness, self.textures))
+        return self.index[key]
+
+    def code_of(self, materials):
+        """The .rtinst material of an instance showing `materials`: the asset's own, a
+        material set, or None when a set cannot show them (another slot count, or a
+        Mapping node whose uv transform differs from the slot's own material's)."""
+        if len(materials) != self.slots:
+            return None
+        indices = tuple(self.material(m) for m in materials)
+        if indices == tuple(range(self.slots)):
+            return RTINST_OWN_MATERIALS
+        if any(not same_uv_transform(self.exported[m][1], self.exported[slot][1]) for slot, m in enumerate(indices)):
+            return None
+        if indices not in self.sets:
+            self.sets.append(indices)
+        return RTINST_MATERIAL_SET | self.sets.index(indices)
+
+    def gltf(self):
+        return gltf_text([material for material, _ in self.exported], self.thickness, self.textures)
+
+
+def instanced_mesh(meshes, obj, materials):
+    """(key into `meshes`, .rtinst material) of an instance of `obj` showing `materials`,
+    exporting its mesh at its first instance; `meshes[key]` is None for an empty mesh."""
+    key = obj.data.as_pointer()
+    if key not in meshes:
+        meshes[key] = InstancedMesh(obj.data, materials, sanitize(obj.data.name))
+    code = meshes[key].code_of(materials) if meshes[key] else RTINST_OWN_MATERIALS
+    if code is None:
+        # Shown as no material set can show it: another asset folder (same geometry, other materials).
+        key = (key, tuple(m.name if m else "" for m in materials))
+        if key not in meshes:
+            meshes[key] = InstancedMesh(obj.data, materials, sanitize(obj.data.name))
+        code = RTINST_OWN_MATERIALS
+    if meshes[key] and meshes[key].triangles == 0:
+        meshes[key] = None
+    return key, code
 
 
 def add_instances(export, depsgraph):
     """Every instance that `depsgraph` generates (collection instances, nested ones,
-    geometry-nodes instances, particles): each distinct evaluated mesh with its
-    materials is exported once, and each instance's matrix is kept for its folder."""
-    meshes = {}  # (mesh identity, material names) -> folder, or None for an empty mesh
+    geometry-nodes instances, particles): each distinct evaluated mesh is exported once,
+    and each instance's matrix and material set are kept for its folder."""
+    meshes = {}  # mesh identity (with material names for a set that cannot be) -> InstancedMesh, or None when empty
+    resolved = {}  # (object, mesh) identity -> what `instanced_mesh` said for it
     for inst in depsgraph.object_instances:
         obj = inst.object
         if not inst.is_instance or obj.type != "MESH" or obj.data is None or obj.original.hide_render:
             continue
-        materials = instance_materials(inst)
-        key = (obj.data.as_pointer(), tuple(m.name if m else "" for m in materials))
-        if key not in meshes:
-            base = sanitize(obj.data.name)
-            rtmesh, gltf, images, triangles = export_mesh(obj.data, materials, Textures(base))
-            meshes[key] = export.store(base, rtmesh, gltf, images, triangles) if triangles else None
-        folder = meshes[key]
-        if folder is None:
+        identity = (obj.original.as_pointer(), obj.data.as_pointer())
+        if identity not in resolved:
+            resolved[identity] = instanced_mesh(meshes, obj, instance_materials(inst))
+        key, code = resolved[identity]
+        entry = meshes[key]
+        if entry is None:
             continue
-        if not invertible(inst.matrix_world):
-            log(f"an instance of {obj.data.name} is scaled to nothing or not finite; left out of the scene")
+        # A copy: the depsgraph reuses the instance's matrix for the next one.
+        entry.matrices.append(inst.matrix_world.copy())
+        entry.codes.append(code)
+    for entry in meshes.values():
+        if entry is None or not entry.matrices:
             continue
-        export.instances.setdefault(folder, []).append(rt_rows(inst.matrix_world))
+        rows, invertible = rt_rows(entry.matrices)
+        if not invertible.all():
+            log(f"{(~invertible).sum()} instances of {entry.base} are scaled to nothing or not finite; left out of the scene")
+        entry.rows = rows[invertible]
+        entry.codes = [c for c, keep in zip(entry.codes, invertible) if keep]
+        if not entry.codes:
+            continue
+        folder = export.store(entry.base, entry.rtmesh, entry.gltf(), entry.textures.images, entry.triangles)
+        placed = export.instances.setdefault(folder, Placements(entry.slots))
+        placed.add(entry)
 
 
-def invertible(matrix):
-    """rt's rule for an instance matrix: finite, with a determinant above 1e-6 of the
-    largest that columns of these lengths can have."""
-    m = matrix.to_3x3()
-    if not all(math.isfinite(v) for row in matrix for v in row):
-        return False
-    lengths = m.col[0].length * m.col[1].length * m.col[2].length
-    return abs(m.determinant()) > 1e-6 * lengths
+class Placements:
+    """The instances of one asset folder: their matrices, materials and material sets."""
+
+    def __init__(self, slots):
+        self.slots = slots
+        self.rows = []
+        self.codes = []
+        self.sets = []
+
+    def __len__(self):
+        return len(self.codes)
+
+    def add(self, entry):
+        """`entry`'s instances, its sets renumbered into this folder's (a folder with the
+        same bytes has the same materials, in the same order)."""
+        for s in entry.sets:
+            if s not in self.sets:
+                self.sets.append(s)
+        renumber = [RTINST_MATERIAL_SET | self.sets.index(s) for s in entry.sets]
+        self.rows.append(entry.rows)
+        self.codes += [c if c == RTINST_OWN_MATERIALS else renumber[c & ~RTINST_MATERIAL_SET] for c in entry.codes]
 
 
-def rtinst_bytes(rows):
-    """The instance file: magic, version, count, then (12 f32, u32) per instance."""
-    records = np.zeros(len(rows), dtype=[("rows", "<f4", 12), ("material", "<u4")])
-    records["rows"] = np.asarray(rows, dtype=np.float32).reshape(-1, 12)
-    records["material"] = RTINST_OWN_MATERIALS
-    return RTINST_MAGIC + struct.pack("<2I", RTINST_VERSION, len(rows)) + records.tobytes()
+def rtinst_bytes(placements):
+    """The instance file (version 2): magic, version, instance, slot and set counts, the
+    material sets, then (12 f32, u32) per instance."""
+    records = np.zeros(len(placements), dtype=[("rows", "<f4", 12), ("material", "<u4")])
+    records["rows"] = np.concatenate(placements.rows).astype(np.float32)
+    records["material"] = np.asarray(placements.codes, dtype=np.uint32)
+    slots = placements.slots if placements.sets else 0
+    header = struct.pack("<4I", RTINST_VERSION, len(placements), slots, len(placements.sets))
+    sets = np.asarray(placements.sets, dtype="<u4").tobytes()
+    return RTINST_MAGIC + header + sets + records.tobytes()
 
 
 def instances_toml(export, scene_path):
@@ -788,8 +903,8 @@ def focus_distance(cam):
 
 
 def camera_toml(scene):
-    """The camera as Cycles sees it: its roll through `up`, projection, sensor, shift and
-    depth of field (Blender's camera looks down its local -Z with +Y up)."""
+    """The camera as Cycles sees it: its roll through `up`, projection, sensor, shift, clip
+    planes and depth of field (Blender's camera looks down its local -Z with +Y up)."""
     cam = scene.camera
     if cam is None:
         return ""
@@ -815,7 +930,12 @@ def camera_toml(scene):
         f"sensor_height_mm = {fmt(data.sensor_height)}",
         f"shift_x = {fmt(data.shift_x)}",
         f"shift_y = {fmt(data.shift_y)}",
+        f"clip_start = {fmt(data.clip_start)}",
     ]
+    if data.clip_end > data.clip_start:
+        lines.append(f"clip_end = {fmt(data.clip_end)}")
+    else:
+        log(f"camera {cam.name}: clip_end is not beyond clip_start; exported without a far clip")
     dof = data.dof
     if dof.use_dof:
         # Cycles clamps both to 1e-5 rather than refusing them.

@@ -22,8 +22,8 @@ fn triangle_surface(hit: Hit) -> Surface {
     if material == NO_MATERIAL {
         material = inst.material_base + tri.material;
     }
-    let m = inst.object_to_world;
-    let p = transform_point(m, p_object);
-    let error = transform_point_error(m, p_object, error_object);
+    let to_world = affine_inverse(inst.world_to_object);
+    let p = transform_point(to_world.m, p_object);
+    let error = inverse_transform_point_error(to_world, p_object, error_object);
     return Surface(p, error, normalize(n_geometric), normalize(n_shading), material);
 }

@@ -2,7 +2,8 @@
 // the image plane (lens shift included) gives a direction from the camera's centre
 // (perspective) or a start on the camera's plane (orthographic). With depth of field
 // the ray starts on the aperture instead and passes through the point where the
-// pinhole ray meets the plane in focus.
+// pinhole ray meets the plane in focus. Rays start at the near clip plane and end at
+// the far one.
 
 //#include "constants.wgsl"
 //#include "common.wgsl"
@@ -11,6 +12,8 @@
 struct CameraRay {
     origin: vec3f,
     direction: vec3f,
+    // Where the ray ends: the far clip plane (INFINITY without one).
+    t_max: f32,
 }
 
 fn camera_ray(pixel: vec2u, rng: ptr<function, Rng>) -> CameraRay {
@@ -20,6 +23,9 @@ fn camera_ray(pixel: vec2u, rng: ptr<function, Rng>) -> CameraRay {
     // In the camera's frame: x right, y up, z along the view.
     var origin = vec3f(0.0);
     var direction = vec3f(plane, 1.0);
+    // Cycles clips at planes along the view: the pinhole ray's 1/cos to the view
+    // turns plane distances into distances along any ray of this pixel (1 for parallel rays).
+    let clip_scale = select(length(direction), 1.0, frame.orthographic != 0u);
     if frame.orthographic != 0u {
         origin = vec3f(plane, 0.0);
         direction = vec3f(0.0, 0.0, 1.0);
@@ -34,7 +40,11 @@ fn camera_ray(pixel: vec2u, rng: ptr<function, Rng>) -> CameraRay {
     let world_origin =
         frame.camera_position + origin.x * frame.camera_right + origin.y * frame.camera_up + origin.z * frame.camera_forward;
     let world_direction = direction.x * frame.camera_right + direction.y * frame.camera_up + direction.z * frame.camera_forward;
-    return CameraRay(world_origin, normalize(world_direction));
+    let unit = normalize(world_direction);
+    let clip_length = frame.clip_end - frame.clip_start;
+    // No far plane (clip_end = INFINITY), or one beyond f32's range: INFINITY, as for other rays.
+    let t_max = min(clip_length * clip_scale, INFINITY);
+    return CameraRay(world_origin + unit * (frame.clip_start * clip_scale), unit, t_max);
 }
 
 //#if depth_of_field

@@ -44,8 +44,9 @@ struct Frame {
     // Adaptive sampling: the relative standard error at which a pixel stops, after this many samples.
     noise_threshold: f32,
     adaptive_min_samples: u32,
-    _pad_adaptive0: u32,
-    _pad_adaptive1: u32,
+    // Camera rays start at the plane clip_start along the view and end at clip_end.
+    clip_start: f32,
+    clip_end: f32,
 }
 
 // A BVH2 node holding both children's boxes, so that one fetch decides where to go.
@@ -109,7 +110,6 @@ struct TriangleShading {
 
 struct Instance {
     world_to_object: array<vec4f, 3>,
-    object_to_world: array<vec4f, 3>,
     node_offset: u32,
     triangle_offset: u32,
     material_base: u32,

@@ -148,6 +148,8 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
     let camera = camera_ray(pixel, rng);
     var origin = camera.origin;
     var direction = camera.direction;
+    // The camera ray ends at the far clip plane; the rays after it do not.
+    var path_t_max = camera.t_max;
     var radiance = vec3f(0.0);
     var throughput = vec3f(1.0);
     // Density of the last BSDF sample, for MIS; 0 after the camera and after delta lobes.
@@ -184,7 +186,7 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
     loop {
         var ray_origin = origin;
         var ray_direction = direction;
-        var ray_t_max = INFINITY;
+        var ray_t_max = path_t_max;
         //#if nee
         if shadow_pending {
             ray_origin = shadow.origin;
@@ -212,7 +214,7 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
         //#if lamps
         // Lamps are not in the BVH: the path meets those before the surface and goes on.
         // (Seen through a medium, they skip its absorption.)
-        let lamp_light = lamps_seen(origin, direction, hit.t, hit.kind == HIT_NONE, bsdf_pdf, bounce == 0u);
+        let lamp_light = lamps_seen(origin, direction, min(hit.t, ray_t_max), hit.kind == HIT_NONE, bsdf_pdf, bounce == 0u);
         gather(&radiance, throughput * lamp_light, EVENT_EMISSION);
         //#endif
         //#if media
@@ -299,6 +301,7 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
             }
             origin = offset_ray_origin(surface.position, surface.position_error, select(-n_geometric, n_geometric, dot(s.direction, n_geometric) > 0.0));
             direction = s.direction;
+            path_t_max = INFINITY;
         }
         // The pending shadow ray, if any, is traced before the path ends.
         if path_ended && !shadow_pending {

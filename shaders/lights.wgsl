@@ -197,9 +197,10 @@ fn sample_emitter_at(e: Emitter, tree_selection: f32, p: vec3f, rng: ptr<functio
     //#if triangles
     let inst = instances[e.instance];
     let tri = triangles[e.primitive];
-    let v0 = transform_point(inst.object_to_world, tri.v0);
-    let v1 = transform_point(inst.object_to_world, tri.v1);
-    let v2 = transform_point(inst.object_to_world, tri.v2);
+    let to_world = affine_inverse(inst.world_to_object).m;
+    let v0 = transform_point(to_world, tri.v0);
+    let v1 = transform_point(to_world, tri.v1);
+    let v2 = transform_point(to_world, tri.v2);
     let su = sqrt(u.x);
     let q = (1.0 - su) * v0 + su * (1.0 - u.y) * v1 + su * u.y * v2;
     let to_light = q - p;

@@ -40,7 +40,7 @@ fn texture_point(hit: Hit) -> TexturePoint {
     }
     let uv = triangle_uvs(hit.primitive);
     let tri = triangles[hit.primitive];
-    let to_world = instances[hit.instance].object_to_world;
+    let to_world = affine_inverse(instances[hit.instance].world_to_object).m;
     let world_area = length(cross(transform_vector(to_world, tri.v1 - tri.v0), transform_vector(to_world, tri.v2 - tri.v0)));
     let d1 = uv[1] - uv[0];
     let d2 = uv[2] - uv[0];

@@ -70,7 +70,7 @@ fn generate_camera_rays(@builtin(global_invocation_id) id: vec3u, @builtin(num_w
     let pixel = vec2u(i % frame.width, i / frame.width);
     var rng = rng_for_sample(i, frame.sample_base, frame.seed);
     let ray = camera_ray(pixel, &rng);
-    trace_rays[i] = TraceRay(ray.origin, INFINITY, ray.direction, 0u);
+    trace_rays[i] = TraceRay(ray.origin, ray.t_max, ray.direction, 0u);
 }
 
 // Turns each ray with a hit into a new ray leaving that hit as a path would:

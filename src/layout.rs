@@ -45,7 +45,10 @@ pub struct GpuFrame {
     /// `adaptive_min_samples` samples.
     pub noise_threshold: f32,
     pub adaptive_min_samples: u32,
-    pub _pad_adaptive: [u32; 2],
+    /// Cycles' clip_start and clip_end, in metres along the view (a plane at each, for
+    /// a perspective camera); the far one may be infinite.
+    pub clip_start: f32,
+    pub clip_end: f32,
 }
 
 /// A BVH2 node with both children's boxes (see `shaders/common.wgsl`).
@@ -114,9 +117,10 @@ pub struct GpuTriangleShading {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuInstance {
-    /// Rows of the affine 3×4 matrix.
+    /// Rows of the affine 3×4 matrix. Its inverse is derived where a hit or a light
+    /// sample needs it (`affine_inverse` in `shaders/transform.wgsl`): traversal, the
+    /// hot path, needs only this one, and an instance stays at 64 bytes.
     pub world_to_object: [[f32; 4]; 3],
-    pub object_to_world: [[f32; 4]; 3],
     pub node_offset: u32,
     pub triangle_offset: u32,
     pub material_base: u32,

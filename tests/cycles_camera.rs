@@ -1,7 +1,8 @@
 //! rt's camera against Cycles (`tests/cycles/make_camera_refs.py` renders the references
 //! and exports the scenes with `blender/rt_export.py`): a rolled camera, an orthographic
 //! one without and with depth of field, lens shift with a vertical sensor fit, and depth
-//! of field through a round and a six-bladed anamorphic aperture. The scenes only emit, so
+//! of field through a round and a six-bladed anamorphic aperture, clip planes of a wide
+//! perspective and of an orthographic camera. The scenes only emit, so
 //! the images differ only where the camera's rays go. 8×8-block means and the global mean
 //! must agree within bounds derived from the noise at the sample counts used.
 
@@ -51,4 +52,14 @@ fn depth_of_field_round_aperture_matches_cycles() {
 #[test]
 fn depth_of_field_six_blades_anamorphic_matches_cycles() {
     check("dof_blades");
+}
+
+#[test]
+fn clip_planes_match_cycles() {
+    check("clipped");
+}
+
+#[test]
+fn orthographic_clip_planes_match_cycles() {
+    check("ortho_clipped");
 }

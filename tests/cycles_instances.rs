@@ -1,7 +1,8 @@
 //! rt against Cycles on scenes built from instances in Blender
 //! (`tests/cycles/make_instance_refs.py` builds, exports and renders them): nested
 //! collection instances with a material override, a geometry-nodes scatter and a hair
-//! particle system. The global mean must agree within 4 σ and every 8×8 block within
+//! particle system, and objects sharing one mesh with other materials in some slots
+//! (material sets of one asset). The global mean must agree within 4 σ and every 8×8 block within
 //! 5 σ, σ estimated from rt's own noise at the sample counts used.
 
 mod common;
@@ -23,7 +24,7 @@ fn check(name: &str) {
     let instances: usize = scene
         .instance_sets
         .iter()
-        .map(|s| rt::asset::rtinst::read(&s.file).unwrap_or_else(|e| panic!("{e}")).len())
+        .map(|s| rt::asset::rtinst::read(&s.file).unwrap_or_else(|e| panic!("{e}")).records.len())
         .sum();
     let (w, h) = (scene.render.width, scene.render.height);
     let ours = render(scene, w, h, SPP, MAX_BOUNCES);
@@ -44,7 +45,21 @@ fn geometry_nodes_scatter_and_hair_particles_match_cycles() {
     // "pile" runs nodes that output only instances: its cones are placed, it is not a mesh.
     let folder = repo().join("tests/cycles/scenes/instances_scatter");
     assert!(!folder.join("assets/pile").exists(), "an object with only instances was exported as a mesh");
-    let cones = rt::asset::rtinst::read(&folder.join("scene_instances/cone.rtinst")).unwrap_or_else(|e| panic!("{e}"));
+    let cones =
+        rt::asset::rtinst::read(&folder.join("scene_instances/cone.rtinst")).unwrap_or_else(|e| panic!("{e}")).records;
     assert!(cones.len() > 40, "{} cones: the pile's instances are missing (the lawn's hair has 40)", cones.len());
     check("scatter");
+}
+
+#[test]
+fn objects_showing_one_mesh_with_other_materials_share_one_asset_and_match_cycles() {
+    // Three objects of one two-slot mesh (own materials, a red top, an emissive body),
+    // instanced thrice: one asset, whose instance file has two material sets.
+    let folder = repo().join("tests/cycles/scenes/instances_overrides");
+    let assets: Vec<_> =
+        std::fs::read_dir(folder.join("assets")).expect("assets").flatten().map(|e| e.file_name()).collect();
+    assert_eq!(assets.len(), 2, "{assets:?}: expected the floor and one slab folder");
+    let file = rt::asset::rtinst::read(&folder.join("scene_instances/slab.rtinst")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!((file.records.len(), file.material_sets.len(), file.material_sets.slot_count()), (9, 2, 2));
+    check("overrides");
 }

@@ -190,10 +190,16 @@ fn rtinst_files() {
     let records = [
         rtinst::InstanceRecord::new(&glam::Mat4::IDENTITY, rtinst::OWN_MATERIALS),
         rtinst::InstanceRecord::new(&spin, 0),
+        rtinst::InstanceRecord::new(&spin, rtinst::MATERIAL_SET | 1),
     ];
-    fuzz("rtinst", &[rtinst::encode(&records)], false, &|b| {
-        let _ = rtinst::parse(Path::new("fuzz.rtinst"), b);
-    });
+    fuzz(
+        "rtinst",
+        &[rtinst::encode(&records, &rtinst::MaterialSets::new(1, &[vec![0], vec![0]]).expect("sets"))],
+        false,
+        &|b| {
+            let _ = rtinst::parse(Path::new("fuzz.rtinst"), b);
+        },
+    );
 }
 
 #[test]

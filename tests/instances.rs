@@ -6,7 +6,7 @@ mod common;
 
 use common::{gpu, icosphere_obj, render, temp_dir, write};
 use glam::{Mat4, Quat, Vec3};
-use rt::asset::rtinst::{self, InstanceRecord, OWN_MATERIALS};
+use rt::asset::rtinst::{self, InstanceRecord, MaterialSets, OWN_MATERIALS};
 use rt::bvh::{BuildQuality, SceneGeometry};
 use rt::render::{RenderRequest, Session};
 use std::path::Path;
@@ -65,7 +65,7 @@ fn an_instance_file_places_what_mesh_entries_with_its_matrices_place() {
     }
     let records: Vec<InstanceRecord> = placed.iter().map(|(m, mat)| InstanceRecord::new(m, *mat)).collect();
     let file = dir.join("spheres.rtinst");
-    rtinst::write(&file, &records).expect("write .rtinst");
+    rtinst::write(&file, &records, &MaterialSets::default()).expect("write .rtinst");
     let instanced = format!(
         "{HEADER}[[instances]]\nasset = {asset:?}\nfile = {:?}\nmaterials = [\"red\", \"lamp\"]\n",
         file.display().to_string()
@@ -98,31 +98,125 @@ fn geometry_error(dir: &Path, asset: &str, bytes: &[u8], materials: &str) -> Str
 fn bad_instance_files_are_errors_that_name_the_file_and_the_instance() {
     let dir = temp_dir("instances-bad");
     let asset = sphere_asset(&dir);
-    let good = rtinst::encode(&[InstanceRecord::new(&Mat4::IDENTITY, 0), InstanceRecord::new(&Mat4::IDENTITY, 1)]);
+    let good = rtinst::encode(
+        &[InstanceRecord::new(&Mat4::IDENTITY, 0), InstanceRecord::new(&Mat4::IDENTITY, 1)],
+        &MaterialSets::default(),
+    );
 
     let truncated = geometry_error(&dir, &asset, &good[..good.len() - 3], "[\"red\", \"lamp\"]");
     assert!(
-        truncated.contains("bad.rtinst: size is 117 bytes but its header (2 instances) implies 120"),
+        truncated.contains(
+            "bad.rtinst: size is 125 bytes but its header (2 instances, 0 material sets of 0 slots) implies 128"
+        ),
         "{truncated}"
     );
 
     let mut lying = good.clone();
     lying[12..16].copy_from_slice(&u32::MAX.to_le_bytes());
     let lying = geometry_error(&dir, &asset, &lying, "[]");
-    assert!(lying.contains("bad.rtinst: size is 120 bytes but its header (4294967295 instances)"), "{lying}");
+    assert!(lying.contains("bad.rtinst: size is 128 bytes but its header (4294967295 instances"), "{lying}");
 
     let mut nan = vec![InstanceRecord::new(&Mat4::IDENTITY, 0); 3];
     nan[2].rows[7] = f32::NAN;
-    let nan = geometry_error(&dir, &asset, &rtinst::encode(&nan), "[\"red\"]");
+    let nan = geometry_error(&dir, &asset, &rtinst::encode(&nan, &MaterialSets::default()), "[\"red\"]");
     assert!(nan.contains("bad.rtinst: instance 2: its matrix is not finite"), "{nan}");
 
     let singular = [InstanceRecord::new(&Mat4::from_scale(Vec3::new(1.0, 0.0, 1.0)), OWN_MATERIALS)];
-    let singular = geometry_error(&dir, &asset, &rtinst::encode(&singular), "[]");
+    let singular = geometry_error(&dir, &asset, &rtinst::encode(&singular, &MaterialSets::default()), "[]");
     assert!(singular.contains("bad.rtinst: instance 0: its matrix is singular"), "{singular}");
 
     let out_of_range = geometry_error(&dir, &asset, &good, "[\"red\"]");
     assert!(out_of_range.contains("bad.rtinst: instance 1: material 1 is out of range"), "{out_of_range}");
     println!("{truncated}\n{lying}\n{nan}\n{singular}\n{out_of_range}");
+
+    // Material sets: a set index past the file's sets, a set naming a material the asset
+    // lacks, and more slots than the asset has materials.
+    let sets = |slots: u32, sets: &[Vec<u32>]| MaterialSets::new(slots, sets).expect("sets");
+    let one = [InstanceRecord::new(&Mat4::IDENTITY, rtinst::MATERIAL_SET | 1)];
+    let missing_set = geometry_error(&dir, &asset, &rtinst::encode(&one, &sets(1, &[vec![0]])), "[]");
+    assert!(
+        missing_set.contains("bad.rtinst: instance 0: material set 1 is out of range: the file has 1"),
+        "{missing_set}"
+    );
+    let one = [InstanceRecord::new(&Mat4::IDENTITY, rtinst::MATERIAL_SET)];
+    let missing_material = geometry_error(&dir, &asset, &rtinst::encode(&one, &sets(1, &[vec![1]])), "[]");
+    assert!(
+        missing_material.contains("bad.rtinst: material set 0, slot 0: material 1 is out of range"),
+        "{missing_material}"
+    );
+    let too_many = geometry_error(&dir, &asset, &rtinst::encode(&one, &sets(2, &[vec![0, 0]])), "[]");
+    assert!(too_many.contains("bad.rtinst: its material sets have 2 slots but the asset"), "{too_many}");
+    println!("{missing_set}\n{missing_material}\n{too_many}");
+}
+
+/// The icosphere with its first half of faces showing `first` and the rest `second`, from
+/// a material library of red, blue and a lamp.
+fn two_material_sphere(dir: &Path, name: &str, first: &str, second: &str) -> String {
+    write(
+        &dir.join("m.mtl"),
+        "newmtl red\nKd 0.9 0.1 0.1\nnewmtl blue\nKd 0.1 0.2 0.9\nnewmtl lamp\nKd 0 0 0\nKe 4 3 2\n",
+    );
+    let (obj, _, faces) = icosphere_obj(2);
+    let half = faces.len() / 2;
+    let mut text = String::from("mtllib m.mtl\n");
+    let mut face = 0;
+    for line in obj.lines() {
+        if line.starts_with("f ") {
+            if face == 0 || face == half {
+                text.push_str(&format!("usemtl {}\n", if face == 0 { first } else { second }));
+            }
+            face += 1;
+        }
+        text.push_str(line);
+        text.push('\n');
+    }
+    let path = dir.join(format!("{name}.obj"));
+    write(&path, &text);
+    path.display().to_string()
+}
+
+#[test]
+fn material_sets_show_what_assets_with_those_materials_show() {
+    let dir = temp_dir("instances-material-sets");
+    let asset = two_material_sphere(&dir, "sphere", "red", "blue");
+    let placed = placements();
+    let (lit, blue) = placed.split_at(4);
+    // Set 0 shows the lamp on the first half and red on the second; set 1 blue all over.
+    let sets = MaterialSets::new(2, &[vec![2, 0], vec![1, 1]]).expect("sets");
+    let records: Vec<InstanceRecord> = (lit.iter().map(|(m, _)| InstanceRecord::new(m, rtinst::MATERIAL_SET)))
+        .chain(blue.iter().map(|(m, _)| InstanceRecord::new(m, rtinst::MATERIAL_SET | 1)))
+        .collect();
+    rtinst::write(&dir.join("sets.rtinst"), &records, &sets).expect("write .rtinst");
+    let with_sets = format!("{HEADER}[[instances]]\nasset = {asset:?}\nfile = \"sets.rtinst\"\n");
+
+    // The same placements as two assets whose own materials are those of the sets.
+    let lamp_red = two_material_sphere(&dir, "lamp_red", "lamp", "red");
+    let all_blue = two_material_sphere(&dir, "all_blue", "blue", "blue");
+    let own = |part: &[(Mat4, u32)]| -> Vec<InstanceRecord> {
+        part.iter().map(|(m, _)| InstanceRecord::new(m, OWN_MATERIALS)).collect()
+    };
+    rtinst::write(&dir.join("lit.rtinst"), &own(lit), &MaterialSets::default()).expect("write .rtinst");
+    rtinst::write(&dir.join("blue.rtinst"), &own(blue), &MaterialSets::default()).expect("write .rtinst");
+    let separate = format!(
+        "{HEADER}[[instances]]\nasset = {lamp_red:?}\nfile = \"lit.rtinst\"\n\
+         [[instances]]\nasset = {all_blue:?}\nfile = \"blue.rtinst\"\n"
+    );
+
+    let in_dir = |text: &str| {
+        let path = dir.join("scene.toml");
+        write(&path, text);
+        rt::scene::load(&path).unwrap_or_else(|e| panic!("{e}"))
+    };
+    let a = render(in_dir(&with_sets), 64, 64, 4, 4);
+    let b = render(in_dir(&separate), 64, 64, 4, 4);
+    let differing = a.pixels.iter().zip(&b.pixels).filter(|(p, q)| p != q).count();
+    let bluish = a.pixels.iter().filter(|p| p[2] > p[0] * 2.0 && p[2] > 0.3 && p[1] < 0.6).count();
+    let glowing = a.pixels.iter().filter(|p| p[0] > 1.5).count();
+    println!(
+        "9 instances in two material sets, 64x64 at 4 spp: {differing} pixels differ; {bluish} blue, {glowing} glowing"
+    );
+    assert_eq!(differing, 0, "material sets render otherwise than assets with those materials");
+    assert!(bluish > 20 && glowing > 5, "{bluish} blue and {glowing} glowing pixels: a set was not shown");
 }
 
 /// A wavy tile of 100 × 50 quads: exactly 10⁴ triangles, one unit across.
@@ -174,7 +268,7 @@ fn a_million_instances_of_ten_thousand_triangles_pack_and_render() {
     println!("|---:|---:|---:|---:|---:|---:|---:|");
     for count in [1_000, 100_000, 1_000_000] {
         let file = dir.join(format!("tiles-{count}.rtinst"));
-        rtinst::write(&file, &tile_records(count)).expect("write .rtinst");
+        rtinst::write(&file, &tile_records(count), &MaterialSets::default()).expect("write .rtinst");
         let side = (count as f32).sqrt() / 2.0;
         let scene = common::scene_from(&format!(
             "[camera]\nposition = [0.0, {}, {}]\nlook_at = [0.0, 0.0, 0.0]\nfov_y_deg = 50.0\n\
@@ -223,7 +317,7 @@ fn an_edited_instance_file_re_places_instances_without_repacking_the_mesh() {
     let records = |dx: f32| -> Vec<InstanceRecord> {
         placements().iter().map(|(m, _)| InstanceRecord::new(&(Mat4::from_translation(Vec3::X * dx) * *m), 0)).collect()
     };
-    rtinst::write(&file, &records(0.0)).expect("write .rtinst");
+    rtinst::write(&file, &records(0.0), &MaterialSets::default()).expect("write .rtinst");
     let scene_path = dir.join("scene.toml");
     let text = format!("{HEADER}[[instances]]\nasset = {asset:?}\nfile = \"spheres.rtinst\"\nmaterials = [\"red\"]\n");
     write(&scene_path, &text);
@@ -241,7 +335,7 @@ fn an_edited_instance_file_re_places_instances_without_repacking_the_mesh() {
     let before = live.session.geometry().bounds_min;
     let mesh_before = live.session.geometry().meshes[0].provenance;
 
-    rtinst::write(&file, &records(1.5)).expect("rewrite .rtinst");
+    rtinst::write(&file, &records(1.5), &MaterialSets::default()).expect("rewrite .rtinst");
     let report = live.reload(std::slice::from_ref(&file)).unwrap_or_else(|e| panic!("{e:#}"));
     let after = live.session.geometry().bounds_min;
     println!(
@@ -279,7 +373,7 @@ fn more_instances_than_the_gpu_binds_is_an_error_not_a_crash() {
     let obj = dir.join("tile.obj");
     write(&obj, &icosphere_obj(0).0);
     let file = dir.join("many.rtinst");
-    rtinst::write(&file, &tile_records(count)).expect("write .rtinst");
+    rtinst::write(&file, &tile_records(count), &MaterialSets::default()).expect("write .rtinst");
     let scene = common::scene_from(&format!(
         "[materials.red]\n[[instances]]\nasset = {:?}\nfile = {:?}\nmaterials = [\"red\"]\n",
         obj.display().to_string(),

@@ -3,7 +3,7 @@
 mod common;
 
 use common::{TestRng, gpu, icosphere_obj, repo, scene_from, temp_dir, write};
-use glam::{DMat4, DVec3};
+use glam::DVec3;
 use rt::bvh::BuildQuality;
 use rt::layout::{EMPTY_LINK, GpuTraceRay};
 use rt::render::Session;
@@ -33,8 +33,7 @@ fn reference_hit(triangles: &[[DVec3; 3]], o: DVec3, d: DVec3) -> Option<(f64, u
 
 fn world_triangles(renderer: &Session) -> Vec<[DVec3; 3]> {
     let inst = &renderer.geometry().instances[0];
-    let rows = inst.object_to_world.map(|r| r.map(f64::from));
-    let m = DMat4::from_cols_array_2d(&[rows[0], rows[1], rows[2], [0.0, 0.0, 0.0, 1.0]]).transpose();
+    let m = rt::bvh::object_to_world(inst);
     renderer
         .geometry()
         .triangles

@@ -3,18 +3,24 @@
 //!
 //! ```text
 //! bytes 0..8   magic b"RTINST\0\0"
-//! u32 version (=1) · u32 instance_count
+//! u32 version (=2) · u32 instance_count · u32 slot_count · u32 set_count
+//! set_count × slot_count × u32   material sets: for each slot (the material index that
+//!                                the asset's triangles carry), an index into the asset's
+//!                                own materials (its `.gltf` `materials`)
 //! instance_count × {
 //!     f32[12]  object-to-world matrix, the top three rows of a 4×4, row-major
 //!              (metres, Y up; the fourth row is [0, 0, 0, 1])
-//!     u32      material: index into the scene entry's `materials` list, or
-//!              0xFFFF_FFFF (NO_MATERIAL) for the asset's own materials
+//!     u32      material: 0xFFFF_FFFF (OWN_MATERIALS) for the asset's own materials;
+//!              MATERIAL_SET | k for material set k of this file; otherwise an index into
+//!              the scene entry's `materials` list, which replaces all the asset's
 //! }
 //! ```
 //!
-//! Little-endian, no padding: 16 + 52 × instance_count bytes exactly. The size is
-//! checked against the header before anything is allocated, and every matrix must be
-//! finite and invertible (an error names the file and the instance's index).
+//! Little-endian, no padding: 24 + 4 × slot_count × set_count + 52 × instance_count bytes
+//! exactly. Version 1 files (a 16-byte header: magic, version, instance_count; no sets)
+//! are read too. The size is checked against the header before anything is allocated,
+//! and every matrix must be finite and invertible (an error names the file and the
+//! instance's index).
 
 use super::AssetError;
 use bytemuck::{Pod, Zeroable};
@@ -22,11 +28,61 @@ use glam::{Mat3, Mat4, Vec3, Vec4};
 use std::path::Path;
 
 pub const MAGIC: [u8; 8] = *b"RTINST\0\0";
-pub const VERSION: u32 = 1;
-pub const HEADER_BYTES: u64 = 16;
+pub const VERSION: u32 = 2;
+/// The header of version 2; version 1's is 16 bytes (no slot and set counts).
+pub const HEADER_BYTES: u64 = 24;
+const HEADER_BYTES_V1: u64 = 16;
 pub const RECORD_BYTES: u64 = 52;
 /// The material of an instance that keeps its asset's own materials.
 pub const OWN_MATERIALS: u32 = u32::MAX;
+/// Marks a record's material as `MATERIAL_SET | k`: material set `k` of its file.
+pub const MATERIAL_SET: u32 = 0x8000_0000;
+
+/// The material sets of an instance file: each maps the asset's material slots to
+/// materials of the asset's own (a Blender object that shows a mesh with other
+/// materials), so that one asset serves every instance whatever materials it shows.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MaterialSets {
+    slot_count: u32,
+    /// `set_count × slot_count` indices into the asset's materials.
+    indices: Vec<u32>,
+}
+
+impl MaterialSets {
+    /// Sets of `slot_count` entries each; `None` when one has another length.
+    pub fn new(slot_count: u32, sets: &[Vec<u32>]) -> Option<Self> {
+        if sets.iter().any(|s| s.len() != slot_count as usize) {
+            return None;
+        }
+        Some(Self { slot_count, indices: sets.concat() })
+    }
+
+    pub fn slot_count(&self) -> u32 {
+        self.slot_count
+    }
+
+    pub fn len(&self) -> usize {
+        self.indices.len().checked_div(self.slot_count as usize).unwrap_or(0)
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.indices.is_empty()
+    }
+
+    /// Set `k`: the asset material shown by each slot.
+    pub fn get(&self, k: u32) -> Option<&[u32]> {
+        let n = self.slot_count as usize;
+        let start = (k as usize).checked_mul(n)?;
+        self.indices.get(start..start.checked_add(n)?)
+    }
+}
+
+/// An instance file's contents.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct InstanceFile {
+    pub records: Vec<InstanceRecord>,
+    pub material_sets: MaterialSets,
+}
 
 /// One instance as the file stores it.
 #[repr(C)]
@@ -83,59 +139,71 @@ fn u32_at(bytes: &[u8], offset: usize) -> u32 {
 }
 
 /// Parses and checks a `.rtinst`: header, exact size, and every matrix. Material
-/// indices are checked by whoever knows the scene's `materials` list.
-pub fn parse(path: &Path, bytes: &[u8]) -> Result<Vec<InstanceRecord>, AssetError> {
+/// indices are checked by whoever knows the scene's `materials` list and the asset's.
+pub fn parse(path: &Path, bytes: &[u8]) -> Result<InstanceFile, AssetError> {
     let fail = |message: String| Err(AssetError::new(path, message));
-    if bytes.len() < HEADER_BYTES as usize {
+    if bytes.len() < HEADER_BYTES_V1 as usize {
         return fail(format!("truncated: {} bytes is shorter than the 16-byte .rtinst header", bytes.len()));
     }
     if bytes[..8] != MAGIC {
         return fail("not an .rtinst file (bad magic bytes)".into());
     }
     let [version, count] = [8, 12].map(|o| u32_at(bytes, o));
-    if version != VERSION {
-        return fail(format!("unsupported .rtinst version {version} (this rt reads version {VERSION})"));
-    }
+    let (header, slot_count, set_count) = match version {
+        1 => (HEADER_BYTES_V1, 0, 0),
+        VERSION if bytes.len() >= HEADER_BYTES as usize => (HEADER_BYTES, u32_at(bytes, 16), u32_at(bytes, 20)),
+        VERSION => {
+            return fail(format!("truncated: {} bytes is shorter than the 24-byte .rtinst header", bytes.len()));
+        }
+        _ => return fail(format!("unsupported .rtinst version {version} (this rt reads versions 1 and {VERSION})")),
+    };
     // Checked before anything is allocated: a header cannot make rt reserve memory the
-    // file does not back.
-    let expected = HEADER_BYTES + RECORD_BYTES * count as u64;
-    if bytes.len() as u64 != expected {
+    // file does not back (in u128: the counts' product can pass u64).
+    let set_bytes = 4 * slot_count as u128 * set_count as u128;
+    let expected = header as u128 + set_bytes + RECORD_BYTES as u128 * count as u128;
+    if bytes.len() as u128 != expected {
         return fail(format!(
-            "size is {} bytes but its header ({count} instances) implies {expected} (truncated or corrupt)",
+            "size is {} bytes but its header ({count} instances, {set_count} material sets of {slot_count} slots) \
+             implies {expected} (truncated or corrupt)",
             bytes.len()
         ));
     }
-    let records: Vec<InstanceRecord> = bytemuck::pod_collect_to_vec(&bytes[HEADER_BYTES as usize..]);
+    let records_at = header as usize + set_bytes as usize;
+    let indices: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes[header as usize..records_at]);
+    let records: Vec<InstanceRecord> = bytemuck::pod_collect_to_vec(&bytes[records_at..]);
     for (index, r) in records.iter().enumerate() {
         if let Some(problem) = matrix_problem(&r.object_to_world()) {
             return fail(format!("instance {index}: its matrix {problem}: {:?}", r.rows));
         }
     }
-    Ok(records)
+    Ok(InstanceFile { records, material_sets: MaterialSets { slot_count, indices } })
 }
 
 /// Reads a `.rtinst` file; see [`parse`].
-pub fn read(path: &Path) -> Result<Vec<InstanceRecord>, AssetError> {
+pub fn read(path: &Path) -> Result<InstanceFile, AssetError> {
     let bytes = crate::files::read(path).map_err(|e| AssetError::new(path, e.message()))?;
     parse(path, &bytes)
 }
 
-/// The bytes of `records` as a `.rtinst`.
-pub fn encode(records: &[InstanceRecord]) -> Vec<u8> {
-    let mut out = Vec::with_capacity((HEADER_BYTES + RECORD_BYTES * records.len() as u64) as usize);
+/// The bytes of `records` with `sets` as a `.rtinst` (version 2).
+pub fn encode(records: &[InstanceRecord], sets: &MaterialSets) -> Vec<u8> {
+    let set_bytes = 4 * sets.indices.len() as u64;
+    let mut out = Vec::with_capacity((HEADER_BYTES + set_bytes + RECORD_BYTES * records.len() as u64) as usize);
     out.extend_from_slice(&MAGIC);
-    out.extend_from_slice(&VERSION.to_le_bytes());
-    out.extend_from_slice(&(records.len() as u32).to_le_bytes());
+    for word in [VERSION, records.len() as u32, sets.slot_count, sets.len() as u32] {
+        out.extend_from_slice(&word.to_le_bytes());
+    }
+    out.extend_from_slice(bytemuck::cast_slice(&sets.indices));
     out.extend_from_slice(bytemuck::cast_slice(records));
     out
 }
 
-/// Writes `records` as a `.rtinst`, atomically.
-pub fn write(path: &Path, records: &[InstanceRecord]) -> Result<(), AssetError> {
+/// Writes `records` with `sets` as a `.rtinst`, atomically.
+pub fn write(path: &Path, records: &[InstanceRecord], sets: &MaterialSets) -> Result<(), AssetError> {
     if u32::try_from(records.len()).is_err() {
         return Err(AssetError::new(path, "more than 2^32 instances do not fit an .rtinst"));
     }
-    Ok(crate::files::write_atomically(path, &encode(records))?)
+    Ok(crate::files::write_atomically(path, &encode(records, sets))?)
 }
 
 #[cfg(test)]
@@ -158,59 +226,98 @@ mod tests {
         vec![InstanceRecord::new(&a, OWN_MATERIALS), InstanceRecord::new(&Mat4::IDENTITY, 3)]
     }
 
+    fn plain(records: &[InstanceRecord]) -> Vec<u8> {
+        encode(records, &MaterialSets::default())
+    }
+
+    /// `records` as version 1 wrote them: no slot and set counts, no sets.
+    fn version_1(records: &[InstanceRecord]) -> Vec<u8> {
+        let mut out = MAGIC.to_vec();
+        out.extend_from_slice(&1u32.to_le_bytes());
+        out.extend_from_slice(&(records.len() as u32).to_le_bytes());
+        out.extend_from_slice(bytemuck::cast_slice(records));
+        out
+    }
+
     #[test]
-    fn round_trips_matrices_and_materials() {
-        let bytes = encode(&two());
-        assert_eq!(bytes.len(), 16 + 2 * 52);
+    fn round_trips_matrices_materials_and_material_sets() {
+        let sets = MaterialSets::new(2, &[vec![1, 0], vec![2, 2]]).expect("sets");
+        let mut records = two();
+        records[1].material = MATERIAL_SET | 1;
+        let bytes = encode(&records, &sets);
+        assert_eq!(bytes.len(), 24 + 4 * 4 + 2 * 52);
         let back = parse(Path::new("t.rtinst"), &bytes).expect("parses");
-        assert_eq!(back, two());
+        assert_eq!(back.records, records);
+        assert_eq!(back.material_sets, sets);
+        assert_eq!(
+            (back.material_sets.len(), back.material_sets.get(1), back.material_sets.get(2)),
+            (2, Some(&[2, 2][..]), None)
+        );
+        let back = back.records;
         let m = back[0].object_to_world();
         assert!((m.transform_point3(Vec3::ZERO) - Vec3::new(3.0, -1.0, 2.0)).length() < 1e-6);
         assert_eq!(m.row(3), Vec4::W);
         // Row-major on disk: the translation is the fourth float of each row.
         assert_eq!([back[0].rows[3], back[0].rows[7], back[0].rows[11]], [3.0, -1.0, 2.0]);
+        assert!(MaterialSets::new(2, &[vec![1]]).is_none());
+    }
+
+    #[test]
+    fn version_1_files_are_read_as_they_were() {
+        let back = parse(Path::new("t.rtinst"), &version_1(&two())).expect("parses");
+        assert_eq!((back.records, back.material_sets), (two(), MaterialSets::default()));
+        let mut bytes = version_1(&two());
+        bytes.pop();
+        assert!(error(&bytes).contains("implies 120"), "{}", error(&bytes));
     }
 
     #[test]
     fn a_header_that_lies_about_its_size_is_refused_before_allocating() {
-        let mut bytes = encode(&two());
+        let mut bytes = plain(&two());
         bytes.pop();
-        assert!(error(&bytes).contains("implies 120"), "{}", error(&bytes));
-        // Four billion instances claimed by a 16-byte file: refused on the size alone.
-        let mut bytes = encode(&[]);
+        assert!(error(&bytes).contains("implies 128"), "{}", error(&bytes));
+        // Four billion instances claimed by a 24-byte file: refused on the size alone.
+        let mut bytes = plain(&[]);
         bytes[12..16].copy_from_slice(&4_000_000_000u32.to_le_bytes());
         let message = error(&bytes);
-        assert!(message.starts_with("t.rtinst: size is 16 bytes"), "{message}");
+        assert!(message.starts_with("t.rtinst: size is 24 bytes"), "{message}");
         assert!(message.contains("4000000000 instances"), "{message}");
+        // As many sets of as many slots: 2⁶⁶ bytes claimed, counted without overflow.
+        let mut bytes = plain(&[]);
+        bytes[16..24].copy_from_slice(&[0xff; 8]);
+        let message = error(&bytes);
+        assert!(message.contains("4294967295 material sets of 4294967295 slots"), "{message}");
+        // A version 2 header cut short.
+        assert!(error(&plain(&[])[..20]).contains("shorter than the 24-byte"));
     }
 
     #[test]
     fn bad_magic_version_and_matrices_are_named() {
         assert!(error(b"short").contains("truncated"));
-        let good = encode(&two());
+        let good = plain(&two());
         let mut bytes = good.clone();
         bytes[0] = b'X';
         assert!(error(&bytes).contains("bad magic"));
         let mut bytes = good.clone();
-        bytes[8] = 2;
-        assert!(error(&bytes).contains("unsupported .rtinst version 2"));
+        bytes[8] = 3;
+        assert!(error(&bytes).contains("unsupported .rtinst version 3"));
 
         let mut records = two();
         records[1].rows[5] = f32::NAN;
-        let message = error(&encode(&records));
+        let message = error(&plain(&records));
         assert!(message.contains("instance 1: its matrix is not finite"), "{message}");
         let mut records = two();
         records[1].rows[0..3].copy_from_slice(&[0.0, 0.0, 0.0]);
-        let message = error(&encode(&records));
+        let message = error(&plain(&records));
         assert!(message.contains("instance 1: its matrix is singular"), "{message}");
         // A millimetre scale is fine; a scale of zero, or columns that nearly coincide, are not.
         let mm = [InstanceRecord::new(&Mat4::from_scale(Vec3::splat(1e-3)), OWN_MATERIALS)];
-        assert!(parse(Path::new("t.rtinst"), &encode(&mm)).is_ok());
+        assert!(parse(Path::new("t.rtinst"), &plain(&mm)).is_ok());
         let flat = [InstanceRecord::new(&Mat4::from_scale(Vec3::new(1.0, 1.0, 0.0)), OWN_MATERIALS)];
-        assert!(error(&encode(&flat)).contains("instance 0: its matrix is singular"));
+        assert!(error(&plain(&flat)).contains("instance 0: its matrix is singular"));
         let mut sheared = two();
         sheared[1].rows[0..3].copy_from_slice(&[1.0, 1.0, 0.0]);
         sheared[1].rows[4..7].copy_from_slice(&[0.0, 1e-7, 0.0]);
-        assert!(error(&encode(&sheared)).contains("instance 1: its matrix is singular"));
+        assert!(error(&plain(&sheared)).contains("instance 1: its matrix is singular"));
     }
 }

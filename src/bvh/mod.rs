@@ -19,5 +19,6 @@ mod wide_node;
 pub use mesh_bvh::{BuildQuality, MeshBvh};
 pub use node::{BvhStats, convert_bvh2, stats};
 pub use pack::{LoadedMesh, PackOutcome, PackReport, Provenance};
+pub use placement::object_to_world;
 pub use scene_geometry::{SceneGeometry, asset_paths};
 pub use wide_node::NODE_LAYOUT;

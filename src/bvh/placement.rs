@@ -4,12 +4,14 @@
 //! of a triangle do.
 
 use super::pack::LoadedMesh;
-use crate::asset::{AssetError, rtinst};
+use crate::asset::AssetError;
+use crate::asset::rtinst::{self, MaterialSets};
 use crate::layout::{GpuInstance, NO_MATERIAL};
-use crate::scene::{InstanceSet, Scene};
+use crate::scene::{InstanceSet, Material, Scene};
 use anyhow::{Result, bail};
-use glam::{Mat4, Vec3, Vec3A};
+use glam::{DMat4, Mat4, Vec3, Vec3A};
 use obvhs::aabb::Aabb;
+use std::path::Path;
 
 /// Where a mesh's data sits in the scene's concatenated buffers.
 #[derive(Clone, Copy)]
@@ -17,6 +19,17 @@ pub(super) struct MeshSlot {
     pub node_offset: u32,
     pub triangle_offset: u32,
     pub material_base: u32,
+    /// The mesh's first texture in the scene's texture table.
+    pub texture_base: u32,
+}
+
+/// `material` with its texture indices moved past the textures of the meshes before its own.
+pub(super) fn with_texture_base(material: &Material, texture_base: u32) -> Material {
+    let mut m = material.clone();
+    for index in m.textures.indices_mut().into_iter().flatten() {
+        *index += texture_base;
+    }
+    m
 }
 
 pub(super) struct Placement<'m> {
@@ -31,6 +44,10 @@ pub(super) struct Placement<'m> {
     pub own_materials_shown: Vec<bool>,
     /// Whether some instance uses this material as its override.
     pub override_used: Vec<bool>,
+    /// The materials of the material sets that instance files use, each set a block as
+    /// long as its mesh's materials, to follow the scene's material table.
+    pub set_materials: Vec<Material>,
+    material_count: usize,
 }
 
 impl<'m> Placement<'m> {
@@ -43,19 +60,34 @@ impl<'m> Placement<'m> {
             boxes: Vec::new(),
             own_materials_shown: vec![false; meshes.len()],
             override_used: vec![false; material_count],
+            set_materials: Vec::new(),
+            material_count,
         }
     }
 
     /// Places mesh `mesh_index` at `object_to_world` (invertible), with the material
     /// table index `material_override` or `NO_MATERIAL`. Empty meshes place nothing.
     pub fn place(&mut self, mesh_index: usize, object_to_world: &Mat4, material_override: u32) {
+        let base = self.slots[mesh_index].material_base;
+        self.place_with_base(mesh_index, object_to_world, material_override, base);
+    }
+
+    /// As [`Self::place`], the mesh's triangles indexing materials from `material_base`
+    /// (the mesh's own, or a block of `set_materials`).
+    fn place_with_base(
+        &mut self,
+        mesh_index: usize,
+        object_to_world: &Mat4,
+        material_override: u32,
+        material_base: u32,
+    ) {
         let mesh = &self.meshes[mesh_index];
         if mesh.triangle_count == 0 {
             return;
         }
-        if material_override == NO_MATERIAL {
+        if material_override == NO_MATERIAL && material_base == self.slots[mesh_index].material_base {
             self.own_materials_shown[mesh_index] = true;
-        } else {
+        } else if material_override != NO_MATERIAL {
             self.override_used[material_override as usize] = true;
         }
         let slot = self.slots[mesh_index];
@@ -63,10 +95,9 @@ impl<'m> Placement<'m> {
         self.instance_mesh.push(mesh_index as u32);
         self.instances.push(GpuInstance {
             world_to_object: affine_rows(&object_to_world.inverse()),
-            object_to_world: affine_rows(object_to_world),
             node_offset: slot.node_offset,
             triangle_offset: slot.triangle_offset,
-            material_base: slot.material_base,
+            material_base,
             material_override,
         });
     }
@@ -80,16 +111,30 @@ impl<'m> Placement<'m> {
         mesh_index: usize,
         scene_material: impl Fn(&str) -> Result<u32>,
     ) -> Result<()> {
-        let records = rtinst::read(&set.file)?;
+        let file = rtinst::read(&set.file)?;
         let overrides: Vec<u32> = set.materials.iter().map(|n| scene_material(n)).collect::<Result<_>>()?;
+        let set_bases = self.material_set_blocks(&set.file, &file.material_sets, mesh_index)?;
+        let own_base = self.slots[mesh_index].material_base;
+        let records = file.records;
         self.instances.reserve(records.len());
         self.boxes.reserve(records.len());
         self.instance_mesh.reserve(records.len());
         for (index, r) in records.iter().enumerate() {
-            let material = match r.material {
-                rtinst::OWN_MATERIALS => NO_MATERIAL,
+            let (material, base) = match r.material {
+                rtinst::OWN_MATERIALS => (NO_MATERIAL, own_base),
+                i if i & rtinst::MATERIAL_SET != 0 => match set_bases.get((i & !rtinst::MATERIAL_SET) as usize) {
+                    Some(&base) => (NO_MATERIAL, base),
+                    None => {
+                        let k = i & !rtinst::MATERIAL_SET;
+                        let message = format!(
+                            "instance {index}: material set {k} is out of range: the file has {}",
+                            set_bases.len()
+                        );
+                        bail!(AssetError::new(&set.file, message));
+                    }
+                },
                 i => match overrides.get(i as usize) {
-                    Some(&m) => m,
+                    Some(&m) => (m, own_base),
                     None => {
                         let message = format!(
                             "instance {index}: material {i} is out of range: the [[instances]] entry of {} lists {} \
@@ -101,10 +146,51 @@ impl<'m> Placement<'m> {
                     }
                 },
             };
-            self.place(mesh_index, &r.object_to_world(), material);
+            self.place_with_base(mesh_index, &r.object_to_world(), material, base);
         }
         Ok(())
     }
+
+    /// Appends a block of materials per material set of `file` (each slot showing the
+    /// asset material its set names, the slots past the set's its own), and returns
+    /// each block's first index in the scene's material table.
+    fn material_set_blocks(&mut self, file: &Path, sets: &MaterialSets, mesh_index: usize) -> Result<Vec<u32>> {
+        let mesh = &self.meshes[mesh_index];
+        let own = &mesh.materials;
+        if sets.slot_count() as usize > own.len() {
+            let message = format!(
+                "its material sets have {} slots but the asset {} has {} materials",
+                sets.slot_count(),
+                mesh.path.display(),
+                own.len()
+            );
+            bail!(AssetError::new(file, message));
+        }
+        let texture_base = self.slots[mesh_index].texture_base;
+        let mut bases = Vec::with_capacity(sets.len());
+        for k in 0..sets.len() as u32 {
+            let indices = sets.get(k).unwrap_or_default();
+            if let Some((slot, &m)) = indices.iter().enumerate().find(|(_, m)| **m as usize >= own.len()) {
+                let message = format!(
+                    "material set {k}, slot {slot}: material {m} is out of range: the asset {} has {} materials",
+                    mesh.path.display(),
+                    own.len()
+                );
+                bail!(AssetError::new(file, message));
+            }
+            bases.push((self.material_count + self.set_materials.len()) as u32);
+            let shown = (0..own.len()).map(|j| indices.get(j).map_or(j, |&m| m as usize));
+            self.set_materials.extend(shown.map(|m| with_texture_base(&own[m].1, texture_base)));
+        }
+        Ok(bases)
+    }
+}
+
+/// An instance's object-to-world matrix, derived in f64 from the world-to-object one
+/// that the GPU record keeps.
+pub fn object_to_world(instance: &GpuInstance) -> DMat4 {
+    let [r0, r1, r2] = instance.world_to_object.map(|r| r.map(f64::from));
+    DMat4::from_cols_array_2d(&[r0, r1, r2, [0.0, 0.0, 0.0, 1.0]]).transpose().inverse()
 }
 
 fn affine_rows(m: &Mat4) -> [[f32; 4]; 3] {

@@ -7,7 +7,7 @@ use super::lights::{LampTable, lamp_table, scene_radius};
 use super::mesh_bvh::BuildQuality;
 use super::node::{BvhStats, convert_bvh2, stats};
 use super::pack::{LoadedMesh, build_all_in_memory, load_or_pack_all};
-use super::placement::{MeshSlot, Placement};
+use super::placement::{MeshSlot, Placement, with_texture_base};
 use crate::layout::*;
 use crate::scene::{GeometrySummary, LightSampler, Material, Sampling, Scene};
 use anyhow::{Result, bail};
@@ -143,6 +143,7 @@ impl SceneGeometry {
                 node_offset: wide_nodes.len() as u32,
                 triangle_offset: triangles.len() as u32,
                 material_base: materials.len() as u32,
+                texture_base,
             });
             wide_nodes.extend_from_slice(&mesh.bvh.nodes);
             triangles.extend_from_slice(&mesh.bvh.triangles);
@@ -153,13 +154,7 @@ impl SceneGeometry {
                     false => tangents.extend_from_slice(&mesh.bvh.tangents),
                 }
             }
-            materials.extend(mesh.materials.iter().map(|(_, m)| {
-                let mut m = m.clone();
-                for index in m.textures.indices_mut().into_iter().flatten() {
-                    *index += texture_base;
-                }
-                m
-            }));
+            materials.extend(mesh.materials.iter().map(|(_, m)| with_texture_base(m, texture_base)));
             texture_base += mesh.textures.len() as u32;
         }
 
@@ -182,7 +177,10 @@ impl SceneGeometry {
                 in_use[base..base + meshes[mesh_index].materials.len()].fill(true);
             }
         }
-        let Placement { instances, instance_mesh, mut boxes, .. } = placement;
+        // Material sets' blocks follow the meshes' own materials; only used sets have one.
+        in_use.resize(in_use.len() + placement.set_materials.len(), true);
+        let Placement { instances, instance_mesh, mut boxes, set_materials, .. } = placement;
+        materials.extend(set_materials);
         // Top-level primitive of each box: instance index, or sphere index | SPHERE_BIT.
         let mut entries: Vec<u32> = (0..instances.len() as u32).collect();
         let mut spheres = Vec::new();
@@ -209,13 +207,8 @@ impl SceneGeometry {
             .zip(&meshes)
             .map(|(s, m)| s.triangle_offset..s.triangle_offset + m.bvh.triangles.len() as u32)
             .collect();
-        let material_bases: Vec<u32> = slots.iter().map(|s| s.material_base).collect();
-        let emissive = EmissiveTriangles {
-            mesh_triangles: &mesh_triangles,
-            material_bases: &material_bases,
-            triangles: &triangles,
-            materials: &materials,
-        };
+        let emissive =
+            EmissiveTriangles { mesh_triangles: &mesh_triangles, triangles: &triangles, materials: &materials };
         let (emitters, emitter_bounds, emitter_total_power) = emissive.table(&instances, &instance_mesh, &spheres);
 
         let build_start = Instant::now();
@@ -319,8 +312,6 @@ pub fn asset_paths(scene: &Scene) -> Vec<PathBuf> {
 struct EmissiveTriangles<'a> {
     /// The range of each mesh's triangles in `triangles`.
     mesh_triangles: &'a [std::ops::Range<u32>],
-    /// Each mesh's first material in `materials`.
-    material_bases: &'a [u32],
     triangles: &'a [GpuTriangle],
     materials: &'a [Material],
 }
@@ -341,36 +332,31 @@ impl EmissiveTriangles<'_> {
         instance_mesh: &[u32],
         spheres: &[GpuSphere],
     ) -> (Vec<GpuEmitter>, Vec<LightBounds>, f32) {
-        // Triangles emissive by their own material, per mesh: an instance without an
-        // override emits from these, one with an emissive override from all its triangles.
-        let own: Vec<Vec<u32>> = self
-            .mesh_triangles
-            .iter()
-            .zip(self.material_bases)
-            .map(|(range, &base)| {
-                range.clone().filter(|&t| self.luminance(base + self.triangles[t as usize].material) > 0.0).collect()
-            })
-            .collect();
+        // Triangles emissive by the materials an instance without an override shows (its
+        // mesh's own, or a material set's), per mesh and first material: one with an
+        // emissive override emits from all its triangles.
+        let mut own: HashMap<(u32, u32), Vec<u32>> = HashMap::new();
         let mut entries: Vec<(GpuEmitter, f64, LightBounds)> = Vec::new();
         for (index, (inst, &mesh)) in instances.iter().zip(instance_mesh).enumerate() {
-            let to_world = |v: [f32; 3]| {
-                let p = glam::DVec3::from(v.map(f64::from));
-                let r = inst.object_to_world.map(|row| glam::DVec4::from(row.map(f64::from)));
-                glam::DVec3::new(
-                    r[0].truncate().dot(p) + r[0].w,
-                    r[1].truncate().dot(p) + r[1].w,
-                    r[2].truncate().dot(p) + r[2].w,
-                )
-            };
             let all: Vec<u32>;
             let emitting: &[u32] = if inst.material_override == NO_MATERIAL {
-                &own[mesh as usize]
+                own.entry((mesh, inst.material_base)).or_insert_with(|| {
+                    let range = self.mesh_triangles[mesh as usize].clone();
+                    range
+                        .filter(|&t| self.luminance(inst.material_base + self.triangles[t as usize].material) > 0.0)
+                        .collect()
+                })
             } else if self.luminance(inst.material_override) > 0.0 {
                 all = self.mesh_triangles[mesh as usize].clone().collect();
                 &all
             } else {
                 &[]
             };
+            if emitting.is_empty() {
+                continue;
+            }
+            let m = super::placement::object_to_world(inst);
+            let to_world = |v: [f32; 3]| m.transform_point3(glam::DVec3::from(v.map(f64::from)));
             for &t in emitting {
                 let tri = &self.triangles[t as usize];
                 let material = if inst.material_override == NO_MATERIAL {

@@ -63,7 +63,9 @@ fn host_structs_match_wgsl_layouts() {
                 emitter_count,
                 emitter_total_power,
                 ris_candidates,
-                clamp_luminance
+                clamp_luminance,
+                clip_start,
+                clip_end
             ]
         ),
         host_layout!("BvhNode", GpuBvhNode, [a_min, a_link, a_max, a_count, b_min, b_link, b_max, b_count]),
@@ -90,7 +92,7 @@ fn host_structs_match_wgsl_layouts() {
         host_layout!(
             "Instance",
             GpuInstance,
-            [world_to_object, object_to_world, node_offset, triangle_offset, material_base, material_override]
+            [world_to_object, node_offset, triangle_offset, material_base, material_override]
         ),
         host_layout!("Sphere", GpuSphere, [center, radius, material, k]),
         host_layout!(

@@ -18,6 +18,9 @@ pub fn set_camera(frame: &mut GpuFrame, camera: &Camera, width: u32, height: u32
     frame.orthographic = u32::from(matches!(camera.projection, Projection::Orthographic { .. }));
     frame.width = width;
     frame.height = height;
+    frame.clip_start = camera.clip_start;
+    // The shader's INFINITY, f32's largest: no far plane.
+    frame.clip_end = camera.clip_end.min(f32::MAX);
     // A pinhole, also for a pipeline that carries the lens code anyway (all features):
     // no aperture, and a plane in focus at any positive distance.
     frame.inv_aperture_ratio = 1.0;

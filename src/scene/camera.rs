@@ -58,6 +58,10 @@ pub struct Camera {
     /// Lens shift (x right, y up) in units of the view's extent along the fit.
     pub shift: Vec2,
     pub depth_of_field: Option<DepthOfField>,
+    /// Cycles' clip_start and clip_end: camera rays see only what lies between these
+    /// planes along the view (metres); `clip_end` may be infinite.
+    pub clip_start: f32,
+    pub clip_end: f32,
 }
 
 impl Default for Camera {
@@ -71,6 +75,8 @@ impl Default for Camera {
             sensor_mm: Vec2::new(36.0, 24.0),
             shift: Vec2::ZERO,
             depth_of_field: None,
+            clip_start: 0.0,
+            clip_end: f32::INFINITY,
         }
     }
 }
@@ -236,6 +242,12 @@ pub(super) fn validate(src: &Source, c: schema::Camera) -> Result<Camera, SceneE
             Some(DepthOfField { fstop, focus_distance, blades, blade_rotation_deg, aperture_ratio })
         }
     };
+    src.check(&p, "clip_start", &[c.clip_start], "at least 0", |s| s >= 0.0)?;
+    let clip_end = c.clip_end.unwrap_or(f32::INFINITY);
+    if c.clip_end.is_some() {
+        let beyond = format!("beyond clip_start ({})", c.clip_start);
+        src.check(&p, "clip_end", &[clip_end], &beyond, |e| e > c.clip_start)?;
+    }
     Ok(Camera {
         position,
         look_at,
@@ -245,6 +257,8 @@ pub(super) fn validate(src: &Source, c: schema::Camera) -> Result<Camera, SceneE
         sensor_mm: Vec2::new(c.sensor_width_mm, c.sensor_height_mm),
         shift: Vec2::new(c.shift_x, c.shift_y),
         depth_of_field,
+        clip_start: c.clip_start,
+        clip_end,
     })
 }
 

@@ -54,7 +54,7 @@ fn every_key_parses() {
     let text = "position = [1, 2, 3] | look_at = [1, 2, 0] | up = [1, 1, 0] | focal_length_mm = 35 | \
                 sensor_fit = \"vertical\" | sensor_width_mm = 30 | sensor_height_mm = 20 | shift_x = 0.1 | \
                 shift_y = -0.25 | fstop = 2.8 | focus_distance = 4 | blades = 6 | blade_rotation_deg = 15 | \
-                aperture_ratio = 1.5";
+                aperture_ratio = 1.5 | clip_start = 0.25 | clip_end = 80";
     let expected = Camera {
         position: Vec3::new(1.0, 2.0, 3.0),
         look_at: Vec3::new(1.0, 2.0, 0.0),
@@ -70,8 +70,12 @@ fn every_key_parses() {
             blade_rotation_deg: 15.0,
             aperture_ratio: 1.5,
         }),
+        clip_start: 0.25,
+        clip_end: 80.0,
     };
     assert_eq!(parse_camera(text), Ok(expected));
+    let unclipped = parse_camera("").expect("valid");
+    assert_eq!((unclipped.clip_start, unclipped.clip_end), (0.0, f32::INFINITY));
     let ortho = parse_camera("projection = \"orthographic\" | ortho_scale = 3").expect("valid");
     assert_eq!(ortho.projection, Projection::Orthographic { scale: 3.0 });
     assert_eq!(
@@ -89,6 +93,9 @@ fn every_key_parses() {
 fn bad_camera_keys_are_located() {
     for (text, expected) in [
         ("fstop = 0", "scene.toml:2:9: [camera]: fstop must be positive, got 0"),
+        ("clip_start = -0.1", "scene.toml:2:14: [camera]: clip_start must be at least 0, got -0.1"),
+        ("clip_start = 2 | clip_end = 2", "scene.toml:3:12: [camera]: clip_end must be beyond clip_start (2), got 2"),
+        ("clip_end = inf", "scene.toml:2:12: [camera]: clip_end must be finite, got inf"),
         ("fstop = -1.4", "scene.toml:2:9: [camera]: fstop must be positive, got -1.4"),
         ("fstop = nan", "scene.toml:2:9: [camera]: fstop must be finite, got NaN"),
         ("fstop = 2 | focus_distance = 0", "scene.toml:3:18: [camera]: focus_distance must be positive, got 0"),

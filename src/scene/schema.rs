@@ -50,6 +50,8 @@ pub(super) struct Camera {
     pub blades: Option<u32>,
     pub blade_rotation_deg: Option<f32>,
     pub aperture_ratio: Option<f32>,
+    pub clip_start: f32,
+    pub clip_end: Option<f32>,
 }
 
 impl Default for Camera {
@@ -74,6 +76,8 @@ impl Default for Camera {
             blades: None,
             blade_rotation_deg: None,
             aperture_ratio: None,
+            clip_start: 0.0,
+            clip_end: None,
         }
     }
 }

@@ -10,7 +10,7 @@ commit both.
 The scene is nine emissive cubes of different colours at three depths and five small
 bright ones far behind them before an emissive wall, under a dim uniform world. Every surface only emits (black base colour, no specular
 layer), so a pixel's value is the emission its camera rays meet: the comparison tests where
-the rays go (roll, projection, shift, sensor fit, aperture) and nothing else.
+the rays go (roll, projection, shift, sensor fit, aperture, clip planes) and nothing else.
 
 Cycles settings: box filter of width 1, no clamping, denoising or adaptive sampling,
 blur_glossy 0, linear 32-bit EXR.
@@ -76,6 +76,26 @@ CAMERAS = {
             "sensor_fit": "VERTICAL",
             "shift_x": 0.2,
             "shift_y": -0.15,
+        },
+    ),
+    # clip_start removes the nearest row of cubes, clip_end cuts through the middle row
+    # (showing the inside of its cubes) and hides the far row, the points and the wall; a
+    # wide lens makes clipping at planes differ from clipping at spheres towards the corners.
+    "clipped": (
+        64,
+        64,
+        {"location": (0.8, -6.0, 0.6), "target": (0.0, 0.0, 0.0), "lens": 22.0, "clip_start": 4.5, "clip_end": 6.2},
+    ),
+    "ortho_clipped": (
+        64,
+        64,
+        {
+            "location": (4.0, -7.0, 2.5),
+            "target": (0.0, 0.0, 0.0),
+            "type": "ORTHO",
+            "ortho_scale": 6.5,
+            "clip_start": 6.0,
+            "clip_end": 9.5,
         },
     ),
     "dof_round": (
@@ -149,6 +169,8 @@ def add_camera(scene, settings):
     data.sensor_fit = settings.get("sensor_fit", "AUTO")
     data.shift_x = settings.get("shift_x", 0.0)
     data.shift_y = settings.get("shift_y", 0.0)
+    if "clip_start" in settings:
+        data.clip_start, data.clip_end = settings["clip_start"], settings["clip_end"]
     if "fstop" in settings:
         dof = data.dof
         dof.use_dof = True

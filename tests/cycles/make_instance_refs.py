@@ -15,6 +15,10 @@ not run Cycles: commit both.
   with the points' rotations) of an icosphere over one plane, whose faces stay as
   realized geometry; a hair particle system rendering a cone as its object over another;
   and a small plane whose nodes output only instances of the cone (its faces are gone).
+- overrides: one two-slot slab mesh (a grey body, a blue top) shown by three objects of a
+  collection, one with its own materials, one with an object-linked red top, one with an
+  object-linked emissive body, the collection instanced three times, rotated: one asset
+  folder whose instance file picks a material set per instance.
 
 Every surface is diffuse (no specular layer) under a uniform world, so the comparison
 tests where the instances are and which material they show.
@@ -45,6 +49,14 @@ def diffuse(name, colour):
     node.inputs["Base Color"].default_value = (*colour, 1.0)
     node.inputs["Specular IOR Level"].default_value = 0.0
     node.inputs["Roughness"].default_value = 1.0
+    return material
+
+
+def emissive(name, colour, strength):
+    material = diffuse(name, (0.0, 0.0, 0.0))
+    node = material.node_tree.nodes["Principled BSDF"]
+    node.inputs["Emission Color"].default_value = (*colour, 1.0)
+    node.inputs["Emission Strength"].default_value = strength
     return material
 
 
@@ -172,7 +184,42 @@ def build_scatter(scene):
     return Vector((0.0, -6.5, 5.5)), Vector((0.0, 0.0, 0.2)), 35.0
 
 
-SCENES = {"collections": build_collections, "scatter": build_scatter}
+def build_overrides(scene):
+    ground("floor", 12.0, (0.0, 0.0, 0.0), (0.6, 0.6, 0.6))
+    trio = hidden_collection(scene, "trio")
+    bpy.ops.mesh.primitive_cube_add(size=0.5, location=(0.0, 0.0, 0.25))
+    slab = bpy.context.object
+    slab.name, slab.data.name = "slab", "slab"
+    slab.scale = (1.6, 0.8, 1.0)
+    slab.data.materials.append(diffuse("grey", (0.5, 0.5, 0.5)))
+    slab.data.materials.append(diffuse("blue", (0.1, 0.2, 0.8)))
+    for face in slab.data.polygons:
+        face.material_index = 1 if face.normal.z > 0.5 else 0
+    move_to(slab, trio)
+    red_top = bpy.data.objects.new("red_top", slab.data)
+    red_top.location, red_top.rotation_euler, red_top.scale = (0.0, 0.9, 0.0), (0.0, 0.0, 0.4), (1.2, 0.8, 1.4)
+    trio.objects.link(red_top)
+    red_top.material_slots[1].link = "OBJECT"
+    red_top.material_slots[1].material = diffuse("red", (0.8, 0.15, 0.1))
+    glowing = bpy.data.objects.new("glowing", slab.data)
+    glowing.location, glowing.rotation_euler = (0.9, -0.5, 0.0), (0.0, 0.0, -0.7)
+    trio.objects.link(glowing)
+    glowing.material_slots[0].link = "OBJECT"
+    glowing.material_slots[0].material = emissive("glow", (1.0, 0.5, 0.25), 2.0)
+    for k in range(3):
+        angle = 2.0 * math.pi * k / 3.0
+        collection_instance(
+            f"trio_{k}",
+            trio,
+            (1.8 * math.cos(angle), 1.8 * math.sin(angle), 0.0),
+            (0.0, 0.0, angle + 0.5),
+            (1.0 - 0.15 * k,) * 3,
+            scene.collection,
+        )
+    return Vector((0.0, -8.0, 6.0)), Vector((0.0, 0.0, 0.3)), 35.0
+
+
+SCENES = {"collections": build_collections, "scatter": build_scatter, "overrides": build_overrides}
 
 
 def add_camera(scene, location, target, lens):
@@ -216,6 +263,7 @@ def main():
     argv = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else sys.argv[1:]
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--spp", type=int, default=8192, help="Cycles samples per pixel")
+    parser.add_argument("--export-only", action="store_true", help="export the scenes, keep the committed references")
     parser.add_argument("names", nargs="*", help=f"scenes to render (default: all of {', '.join(SCENES)})")
     args = parser.parse_args(argv)
     for name in args.names or SCENES:
@@ -227,6 +275,9 @@ def main():
         folder = os.path.join(HERE, "scenes", f"instances_{name}")
         export = rt_export.export_scene(scene, os.path.join(folder, "assets"), os.path.join(folder, "scene.toml"))
         counts = {f: len(m) for f, m in export.instances.items()}
+        if args.export_only:
+            print(f"instances_{name}: exported; instances {counts}", flush=True)
+            continue
         scene.render.filepath = os.path.join(HERE, f"instances_{name}.exr")
         bpy.ops.render.render(write_still=True)
         print(f"instances_{name}: {SIZE}x{SIZE} at {args.spp} spp -> {scene.render.filepath}; instances {counts}", flush=True)

@@ -16,16 +16,16 @@ fn reflection_lobe_eval(ctx: ShadingContext, lobe: u32, wi: vec3f) -> vec3f {
         return vec3f(0.0);
     }
     if lobe == LOBE_DIFFUSE {
-        return ctx.m.base_color * (ctx.m.diffuse * wi.z / PI);
+        return ctx.m.base_color * (ctx.m.diffuse * ctx.diffuse_kept * wi.z / PI);
     }
     //#if glossy
     let m = normalize(ctx.wo + wi);
     let a = ctx.m.alpha;
     let microfacet = ggx_d(m, a) * ggx_g2(ctx.wo, wi, a) / (4.0 * ctx.wo.z);
     if lobe == LOBE_SPECULAR {
-        return vec3f(ctx.m.specular * microfacet);
+        return ctx.m.specular * microfacet * specular_fresnel(ctx, dot(ctx.wo, m)) * ctx.energy_specular;
     }
-    return ctx.m.reflection * microfacet * conductor_fresnel(ctx.m.base_color, dot(ctx.wo, m));
+    return ctx.m.reflection * microfacet * metal_fresnel(ctx, dot(ctx.wo, m)) * ctx.energy_reflection;
     //#else
     return vec3f(0.0);
     //#endif
@@ -59,7 +59,7 @@ fn bsdf_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
     }
     //#if rough_glass_ggx
     if ctx.smooth_lobe.w > 0.0 && ctx.lobe_probability.w > 0.0 {
-        f += ctx.m.transmission * rough_dielectric_eval(ctx, wi);
+        f += ctx.m.transmission * rough_dielectric_eval(ctx, wi) * ctx.energy_transmission;
     }
     //#endif
     return f;

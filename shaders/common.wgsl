@@ -149,6 +149,15 @@ struct Material {
     alpha_cutoff: f32,
     _pad0: u32,
     _pad1: u32,
+    // The F82 tint of the `reflection` metal; the tint of the diffuse's coating's F0.
+    specular_tint: vec3f,
+    // Index of the dielectric coating over the diffuse lobe (0: none; then the
+    // `specular` lobe is that coating), and its F0 before `specular_tint`.
+    coating_eta: f32,
+    coating_f0: f32,
+    _pad2: u32,
+    _pad3: u32,
+    _pad4: u32,
 }
 
 // One texture of the texture store: its texels start at `offset` in `texels`, levels

@@ -80,10 +80,10 @@ fn sample_delta_lobe(ctx: ShadingContext, lobe: u32, u: f32, rng: ptr<function, 
     let p = ctx.lobe_probability[lobe];
     let mirror = fold_above(vec3f(-ctx.wo.xy, ctx.wo.z), ctx.n_geometric);
     if lobe == LOBE_SPECULAR {
-        return BsdfSample(mirror, vec3f(ctx.m.specular / p), 0.0, true, false, lobe);
+        return BsdfSample(mirror, ctx.m.specular * specular_fresnel(ctx, ctx.wo.z) / p, 0.0, true, false, lobe);
     }
     if lobe == LOBE_REFLECTION {
-        return BsdfSample(mirror, ctx.m.reflection * conductor_fresnel(ctx.m.base_color, ctx.wo.z) / p, 0.0, true, false, lobe);
+        return BsdfSample(mirror, ctx.m.reflection * metal_fresnel(ctx, ctx.wo.z) / p, 0.0, true, false, lobe);
     }
     //#if glass
     return smooth_dielectric_sample(ctx, u, rng);
@@ -113,7 +113,8 @@ fn sample_smooth_part(ctx: ShadingContext, lobe: u32, rng: ptr<function, Rng>) -
 fn resample_smooth_part(ctx: ShadingContext, lobe: u32, rng: ptr<function, Rng>) -> BsdfSample {
     let dense = ctx.lobe_probability * ctx.smooth_lobe;
     let p_smooth = dense.x + dense.y + dense.z + dense.w;
-    let lobe_choice = ShadingContext(ctx.m, ctx.basis, ctx.wo, ctx.n_geometric, ctx.eta, dense / p_smooth, ctx.smooth_lobe);
+    var lobe_choice = ctx;
+    lobe_choice.lobe_probability = dense / p_smooth;
     var sun_share = 0.0;
     //#if sun
     sun_share = 0.5;

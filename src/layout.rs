@@ -156,6 +156,13 @@ pub struct GpuMaterial {
     pub base_alpha: f32,
     pub alpha_cutoff: f32,
     pub _pad0: [u32; 2],
+    /// The F82 tint of the `reflection` metal; the tint of the diffuse's coating's F0.
+    pub specular_tint: [f32; 3],
+    /// The index of the dielectric coating over the diffuse lobe; 0: no coating.
+    pub coating_eta: f32,
+    /// The coating's F0 before `specular_tint` (Specular IOR Level applied).
+    pub coating_f0: f32,
+    pub _pad1: [u32; 3],
 }
 
 /// One texture of the scene's texture store (`shaders/texture.wgsl`).
@@ -293,6 +300,9 @@ pub const NO_TEXTURE: u32 = u32::MAX;
 impl From<&crate::scene::Material> for GpuMaterial {
     fn from(m: &crate::scene::Material) -> Self {
         let [diffuse, specular, reflection, transmission] = m.lobe_weights();
+        let (coating_eta, coating_f0) = m.dielectric_coating().unwrap_or((0.0, 0.0));
+        // The coating is the diffuse's own glossy layer, with the diffuse's weight.
+        let specular = if coating_eta > 0.0 { diffuse } else { specular };
         Self {
             base_color: m.base_color,
             diffuse,
@@ -313,6 +323,10 @@ impl From<&crate::scene::Material> for GpuMaterial {
             base_alpha: m.textures.base_alpha,
             alpha_cutoff: m.textures.alpha_cutoff,
             _pad0: [0; 2],
+            specular_tint: m.specular_tint,
+            coating_eta,
+            coating_f0,
+            _pad1: [0; 3],
         }
     }
 }

@@ -30,7 +30,7 @@ pub struct CachedMaterial {
     pub emission: [f32; 3],
     pub absorption: [f32; 3],
     pub volume_emission: [f32; 3],
-    pub _pad: f32,
+    pub specular_ior_level: f32,
     /// Texture indices into the asset's textures, or [`NO_TEXTURE`].
     pub base_color_texture: u32,
     pub metallic_roughness_texture: u32,
@@ -38,6 +38,7 @@ pub struct CachedMaterial {
     pub metallic: f32,
     pub base_alpha: f32,
     pub alpha_cutoff: f32,
+    pub specular_tint: [f32; 3],
 }
 
 impl From<&Material> for CachedMaterial {
@@ -54,13 +55,14 @@ impl From<&Material> for CachedMaterial {
             emission: m.emission,
             absorption: m.absorption,
             volume_emission: m.volume_emission,
-            _pad: 0.0,
+            specular_ior_level: m.specular_ior_level,
             base_color_texture: slot(m.textures.base_color),
             metallic_roughness_texture: slot(m.textures.metallic_roughness),
             emission_texture: slot(m.textures.emission),
             metallic: m.textures.metallic,
             base_alpha: m.textures.base_alpha,
             alpha_cutoff: m.textures.alpha_cutoff,
+            specular_tint: m.specular_tint,
         }
     }
 }
@@ -75,6 +77,8 @@ impl From<&CachedMaterial> for Material {
             transmission: m.transmission,
             ior: m.ior,
             roughness: m.roughness,
+            specular_tint: m.specular_tint,
+            specular_ior_level: m.specular_ior_level,
             hardness: (m.hardness > 0.0).then_some(m.hardness),
             emission: m.emission,
             absorption: m.absorption,
@@ -93,7 +97,7 @@ impl From<&CachedMaterial> for Material {
 
 impl CachedMaterial {
     pub fn all_finite(&self) -> bool {
-        let vectors = [self.base_color, self.emission, self.absorption, self.volume_emission];
+        let vectors = [self.base_color, self.emission, self.absorption, self.volume_emission, self.specular_tint];
         let scalars = [
             self.diffuse,
             self.specular,
@@ -101,6 +105,7 @@ impl CachedMaterial {
             self.transmission,
             self.ior,
             self.roughness,
+            self.specular_ior_level,
             self.hardness,
             self.metallic,
             self.base_alpha,

@@ -2,6 +2,7 @@
 
 use super::GpuContext;
 use super::bind::{Binding, bind_group, sequential_layout};
+use super::microfacet_tables::microfacet_tables;
 use super::readback::read_buffer;
 use super::textures::TextureStore;
 use crate::bvh::SceneGeometry;
@@ -20,7 +21,7 @@ pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     use Binding::*;
     let bindings = [
         Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadWrite, ReadOnly, ReadOnly,
-        Uniform, ReadOnly, ReadOnly, ReadOnly,
+        Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly,
     ];
     sequential_layout(device, "scene", wgpu::ShaderStages::COMPUTE, &bindings)
 }
@@ -56,11 +57,13 @@ struct SceneData {
     /// The texture store (see `super::textures`): its table and its texels.
     textures: wgpu::Buffer,
     texels: wgpu::Buffer,
+    /// Cycles' microfacet albedo tables (see `super::microfacet_tables`).
+    microfacet_tables: wgpu::Buffer,
 }
 
 impl SceneData {
     /// The buffers in binding order (see [`scene_bind_group_layout`]).
-    fn bindings(&self) -> [&wgpu::Buffer; 15] {
+    fn bindings(&self) -> [&wgpu::Buffer; 16] {
         [
             &self.frame,
             &self.nodes,
@@ -77,6 +80,7 @@ impl SceneData {
             &self.wide_nodes,
             &self.textures,
             &self.texels,
+            &self.microfacet_tables,
         ]
     }
 }
@@ -171,6 +175,7 @@ impl SceneBuffers {
             wide_nodes,
             textures,
             texels,
+            microfacet_tables: storage(ctx, "microfacet tables", &microfacet_tables(), wgpu::BufferUsages::empty()),
         };
         let bind_group = bind_group(ctx, "scene", layout, &data.bindings());
         Ok(Self { data, bind_group, sky_bind_group: None })

@@ -114,7 +114,10 @@ fn host_structs_match_wgsl_layouts() {
                 metallic,
                 roughness,
                 base_alpha,
-                alpha_cutoff
+                alpha_cutoff,
+                specular_tint,
+                coating_eta,
+                coating_f0
             ]
         ),
         host_layout!("Emitter", GpuEmitter, [primitive, instance, cdf]),

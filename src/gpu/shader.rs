@@ -61,6 +61,8 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("lamps.wgsl"),
     shader!("lights.wgsl"),
     shader!("microfacet.wgsl"),
+    shader!("microfacet_tables.wgsl"),
+    shader!("principled.wgsl"),
     shader!("ray.wgsl"),
     shader!("rng.wgsl"),
     shader!("sampling.wgsl"),

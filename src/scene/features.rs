@@ -1,6 +1,6 @@
 //! Feature analysis: which effects a scene needs, so that the GPU runs only their code.
 
-use super::{Light, LightShape, Material, RoughTransmission, Sampling, Scene, Sky};
+use super::{Light, LightShape, Material, Microfacet, RoughTransmission, Sampling, Scene, Sky};
 use std::fmt;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -74,6 +74,11 @@ pub struct FeatureSet {
     pub sampling: Sampling,
     /// A thin-lens camera: rays start across the aperture.
     pub depth_of_field: bool,
+    /// Cycles' multiscatter GGX (`[render] microfacet`) for the scene's rough lobes, metals
+    /// and glass.
+    pub multiscatter: bool,
+    /// Some diffuse lobe lies under a dielectric coating (`specular_ior_level`).
+    pub coating: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -116,7 +121,8 @@ impl FeatureSet {
             sun: scene.sun.is_some(),
             // A metallic-roughness texture may make any texel a rough metal.
             glossy: materials_in_use.iter().any(|m| {
-                ((m.specular > 0.0 || m.reflection > 0.0) && rough(&m)) || m.textures.metallic_roughness.is_some()
+                ((m.specular > 0.0 || m.reflection > 0.0 || m.dielectric_coating().is_some()) && rough(&m))
+                    || m.textures.metallic_roughness.is_some()
             }),
             transmission,
             media: transmissive.iter().any(|m| m.has_medium()),
@@ -125,6 +131,14 @@ impl FeatureSet {
             alpha_mask: materials_in_use.iter().any(|m| m.textures.alpha_cutoff > 0.0),
             sampling: settings.sampling,
             depth_of_field: scene.camera.depth_of_field.is_some(),
+            multiscatter: settings.microfacet == Microfacet::Multiscatter
+                && materials_in_use.iter().any(|m| {
+                    m.reflection > 0.0
+                        || m.transmission > 0.0
+                        || m.textures.metallic_roughness.is_some()
+                        || (rough(&m) && (m.specular > 0.0 || m.dielectric_coating().is_some()))
+                }),
+            coating: materials_in_use.iter().any(|m| m.dielectric_coating().is_some()),
         }
     }
 
@@ -144,6 +158,8 @@ impl FeatureSet {
             alpha_mask: true,
             sampling,
             depth_of_field: true,
+            multiscatter: true,
+            coating: true,
         }
     }
 
@@ -173,6 +189,9 @@ impl FeatureSet {
             "alpha_mask" => self.alpha_mask,
             "nee" => self.sampling == Sampling::Nee,
             "depth_of_field" => self.depth_of_field,
+            "multiscatter" => self.multiscatter,
+            "coating" => self.coating,
+            "microfacet_tables" => self.multiscatter || self.coating,
             _ => return None,
         })
     }
@@ -191,6 +210,8 @@ impl fmt::Display for FeatureSet {
             (self.depth_of_field, "depth-of-field"),
             (self.textures, "textures"),
             (self.alpha_mask, "alpha-mask"),
+            (self.multiscatter, "multiscatter"),
+            (self.coating, "coating"),
         ] {
             if on {
                 parts.push(name.to_string());

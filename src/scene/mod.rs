@@ -41,6 +41,7 @@ pub struct RenderSettings {
     /// Candidates per resampled direction in `resampled` sampling.
     pub ris_candidates: u32,
     pub rough_transmission: RoughTransmission,
+    pub microfacet: Microfacet,
 }
 
 impl Default for RenderSettings {
@@ -54,6 +55,7 @@ impl Default for RenderSettings {
             sampling: Sampling::Nee,
             ris_candidates: 8,
             rough_transmission: RoughTransmission::Ggx,
+            microfacet: Microfacet::Multiscatter,
         }
     }
 }
@@ -83,6 +85,20 @@ pub enum RoughTransmission {
     Ggx,
     /// A cheaper model: the refracted direction jittered in a cone.
     Cone,
+}
+
+/// The model of rough GGX lobes (reflection, metal and refraction).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum Microfacet {
+    /// Cycles' GGX: height-correlated Smith masking-shadowing and Cycles' energy
+    /// compensation for the light that single scattering loses (`microfacet_ggx_preserve_energy`),
+    /// F82-tint metals.
+    #[default]
+    Multiscatter,
+    /// Single scattering with separable Smith masking-shadowing and the Fresnel of a
+    /// non-absorbing conductor for metals: Mitsuba 3's `roughconductor`/`roughdielectric`.
+    Single,
 }
 
 /// `[sky]`; black when the table is left out, white when `uniform` has no `color`.

@@ -39,6 +39,8 @@ fn feature_sets() -> Vec<FeatureSet> {
             alpha_mask: on(0) != on(4) && on(6),
             sampling: if on(0) { Sampling::Nee } else { Sampling::Resampled },
             depth_of_field: on(4) != on(6),
+            multiscatter: on(7) != on(1),
+            coating: on(5) != on(7),
         });
     }
     sets
@@ -63,6 +65,8 @@ fn plain() -> FeatureSet {
         alpha_mask: false,
         sampling: Sampling::Nee,
         depth_of_field: false,
+        multiscatter: false,
+        coating: false,
     }
 }
 

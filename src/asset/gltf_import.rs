@@ -519,6 +519,35 @@ mod tests {
     }
 
     #[test]
+    fn gltf_specular_becomes_the_diffuse_coating() {
+        let dir = TempDir::new("gltf_specular");
+        let dielectric = r#""pbrMetallicRoughness": { "metallicFactor": 0.0 }"#;
+        let cases = [
+            (format!("{{ {dielectric} }}"), 0.5, [1.0; 3]),
+            (
+                format!(
+                    r#"{{ {dielectric}, "extensions": {{ "KHR_materials_specular":
+                      {{ "specularFactor": 0.6, "specularColorFactor": [1.0, 0.5, 0.25] }} }} }}"#
+                ),
+                0.3,
+                [1.0, 0.5, 0.25],
+            ),
+            (
+                format!(
+                    r#"{{ {dielectric}, "extensions": {{ "KHR_materials_specular": {{ "specularFactor": 1.0 }} }},
+                      "extras": {{ "rt_specular_ior_level": 0.8 }} }}"#
+                ),
+                0.8,
+                [1.0; 3],
+            ),
+        ];
+        for (json, level, tint) in cases {
+            let m = &load_mesh(&dir.write("tri.gltf", &triangle_gltf(Some(&json)))).expect("loads").materials[0].1;
+            assert_eq!((m.specular, m.specular_ior_level, m.specular_tint), (0.0, level, tint), "{json}");
+        }
+    }
+
+    #[test]
     fn gltf_without_material_gets_white_diffuse() {
         let dir = TempDir::new("gltf_no_material");
         let mesh = load_mesh(&dir.write("tri.gltf", &triangle_gltf(None))).expect("loads");

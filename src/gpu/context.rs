@@ -20,9 +20,10 @@ pub struct GpuContext {
     errors: Arc<Mutex<Vec<String>>>,
 }
 
-/// Storage buffers the integrator binds in one stage: 13 in the scene group (see
-/// `shaders/common.wgsl`), 3 of the accumulation and the atmosphere's tables.
-const STORAGE_BUFFERS_NEEDED: u32 = 17;
+/// Storage buffers the integrator binds in one stage: 14 in the scene group (see
+/// `shaders/common.wgsl`; the 14th, `shaders/microfacet_tables.wgsl`'s), 3 of the
+/// accumulation and the atmosphere's tables.
+const STORAGE_BUFFERS_NEEDED: u32 = 18;
 
 const NO_ADAPTER_HELP: &str = "no GPU adapter found. rt needs Vulkan; on a machine without a GPU, \
 install Mesa's CPU driver (lavapipe): `sudo apt-get install mesa-vulkan-drivers`";

@@ -86,7 +86,8 @@ const ROUGH_COATED: &str = "specular_ior_level = 0.5\nroughness = 1.0";
 #[test]
 fn rough_metal_keeps_its_energy_with_multiscatter_ggx() {
     // White metal at roughness 1: single scattering keeps about a third (Cycles' table:
-    // 1 − ln 2 at normal incidence); the compensation gives the rest back.
+    // 1 − ln 2 at normal incidence); the compensation gives the rest back (Cycles keeps
+    // 99.98%, tests/cycles/measure_principled_furnaces.py).
     let (mean, se) = kept(ROUGH_METAL, "multiscatter");
     println!("rough metal, multiscatter: {mean:.5} ± {se:.5}");
     assert!(mean >= 0.99 - 4.0 * se && mean <= 1.0 + 4.0 * se, "keeps {mean} ± {se}");
@@ -97,6 +98,8 @@ fn rough_metal_keeps_its_energy_with_multiscatter_ggx() {
 
 #[test]
 fn rough_glass_keeps_its_energy_with_multiscatter_ggx() {
+    // Cycles keeps 98.5% here (tests/cycles/measure_principled_furnaces.py): its
+    // compensation is per interface, and paths bounce inside the sphere.
     let (mean, se) = kept(ROUGH_GLASS, "multiscatter");
     println!("rough glass, multiscatter: {mean:.5} ± {se:.5}");
     assert!(mean >= 0.975 - 4.0 * se && mean <= 1.0 + 4.0 * se, "keeps {mean} ± {se}");
@@ -107,7 +110,8 @@ fn rough_glass_keeps_its_energy_with_multiscatter_ggx() {
 
 #[test]
 fn white_diffuse_under_a_rough_coating_keeps_its_energy() {
-    // The coating reflects its albedo and the diffuse gets the rest: white stays white.
+    // The coating reflects its albedo and the diffuse gets the rest: white stays white
+    // (Cycles keeps 99.99%, tests/cycles/measure_principled_furnaces.py).
     let (mean, se) = kept(ROUGH_COATED, "multiscatter");
     println!("coated white diffuse, multiscatter: {mean:.5} ± {se:.5}");
     assert!((mean - 1.0).abs() <= 0.005 + 4.0 * se, "keeps {mean} ± {se}");

@@ -510,6 +510,16 @@ def gltf_material(material, thickness, textures=None):
         },
     }
     out["extras"] = {"rt_specular_ior_level": min(max(specular_level, 0.0), 1.0)}
+    if surface is not None and surface.type == "BSDF_PRINCIPLED":
+        coat = float(socket_value(surface, "Coat Weight", 0.0))
+        if coat > 0.0:
+            # glTF's clearcoat has no index or tint: rt reads its own keys.
+            out["extras"].update({
+                "rt_coat": min(coat, 1.0),
+                "rt_coat_roughness": min(max(float(socket_value(surface, "Coat Roughness", 0.03)), 0.0), 1.0),
+                "rt_coat_ior": max(float(socket_value(surface, "Coat IOR", 1.5)), 1.0),
+                "rt_coat_tint": [min(max(c, 0.0), 1.0) for c in rgb(socket_value(surface, "Coat Tint", (1, 1, 1)))],
+            })
     if transmission > 0.0:
         extensions["KHR_materials_transmission"] = {"transmissionFactor": transmission}
     peak = max(emission)

@@ -21,6 +21,9 @@ const LOBE_DIFFUSE: u32 = 0u;
 const LOBE_SPECULAR: u32 = 1u;
 const LOBE_REFLECTION: u32 = 2u;
 const LOBE_TRANSMISSION: u32 = 3u;
+// The coat, sampled before the other lobes (see `bsdf_sample`); its samples are labelled
+// LOBE_SPECULAR.
+const LOBE_COAT: u32 = 4u;
 
 struct ShadingContext {
     m: Material,
@@ -44,6 +47,11 @@ struct ShadingContext {
     diffuse_kept: f32,
     // F82-tint's b of the `reflection` metal (see `metal_fresnel`).
     metal_b: vec3f,
+    // The coat: the probability of sampling it, its energy compensation, and what the
+    // lobes under it keep (1 without a coat).
+    coat_probability: f32,
+    coat_energy: vec3f,
+    under_coat: vec3f,
 }
 
 struct BsdfSample {
@@ -130,7 +138,7 @@ fn shading_context(m: Material, n_shading: vec3f, n_geometric: vec3f, wo_world: 
     smooth_lobe.w = f32(rough);
     //#endif
     let mu = max(wo.z, 1e-6);
-    var ctx = ShadingContext(m, basis, vec3f(wo.xy, mu), to_local * n_geometric, eta, vec4f(0.0), smooth_lobe, vec3f(1.0), vec3f(1.0), vec3f(1.0), 1.0, vec3f(0.0));
+    var ctx = ShadingContext(m, basis, vec3f(wo.xy, mu), to_local * n_geometric, eta, vec4f(0.0), smooth_lobe, vec3f(1.0), vec3f(1.0), vec3f(1.0), 1.0, vec3f(0.0), 0.0, vec3f(1.0), vec3f(1.0));
     var specular_albedo = 1.0;
     //#if multiscatter
     ctx.metal_b = f82_b(metal_f0(m), min(m.specular_tint, vec3f(1.0)));
@@ -162,6 +170,13 @@ fn shading_context(m: Material, n_shading: vec3f, n_geometric: vec3f, wo_world: 
     let p = vec4f(m.diffuse * ctx.diffuse_kept * luminance(m.base_color), m.specular * specular_albedo, m.reflection * luminance(m.base_color), m.transmission);
     let total = p.x + p.y + p.z + p.w;
     ctx.lobe_probability = select(vec4f(0.0), p / total, total > 0.0);
+    //#if coat
+    if m.coat > 0.0 {
+        let coat_albedo = coat_setup(&ctx, mu);
+        let rest = total * luminance(ctx.under_coat);
+        ctx.coat_probability = select(1.0, coat_albedo / (coat_albedo + rest), coat_albedo + rest > 0.0);
+    }
+    //#endif
     return ctx;
 }
 

@@ -158,6 +158,14 @@ struct Material {
     _pad2: u32,
     _pad3: u32,
     _pad4: u32,
+    // The coat: a dielectric GGX layer of weight `coat` over every other lobe (0: none),
+    // and the tint of the light crossing it at normal incidence.
+    coat_tint: vec3f,
+    coat: f32,
+    coat_alpha: f32,
+    coat_ior: f32,
+    _pad5: u32,
+    _pad6: u32,
 }
 
 // One texture of the texture store: its texels start at `offset` in `texels`, levels

@@ -82,6 +82,27 @@ fn dielectric_energy(alpha: f32, mu: f32, eta: f32, tint: vec3f) -> vec3f {
     return energy_compensation(e, table_2d(avg_table, 16u, 16u, rough, z), tint);
 }
 
+// Principled's coat over every other lobe: its energy compensation, what the lobes under
+// it keep (1 − coat × its albedo, times the tint along the refracted view: Cycles'
+// `closure_layering_weight` and Beer's law), and its albedo (for sampling).
+fn coat_setup(ctx: ptr<function, ShadingContext>, mu: f32) -> f32 {
+    let m = (*ctx).m;
+    let r = (m.coat_ior - 1.0) / (m.coat_ior + 1.0);
+    let f0 = r * r;
+    let estimate = mix(f0, 1.0, coating_fresnel_s(sqrt(m.coat_alpha), mu, m.coat_ior));
+    var darkening = 1.0;
+    //#if multiscatter
+    if m.coat_alpha >= ALPHA_DELTA {
+        (*ctx).coat_energy = reflection_energy(m.coat_alpha, mu, vec3f(fresnel_dielectric_average(m.coat_ior)));
+        darkening = (*ctx).coat_energy.x * ggx_albedo(m.coat_alpha, mu);
+    }
+    //#endif
+    let cos_t = sqrt(max(1e-6, 1.0 - (1.0 - mu * mu) / (m.coat_ior * m.coat_ior)));
+    let tint = mix(vec3f(1.0), pow(max(m.coat_tint, vec3f(1e-8)), vec3f(1.0 / cos_t)), m.coat);
+    (*ctx).under_coat = saturate(1.0 - m.coat * estimate * darkening) * tint;
+    return m.coat * estimate;
+}
+
 // How much of the diffuse lobe the coating lets through, seen from `mu`: 1 − the largest
 // channel of its albedo (Cycles' `closure_layering_weight` of `bsdf_microfacet_estimate_albedo`).
 // The estimate assumes a lobe that keeps its energy; `darkening` is what multiple-scattering

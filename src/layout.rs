@@ -163,6 +163,13 @@ pub struct GpuMaterial {
     /// The coating's F0 before `specular_tint` (Specular IOR Level applied).
     pub coating_f0: f32,
     pub _pad1: [u32; 3],
+    /// Tint of the light crossing the coat, at normal incidence.
+    pub coat_tint: [f32; 3],
+    /// Weight of the coat layer over every other lobe; 0: none.
+    pub coat: f32,
+    pub coat_alpha: f32,
+    pub coat_ior: f32,
+    pub _pad2: [u32; 2],
 }
 
 /// One texture of the scene's texture store (`shaders/texture.wgsl`).
@@ -327,6 +334,11 @@ impl From<&crate::scene::Material> for GpuMaterial {
             coating_eta,
             coating_f0,
             _pad1: [0; 3],
+            coat_tint: m.coat_tint,
+            coat: m.coat,
+            coat_alpha: m.coat_roughness * m.coat_roughness,
+            coat_ior: m.coat_ior,
+            _pad2: [0; 2],
         }
     }
 }

@@ -108,3 +108,13 @@ fn specular_tint_matches_cycles() {
 fn metal_tint_matches_cycles() {
     check("metal_tint");
 }
+
+#[test]
+fn coat_weight_matches_cycles() {
+    check("coat_weight");
+}
+
+#[test]
+fn coat_roughness_and_tint_match_cycles() {
+    check("coat_roughness");
+}

@@ -15,6 +15,7 @@
 //! | `KHR_materials_specular` factor `s` (1)                   | `specular_ior_level = s / 2` (with a diffuse part) |
 //! | `extras.rt_specular_ior_level` (absent)                   | `specular_ior_level`, instead of `s / 2` (Blender's level may exceed 0.5) |
 //! | `KHR_materials_specular` colour factor (1, 1, 1)          | `specular_tint`                |
+//! | `extras.rt_coat`, `_roughness`, `_ior`, `_tint` (0, 0.03, 1.5, (1, 1, 1)) | `coat`, `coat_roughness`, `coat_ior`, `coat_tint` |
 //! | `KHR_materials_volume` colour `c` (1), distance `d` (∞)   | `absorption = -ln(c) / d`; 0 if `d = ∞` |
 //! | `extras.rt_volume_emission` `[r, g, b]` (0)               | `volume_emission`              |
 //!
@@ -342,6 +343,10 @@ fn map_material_with_metallic(m: &gltf::Material, metallic: f32) -> Result<Mater
         specular: 0.0,
         specular_ior_level: if diffuse > 0.0 { level.clamp(0.0, 1.0) } else { 0.0 },
         specular_tint: m.specular().map_or([1.0; 3], |s| s.specular_color_factor().map(|c| c.clamp(0.0, 1.0))),
+        coat: extra::<f32>(m.extras(), "rt_coat")?.unwrap_or(0.0).clamp(0.0, 1.0),
+        coat_roughness: extra::<f32>(m.extras(), "rt_coat_roughness")?.unwrap_or(0.03).clamp(0.0, 1.0),
+        coat_ior: extra::<f32>(m.extras(), "rt_coat_ior")?.unwrap_or(1.5).max(1.0),
+        coat_tint: extra::<[f32; 3]>(m.extras(), "rt_coat_tint")?.unwrap_or([1.0; 3]).map(|c| c.clamp(0.0, 1.0)),
         reflection: metallic,
         transmission: dielectric * transmission,
         ior: m.ior().unwrap_or(1.5),
@@ -498,6 +503,10 @@ mod tests {
                 roughness: 0.1,
                 specular_tint: [1.0; 3],
                 specular_ior_level: 0.0,
+                coat: 0.0,
+                coat_roughness: 0.03,
+                coat_ior: 1.5,
+                coat_tint: [1.0; 3],
                 hardness: None,
                 emission: [4.0, 2.0, 0.0],
                 absorption: [ln2 / 2.0, 2.0 * ln2 / 2.0, 0.0],

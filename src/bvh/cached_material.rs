@@ -39,6 +39,10 @@ pub struct CachedMaterial {
     pub base_alpha: f32,
     pub alpha_cutoff: f32,
     pub specular_tint: [f32; 3],
+    pub coat: f32,
+    pub coat_roughness: f32,
+    pub coat_ior: f32,
+    pub coat_tint: [f32; 3],
 }
 
 impl From<&Material> for CachedMaterial {
@@ -63,6 +67,10 @@ impl From<&Material> for CachedMaterial {
             base_alpha: m.textures.base_alpha,
             alpha_cutoff: m.textures.alpha_cutoff,
             specular_tint: m.specular_tint,
+            coat: m.coat,
+            coat_roughness: m.coat_roughness,
+            coat_ior: m.coat_ior,
+            coat_tint: m.coat_tint,
         }
     }
 }
@@ -79,6 +87,10 @@ impl From<&CachedMaterial> for Material {
             roughness: m.roughness,
             specular_tint: m.specular_tint,
             specular_ior_level: m.specular_ior_level,
+            coat: m.coat,
+            coat_roughness: m.coat_roughness,
+            coat_ior: m.coat_ior,
+            coat_tint: m.coat_tint,
             hardness: (m.hardness > 0.0).then_some(m.hardness),
             emission: m.emission,
             absorption: m.absorption,
@@ -97,7 +109,8 @@ impl From<&CachedMaterial> for Material {
 
 impl CachedMaterial {
     pub fn all_finite(&self) -> bool {
-        let vectors = [self.base_color, self.emission, self.absorption, self.volume_emission, self.specular_tint];
+        let vectors =
+            [self.base_color, self.emission, self.absorption, self.volume_emission, self.specular_tint, self.coat_tint];
         let scalars = [
             self.diffuse,
             self.specular,
@@ -106,6 +119,9 @@ impl CachedMaterial {
             self.ior,
             self.roughness,
             self.specular_ior_level,
+            self.coat,
+            self.coat_roughness,
+            self.coat_ior,
             self.hardness,
             self.metallic,
             self.base_alpha,

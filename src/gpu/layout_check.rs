@@ -117,7 +117,11 @@ fn host_structs_match_wgsl_layouts() {
                 alpha_cutoff,
                 specular_tint,
                 coating_eta,
-                coating_f0
+                coating_f0,
+                coat_tint,
+                coat,
+                coat_alpha,
+                coat_ior
             ]
         ),
         host_layout!("Emitter", GpuEmitter, [primitive, instance, cdf]),

@@ -79,6 +79,8 @@ pub struct FeatureSet {
     pub multiscatter: bool,
     /// Some diffuse lobe lies under a dielectric coating (`specular_ior_level`).
     pub coating: bool,
+    /// Some material has a coat layer (`coat`).
+    pub coat: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -123,6 +125,7 @@ impl FeatureSet {
             glossy: materials_in_use.iter().any(|m| {
                 ((m.specular > 0.0 || m.reflection > 0.0 || m.dielectric_coating().is_some()) && rough(&m))
                     || m.textures.metallic_roughness.is_some()
+                    || m.coat_roughness * m.coat_roughness >= ALPHA_DELTA && m.coat > 0.0
             }),
             transmission,
             media: transmissive.iter().any(|m| m.has_medium()),
@@ -137,8 +140,10 @@ impl FeatureSet {
                         || m.transmission > 0.0
                         || m.textures.metallic_roughness.is_some()
                         || (rough(&m) && (m.specular > 0.0 || m.dielectric_coating().is_some()))
+                        || m.coat > 0.0
                 }),
             coating: materials_in_use.iter().any(|m| m.dielectric_coating().is_some()),
+            coat: materials_in_use.iter().any(|m| m.coat > 0.0),
         }
     }
 
@@ -160,6 +165,7 @@ impl FeatureSet {
             depth_of_field: true,
             multiscatter: true,
             coating: true,
+            coat: true,
         }
     }
 
@@ -191,7 +197,8 @@ impl FeatureSet {
             "depth_of_field" => self.depth_of_field,
             "multiscatter" => self.multiscatter,
             "coating" => self.coating,
-            "microfacet_tables" => self.multiscatter || self.coating,
+            "coat" => self.coat,
+            "microfacet_tables" => self.multiscatter || self.coating || self.coat,
             _ => return None,
         })
     }
@@ -212,6 +219,7 @@ impl fmt::Display for FeatureSet {
             (self.alpha_mask, "alpha-mask"),
             (self.multiscatter, "multiscatter"),
             (self.coating, "coating"),
+            (self.coat, "coat"),
         ] {
             if on {
                 parts.push(name.to_string());

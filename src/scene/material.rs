@@ -21,6 +21,13 @@ pub struct Material {
     /// coating of index `ior` whose F0 is scaled by 2 × this (0.5: the physical F0), and
     /// the diffuse keeps what the coating does not reflect. 0: no coating.
     pub specular_ior_level: f32,
+    /// Principled's Coat: the weight of a dielectric GGX layer over every other lobe, its
+    /// roughness (perceptual), index, and the tint of the light that crosses it (at
+    /// normal incidence; Beer's law along the refracted view).
+    pub coat: f32,
+    pub coat_roughness: f32,
+    pub coat_ior: f32,
+    pub coat_tint: [f32; 3],
     /// The seed renderer's Phong-like exponent; mapped to `roughness` when given.
     pub hardness: Option<f32>,
     pub emission: [f32; 3],
@@ -87,6 +94,10 @@ impl Default for Material {
             roughness: 0.0,
             specular_tint: [1.0; 3],
             specular_ior_level: 0.0,
+            coat: 0.0,
+            coat_roughness: 0.03,
+            coat_ior: 1.5,
+            coat_tint: [1.0; 3],
             hardness: None,
             emission: [0.0; 3],
             absorption: [0.0; 3],

@@ -227,6 +227,8 @@ fn out_of_range_values_are_located() {
         [materials.m] | hardness = 0 => 2:12: [materials.m]: hardness must be positive, got 0
         [materials.m] | specular_ior_level = 1.5 => 2:22: [materials.m]: specular_ior_level must be in [0, 1], got 1.5
         [materials.m] | specular_tint = [1, 2, 1] => 2:17: [materials.m]: specular_tint must be in [0, 1], got 2
+        [materials.m] | coat = 1.5 => 2:8: [materials.m]: coat must be in [0, 1], got 1.5
+        [materials.m] | coat_ior = 0.5 => 2:12: [materials.m]: coat_ior must be at least 1, got 0.5
         [materials.m] | specular = 0.5 | specular_ior_level = 0.5 => 3:22: [materials.m]: specular_ior_level excludes `specular` (the coating is the diffuse's own glossy layer)
         [materials.m] | volume_emission = [0, 0, -1] => 2:19: [materials.m]: volume_emission must be non-negative, got -1
         [[mesh]] | asset = "" => 2:9: mesh 1: asset must name a file or folder, got ""

@@ -155,6 +155,10 @@ fn material(src: &Source, p: &[Seg], m: &Material) -> Result<(), SceneError> {
     src.check(p, "roughness", &[m.roughness], "in [0, 1]", |r| (0.0..=1.0).contains(&r))?;
     src.check(p, "specular_tint", &m.specular_tint, "in [0, 1]", |t| (0.0..=1.0).contains(&t))?;
     src.check(p, "specular_ior_level", &[m.specular_ior_level], "in [0, 1]", |l| (0.0..=1.0).contains(&l))?;
+    src.check(p, "coat", &[m.coat], "in [0, 1]", |c| (0.0..=1.0).contains(&c))?;
+    src.check(p, "coat_roughness", &[m.coat_roughness], "in [0, 1]", |r| (0.0..=1.0).contains(&r))?;
+    src.check(p, "coat_ior", &[m.coat_ior], "at least 1", |ior| ior >= 1.0)?;
+    src.check(p, "coat_tint", &m.coat_tint, "in [0, 1]", |t| (0.0..=1.0).contains(&t))?;
     if m.specular_ior_level > 0.0 && m.specular > 0.0 {
         return Err(src.error(
             p,

@@ -40,6 +40,14 @@ ROWS = {
         [{"Specular IOR Level": level} for level in STEPS],
     ),
     "specular_tint": ({"Base Color": (0.1, 0.1, 0.1), "Roughness": 0.3}, [{"Specular Tint": t} for t in TINTS]),
+    "coat_weight": (
+        {"Base Color": (0.8, 0.2, 0.1), "Roughness": 0.6, "Coat Roughness": 0.1},
+        [{"Coat Weight": w} for w in STEPS],
+    ),
+    "coat_roughness": (
+        {"Base Color": (0.1, 0.3, 0.8), "Roughness": 0.6, "Coat Weight": 1.0, "Coat Tint": (0.9, 0.7, 0.5)},
+        [{"Coat Roughness": r} for r in STEPS],
+    ),
     "metal_tint": (
         {"Base Color": (0.9, 0.85, 0.8), "Metallic": 1.0, "Roughness": 0.3},
         [{"Specular Tint": t} for t in TINTS],

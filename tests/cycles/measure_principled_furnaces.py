@@ -22,6 +22,7 @@ CASES = {
     "metal": {"Base Color": (1, 1, 1), "Metallic": 1.0, "Roughness": 1.0},
     "glass": {"Base Color": (1, 1, 1), "Transmission Weight": 1.0, "Roughness": 1.0, "IOR": 1.5},
     "coated": {"Base Color": (1, 1, 1), "Roughness": 1.0, "Specular IOR Level": 0.5},
+    "coat": {"Base Color": (1, 1, 1), "Specular IOR Level": 0.0, "Coat Weight": 1.0, "Coat Roughness": 1.0},
 }
 OUT = tempfile.mkdtemp()
 for name, inputs in CASES.items():

@@ -41,6 +41,7 @@ fn feature_sets() -> Vec<FeatureSet> {
             depth_of_field: on(4) != on(6),
             multiscatter: on(7) != on(1),
             coating: on(5) != on(7),
+            coat: on(3) != on(6),
         });
     }
     sets
@@ -67,6 +68,7 @@ fn plain() -> FeatureSet {
         depth_of_field: false,
         multiscatter: false,
         coating: false,
+        coat: false,
     }
 }
 

@@ -470,7 +470,7 @@ def gltf_material(material, thickness, textures=None):
     applies glTF's defaults to absent ones. Its textures go into `textures`."""
     name = material.name if material else "default"
     base, metallic, roughness, ior, transmission = [0.8, 0.8, 0.8], 0.0, 0.5, 1.5, 0.0
-    emission, strength, specular_level = [0.0, 0.0, 0.0], 0.0, 0.5
+    emission, strength, specular_level, specular_tint = [0.0, 0.0, 0.0], 0.0, 0.5, [1.0, 1.0, 1.0]
     alpha = 1.0
     output = active_output(material.node_tree, "OUTPUT_MATERIAL") if material and material.node_tree else None
     surface = linked_node(output.inputs["Surface"]) if output else None
@@ -488,6 +488,7 @@ def gltf_material(material, thickness, textures=None):
         strength = float(socket_value(surface, "Emission Strength", strength))
         specular_level = float(socket_value(surface, "Specular IOR Level", specular_level))
         alpha = float(socket_value(surface, "Alpha", 1.0))
+        specular_tint = rgb(socket_value(surface, "Specular Tint", specular_tint))
     elif surface is not None and surface.type == "EMISSION":
         base, roughness = [0.0, 0.0, 0.0], 1.0
         emission = rgb(socket_value(surface, "Color", (1, 1, 1)))
@@ -508,9 +509,24 @@ def gltf_material(material, thickness, textures=None):
         out["alphaMode"] = "BLEND"
     extensions = {
         "KHR_materials_ior": {"ior": ior},
-        # Blender's level 0.5 is the unscaled F0 of the IOR, glTF's factor 1.
-        "KHR_materials_specular": {"specularFactor": min(max(2.0 * specular_level, 0.0), 1.0)},
+        # Blender's level 0.5 is the unscaled F0 of the IOR, glTF's factor 1; glTF's factor
+        # stops at 1, so the level itself goes into extras too. The tint is also the metal's F82 tint.
+        "KHR_materials_specular": {
+            "specularFactor": min(max(2.0 * specular_level, 0.0), 1.0),
+            "specularColorFactor": [min(max(c, 0.0), 1.0) for c in specular_tint],
+        },
     }
+    out["extras"] = {"rt_specular_ior_level": min(max(specular_level, 0.0), 1.0)}
+    if surface is not None and surface.type == "BSDF_PRINCIPLED":
+        coat = float(socket_value(surface, "Coat Weight", 0.0))
+        if coat > 0.0:
+            # glTF's clearcoat has no index or tint: rt reads its own keys.
+            out["extras"].update({
+                "rt_coat": min(coat, 1.0),
+                "rt_coat_roughness": min(max(float(socket_value(surface, "Coat Roughness", 0.03)), 0.0), 1.0),
+                "rt_coat_ior": max(float(socket_value(surface, "Coat IOR", 1.5)), 1.0),
+                "rt_coat_tint": [min(max(c, 0.0), 1.0) for c in rgb(socket_value(surface, "Coat Tint", (1, 1, 1)))],
+            })
     if transmission > 0.0:
         extensions["KHR_materials_transmission"] = {"transmissionFactor": transmission}
     peak = max(emission)
@@ -534,7 +550,7 @@ def gltf_material(material, thickness, textures=None):
             }
         glow = volume_emission(volume)
         if glow.max() > 0.0:
-            out["extras"] = {"rt_volume_emission": [float(g) for g in glow]}
+            out["extras"]["rt_volume_emission"] = [float(g) for g in glow]
     out["extensions"] = extensions
     transform = None
     if textures is not None and surface is not None and surface.type == "BSDF_PRINCIPLED":

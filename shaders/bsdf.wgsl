@@ -11,6 +11,9 @@
 
 //#include "common.wgsl"
 //#include "directions.wgsl"
+//#if microfacet_tables
+//#include "principled.wgsl"
+//#endif
 
 const ALPHA_DELTA: f32 = 1e-3;
 
@@ -18,6 +21,9 @@ const LOBE_DIFFUSE: u32 = 0u;
 const LOBE_SPECULAR: u32 = 1u;
 const LOBE_REFLECTION: u32 = 2u;
 const LOBE_TRANSMISSION: u32 = 3u;
+// The coat, sampled before the other lobes (see `bsdf_sample`); its samples are labelled
+// LOBE_SPECULAR.
+const LOBE_COAT: u32 = 4u;
 
 struct ShadingContext {
     m: Material,
@@ -32,6 +38,20 @@ struct ShadingContext {
     lobe_probability: vec4f,
     // Which lobes have a density (1) rather than being delta (0).
     smooth_lobe: vec4f,
+    // Multiple-scattering energy compensation of the specular, reflection and
+    // transmission lobes (see principled.wgsl; 1 in single scattering).
+    energy_specular: vec3f,
+    energy_reflection: vec3f,
+    energy_transmission: vec3f,
+    // The part of the diffuse lobe that its dielectric coating lets through (1: no coating).
+    diffuse_kept: f32,
+    // F82-tint's b of the `reflection` metal (see `metal_fresnel`).
+    metal_b: vec3f,
+    // The coat: the probability of sampling it, its energy compensation, and what the
+    // lobes under it keep (1 without a coat).
+    coat_probability: f32,
+    coat_energy: vec3f,
+    under_coat: vec3f,
 }
 
 struct BsdfSample {
@@ -75,6 +95,27 @@ fn conductor_fresnel(f0: vec3f, cos_i: f32) -> vec3f {
     return vec3f(fresnel_dielectric(cos_i, eta.x), fresnel_dielectric(cos_i, eta.y), fresnel_dielectric(cos_i, eta.z));
 }
 
+// Fresnel reflectance of the `reflection` lobe: Cycles' F82-tint metal with
+// multiscatter GGX, else `conductor_fresnel` (as Mitsuba 3's conductor).
+fn metal_fresnel(ctx: ShadingContext, cos_i: f32) -> vec3f {
+    //#if multiscatter
+    return f82_fresnel(cos_i, metal_f0(ctx.m), ctx.metal_b);
+    //#else
+    return conductor_fresnel(ctx.m.base_color, cos_i);
+    //#endif
+}
+
+// Reflectance of the `specular` lobe: the diffuse's dielectric coating, or 1 (an untinted
+// lobe without Fresnel) for a material without one.
+fn specular_fresnel(ctx: ShadingContext, cos_i: f32) -> vec3f {
+    //#if coating
+    if ctx.m.coating_eta > 0.0 {
+        return coating_fresnel(ctx.m, cos_i);
+    }
+    //#endif
+    return vec3f(1.0);
+}
+
 fn luminance(c: vec3f) -> f32 {
     return dot(c, vec3f(0.2126, 0.7152, 0.0722));
 }
@@ -96,10 +137,47 @@ fn shading_context(m: Material, n_shading: vec3f, n_geometric: vec3f, wo_world: 
     //#if rough_glass_ggx
     smooth_lobe.w = f32(rough);
     //#endif
-    let p = vec4f(m.diffuse * luminance(m.base_color), m.specular, m.reflection * luminance(m.base_color), m.transmission);
+    let mu = max(wo.z, 1e-6);
+    var ctx = ShadingContext(m, basis, vec3f(wo.xy, mu), to_local * n_geometric, eta, vec4f(0.0), smooth_lobe, vec3f(1.0), vec3f(1.0), vec3f(1.0), 1.0, vec3f(0.0), 0.0, vec3f(1.0), vec3f(1.0));
+    var specular_albedo = 1.0;
+    //#if multiscatter
+    ctx.metal_b = f82_b(metal_f0(m), min(m.specular_tint, vec3f(1.0)));
+    if rough {
+        var specular_fss = vec3f(1.0);
+        //#if coating
+        if m.coating_eta > 0.0 {
+            specular_fss = coating_average(m);
+        }
+        //#endif
+        ctx.energy_specular = reflection_energy(m.alpha, mu, specular_fss);
+        let metal_fss = mix(metal_f0(m), vec3f(1.0), 1.0 / 21.0) - ctx.metal_b / 126.0;
+        ctx.energy_reflection = reflection_energy(m.alpha, mu, metal_fss);
+        ctx.energy_transmission = dielectric_energy(m.alpha, mu, eta, sqrt(saturate(m.base_color)));
+    }
+    //#endif
+    //#if coating
+    if m.coating_eta > 0.0 {
+        var darkening = vec3f(1.0);
+        //#if multiscatter
+        if rough {
+            darkening = ctx.energy_specular * ggx_albedo(m.alpha, mu);
+        }
+        //#endif
+        ctx.diffuse_kept = coating_transmittance(m, mu, darkening);
+        specular_albedo = luminance(mix(saturate(m.coating_f0 * m.specular_tint), vec3f(1.0), coating_fresnel_s(sqrt(m.alpha), mu, m.coating_eta)));
+    }
+    //#endif
+    let p = vec4f(m.diffuse * ctx.diffuse_kept * luminance(m.base_color), m.specular * specular_albedo, m.reflection * luminance(m.base_color), m.transmission);
     let total = p.x + p.y + p.z + p.w;
-    let probability = select(vec4f(0.0), p / total, total > 0.0);
-    return ShadingContext(m, basis, vec3f(wo.xy, max(wo.z, 1e-6)), to_local * n_geometric, eta, probability, smooth_lobe);
+    ctx.lobe_probability = select(vec4f(0.0), p / total, total > 0.0);
+    //#if coat
+    if m.coat > 0.0 {
+        let coat_albedo = coat_setup(&ctx, mu);
+        let rest = total * luminance(ctx.under_coat);
+        ctx.coat_probability = select(1.0, coat_albedo / (coat_albedo + rest), coat_albedo + rest > 0.0);
+    }
+    //#endif
+    return ctx;
 }
 
 // Whether lobes are folded above the surface (`fold_above`): everywhere but on

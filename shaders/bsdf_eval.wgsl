@@ -9,6 +9,9 @@
 //#if rough_glass_ggx
 //#include "dielectric.wgsl"
 //#endif
+//#if coat
+//#include "microfacet.wgsl"
+//#endif
 
 
 // f·|cos θi| of one reflection lobe, before folding.
@@ -17,7 +20,7 @@ fn reflection_lobe_eval(ctx: ShadingContext, lobe: u32, wi: vec3f) -> vec3f {
         return vec3f(0.0);
     }
     if lobe == LOBE_DIFFUSE {
-        var f = ctx.m.base_color * (ctx.m.diffuse * wi.z / PI);
+        var f = ctx.m.base_color * (ctx.m.diffuse * ctx.diffuse_kept * wi.z / PI);
         //#if normal_maps
         f *= bump_shadowing(ctx, wi);
         //#endif
@@ -28,9 +31,9 @@ fn reflection_lobe_eval(ctx: ShadingContext, lobe: u32, wi: vec3f) -> vec3f {
     let a = ctx.m.alpha;
     let microfacet = ggx_d(m, a) * ggx_g2(ctx.wo, wi, a) / (4.0 * ctx.wo.z);
     if lobe == LOBE_SPECULAR {
-        return vec3f(ctx.m.specular * microfacet);
+        return ctx.m.specular * microfacet * specular_fresnel(ctx, dot(ctx.wo, m)) * ctx.energy_specular;
     }
-    return ctx.m.reflection * microfacet * conductor_fresnel(ctx.m.base_color, dot(ctx.wo, m));
+    return ctx.m.reflection * microfacet * metal_fresnel(ctx, dot(ctx.wo, m)) * ctx.energy_reflection;
     //#else
     return vec3f(0.0);
     //#endif
@@ -65,8 +68,11 @@ fn bsdf_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
     }
     //#if rough_glass_ggx
     if ctx.smooth_lobe.w > 0.0 && ctx.lobe_probability.w > 0.0 {
-        f += ctx.m.transmission * rough_dielectric_eval(ctx, wi);
+        f += ctx.m.transmission * rough_dielectric_eval(ctx, wi) * ctx.energy_transmission;
     }
+    //#endif
+    //#if coat
+    f = f * ctx.under_coat + coat_eval(ctx, wi);
     //#endif
     return f;
 }
@@ -88,5 +94,48 @@ fn bsdf_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
         pdf += ctx.lobe_probability.w * rough_dielectric_pdf(ctx, wi);
     }
     //#endif
+    //#if coat
+    pdf = mix(pdf, coat_pdf(ctx, wi), ctx.coat_probability);
+    //#endif
     return pdf;
 }
+
+//#if coat
+fn rough_coat(ctx: ShadingContext) -> bool {
+    return ctx.m.coat > 0.0 && ctx.m.coat_alpha >= ALPHA_DELTA;
+}
+
+// f·|cos θi| of the rough coat (folded like the other reflection lobes).
+fn coat_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
+    if !rough_coat(ctx) || dot(wi, ctx.n_geometric) <= 0.0 {
+        return vec3f(0.0);
+    }
+    let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
+    return (coat_lobe_eval(ctx, wi) + coat_lobe_eval(ctx, mirrored)) * ctx.m.coat * ctx.coat_energy;
+}
+
+fn coat_lobe_eval(ctx: ShadingContext, wi: vec3f) -> f32 {
+    if wi.z <= 0.0 {
+        return 0.0;
+    }
+    let m = normalize(ctx.wo + wi);
+    let a = ctx.m.coat_alpha;
+    return ggx_d(m, a) * ggx_g2(ctx.wo, wi, a) / (4.0 * ctx.wo.z) * fresnel_dielectric(dot(ctx.wo, m), ctx.m.coat_ior);
+}
+
+fn coat_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
+    if !rough_coat(ctx) || dot(wi, ctx.n_geometric) <= 0.0 {
+        return 0.0;
+    }
+    let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
+    return coat_lobe_pdf(ctx, wi) + coat_lobe_pdf(ctx, mirrored);
+}
+
+fn coat_lobe_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
+    if wi.z <= 0.0 {
+        return 0.0;
+    }
+    let m = normalize(ctx.wo + wi);
+    return ggx_visible_pdf(ctx.wo, m, ctx.m.coat_alpha) / (4.0 * dot(ctx.wo, m));
+}
+//#endif

@@ -156,6 +156,23 @@ struct Material {
     // A tangent-space normal map, or NO_TEXTURE; its x and y are scaled by normal_scale.
     normal_texture: u32,
     normal_scale: f32,
+    // The F82 tint of the `reflection` metal; the tint of the diffuse's coating's F0.
+    specular_tint: vec3f,
+    // Index of the dielectric coating over the diffuse lobe (0: none; then the
+    // `specular` lobe is that coating), and its F0 before `specular_tint`.
+    coating_eta: f32,
+    coating_f0: f32,
+    _pad2: u32,
+    _pad3: u32,
+    _pad4: u32,
+    // The coat: a dielectric GGX layer of weight `coat` over every other lobe (0: none),
+    // and the tint of the light crossing it at normal incidence.
+    coat_tint: vec3f,
+    coat: f32,
+    coat_alpha: f32,
+    coat_ior: f32,
+    _pad5: u32,
+    _pad6: u32,
 }
 
 // Object-space vertex tangents (xyz) and bitangent signs (w) of one triangle; zero

@@ -1,7 +1,7 @@
 // The `transmission` lobe: a dielectric interface with exact Fresnel
 // reflectance and total internal reflection. Reflection is untinted, refraction
 // is tinted by `base_color`, and refracted radiance is scaled by 1/η² (radiance
-// is not conserved across a change of index).
+// is not conserved across a change of index). See `refraction_tint`.
 
 //#include "constants.wgsl"
 //#include "rng.wgsl"
@@ -9,8 +9,19 @@
 //#include "bsdf.wgsl"
 //#include "microfacet.wgsl"
 
+// The tint of one refraction: with multiscatter GGX Cycles' Principled glass, √base_color
+// per crossing (so that a closed object shows base_color); else base_color (Mitsuba's
+// `specular_transmittance`).
+fn refraction_tint(m: Material) -> vec3f {
+    //#if multiscatter
+    return sqrt(max(min(m.base_color, vec3f(1.0)), vec3f(0.0)));
+    //#else
+    return m.base_color;
+    //#endif
+}
+
 fn refraction_weight(ctx: ShadingContext) -> vec3f {
-    return ctx.m.base_color / (ctx.eta * ctx.eta);
+    return refraction_tint(ctx.m) / (ctx.eta * ctx.eta);
 }
 
 // Perfectly smooth interface (α below ALPHA_DELTA), or the seed's cone model.
@@ -88,7 +99,7 @@ fn rough_dielectric_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
     let etap = ctx.eta;
     let denom = dot(wi, m) + dot(ctx.wo, m) / etap;
     let ft = (1.0 - f) * dg * abs(dot(wi, m) * dot(ctx.wo, m) / (ctx.wo.z * denom * denom));
-    return ft * ctx.m.base_color / (etap * etap);
+    return ft * refraction_tint(ctx.m) / (etap * etap);
 }
 
 fn rough_dielectric_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {

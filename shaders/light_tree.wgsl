@@ -208,10 +208,10 @@ fn emitter_index_of(instance: u32, primitive: u32) -> u32 {
 
 // The world-space area of triangle `primitive` of instance `instance`.
 fn triangle_world_area(instance: u32, primitive: u32) -> f32 {
-    let inst = instances[instance];
+    let to_world = affine_inverse(instances[instance].world_to_object).m;
     let tri = triangles[primitive];
-    let v0 = transform_point(inst.object_to_world, tri.v0);
-    let v1 = transform_point(inst.object_to_world, tri.v1);
-    let v2 = transform_point(inst.object_to_world, tri.v2);
+    let v0 = transform_point(to_world, tri.v0);
+    let v1 = transform_point(to_world, tri.v1);
+    let v2 = transform_point(to_world, tri.v2);
     return 0.5 * length(cross(v1 - v0, v2 - v0));
 }

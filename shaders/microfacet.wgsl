@@ -1,7 +1,8 @@
 // GGX microfacet distribution (Trowbridge–Reitz; Walter et al., "Microfacet
-// Models for Refraction through Rough Surfaces", EGSR 2007) with Walter's
-// separable Smith masking–shadowing G1(wo)·G1(wi) (as Mitsuba 3 uses, so that
-// rt can be validated against it), sampled by its distribution of
+// Models for Refraction through Rough Surfaces", EGSR 2007) with Smith
+// masking–shadowing: height-correlated 1/(1 + Λ(wo) + Λ(wi)) with multiscatter GGX
+// (as Cycles), else Walter's separable G1(wo)·G1(wi) (as Mitsuba 3, so that rt can
+// be validated against it); sampled by its distribution of
 // visible normals (Heitz, "Sampling the GGX Distribution of Visible Normals", JCGT 2018).
 // Directions are in a local frame whose z axis is the shading normal.
 
@@ -28,7 +29,11 @@ fn ggx_g1(w: vec3f, alpha: f32) -> f32 {
 }
 
 fn ggx_g2(wo: vec3f, wi: vec3f, alpha: f32) -> f32 {
+    //#if multiscatter
+    return 1.0 / (1.0 + ggx_lambda(wo, alpha) + ggx_lambda(wi, alpha));
+    //#else
     return ggx_g1(wo, alpha) * ggx_g1(wi, alpha);
+    //#endif
 }
 
 // Density of visible normal m seen from wo (wo.z > 0).

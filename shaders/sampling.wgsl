@@ -17,6 +17,9 @@
 //#if glass
 //#include "dielectric.wgsl"
 //#endif
+//#if coat
+//#include "microfacet.wgsl"
+//#endif
 //#if !nee
 //#if sun
 //#include "sun.wgsl"
@@ -30,6 +33,12 @@ fn sample_smooth_lobe_direction(ctx: ShadingContext, lobe: u32, rng: ptr<functio
     //#if rough_glass_ggx
     if lobe == LOBE_TRANSMISSION {
         return rough_dielectric_sample(ctx, vec3f(u, rng_next(rng)));
+    }
+    //#endif
+    //#if coat
+    if lobe == LOBE_COAT {
+        let wi = reflect_local(ctx.wo, ggx_sample_visible_normal(ctx.wo, ctx.m.coat_alpha, u));
+        return select(vec3f(0.0), fold_above(wi, ctx.n_geometric), wi.z > 0.0);
     }
     //#endif
     var wi = sample_cosine_hemisphere(u);
@@ -60,6 +69,13 @@ fn pick_lobe(ctx: ShadingContext, u: ptr<function, f32>) -> u32 {
 }
 
 fn bsdf_sample(ctx: ShadingContext, rng: ptr<function, Rng>) -> BsdfSample {
+    //#if coat
+    if ctx.coat_probability > 0.0 && rng_next(rng) < ctx.coat_probability {
+        var s = sample_coat(ctx, rng);
+        s.direction = ctx.basis * s.direction;
+        return s;
+    }
+    //#endif
     if all(ctx.lobe_probability == vec4f(0.0)) {
         return invalid_sample();
     }
@@ -70,20 +86,37 @@ fn bsdf_sample(ctx: ShadingContext, rng: ptr<function, Rng>) -> BsdfSample {
         s = sample_smooth_part(ctx, lobe, rng);
     } else {
         s = sample_delta_lobe(ctx, lobe, u, rng);
+        //#if coat
+        s.weight *= ctx.under_coat / (1.0 - ctx.coat_probability);
+        //#endif
     }
     s.direction = ctx.basis * s.direction;
     return s;
 }
+
+//#if coat
+// The coat: a perfect mirror below ALPHA_DELTA, else part of the smooth mixture.
+fn sample_coat(ctx: ShadingContext, rng: ptr<function, Rng>) -> BsdfSample {
+    if ctx.m.coat_alpha >= ALPHA_DELTA {
+        var s = sample_smooth_part(ctx, LOBE_COAT, rng);
+        s.lobe = LOBE_SPECULAR;
+        return s;
+    }
+    let mirror = fold_above(vec3f(-ctx.wo.xy, ctx.wo.z), ctx.n_geometric);
+    let f = ctx.m.coat * fresnel_dielectric(ctx.wo.z, ctx.m.coat_ior);
+    return BsdfSample(mirror, vec3f(f / ctx.coat_probability), 0.0, true, false, LOBE_SPECULAR);
+}
+//#endif
 
 // Delta lobes: perfect mirrors and smooth (or cone-jittered) refraction.
 fn sample_delta_lobe(ctx: ShadingContext, lobe: u32, u: f32, rng: ptr<function, Rng>) -> BsdfSample {
     let p = ctx.lobe_probability[lobe];
     let mirror = fold_above(vec3f(-ctx.wo.xy, ctx.wo.z), ctx.n_geometric);
     if lobe == LOBE_SPECULAR {
-        return BsdfSample(mirror, vec3f(ctx.m.specular / p), 0.0, true, false, lobe);
+        return BsdfSample(mirror, ctx.m.specular * specular_fresnel(ctx, ctx.wo.z) / p, 0.0, true, false, lobe);
     }
     if lobe == LOBE_REFLECTION {
-        return BsdfSample(mirror, ctx.m.reflection * conductor_fresnel(ctx.m.base_color, ctx.wo.z) / p, 0.0, true, false, lobe);
+        return BsdfSample(mirror, ctx.m.reflection * metal_fresnel(ctx, ctx.wo.z) / p, 0.0, true, false, lobe);
     }
     //#if glass
     return smooth_dielectric_sample(ctx, u, rng);
@@ -112,8 +145,16 @@ fn sample_smooth_part(ctx: ShadingContext, lobe: u32, rng: ptr<function, Rng>) -
 // The whole smooth part is resampled; `lobe`, the one `bsdf_sample` picked, only labels the sample.
 fn resample_smooth_part(ctx: ShadingContext, lobe: u32, rng: ptr<function, Rng>) -> BsdfSample {
     let dense = ctx.lobe_probability * ctx.smooth_lobe;
-    let p_smooth = dense.x + dense.y + dense.z + dense.w;
-    let lobe_choice = ShadingContext(ctx.m, ctx.basis, ctx.wo, ctx.n_geometric, ctx.eta, dense / p_smooth, ctx.smooth_lobe);
+    let p_dense = dense.x + dense.y + dense.z + dense.w;
+    var lobe_choice = ctx;
+    lobe_choice.lobe_probability = dense / max(p_dense, 1e-20);
+    // How likely `bsdf_sample` reached the smooth part, by the coat or by another lobe.
+    var p_coat = 0.0;
+    var p_smooth = p_dense;
+    //#if coat
+    p_coat = ctx.coat_probability * f32(ctx.m.coat_alpha >= ALPHA_DELTA);
+    p_smooth = p_dense * (1.0 - ctx.coat_probability) + p_coat;
+    //#endif
     var sun_share = 0.0;
     //#if sun
     sun_share = 0.5;
@@ -130,7 +171,12 @@ fn resample_smooth_part(ctx: ShadingContext, lobe: u32, rng: ptr<function, Rng>)
             //#endif
         } else {
             var u = rng_next(rng);
-            x = sample_smooth_lobe_direction(ctx, pick_lobe(lobe_choice, &u), rng);
+            var candidate_lobe = LOBE_COAT;
+            if u * p_smooth >= p_coat {
+                u = (u * p_smooth - p_coat) / (p_smooth - p_coat);
+                candidate_lobe = pick_lobe(lobe_choice, &u);
+            }
+            x = sample_smooth_lobe_direction(ctx, candidate_lobe, rng);
         }
         if all(x == vec3f(0.0)) {
             continue;

@@ -169,6 +169,20 @@ pub struct GpuMaterial {
     pub normal_texture: u32,
     /// glTF's `normalTexture.scale`: the map's x and y are multiplied by it.
     pub normal_scale: f32,
+    /// The F82 tint of the `reflection` metal; the tint of the diffuse's coating's F0.
+    pub specular_tint: [f32; 3],
+    /// The index of the dielectric coating over the diffuse lobe; 0: no coating.
+    pub coating_eta: f32,
+    /// The coating's F0 before `specular_tint` (Specular IOR Level applied).
+    pub coating_f0: f32,
+    pub _pad1: [u32; 3],
+    /// Tint of the light crossing the coat, at normal incidence.
+    pub coat_tint: [f32; 3],
+    /// Weight of the coat layer over every other lobe; 0: none.
+    pub coat: f32,
+    pub coat_alpha: f32,
+    pub coat_ior: f32,
+    pub _pad2: [u32; 2],
 }
 
 /// The object-space tangents of a triangle's vertices (xyz, MikkTSpace) with the
@@ -368,6 +382,9 @@ pub const ALPHA_BLEND: f32 = -1.0;
 impl From<&crate::scene::Material> for GpuMaterial {
     fn from(m: &crate::scene::Material) -> Self {
         let [diffuse, specular, reflection, transmission] = m.lobe_weights();
+        let (coating_eta, coating_f0) = m.dielectric_coating().unwrap_or((0.0, 0.0));
+        // The coating is the diffuse's own glossy layer, with the diffuse's weight.
+        let specular = if coating_eta > 0.0 { diffuse } else { specular };
         Self {
             base_color: m.base_color,
             diffuse,
@@ -389,6 +406,15 @@ impl From<&crate::scene::Material> for GpuMaterial {
             alpha_cutoff: if m.textures.alpha_blend { ALPHA_BLEND } else { m.textures.alpha_cutoff },
             normal_texture: m.textures.normal.unwrap_or(NO_TEXTURE),
             normal_scale: m.textures.normal_scale,
+            specular_tint: m.specular_tint,
+            coating_eta,
+            coating_f0,
+            _pad1: [0; 3],
+            coat_tint: m.coat_tint,
+            coat: m.coat,
+            coat_alpha: m.coat_roughness * m.coat_roughness,
+            coat_ior: m.coat_ior,
+            _pad2: [0; 2],
         }
     }
 }

@@ -65,3 +65,62 @@ fn grey_sphere_reflects_its_albedo_once() {
         assert!((c - want).abs() < 1e-5, "{centre:?}");
     }
 }
+
+/// Mean luminance of a sphere filling the view under sky 1, with `material` (scene keys)
+/// and `[render] microfacet`, and the standard error of that mean.
+fn kept(material: &str, microfacet: &str) -> (f64, f64) {
+    let scene = scene_from(&format!(
+        "{SKY_ONE}[render]\nmicrofacet = \"{microfacet}\"\n\
+         [camera]\nposition = [0.0, 0.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y_deg = 20.0\n\
+         [materials.m]\n{material}\n\
+         [[sphere]]\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\nmaterial = \"m\"\n"
+    ));
+    let image = render(scene, 32, 32, 64, 64);
+    global_mean(&image)
+}
+
+const ROUGH_METAL: &str = "diffuse = 0.0\nreflection = 1.0\nroughness = 1.0";
+const ROUGH_GLASS: &str = "diffuse = 0.0\ntransmission = 1.0\nroughness = 1.0";
+const ROUGH_COATED: &str = "specular_ior_level = 0.5\nroughness = 1.0";
+const ROUGH_COAT: &str = "coat = 1.0\ncoat_roughness = 1.0";
+
+#[test]
+fn rough_metal_keeps_its_energy_with_multiscatter_ggx() {
+    // White metal at roughness 1: single scattering keeps about a third (Cycles' table:
+    // 1 − ln 2 at normal incidence); the compensation gives the rest back (Cycles keeps
+    // 99.98%, tests/cycles/measure_principled_furnaces.py).
+    let (mean, se) = kept(ROUGH_METAL, "multiscatter");
+    println!("rough metal, multiscatter: {mean:.5} ± {se:.5}");
+    assert!(mean >= 0.99 - 4.0 * se && mean <= 1.0 + 4.0 * se, "keeps {mean} ± {se}");
+    let (single, se) = kept(ROUGH_METAL, "single");
+    println!("rough metal, single scattering: {single:.5} ± {se:.5}");
+    assert!(single < 0.5, "single scattering must lose energy at roughness 1: {single}");
+}
+
+#[test]
+fn rough_glass_keeps_its_energy_with_multiscatter_ggx() {
+    // Cycles keeps 98.5% here (tests/cycles/measure_principled_furnaces.py): its
+    // compensation is per interface, and paths bounce inside the sphere.
+    let (mean, se) = kept(ROUGH_GLASS, "multiscatter");
+    println!("rough glass, multiscatter: {mean:.5} ± {se:.5}");
+    assert!(mean >= 0.975 - 4.0 * se && mean <= 1.0 + 4.0 * se, "keeps {mean} ± {se}");
+    let (single, se) = kept(ROUGH_GLASS, "single");
+    println!("rough glass, single scattering: {single:.5} ± {se:.5}");
+    assert!(single < 0.5, "single scattering must lose energy at roughness 1: {single}");
+}
+
+#[test]
+fn white_diffuse_under_a_rough_coating_keeps_its_energy() {
+    // The coating reflects its albedo and the diffuse gets the rest: white stays white
+    // (Cycles keeps 99.99%, tests/cycles/measure_principled_furnaces.py).
+    let (mean, se) = kept(ROUGH_COATED, "multiscatter");
+    println!("coated white diffuse, multiscatter: {mean:.5} ± {se:.5}");
+    assert!((mean - 1.0).abs() <= 0.005 + 4.0 * se, "keeps {mean} ± {se}");
+}
+
+#[test]
+fn white_diffuse_under_a_rough_coat_keeps_its_energy() {
+    let (mean, se) = kept(ROUGH_COAT, "multiscatter");
+    println!("white diffuse under a rough coat, multiscatter: {mean:.5} ± {se:.5}");
+    assert!((mean - 1.0).abs() <= 0.005 + 4.0 * se, "keeps {mean} ± {se}");
+}

@@ -74,7 +74,9 @@ fn base_colour_texture_shows_its_texels_in_linear_light_the_right_way_up() {
     std::fs::write(dir.join("quadrants.png"), png(|x, y| quadrants[(y / 32) as usize][(x / 32) as usize]))
         .expect("png");
     let corners = [[-1.0, 1.0, 0.0], [1.0, 1.0, 0.0], [1.0, -1.0, 0.0], [-1.0, -1.0, 0.0]];
-    let material = r#"{ "name": "painted", "pbrMetallicRoughness": { "baseColorTexture": { "index": 0 }, "metallicFactor": 0.0 } }"#;
+    // A plain diffuse: specular factor 0 takes off glTF's default dielectric specular layer.
+    let material = r#"{ "name": "painted", "pbrMetallicRoughness": { "baseColorTexture": { "index": 0 }, "metallicFactor": 0.0 },
+        "extensions": { "KHR_materials_specular": { "specularFactor": 0.0 } } }"#;
     write(&dir.join("quad.gltf"), &quad_gltf(corners, material, "quadrants.png"));
     // A diffuse plane under a uniform white sky that it alone sees has radiance = albedo.
     let scene = scene_from(&format!(
@@ -110,7 +112,8 @@ fn alpha_cut_outs_let_camera_and_shadow_rays_through() {
     std::fs::write(dir.join("hole.png"), png(|x, y| [255, 255, 255, if hole(x, y) { 0 } else { 255 }])).expect("png");
     let corners = [[-1.0, 1.0, -1.0], [1.0, 1.0, -1.0], [1.0, 1.0, 1.0], [-1.0, 1.0, 1.0]];
     let material = r#"{ "name": "leaf", "alphaMode": "MASK", "alphaCutoff": 0.5,
-        "pbrMetallicRoughness": { "baseColorFactor": [0, 0, 0, 1], "baseColorTexture": { "index": 0 }, "metallicFactor": 0.0 } }"#;
+        "pbrMetallicRoughness": { "baseColorFactor": [0, 0, 0, 1], "baseColorTexture": { "index": 0 }, "metallicFactor": 0.0 },
+        "extensions": { "KHR_materials_specular": { "specularFactor": 0.0 } } }"#;
     write(&dir.join("leaf.gltf"), &quad_gltf(corners, material, "hole.png"));
     write(&dir.join("floor.obj"), "v -100 0 -100\nv -100 0 100\nv 100 0 100\nv 100 0 -100\nf 1 2 3 4\n");
     let scene = scene_from(&format!(

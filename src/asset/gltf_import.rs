@@ -12,10 +12,15 @@
 //! | `roughnessFactor` (1)                                     | `roughness`                    |
 //! | `KHR_materials_ior` (1.5)                                 | `ior`                          |
 //! | `emissiveFactor` (0) × `KHR_materials_emissive_strength` (1) | `emission`                  |
-//! | `KHR_materials_specular` factor `s` (1; no extension: 0)  | `specular = (1 - m) s`         |
+//! | `KHR_materials_specular` factor `s` (1)                   | `specular_ior_level = s / 2` (with a diffuse part) |
+//! | `extras.rt_specular_ior_level` (absent)                   | `specular_ior_level`, instead of `s / 2` (Blender's level may exceed 0.5) |
+//! | `KHR_materials_specular` colour factor (1, 1, 1)          | `specular_tint`                |
+//! | `extras.rt_coat`, `_roughness`, `_ior`, `_tint` (0, 0.03, 1.5, (1, 1, 1)) | `coat`, `coat_roughness`, `coat_ior`, `coat_tint` |
 //! | `KHR_materials_volume` colour `c` (1), distance `d` (∞)   | `absorption = -ln(c) / d`; 0 if `d = ∞` |
 //! | `extras.rt_volume_emission` `[r, g, b]` (0)               | `volume_emission`              |
 //!
+//! The specular layer is a dielectric coating of the diffuse part (Cycles' Principled
+//! specular layer; glTF's default F0 of 0.04 is level 0.5 at index 1.5).
 //! Metal is a layer over the dielectric in glTF, so transmission and specular apply
 //! only to the `1 - m` that is not metal.
 //! `c` is clamped to (0, 1] so that a black attenuation colour stays finite.
@@ -356,10 +361,21 @@ fn map_material_with_metallic(m: &gltf::Material, metallic: f32) -> Result<Mater
     let dielectric = 1.0 - metallic;
     let transmission = m.transmission().map_or(0.0, |t| t.transmission_factor()).clamp(0.0, 1.0);
     let strength = m.emissive_strength().unwrap_or(1.0);
+    let diffuse = dielectric * (1.0 - transmission);
+    let level = match extra::<f32>(m.extras(), "rt_specular_ior_level")? {
+        Some(level) => level,
+        None => m.specular().map_or(1.0, |s| s.specular_factor()) / 2.0,
+    };
     Ok(Material {
         base_color: [r, g, b],
-        diffuse: dielectric * (1.0 - transmission),
-        specular: m.specular().map_or(0.0, |s| dielectric * s.specular_factor()),
+        diffuse,
+        specular: 0.0,
+        specular_ior_level: if diffuse > 0.0 { level.clamp(0.0, 1.0) } else { 0.0 },
+        specular_tint: m.specular().map_or([1.0; 3], |s| s.specular_color_factor().map(|c| c.clamp(0.0, 1.0))),
+        coat: extra::<f32>(m.extras(), "rt_coat")?.unwrap_or(0.0).clamp(0.0, 1.0),
+        coat_roughness: extra::<f32>(m.extras(), "rt_coat_roughness")?.unwrap_or(0.03).clamp(0.0, 1.0),
+        coat_ior: extra::<f32>(m.extras(), "rt_coat_ior")?.unwrap_or(1.5).max(1.0),
+        coat_tint: extra::<[f32; 3]>(m.extras(), "rt_coat_tint")?.unwrap_or([1.0; 3]).map(|c| c.clamp(0.0, 1.0)),
         reflection: metallic,
         transmission: dielectric * transmission,
         ior: m.ior().unwrap_or(1.5),
@@ -382,14 +398,20 @@ fn absorption(color: [f32; 3], distance: f32) -> [f32; 3] {
 /// `extras.rt_volume_emission`: glTF has no field for light emitted inside a medium.
 /// Other tools' extras may hold anything, so only our own key is checked.
 fn volume_emission(extras: &gltf::json::Extras) -> Result<[f32; 3], String> {
+    Ok(extra(extras, "rt_volume_emission")?.unwrap_or([0.0; 3]))
+}
+
+/// The rt value `key` of a material's `extras`, if there.
+fn extra<T: serde::de::DeserializeOwned>(extras: &gltf::json::Extras, key: &str) -> Result<Option<T>, String> {
     let Some(raw) = extras else {
-        return Ok([0.0; 3]);
+        return Ok(None);
     };
     let value: Value = gltf::json::deserialize::from_str(raw.get()).map_err(|e| format!("extras are not JSON: {e}"))?;
-    match value.get("rt_volume_emission") {
-        None => Ok([0.0; 3]),
+    match value.get(key) {
+        None => Ok(None),
         Some(v) => gltf::json::deserialize::from_value(v.clone())
-            .map_err(|e| format!("extras.rt_volume_emission must be [r, g, b]: {e}")),
+            .map(Some)
+            .map_err(|e| format!("extras.{key} has the wrong type: {e}")),
     }
 }
 
@@ -508,6 +530,12 @@ mod tests {
                 transmission: 1.0,
                 ior: 1.33,
                 roughness: 0.1,
+                specular_tint: [1.0; 3],
+                specular_ior_level: 0.0,
+                coat: 0.0,
+                coat_roughness: 0.03,
+                coat_ior: 1.5,
+                coat_tint: [1.0; 3],
                 hardness: None,
                 emission: [4.0, 2.0, 0.0],
                 absorption: [ln2 / 2.0, 2.0 * ln2 / 2.0, 0.0],
@@ -526,6 +554,35 @@ mod tests {
         assert_eq!((m.reflection, m.diffuse, m.transmission), (1.0, 0.0, 0.0));
         assert_eq!((m.roughness, m.ior, m.base_color), (1.0, 1.5, [1.0; 3]));
         assert_eq!((m.emission, m.absorption), ([0.0; 3], [0.0; 3]));
+    }
+
+    #[test]
+    fn gltf_specular_becomes_the_diffuse_coating() {
+        let dir = TempDir::new("gltf_specular");
+        let dielectric = r#""pbrMetallicRoughness": { "metallicFactor": 0.0 }"#;
+        let cases = [
+            (format!("{{ {dielectric} }}"), 0.5, [1.0; 3]),
+            (
+                format!(
+                    r#"{{ {dielectric}, "extensions": {{ "KHR_materials_specular":
+                      {{ "specularFactor": 0.6, "specularColorFactor": [1.0, 0.5, 0.25] }} }} }}"#
+                ),
+                0.3,
+                [1.0, 0.5, 0.25],
+            ),
+            (
+                format!(
+                    r#"{{ {dielectric}, "extensions": {{ "KHR_materials_specular": {{ "specularFactor": 1.0 }} }},
+                      "extras": {{ "rt_specular_ior_level": 0.8 }} }}"#
+                ),
+                0.8,
+                [1.0; 3],
+            ),
+        ];
+        for (json, level, tint) in cases {
+            let m = &load_mesh(&dir.write("tri.gltf", &triangle_gltf(Some(&json)))).expect("loads").materials[0].1;
+            assert_eq!((m.specular, m.specular_ior_level, m.specular_tint), (0.0, level, tint), "{json}");
+        }
     }
 
     #[test]

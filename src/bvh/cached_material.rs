@@ -30,7 +30,7 @@ pub struct CachedMaterial {
     pub emission: [f32; 3],
     pub absorption: [f32; 3],
     pub volume_emission: [f32; 3],
-    pub _pad: f32,
+    pub specular_ior_level: f32,
     /// Texture indices into the asset's textures, or [`NO_TEXTURE`].
     pub base_color_texture: u32,
     pub metallic_roughness_texture: u32,
@@ -42,6 +42,11 @@ pub struct CachedMaterial {
     pub alpha_blend: u32,
     pub normal_texture: u32,
     pub normal_scale: f32,
+    pub specular_tint: [f32; 3],
+    pub coat: f32,
+    pub coat_roughness: f32,
+    pub coat_ior: f32,
+    pub coat_tint: [f32; 3],
 }
 
 impl From<&Material> for CachedMaterial {
@@ -58,7 +63,7 @@ impl From<&Material> for CachedMaterial {
             emission: m.emission,
             absorption: m.absorption,
             volume_emission: m.volume_emission,
-            _pad: 0.0,
+            specular_ior_level: m.specular_ior_level,
             base_color_texture: slot(m.textures.base_color),
             metallic_roughness_texture: slot(m.textures.metallic_roughness),
             emission_texture: slot(m.textures.emission),
@@ -68,6 +73,11 @@ impl From<&Material> for CachedMaterial {
             alpha_blend: u32::from(m.textures.alpha_blend),
             normal_texture: slot(m.textures.normal),
             normal_scale: m.textures.normal_scale,
+            specular_tint: m.specular_tint,
+            coat: m.coat,
+            coat_roughness: m.coat_roughness,
+            coat_ior: m.coat_ior,
+            coat_tint: m.coat_tint,
         }
     }
 }
@@ -82,6 +92,12 @@ impl From<&CachedMaterial> for Material {
             transmission: m.transmission,
             ior: m.ior,
             roughness: m.roughness,
+            specular_tint: m.specular_tint,
+            specular_ior_level: m.specular_ior_level,
+            coat: m.coat,
+            coat_roughness: m.coat_roughness,
+            coat_ior: m.coat_ior,
+            coat_tint: m.coat_tint,
             hardness: (m.hardness > 0.0).then_some(m.hardness),
             emission: m.emission,
             absorption: m.absorption,
@@ -103,7 +119,8 @@ impl From<&CachedMaterial> for Material {
 
 impl CachedMaterial {
     pub fn all_finite(&self) -> bool {
-        let vectors = [self.base_color, self.emission, self.absorption, self.volume_emission];
+        let vectors =
+            [self.base_color, self.emission, self.absorption, self.volume_emission, self.specular_tint, self.coat_tint];
         let scalars = [
             self.diffuse,
             self.specular,
@@ -111,6 +128,10 @@ impl CachedMaterial {
             self.transmission,
             self.ior,
             self.roughness,
+            self.specular_ior_level,
+            self.coat,
+            self.coat_roughness,
+            self.coat_ior,
             self.hardness,
             self.metallic,
             self.base_alpha,

@@ -2,6 +2,7 @@
 
 use super::GpuContext;
 use super::bind::{Binding, bind_group, sequential_layout};
+use super::microfacet_tables::microfacet_tables;
 use super::readback::read_buffer;
 use super::textures::TextureStore;
 use crate::bvh::SceneGeometry;
@@ -20,7 +21,7 @@ pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     use Binding::*;
     let bindings = [
         Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadWrite, ReadOnly, ReadOnly,
-        Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly,
+        Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly,
     ];
     sequential_layout(device, "scene", wgpu::ShaderStages::COMPUTE, &bindings)
 }
@@ -61,11 +62,13 @@ struct SceneData {
     light_tree_trails: wgpu::Buffer,
     /// Per-triangle tangents, for normal maps.
     tangents: wgpu::Buffer,
+    /// Cycles' microfacet albedo tables (see `super::microfacet_tables`).
+    microfacet_tables: wgpu::Buffer,
 }
 
 impl SceneData {
     /// The buffers in binding order (see [`scene_bind_group_layout`]).
-    fn bindings(&self) -> [&wgpu::Buffer; 18] {
+    fn bindings(&self) -> [&wgpu::Buffer; 19] {
         [
             &self.frame,
             &self.nodes,
@@ -85,6 +88,7 @@ impl SceneData {
             &self.light_tree_nodes,
             &self.light_tree_trails,
             &self.tangents,
+            &self.microfacet_tables,
         ]
     }
 }
@@ -191,6 +195,7 @@ impl SceneBuffers {
             light_tree_nodes,
             light_tree_trails,
             tangents,
+            microfacet_tables: storage(ctx, "microfacet tables", &microfacet_tables(), wgpu::BufferUsages::empty()),
         };
         let bind_group = bind_group(ctx, "scene", layout, &data.bindings());
         Ok(Self { data, bind_group, sky_bind_group: None })

@@ -118,7 +118,14 @@ fn host_structs_match_wgsl_layouts() {
                 base_alpha,
                 alpha_cutoff,
                 normal_texture,
-                normal_scale
+                normal_scale,
+                specular_tint,
+                coating_eta,
+                coating_f0,
+                coat_tint,
+                coat,
+                coat_alpha,
+                coat_ior
             ]
         ),
         host_layout!("TriangleTangents", GpuTriangleTangents, [t0, t1, t2]),

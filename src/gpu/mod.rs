@@ -7,6 +7,7 @@ mod build;
 mod context;
 #[cfg(test)]
 mod layout_check;
+mod microfacet_tables;
 mod pipelines;
 mod readback;
 pub mod shader;

@@ -65,6 +65,8 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("light_tree.wgsl"),
     shader!("lights.wgsl"),
     shader!("microfacet.wgsl"),
+    shader!("microfacet_tables.wgsl"),
+    shader!("principled.wgsl"),
     shader!("ray.wgsl"),
     shader!("rng.wgsl"),
     shader!("sampling.wgsl"),

@@ -1,6 +1,6 @@
 //! Feature analysis: which effects a scene needs, so that the GPU runs only their code.
 
-use super::{Light, LightSampler, LightShape, Material, RoughTransmission, Sampling, Scene, Sky};
+use super::{Light, LightSampler, LightShape, Material, Microfacet, RoughTransmission, Sampling, Scene, Sky};
 use std::fmt;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -86,6 +86,13 @@ pub struct FeatureSet {
     pub aovs: bool,
     /// Pixels stop taking samples once their noise is below a threshold (asked for by a render).
     pub adaptive: bool,
+    /// Cycles' multiscatter GGX (`[render] microfacet`) for the scene's rough lobes, metals
+    /// and glass.
+    pub multiscatter: bool,
+    /// Some diffuse lobe lies under a dielectric coating (`specular_ior_level`).
+    pub coating: bool,
+    /// Some material has a coat layer (`coat`).
+    pub coat: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -129,7 +136,9 @@ impl FeatureSet {
             sun: scene.sun.is_some(),
             // A metallic-roughness texture may make any texel a rough metal.
             glossy: materials_in_use.iter().any(|m| {
-                ((m.specular > 0.0 || m.reflection > 0.0) && rough(&m)) || m.textures.metallic_roughness.is_some()
+                ((m.specular > 0.0 || m.reflection > 0.0 || m.dielectric_coating().is_some()) && rough(&m))
+                    || m.textures.metallic_roughness.is_some()
+                    || m.coat_roughness * m.coat_roughness >= ALPHA_DELTA && m.coat > 0.0
             }),
             transmission,
             media: transmissive.iter().any(|m| m.has_medium()),
@@ -145,6 +154,16 @@ impl FeatureSet {
                 && (materials_in_use.iter().any(|m| m.is_emissive()) || scene.lights.iter().any(|l| !l.is_sun())),
             aovs: false,
             adaptive: false,
+            multiscatter: settings.microfacet == Microfacet::Multiscatter
+                && materials_in_use.iter().any(|m| {
+                    m.reflection > 0.0
+                        || m.transmission > 0.0
+                        || m.textures.metallic_roughness.is_some()
+                        || (rough(&m) && (m.specular > 0.0 || m.dielectric_coating().is_some()))
+                        || m.coat > 0.0
+                }),
+            coating: materials_in_use.iter().any(|m| m.dielectric_coating().is_some()),
+            coat: materials_in_use.iter().any(|m| m.coat > 0.0),
         }
     }
 
@@ -169,6 +188,9 @@ impl FeatureSet {
             light_tree: sampling == Sampling::Nee,
             aovs: false,
             adaptive: false,
+            multiscatter: true,
+            coating: true,
+            coat: true,
         }
     }
 
@@ -204,6 +226,10 @@ impl FeatureSet {
             "light_tree" => self.light_tree,
             "aovs" => self.aovs,
             "adaptive" => self.adaptive,
+            "multiscatter" => self.multiscatter,
+            "coating" => self.coating,
+            "coat" => self.coat,
+            "microfacet_tables" => self.multiscatter || self.coating || self.coat,
             _ => return None,
         })
     }
@@ -227,6 +253,9 @@ impl fmt::Display for FeatureSet {
             (self.normal_maps, "normal-maps"),
             (self.aovs, "aovs"),
             (self.adaptive, "adaptive"),
+            (self.multiscatter, "multiscatter"),
+            (self.coating, "coating"),
+            (self.coat, "coat"),
         ] {
             if on {
                 parts.push(name.to_string());

@@ -14,6 +14,20 @@ pub struct Material {
     pub transmission: f32,
     pub ior: f32,
     pub roughness: f32,
+    /// Principled's Specular Tint: the F82 tint of the `reflection` metal and a tint of the
+    /// dielectric coating's F0.
+    pub specular_tint: [f32; 3],
+    /// Principled's Specular IOR Level: above 0, the `diffuse` lobe lies under a dielectric
+    /// coating of index `ior` whose F0 is scaled by 2 × this (0.5: the physical F0), and
+    /// the diffuse keeps what the coating does not reflect. 0: no coating.
+    pub specular_ior_level: f32,
+    /// Principled's Coat: the weight of a dielectric GGX layer over every other lobe, its
+    /// roughness (perceptual), index, and the tint of the light that crosses it (at
+    /// normal incidence; Beer's law along the refracted view).
+    pub coat: f32,
+    pub coat_roughness: f32,
+    pub coat_ior: f32,
+    pub coat_tint: [f32; 3],
     /// The seed renderer's Phong-like exponent; mapped to `roughness` when given.
     pub hardness: Option<f32>,
     pub emission: [f32; 3],
@@ -96,6 +110,12 @@ impl Default for Material {
             transmission: 0.0,
             ior: 1.5,
             roughness: 0.0,
+            specular_tint: [1.0; 3],
+            specular_ior_level: 0.0,
+            coat: 0.0,
+            coat_roughness: 0.03,
+            coat_ior: 1.5,
+            coat_tint: [1.0; 3],
             hardness: None,
             emission: [0.0; 3],
             absorption: [0.0; 3],
@@ -132,6 +152,33 @@ impl Material {
         let sum: f32 = w.iter().sum();
         if sum > 1.0 { w.map(|v| v / sum) } else { w }
     }
+}
+
+impl Material {
+    /// The dielectric coating of the diffuse lobe, as Cycles' Principled BSDF sets up its
+    /// specular layer: the index whose real Fresnel curve it follows and its F0 (before
+    /// `specular_tint`), or `None` for no coating.
+    pub fn dielectric_coating(&self) -> Option<(f32, f32)> {
+        if self.specular_ior_level <= 0.0 || self.diffuse <= 0.0 {
+            return None;
+        }
+        let f0 = f0_from_ior(self.ior) * 2.0 * self.specular_ior_level;
+        // An F0 of 1 or more would be an infinite index: clamp just below.
+        let f0 = f0.min(0.9999);
+        let eta = ior_from_f0(f0);
+        (eta > 1.0).then_some((eta, f0))
+    }
+}
+
+/// Reflectance at normal incidence of an interface of relative index `ior`.
+pub fn f0_from_ior(ior: f32) -> f32 {
+    ((ior - 1.0) / (ior + 1.0)).powi(2)
+}
+
+/// The relative index (above 1) whose reflectance at normal incidence is `f0`.
+pub fn ior_from_f0(f0: f32) -> f32 {
+    let r = f0.clamp(0.0, 0.9999).sqrt();
+    (1.0 + r) / (1.0 - r)
 }
 
 /// Luminance of linear Rec. 709 RGB.

@@ -48,6 +48,7 @@ pub struct RenderSettings {
     /// luminance is below this (0: off), after `adaptive_min_samples` samples.
     pub noise_threshold: f32,
     pub adaptive_min_samples: u32,
+    pub microfacet: Microfacet,
 }
 
 impl Default for RenderSettings {
@@ -64,6 +65,7 @@ impl Default for RenderSettings {
             light_sampler: LightSampler::Power,
             noise_threshold: 0.0,
             adaptive_min_samples: 16,
+            microfacet: Microfacet::Multiscatter,
         }
     }
 }
@@ -105,6 +107,20 @@ pub enum RoughTransmission {
     Ggx,
     /// A cheaper model: the refracted direction jittered in a cone.
     Cone,
+}
+
+/// The model of rough GGX lobes (reflection, metal and refraction).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum Microfacet {
+    /// Cycles' GGX: height-correlated Smith masking-shadowing and Cycles' energy
+    /// compensation for the light that single scattering loses (`microfacet_ggx_preserve_energy`),
+    /// F82-tint metals.
+    #[default]
+    Multiscatter,
+    /// Single scattering with separable Smith masking-shadowing and the Fresnel of a
+    /// non-absorbing conductor for metals: Mitsuba 3's `roughconductor`/`roughdielectric`.
+    Single,
 }
 
 /// `[sky]`; black when the table is left out, white when `uniform` has no `color`.

@@ -160,6 +160,19 @@ fn material(src: &Source, p: &[Seg], m: &Material) -> Result<(), SceneError> {
     }
     src.check(p, "ior", &[m.ior], "at least 1", |ior| ior >= 1.0)?;
     src.check(p, "roughness", &[m.roughness], "in [0, 1]", |r| (0.0..=1.0).contains(&r))?;
+    src.check(p, "specular_tint", &m.specular_tint, "in [0, 1]", |t| (0.0..=1.0).contains(&t))?;
+    src.check(p, "specular_ior_level", &[m.specular_ior_level], "in [0, 1]", |l| (0.0..=1.0).contains(&l))?;
+    src.check(p, "coat", &[m.coat], "in [0, 1]", |c| (0.0..=1.0).contains(&c))?;
+    src.check(p, "coat_roughness", &[m.coat_roughness], "in [0, 1]", |r| (0.0..=1.0).contains(&r))?;
+    src.check(p, "coat_ior", &[m.coat_ior], "at least 1", |ior| ior >= 1.0)?;
+    src.check(p, "coat_tint", &m.coat_tint, "in [0, 1]", |t| (0.0..=1.0).contains(&t))?;
+    if m.specular_ior_level > 0.0 && m.specular > 0.0 {
+        return Err(src.error(
+            p,
+            "specular_ior_level",
+            "excludes `specular` (the coating is the diffuse's own glossy layer)",
+        ));
+    }
     if let Some(h) = m.hardness {
         src.check(p, "hardness", &[h], "positive", |h| h > 0.0)?;
     }

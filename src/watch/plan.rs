@@ -169,7 +169,8 @@ fn settings(old: &RenderSettings, new: &RenderSettings, changes: &mut Vec<Change
     if frame(old) != frame(new) {
         changes.push(Change::Settings);
     }
-    if (old.sampling, old.rough_transmission) != (new.sampling, new.rough_transmission) {
+    if (old.sampling, old.rough_transmission, old.microfacet) != (new.sampling, new.rough_transmission, new.microfacet)
+    {
         changes.extend([Change::Settings, Change::Features]);
     }
     if old.light_sampler != new.light_sampler {

@@ -9,8 +9,8 @@ For each NAME it writes `tests/cycles/texture_NAME.exr` (Cycles, linear, 32-bit)
 `scene.toml`). Images are generated in bpy and packed into the (unsaved) .blend.
 
 Cycles is set up as a reference: box pixel filter of width 1, no clamping, no
-denoising, no adaptive sampling, blur_glossy 0, bounce limits raised, single-scatter
-GGX (rt's model), Specular IOR Level 0 on non-metals (rt's diffuse is plain Lambert).
+denoising, no adaptive sampling, blur_glossy 0, bounce limits raised, Multiscatter GGX
+(rt's default model), Specular IOR Level 0 on non-metals (plain Lambert diffuse).
 """
 
 import argparse
@@ -91,7 +91,7 @@ def principled(name):
     tree = m.node_tree
     bsdf = tree.nodes["Principled BSDF"]
     bsdf.inputs["Specular IOR Level"].default_value = 0.0
-    bsdf.distribution = "GGX"
+    bsdf.distribution = "MULTI_GGX"
     return m, tree, bsdf
 
 
@@ -147,9 +147,7 @@ def sun(scene, rotation):
 
 def scene_rough_metal(scene):
     """Roughness and metallic maps (separate images, combined by the exporter) on a sunlit
-    sphere. The base colour is near white: there rt's conductor Fresnel (exact, of a
-    dielectric of that reflectance) and Cycles' (F82 tint) agree, so what differs is the
-    maps' doing (highlights of rough and sharp metal against diffuse stripes)."""
+    sphere: highlights of rough and sharp metal against diffuse stripes."""
     world(scene, (0.3, 0.3, 0.3))
     sun(scene, (math.radians(40), 0.0, math.radians(-35)))
     m, tree, bsdf = principled("rough_metal")

@@ -45,6 +45,9 @@ fn feature_sets() -> Vec<FeatureSet> {
             light_tree: on(0) && on(4) != on(7),
             aovs: on(3) != on(7),
             adaptive: on(1) != on(5),
+            multiscatter: on(7) != on(1),
+            coating: on(5) != on(7),
+            coat: on(3) != on(6),
         });
     }
     sets
@@ -74,6 +77,9 @@ fn plain() -> FeatureSet {
         light_tree: false,
         aovs: false,
         adaptive: false,
+        multiscatter: false,
+        coating: false,
+        coat: false,
     }
 }
 

@@ -1,0 +1,95 @@
+#!/usr/bin/env python3
+"""Rows of Principled BSDF spheres under a uniform world, one row per swept input, rendered
+with Cycles and exported with blender/rt_export.py, for `tests/cycles_principled.rs`:
+
+    /work/main/.venv-bpy/bin/python tests/cycles/make_principled_refs.py [--spp 1024] [NAME...]
+
+For each NAME it writes `tests/cycles/principled_NAME.exr` (Cycles, linear, 32-bit) and
+`tests/cycles/scenes/principled_NAME/` (the exported assets and `scene.toml`).
+
+Cycles is set up as a reference (see make_texture_refs.py) with the Principled BSDF's
+default distribution, Multiscatter GGX: rt's `[render] microfacet = "multiscatter"`.
+"""
+
+import argparse
+import math
+import os
+import sys
+
+import bpy
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import make_texture_refs as refs  # noqa: E402
+
+WIDTH, HEIGHT = 160, 32
+STEPS = [0.0, 0.25, 0.5, 0.75, 1.0]
+TINTS = [(1.0, 1.0, 1.0), (1.0, 0.4, 0.4), (0.4, 1.0, 0.4), (0.4, 0.4, 1.0), (1.0, 0.8, 0.2)]
+
+# Per row: the inputs every sphere shares, and per sphere the inputs that change.
+ROWS = {
+    "dielectric_roughness": ({"Base Color": (0.8, 0.3, 0.2)}, [{"Roughness": r} for r in STEPS]),
+    "metal_roughness": ({"Base Color": (0.95, 0.65, 0.3), "Metallic": 1.0}, [{"Roughness": r} for r in STEPS]),
+    "glass_roughness": (
+        {"Base Color": (0.9, 0.95, 1.0), "Transmission Weight": 1.0, "IOR": 1.45},
+        [{"Roughness": r} for r in STEPS],
+    ),
+    "ior": ({"Base Color": (0.2, 0.4, 0.8), "Roughness": 0.3}, [{"IOR": i} for i in (1.05, 1.3, 1.5, 2.0, 3.0)]),
+    "ior_level": (
+        {"Base Color": (0.2, 0.6, 0.3), "Roughness": 0.2},
+        [{"Specular IOR Level": level} for level in STEPS],
+    ),
+    "specular_tint": ({"Base Color": (0.1, 0.1, 0.1), "Roughness": 0.3}, [{"Specular Tint": t} for t in TINTS]),
+    "coat_weight": (
+        {"Base Color": (0.8, 0.2, 0.1), "Roughness": 0.6, "Coat Roughness": 0.1},
+        [{"Coat Weight": w} for w in STEPS],
+    ),
+    "coat_roughness": (
+        {"Base Color": (0.1, 0.3, 0.8), "Roughness": 0.6, "Coat Weight": 1.0, "Coat Tint": (0.9, 0.7, 0.5)},
+        [{"Coat Roughness": r} for r in STEPS],
+    ),
+    "metal_tint": (
+        {"Base Color": (0.9, 0.85, 0.8), "Metallic": 1.0, "Roughness": 0.3},
+        [{"Specular Tint": t} for t in TINTS],
+    ),
+}
+
+
+def set_input(bsdf, name, value):
+    socket = bsdf.inputs[name]
+    socket.default_value = (*value, 1.0) if isinstance(value, tuple) and len(socket.default_value) == 4 else value
+
+
+def build(scene, name):
+    shared, spheres = ROWS[name]
+    refs.world(scene, (1.0, 1.0, 1.0))
+    for i, own in enumerate(spheres):
+        m = bpy.data.materials.new(f"{name}_{i}")
+        bsdf = m.node_tree.nodes["Principled BSDF"]
+        for key, value in {**shared, **own}.items():
+            set_input(bsdf, key, value)
+        refs.add_object(scene, f"sphere_{i}", bpy.ops.mesh.primitive_uv_sphere_add, m, radius=0.45,
+                        segments=48, ring_count=24, location=(i - 2.0, 0.0, 0.0))
+        bpy.ops.object.shade_smooth()
+    refs.camera(scene, (0.0, -12.0, 0.0), (0.0, 0.0, 0.0), 2.0 * math.degrees(math.atan(0.5 / 12.0)))
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--spp", type=int, default=1024)
+    parser.add_argument("names", nargs="*", default=list(ROWS))
+    args = parser.parse_args()
+    for name in args.names:
+        scene = refs.reset()
+        scene.render.resolution_x, scene.render.resolution_y = WIDTH, HEIGHT
+        build(scene, name)
+        scene.cycles.samples = args.spp
+        out = os.path.join(HERE, "scenes", f"principled_{name}")
+        refs.rt_export.export_scene(scene, os.path.join(out, "assets"), os.path.join(out, "scene.toml"))
+        scene.render.filepath = os.path.join(HERE, f"principled_{name}.exr")
+        bpy.ops.render.render(write_still=True)
+        print(f"principled_{name}: {args.spp} spp -> {scene.render.filepath}", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()

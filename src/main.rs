@@ -312,7 +312,8 @@ struct AccuracyArgs {
     /// Scene file; the built-in Cornell box when omitted.
     scene: Option<PathBuf>,
     /// Knob to sweep (repeatable) [default: all]: spp, max-bounces, sampling,
-    /// light-sampler, ris-candidates, rough-glass, bvh-quality, samples-per-dispatch.
+    /// light-sampler, ris-candidates, rough-glass, bvh-quality, samples-per-dispatch,
+    /// denoise, adaptive.
     #[arg(long = "knob")]
     knobs: Vec<String>,
     /// Folder of the report [default: out/bench/SCENE].

@@ -329,6 +329,7 @@ fn light_errors_are_located_and_suggest() {
         [[light]] | type = "area" | size_y = 1 => 3:10: light 1: size_y only applies to shape = "rectangle" or "ellipse"
         [[light]] | type = "spot" | spot_size_deg = 200 => 3:17: light 1: spot_size_deg must be in [1, 180], got 200
         [[light]] | type = "point" | power = -1 => 3:9: light 1: power must be non-negative, got -1
+        [[light]] | type = "area" | size = 0 => 3:8: light 1: size must be positive, got 0
         [[light]] | type = "point" | direction = [0, 0, 0] => 3:13: light 1: direction must not be zero
         [[light]] | type = "point" | position = [0, 0, 0] | matrix = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1] => 4:10: light 1: matrix excludes position and direction
     "#,

@@ -27,36 +27,14 @@ import bpy
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(REPO, "blender"))
 import rt_export  # noqa: E402
-
-
-def wait_for(path):
-    deadline = time.monotonic() + 300
-    while not os.path.exists(path):
-        if time.monotonic() > deadline:
-            sys.exit(f"gave up waiting for {path}")
-        time.sleep(0.02)
+import live_watch  # noqa: E402  (its scene and wait_for)
+from live_watch import wait_for  # noqa: E402
 
 
 def build():
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    scene.render.resolution_x, scene.render.resolution_y = 48, 32
-    bpy.ops.mesh.primitive_plane_add(size=8)
-    floor = bpy.context.object
-    floor.name = floor.data.name = "floor"
-    bpy.ops.mesh.primitive_cube_add(size=1.0, location=(0.0, 0.0, 0.5))
-    cube = bpy.context.object
-    cube.name = cube.data.name = "cube"
-    paint = bpy.data.materials.new("paint")
-    paint.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (0.8, 0.8, 0.8, 1)
-    cube.data.materials.append(paint)
-    bpy.ops.object.camera_add(location=(0.0, -5.0, 2.0), rotation=(1.25, 0.0, 0.0))
-    scene.camera = bpy.context.object
+    """live_watch.py's scene, its camera named as the viewport's export names it."""
+    scene, cube, paint = live_watch.build()
     scene.camera.name = "Camera"
-    bpy.ops.object.light_add(type="SUN", rotation=(0.6, 0.0, 0.8))
-    world = bpy.data.worlds.new("sky")
-    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.4, 0.5, 0.6, 1)
-    scene.world = world
     return scene, cube, paint
 
 

@@ -1,7 +1,7 @@
 //! Adaptive sampling: pixels whose noise is below the threshold stop taking samples,
 //! and the image converges to the same one.
 
-mod common;
+use crate::common;
 
 use common::{gpu, repo};
 use rt::bvh::BuildQuality;

@@ -1,7 +1,7 @@
 //! AOVs: the albedo and normal a denoiser is guided by, and the depth, as Open Image
 //! Denoise expects them: from the first surface that is not a perfect mirror.
 
-mod common;
+use crate::common;
 
 use common::{gpu, scene_from, temp_dir};
 use rt::bvh::BuildQuality;

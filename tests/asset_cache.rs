@@ -2,7 +2,7 @@
 //! deterministic and skips fresh caches; a broken source is an error naming it; a
 //! broken cache is rebuilt with a warning and the render does not change.
 
-mod common;
+use crate::common;
 
 use common::{repo, temp_dir};
 use rt::asset::{MeshData, load_mesh, rtmesh};

@@ -8,8 +8,7 @@
 //! (20 altitudes, 64 view angles, 18 azimuths, 96 steps) changes its skies by
 //! 60–91 dB.
 
-mod atmosphere;
-mod common;
+use crate::atmosphere;
 
 use atmosphere::model::{BOTTOM, Model, horizon_mu};
 use atmosphere::orders;

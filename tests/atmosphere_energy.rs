@@ -13,8 +13,7 @@
 //! same radiance everywhere out — does not hold for such a mixture, and is not
 //! tested.)
 
-mod atmosphere;
-mod common;
+use crate::atmosphere;
 
 use atmosphere::probe::{Kind, Probe, Query, Variant};
 use glam::DVec3;

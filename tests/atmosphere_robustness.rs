@@ -2,8 +2,7 @@
 //! right: rays tangent to the planet, the sun at and below the horizon, cameras
 //! at, above and below the atmosphere's ends, segments of any length.
 
-mod atmosphere;
-mod common;
+use crate::atmosphere;
 
 use atmosphere::probe::{Kind, Probe, Query};
 use glam::DVec3;

@@ -2,8 +2,8 @@
 //! what they depend on changes, and finite and in range for any parameters the
 //! scene file accepts.
 
-mod atmosphere;
-mod common;
+use crate::atmosphere;
+use crate::common;
 
 use atmosphere::probe::{Kind, Probe, Query};
 use common::{gpu, scene_from};

@@ -1,6 +1,6 @@
 //! Bad input gives a clear error naming the file, a non-zero exit, and no panic.
 
-mod common;
+use crate::common;
 
 use common::{temp_dir, write};
 use std::path::Path;

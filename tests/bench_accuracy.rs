@@ -1,7 +1,7 @@
 //! `rt bench`: convergence, the reference cache, pipelines that agree, and reports that parse.
 //! Tiny on purpose (lavapipe in CI): 32×32 images, few samples, few knobs, one or two repeats.
 
-mod common;
+use crate::common;
 
 use common::{gpu, repo, temp_dir, write};
 use rt::bench::knobs::select;

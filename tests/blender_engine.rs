@@ -4,7 +4,7 @@
 //! and the packaged extension installs and renders. Also `rt render --progress json`.
 //! Needs RT_BPY_PYTHON, a Python with `bpy` (scripts/test sets one up).
 
-mod common;
+use crate::common;
 
 use common::repo;
 use serde_json::Value;

@@ -1,7 +1,7 @@
 //! Blender → rt for Worlds with an Environment Texture: `tests/blender/environment.py`
 //! exports them with blender/rt_export.py. Needs RT_BPY_PYTHON, a Python with `bpy`.
 
-mod common;
+use crate::common;
 
 use common::{repo, temp_dir};
 use rt::scene::Sky;

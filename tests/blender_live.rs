@@ -5,8 +5,8 @@
 //! the exported camera's image; each edit reaches the streaming rt as a reload of the
 //! right files). Needs RT_BPY_PYTHON, a Python with `bpy` (scripts/test sets one up).
 
-mod common;
-mod watch_harness;
+use crate::common;
+use crate::watch_harness;
 
 use common::{repo, temp_dir};
 use serde_json::Value;

@@ -2,8 +2,8 @@
 //! `rt watch --headless` on what it exports; each save is one reload of the right kind.
 //! Needs RT_BPY_PYTHON, a Python with `bpy` (scripts/test sets one up).
 
-mod common;
-mod watch_harness;
+use crate::common;
+use crate::watch_harness;
 
 use common::{repo, temp_dir};
 use std::path::{Path, PathBuf};

@@ -1,7 +1,7 @@
 //! Blender → rt: a scene built with bpy, exported with blender/rt_export.py, packed and
 //! rendered. Needs RT_BPY_PYTHON, a Python with `bpy` (scripts/test sets one up).
 
-mod common;
+use crate::common;
 
 use common::{render, repo};
 use glam::{Mat4, Vec3};

@@ -3,7 +3,7 @@
 //! rotation + (2k + 1)π / blades, squeezed by the aperture ratio) and pass, where they meet
 //! the plane in focus, through the pixel they belong to.
 
-mod common;
+use crate::common;
 
 use common::{gpu, scene_from};
 use glam::{Vec2, Vec3};

@@ -6,7 +6,7 @@
 //! the images differ only where the camera's rays go. 8×8-block means and the global mean
 //! must agree within bounds derived from the noise at the sample counts used.
 
-mod common;
+use crate::common;
 
 use common::{reference, render, repo};
 

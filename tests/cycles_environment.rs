@@ -6,7 +6,7 @@
 //! brighter than the rest. The global mean and every 8×8 block's mean must agree
 //! within bounds derived from the noise, in both of rt's sampling modes.
 
-mod common;
+use crate::common;
 
 use common::{gpu, reference, repo};
 use rt::bvh::BuildQuality;

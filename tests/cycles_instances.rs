@@ -5,7 +5,7 @@
 //! (material sets of one asset). The global mean must agree within 4 σ and every 8×8 block within
 //! 5 σ, σ estimated from rt's own noise at the sample counts used.
 
-mod common;
+use crate::common;
 
 use common::reference::{self, Noiseless};
 use common::{render, repo};

@@ -4,7 +4,7 @@
 //! within bounds derived from the noise, in both of rt's sampling modes and with both
 //! light samplers.
 
-mod common;
+use crate::common;
 
 use common::{gpu, reference, repo};
 use rt::bvh::BuildQuality;

@@ -5,7 +5,7 @@
 //! renders the export; 8×8-block means and the global mean must agree within bounds
 //! derived from rt's standard errors and the reference's noise.
 
-mod common;
+use crate::common;
 
 use common::reference::{self, Noiseless};
 use common::{render, repo};

@@ -8,7 +8,7 @@
 //! noiseless: there a difference of 0.1% is allowed besides the noise, the precision to
 //! which rt's albedo tables (quadrature) reproduce Cycles' (Monte Carlo, 6 digits).
 
-mod common;
+use crate::common;
 
 use common::reference::{self, Noiseless};
 use common::{render, repo};

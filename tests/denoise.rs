@@ -2,7 +2,7 @@
 //! converged one than the raw image at four times the samples, and a missing library
 //! is a clear message, not a crash.
 
-mod common;
+use crate::common;
 
 use common::temp_dir;
 use std::process::Command;

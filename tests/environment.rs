@@ -2,7 +2,7 @@
 //! Radiance .hdr), importance sampling against uniform sampling on a map with a tiny,
 //! very bright spot, and bad images (missing, corrupt, NaN or negative texels, no texels).
 
-mod common;
+use crate::common;
 
 use common::{gpu, render, scene_from, temp_dir};
 use rt::bvh::BuildQuality;

@@ -1,7 +1,7 @@
 //! White furnace tests: under a uniform sky of radiance 1, a white Lambertian
 //! object reflects all it receives, so the image is 1 everywhere (in expectation).
 
-mod common;
+use crate::common;
 
 use common::{render, scene_from};
 

@@ -5,7 +5,7 @@
 //!
 //! `RT_FUZZ_ITERATIONS` (default 1500 per format) runs longer by hand.
 
-mod common;
+use crate::common;
 
 use common::{TestRng, repo, temp_dir};
 use rt::asset::{MeshData, load_mesh, rtinst, rtmesh};

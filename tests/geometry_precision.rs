@@ -2,7 +2,7 @@
 //! spheres at the right distance, tiny, huge and degenerate triangles, and a
 //! pathological BVH that may overflow its stack but never silently.
 
-mod common;
+use crate::common;
 
 use common::{TestRng, gpu, scene_from, temp_dir, write};
 use glam::DVec3;

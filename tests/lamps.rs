@@ -2,7 +2,7 @@
 //! under it, seen through a narrow camera looking straight down, so every pixel sees
 //! radiance albedo / π × E. Light sampling and BSDF sampling (`seed`) must both find it.
 
-mod common;
+use crate::common;
 
 use common::{render, scene_from, temp_dir, write};
 use std::f64::consts::PI;

@@ -4,7 +4,7 @@
 //! equal samples where there are many lights. Both are unbiased, so the noise is the
 //! error: its root mean square over the pixels is the RMSE.
 
-mod common;
+use crate::common;
 
 use common::{gpu, repo, scene_from};
 use rt::bvh::BuildQuality;

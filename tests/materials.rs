@@ -1,7 +1,7 @@
 //! Materials against exact answers: furnaces, a glass slab, a sunlit plane, and
 //! hard cases that must stay finite.
 
-mod common;
+use crate::common;
 
 use common::{render, scene_from, temp_dir, write};
 use rt::render::Image;

@@ -2,7 +2,7 @@
 //! the references): 8×8-block means and the global mean must agree within
 //! bounds derived from the noise at the sample counts used.
 
-mod common;
+use crate::common;
 
 use common::{reference, render, repo};
 

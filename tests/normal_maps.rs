@@ -5,7 +5,7 @@
 //! they come from MikkTSpace at import; tilting towards u and towards v, with the sun on
 //! either side, checks the tangent, the bitangent's sign and the map's decoding.
 
-mod common;
+use crate::common;
 
 use common::{render, scene_from, temp_dir, write};
 use glam::DVec3;

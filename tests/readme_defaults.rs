@@ -2,7 +2,7 @@
 //! keys) against the code: every value it writes out must be the default the code
 //! applies, and every key the code accepts must be in it. So the two cannot drift.
 
-mod common;
+use crate::common;
 
 use common::repo;
 

@@ -2,7 +2,7 @@
 //! commands, help text for every render option, and a README that says how to get
 //! `rt` on the PATH and what the first run costs.
 
-mod common;
+use crate::common;
 
 use common::bounded::{fresh_dir, names, run};
 use std::os::unix::fs::{MetadataExt, PermissionsExt};

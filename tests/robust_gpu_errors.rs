@@ -2,7 +2,7 @@
 //! rt's records it, and `GpuContext::take_error` (which `wait` calls after every
 //! submission it waits for) returns it as an `Err` with the GPU's message.
 
-mod common;
+use crate::common;
 
 use common::gpu;
 

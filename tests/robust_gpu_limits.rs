@@ -3,7 +3,7 @@
 //! limit before anything is rendered, and a scene edit asking for one in `rt watch` keeps
 //! the last good image and is recovered from by the next good save.
 
-mod common;
+use crate::common;
 
 use common::{gpu, temp_dir};
 use std::path::Path;

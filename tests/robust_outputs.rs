@@ -4,7 +4,7 @@
 //! plain message with nothing left behind, SIGTERM exits cleanly, and the temporaries
 //! of a killed `rt pack` are removed by the next run once their process is gone.
 
-mod common;
+use crate::common;
 
 use common::bounded::{fresh_dir, names, rt, run, run_signalled};
 use std::process::Command;

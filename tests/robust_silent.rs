@@ -2,7 +2,7 @@
 //! (it vanished), a mesh of degenerate triangles (it rendered as nothing), a misspelt
 //! asset path ("unsupported asset type"), and `--frames-dir` naming a file.
 
-mod common;
+use crate::common;
 
 use common::bounded::{fresh_dir, names, rt};
 use std::path::Path;

@@ -2,7 +2,7 @@
 //! consumed when obeyed and a stale one is removed at start (with a log line), and the
 //! previous run's log is kept as `watch.log.1` rather than truncated.
 
-mod common;
+use crate::common;
 
 use common::bounded::{fresh_dir, names, run};
 use std::path::Path;

@@ -2,7 +2,7 @@
 //! them up in sample order: the image is the same bit for bit whatever the number of
 //! lanes and however samples are split into dispatches.
 
-mod common;
+use crate::common;
 
 use common::{gpu, repo};
 use rt::bvh::BuildQuality;

@@ -4,7 +4,7 @@
 //! prints its export time, pack time, top-level build time and memory. Needs
 //! RT_BPY_PYTHON, a Python with `bpy` (scripts/test sets one up).
 
-mod common;
+use crate::common;
 
 use common::{gpu, repo, temp_dir};
 use rt::bvh::{BuildQuality, SceneGeometry};

@@ -1,6 +1,6 @@
 //! Every scene in `scenes/` renders, small, with finite pixels; the default scene too.
 
-mod common;
+use crate::common;
 
 use common::{render, repo};
 

@@ -1,7 +1,7 @@
 //! The non-finite sentinel: samples that overflow are dropped and counted per
 //! pixel with their cause, never written into the image; `--strict` fails on them with exit status 3.
 
-mod common;
+use crate::common;
 
 use common::{gpu, scene_from, temp_dir, write};
 use rt::bvh::BuildQuality;

@@ -2,7 +2,7 @@
 //! the material and the image file, and says what is wrong; none crashes or reaches the
 //! GPU. (A missing image and a truncated PNG: see tests/textures.rs.)
 
-mod common;
+use crate::common;
 
 use common::{temp_dir, write};
 use rt::asset::load_mesh;

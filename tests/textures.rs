@@ -3,7 +3,7 @@
 //! camera and shadow rays through, and bad images are errors naming the material
 //! and the file.
 
-mod common;
+use crate::common;
 
 use common::{render, scene_from, temp_dir, write};
 use rt::asset::load_mesh;

@@ -1,6 +1,6 @@
 //! The GPU traversal against a CPU double-precision reference, and watertightness.
 
-mod common;
+use crate::common;
 
 use common::{TestRng, gpu, icosphere_obj, repo, scene_from, temp_dir, write};
 use glam::DVec3;

@@ -2,8 +2,8 @@
 //! reload of the right kind; a burst of saves coalesced; the window under Xvfb showing
 //! what a headless render writes.
 
-mod common;
-mod watch_harness;
+use crate::common;
+use crate::watch_harness;
 
 use common::{icosphere_obj, render, temp_dir};
 use rt::render::tonemap::display_pixel;

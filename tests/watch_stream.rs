@@ -4,7 +4,7 @@
 //! is reported and ignored, and a client that dies does not kill rt (on the standard
 //! streams rt exits cleanly; on a socket the next client is served).
 
-mod common;
+use crate::common;
 
 use common::temp_dir;
 use std::io::{BufRead, BufReader, Read, Write};

@@ -1,4 +1,4 @@
-//! Shared by the GPU integration tests: one device per test binary, and scene helpers.
+//! Shared by the GPU integration tests: one device for the whole test binary, and scene helpers.
 #![allow(dead_code)]
 
 pub mod bounded;

@@ -141,29 +141,70 @@ fn environment_seen(direction: vec3f, bsdf_pdf: f32) -> vec3f {
 }
 //#endif
 
-// One path. Each turn of the loop traces exactly one ray, the path's next ray
-// or a pending shadow ray, through the loop's single call of the traversal: the
-// traversal code is then in the kernel once, not once per kind of ray.
-fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
-    let camera = camera_ray(pixel, rng);
-    var origin = camera.origin;
-    var direction = camera.direction;
+// What a finished sample is added to: `render`'s pixel, read before its samples and
+// written after them.
+var<private> pixel_acc: vec4f;
+var<private> pixel_bad: u32;
+//#if aovs
+var<private> pixel_aovs: AovMeans;
+//#endif
+
+// A finished sample `sample_index` of radiance `radiance`: into the pixel's running mean,
+// or, for `render_lanes`, into its slot of `lane_samples`.
+fn sample_done(pixel_index: u32, sample_index: u32, radiance: vec3f, lanes: bool) {
+    if lanes {
+        let slot = (sample_index - frame.sample_base) * frame.width * frame.height + pixel_index;
+        lane_samples[slot] = vec4f(radiance, bitcast<f32>(first_bad_event));
+        return;
+    }
+    // (WGSL passes function-space pointers only.)
+    var acc = pixel_acc;
+    var bad = pixel_bad;
+    accumulate(&acc, &bad, radiance, first_bad_event, sample_index);
+    pixel_acc = acc;
+    pixel_bad = bad;
+    //#if aovs
+    var aovs = pixel_aovs;
+    aov_add(&aovs, sample_index);
+    pixel_aovs = aovs;
+    //#endif
+}
+
+// The pixel's samples `first`, `first + step`, … below `end`, as paths traced one after
+// another in a single loop. Each turn of the loop traces exactly one ray, the path's
+// next ray or a pending shadow ray, through the loop's single call of the traversal:
+// the traversal code is then in the kernel once, not once per kind of ray. A path that
+// ends starts the pixel's next sample in the next turn (path regeneration, Novák et al.
+// 2010), so an invocation whose path ended early does not idle until the longest path
+// of its subgroup ends: it traces its next sample meanwhile. Samples still finish in
+// sample order, so the image does not depend on it.
+fn trace_samples(pixel: vec2u, pixel_index: u32, first: u32, step: u32, end: u32, lanes: bool) {
+    if first >= end {
+        return;
+    }
+    var sample_index = first;
+    var rng: Rng;
+    var origin: vec3f;
+    var direction: vec3f;
     // The camera ray ends at the far clip plane; the rays after it do not.
-    var path_t_max = camera.t_max;
-    var radiance = vec3f(0.0);
-    var throughput = vec3f(1.0);
+    var path_t_max: f32;
+    var radiance: vec3f;
+    var throughput: vec3f;
     // Density of the last BSDF sample, for MIS; 0 after the camera and after delta lobes.
-    var bsdf_pdf = 0.0;
+    var bsdf_pdf: f32;
     // The medium the path travels in: absorption and emission per metre.
-    var medium_absorption = vec3f(0.0);
-    var medium_emission = vec3f(0.0);
-    var bounce = 0u;
+    var medium_absorption: vec3f;
+    var medium_emission: vec3f;
+    var bounce: u32;
     // A light sample waiting for its shadow ray, weighted by the throughput it was taken with.
     //#if nee
     var shadow: ShadowRay;
     //#endif
-    var shadow_pending = false;
-    var path_ended = false;
+    var shadow_pending: bool;
+    var path_ended: bool;
+    // Set when the path has ended and its sample is to be added (in `continuing`).
+    var sample_finished = false;
+    var starting = true;
     // Set by the traversal when a stack was full (it counts that in `stats` itself).
     var stack_overflowed = false;
     //#if textures
@@ -173,17 +214,40 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
     // A pixel's angle seen from the camera (view_half_extent is the image plane's half size
     // at distance 1); an orthographic camera's rays do not spread.
     let cone_spread = select(2.0 * frame.view_half_extent.y / f32(frame.height), 0.0, frame.orthographic != 0u);
-    var cone_width = 0.0;
+    var cone_width: f32;
     //#endif
     //#if alpha_blend
     // The sample's identity (its random stream's start: pixel, sample and seed) for the
     // coins of blended surfaces.
-    let path_key = (*rng).state;
-    //#endif
-    //#if aovs
-    aov_begin();
+    var path_key: u32;
     //#endif
     loop {
+        if starting {
+            starting = false;
+            rng = rng_for_sample(pixel_index, sample_index, frame.seed);
+            first_bad_event = EVENT_NONE;
+            //#if alpha_blend
+            path_key = rng.state;
+            //#endif
+            let camera = camera_ray(pixel, &rng);
+            origin = camera.origin;
+            direction = camera.direction;
+            path_t_max = camera.t_max;
+            radiance = vec3f(0.0);
+            throughput = vec3f(1.0);
+            bsdf_pdf = 0.0;
+            medium_absorption = vec3f(0.0);
+            medium_emission = vec3f(0.0);
+            bounce = 0u;
+            shadow_pending = false;
+            path_ended = false;
+            //#if textures
+            cone_width = 0.0;
+            //#endif
+            //#if aovs
+            aov_begin();
+            //#endif
+        }
         var ray_origin = origin;
         var ray_direction = direction;
         var ray_t_max = path_t_max;
@@ -205,9 +269,7 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
             if hit.kind == HIT_NONE {
                 gather(&radiance, shadow.contribution, EVENT_LIGHT_SAMPLE);
             }
-            if path_ended {
-                break;
-            }
+            sample_finished = path_ended;
             continue;
         }
         //#endif
@@ -236,7 +298,8 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
             //#if sun
             gather(&radiance, throughput * sun_seen(origin, direction, bsdf_pdf), EVENT_SKY);
             //#endif
-            break;
+            sample_finished = true;
+            continue;
         }
         //#if sky_atmosphere
         let air = atmosphere_segment(origin, direction, hit.t);
@@ -259,7 +322,8 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
         gather(&radiance, throughput * emission_seen(m, hit, surface, origin, direction, bsdf_pdf), EVENT_EMISSION);
         //#endif
         if bounce >= frame.max_bounces {
-            break;
+            sample_finished = true;
+            continue;
         }
         bounce++;
         // The viewer is outside when the ray meets the outward normal head on.
@@ -271,11 +335,11 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
         //#endif
         let ctx = shading_context(m, n_shading, n_geometric, -direction, entering);
         //#if nee
-        shadow = direct_light(ctx, surface, n_geometric, medium_absorption, rng);
+        shadow = direct_light(ctx, surface, n_geometric, medium_absorption, &rng);
         shadow.contribution *= throughput;
         shadow_pending = any(shadow.contribution != vec3f(0.0));
         //#endif
-        let s = bsdf_sample(ctx, rng);
+        let s = bsdf_sample(ctx, &rng);
         //#if aovs
         aov_surface(s, n_shading);
         //#endif
@@ -294,7 +358,7 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
             //#endif
             if bounce > ROULETTE_START {
                 let survival = min(max(throughput.x, max(throughput.y, throughput.z)), 0.95);
-                if rng_next(rng) >= survival {
+                if rng_next(&rng) >= survival {
                     path_ended = true;
                 }
                 throughput /= survival;
@@ -304,11 +368,17 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
             path_t_max = INFINITY;
         }
         // The pending shadow ray, if any, is traced before the path ends.
-        if path_ended && !shadow_pending {
-            break;
+        sample_finished = path_ended && !shadow_pending;
+        continuing {
+            if sample_finished {
+                sample_finished = false;
+                sample_done(pixel_index, sample_index, radiance, lanes);
+                sample_index += step;
+                starting = true;
+            }
+            break if starting && sample_index >= end;
         }
     }
-    return radiance;
 }
 
 // Adds sample `sample_index` of a pixel, of radiance `radiance`, to its running mean
@@ -343,8 +413,6 @@ fn render(@builtin(global_invocation_id) id: vec3u) {
         return;
     }
     let pixel_index = id.y * frame.width + id.x;
-    var acc = accumulation[pixel_index];
-    var bad = non_finite[pixel_index];
     var sample_base = frame.sample_base;
     //#if adaptive
     // Pixels stop at different counts: each keeps its own.
@@ -353,23 +421,16 @@ fn render(@builtin(global_invocation_id) id: vec3u) {
         return;
     }
     //#endif
+    pixel_acc = accumulation[pixel_index];
+    pixel_bad = non_finite[pixel_index];
     //#if aovs
-    var aovs = aov_load(pixel_index);
+    pixel_aovs = aov_load(pixel_index);
     //#endif
-    for (var s = 0u; s < frame.samples_per_dispatch; s++) {
-        let sample_index = sample_base + s;
-        var rng = rng_for_sample(pixel_index, sample_index, frame.seed);
-        first_bad_event = EVENT_NONE;
-        let l = trace_path(id.xy, &rng);
-        accumulate(&acc, &bad, l, first_bad_event, sample_index);
-        //#if aovs
-        aov_add(&aovs, sample_index);
-        //#endif
-    }
-    accumulation[pixel_index] = acc;
-    non_finite[pixel_index] = bad;
+    trace_samples(id.xy, pixel_index, sample_base, 1u, sample_base + frame.samples_per_dispatch, false);
+    accumulation[pixel_index] = pixel_acc;
+    non_finite[pixel_index] = pixel_bad;
     //#if aovs
-    aov_store(pixel_index, aovs);
+    aov_store(pixel_index, pixel_aovs);
     //#endif
     //#if adaptive
     pixel_samples[2u * pixel_index] = sample_base + frame.samples_per_dispatch;
@@ -386,13 +447,8 @@ fn render_lanes(@builtin(global_invocation_id) id: vec3u, @builtin(num_workgroup
         return;
     }
     let pixel_index = id.y * frame.width + id.x;
-    let pixels = frame.width * frame.height;
-    for (var s = id.z; s < frame.samples_per_dispatch; s += groups.z) {
-        var rng = rng_for_sample(pixel_index, frame.sample_base + s, frame.seed);
-        first_bad_event = EVENT_NONE;
-        let l = trace_path(id.xy, &rng);
-        lane_samples[s * pixels + pixel_index] = vec4f(l, bitcast<f32>(first_bad_event));
-    }
+    let first = frame.sample_base + id.z;
+    trace_samples(id.xy, pixel_index, first, groups.z, frame.sample_base + frame.samples_per_dispatch, true);
 }
 
 @compute @workgroup_size(8, 8)

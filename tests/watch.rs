@@ -150,7 +150,8 @@ fn a_burst_of_saves_is_coalesced_and_ends_on_the_last_state() {
         }
         std::thread::sleep(Duration::from_millis(10));
     }
-    assert!(start.elapsed() < Duration::from_secs(4), "the saves took {:?}", start.elapsed());
+    // The premise: a burst (about 2 s of saves), not a trickle rt could follow save by save.
+    assert!(start.elapsed() < Duration::from_secs(10), "the saves took {:?}", start.elapsed());
     // Settled: the last reload has its frame, and no reload follows for a while.
     let settled = |log: &[String]| {
         let last = reload_lines(log).last().and_then(|l| l.split(' ').nth(1).map(str::to_owned));

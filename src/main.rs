@@ -211,6 +211,21 @@ enum BenchCommand {
         #[arg(long)]
         sample_lanes: Option<u32>,
     },
+    /// How the top level scales: fields of N instances of a 9,800-triangle sphere, with
+    /// the top level's build time, GPU memory per instance and rays/s through the field.
+    Instances {
+        /// Instance counts, comma-separated.
+        #[arg(long, value_delimiter = ',', default_value = "1000,100000,1000000")]
+        counts: Vec<usize>,
+        #[arg(long, value_parser = parse_size, default_value = "1024x720")]
+        size: (u32, u32),
+        /// Timed repetitions of each measurement (the median is reported).
+        #[arg(long, default_value_t = 5)]
+        runs: u32,
+        /// Samples per pixel per integrator dispatch.
+        #[arg(long, default_value_t = 4)]
+        spp: u32,
+    },
     /// rt's throughput beside Mitsuba 3's (through its Python API, when importable) on the
     /// same scenes in one run, with the ratios.
     Compare {
@@ -558,6 +573,9 @@ fn main() -> ExitCode {
         Command::Bench(BenchCommand::Throughput { scene, size, runs, spp, sample_lanes }) => {
             let options = rt::bench::ThroughputOptions { size, runs, spp, lanes: sample_lanes, rays: true };
             load_scene(scene.as_deref()).and_then(|s| rt::bench::throughput(s, &options, adapter))
+        }
+        Command::Bench(BenchCommand::Instances { counts, size, runs, spp }) => {
+            rt::bench::instances(&rt::bench::InstanceScaleOptions { counts, size, runs, spp }, adapter)
         }
         Command::Bench(BenchCommand::Compare { scenes, size, runs, python, variant }) => {
             let options = rt::bench::CompareOptions { scenes, size, runs, python, variant, root: PathBuf::new() };

@@ -271,7 +271,12 @@ class RtRenderEngine(bpy.types.RenderEngine):
         self.viewport = None
 
     def __del__(self):
-        viewport = getattr(self, "viewport", None)
+        try:
+            viewport = self.viewport
+        except (AttributeError, ReferenceError):
+            # Quitting, Blender frees the engine before this runs (then even reading an
+            # attribute raises); rt sees its input close and exits by itself.
+            return
         if viewport is not None:
             viewport.close()
 

@@ -112,7 +112,11 @@ def mesh_arrays(mesh, material_count, uv_transforms=None):
     co = np.empty(len(mesh.vertices) * 3, np.float32)
     mesh.vertices.foreach_get("co", co)
     normals = np.empty(loop_count * 3, np.float32)
-    mesh.corner_normals.foreach_get("vector", normals)
+    if hasattr(mesh, "corner_normals"):
+        mesh.corner_normals.foreach_get("vector", normals)
+    else:  # Blender before 4.1 (3.4 for the screenshots): split normals live on the loops
+        mesh.calc_normals_split()
+        mesh.loops.foreach_get("normal", normals)
 
     columns = [to_rt(co.reshape(-1, 3)[corner_vertex[corners]]), to_rt(normals.reshape(-1, 3)[corners])]
     has_uvs = len(mesh.uv_layers) > 0
@@ -184,9 +188,25 @@ def linked_node(socket):
     return socket.links[0].from_node if socket.is_linked else None
 
 
+# The Principled BSDF's inputs that Blender 4.0 renamed, under their 3.x names (rt
+# supports 4.2+; these let 3.4 export plain materials for the screenshots). 3.x's
+# "Specular Tint" is a number, not 4.x's colour, so it is left out and takes the default.
+PRE_4_0_SOCKETS = {
+    "Emission Color": "Emission",
+    "Transmission Weight": "Transmission",
+    "Specular IOR Level": "Specular",
+    "Coat Weight": "Clearcoat",
+    "Coat Roughness": "Clearcoat Roughness",
+}
+
+
 def socket_value(node, name, default):
     """A node input's value; a texture or other link stands for what it would give
     on average, which rt cannot know, so the socket's own value is used and noted."""
+    if node.type == "BSDF_PRINCIPLED" and "Specular IOR Level" not in node.inputs:  # before 4.0
+        if name == "Specular Tint":
+            return default
+        name = PRE_4_0_SOCKETS.get(name, name)
     socket = node.inputs.get(name)
     if socket is None:
         return default

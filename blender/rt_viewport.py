@@ -2,8 +2,13 @@
 a cache folder once and starts `rt watch SCENE --stream` as a child; after that each
 view_update re-exports only what the depsgraph says changed (a moved object rewrites the
 scene file, an edited mesh or material its asset) and tells rt which files to reload.
-view_draw sends the viewport's camera (its view and projection matrices) and size, and
-draws the latest frame rt sent as a texture, through Blender's colour management.
+view_draw sends the viewport's camera (its view and projection matrices, and the scene
+camera's depth of field when the viewport looks through it) and size, and draws the
+latest frame rt sent as a texture, through Blender's colour management.
+
+Timings go to the logger "rt.viewport" at debug level: how long the first frame took to
+be drawn, and each camera change or edit until the first frame that shows it is drawn.
+In Blender's Python console: `import logging; logging.basicConfig(level=logging.DEBUG)`.
 
 The protocol (README.md, "Streaming to a client"): command lines to rt's standard input,
 message lines and frames (a header line, then linear RGBA float32 pixels, rows from the
@@ -11,10 +16,13 @@ top) from its standard output, read here on a thread of their own.
 """
 
 import collections
+import logging
+import math
 import os
 import re
 import subprocess
 import threading
+import time
 
 import bpy
 import numpy as np
@@ -31,6 +39,8 @@ REDRAW_POLL_S = 1 / 30
 # How long rt gets to quit before it is stopped.
 QUIT_GRACE_S = 1.0
 
+LOG = logging.getLogger("rt.viewport")
+
 
 def fields(text):
     """{key: value} of a message line's key=value fields."""
@@ -42,11 +52,35 @@ def matrix_rows(matrix):
     return ",".join(f"{matrix[r][c]:.9g}" for r in range(4) for c in range(4))
 
 
-def camera_command(view_matrix, window_matrix):
+def camera_command(view_matrix, window_matrix, aperture=None):
     """The camera command for Blender's view matrix (world to view, Blender's Z-up world)
-    and projection matrix: rt's world is Y up, so world points go through FROM_RT first."""
+    and projection matrix: rt's world is Y up, so world points go through FROM_RT first.
+    `aperture`: the protocol's depth-of-field fields (see `aperture_fields`)."""
     view = view_matrix @ rt_export.FROM_RT
-    return f"camera view={matrix_rows(view)} projection={matrix_rows(window_matrix)}"
+    command = f"camera view={matrix_rows(view)} projection={matrix_rows(window_matrix)}"
+    if aperture:
+        command += " " + " ".join(f"{key}={value:.9g}" for key, value in aperture.items())
+    return command
+
+
+def aperture_fields(camera):
+    """The depth of field of a camera object as Cycles renders it, as the camera command's
+    fields, or None for a pinhole. The aperture goes as its radius: the viewport's
+    projection matrix zooms with the view, the camera's own focal length does not."""
+    data = camera.data
+    if not data.dof.use_dof:
+        return None
+    dof = data.dof
+    fstop = max(dof.aperture_fstop, 1e-5)  # Cycles clamps it so
+    radius = (1.0 if data.type == "ORTHO" else data.lens * 1e-3) / (2.0 * fstop)
+    return {
+        "aperture": radius,
+        "focus": max(rt_export.focus_distance(camera), 1e-5),
+        # Cycles renders fewer than 3 blades as a round aperture.
+        "blades": dof.aperture_blades if dof.aperture_blades >= 3 else 0,
+        "blade_rotation": math.degrees(dof.aperture_rotation),
+        "aperture_ratio": dof.aperture_ratio,
+    }
 
 
 class Frame:
@@ -168,17 +202,27 @@ class Viewport:
         self.sent = {}  # what the last camera, size and spp commands said
         self.texture = None
         self.texture_frame = 0
-        self.reloads = []  # the files of each reload sent, for tests and the status line
+        self.reloads = []  # (command line, files) of each reload sent, for tests
+        self.started = None  # when the first update began (perf_counter)
+        # What waits to be seen: {kind: (command line, when it began, a note)}; a newer
+        # change of a kind replaces the older, which no frame will show on its own.
+        self.waiting = {}
+        # The line of the first size and camera commands: rt's frames before it show the
+        # exported camera at the render size, not this view, and are not drawn.
+        self.view_line = None
 
     def update(self, depsgraph):
         """view_update: the first time, export everything and start rt; then re-export what
         the depsgraph's updates changed and have rt reload the files that were rewritten."""
+        began = time.perf_counter()
         scene = depsgraph.scene
         if self.export is None:
+            self.started = began
             os.makedirs(self.folder, exist_ok=True)
             self.export = rt_export.export_scene(scene, self.assets, self.scene_path)
             self.client = StreamClient(stream_command(self.binary, self.scene_path, scene.rt_render))
             self.sent["spp"] = scene.rt_render.viewport_spp
+            LOG.debug("exported the scene and started rt in %.0f ms", 1e3 * (time.perf_counter() - began))
             return []
         self.send_once("spp", f"spp {scene.rt_render.viewport_spp}")
         changes = rt_export.classify_updates(depsgraph.updates)
@@ -190,20 +234,44 @@ class Viewport:
         self.export = rt_export.export_scene(scene, self.assets, self.scene_path, only, self.export)
         written = [os.path.relpath(path, self.folder).replace(os.sep, "/") for path in self.export.written]
         if written:
-            self.client.send("reload " + " ".join(written))
-            self.reloads.append(written)
+            line = self.client.send("reload " + " ".join(written))
+            self.reloads.append((line, written))
+            exported_ms = 1e3 * (time.perf_counter() - began)
+            self.waiting["edit"] = (line, began, f"export {exported_ms:.0f} ms, {' '.join(written)}")
+            # A scene file whose camera changed (the camera object moved) takes the place
+            # of the camera rt was sent; the viewport still looks through its own.
+            if "camera" in self.sent:
+                self.client.send(self.sent["camera"])
         return written
 
     def send_once(self, key, command):
-        """Sends `command` unless it is the last one sent for `key`."""
+        """Sends `command` unless it is the last one sent for `key`; returns its line
+        number, or None if nothing was sent."""
         if self.client is not None and self.sent.get(key) != command:
-            if self.client.send(command) is not None:
+            line = self.client.send(command)
+            if line is not None:
                 self.sent[key] = command
+            return line
+        return None
 
-    def view(self, view_matrix, window_matrix, width, height, pixel_size=1):
+    def view(self, view_matrix, window_matrix, width, height, pixel_size=1, aperture=None):
         """The viewport's camera and size, sent when they change."""
-        self.send_once("size", f"size {max(1, width // pixel_size)} {max(1, height // pixel_size)}")
-        self.send_once("camera", camera_command(view_matrix, window_matrix))
+        began = time.perf_counter()
+        size = self.send_once("size", f"size {max(1, width // pixel_size)} {max(1, height // pixel_size)}")
+        camera = self.send_once("camera", camera_command(view_matrix, window_matrix, aperture))
+        if camera is not None:
+            LOG.debug("camera sent: line %d", camera)
+        if self.view_line is None and (size or camera):
+            self.view_line = max(size or 0, camera or 0)
+        if camera is not None and self.texture is not None:
+            self.waiting["camera"] = (camera, began, "")
+        elif size is not None and self.texture is not None:
+            self.waiting["size"] = (size, began, f"{width // pixel_size}x{height // pixel_size}")
+
+    def shows_view(self, frame):
+        """Whether `frame` shows this viewport's view: rt's frames from before its first
+        size and camera commands show the exported camera at the render size."""
+        return frame.line >= (self.view_line or 0)
 
     def draw(self, engine, context, depsgraph):
         """view_draw: the viewport's camera and size to rt, its latest frame to the screen."""
@@ -212,15 +280,18 @@ class Viewport:
 
         region, region_data = context.region, context.region_data
         scene = depsgraph.scene
+        # Looking through the scene camera, the viewport shows its depth of field, as Cycles does.
+        through_camera = region_data.view_perspective == "CAMERA" and scene.camera is not None
         self.view(
             region_data.view_matrix,
             region_data.window_matrix,
             region.width,
             region.height,
             scene.rt_render.viewport_pixel_size,
+            aperture_fields(scene.camera) if through_camera and scene.camera.type == "CAMERA" else None,
         )
         frame, count = self.client.latest() if self.client is not None else (None, 0)
-        if frame is None:
+        if frame is None or not self.shows_view(frame):
             self.show_if_stopped(engine)
             return
         if count != self.texture_frame:
@@ -228,14 +299,36 @@ class Viewport:
             pixels = np.ascontiguousarray(frame.pixels[::-1]).ravel()
             buffer = gpu.types.Buffer("FLOAT", pixels.size, pixels)
             self.texture = gpu.types.GPUTexture((frame.width, frame.height), format="RGBA16F", data=buffer)
+            new, first = True, self.texture_frame == 0
             self.texture_frame = count
+        else:
+            new = first = False
         gpu.state.blend_set("ALPHA_PREMULT")
         engine.bind_display_space_shader(scene)
         draw_texture_2d(self.texture, (0, 0), region.width, region.height)
         engine.unbind_display_space_shader()
         gpu.state.blend_set("NONE")
         engine.update_stats("", f"rt: {frame.spp}/{scene.rt_render.viewport_spp} spp")
+        if new:
+            self.drawn(frame, first, scene.rt_render.viewport_spp)
         self.show_if_stopped(engine)
+
+    def drawn(self, frame, first, spp):
+        """Logs a new frame drawn, and how long what it shows took to reach the screen."""
+        now = time.perf_counter()
+        LOG.debug("frame drawn: line %d, %d/%d spp", frame.line, frame.spp, spp)
+        if first and self.started is not None:
+            LOG.debug(
+                "first frame drawn %.2f s after the viewport started (%dx%d, %d spp)",
+                now - self.started, frame.width, frame.height, frame.spp,
+            )
+        for kind, (line, began, note) in list(self.waiting.items()):
+            if frame.line >= line:
+                del self.waiting[kind]
+                LOG.debug(
+                    "%s -> first frame drawn: %.0f ms (%dx%d, %d spp%s)",
+                    kind, 1e3 * (now - began), frame.width, frame.height, frame.spp, f"; {note}" if note else "",
+                )
 
     def show_if_stopped(self, engine):
         """rt's last words in the status bar, once it has stopped."""

@@ -126,16 +126,24 @@ fn the_viewport_streams_blenders_camera_and_each_edit() {
     println!("viewport: {report}");
 
     // The same rays give the same samples: the two images agree to float rounding,
-    // while a 10% longer lens moves every edge.
+    // depth of field included (the camera's 50 mm at f/0.025: an aperture 1 m in radius),
+    // while a pinhole or a 10% longer lens moves every edge.
     let same = report["same_camera_difference"].as_f64().expect("a number");
+    let pinhole = report["pinhole_difference"].as_f64().expect("a number");
     let longer = report["longer_lens_difference"].as_f64().expect("a number");
     assert!(same < 1e-3, "Blender's camera matrices give another image than the exported camera: {same}");
+    assert!(pinhole > 1e-2, "the comparison cannot tell the depth of field from a pinhole: {pinhole}");
     assert!(longer > 1e-2, "the comparison cannot tell a 10% longer lens: {longer}");
+    let radius = report["aperture"]["aperture"].as_f64().expect("the aperture sent");
+    assert!((radius - 1.0).abs() < 1e-6 && report["aperture"]["focus"] == 20.0, "{}", report["aperture"]);
+    // The exported camera's frame, from before the viewport's first view, is not drawn.
+    assert_eq!(report["drawn"], serde_json::json!({"exported": false, "same": true}));
 
     for (step, file, kind) in [
         ("move", "scene.toml", "kind=placement cause=scene.toml"),
         ("material", "assets/cube/cube.gltf", "kind=asset cause=cube.gltf"),
         ("mesh", "assets/cube/cube.rtmesh", "kind=asset cause=cube.rtmesh"),
+        ("camera", "scene.toml", "kind=camera cause=scene.toml"),
     ] {
         let updates = report["updates"][step].as_array().expect("the step's updates");
         assert_eq!(updates.len(), 1, "{step}: {updates:?}");
@@ -143,6 +151,9 @@ fn the_viewport_streams_blenders_camera_and_each_edit() {
         let reload = updates[0]["reload"].as_str().expect("rt's reload line");
         assert!(reload.starts_with("reload #") && reload.contains(kind), "{step}: {reload}");
     }
+    // The scene file's new camera must not take the place of the viewport's own view.
+    let moved = report["camera_object_moved_difference"].as_f64().expect("a number");
+    assert!(moved < 1e-3, "moving the scene camera changed the viewport's image: {moved}");
     assert_eq!(report["errors"], serde_json::json!([]));
     assert_eq!(report["rt_exit"], 0, "rt quits when the viewport closes");
 }

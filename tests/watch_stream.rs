@@ -1,8 +1,9 @@
 //! `rt watch --stream` driven by a client of the test's own, which reads the protocol as
 //! README.md documents it: frames arrive and refine, a camera command shows in the next
 //! frames, a size command resizes them, a reload re-reads the scene, a malformed command
-//! is reported and ignored, and a client that dies does not kill rt (on the standard
-//! streams rt exits cleanly; on a socket the next client is served).
+//! is reported and ignored, a camera with an aperture blurs by it where it is out of
+//! focus, and a client that dies does not kill rt (on the standard streams rt exits
+//! cleanly; on a socket the next client is served).
 
 use crate::common;
 
@@ -298,4 +299,100 @@ fn a_client_that_dies_on_the_socket_leaves_rt_serving_the_next() {
     assert_eq!(second.message("bye"), "bye");
     assert!(wait_exit(&mut rt, &stderr).success());
     assert!(!socket.exists(), "rt removes its socket");
+}
+
+/// The fraction of a pixel's thin-lens camera rays that meet the test scene's sphere
+/// (radius 1, 5 m ahead), as rt makes the rays: a point of the pixel on the image plane
+/// at distance 1 (`half` its half extent), a point of the round aperture of `radius`, and
+/// the ray from that point through where the pinhole ray meets the plane `focus` ahead.
+/// A 6×6 grid over the pixel and 8 rings × 16 spokes of equal area over the aperture.
+fn hit_fraction(x: u32, y: u32, size: u32, half: f64, radius: f64, focus: f64) -> f64 {
+    let (mut hits, mut rays) = (0, 0);
+    for (jx, jy) in (0..36).map(|k| ((k % 6) as f64 + 0.5, (k / 6) as f64 + 0.5)) {
+        let px = ((x as f64 + jx / 6.0) / size as f64 * 2.0 - 1.0) * half;
+        let py = -((y as f64 + jy / 6.0) / size as f64 * 2.0 - 1.0) * half;
+        for (ring, spoke) in (0..128).map(|k| (k / 16, k % 16)) {
+            let r = radius * ((ring as f64 + 0.5) / 8.0).sqrt();
+            let phi = (spoke as f64 + 0.5) / 16.0 * std::f64::consts::TAU;
+            let origin = [r * phi.cos(), r * phi.sin(), 0.0];
+            let d = [px * focus - origin[0], py * focus - origin[1], focus];
+            // The sphere's centre (0, 0, 5) seen from the origin; the ray misses it when the
+            // centre lies farther than 1 from the ray's line.
+            let c = [-origin[0], -origin[1], 5.0];
+            let along = (c[0] * d[0] + c[1] * d[1] + c[2] * d[2]) / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            let closest = (0..3).map(|i| (c[i] - along * d[i]).powi(2)).sum::<f64>();
+            hits += usize::from(closest < 1.0);
+            rays += 1;
+        }
+    }
+    hits as f64 / rays as f64
+}
+
+/// A camera command from a viewport looking through a camera with depth of field: the
+/// sphere's edge blurs by the aperture sent, focused where the command says. At 256 spp a
+/// pixel a tenth of whose rays meet the dark sphere stays at the sky's 1 with probability
+/// 0.9^256 < 1e-11; a pixel whose rays (and its neighbours') all miss is exactly 1.
+#[test]
+fn a_camera_with_an_aperture_blurs_what_lies_off_its_focus() {
+    let dir = temp_dir("stream-aperture");
+    let scene = scene(&dir, 0.1);
+    let stderr = dir.join("rt.stderr");
+    const SPP: u32 = 256;
+    const SIZE: u32 = 24;
+    let mut rt = rt_stream(&scene, SPP, &[], &stderr);
+    let mut client = Client::of(&mut rt);
+    client.frame_after(0, SPP);
+    // Blender's window matrix for a 30° square view, as the viewport sends it.
+    let half = 15f64.to_radians().tan();
+    let s = 1.0 / half;
+    let projection = format!("{s},0,0,0,0,{s},0,0,0,0,-1.001,-0.2,0,0,-1,0");
+    let view = "1,0,0,0,0,1,0,0,0,0,1,-5,0,0,0,1";
+    let radius = 0.4;
+    // Far: the edge (4.8 m away) blurs by radius·(1/4.8 − 1/100) ≈ 3.6 pixels. At the edge: sharp.
+    let (far_focus, edge_focus) = (100.0, 4.8);
+    let fraction = |x: u32, y: u32, radius: f64, focus: f64| hit_fraction(x, y, SIZE, half, radius, focus);
+    // No ray of the pixel or of its neighbours meets the sphere.
+    let certainly_sky = |x: u32, y: u32, radius: f64, focus: f64| {
+        (x.saturating_sub(1)..=(x + 1).min(SIZE - 1))
+            .all(|nx| (y.saturating_sub(1)..=(y + 1).min(SIZE - 1)).all(|ny| fraction(nx, ny, radius, focus) == 0.0))
+    };
+    let pixels = || (0..SIZE * SIZE).map(|k| (k % SIZE, k / SIZE));
+    let mut discriminating = 0;
+    for focus in [far_focus, edge_focus] {
+        let line = client.send(&format!("camera view={view} projection={projection} aperture={radius} focus={focus}"));
+        let frame = client.frame_after(line, SPP);
+        assert_eq!((frame.width, frame.height), (SIZE, SIZE));
+        let (mut blurred, mut sky) = (0, 0);
+        for (x, y) in pixels() {
+            let value = frame.at(x, y)[0];
+            if certainly_sky(x, y, radius, focus) {
+                assert!((value - 1.0).abs() < 1e-5, "focus {focus}: ({x}, {y}) should see only sky, got {value}");
+                sky += 1;
+            }
+            let pinhole_sky = certainly_sky(x, y, 0.0, 1.0);
+            if fraction(x, y, radius, focus) >= 0.1 {
+                assert!(value < 0.999, "focus {focus}: ({x}, {y}) should show the blurred sphere, got {value}");
+                blurred += usize::from(pinhole_sky);
+            }
+            // Sharp at the edge but blurred with a far focus: a pixel that tells the two apart.
+            let far_dark = pinhole_sky && fraction(x, y, radius, far_focus) >= 0.1;
+            discriminating += usize::from(focus == edge_focus && far_dark && certainly_sky(x, y, radius, focus));
+        }
+        assert!(sky >= 20, "focus {focus}: only {sky} pixels certainly sky");
+        if focus == far_focus {
+            assert!(blurred >= 20, "only {blurred} pixels outside the pinhole's sphere are blurred dark");
+        }
+    }
+    assert!(discriminating >= 16, "only {discriminating} pixels tell a far focus from one at the edge");
+
+    // The pinhole again: no aperture, the sharp sphere.
+    let line = client.send(&format!("camera view={view} projection={projection}"));
+    let frame = client.frame_after(line, SPP);
+    for (x, y) in pixels() {
+        if certainly_sky(x, y, 0.0, 1.0) && fraction(x, y, radius, far_focus) >= 0.1 {
+            assert!((frame.at(x, y)[0] - 1.0).abs() < 1e-5, "a pinhole shows sky at ({x}, {y})");
+        }
+    }
+    client.send("quit");
+    assert!(wait_exit(&mut rt, &stderr).success());
 }

@@ -10,6 +10,19 @@ them next to this file into rt_blender.zip.
 
 from . import rt_engine, rt_export
 
+# For Blender before 4.2, which installs this folder as a legacy add-on (Blender 4.2+ reads
+# blender_manifest.toml instead). rt supports 4.2+; the screenshots in docs/images were
+# taken on 3.4 this way.
+bl_info = {
+    "name": "rt",
+    "author": "rt",
+    "version": (0, 1, 0),
+    "blender": (4, 2, 0),
+    "location": "Render Properties > Render Engine > rt; File > Export > rt; 3D View > Sidebar > rt",
+    "description": "Render and export with the rt GPU path tracer",
+    "category": "Render",
+}
+
 
 def register():
     rt_export.register()

@@ -163,7 +163,7 @@ const DEFAULT_FOV_Y_DEG: f32 = 40.0;
 /// Blender's default `ortho_scale`.
 const DEFAULT_ORTHO_SCALE: f32 = 6.0;
 /// Blender's limit on `aperture_blades`.
-const MAX_BLADES: u32 = 16;
+pub const MAX_BLADES: u32 = 16;
 
 pub(super) fn validate(src: &Source, c: schema::Camera) -> Result<Camera, SceneError> {
     let p = [Key("camera")];

@@ -16,7 +16,7 @@ mod validate;
 
 pub use atmosphere::Atmosphere;
 pub use builtin::{BUILTIN_PREFIX, default_scene};
-pub use camera::{Camera, DepthOfField, Projection, SensorFit};
+pub use camera::{Camera, DepthOfField, MAX_BLADES, Projection, SensorFit};
 pub use environment::Environment;
 pub use features::{ALPHA_DELTA, FeatureSet, GeometrySummary, LampKinds, SkyFeature, Transmission};
 pub use light::{AreaShape, Light, LightShape};

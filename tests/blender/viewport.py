@@ -7,11 +7,17 @@ besides drawing, driven as Blender drives them.
 1. The first update exports the scene and starts `rt watch --stream`; its first converged
    frame (the exported camera) is kept.
 2. The viewport's camera is sent as view_draw sends it, from Blender's own matrices of the
-   scene camera (view = inverse of its world matrix, projection = calc_matrix_camera): the
-   converged frame must be the same image. A camera with a 10% longer lens must not be.
+   scene camera (view = inverse of its world matrix, projection = calc_matrix_camera) and,
+   as when the viewport looks through the camera, its depth of field (a wide aperture
+   focused far behind the cube): the converged frame must be the same image. A camera
+   with a 10% longer lens must not be, nor the same view without its depth of field.
+   The exported camera's frames, from before the viewport's first view, are not drawn.
 3. Edits reach the viewport through a depsgraph handler calling the viewport's update,
    as view_update is called: the cube moves, its material changes, its mesh changes.
    Which files each rewrote and rt's reload line for each go to OUT/viewport.json.
+4. The scene camera moves while the viewport looks through its own view: rt reloads the
+   scene file (its camera changed) and must go on showing the viewport's view, the same
+   image as before the move.
 """
 
 import json
@@ -72,6 +78,8 @@ def block_difference(a, b, block=8):
 
 def main(out):
     scene, cube, paint = build()
+    dof = scene.camera.data.dof
+    dof.use_dof, dof.aperture_fstop, dof.focus_distance = True, 0.025, 20.0
     rt_engine.register()
     scene.rt_render.viewport_spp = SPP
     viewport = rt_viewport.Viewport(os.environ["RT_BINARY"], os.path.join(out, "viewport"))
@@ -84,8 +92,12 @@ def main(out):
     camera = scene.camera
     view = camera.matrix_world.inverted()
     projection = camera.calc_matrix_camera(depsgraph, x=width, y=height)
-    viewport.view(view, projection, width, height)
+    aperture = rt_viewport.aperture_fields(camera)
+    viewport.view(view, projection, width, height, aperture=aperture)
     same = converged_frame(client, client.lines_sent)
+    drawn = {"exported": viewport.shows_view(exported), "same": viewport.shows_view(same)}
+    viewport.view(view, projection, width, height)
+    pinhole = converged_frame(client, client.lines_sent)
     # A 10% longer lens: the projection's scales, 2·lens/sensor, 10% larger.
     longer = projection.copy()
     longer[0][0] *= 1.1
@@ -98,7 +110,8 @@ def main(out):
     def view_update(_scene, graph):
         written = viewport.update(graph)
         if written:
-            updates.append({"written": written, "reload": reload_line(client, client.lines_sent)})
+            line, _ = viewport.reloads[-1]
+            updates.append({"written": written, "reload": reload_line(client, line)})
 
     bpy.app.handlers.depsgraph_update_post.append(view_update)
     def move():
@@ -113,19 +126,29 @@ def main(out):
                 vertex.co.z += 0.5
         cube.data.update()
 
-    steps = {"move": move, "material": material, "mesh": mesh}
+    def move_camera():
+        scene.camera.location.x += 0.5
+
+    steps = {"move": move, "material": material, "mesh": mesh, "camera": move_camera}
     by_step = {}
     for name, edit in steps.items():
+        if name == "camera":
+            edited = converged_frame(client, client.lines_sent)
         before = len(updates)
         edit()
         bpy.context.view_layer.update()
         by_step[name] = updates[before:]
+    camera_moved = converged_frame(client, client.lines_sent)
     bpy.app.handlers.depsgraph_update_post.remove(view_update)
 
     report = {
         "size": [width, height],
         "same_camera_difference": block_difference(exported, same),
-        "longer_lens_difference": block_difference(exported, zoomed),
+        "aperture": aperture,
+        "drawn": drawn,
+        "pinhole_difference": block_difference(exported, pinhole),
+        "longer_lens_difference": block_difference(pinhole, zoomed),
+        "camera_object_moved_difference": block_difference(edited, camera_moved),
         "updates": by_step,
         "errors": [m for m in client.take_messages() if m.startswith("error ")],
     }

@@ -2,7 +2,7 @@
 //! A line that does not parse is refused with a message that says what is wrong; it
 //! changes nothing.
 
-use super::view::{Lens, camera_from_view};
+use super::view::{Aperture, Lens, Optics, camera_from_view};
 use crate::scene::{Camera, SensorFit, did_you_mean};
 use glam::{Mat4, Vec2};
 use std::path::PathBuf;
@@ -25,7 +25,23 @@ pub enum Command {
 }
 
 const COMMANDS: [&str; 5] = ["camera", "size", "reload", "spp", "quit"];
-const CAMERA_KEYS: [&str; 8] = ["view", "lens", "fov", "ortho", "projection", "sensor", "fit", "shift"];
+const CAMERA_KEYS: [&str; 13] = [
+    "view",
+    "lens",
+    "fov",
+    "ortho",
+    "projection",
+    "sensor",
+    "fit",
+    "shift",
+    "aperture",
+    "focus",
+    "blades",
+    "blade_rotation",
+    "aperture_ratio",
+];
+/// The keys that shape the aperture, which need `aperture=`.
+const APERTURE_KEYS: [&str; 4] = ["focus", "blades", "blade_rotation", "aperture_ratio"];
 
 /// One line of the protocol; `None` for a blank line or a `#` comment.
 pub fn parse(line: &str) -> Option<Result<Command, String>> {
@@ -97,13 +113,17 @@ fn positive_float(text: &str, key: &str) -> Result<f32, String> {
 fn camera(args: &[&str]) -> Result<Camera, String> {
     let mut view = None;
     let mut lens = None;
-    let mut sensor = Vec2::new(36.0, 24.0);
-    let mut fit = SensorFit::Auto;
-    let mut shift = Vec2::ZERO;
+    let mut optics = Optics::default();
+    let mut radius = None;
+    let mut aperture = Aperture { radius: 0.0, focus_distance: 0.0, blades: 0, blade_rotation_deg: 0.0, ratio: 1.0 };
+    let mut aperture_keys = Vec::new();
     for arg in args {
         let Some((key, value)) = arg.split_once('=') else {
             return Err(format!("camera: `{arg}` is not key=value"));
         };
+        if APERTURE_KEYS.contains(&key) {
+            aperture_keys.push(key);
+        }
         let projection = match key {
             "view" => {
                 view = Some(matrix(value, key)?);
@@ -124,11 +144,11 @@ fn camera(args: &[&str]) -> Result<Camera, String> {
                 if s.iter().any(|&v| v <= 0.0) {
                     return Err(format!("sensor must be positive, not {value}"));
                 }
-                sensor = Vec2::new(s[0], s[1]);
+                optics.sensor = Vec2::new(s[0], s[1]);
                 None
             }
             "fit" => {
-                fit = match value {
+                optics.fit = match value {
                     "auto" => SensorFit::Auto,
                     "horizontal" => SensorFit::Horizontal,
                     "vertical" => SensorFit::Vertical,
@@ -138,7 +158,27 @@ fn camera(args: &[&str]) -> Result<Camera, String> {
             }
             "shift" => {
                 let s = floats(value, 2, key)?;
-                shift = Vec2::new(s[0], s[1]);
+                optics.shift = Vec2::new(s[0], s[1]);
+                None
+            }
+            "aperture" => {
+                radius = Some(positive_float(value, key)?);
+                None
+            }
+            "focus" => {
+                aperture.focus_distance = positive_float(value, key)?;
+                None
+            }
+            "blades" => {
+                aperture.blades = number(value, key)?;
+                None
+            }
+            "blade_rotation" => {
+                aperture.blade_rotation_deg = floats(value, 1, key)?[0];
+                None
+            }
+            "aperture_ratio" => {
+                aperture.ratio = positive_float(value, key)?;
                 None
             }
             _ => return Err(format!("camera: unknown key `{key}`{}", did_you_mean(key, CAMERA_KEYS.into_iter()))),
@@ -151,7 +191,16 @@ fn camera(args: &[&str]) -> Result<Camera, String> {
         }
     }
     let view = view.ok_or("camera needs view=<16 numbers, the world-to-camera matrix row by row>")?;
-    camera_from_view(view, lens.unwrap_or(Lens::FocalLength(50.0)), sensor, fit, shift)
+    optics.lens = lens.unwrap_or(optics.lens);
+    optics.aperture = match radius {
+        Some(radius) if aperture.focus_distance > 0.0 => Some(Aperture { radius, ..aperture }),
+        Some(_) => return Err("camera: aperture= needs focus=<metres to the plane in focus>".into()),
+        None => match aperture_keys.first() {
+            Some(key) => return Err(format!("camera: {key}= only applies with aperture=<radius in metres>")),
+            None => None,
+        },
+    };
+    camera_from_view(view, optics)
 }
 
 #[cfg(test)]
@@ -181,6 +230,13 @@ mod tests {
         assert_eq!(c.projection, Projection::FocalLength { mm: 35.0 });
         assert_eq!(c.sensor_fit, SensorFit::Vertical);
         assert!((c.look_at - c.position - Vec3::NEG_Z).length() < 1e-6);
+        assert_eq!(c.depth_of_field, None);
+        let line = format!("camera view={IDENTITY} lens=50 aperture=0.025 focus=4 blades=5 blade_rotation=10");
+        let Some(Ok(Command::Camera(c))) = parse(&line) else { panic!("camera with an aperture") };
+        let dof = c.depth_of_field.expect("depth of field");
+        // 50 mm over twice the f-number is 25 mm: f/1.
+        assert!((dof.fstop - 1.0).abs() < 1e-6, "{dof:?}");
+        assert_eq!((dof.focus_distance, dof.blades, dof.blade_rotation_deg, dof.aperture_ratio), (4.0, 5, 10.0, 1.0));
     }
 
     #[test]
@@ -199,6 +255,19 @@ mod tests {
         assert_eq!(
             error(&format!("camera view={IDENTITY} lens=50 fov=40")),
             "camera: give one of lens=, fov=, ortho=, projection="
+        );
+        assert_eq!(
+            error(&format!("camera view={IDENTITY} aperture=0.01")),
+            "camera: aperture= needs focus=<metres to the plane in focus>"
+        );
+        assert_eq!(
+            error(&format!("camera view={IDENTITY} focus=3")),
+            "camera: focus= only applies with aperture=<radius in metres>"
+        );
+        assert_eq!(error(&format!("camera view={IDENTITY} aperture=-1 focus=3")), "aperture must be positive, not -1");
+        assert_eq!(
+            error(&format!("camera view={IDENTITY} apperture=0.1")),
+            "camera: unknown key `apperture`; did you mean `aperture`?"
         );
         assert_eq!(
             error("camera view=1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,nan"),

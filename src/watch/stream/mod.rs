@@ -21,6 +21,7 @@
 //! ```text
 //! camera view=<16 numbers> [lens=MM sensor=W,H fit=auto|horizontal|vertical | fov=DEG
 //!        | ortho=SCALE | projection=<16 numbers>] [shift=X,Y]
+//!        [aperture=RADIUS focus=METRES [blades=N] [blade_rotation=DEG] [aperture_ratio=R]]
 //! size WIDTH HEIGHT
 //! reload [FILE...]
 //! spp N

@@ -1,8 +1,9 @@
 //! A camera from what a 3D viewport knows: its view matrix (world to camera, the camera
 //! looking down its −Z with +Y up, as OpenGL and Blender have it) and its lens, given
-//! as Blender's camera settings or as the viewport's projection matrix.
+//! as Blender's camera settings or as the viewport's projection matrix, and its thin lens
+//! when it has depth of field.
 
-use crate::scene::{Camera, Projection, SensorFit};
+use crate::scene::{Camera, DepthOfField, MAX_BLADES, Projection, SensorFit};
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
 /// How the camera projects.
@@ -17,6 +18,49 @@ pub enum Lens {
     /// An OpenGL projection matrix (Blender's `RegionView3D.window_matrix`): perspective or
     /// orthographic, with an off-centre window (lens shift, a zoomed camera view) allowed.
     Matrix(Mat4),
+}
+
+/// Depth of field as a viewport knows it. A viewport's projection matrix changes with its
+/// zoom, so the aperture comes as its size, not as an f-number over a focal length that
+/// the matrix would imply: Cycles' aperture size, the scene camera's focal length over
+/// twice its f-number (1 m over twice it, orthographic).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aperture {
+    /// The aperture's radius in metres.
+    pub radius: f32,
+    /// Metres along the view to the plane in focus.
+    pub focus_distance: f32,
+    /// 0: round; else a regular polygon of this many sides.
+    pub blades: u32,
+    pub blade_rotation_deg: f32,
+    /// Anamorphic bokeh: the aperture's height over its width.
+    pub ratio: f32,
+}
+
+impl Aperture {
+    /// The scene's depth of field that gives this aperture on a camera of `projection`:
+    /// rt's renderer takes the f-number, and the aperture is half the focal length over it.
+    fn depth_of_field(&self, projection: Projection) -> Result<DepthOfField, String> {
+        let aperture_diameter = match projection {
+            Projection::FocalLength { mm } => mm * 1e-3,
+            Projection::Orthographic { .. } => 1.0,
+            Projection::FovY { .. } => {
+                return Err("aperture= needs lens=, ortho= or projection= (with fov= the focal length \
+                            depends on the image's size)"
+                    .into());
+            }
+        };
+        if self.blades == 1 || self.blades == 2 || self.blades > MAX_BLADES {
+            return Err(format!("blades must be 0 (round) or in 3..={MAX_BLADES}, not {}", self.blades));
+        }
+        Ok(DepthOfField {
+            fstop: 0.5 * aperture_diameter / self.radius,
+            focus_distance: self.focus_distance,
+            blades: self.blades,
+            blade_rotation_deg: self.blade_rotation_deg,
+            aperture_ratio: self.ratio,
+        })
+    }
 }
 
 /// The view matrix of a camera at `position` looking at `target` with world +Y up.
@@ -39,9 +83,36 @@ fn near(a: Vec4, b: Vec4) -> bool {
     (a - b).abs().max_element() <= TOLERANCE * a.abs().max_element().max(1.0)
 }
 
-/// The camera `view` and `lens` describe; `shift` (in units of the view's extent along
-/// the fit, as Blender's `shift_x`/`shift_y`) adds to a projection matrix's own.
-pub fn camera_from_view(view: Mat4, lens: Lens, sensor: Vec2, fit: SensorFit, shift: Vec2) -> Result<Camera, String> {
+/// What a camera command says besides its view matrix.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Optics {
+    pub lens: Lens,
+    /// Sensor width and height in millimetres.
+    pub sensor: Vec2,
+    pub fit: SensorFit,
+    /// In units of the view's extent along the fit, as Blender's `shift_x`/`shift_y`; it adds
+    /// to a projection matrix's own.
+    pub shift: Vec2,
+    /// `None`: a pinhole.
+    pub aperture: Option<Aperture>,
+}
+
+impl Default for Optics {
+    /// Blender's default camera: a 50 mm lens over a 36×24 mm sensor, a pinhole.
+    fn default() -> Self {
+        Self {
+            lens: Lens::FocalLength(50.0),
+            sensor: Vec2::new(36.0, 24.0),
+            fit: SensorFit::Auto,
+            shift: Vec2::ZERO,
+            aperture: None,
+        }
+    }
+}
+
+/// The camera `view` and `optics` describe.
+pub fn camera_from_view(view: Mat4, optics: Optics) -> Result<Camera, String> {
+    let Optics { lens, sensor, fit, shift, aperture } = optics;
     if !near(view.row(3), Vec4::W) {
         return Err("view: the last row must be 0,0,0,1 (a rigid world-to-camera matrix)".into());
     }
@@ -77,6 +148,7 @@ pub fn camera_from_view(view: Mat4, lens: Lens, sensor: Vec2, fit: SensorFit, sh
             projection
         }
     };
+    camera.depth_of_field = aperture.map(|a| a.depth_of_field(camera.projection)).transpose()?;
     Ok(camera)
 }
 
@@ -154,8 +226,7 @@ mod tests {
         let view = look_at(Vec3::new(1.0, 2.0, 3.0), Vec3::new(0.0, 0.5, 0.0));
         // Off-centre, as a zoomed and panned camera view in Blender is; 4:3 like the image.
         let p = frustum(-0.05, 0.09, -0.04, 0.065);
-        let camera = camera_from_view(view, Lens::Matrix(p), Vec2::new(36.0, 24.0), SensorFit::Auto, Vec2::ZERO)
-            .expect("a camera");
+        let camera = camera_from_view(view, Optics { lens: Lens::Matrix(p), ..Optics::default() }).expect("a camera");
         check_rays(&camera, p, view, (140, 105));
         let (_, up, forward) = camera.basis();
         assert!((forward - (Vec3::new(0.0, 0.5, 0.0) - Vec3::new(1.0, 2.0, 3.0)).normalize()).length() < 1e-5);
@@ -166,8 +237,7 @@ mod tests {
     fn an_orthographic_projection_gives_parallel_rays_over_its_window() {
         let view = look_at(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO);
         let p = ortho(-2.0, 4.0, -1.5, 3.0);
-        let camera = camera_from_view(view, Lens::Matrix(p), Vec2::new(36.0, 24.0), SensorFit::Auto, Vec2::ZERO)
-            .expect("a camera");
+        let camera = camera_from_view(view, Optics { lens: Lens::Matrix(p), ..Optics::default() }).expect("a camera");
         assert_eq!(camera.projection, Projection::Orthographic { scale: 6.0 });
         let (origin, dir) = camera.pixel_ray(0.0, 0.0, 60, 45);
         assert!((dir - Vec3::NEG_Z).length() < 1e-6);
@@ -176,16 +246,41 @@ mod tests {
 
     #[test]
     fn matrices_that_are_no_camera_are_refused() {
-        let sensor = Vec2::new(36.0, 24.0);
-        let lens = Lens::FocalLength(50.0);
-        let fit = SensorFit::Auto;
+        let optics = Optics::default();
         let squashed = Mat4::from_scale(Vec3::new(1.0, 0.0, 1.0));
-        assert!(camera_from_view(squashed, lens, sensor, fit, Vec2::ZERO).unwrap_err().contains("determinant"));
+        assert!(camera_from_view(squashed, optics).unwrap_err().contains("determinant"));
         let projective = frustum(-0.1, 0.1, -0.1, 0.1);
-        assert!(camera_from_view(projective, lens, sensor, fit, Vec2::ZERO).unwrap_err().contains("last row"));
+        assert!(camera_from_view(projective, optics).unwrap_err().contains("last row"));
         let mut skewed = frustum(-0.1, 0.1, -0.1, 0.1);
         skewed.y_axis.x = 0.5;
-        let err = camera_from_view(Mat4::IDENTITY, Lens::Matrix(skewed), sensor, fit, Vec2::ZERO).unwrap_err();
+        let err = camera_from_view(Mat4::IDENTITY, Optics { lens: Lens::Matrix(skewed), ..optics }).unwrap_err();
         assert!(err.contains("skewed"), "{err}");
+    }
+
+    /// The renderer's aperture radius (from the f-number) is the one the command gave,
+    /// whatever the viewport's zoom makes of the focal length.
+    #[test]
+    fn an_aperture_renders_at_its_own_radius() {
+        let aperture = Aperture { radius: 0.02, focus_distance: 3.5, blades: 6, blade_rotation_deg: 30.0, ratio: 1.5 };
+        let view = look_at(Vec3::new(1.0, 2.0, 3.0), Vec3::ZERO);
+        for lens in [
+            Lens::FocalLength(35.0),
+            Lens::Matrix(frustum(-0.05, 0.09, -0.04, 0.065)),
+            Lens::Matrix(frustum(-0.02, 0.02, -0.015, 0.015)),
+            Lens::Orthographic(4.0),
+            Lens::Matrix(ortho(-2.0, 4.0, -1.5, 3.0)),
+        ] {
+            let camera = camera_from_view(view, Optics { lens, aperture: Some(aperture), ..Optics::default() })
+                .expect("a camera");
+            let mut frame = crate::layout::GpuFrame::default();
+            crate::render::set_camera(&mut frame, &camera, 140, 105);
+            assert!((frame.aperture_radius - 0.02).abs() < 1e-7, "{lens:?}: radius {}", frame.aperture_radius);
+            assert_eq!((frame.focus_distance, frame.aperture_blades, frame.inv_aperture_ratio), (3.5, 6, 1.0 / 1.5));
+            assert!((frame.blade_rotation - 30f32.to_radians()).abs() < 1e-6);
+        }
+        let by_angle = Optics { lens: Lens::FovY(40.0), aperture: Some(aperture), ..Optics::default() };
+        assert!(camera_from_view(view, by_angle).unwrap_err().contains("aperture= needs lens=, ortho= or projection="));
+        let two_blades = Optics { aperture: Some(Aperture { blades: 2, ..aperture }), ..Optics::default() };
+        assert_eq!(camera_from_view(view, two_blades).unwrap_err(), "blades must be 0 (round) or in 3..=16, not 2");
     }
 }

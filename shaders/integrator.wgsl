@@ -379,7 +379,9 @@ fn render(@builtin(global_invocation_id) id: vec3u) {
 // Small images leave most of a GPU idle with one invocation per pixel: there, each
 // pixel's samples are spread over the dispatch's z lanes, written to `lane_samples`
 // (radiance, and the event of a non-finite one in w) and added up in sample order by
-// `reduce_lanes`, so that the image is the same bit for bit as `render`'s.
+// `reduce_lanes`, so that the image is the same bit for bit as `render`'s. Under
+// adaptive sampling too: both skip stopped pixels and number samples by the pixel's
+// own count, which `reduce_lanes` advances.
 @compute @workgroup_size(8, 8)
 fn render_lanes(@builtin(global_invocation_id) id: vec3u, @builtin(num_workgroups) groups: vec3u) {
     if id.x >= frame.width || id.y >= frame.height {
@@ -387,8 +389,16 @@ fn render_lanes(@builtin(global_invocation_id) id: vec3u, @builtin(num_workgroup
     }
     let pixel_index = id.y * frame.width + id.x;
     let pixels = frame.width * frame.height;
+    var sample_base = frame.sample_base;
+    //#if adaptive
+    // As in `render`: a stopped pixel takes no samples, the others count their own.
+    if pixel_samples[2u * pixel_index + 1u] != 0u {
+        return;
+    }
+    sample_base = pixel_samples[2u * pixel_index];
+    //#endif
     for (var s = id.z; s < frame.samples_per_dispatch; s += groups.z) {
-        var rng = rng_for_sample(pixel_index, frame.sample_base + s, frame.seed);
+        var rng = rng_for_sample(pixel_index, sample_base + s, frame.seed);
         first_bad_event = EVENT_NONE;
         let l = trace_path(id.xy, &rng);
         lane_samples[s * pixels + pixel_index] = vec4f(l, bitcast<f32>(first_bad_event));
@@ -402,12 +412,23 @@ fn reduce_lanes(@builtin(global_invocation_id) id: vec3u) {
     }
     let pixel_index = id.y * frame.width + id.x;
     let pixels = frame.width * frame.height;
+    var sample_base = frame.sample_base;
+    //#if adaptive
+    // The stop marks are those `render_lanes` read: `adaptive_mask` ran before both.
+    if pixel_samples[2u * pixel_index + 1u] != 0u {
+        return;
+    }
+    sample_base = pixel_samples[2u * pixel_index];
+    //#endif
     var acc = accumulation[pixel_index];
     var bad = non_finite[pixel_index];
     for (var s = 0u; s < frame.samples_per_dispatch; s++) {
         let sample = lane_samples[s * pixels + pixel_index];
-        accumulate(&acc, &bad, sample.xyz, bitcast<u32>(sample.w), frame.sample_base + s);
+        accumulate(&acc, &bad, sample.xyz, bitcast<u32>(sample.w), sample_base + s);
     }
     accumulation[pixel_index] = acc;
     non_finite[pixel_index] = bad;
+    //#if adaptive
+    pixel_samples[2u * pixel_index] = sample_base + frame.samples_per_dispatch;
+    //#endif
 }

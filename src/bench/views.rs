@@ -11,13 +11,23 @@ pub struct Targets {
     /// Relative RMSE (0.01 = 1 % of the reference's mean radiance).
     pub error: f64,
     pub budget_seconds: f64,
+    /// SSIM to reach (the perceptual view, which a denoiser's bias does not make unreachable).
+    pub ssim: f64,
 }
 
+/// SSIM the perceptual view aims at by default (`--target-ssim`).
+pub const DEFAULT_SSIM: f64 = 0.99;
+
 impl Targets {
-    /// `error`, and a budget of `budget_seconds` or else the baseline's time at its highest level.
-    pub fn for_sweep(sweep: &Sweep, error: f64, budget_seconds: Option<f64>) -> Self {
+    /// `error` and `ssim`, and a budget of `budget_seconds` or else the baseline's time at its highest level.
+    pub fn for_sweep(sweep: &Sweep, error: f64, ssim: f64, budget_seconds: Option<f64>) -> Self {
         let top = sweep.baseline.levels.iter().max_by_key(|m| m.spp).map(|m| m.seconds);
-        Self { error, budget_seconds: budget_seconds.or(top).unwrap_or(1.0) }
+        Self { error, budget_seconds: budget_seconds.or(top).unwrap_or(1.0), ssim }
+    }
+
+    /// The SSIM target as the fits of 1 − SSIM take it: an "RMSE" whose square is 1 − SSIM.
+    fn ssim_as_error(&self) -> f64 {
+        (1.0 - self.ssim).max(0.0).sqrt()
     }
 }
 
@@ -39,6 +49,12 @@ pub struct SettingView {
     pub top_relative_rmse: f64,
     pub top_psnr_db: f64,
     pub top_relative_mean_error: f64,
+    /// Measured SSIM at the highest level.
+    pub top_ssim: f64,
+    /// Time and samples per pixel to the target SSIM (`None`: its fit levels off below it).
+    pub seconds_to_ssim: Option<f64>,
+    pub spp_to_ssim: Option<f64>,
+    pub ssim_extrapolated: bool,
     pub build_seconds: Option<f64>,
 }
 
@@ -74,6 +90,8 @@ pub fn setting_view(s: &SettingResult, targets: Targets, mean: f64, on_front: bo
     let top = s.levels.iter().max_by_key(|m| m.spp);
     let fit = s.fit.as_ref();
     let spp_to_target = fit.and_then(|f| f.spp_for(targets.error));
+    let ssim_fit = s.ssim_fit.as_ref();
+    let spp_to_ssim = ssim_fit.and_then(|f| f.spp_for(targets.ssim_as_error()));
     SettingView {
         label: s.label.clone(),
         seconds_per_spp: fit.map(|f| f.seconds_per_spp),
@@ -86,6 +104,10 @@ pub fn setting_view(s: &SettingResult, targets: Targets, mean: f64, on_front: bo
         top_relative_rmse: top.map_or(f64::NAN, |m| m.error.relative_rmse(mean)),
         top_psnr_db: top.map_or(f64::NAN, |m| m.error.psnr_db()),
         top_relative_mean_error: top.map_or(f64::NAN, |m| m.error.relative_mean_error),
+        top_ssim: top.map_or(f64::NAN, |m| m.error.ssim),
+        seconds_to_ssim: ssim_fit.and_then(|f| f.seconds_for(targets.ssim_as_error())),
+        spp_to_ssim,
+        ssim_extrapolated: ssim_fit.zip(spp_to_ssim).is_some_and(|(f, spp)| spp > 4.0 * f.max_spp),
         build_seconds: s.build_seconds,
     }
 }
@@ -97,4 +119,46 @@ pub fn fastest_to_target(views: &[KnobView]) -> Option<(&'static str, &SettingVi
         .flat_map(|k| k.settings.iter().map(move |s| (k.name, s)))
         .filter(|(_, s)| s.seconds_to_target.is_some())
         .min_by(|a, b| a.1.seconds_to_target.unwrap_or(f64::MAX).total_cmp(&b.1.seconds_to_target.unwrap_or(f64::MAX)))
+}
+
+/// One level of a setting beside the time its knob's plain setting needs for the same
+/// SSIM: how a denoiser (or any biased shortcut) is priced at equal perceived quality.
+#[derive(Clone, Copy, Debug)]
+pub struct EqualQuality {
+    pub spp: u32,
+    pub seconds: f64,
+    pub ssim: f64,
+    /// Time and samples the plain setting needs for `ssim` (`None`: its fit never gets there).
+    pub plain_seconds: Option<f64>,
+    pub plain_spp: Option<f64>,
+    /// The plain setting's prediction reaches beyond 4× its highest measured level.
+    pub extrapolated: bool,
+}
+
+impl EqualQuality {
+    /// How many times faster than the plain setting at the same SSIM.
+    pub fn speed_up(&self) -> Option<f64> {
+        self.plain_seconds.map(|t| t / self.seconds)
+    }
+}
+
+/// Each level of `setting` against `plain`'s fit of 1 − SSIM.
+pub fn equal_quality(setting: &SettingResult, plain: &SettingResult) -> Vec<EqualQuality> {
+    setting
+        .levels
+        .iter()
+        .map(|m| {
+            let as_error = (1.0 - m.error.ssim).max(0.0).sqrt();
+            let fit = plain.ssim_fit.as_ref();
+            let plain_spp = fit.and_then(|f| f.spp_for(as_error));
+            EqualQuality {
+                spp: m.spp,
+                seconds: m.seconds,
+                ssim: m.error.ssim,
+                plain_seconds: fit.and_then(|f| f.seconds_for(as_error)),
+                plain_spp,
+                extrapolated: fit.zip(plain_spp).is_some_and(|(f, spp)| spp > 4.0 * f.max_spp),
+            }
+        })
+        .collect()
 }

@@ -116,7 +116,8 @@ fn markdown(sweep: &Sweep, views: &[KnobView], baseline: &SettingView, targets: 
     let _ = writeln!(
         md,
         "- perceptual: SSIM (Wang et al. 2004: 11×11 Gaussian window, σ 1.5) of the display transform's luma; \
-         time to SSIM {} from the same model fitted to 1 − SSIM\n",
+         time to SSIM {} from the measured levels, log–log between them \
+         and beyond the highest along the last slope (which errs towards more samples)\n",
         targets.ssim
     );
     let _ = writeln!(
@@ -206,7 +207,7 @@ fn denoise_table(md: &mut String, settings: &[SettingResult]) {
     let _ = writeln!(
         md,
         "\nDenoised against raw at equal perceived quality: the raw render's time (and spp) to the SSIM the \
-         denoised one has, from the raw fit of 1 − SSIM; a denoiser's bias keeps its RMSE above a few percent, \
+         denoised one has (from the raw levels, as above); a denoiser's bias keeps its RMSE above a few percent, \
          so this, not the time to 1 % RMSE, is what it buys.\n\n\
          | spp | denoised ms | SSIM | raw needs | speed-up |\n|---|---|---|---|---|"
     );

@@ -55,9 +55,6 @@ pub struct SettingResult {
     pub levels: Vec<Measurement>,
     /// In relative terms (over the reference's mean).
     pub fit: Option<Fit>,
-    /// The same model fitted to 1 − SSIM in place of the relative MSE: for small errors
-    /// both noise and blur lower SSIM in proportion to the squared error they leave.
-    pub ssim_fit: Option<Fit>,
     /// Summed BVH build time of the scene's meshes, for settings that build them.
     pub build_seconds: Option<f64>,
 }
@@ -236,23 +233,10 @@ fn measure(
             mean_error_std_error: m.mean_error_std_error,
         })
         .collect();
-    // 1 − SSIM has no mean error to set a floor from: the fit alone decides it.
-    let ssim_levels: Vec<Level> = measurements
-        .iter()
-        .map(|m| Level {
-            spp: m.spp as f64,
-            seconds: m.seconds,
-            mse: (1.0 - m.error.ssim).max(0.0),
-            mse_std_error: m.ssim_std_error,
-            mean_error: 0.0,
-            mean_error_std_error: 1.0,
-        })
-        .collect();
     Ok(SettingResult {
         label: String::new(),
         features,
         fit: Fit::of(&fit_levels),
-        ssim_fit: Fit::of(&ssim_levels),
         levels: measurements,
         build_seconds: None,
     })

@@ -2,7 +2,7 @@
 //! a fixed time budget and the time needed for a target error (from the fitted
 //! models), and whether any of its measurements is on its knob's Pareto front.
 
-use super::model::pareto_front;
+use super::model::{pareto_front, spp_for_dssim};
 use super::sweep::{SettingResult, Sweep};
 
 /// What is compared: an error to reach, and a time to spend.
@@ -24,11 +24,15 @@ impl Targets {
         let top = sweep.baseline.levels.iter().max_by_key(|m| m.spp).map(|m| m.seconds);
         Self { error, budget_seconds: budget_seconds.or(top).unwrap_or(1.0), ssim }
     }
+}
 
-    /// The SSIM target as the fits of 1 − SSIM take it: an "RMSE" whose square is 1 − SSIM.
-    fn ssim_as_error(&self) -> f64 {
-        (1.0 - self.ssim).max(0.0).sqrt()
-    }
+/// Samples per pixel and seconds (from the setting's time model) to an SSIM of `ssim`,
+/// and whether that lies beyond 4× its highest measured level.
+fn to_ssim(s: &SettingResult, ssim: f64) -> Option<(f64, f64, bool)> {
+    let points: Vec<(f64, f64)> = s.levels.iter().map(|m| (m.spp as f64, 1.0 - m.error.ssim)).collect();
+    let spp = spp_for_dssim(&points, 1.0 - ssim)?;
+    let fit = s.fit.as_ref()?;
+    Some((spp, fit.seconds_at_spp(spp), spp > 4.0 * fit.max_spp))
 }
 
 #[derive(Clone, Debug)]
@@ -51,7 +55,7 @@ pub struct SettingView {
     pub top_relative_mean_error: f64,
     /// Measured SSIM at the highest level.
     pub top_ssim: f64,
-    /// Time and samples per pixel to the target SSIM (`None`: its fit levels off below it).
+    /// Time and samples per pixel to the target SSIM (`None`: more samples stopped helping).
     pub seconds_to_ssim: Option<f64>,
     pub spp_to_ssim: Option<f64>,
     pub ssim_extrapolated: bool,
@@ -90,8 +94,7 @@ pub fn setting_view(s: &SettingResult, targets: Targets, mean: f64, on_front: bo
     let top = s.levels.iter().max_by_key(|m| m.spp);
     let fit = s.fit.as_ref();
     let spp_to_target = fit.and_then(|f| f.spp_for(targets.error));
-    let ssim_fit = s.ssim_fit.as_ref();
-    let spp_to_ssim = ssim_fit.and_then(|f| f.spp_for(targets.ssim_as_error()));
+    let ssim = to_ssim(s, targets.ssim);
     SettingView {
         label: s.label.clone(),
         seconds_per_spp: fit.map(|f| f.seconds_per_spp),
@@ -105,9 +108,9 @@ pub fn setting_view(s: &SettingResult, targets: Targets, mean: f64, on_front: bo
         top_psnr_db: top.map_or(f64::NAN, |m| m.error.psnr_db()),
         top_relative_mean_error: top.map_or(f64::NAN, |m| m.error.relative_mean_error),
         top_ssim: top.map_or(f64::NAN, |m| m.error.ssim),
-        seconds_to_ssim: ssim_fit.and_then(|f| f.seconds_for(targets.ssim_as_error())),
-        spp_to_ssim,
-        ssim_extrapolated: ssim_fit.zip(spp_to_ssim).is_some_and(|(f, spp)| spp > 4.0 * f.max_spp),
+        seconds_to_ssim: ssim.map(|(_, t, _)| t),
+        spp_to_ssim: ssim.map(|(spp, _, _)| spp),
+        ssim_extrapolated: ssim.is_some_and(|(_, _, far)| far),
         build_seconds: s.build_seconds,
     }
 }
@@ -142,22 +145,20 @@ impl EqualQuality {
     }
 }
 
-/// Each level of `setting` against `plain`'s fit of 1 − SSIM.
+/// Each level of `setting` against `plain`'s measured SSIM (see [`spp_for_dssim`]).
 pub fn equal_quality(setting: &SettingResult, plain: &SettingResult) -> Vec<EqualQuality> {
     setting
         .levels
         .iter()
         .map(|m| {
-            let as_error = (1.0 - m.error.ssim).max(0.0).sqrt();
-            let fit = plain.ssim_fit.as_ref();
-            let plain_spp = fit.and_then(|f| f.spp_for(as_error));
+            let plain_at = to_ssim(plain, m.error.ssim);
             EqualQuality {
                 spp: m.spp,
                 seconds: m.seconds,
                 ssim: m.error.ssim,
-                plain_seconds: fit.and_then(|f| f.seconds_for(as_error)),
-                plain_spp,
-                extrapolated: fit.zip(plain_spp).is_some_and(|(f, spp)| spp > 4.0 * f.max_spp),
+                plain_seconds: plain_at.map(|(_, t, _)| t),
+                plain_spp: plain_at.map(|(spp, _, _)| spp),
+                extrapolated: plain_at.is_some_and(|(_, _, far)| far),
             }
         })
         .collect()

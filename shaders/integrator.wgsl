@@ -149,11 +149,12 @@ var<private> pixel_bad: u32;
 var<private> pixel_aovs: AovMeans;
 //#endif
 
-// A finished sample `sample_index` of radiance `radiance`: into the pixel's running mean,
-// or, for `render_lanes`, into its slot of `lane_samples`.
-fn sample_done(pixel_index: u32, sample_index: u32, radiance: vec3f, lanes: bool) {
+// A finished sample `sample_base + k` of radiance `radiance`: into the pixel's running
+// mean, or, for `render_lanes`, into slot k of `lane_samples`.
+fn sample_done(pixel_index: u32, sample_base: u32, k: u32, radiance: vec3f, lanes: bool) {
+    let sample_index = sample_base + k;
     if lanes {
-        let slot = (sample_index - frame.sample_base) * frame.width * frame.height + pixel_index;
+        let slot = k * frame.width * frame.height + pixel_index;
         lane_samples[slot] = vec4f(radiance, bitcast<f32>(first_bad_event));
         return;
     }
@@ -170,19 +171,19 @@ fn sample_done(pixel_index: u32, sample_index: u32, radiance: vec3f, lanes: bool
     //#endif
 }
 
-// The pixel's samples `first`, `first + step`, … below `end`, as paths traced one after
-// another in a single loop. Each turn of the loop traces exactly one ray, the path's
+// The pixel's samples `sample_base + k` for k = `first`, `first + step`, … below the
+// dispatch's count, as paths traced one after another in a single loop. Each turn of the loop traces exactly one ray, the path's
 // next ray or a pending shadow ray, through the loop's single call of the traversal:
 // the traversal code is then in the kernel once, not once per kind of ray. A path that
 // ends starts the pixel's next sample in the next turn (path regeneration, Novák et al.
 // 2010), so an invocation whose path ended early does not idle until the longest path
 // of its subgroup ends: it traces its next sample meanwhile. Samples still finish in
 // sample order, so the image does not depend on it.
-fn trace_samples(pixel: vec2u, pixel_index: u32, first: u32, step: u32, end: u32, lanes: bool) {
-    if first >= end {
+fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, step: u32, lanes: bool) {
+    if first >= frame.samples_per_dispatch {
         return;
     }
-    var sample_index = first;
+    var k = first;
     var rng: Rng;
     var origin: vec3f;
     var direction: vec3f;
@@ -224,7 +225,7 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, first: u32, step: u32, end: u32
     loop {
         if starting {
             starting = false;
-            rng = rng_for_sample(pixel_index, sample_index, frame.seed);
+            rng = rng_for_sample(pixel_index, sample_base + k, frame.seed);
             first_bad_event = EVENT_NONE;
             //#if alpha_blend
             path_key = rng.state;
@@ -372,11 +373,11 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, first: u32, step: u32, end: u32
         continuing {
             if sample_finished {
                 sample_finished = false;
-                sample_done(pixel_index, sample_index, radiance, lanes);
-                sample_index += step;
+                sample_done(pixel_index, sample_base, k, radiance, lanes);
+                k += step;
                 starting = true;
             }
-            break if starting && sample_index >= end;
+            break if starting && k >= frame.samples_per_dispatch;
         }
     }
 }
@@ -426,7 +427,7 @@ fn render(@builtin(global_invocation_id) id: vec3u) {
     //#if aovs
     pixel_aovs = aov_load(pixel_index);
     //#endif
-    trace_samples(id.xy, pixel_index, sample_base, 1u, sample_base + frame.samples_per_dispatch, false);
+    trace_samples(id.xy, pixel_index, sample_base, 0u, 1u, false);
     accumulation[pixel_index] = pixel_acc;
     non_finite[pixel_index] = pixel_bad;
     //#if aovs
@@ -440,15 +441,24 @@ fn render(@builtin(global_invocation_id) id: vec3u) {
 // Small images leave most of a GPU idle with one invocation per pixel: there, each
 // pixel's samples are spread over the dispatch's z lanes, written to `lane_samples`
 // (radiance, and the event of a non-finite one in w) and added up in sample order by
-// `reduce_lanes`, so that the image is the same bit for bit as `render`'s.
+// `reduce_lanes`, so that the image is the same bit for bit as `render`'s. Under
+// adaptive sampling too: both skip stopped pixels and number samples by the pixel's
+// own count, which `reduce_lanes` advances.
 @compute @workgroup_size(8, 8)
 fn render_lanes(@builtin(global_invocation_id) id: vec3u, @builtin(num_workgroups) groups: vec3u) {
     if id.x >= frame.width || id.y >= frame.height {
         return;
     }
     let pixel_index = id.y * frame.width + id.x;
-    let first = frame.sample_base + id.z;
-    trace_samples(id.xy, pixel_index, first, groups.z, frame.sample_base + frame.samples_per_dispatch, true);
+    var sample_base = frame.sample_base;
+    //#if adaptive
+    // As in `render`: a stopped pixel takes no samples, the others count their own.
+    if pixel_samples[2u * pixel_index + 1u] != 0u {
+        return;
+    }
+    sample_base = pixel_samples[2u * pixel_index];
+    //#endif
+    trace_samples(id.xy, pixel_index, sample_base, id.z, groups.z, true);
 }
 
 @compute @workgroup_size(8, 8)
@@ -458,12 +468,23 @@ fn reduce_lanes(@builtin(global_invocation_id) id: vec3u) {
     }
     let pixel_index = id.y * frame.width + id.x;
     let pixels = frame.width * frame.height;
+    var sample_base = frame.sample_base;
+    //#if adaptive
+    // The stop marks are those `render_lanes` read: `adaptive_mask` ran before both.
+    if pixel_samples[2u * pixel_index + 1u] != 0u {
+        return;
+    }
+    sample_base = pixel_samples[2u * pixel_index];
+    //#endif
     var acc = accumulation[pixel_index];
     var bad = non_finite[pixel_index];
     for (var s = 0u; s < frame.samples_per_dispatch; s++) {
         let sample = lane_samples[s * pixels + pixel_index];
-        accumulate(&acc, &bad, sample.xyz, bitcast<u32>(sample.w), frame.sample_base + s);
+        accumulate(&acc, &bad, sample.xyz, bitcast<u32>(sample.w), sample_base + s);
     }
     accumulation[pixel_index] = acc;
     non_finite[pixel_index] = bad;
+    //#if adaptive
+    pixel_samples[2u * pixel_index] = sample_base + frame.samples_per_dispatch;
+    //#endif
 }

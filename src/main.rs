@@ -5,7 +5,7 @@
 use anyhow::{Context, Result, bail};
 use clap::{Args, Parser, Subcommand};
 use rt::bvh::{BuildQuality, PackOutcome, PackReport};
-use rt::denoise::Denoiser;
+use rt::denoise::{DenoiseDevice, Denoiser};
 use rt::gpu::GpuContext;
 use rt::render::{
     DroppedSamples, Image, ImageFormat, Progress, RenderFlags, RenderRequest, Session, aov_channels, check_output,
@@ -120,6 +120,9 @@ struct RenderArgs {
     /// --aovs, the raw image is kept as the `noisy` layer).
     #[arg(long)]
     denoise: bool,
+    /// Where Open Image Denoise runs: auto takes a CUDA GPU when it has one, else the CPU.
+    #[arg(long, value_enum, default_value_t, requires = "denoise")]
+    denoise_device: DenoiseDevice,
     /// Adaptive sampling: a pixel stops once the relative standard error of its mean
     /// luminance is below this, e.g. 0.01 (0: off) [default: the scene's].
     #[arg(long)]
@@ -188,6 +191,9 @@ struct WatchArgs {
     /// (`N` toggles it; the window only).
     #[arg(long)]
     denoise: bool,
+    /// Where Open Image Denoise runs: auto takes a CUDA GPU when it has one, else the CPU.
+    #[arg(long, value_enum, default_value_t, requires = "denoise")]
+    denoise_device: DenoiseDevice,
     /// Adaptive sampling's noise threshold (0: off) [default: the scene's].
     #[arg(long)]
     noise_threshold: Option<f32>,
@@ -280,6 +286,20 @@ enum BenchCommand {
         #[arg(long, default_value_t = 10)]
         runs: u32,
     },
+    /// Milliseconds per frame of Open Image Denoise on each device it has (CUDA, CPU): a
+    /// rendered frame with albedo and normal AOVs, denoised as `rt render --denoise` does.
+    Denoise {
+        /// Scene file of the frame; the built-in Cornell box when omitted.
+        scene: Option<PathBuf>,
+        #[arg(long, value_parser = parse_size, default_value = "1024x720")]
+        size: (u32, u32),
+        /// Timed runs per device after a first, untimed-in-the-median one.
+        #[arg(long, default_value_t = 10)]
+        runs: u32,
+        /// Samples per pixel of the frame.
+        #[arg(long, default_value_t = 4)]
+        spp: u32,
+    },
     /// Error against a converged reference beside the time it cost, for every knob
     /// that trades accuracy for time; writes report.md, CSV files and plots.
     Accuracy(AccuracyArgs),
@@ -352,6 +372,9 @@ struct AccuracyArgs {
     /// Error to reach, as a relative RMSE in percent of the reference's mean radiance.
     #[arg(long, default_value_t = 1.0)]
     target_percent: f64,
+    /// SSIM to reach, the perceptual view (of the display transform's luma; 1: the reference).
+    #[arg(long, default_value_t = 0.99)]
+    target_ssim: f64,
     /// Time budget of the equal-time view [default: the scene defaults at the highest level].
     #[arg(long)]
     budget_ms: Option<f64>,
@@ -412,7 +435,13 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
         bail!("--aovs: AOVs are written as one multi-layer OpenEXR; give -o an .exr path");
     }
     // Before any rendering: a missing denoiser is known at once.
-    let denoiser = if args.denoise { Some(Denoiser::new().context("--denoise")?) } else { None };
+    let denoiser = match args.denoise {
+        true => Some(Denoiser::new(args.denoise_device).context("--denoise")?),
+        false => None,
+    };
+    if let Some(denoiser) = &denoiser {
+        say(format!("denoising with Open Image Denoise on {}", denoiser.describe()));
+    }
     let mut scene = load_scene(args.scene.as_deref())?;
     let request = RenderRequest { progress: args.progress, ..args.flags().apply(&mut scene)? };
     let exposure = scene.render.exposure;
@@ -497,7 +526,7 @@ fn watch(args: WatchArgs, adapter: Option<&str>) -> Result<()> {
         eprintln!("GPU: {}", ctx.describe());
         rt::watch::run_headless(&ctx, &options, None)
     } else {
-        rt::watch::run_window(adapter, options)
+        rt::watch::run_window(adapter, options, args.denoise.then_some(args.denoise_device))
     }
 }
 
@@ -514,6 +543,7 @@ fn bench_accuracy(args: AccuracyArgs, adapter: Option<&str>) -> Result<()> {
         reference_spp: args.reference_spp,
         reference_bounces: None,
         target: Some(args.target_percent / 100.0),
+        target_ssim: Some(args.target_ssim),
         budget_seconds: args.budget_ms.map(|ms| ms / 1e3),
         progress: true,
     };
@@ -589,6 +619,10 @@ fn main() -> ExitCode {
         }
         Command::Bench(BenchCommand::StreamLatency { scene, asset, size, runs }) => {
             rt::watch::stream::latency::stream_latency(scene.as_deref(), &asset, size, runs, adapter)
+        }
+        Command::Bench(BenchCommand::Denoise { scene, size, runs, spp }) => {
+            let options = rt::bench::DenoiseBenchOptions { size, runs, spp };
+            load_scene(scene.as_deref()).and_then(|s| rt::bench::denoise_bench(s, &options, adapter).map(|_| ()))
         }
         Command::Bench(BenchCommand::Accuracy(args)) => bench_accuracy(args, adapter),
         Command::Bench(BenchCommand::Effects { scene, size, spp, repeats }) => {

@@ -5,11 +5,23 @@ use crate::common;
 
 use common::{gpu, repo};
 use rt::bvh::BuildQuality;
-use rt::render::{Image, RenderRequest, Session};
+use rt::render::{Image, RenderReport, RenderRequest, Session};
 
 const SIZE: u32 = 32;
 
 fn render(scene: &str, spp: u32, noise_threshold: f32, seed: u32) -> Image {
+    render_spread(scene, spp, noise_threshold, seed, Some(1), 8).0
+}
+
+/// A render with `lanes` invocations per pixel, `samples_per_dispatch` samples each dispatch.
+fn render_spread(
+    scene: &str,
+    spp: u32,
+    noise_threshold: f32,
+    seed: u32,
+    lanes: Option<u32>,
+    samples_per_dispatch: u32,
+) -> (Image, RenderReport) {
     let scene = rt::scene::load(&repo().join(scene)).unwrap_or_else(|e| panic!("{e}"));
     let mut session = Session::open(gpu(), scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
     let request = RenderRequest {
@@ -19,12 +31,35 @@ fn render(scene: &str, spp: u32, noise_threshold: f32, seed: u32) -> Image {
         seed,
         noise_threshold,
         adaptive_min_samples: 16,
-        samples_per_dispatch: Some(8),
+        samples_per_dispatch: Some(samples_per_dispatch),
+        sample_lanes: lanes,
         ..RenderRequest::from_scene(session.scene())
     };
     let (image, report) = session.render(&request, None).unwrap_or_else(|e| panic!("{e:#}"));
     assert_eq!(report.features.adaptive, noise_threshold > 0.0);
-    image
+    (image, report)
+}
+
+/// A GPU spreads a small image's samples over lanes; adaptive sampling must keep them
+/// (stopped pixels skipped, samples numbered per pixel) and give the same image bit for
+/// bit as one invocation per pixel: values, standard errors and per-pixel counts.
+#[test]
+fn adaptive_sampling_spread_over_lanes_is_the_same_image_bit_for_bit() {
+    let scene = "scenes/cornell_box.toml";
+    for (lanes, per_dispatch) in [(4, 8), (3, 5)] {
+        let (one, _) = render_spread(scene, 64, 0.1, 3, Some(1), per_dispatch);
+        let (spread, report) = render_spread(scene, 64, 0.1, 3, Some(lanes), per_dispatch);
+        assert_eq!(report.max_lanes, lanes, "the adaptive render did not use the lanes asked for");
+        let stopped = one.sample_counts.iter().filter(|&&n| n < 64).count();
+        assert!(stopped > 0, "no pixel stopped early: the case proves nothing");
+        assert_eq!(one.sample_counts, spread.sample_counts, "{lanes} lanes: per-pixel sample counts");
+        assert_eq!(one.pixels, spread.pixels, "{lanes} lanes, {per_dispatch} samples per dispatch");
+        assert_eq!(one.std_error, spread.std_error, "{lanes} lanes: standard errors");
+        eprintln!(
+            "{lanes} lanes, {per_dispatch} per dispatch: identical; {stopped} of {} pixels stopped early",
+            SIZE * SIZE
+        );
+    }
 }
 
 fn luminance(p: [f32; 3]) -> f64 {

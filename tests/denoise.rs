@@ -29,7 +29,7 @@ fn sixteen_samples_denoised_beat_four_times_the_samples_raw() {
     use common::{gpu, repo};
     use rt::bvh::BuildQuality;
     use rt::render::{Image, RenderRequest, Session};
-    let denoiser = rt::denoise::Denoiser::new().unwrap_or_else(|e| panic!("{e:#}"));
+    let denoiser = rt::denoise::Denoiser::new(rt::denoise::DenoiseDevice::Auto).unwrap_or_else(|e| panic!("{e:#}"));
     for name in ["cornell_box", "cornell_glass", "lamps"] {
         let scene = rt::scene::load(&repo().join(format!("scenes/{name}.toml"))).unwrap_or_else(|e| panic!("{e}"));
         let mut session = Session::open(gpu(), scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
@@ -57,6 +57,15 @@ fn sixteen_samples_denoised_beat_four_times_the_samples_raw() {
             denoiser.device()
         );
         assert!(denoised_error < raw_error, "{name}: denoised 16 spp {denoised_error:.2} vs raw 64 spp {raw_error:.2}");
+        // The perceptual figure agrees: SSIM of the display luma against the converged image.
+        let luma = |pixels: &[[f32; 3]]| rt::bench::metrics::display_luma(pixels, 0.0);
+        let ssim = |pixels: &[[f32; 3]]| rt::bench::ssim::ssim(&luma(pixels), &luma(&converged), 64, 64);
+        let (raw_ssim, denoised_ssim, noisy_ssim) = (ssim(&raw.pixels), ssim(&denoised), ssim(&few.pixels));
+        eprintln!("{name}: SSIM 16 spp {noisy_ssim:.4}, 16 spp denoised {denoised_ssim:.4}, 64 spp {raw_ssim:.4}");
+        assert!(
+            denoised_ssim > raw_ssim,
+            "{name}: SSIM denoised 16 spp {denoised_ssim:.4} vs raw 64 spp {raw_ssim:.4}"
+        );
     }
 }
 
@@ -85,6 +94,66 @@ fn missing_device_libraries_are_a_clear_message() {
         "{stderr}"
     );
     assert!(!stderr.contains("panicked") && !lib.join("x.png").exists(), "{stderr}");
+}
+
+/// `--denoise-device cuda` where Open Image Denoise has no CUDA device is an error that
+/// says so, before rendering; `cpu` and `auto` say which device they took.
+#[cfg(feature = "denoise")]
+#[test]
+fn denoise_device_is_chosen_and_named() {
+    let has_cuda = rt::denoise::physical_devices().unwrap_or_else(|e| panic!("{e:#}")).iter().any(|d| d.kind == "CUDA");
+    let dir = temp_dir("denoise-device");
+    let run = |device: &str| {
+        let png = dir.join(format!("{device}.png"));
+        let out = Command::new(env!("CARGO_BIN_EXE_rt"))
+            .args(["render", "--size", "8x8", "--spp", "2", "--denoise", "--denoise-device", device, "-o"])
+            .arg(&png)
+            .output()
+            .expect("run rt");
+        (out.status.code(), String::from_utf8_lossy(&out.stderr).into_owned(), png.exists())
+    };
+    let (code, stderr, written) = run("cpu");
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(written && stderr.contains("denoising with Open Image Denoise on CPU"), "{stderr}");
+    let (code, stderr, _) = run("auto");
+    assert_eq!(code, Some(0), "{stderr}");
+    let expected = if has_cuda { "on CUDA" } else { "on CPU" };
+    assert!(stderr.contains(expected), "auto: {stderr}");
+    if !has_cuda {
+        assert!(stderr.contains("auto: no CUDA device"), "auto says why it took the CPU: {stderr}");
+        let (code, stderr, written) = run("cuda");
+        assert_eq!(code, Some(1), "{stderr}");
+        assert!(stderr.contains("found no CUDA device") && stderr.contains("--denoise-device cpu"), "{stderr}");
+        assert!(!written && !stderr.contains("panicked") && !stderr.contains("GPU:"), "before rendering: {stderr}");
+    }
+    // The device is an option of --denoise.
+    let out = Command::new(env!("CARGO_BIN_EXE_rt"))
+        .args(["render", "--denoise-device", "cpu", "-o"])
+        .arg(dir.join("x.png"))
+        .output()
+        .expect("run rt");
+    assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stderr));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// `rt bench denoise` times each device it has and says what it timed.
+#[cfg(feature = "denoise")]
+#[test]
+fn bench_denoise_prints_a_row_per_device() {
+    let out = Command::new(env!("CARGO_BIN_EXE_rt"))
+        .args(["bench", "denoise", "--size", "48x32", "--runs", "2", "--spp", "2"])
+        .output()
+        .expect("run rt");
+    let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    assert_eq!(out.status.code(), Some(0), "{stdout}\n{stderr}");
+    for line in ["Open Image Denoise devices found: ", "frame: 48x32", "| device | first run | median of 2 |"] {
+        assert!(stdout.contains(line), "no {line:?} in:\n{stdout}");
+    }
+    let row = stdout.lines().find(|l| l.starts_with("| CPU")).unwrap_or_else(|| panic!("no CPU row:\n{stdout}"));
+    let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+    let ms = |cell: &str| cell.strip_suffix(" ms").and_then(|v| v.parse::<f64>().ok());
+    let (median, fastest) = (ms(cells[3]), ms(cells[4]));
+    assert!(median.zip(fastest).is_some_and(|(m, f)| f > 0.0 && f <= m), "{row}");
 }
 
 #[cfg(not(feature = "denoise"))]
@@ -117,8 +186,18 @@ fn bench_accuracy_has_denoise_and_adaptive_knobs() {
     };
     let summary = rt::bench::accuracy(common::gpu(), &scene, &options).unwrap_or_else(|e| panic!("{e:#}"));
     let report = std::fs::read_to_string(&summary.report).expect("report.md");
-    for section in ["## denoise", "## adaptive", "| on |", "| 0.05 |"] {
+    for section in ["## denoise", "## adaptive", "| on |", "| 0.05 |", "time to SSIM 0.99", "| raw needs |"] {
         assert!(report.contains(section), "no {section:?} in the report:\n{report}");
+    }
+    // The denoise knob's equal-quality table: a row per level of the denoised setting.
+    let rows = report.lines().skip_while(|l| !l.contains("| raw needs |")).skip(2).take_while(|l| l.starts_with('|'));
+    assert_eq!(rows.count(), 3, "{report}");
+    let settings = std::fs::read_to_string(out.join("settings.csv")).expect("settings.csv");
+    let header: Vec<&str> = settings.lines().next().unwrap_or_default().split(',').collect();
+    let column = header.iter().position(|c| *c == "top_ssim").expect("a top_ssim column");
+    for row in settings.lines().skip(1) {
+        let ssim: f64 = row.split(',').nth(column).and_then(|v| v.parse().ok()).expect("an SSIM");
+        assert!(ssim > 0.0 && ssim <= 1.0, "{row}");
     }
     assert!(!report.contains("cannot denoise"), "the denoise knob was skipped:\n{report}");
     let _ = std::fs::remove_dir_all(out);

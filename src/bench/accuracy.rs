@@ -6,7 +6,7 @@ use super::knobs::select;
 use super::reference::ReferenceSettings;
 use super::report::{AccuracySummary, write};
 use super::sweep::{SweepOptions, run};
-use super::views::Targets;
+use super::views::{DEFAULT_SSIM, Targets};
 use crate::gpu::GpuContext;
 use crate::scene::Scene;
 use anyhow::{Result, bail};
@@ -26,6 +26,8 @@ pub struct AccuracyOptions {
     pub reference_bounces: Option<u32>,
     /// Target relative RMSE (0.01 for 1 %).
     pub target: Option<f64>,
+    /// Target SSIM of the perceptual view (0.99 when `None`).
+    pub target_ssim: Option<f64>,
     pub budget_seconds: Option<f64>,
     pub progress: bool,
 }
@@ -87,7 +89,11 @@ pub fn accuracy(ctx: &GpuContext, scene: &Scene, options: &AccuracyOptions) -> R
     if !(target > 0.0 && target < 1.0) {
         bail!("--target-percent must be between 0 and 100");
     }
+    let ssim = options.target_ssim.unwrap_or(DEFAULT_SSIM);
+    if !(ssim > 0.0 && ssim < 1.0) {
+        bail!("--target-ssim must be between 0 and 1 (exclusive), e.g. 0.99");
+    }
     let sweep = run(ctx, scene, &knobs, &sweep_options)?;
-    let targets = Targets::for_sweep(&sweep, target, options.budget_seconds);
+    let targets = Targets::for_sweep(&sweep, target, ssim, options.budget_seconds);
     write(&options.out, &sweep, targets)
 }

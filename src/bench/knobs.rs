@@ -99,7 +99,7 @@ fn without_tree_lights(f: &FeatureSet) -> Option<&'static str> {
 }
 
 fn without_denoiser(_: &FeatureSet) -> Option<&'static str> {
-    match crate::denoise::Denoiser::new() {
+    match crate::denoise::Denoiser::new(crate::denoise::DenoiseDevice::Auto) {
         Ok(_) => None,
         Err(_) => Some("this rt cannot denoise (built without Open Image Denoise, or it has no device)"),
     }

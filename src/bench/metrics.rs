@@ -1,6 +1,7 @@
 //! Error of an image against the reference: on linear radiance (RMSE, and the
 //! relative error of the image's mean, which shows bias such as missing bounces),
-//! and after the PNG display transform (PSNR of what a viewer sees).
+//! and after the PNG display transform (PSNR of what a viewer sees, and SSIM of its
+//! luma: the structure a viewer sees, which blur and noise both lower).
 
 use super::reference::Reference;
 use crate::render::Image;
@@ -16,6 +17,8 @@ pub struct ErrorMetrics {
     pub relative_mean_error: f64,
     /// Mean squared error of display values in [0, 1] (exposed, tone-mapped, sRGB-encoded).
     pub display_mse: f64,
+    /// Mean SSIM of the display luma against the reference's (1: the same picture).
+    pub ssim: f64,
 }
 
 impl ErrorMetrics {
@@ -30,10 +33,18 @@ impl ErrorMetrics {
                 display_squared += (dp[c] - dr[c]).powi(2);
             }
         }
+        let (w, h) = (image.width as usize, image.height as usize);
+        let ssim = super::ssim::ssim(
+            &display_luma(&image.pixels, exposure_ev),
+            &display_luma(&reference.image.pixels, exposure_ev),
+            w,
+            h,
+        );
         Self {
             mse: (squared / values - reference.noise_mse).max(0.0),
             relative_mean_error: (sum / values - reference.mean) / reference.mean,
             display_mse: display_squared / values,
+            ssim,
         }
     }
 
@@ -44,6 +55,7 @@ impl ErrorMetrics {
             mse: all.iter().map(|m| m.mse).sum::<f64>() / n,
             relative_mean_error: all.iter().map(|m| m.relative_mean_error).sum::<f64>() / n,
             display_mse: all.iter().map(|m| m.display_mse).sum::<f64>() / n,
+            ssim: all.iter().map(|m| m.ssim).sum::<f64>() / n,
         }
     }
 
@@ -60,6 +72,17 @@ impl ErrorMetrics {
     pub fn psnr_db(&self) -> f64 {
         -10.0 * self.display_mse.max(1e-12).log10()
     }
+}
+
+/// Rec. 709 luma of the display values: the one channel SSIM is taken on.
+pub fn display_luma(pixels: &[[f32; 3]], exposure_ev: f32) -> Vec<f64> {
+    pixels
+        .iter()
+        .map(|p| {
+            let d = display(*p, exposure_ev);
+            0.2126 * d[0] + 0.7152 * d[1] + 0.0722 * d[2]
+        })
+        .collect()
 }
 
 /// The PNG display transform before 8-bit quantisation (which would add its own error floor).

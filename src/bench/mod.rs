@@ -4,6 +4,7 @@
 pub mod accuracy;
 pub mod commands;
 mod compare;
+pub mod denoise_timing;
 pub mod effects;
 pub mod fireflies;
 pub mod headline;
@@ -16,6 +17,7 @@ mod plot;
 pub mod reference;
 pub mod report;
 mod sky;
+pub mod ssim;
 pub mod sweep;
 mod throughput;
 pub mod timing;
@@ -23,6 +25,7 @@ pub mod views;
 
 pub use accuracy::{AccuracyOptions, accuracy};
 pub use compare::{CompareOptions, compare};
+pub use denoise_timing::{DenoiseBenchOptions, denoise_bench};
 pub use effects::effects;
 pub use fireflies::{FireflyOptions, fireflies};
 pub use headline::{HeadlineOptions, headline};

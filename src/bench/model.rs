@@ -143,9 +143,58 @@ pub fn log_log_slope(points: &[(f64, f64)]) -> Option<f64> {
     (pts.len() >= 2 && sxx > 0.0).then(|| sxy / sxx)
 }
 
+/// Samples per pixel at which 1 − SSIM falls to `target`, from measured (spp, 1 − SSIM)
+/// points: interpolated log–log between the two levels it falls between, below the lowest
+/// or beyond the highest level along the nearest segment's slope (no fewer than 1 spp).
+/// SSIM has no one power law: under heavy noise its contrast term saturates and 1 − SSIM
+/// falls nearer 1/√spp, under light noise as 1/spp; the last measured slope is the
+/// shallower one, so a prediction beyond the levels errs towards more samples. `None`
+/// where the last segment does not fall (more samples did not help).
+pub fn spp_for_dssim(points: &[(f64, f64)], target: f64) -> Option<f64> {
+    let mut pts: Vec<(f64, f64)> =
+        points.iter().filter(|(x, y)| *x > 0.0 && *y > 0.0).map(|(x, y)| (x.ln(), y.ln())).collect();
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    pts.dedup_by(|a, b| a.0 == b.0);
+    if target <= 0.0 {
+        return None;
+    }
+    let goal = target.ln();
+    if pts.len() < 2 {
+        return None;
+    }
+    let along = |(x0, y0): (f64, f64), (x1, y1): (f64, f64)| -> Option<f64> {
+        let slope = (y1 - y0) / (x1 - x0);
+        (slope < 0.0).then(|| (x0 + (goal - y0) / slope).exp().max(1.0))
+    };
+    if goal >= pts[0].1 {
+        return along(pts[0], pts[1]);
+    }
+    match pts.windows(2).find(|w| w[0].1 > goal && goal >= w[1].1) {
+        Some(w) => along(w[0], w[1]),
+        None => along(pts[pts.len() - 2], pts[pts.len() - 1]),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn dssim_is_interpolated_between_levels_and_extrapolated_along_the_last_slope() {
+        // 1 − SSIM = 1/spp exactly: every target is hit exactly, inside or beyond the levels.
+        let pts = [(4.0, 0.25), (16.0, 0.0625), (64.0, 1.0 / 64.0)];
+        for (target, spp) in [(0.1, 10.0), (0.01, 100.0), (0.5, 2.0), (0.0625, 16.0)] {
+            let got = spp_for_dssim(&pts, target).expect("reachable");
+            assert!((got - spp).abs() < 1e-9 * spp, "{target}: {got}");
+        }
+        assert_eq!(spp_for_dssim(&pts, 2.0), Some(1.0), "no fewer than one sample");
+        // A slope that steepens from −½ to −1: beyond the levels the last one counts.
+        let pts = [(4.0, 0.5), (16.0, 0.25), (64.0, 0.0625)];
+        assert!((spp_for_dssim(&pts, 0.03125).expect("reachable") - 128.0).abs() < 1e-9);
+        // More samples that did not help predict nothing.
+        assert_eq!(spp_for_dssim(&[(4.0, 0.2), (16.0, 0.1), (64.0, 0.1)], 0.01), None);
+        assert_eq!(spp_for_dssim(&[(4.0, 0.2)], 0.01), None);
+    }
 
     fn level(spp: f64, mse: f64) -> Level {
         Level {

@@ -9,6 +9,7 @@
 //! subtract it so that errors are against the converged image, not this estimate of it.
 
 use super::knobs::Trial;
+use super::metrics::display_luma;
 use super::timing::render_timed;
 use crate::asset::{AssetFiles, builtin};
 use crate::gpu::GpuTimer;
@@ -45,6 +46,9 @@ pub struct Reference {
     pub mean: f64,
     /// Estimated mean squared error of `image` against the converged image.
     pub noise_mse: f64,
+    /// SSIM of one half against the other: how far the reference's own noise keeps
+    /// anything from an SSIM of 1 (against the converged image it is about a quarter as far).
+    pub halves_ssim: f64,
     pub settings: ReferenceSettings,
     /// The first half's file; the second is beside it.
     pub path: PathBuf,
@@ -122,8 +126,11 @@ pub fn obtain(
         pixels,
     };
     let noise_mse = half_difference / values / 4.0;
+    let exposure = trial.scene.render.exposure;
+    let (w, h) = (request.width as usize, request.height as usize);
+    let halves_ssim = super::ssim::ssim(&display_luma(a, exposure), &display_luma(b, exposure), w, h);
     let path = paths[0].clone();
-    Ok(Reference { image, mean, noise_mse, settings, path, origin })
+    Ok(Reference { image, mean, noise_mse, halves_ssim, settings, path, origin })
 }
 
 /// Both halves, if both files are there, readable and of the right size.

@@ -5,7 +5,7 @@
 use super::plot::{Curve, error_vs_time};
 use super::reference::ReferenceOrigin;
 use super::sweep::{SettingResult, Sweep};
-use super::views::{KnobView, SettingView, Targets, fastest_to_target, setting_view, views};
+use super::views::{KnobView, SettingView, Targets, equal_quality, fastest_to_target, setting_view, views};
 use anyhow::{Context, Result};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -88,11 +88,12 @@ fn markdown(sweep: &Sweep, views: &[KnobView], baseline: &SettingView, targets: 
     let _ = writeln!(
         md,
         "- reference: {} spp, {} bounces, NEE, GGX rough glass, no clamp ({origin}: `{}`); its own noise, \
-         subtracted from every MSE: {} relative RMSE",
+         subtracted from every MSE: {} relative RMSE; SSIM of one half against the other {:.4}",
         r.settings.spp,
         r.settings.max_bounces,
         r.path.display(),
-        percent(r.relative_noise())
+        percent(r.relative_noise()),
+        r.halves_ssim
     );
     let _ = writeln!(
         md,
@@ -112,7 +113,21 @@ fn markdown(sweep: &Sweep, views: &[KnobView], baseline: &SettingView, targets: 
         "- models: MSE = bias² + variance/spp, time = overhead + spp × time per spp, fitted per setting; \
          `~` marks predictions beyond 4× the highest level measured; ∞: the bias is above the target\n"
     );
-    let _ = writeln!(md, "**Scene defaults** reach {} in {}.", percent(targets.error), time_to(baseline));
+    let _ = writeln!(
+        md,
+        "- perceptual: SSIM (Wang et al. 2004: 11×11 Gaussian window, σ 1.5) of the display transform's luma; \
+         time to SSIM {} from the measured levels, log–log between them \
+         and beyond the highest along the last slope (which errs towards more samples)\n",
+        targets.ssim
+    );
+    let _ = writeln!(
+        md,
+        "**Scene defaults** reach {} in {}, SSIM {} in {}.",
+        percent(targets.error),
+        time_to(baseline),
+        targets.ssim,
+        time_to_ssim(baseline)
+    );
     if let Some((knob, s)) = fastest_to_target(views) {
         let _ =
             writeln!(md, "**Fastest setting to {}**: {knob} = {}, {}.\n", percent(targets.error), s.label, time_to(s));
@@ -129,11 +144,13 @@ fn markdown(sweep: &Sweep, views: &[KnobView], baseline: &SettingView, targets: 
         let builds = view.settings.iter().any(|s| s.build_seconds.is_some());
         let _ = writeln!(
             md,
-            "| setting | ms/spp | rel. RMSE @ top | PSNR @ top | rel. mean error | bias | error in budget | time to {} |{} front |",
+            "| setting | ms/spp | rel. RMSE @ top | PSNR @ top | SSIM @ top | rel. mean error | bias | error in budget \
+             | time to {} | time to SSIM {} |{} front |",
             percent(targets.error),
+            targets.ssim,
             if builds { " BVH build |" } else { "" }
         );
-        let _ = writeln!(md, "|---|---|---|---|---|---|---|---|{}---|", if builds { "---|" } else { "" });
+        let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|{}---|", if builds { "---|" } else { "" });
         for s in &view.settings {
             let build = match (builds, s.build_seconds) {
                 (false, _) => String::new(),
@@ -142,17 +159,22 @@ fn markdown(sweep: &Sweep, views: &[KnobView], baseline: &SettingView, targets: 
             };
             let _ = writeln!(
                 md,
-                "| {} | {} | {} | {:.2} dB | {:+.2} % | {} | {} | {} |{build} {} |",
+                "| {} | {} | {} | {:.2} dB | {:.4} | {:+.2} % | {} | {} | {} | {} |{build} {} |",
                 s.label,
                 s.seconds_per_spp.map_or("–".into(), |t| format!("{:.3}", t * 1e3)),
                 percent(s.top_relative_rmse),
                 s.top_psnr_db,
+                s.top_ssim,
                 s.top_relative_mean_error * 100.0,
                 s.relative_bias.map_or("–".into(), |b| if b > 0.0 { percent(b) } else { "0".into() }),
                 s.error_in_budget.map_or("–".into(), percent),
                 time_to(s),
+                time_to_ssim(s),
                 if s.on_front { "yes" } else { "dominated" }
             );
+        }
+        if view.name == "denoise" {
+            denoise_table(&mut md, &knob.settings);
         }
         let _ = writeln!(md, "\n![{}]({}.png)\n", view.name, view.name);
     }
@@ -163,15 +185,48 @@ fn markdown(sweep: &Sweep, views: &[KnobView], baseline: &SettingView, targets: 
 fn spp_table(md: &mut String, sweep: &Sweep, settings: &[SettingResult]) {
     let Some(s) = settings.first() else { return };
     let mean = sweep.reference.mean;
-    let _ = writeln!(md, "| spp | ms | rel. RMSE | PSNR | rel. mean error |\n|---|---|---|---|---|");
+    let _ = writeln!(md, "| spp | ms | rel. RMSE | PSNR | SSIM | rel. mean error |\n|---|---|---|---|---|---|");
     for m in &s.levels {
-        let (rmse, psnr) = (m.error.relative_rmse(mean), m.error.psnr_db());
+        let (rmse, psnr, ssim) = (m.error.relative_rmse(mean), m.error.psnr_db(), m.error.ssim);
         let rel = m.error.relative_mean_error * 100.0;
-        let _ = writeln!(md, "| {} | {:.2} | {} | {psnr:.2} dB | {rel:+.2} % |", m.spp, m.seconds * 1e3, percent(rmse));
+        let (spp, ms) = (m.spp, m.seconds * 1e3);
+        let _ = writeln!(md, "| {spp} | {ms:.2} | {} | {psnr:.2} dB | {ssim:.4} | {rel:+.2} % |", percent(rmse));
     }
     let pts: Vec<(f64, f64)> = s.levels.iter().map(|m| (m.spp as f64, m.error.rmse())).collect();
     if let Some(slope) = super::model::log_log_slope(&pts) {
         let _ = writeln!(md, "\nLog–log slope of RMSE against spp: {slope:.3} (−0.5 when noise dominates).\n");
+    }
+}
+
+/// The denoised images beside the time the raw render needs to look as good (same SSIM).
+fn denoise_table(md: &mut String, settings: &[SettingResult]) {
+    let (Some(off), Some(on)) = (settings.iter().find(|s| s.label == "off"), settings.iter().find(|s| s.label == "on"))
+    else {
+        return;
+    };
+    let _ = writeln!(
+        md,
+        "\nDenoised against raw at equal perceived quality: the raw render's time (and spp) to the SSIM the \
+         denoised one has (from the raw levels, as above); a denoiser's bias keeps its RMSE above a few percent, \
+         so this, not the time to 1 % RMSE, is what it buys.\n\n\
+         | spp | denoised ms | SSIM | raw needs | speed-up |\n|---|---|---|---|---|"
+    );
+    for q in equal_quality(on, off) {
+        let raw = match (q.plain_seconds, q.plain_spp) {
+            (Some(t), Some(spp)) => format!("{}{} ({spp:.0} spp)", if q.extrapolated { "~" } else { "" }, duration(t)),
+            _ => "∞".into(),
+        };
+        let speed_up = q.speed_up().map_or("–".into(), |x| format!("{x:.1}×"));
+        let _ = writeln!(md, "| {} | {:.2} | {:.4} | {raw} | {speed_up} |", q.spp, q.seconds * 1e3, q.ssim);
+    }
+}
+
+fn time_to_ssim(s: &SettingView) -> String {
+    match (s.seconds_to_ssim, s.spp_to_ssim) {
+        (Some(t), Some(spp)) => {
+            format!("{}{} ({:.0} spp)", if s.ssim_extrapolated { "~" } else { "" }, duration(t), spp)
+        }
+        _ => "∞".into(),
     }
 }
 
@@ -204,7 +259,7 @@ fn opt(v: Option<f64>) -> String {
 }
 
 pub const MEASUREMENT_COLUMNS: &str = "knob,setting,features,spp,seconds,seconds_min,seconds_max,rmse,relative_rmse,\
-relative_mean_error,psnr_db,mse_std_error,build_seconds,dropped_samples";
+relative_mean_error,psnr_db,mse_std_error,build_seconds,dropped_samples,ssim,ssim_std_error";
 
 fn measurements_csv(sweep: &Sweep) -> String {
     let mut csv = format!("{MEASUREMENT_COLUMNS}\n");
@@ -215,7 +270,7 @@ fn measurements_csv(sweep: &Sweep) -> String {
             let e = &m.error;
             let _ = writeln!(
                 csv,
-                "{knob},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:.4},{:e},{},{}",
+                "{knob},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:.4},{:e},{},{},{:.6},{:e}",
                 csv_field(&s.label),
                 csv_field(&s.features.to_string()),
                 m.spp,
@@ -228,7 +283,9 @@ fn measurements_csv(sweep: &Sweep) -> String {
                 e.psnr_db(),
                 m.mse_std_error,
                 opt(s.build_seconds),
-                m.dropped
+                m.dropped,
+                e.ssim,
+                m.ssim_std_error
             );
         }
     }
@@ -236,7 +293,8 @@ fn measurements_csv(sweep: &Sweep) -> String {
 }
 
 pub const SETTING_COLUMNS: &str = "knob,setting,seconds_per_spp,relative_bias,top_relative_rmse,top_psnr_db,\
-error_in_budget,seconds_to_target,spp_to_target,extrapolated,on_front,build_seconds";
+error_in_budget,seconds_to_target,spp_to_target,extrapolated,on_front,build_seconds,top_ssim,seconds_to_ssim,\
+spp_to_ssim";
 
 fn settings_csv(views: &[KnobView]) -> String {
     let mut csv = format!("{SETTING_COLUMNS}\n");
@@ -244,7 +302,7 @@ fn settings_csv(views: &[KnobView]) -> String {
         for s in &k.settings {
             let _ = writeln!(
                 csv,
-                "{},{},{},{},{:e},{:.4},{},{},{},{},{},{}",
+                "{},{},{},{},{:e},{:.4},{},{},{},{},{},{},{:.6},{},{}",
                 k.name,
                 csv_field(&s.label),
                 opt(s.seconds_per_spp),
@@ -256,7 +314,10 @@ fn settings_csv(views: &[KnobView]) -> String {
                 opt(s.spp_to_target),
                 s.extrapolated,
                 s.on_front,
-                opt(s.build_seconds)
+                opt(s.build_seconds),
+                s.top_ssim,
+                opt(s.seconds_to_ssim),
+                opt(s.spp_to_ssim)
             );
         }
     }

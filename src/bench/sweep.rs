@@ -42,6 +42,8 @@ pub struct Measurement {
     pub mse_std_error: f64,
     /// Standard error of `error.relative_mean_error`.
     pub mean_error_std_error: f64,
+    /// Standard error of `error.ssim` over the repeats.
+    pub ssim_std_error: f64,
     /// Non-finite samples dropped, over all repeats (a bug to report if ever above 0).
     pub dropped: u64,
 }
@@ -172,7 +174,10 @@ fn measure(
     bar: &ProgressBar,
 ) -> Result<SettingResult> {
     warm_up(session, &trial.request, timer)?;
-    let denoiser = if trial.denoise { Some(crate::denoise::Denoiser::new()?) } else { None };
+    let denoiser = match trial.denoise {
+        true => Some(crate::denoise::Denoiser::new(crate::denoise::DenoiseDevice::Auto)?),
+        false => None,
+    };
     let features = trial.request.features.unwrap_or(session.features());
     let exposure = session.scene().render.exposure;
     let pixels = (trial.request.width * trial.request.height) as f64;
@@ -202,6 +207,7 @@ fn measure(
         let mean_spread =
             errors.iter().map(|e| (e.relative_mean_error - error.relative_mean_error).powi(2)).sum::<f64>();
         let mean_floor = (error.mse / pixels / n).sqrt() / reference.mean;
+        let ssim_spread = errors.iter().map(|e| (e.ssim - error.ssim).powi(2)).sum::<f64>() / (n - 1.0).max(1.0);
         let (fastest, slowest) = (times.iter().min().copied(), times.iter().max().copied());
         measurements.push(Measurement {
             spp,
@@ -212,6 +218,7 @@ fn measure(
             mse_std_error: (spread / n).sqrt().max(floor),
             dropped,
             mean_error_std_error: (mean_spread / (n - 1.0).max(1.0) / n).sqrt().max(mean_floor),
+            ssim_std_error: (ssim_spread / n).sqrt(),
         });
     }
     let mean2 = reference.mean * reference.mean;

@@ -1,6 +1,6 @@
 //! Denoising with Intel Open Image Denoise: a render's radiance, guided by its albedo
-//! and normal AOVs (each prefiltered first, so the guides are clean), on a GPU device
-//! where Open Image Denoise has one (CUDA, HIP, SYCL) and on the CPU otherwise.
+//! and normal AOVs (each prefiltered first, so the guides are clean), on the device
+//! asked for: `auto` takes a CUDA GPU where Open Image Denoise has one, else the CPU.
 //!
 //! Open Image Denoise is a shared library that rt links when built with the `denoise`
 //! feature (`scripts/fetch_oidn` installs it, see README); without it, or when the
@@ -16,6 +16,39 @@ use anyhow::{Result, bail};
 pub const HOW_TO_GET_OIDN: &str = "run scripts/fetch_oidn (it unpacks Open Image Denoise 2.5.1 into .oidn/), \
      then build with `cargo build --release --features denoise` (README: Denoising)";
 
+/// Which Open Image Denoise device denoises (`--denoise-device`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum DenoiseDevice {
+    /// A CUDA GPU when Open Image Denoise has one, else the CPU.
+    #[default]
+    Auto,
+    Cpu,
+    /// A CUDA GPU; an error when Open Image Denoise has none.
+    Cuda,
+}
+
+/// A device Open Image Denoise can denoise on here, as it reports it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PhysicalDevice {
+    /// "CPU", "CUDA", "HIP", "SYCL" or "Metal".
+    pub kind: &'static str,
+    /// Its name, e.g. "NVIDIA H200" or the CPU's model.
+    pub name: String,
+}
+
+/// The devices Open Image Denoise finds here (none: its device libraries are missing);
+/// an error in a build without it.
+pub fn physical_devices() -> Result<Vec<PhysicalDevice>> {
+    #[cfg(feature = "denoise")]
+    {
+        Ok(oidn_filter::physical_devices())
+    }
+    #[cfg(not(feature = "denoise"))]
+    {
+        bail!("this rt was built without Open Image Denoise, so it cannot denoise: {HOW_TO_GET_OIDN}")
+    }
+}
+
 /// An Open Image Denoise device, made once and reused for every image.
 pub struct Denoiser {
     #[cfg(feature = "denoise")]
@@ -23,15 +56,16 @@ pub struct Denoiser {
 }
 
 impl Denoiser {
-    /// The fastest device Open Image Denoise has here; an error naming what is missing
-    /// when it has none (or rt was built without it).
-    pub fn new() -> Result<Self> {
+    /// A denoiser on `device`; an error naming what is missing when Open Image Denoise
+    /// has no such device (or rt was built without it).
+    pub fn new(device: DenoiseDevice) -> Result<Self> {
         #[cfg(feature = "denoise")]
         {
-            Ok(Self { inner: oidn_filter::OidnDenoiser::new()? })
+            Ok(Self { inner: oidn_filter::OidnDenoiser::new(device)? })
         }
         #[cfg(not(feature = "denoise"))]
         {
+            let _ = device;
             bail!("this rt was built without Open Image Denoise, so it cannot denoise: {HOW_TO_GET_OIDN}")
         }
     }
@@ -40,7 +74,20 @@ impl Denoiser {
     pub fn device(&self) -> &str {
         #[cfg(feature = "denoise")]
         {
-            self.inner.device_name()
+            self.inner.device().kind
+        }
+        #[cfg(not(feature = "denoise"))]
+        {
+            unreachable!("a Denoiser cannot be made without Open Image Denoise")
+        }
+    }
+
+    /// What was chosen and why, for the log: e.g. "CUDA (NVIDIA H200)", or
+    /// "CPU (…; auto: no CUDA device)".
+    pub fn describe(&self) -> String {
+        #[cfg(feature = "denoise")]
+        {
+            self.inner.describe()
         }
         #[cfg(not(feature = "denoise"))]
         {

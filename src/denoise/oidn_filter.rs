@@ -1,40 +1,116 @@
 //! The `oidn` crate's side of [`super::Denoiser`].
 
+use super::{DenoiseDevice, PhysicalDevice};
 use crate::render::{Aovs, Image};
 use anyhow::{Result, anyhow, bail};
 use oidn::sys;
+use std::ffi::CStr;
 
 pub struct OidnDenoiser {
     device: oidn::Device,
-    name: &'static str,
+    physical: PhysicalDevice,
+    /// Why `auto` took the CPU, when it did.
+    fallback: Option<String>,
+}
+
+/// What Open Image Denoise says a device type is.
+fn kind_name(kind: std::os::raw::c_int) -> &'static str {
+    match kind as sys::OIDNDeviceType {
+        sys::OIDNDeviceType_OIDN_DEVICE_TYPE_CPU => "CPU",
+        sys::OIDNDeviceType_OIDN_DEVICE_TYPE_SYCL => "SYCL",
+        sys::OIDNDeviceType_OIDN_DEVICE_TYPE_CUDA => "CUDA",
+        sys::OIDNDeviceType_OIDN_DEVICE_TYPE_HIP => "HIP",
+        sys::OIDNDeviceType_OIDN_DEVICE_TYPE_METAL => "Metal",
+        _ => "unknown",
+    }
+}
+
+/// The devices Open Image Denoise found, fastest first (its own order).
+pub fn physical_devices() -> Vec<PhysicalDevice> {
+    // SAFETY: these calls take no handles; the name is a C string Open Image Denoise
+    // owns, copied at once. Errors (none is expected) land on the null device and
+    // are cleared, so that no later call reports them.
+    unsafe {
+        let count = sys::oidnGetNumPhysicalDevices().max(0);
+        let devices = (0..count)
+            .map(|i| {
+                let kind = kind_name(sys::oidnGetPhysicalDeviceInt(i, c"type".as_ptr()));
+                let name = sys::oidnGetPhysicalDeviceString(i, c"name".as_ptr());
+                let name = match name.is_null() {
+                    true => String::new(),
+                    false => CStr::from_ptr(name).to_string_lossy().trim().to_string(),
+                };
+                PhysicalDevice { kind, name }
+            })
+            .collect();
+        sys::oidnGetDeviceError(std::ptr::null_mut(), std::ptr::null_mut());
+        devices
+    }
+}
+
+fn no_device(e: impl std::fmt::Display) -> anyhow::Error {
+    anyhow!(
+        "Open Image Denoise could make no device ({e}); its device libraries \
+         (libOpenImageDenoise_device_cpu.so.2.5.1 and others) must lie beside libOpenImageDenoise.so.2: \
+         scripts/fetch_oidn installs them into .oidn/lib"
+    )
 }
 
 impl OidnDenoiser {
-    pub fn new() -> Result<Self> {
-        // The default device is the fastest Open Image Denoise supports here: a GPU
-        // (CUDA, HIP, SYCL) when it has one, else the CPU.
-        let device = oidn::Device::new().map_err(|e| {
-            anyhow!(
-                "Open Image Denoise could make no device ({e}); its device libraries \
-                 (libOpenImageDenoise_device_cpu.so.2.5.1 and others) must lie beside libOpenImageDenoise.so.2: \
-                 scripts/fetch_oidn installs them into .oidn/lib"
-            )
-        })?;
-        // SAFETY: the handle is the live device's; "type" is one of its integer parameters.
-        let kind = unsafe { sys::oidnGetDeviceInt(device.raw(), c"type".as_ptr()) };
-        let name = match kind as sys::OIDNDeviceType {
-            sys::OIDNDeviceType_OIDN_DEVICE_TYPE_CPU => "CPU",
-            sys::OIDNDeviceType_OIDN_DEVICE_TYPE_SYCL => "SYCL",
-            sys::OIDNDeviceType_OIDN_DEVICE_TYPE_CUDA => "CUDA",
-            sys::OIDNDeviceType_OIDN_DEVICE_TYPE_HIP => "HIP",
-            sys::OIDNDeviceType_OIDN_DEVICE_TYPE_METAL => "Metal",
-            _ => "unknown",
+    pub fn new(choice: DenoiseDevice) -> Result<Self> {
+        let found = physical_devices();
+        let first = |kind: &str| found.iter().find(|d| d.kind == kind).cloned();
+        let cpu = || -> Result<(oidn::Device, PhysicalDevice)> {
+            let device = oidn::Device::cpu().map_err(no_device)?;
+            let physical = first("CPU").unwrap_or(PhysicalDevice { kind: "CPU", name: String::new() });
+            Ok((device, physical))
         };
-        Ok(Self { device, name })
+        let cuda = || -> Result<(oidn::Device, PhysicalDevice)> {
+            let Some(physical) = first("CUDA") else {
+                let seen: Vec<String> = found.iter().map(|d| format!("{} ({})", d.kind, d.name)).collect();
+                bail!(
+                    "Open Image Denoise found no CUDA device (it found: {}); it needs an NVIDIA GPU of compute \
+                     capability 7.0 or later with its driver, and libOpenImageDenoise_device_cuda.so.2.5.1 beside \
+                     libOpenImageDenoise.so.2 (scripts/fetch_oidn installs it); `--denoise-device cpu` or `auto` \
+                     denoise on the CPU",
+                    if seen.is_empty() { "none".to_string() } else { seen.join(", ") }
+                )
+            };
+            let device = oidn::Device::cuda()
+                .map_err(|e| anyhow!("Open Image Denoise could not open its CUDA device {}: {e}", physical.name))?;
+            Ok((device, physical))
+        };
+        let ((device, physical), fallback) = match choice {
+            DenoiseDevice::Cpu => (cpu()?, None),
+            DenoiseDevice::Cuda => (cuda()?, None),
+            DenoiseDevice::Auto => match cuda() {
+                Ok(d) => (d, None),
+                Err(e) => {
+                    // A listed CUDA device that fails to open is worth a warning; no CUDA device is the usual case.
+                    let why = match first("CUDA") {
+                        Some(_) => format!("{e:#}"),
+                        None => "no CUDA device".to_string(),
+                    };
+                    (cpu()?, Some(why))
+                }
+            },
+        };
+        Ok(Self { device, physical, fallback })
     }
 
-    pub fn device_name(&self) -> &str {
-        self.name
+    pub fn device(&self) -> &PhysicalDevice {
+        &self.physical
+    }
+
+    pub fn describe(&self) -> String {
+        let name = match self.physical.name.is_empty() {
+            true => self.physical.kind.to_string(),
+            false => format!("{} ({})", self.physical.kind, self.physical.name),
+        };
+        match &self.fallback {
+            Some(why) => format!("{name}; auto: {why}"),
+            None => name,
+        }
     }
 
     pub fn denoise(&self, image: &Image, aovs: &Aovs) -> Result<Vec<[f32; 3]>> {
@@ -43,7 +119,8 @@ impl OidnDenoiser {
         let color = flat(&image.pixels);
         let mut albedo = flat(&aovs.albedo);
         let mut normal = flat(&aovs.normal);
-        let error = |what: &str, e: oidn::Error| anyhow!("Open Image Denoise ({} device) {what}: {e}", self.name);
+        let error =
+            |what: &str, e: oidn::Error| anyhow!("Open Image Denoise ({} device) {what}: {e}", self.physical.kind);
         // The guides are averages of few samples too: denoised first, they may then be
         // trusted as clean ("clean aux"), which keeps their noise out of the image.
         oidn::RayTracing::try_new(&self.device)
@@ -63,7 +140,7 @@ impl OidnDenoiser {
             .filter(&color, &mut output)
             .map_err(|e| error("could not denoise", e))?;
         if let Err(e) = self.device.get_error() {
-            bail!("Open Image Denoise ({} device): {e}", self.name);
+            bail!("Open Image Denoise ({} device): {e}", self.physical.kind);
         }
         Ok(output.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
     }

@@ -209,16 +209,17 @@ impl Accumulation {
             pass.set_bind_group(2, sky, &[]);
         }
         let (x, y) = (self.width.div_ceil(8), self.height.div_ceil(8));
+        // Adaptive sampling marks the pixels that stop before any sample of the dispatch.
+        if let Some(mask) = pipelines.entries.get("adaptive_mask") {
+            pass.set_pipeline(mask);
+            pass.dispatch_workgroups(x, y, 1);
+        }
         if lanes > 1 {
             pass.set_pipeline(pipelines.entry("render_lanes"));
             pass.dispatch_workgroups(x, y, lanes);
             pass.set_pipeline(pipelines.entry("reduce_lanes"));
             pass.dispatch_workgroups(x, y, 1);
         } else {
-            if let Some(mask) = pipelines.entries.get("adaptive_mask") {
-                pass.set_pipeline(mask);
-                pass.dispatch_workgroups(x, y, 1);
-            }
             pass.set_pipeline(pipelines.entry("render"));
             pass.dispatch_workgroups(x, y, 1);
         }

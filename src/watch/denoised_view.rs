@@ -40,26 +40,12 @@ pub struct DenoisedView {
     valid: bool,
 }
 
-impl Default for DenoisedView {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
 impl DenoisedView {
-    /// Starts the denoising thread; the device is made there, and a failure comes back
-    /// as the first result.
-    pub fn new() -> Self {
+    /// Starts the denoising thread, which owns `denoiser`.
+    pub fn new(denoiser: Denoiser) -> Self {
         let (jobs, inbox) = channel::<Job>();
         let (outbox, results) = channel();
         std::thread::spawn(move || {
-            let denoiser = match Denoiser::new() {
-                Ok(d) => d,
-                Err(e) => {
-                    let _ = outbox.send(Err(format!("{e:#}")));
-                    return;
-                }
-            };
             for job in inbox {
                 let done = denoiser.denoise(&job.image, &job.aovs).map(|pixels| Done {
                     pixels,
@@ -76,7 +62,7 @@ impl DenoisedView {
     }
 
     /// Takes a finished denoise and starts the next when the samples have doubled. An
-    /// error (no Open Image Denoise) is returned once, and the view stops denoising.
+    /// error (the device failed) is returned once, and the view stops denoising.
     pub fn update(&mut self, ctx: &GpuContext, session: &Session) -> anyhow::Result<()> {
         let samples = session.samples();
         if samples < self.sent_samples {

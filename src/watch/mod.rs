@@ -24,6 +24,7 @@ pub use live::LiveScene;
 pub use reload_log::LOG_FILE;
 
 use crate::bvh::BuildQuality;
+use crate::denoise::DenoiseDevice;
 use crate::gpu::GpuContext;
 use crate::render::{ImageFormat, RenderFlags};
 use anyhow::{Context, Result};
@@ -67,7 +68,7 @@ pub fn run_headless(
     headless::run(&mut live, &mut watcher, &rx, &headless, &mut log, opened_at)
 }
 
-/// `rt watch`: a window.
-pub fn run_window(adapter: Option<&str>, options: WatchOptions) -> Result<()> {
-    viewer::run(adapter, options)
+/// `rt watch`: a window; with `denoise`, the denoised image is shown, made on that device.
+pub fn run_window(adapter: Option<&str>, options: WatchOptions, denoise: Option<DenoiseDevice>) -> Result<()> {
+    viewer::run(adapter, options, denoise)
 }

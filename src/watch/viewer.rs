@@ -13,6 +13,7 @@ use super::input::{Action, Drag, HELP, action, drag, fly_direction};
 use super::live::LiveScene;
 use super::reload_log::ReloadLog;
 use super::{WatchOptions, sources};
+use crate::denoise::{DenoiseDevice, Denoiser};
 use crate::gpu::{GpuContext, ms};
 use crate::render::{Accumulation, Pacing, Session, human, write_image, write_png};
 use anyhow::{Context, Result, anyhow};
@@ -31,7 +32,9 @@ const PACING: Pacing = Pacing { target: Duration::from_millis(25), max_samples: 
 /// How often an idle window with `--frames-dir` looks for the stop file.
 const STOP_POLL: Duration = Duration::from_millis(100);
 
-pub fn run(adapter: Option<&str>, options: WatchOptions) -> Result<()> {
+pub fn run(adapter: Option<&str>, options: WatchOptions, denoise: Option<DenoiseDevice>) -> Result<()> {
+    // Before any window: a missing denoiser is known at once, as with `rt render`.
+    let denoiser = denoise.map(|device| Denoiser::new(device).context("--denoise")).transpose()?;
     let event_loop = EventLoop::<Batch>::with_user_event().build().context("cannot open a window")?;
     let ctx = GpuContext::new(adapter)?;
     println!("GPU: {}", ctx.describe());
@@ -62,10 +65,11 @@ pub fn run(adapter: Option<&str>, options: WatchOptions) -> Result<()> {
         failure: None,
         denoised: None,
     };
-    if app.options.flags.aovs {
-        app.denoised = Some(DenoisedView::new());
-    }
     app.log.write(HELP);
+    if let Some(denoiser) = denoiser {
+        app.log.write(&format!("denoising with Open Image Denoise on {}", denoiser.describe()));
+        app.denoised = Some(DenoisedView::new(denoiser));
+    }
     if let Some(dir) = app.options.frames_dir.clone() {
         super::headless::remove_stale_stop_file(&dir, &mut app.log);
     }

@@ -35,6 +35,8 @@ pub struct RenderReport {
     pub samples_per_second: f64,
     pub dropped: DroppedSamples,
     pub features: FeatureSet,
+    /// The most invocations any dispatch spread a pixel's samples over (1: one per pixel).
+    pub max_lanes: u32,
 }
 
 /// One dispatch: how many samples per pixel it added and how long it took.
@@ -42,6 +44,8 @@ pub struct RenderReport {
 pub struct Step {
     pub samples: u32,
     pub took: Duration,
+    /// Invocations each pixel's samples were spread over.
+    pub lanes: u32,
 }
 
 pub struct Session<'a> {
@@ -59,6 +63,8 @@ pub struct Session<'a> {
     acc: Accumulation,
     sizer: DispatchSizer,
     last_step: Step,
+    /// Lanes of the dispatch last encoded.
+    encoded_lanes: u32,
     readback: Readback,
 }
 
@@ -93,6 +99,7 @@ impl<'a> Session<'a> {
             acc,
             sizer: DispatchSizer::new(Pacing::RENDER),
             last_step: Step::default(),
+            encoded_lanes: 1,
             readback: Readback::new(),
         };
         session.set_sky(&sky)?;
@@ -242,8 +249,8 @@ impl<'a> Session<'a> {
         let remaining = self.request.spp - self.acc.samples;
         let n = self.sizer.next(remaining);
         let mut lanes = self.acc.lanes(n, self.request.sample_lanes);
-        if self.request.aovs || self.request.adaptive() {
-            // AOVs and per-pixel counts are kept by the one-invocation-per-pixel kernel only.
+        if self.request.aovs {
+            // The AOVs are kept by the one-invocation-per-pixel kernel only.
             lanes = 1;
         }
         if lanes > 1 {
@@ -258,13 +265,14 @@ impl<'a> Session<'a> {
         let n = n.max(1);
         let frame = GpuFrame { samples_per_dispatch: n, ..self.frame() };
         self.acc.encode(self.ctx, encoder, &pipelines, &self.buffers, &frame, lanes, timestamp_writes);
+        self.encoded_lanes = lanes;
         Ok(n)
     }
 
     /// How long a dispatch of `samples` took: the next one's size follows it.
     pub fn observe(&mut self, samples: u32, took: Duration) {
         self.sizer.observe(samples, took);
-        self.last_step = Step { samples, took };
+        self.last_step = Step { samples, took, lanes: self.encoded_lanes };
     }
 
     /// One dispatch towards the request's spp, waited for. Its time is the GPU's with a
@@ -288,7 +296,7 @@ impl<'a> Session<'a> {
         };
         // Sizes follow the wall clock: it is what a watchdog and a window see.
         self.sizer.observe(samples, start.elapsed());
-        self.last_step = Step { samples, took };
+        self.last_step = Step { samples, took, lanes: self.encoded_lanes };
         Ok(self.last_step)
     }
 
@@ -301,8 +309,11 @@ impl<'a> Session<'a> {
         let start = Instant::now();
         let pixels = request.width as f64 * request.height as f64;
         let mut dispatch_time = Duration::ZERO;
+        let mut max_lanes = 1;
         while !self.converged() {
-            dispatch_time += self.step(timer)?.took;
+            let step = self.step(timer)?;
+            dispatch_time += step.took;
+            max_lanes = max_lanes.max(step.lanes);
             let rate = self.acc.samples as f64 * pixels / start.elapsed().as_secs_f64();
             progress.update(self.acc.samples, start.elapsed(), rate);
         }
@@ -315,6 +326,7 @@ impl<'a> Session<'a> {
             samples_per_second: self.acc.samples as f64 * pixels / elapsed.as_secs_f64(),
             dropped: self.dropped()?,
             features: self.pipeline_features(),
+            max_lanes,
         };
         Ok((self.image()?, report))
     }

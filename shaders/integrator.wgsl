@@ -183,6 +183,12 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
     //#if aovs
     aov_begin();
     //#endif
+    //#if panorama
+    // Where a panorama sends no ray (outside a fisheye's image), Cycles' pixel is black.
+    if no_camera_ray(camera) {
+        return vec3f(0.0);
+    }
+    //#endif
     loop {
         var ray_origin = origin;
         var ray_direction = direction;

@@ -81,32 +81,32 @@ fn orthographic_clip_planes_match_cycles() {
 }
 
 #[test]
-fn equirectangular_panorama_matches_cycles() {
+fn panorama_equirectangular_matches_cycles() {
     check_panorama("pano_equirect");
 }
 
 #[test]
-fn equirectangular_window_with_shift_matches_cycles() {
+fn panorama_equirectangular_window_with_shift_matches_cycles() {
     check_panorama("pano_equirect_window");
 }
 
 #[test]
-fn equidistant_fisheye_matches_cycles() {
+fn panorama_equidistant_fisheye_matches_cycles() {
     check_panorama("pano_fisheye_equidistant");
 }
 
 #[test]
-fn equisolid_fisheye_matches_cycles() {
+fn panorama_equisolid_fisheye_matches_cycles() {
     check_panorama("pano_fisheye_equisolid");
 }
 
 #[test]
-fn equisolid_fisheye_with_vertical_fit_matches_cycles() {
+fn panorama_equisolid_fisheye_with_vertical_fit_matches_cycles() {
     check_panorama("pano_fisheye_equisolid_vertical");
 }
 
 #[test]
-fn mirror_ball_matches_cycles() {
+fn panorama_mirror_ball_matches_cycles() {
     check_panorama("pano_mirror_ball");
 }
 

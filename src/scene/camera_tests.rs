@@ -161,3 +161,14 @@ fn pixel_rays_cross_the_image_plane() {
     let (origin, direction) = ortho.pixel_ray(0.0, 0.0, 100, 50).expect("a ray");
     assert!(origin.distance(Vec3::new(-0.5, 0.5, 0.0)) < 1e-6 && direction == Vec3::NEG_Z, "{origin} {direction}");
 }
+
+#[test]
+fn focus_is_along_the_view_or_for_a_panorama_along_the_ray() {
+    let camera = Camera { position: Vec3::ZERO, look_at: Vec3::NEG_Z, ..Camera::default() };
+    let slanted = Vec3::new(0.6, 0.0, -0.8);
+    // The plane in focus is across the view: a point 5 m out along a slanted ray is 4 m deep.
+    assert!((camera.focus_distance_of(slanted, 5.0) - 4.0).abs() < 1e-6);
+    let panorama =
+        Camera { projection: Projection::Panoramic { panorama: Panorama::MirrorBall, lens_mm: 50.0 }, ..camera };
+    assert_eq!(panorama.focus_distance_of(slanted, 5.0), 5.0);
+}

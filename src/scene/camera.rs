@@ -118,9 +118,6 @@ impl Camera {
     /// A panorama's plane is Cycles' screen, [0, 1]² moved by the shift, about its centre:
     /// a half extent of 0.5, and the shift as it is.
     pub fn view_plane(&self, width: u32, height: u32) -> ViewPlane {
-        if let Projection::Panoramic { .. } = self.projection {
-            return ViewPlane { half_extent: Vec2::splat(0.5), shift: self.shift };
-        }
         let horizontal = self.fits_horizontally(width, height);
         let (w, h) = (width.max(1) as f32, height.max(1) as f32);
         let half_fit = match self.projection {
@@ -130,14 +127,17 @@ impl Camera {
             }
             Projection::FocalLength { mm } => 0.5 * self.sensor_along_fit() / mm,
             Projection::Orthographic { scale } => 0.5 * scale,
-            Projection::Panoramic { .. } => 0.5,
+            Projection::Panoramic { .. } => {
+                return ViewPlane { half_extent: Vec2::splat(0.5), shift: self.shift };
+            }
         };
         let half_extent =
             if horizontal { Vec2::new(half_fit, half_fit * h / w) } else { Vec2::new(half_fit * w / h, half_fit) };
         ViewPlane { half_extent, shift: self.shift * 2.0 * half_fit }
     }
 
-    /// The focal length in millimetres that gives this view over the sensor (perspective).
+    /// The focal length in millimetres that gives this view over the sensor (perspective);
+    /// a panorama's `lens_mm`.
     pub fn focal_length_mm(&self, width: u32, height: u32) -> f32 {
         if let Projection::FocalLength { mm } | Projection::Panoramic { lens_mm: mm, .. } = self.projection {
             return mm;

@@ -938,14 +938,54 @@ def focus_distance(cam):
     return abs(view_axis.dot(offset))
 
 
+# Blender's panorama types that rt renders, by their rt `projection`.
+PANORAMAS = {
+    "EQUIRECTANGULAR": "equirectangular",
+    "FISHEYE_EQUIDISTANT": "fisheye_equidistant",
+    "FISHEYE_EQUISOLID": "fisheye_equisolid",
+    "MIRRORBALL": "mirror_ball",
+}
+
+
+def panorama_lines(cam):
+    """The keys of a panoramic camera: its mapping's angles (Blender's radians as degrees)."""
+    data = cam.data
+    kind = PANORAMAS[data.panorama_type]
+    lines = [f"projection = {json.dumps(kind)}"]
+    if kind == "equirectangular":
+        angles = []
+        for name, limit in [("latitude", math.pi / 2), ("longitude", math.pi)]:
+            for end in ("min", "max"):
+                value = getattr(data, f"{name}_{end}")
+                # Blender keeps its ±90° and ±180° in f32, a hair beyond them; it also lets
+                # longitudes run past a full turn, which rt keeps to.
+                if abs(value) > limit + 1e-6:
+                    log(f"camera {cam.name}: {name}_{end} beyond ±{math.degrees(limit):.0f}° is clamped to it")
+                value = max(-limit, min(limit, value))
+                angles.append(f"{name}_{end}_deg = {fmt(math.degrees(value))}")
+        lines += angles
+    elif kind.startswith("fisheye"):
+        lines.append(f"fisheye_fov_deg = {fmt(math.degrees(data.fisheye_fov))}")
+        if kind == "fisheye_equisolid":
+            lines.append(f"fisheye_lens_mm = {fmt(data.fisheye_lens)}")
+    if data.dof.use_dof:
+        # Cycles sizes a panorama's aperture from the camera's (perspective) lens.
+        lines.append(f"focal_length_mm = {fmt(data.lens)}")
+    return lines
+
+
 def camera_toml(scene):
-    """The camera as Cycles sees it: its roll through `up`, projection, sensor, shift, clip
-    planes and depth of field (Blender's camera looks down its local -Z with +Y up)."""
+    """The camera as Cycles sees it: its roll through `up`, projection (perspective,
+    orthographic or one of the panoramas of PANORAMAS), sensor, shift, clip planes and
+    depth of field (Blender's camera looks down its local -Z with +Y up)."""
     cam = scene.camera
     if cam is None:
         return ""
     data = cam.data
-    if data.type not in {"PERSP", "ORTHO"}:
+    panoramic = data.type == "PANO" and data.panorama_type in PANORAMAS
+    if data.type == "PANO" and not panoramic:
+        log(f"camera {cam.name}: the {data.panorama_type} panorama is exported as a perspective camera")
+    elif data.type not in {"PERSP", "ORTHO", "PANO"}:
         log(f"camera {cam.name}: {data.type} is exported as a perspective camera")
     if scene.render.pixel_aspect_x != scene.render.pixel_aspect_y:
         log(f"camera {cam.name}: rt has square pixels; the pixel aspect is ignored")
@@ -956,7 +996,9 @@ def camera_toml(scene):
     focus = focus_distance(cam)
     look_at = position + forward * (focus if focus > 0 else 10.0)
     lines = [f"position = {vec(position)}", f"look_at = {vec(look_at)}", f"up = {vec(up)}"]
-    if data.type == "ORTHO":
+    if panoramic:
+        lines += panorama_lines(cam)
+    elif data.type == "ORTHO":
         lines += ['projection = "orthographic"', f"ortho_scale = {fmt(data.ortho_scale)}"]
     else:
         lines.append(f"focal_length_mm = {fmt(data.lens)}")

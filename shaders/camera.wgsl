@@ -3,11 +3,15 @@
 // (perspective) or a start on the camera's plane (orthographic). With depth of field
 // the ray starts on the aperture instead and passes through the point where the
 // pinhole ray meets the plane in focus. Rays start at the near clip plane and end at
-// the far one.
+// the far one. A panoramic camera's rays go where its panorama maps the image
+// (`panorama_ray`).
 
 //#include "constants.wgsl"
 //#include "common.wgsl"
 //#include "rng.wgsl"
+//#if panorama
+//#include "panorama.wgsl"
+//#endif
 
 struct CameraRay {
     origin: vec3f,
@@ -16,10 +20,23 @@ struct CameraRay {
     t_max: f32,
 }
 
+//#if panorama
+// No ray: a direction of zero (outside a fisheye's image).
+fn no_camera_ray(ray: CameraRay) -> bool {
+    return all(ray.direction == vec3f(0.0));
+}
+//#endif
+
 fn camera_ray(pixel: vec2u, rng: ptr<function, Rng>) -> CameraRay {
     let jitter = vec2f(rng_next(rng), rng_next(rng));
     let ndc = (vec2f(pixel) + jitter) / vec2f(f32(frame.width), f32(frame.height)) * 2.0 - 1.0;
     let plane = vec2f(ndc.x, -ndc.y) * frame.view_half_extent + frame.view_shift;
+    //#if panorama
+    if frame.panorama != PANORAMA_NONE {
+        // The plane is Cycles' screen about its centre.
+        return panorama_ray(plane + 0.5, rng);
+    }
+    //#endif
     // In the camera's frame: x right, y up, z along the view.
     var origin = vec3f(0.0);
     var direction = vec3f(plane, 1.0);
@@ -46,6 +63,40 @@ fn camera_ray(pixel: vec2u, rng: ptr<function, Rng>) -> CameraRay {
     let t_max = min(clip_length * clip_scale, INFINITY);
     return CameraRay(world_origin + unit * (frame.clip_start * clip_scale), unit, t_max);
 }
+
+//#if panorama
+// Cycles' `camera_sample_panorama`: from the camera's centre along the panorama's
+// direction; with depth of field, from a point of the aperture set across that
+// direction towards where it meets the sphere in focus. Clipped at spheres about the
+// camera: clip_start and clip_end are distances along the ray.
+fn panorama_ray(uv: vec2f, rng: ptr<function, Rng>) -> CameraRay {
+    var direction = panorama_direction(uv);
+    if all(direction == vec3f(0.0)) {
+        return CameraRay(frame.camera_position, vec3f(0.0), 0.0);
+    }
+    var origin = vec3f(0.0);
+    //#if depth_of_field
+    // In Cycles' panoramic camera space, where x is the view.
+    let lens = sample_aperture(vec2f(rng_next(rng), rng_next(rng))) * frame.aperture_radius;
+    if frame.aperture_radius > 0.0 {
+        let toward = normalize(direction);
+        // Cycles' axes across the ray: u towards the view, v = toward × u (any pair
+        // along the view itself, where Cycles' u is undefined).
+        let along_view = vec3f(1.0, 0.0, 0.0) - toward.x * toward;
+        let u = select(vec3f(0.0, 1.0, 0.0), normalize(along_view), dot(along_view, along_view) > 1e-12);
+        let v = normalize(cross(toward, u));
+        origin = u * lens.x + v * lens.y;
+        direction = toward * frame.focus_distance - origin;
+    }
+    //#endif
+    let o = panorama_to_camera(origin);
+    let d = panorama_to_camera(direction);
+    let world_origin = frame.camera_position + o.x * frame.camera_right + o.y * frame.camera_up + o.z * frame.camera_forward;
+    let unit = normalize(d.x * frame.camera_right + d.y * frame.camera_up + d.z * frame.camera_forward);
+    let t_max = min(frame.clip_end - frame.clip_start, INFINITY);
+    return CameraRay(world_origin + unit * frame.clip_start, unit, t_max);
+}
+//#endif
 
 //#if depth_of_field
 // A point of the unit aperture (Cycles' `camera_sample_aperture`): the disk by the

@@ -47,6 +47,14 @@ struct Frame {
     // Camera rays start at the plane clip_start along the view and end at clip_end.
     clip_start: f32,
     clip_end: f32,
+    // A panoramic camera (`panorama.wgsl`; PANORAMA_NONE: none): Cycles' φ = x·u + y,
+    // θ = z·v + w of the equirectangular panorama; the equisolid fisheye's sensor (mm);
+    // the fisheyes' field of view (radians) and the equisolid's lens (mm).
+    equirectangular_range: vec4f,
+    fisheye_sensor: vec2f,
+    fisheye_fov: f32,
+    fisheye_lens: f32,
+    panorama: u32,
 }
 
 // A BVH2 node holding both children's boxes, so that one fetch decides where to go.

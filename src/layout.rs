@@ -49,7 +49,25 @@ pub struct GpuFrame {
     /// a perspective camera); the far one may be infinite.
     pub clip_start: f32,
     pub clip_end: f32,
+    /// A panoramic camera (`PANORAMA_*`, 0: none): Cycles' φ = x·u + y, θ = z·v + w of
+    /// the equirectangular panorama, in radians.
+    pub equirectangular_range: [f32; 4],
+    /// The equisolid fisheye's sensor width and height, millimetres.
+    pub fisheye_sensor: [f32; 2],
+    /// Radians.
+    pub fisheye_fov: f32,
+    /// Millimetres.
+    pub fisheye_lens: f32,
+    pub panorama: u32,
+    pub _pad: [u32; 3],
 }
+
+/// `GpuFrame::panorama`: which panorama maps the image to directions (`shaders/panorama.wgsl`).
+pub const PANORAMA_NONE: u32 = 0;
+pub const PANORAMA_EQUIRECTANGULAR: u32 = 1;
+pub const PANORAMA_FISHEYE_EQUIDISTANT: u32 = 2;
+pub const PANORAMA_FISHEYE_EQUISOLID: u32 = 3;
+pub const PANORAMA_MIRROR_BALL: u32 = 4;
 
 /// A BVH2 node with both children's boxes (see `shaders/common.wgsl`).
 #[repr(C)]

@@ -164,9 +164,10 @@ fn blender_scene_exports_packs_and_renders() {
     let _ = std::fs::remove_dir_all(&out);
 }
 
-/// The camera's position, view, roll, lens, shift and depth of field, and an orthographic one.
+/// The camera's position, view, roll, lens, shift and depth of field, an orthographic one
+/// and an equirectangular panorama.
 fn cameras_come_through(python: &Path, out: &Path, expected: &Value, scene: &Scene) {
-    use rt::scene::{DepthOfField, Projection, SensorFit};
+    use rt::scene::{DepthOfField, Panorama, Projection, SensorFit};
     let column = |m: &Value, c: usize| {
         let m = m.as_array().expect("matrix");
         y_up(&Value::from((0..3).map(|r| m[r][c].clone()).collect::<Vec<_>>()))
@@ -222,6 +223,22 @@ fn cameras_come_through(python: &Path, out: &Path, expected: &Value, scene: &Sce
     check_frame(&ortho, &expected["ortho"]["matrix_world"]);
     assert_eq!((ortho.projection, ortho.sensor_fit), (Projection::Orthographic { scale: 5.0 }, SensorFit::Vertical));
     assert_eq!((ortho.shift.y, ortho.depth_of_field), (0.2, None));
+
+    run(Command::new(python)
+        .arg(repo().join("blender/rt_export.py"))
+        .arg(out.join("pano.blend"))
+        .arg("--out")
+        .arg(out.join("assets"))
+        .arg("--scene")
+        .arg(out.join("scenes/pano.toml")));
+    let pano = rt::scene::load(&out.join("scenes/pano.toml")).unwrap_or_else(|e| panic!("{e}")).camera;
+    check_frame(&pano, &expected["pano"]["matrix_world"]);
+    let Projection::Panoramic { panorama, lens_mm } = pano.projection else { panic!("{:?}", pano.projection) };
+    let Panorama::Equirectangular { latitude_deg, longitude_deg } = panorama else { panic!("{panorama:?}") };
+    let close = |a: [f32; 2], b: [f32; 2]| (a[0] - b[0]).abs() < 1e-4 && (a[1] - b[1]).abs() < 1e-4;
+    assert!(close(latitude_deg, [-30.0, 60.0]) && close(longitude_deg, [-120.0, 75.0]), "{panorama:?}");
+    let dof = pano.depth_of_field.expect("depth of field");
+    assert_eq!((lens_mm, dof.fstop, dof.focus_distance), (24.0, 1.4, 2.0));
 }
 
 /// Each lamp's type, colour, power (exposure and "Normalize" folded in), shape and

@@ -54,7 +54,7 @@ fn lens_points(lens: &str) -> Vec<Vec2> {
 }
 
 /// Cycles' polygon: corners at `rotation + (2k + 1)π / n`, then x divided by `ratio`.
-fn corners(n: u32, rotation_deg: f32, ratio: f32) -> Vec<Vec2> {
+pub fn corners(n: u32, rotation_deg: f32, ratio: f32) -> Vec<Vec2> {
     (0..n)
         .map(|k| {
             let a = rotation_deg.to_radians() + (2 * k + 1) as f32 * std::f32::consts::PI / n as f32;
@@ -64,7 +64,7 @@ fn corners(n: u32, rotation_deg: f32, ratio: f32) -> Vec<Vec2> {
 }
 
 /// Inside a convex polygon with counter-clockwise corners, within `slack`.
-fn inside(p: Vec2, corners: &[Vec2], slack: f32) -> bool {
+pub fn inside(p: Vec2, corners: &[Vec2], slack: f32) -> bool {
     (0..corners.len()).all(|k| {
         let (a, b) = (corners[k], corners[(k + 1) % corners.len()]);
         let edge = (b - a).normalize();

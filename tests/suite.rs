@@ -22,6 +22,7 @@ mod blender_live;
 mod blender_live_watch;
 mod blender_roundtrip;
 mod camera_lens;
+mod camera_panorama;
 mod cycles_camera;
 mod cycles_environment;
 mod cycles_instances;

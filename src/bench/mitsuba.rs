@@ -102,7 +102,7 @@ pub fn translate(case: &MitsubaCase, dir: &Path) -> Result<Value> {
         Sky::Environment(_) => return unsupported("an environment map"),
     };
     let cam = &scene.camera;
-    if matches!(cam.projection, Projection::Orthographic { .. })
+    if matches!(cam.projection, Projection::Orthographic { .. } | Projection::Panoramic { .. })
         || cam.depth_of_field.is_some()
         || cam.shift != glam::Vec2::ZERO
     {

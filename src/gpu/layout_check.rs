@@ -65,7 +65,12 @@ fn host_structs_match_wgsl_layouts() {
                 ris_candidates,
                 clamp_luminance,
                 clip_start,
-                clip_end
+                clip_end,
+                equirectangular_range,
+                fisheye_sensor,
+                fisheye_fov,
+                fisheye_lens,
+                panorama
             ]
         ),
         host_layout!("BvhNode", GpuBvhNode, [a_min, a_link, a_max, a_count, b_min, b_link, b_max, b_count]),

@@ -77,6 +77,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("sun.wgsl"),
     shader!("texture.wgsl"),
     shader!("normal_map.wgsl"),
+    shader!("panorama.wgsl"),
     shader!("surface.wgsl"),
     shader!("trace_kernel.wgsl"),
     shader!("transform.wgsl"),

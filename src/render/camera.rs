@@ -1,9 +1,12 @@
 //! The camera's fields of the frame constants: its basis, its image plane (Blender's
 //! sensor fit, focal length or orthographic scale, and lens shift) and its aperture
-//! (Cycles' thin lens).
+//! (Cycles' thin lens), and a panorama's mapping.
 
-use crate::layout::GpuFrame;
-use crate::scene::{Camera, Projection};
+use crate::layout::{
+    GpuFrame, PANORAMA_EQUIRECTANGULAR, PANORAMA_FISHEYE_EQUIDISTANT, PANORAMA_FISHEYE_EQUISOLID, PANORAMA_MIRROR_BALL,
+    PANORAMA_NONE,
+};
+use crate::scene::{Camera, Panorama, Projection};
 
 /// Fills the camera fields of `frame` for an image of `width`×`height`.
 pub fn set_camera(frame: &mut GpuFrame, camera: &Camera, width: u32, height: u32) {
@@ -21,6 +24,21 @@ pub fn set_camera(frame: &mut GpuFrame, camera: &Camera, width: u32, height: u32
     frame.clip_start = camera.clip_start;
     // The shader's INFINITY, f32's largest: no far plane.
     frame.clip_end = camera.clip_end.min(f32::MAX);
+    frame.panorama = PANORAMA_NONE;
+    if let Projection::Panoramic { panorama, .. } = camera.projection {
+        frame.panorama = match panorama {
+            Panorama::Equirectangular { .. } => PANORAMA_EQUIRECTANGULAR,
+            Panorama::FisheyeEquidistant { .. } => PANORAMA_FISHEYE_EQUIDISTANT,
+            Panorama::FisheyeEquisolid { .. } => PANORAMA_FISHEYE_EQUISOLID,
+            Panorama::MirrorBall => PANORAMA_MIRROR_BALL,
+        };
+        frame.equirectangular_range = panorama.equirectangular_range();
+        frame.fisheye_sensor = camera.fisheye_sensor_mm(width, height).to_array();
+        frame.fisheye_fov = panorama.fisheye_fov();
+        if let Panorama::FisheyeEquisolid { lens_mm, .. } = panorama {
+            frame.fisheye_lens = lens_mm;
+        }
+    }
     // A pinhole, also for a pipeline that carries the lens code anyway (all features):
     // no aperture, and a plane in focus at any positive distance.
     frame.inv_aperture_ratio = 1.0;

@@ -1,8 +1,9 @@
 //! `[camera]`: Blender's camera. Where it stands and looks, its roll, its projection
-//! (perspective by a vertical angle or by a focal length over a sensor; orthographic),
-//! lens shift, and depth of field as Cycles models it: a thin lens whose aperture is a
-//! disk or a regular polygon.
+//! (perspective by a vertical angle or by a focal length over a sensor; orthographic;
+//! panoramic, see `panorama`), lens shift, and depth of field as Cycles models it: a thin
+//! lens whose aperture is a disk or a regular polygon.
 
+use super::panorama::{self, Panorama};
 use super::parse::{SceneError, Seg::Key, Source};
 use super::schema;
 use glam::{Vec2, Vec3};
@@ -27,6 +28,9 @@ pub enum Projection {
     FocalLength { mm: f32 },
     /// Parallel rays; `scale` metres of view along the fit (Blender's `ortho_scale`).
     Orthographic { scale: f32 },
+    /// Rays from the camera's centre in every direction the panorama maps the image to.
+    /// `lens_mm` is Blender's (perspective) `lens`, from which Cycles sizes the aperture.
+    Panoramic { panorama: Panorama, lens_mm: f32 },
 }
 
 /// A thin lens focused at `focus_distance`, its aperture from the f-number as in Cycles.
@@ -110,6 +114,9 @@ impl Camera {
     /// Blender's viewplane (`blender_camera_viewplane` in Cycles): the fit side spans the
     /// sensor (or `ortho_scale`), the other follows the image's aspect, and the shift is in
     /// units of the fit side.
+    ///
+    /// A panorama's plane is Cycles' screen, [0, 1]² moved by the shift, about its centre:
+    /// a half extent of 0.5, and the shift as it is.
     pub fn view_plane(&self, width: u32, height: u32) -> ViewPlane {
         let horizontal = self.fits_horizontally(width, height);
         let (w, h) = (width.max(1) as f32, height.max(1) as f32);
@@ -120,32 +127,64 @@ impl Camera {
             }
             Projection::FocalLength { mm } => 0.5 * self.sensor_along_fit() / mm,
             Projection::Orthographic { scale } => 0.5 * scale,
+            Projection::Panoramic { .. } => {
+                return ViewPlane { half_extent: Vec2::splat(0.5), shift: self.shift };
+            }
         };
         let half_extent =
             if horizontal { Vec2::new(half_fit, half_fit * h / w) } else { Vec2::new(half_fit * w / h, half_fit) };
         ViewPlane { half_extent, shift: self.shift * 2.0 * half_fit }
     }
 
-    /// The focal length in millimetres that gives this view over the sensor (perspective).
+    /// The focal length in millimetres that gives this view over the sensor (perspective);
+    /// a panorama's `lens_mm`.
     pub fn focal_length_mm(&self, width: u32, height: u32) -> f32 {
-        if let Projection::FocalLength { mm } = self.projection {
+        if let Projection::FocalLength { mm } | Projection::Panoramic { lens_mm: mm, .. } = self.projection {
             return mm;
         }
         let half = self.view_plane(width, height).half_extent;
         0.5 * self.sensor_along_fit() / if self.fits_horizontally(width, height) { half.x } else { half.y }
     }
 
+    /// The sensor's width and height in millimetres as the equisolid fisheye sees it
+    /// (Cycles' panorama sensor): the side along the fit spans the sensor, the other
+    /// follows the image's aspect.
+    pub fn fisheye_sensor_mm(&self, width: u32, height: u32) -> Vec2 {
+        let (w, h) = (width.max(1) as f32, height.max(1) as f32);
+        let size = self.sensor_along_fit();
+        if self.fits_horizontally(width, height) {
+            Vec2::new(size, size * h / w)
+        } else {
+            Vec2::new(size * w / h, size)
+        }
+    }
+
     /// The pinhole ray (origin, unit direction) through the point (`x`, `y`) of a
-    /// `width`×`height` image, in pixels from its top left: the camera's ray without its lens.
-    pub fn pixel_ray(&self, x: f32, y: f32, width: u32, height: u32) -> (Vec3, Vec3) {
+    /// `width`×`height` image, in pixels from its top left: the camera's ray without its
+    /// lens. `None` where a panorama sends no ray (outside a fisheye's image).
+    pub fn pixel_ray(&self, x: f32, y: f32, width: u32, height: u32) -> Option<(Vec3, Vec3)> {
         let (right, up, forward) = self.basis();
         let plane = self.view_plane(width, height);
         let ndc = Vec2::new(x / width.max(1) as f32, y / height.max(1) as f32) * 2.0 - 1.0;
         let at = Vec2::new(ndc.x, -ndc.y) * plane.half_extent + plane.shift;
         let across = right * at.x + up * at.y;
         match self.projection {
-            Projection::Orthographic { .. } => (self.position + across, forward),
-            _ => (self.position, (forward + across).normalize()),
+            Projection::Orthographic { .. } => Some((self.position + across, forward)),
+            Projection::Panoramic { panorama, .. } => {
+                let d = panorama.direction(at + 0.5, self.fisheye_sensor_mm(width, height))?;
+                Some((self.position, (right * d.x + up * d.y + forward * d.z).normalize()))
+            }
+            _ => Some((self.position, (forward + across).normalize())),
+        }
+    }
+
+    /// The focus distance that puts the point `t` along the unit `direction` from the
+    /// camera in focus: Cycles' plane in focus is across the view (its distance along the
+    /// view), a panorama's sphere in focus about the camera (its distance along the ray).
+    pub fn focus_distance_of(&self, direction: Vec3, t: f32) -> f32 {
+        match self.projection {
+            Projection::Panoramic { .. } => t,
+            _ => t * direction.dot(self.basis().2),
         }
     }
 
@@ -160,6 +199,8 @@ impl Camera {
 }
 
 const DEFAULT_FOV_Y_DEG: f32 = 40.0;
+/// Blender's default `lens`.
+const DEFAULT_LENS_MM: f32 = 50.0;
 /// Blender's default `ortho_scale`.
 const DEFAULT_ORTHO_SCALE: f32 = 6.0;
 /// Blender's limit on `aperture_blades`.
@@ -188,8 +229,18 @@ pub(super) fn validate(src: &Source, c: schema::Camera) -> Result<Camera, SceneE
         true => Err(src.error(&p, key, format!("only applies {condition}"))),
         false => Ok(()),
     };
-    let projection = match c.projection {
-        schema::Projection::Orthographic => {
+    let projection = match (panorama::validate(src, &c)?, c.projection) {
+        (Some(panorama), _) => {
+            only("fov_y_deg", c.fov_y_deg.is_some(), "to projection = \"perspective\"")?;
+            only("ortho_scale", c.ortho_scale.is_some(), "to projection = \"orthographic\"")?;
+            // A panorama's focal length only sizes its aperture.
+            let with_fstop = "to a panorama with fstop (its aperture)";
+            only("focal_length_mm", c.focal_length_mm.is_some() && c.fstop.is_none(), with_fstop)?;
+            let lens_mm = c.focal_length_mm.unwrap_or(DEFAULT_LENS_MM);
+            src.check(&p, "focal_length_mm", &[lens_mm], "positive", |f| f > 0.0)?;
+            Projection::Panoramic { panorama, lens_mm }
+        }
+        (None, schema::Projection::Orthographic) => {
             let perspective_only = "to projection = \"perspective\"";
             only("fov_y_deg", c.fov_y_deg.is_some(), perspective_only)?;
             only("focal_length_mm", c.focal_length_mm.is_some(), perspective_only)?;
@@ -197,7 +248,7 @@ pub(super) fn validate(src: &Source, c: schema::Camera) -> Result<Camera, SceneE
             src.check(&p, "ortho_scale", &[scale], "positive", |s| s > 0.0)?;
             Projection::Orthographic { scale }
         }
-        schema::Projection::Perspective => {
+        (None, _) => {
             only("ortho_scale", c.ortho_scale.is_some(), "to projection = \"orthographic\"")?;
             match (c.fov_y_deg, c.focal_length_mm) {
                 (Some(_), Some(_)) => return Err(src.error(&p, "focal_length_mm", "excludes fov_y_deg: give one")),

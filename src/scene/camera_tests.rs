@@ -130,7 +130,8 @@ fn bad_camera_keys_are_located() {
         ("up = [0, 0, 0]", "scene.toml:2:6: [camera]: up must be a direction not along the view (look_at − position)"),
         (
             "projection = \"ortho\"",
-            "scene.toml:2:14: [camera]: unknown projection `ortho`; expected one of `perspective`, `orthographic`",
+            "scene.toml:2:14: [camera]: unknown projection `ortho`; expected one of `perspective`, `orthographic`, \
+             `equirectangular`, `fisheye_equidistant`, `fisheye_equisolid`, `mirror_ball`",
         ),
         (
             "sensor_fit = \"horizontl\"",
@@ -153,10 +154,21 @@ fn pixel_rays_cross_the_image_plane() {
         Camera { position: Vec3::ZERO, look_at: Vec3::NEG_Z, shift: Vec2::new(0.25, 0.0), ..Camera::default() };
     let half = camera.view_plane(100, 50).half_extent;
     // The centre looks along the view, moved by the shift: a quarter of the width (the fit side).
-    let (origin, direction) = camera.pixel_ray(50.0, 25.0, 100, 50);
+    let (origin, direction) = camera.pixel_ray(50.0, 25.0, 100, 50).expect("a ray");
     let expected = Vec3::new(0.5 * half.x, 0.0, -1.0).normalize();
     assert!(origin == Vec3::ZERO && direction.distance(expected) < 1e-6, "{direction} vs {expected}");
     let ortho = Camera { projection: Projection::Orthographic { scale: 2.0 }, ..camera };
-    let (origin, direction) = ortho.pixel_ray(0.0, 0.0, 100, 50);
+    let (origin, direction) = ortho.pixel_ray(0.0, 0.0, 100, 50).expect("a ray");
     assert!(origin.distance(Vec3::new(-0.5, 0.5, 0.0)) < 1e-6 && direction == Vec3::NEG_Z, "{origin} {direction}");
+}
+
+#[test]
+fn focus_is_along_the_view_or_for_a_panorama_along_the_ray() {
+    let camera = Camera { position: Vec3::ZERO, look_at: Vec3::NEG_Z, ..Camera::default() };
+    let slanted = Vec3::new(0.6, 0.0, -0.8);
+    // The plane in focus is across the view: a point 5 m out along a slanted ray is 4 m deep.
+    assert!((camera.focus_distance_of(slanted, 5.0) - 4.0).abs() < 1e-6);
+    let panorama =
+        Camera { projection: Projection::Panoramic { panorama: Panorama::MirrorBall, lens_mm: 50.0 }, ..camera };
+    assert_eq!(panorama.focus_distance_of(slanted, 5.0), 5.0);
 }

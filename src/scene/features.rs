@@ -1,6 +1,8 @@
 //! Feature analysis: which effects a scene needs, so that the GPU runs only their code.
 
-use super::{Light, LightSampler, LightShape, Material, Microfacet, RoughTransmission, Sampling, Scene, Sky};
+use super::{
+    Light, LightSampler, LightShape, Material, Microfacet, Projection, RoughTransmission, Sampling, Scene, Sky,
+};
 use std::fmt;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -80,6 +82,8 @@ pub struct FeatureSet {
     pub sampling: Sampling,
     /// A thin-lens camera: rays start across the aperture.
     pub depth_of_field: bool,
+    /// A panoramic camera (equirectangular, fisheye, mirror ball).
+    pub panorama: bool,
     /// Light sampling walks the light tree (`light_sampler = "tree"`, with lights to put in it).
     pub light_tree: bool,
     /// Albedo, normal and depth images beside the radiance (asked for by a render, not a scene).
@@ -149,6 +153,7 @@ impl FeatureSet {
             normal_maps: materials_in_use.iter().any(|m| m.textures.normal.is_some()),
             sampling: settings.sampling,
             depth_of_field: scene.camera.depth_of_field.is_some(),
+            panorama: matches!(scene.camera.projection, Projection::Panoramic { .. }),
             light_tree: settings.light_sampler == LightSampler::Tree
                 && settings.sampling == Sampling::Nee
                 && (materials_in_use.iter().any(|m| m.is_emissive()) || scene.lights.iter().any(|l| !l.is_sun())),
@@ -185,6 +190,7 @@ impl FeatureSet {
             normal_maps: true,
             sampling,
             depth_of_field: true,
+            panorama: true,
             light_tree: sampling == Sampling::Nee,
             aovs: false,
             adaptive: false,
@@ -223,6 +229,7 @@ impl FeatureSet {
             "normal_maps" => self.normal_maps,
             "nee" => self.sampling == Sampling::Nee,
             "depth_of_field" => self.depth_of_field,
+            "panorama" => self.panorama,
             "light_tree" => self.light_tree,
             "aovs" => self.aovs,
             "adaptive" => self.adaptive,
@@ -246,6 +253,7 @@ impl fmt::Display for FeatureSet {
             (self.glossy, "glossy"),
             (self.media, "media"),
             (self.depth_of_field, "depth-of-field"),
+            (self.panorama, "panorama"),
             (self.textures, "textures"),
             (self.alpha_mask, "alpha-mask"),
             (self.light_tree, "light-tree"),

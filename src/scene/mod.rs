@@ -8,6 +8,7 @@ mod environment;
 mod features;
 mod light;
 mod material;
+mod panorama;
 mod parse;
 mod schema;
 #[cfg(test)]
@@ -21,6 +22,7 @@ pub use environment::Environment;
 pub use features::{ALPHA_DELTA, FeatureSet, GeometrySummary, LampKinds, SkyFeature, Transmission};
 pub use light::{AreaShape, Light, LightShape};
 pub use material::{Material, MaterialTextures, luminance};
+pub use panorama::Panorama;
 pub use parse::{SceneError, hint as did_you_mean, load, parse};
 pub use validate::MAX_IMAGE_SIDE;
 

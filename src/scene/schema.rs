@@ -52,6 +52,12 @@ pub(super) struct Camera {
     pub aperture_ratio: Option<f32>,
     pub clip_start: f32,
     pub clip_end: Option<f32>,
+    pub latitude_min_deg: Option<f32>,
+    pub latitude_max_deg: Option<f32>,
+    pub longitude_min_deg: Option<f32>,
+    pub longitude_max_deg: Option<f32>,
+    pub fisheye_fov_deg: Option<f32>,
+    pub fisheye_lens_mm: Option<f32>,
 }
 
 impl Default for Camera {
@@ -78,15 +84,25 @@ impl Default for Camera {
             aperture_ratio: None,
             clip_start: 0.0,
             clip_end: None,
+            latitude_min_deg: None,
+            latitude_max_deg: None,
+            longitude_min_deg: None,
+            longitude_max_deg: None,
+            fisheye_fov_deg: None,
+            fisheye_lens_mm: None,
         }
     }
 }
 
 #[derive(Clone, Copy, PartialEq, Deserialize)]
-#[serde(rename_all = "lowercase")]
+#[serde(rename_all = "snake_case")]
 pub(super) enum Projection {
     Perspective,
     Orthographic,
+    Equirectangular,
+    FisheyeEquidistant,
+    FisheyeEquisolid,
+    MirrorBall,
 }
 
 pub(super) use super::camera::SensorFit;

@@ -74,6 +74,8 @@ impl Viewer<'_> {
 
     /// The camera focused at the depth of the surface under the mouse (the window's centre
     /// without one), found by the trace program; `None` (and a note) when there is nothing to do.
+    /// Cycles focuses a perspective or orthographic camera on a plane across the view, a
+    /// panorama on a sphere about the camera.
     fn focus_under_cursor(&mut self) -> anyhow::Result<Option<Camera>> {
         let camera = self.live.scene().camera.clone();
         let Some(dof) = camera.depth_of_field else {
@@ -82,7 +84,10 @@ impl Viewer<'_> {
         };
         let (width, height) = self.window.as_ref().map_or((1, 1), |w| (w.config.width, w.config.height));
         let (x, y) = self.cursor.map_or((width as f32 / 2.0, height as f32 / 2.0), |(x, y)| (x as f32, y as f32));
-        let (origin, direction) = camera.pixel_ray(x, y, width, height);
+        let Some((origin, direction)) = camera.pixel_ray(x, y, width, height) else {
+            self.log.write("the mouse is outside the panorama's image");
+            return Ok(None);
+        };
         let ray =
             GpuTraceRay { origin: origin.to_array(), t_max: f32::INFINITY, direction: direction.to_array(), _pad: 0 };
         let hit = self.live.session.trace(&[ray])?[0];
@@ -90,8 +95,7 @@ impl Viewer<'_> {
             self.log.write("nothing under the mouse to focus on");
             return Ok(None);
         }
-        // Cycles' plane in focus is perpendicular to the view: its distance is along the view.
-        let focus_distance = hit.t * direction.dot(camera.basis().2);
+        let focus_distance = camera.focus_distance_of(direction, hit.t);
         self.log.write(&format!("focus at {focus_distance:.3} m"));
         Ok(Some(Camera { depth_of_field: Some(DepthOfField { focus_distance, ..dof }), ..camera }))
     }

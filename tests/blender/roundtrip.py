@@ -1,7 +1,8 @@
 """Blender side of tests/blender_roundtrip.rs (run with the bpy venv's python).
 
-    roundtrip.py build OUT     builds OUT/roundtrip.blend (and OUT/ortho.blend, the same
-                               through its orthographic camera) and writes OUT/expected.json
+    roundtrip.py build OUT     builds OUT/roundtrip.blend (and OUT/ortho.blend and OUT/pano.blend,
+                               the same through its orthographic and its panoramic camera)
+                               and writes OUT/expected.json
                                with what rt must find (raw Blender values; the Rust test
                                converts them itself), plus Blender's own glTF, GLB and OBJ
                                exports of the `probe` object into OUT/formats/
@@ -10,6 +11,7 @@
 """
 
 import json
+import math
 import os
 import sys
 
@@ -86,6 +88,14 @@ def build(out):
     ortho.name = "ortho"
     ortho.data.type, ortho.data.ortho_scale, ortho.data.sensor_fit = "ORTHO", 5.0, "VERTICAL"
     ortho.data.shift_y = 0.2
+    # Exported from pano.blend: a window of an equirectangular panorama, with depth of field.
+    bpy.ops.object.camera_add(location=(-1.0, 0.5, 1.5), rotation=(1.2, 0.1, -0.6))
+    pano = bpy.context.object
+    pano.name = "pano"
+    pano.data.type, pano.data.panorama_type, pano.data.lens = "PANO", "EQUIRECTANGULAR", 24.0
+    pano.data.latitude_min, pano.data.latitude_max = math.radians(-30.0), math.radians(60.0)
+    pano.data.longitude_min, pano.data.longitude_max = math.radians(-120.0), math.radians(75.0)
+    pano.data.dof.use_dof, pano.data.dof.aperture_fstop, pano.data.dof.focus_distance = True, 1.4, 2.0
     bpy.ops.object.light_add(type="SUN", rotation=(0.6, 0.0, 0.8))
     lamps = {"sun": bpy.context.object}
     lamps["sun"].data.energy = 2.5
@@ -116,6 +126,8 @@ def build(out):
     bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, "roundtrip.blend"))
     scene.camera = ortho
     bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, "ortho.blend"), copy=True)
+    scene.camera = pano
+    bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, "pano.blend"), copy=True)
     scene.camera = camera
 
     depsgraph = bpy.context.evaluated_depsgraph_get()
@@ -138,6 +150,7 @@ def build(out):
         "focus_object_location": list(lamp.matrix_world.translation),
     }
     expected["ortho"] = {"matrix_world": [list(row) for row in ortho.matrix_world]}
+    expected["pano"] = {"matrix_world": [list(row) for row in pano.matrix_world]}
     expected["lights"] = {
         name: {
             "type": obj.data.type,

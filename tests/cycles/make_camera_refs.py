@@ -8,9 +8,13 @@ tests/cycles/scenes/camera_NAME/ (scene.toml and its assets). CI does not run Cy
 commit both.
 
 The scene is nine emissive cubes of different colours at three depths and five small
-bright ones far behind them before an emissive wall, under a dim uniform world. Every surface only emits (black base colour, no specular
+bright ones far behind them before an emissive wall, under a dim uniform world. The
+panoramic cameras (names starting `pano_`) stand instead among boxes all around them: one
+of its own colour in each of the six axis directions, a smaller one towards each of the
+eight corners, and a floor. Every surface only emits (black base colour, no specular
 layer), so a pixel's value is the emission its camera rays meet: the comparison tests where
-the rays go (roll, projection, shift, sensor fit, aperture, clip planes) and nothing else.
+the rays go (roll, projection, panorama mapping, shift, sensor fit, aperture, clip planes)
+and nothing else.
 
 Cycles settings: box filter of width 1, no clamping, denoising or adaptive sampling,
 blur_glossy 0, linear 32-bit EXR.
@@ -44,6 +48,9 @@ COLOURS = [
 ]
 # Depth (Blender Y) of the cube in grid cell (i, j).
 DEPTHS = (-3.0, 0.0, 3.0)
+
+# Where the panoramic cameras stand and look (build_surroundings' boxes are about it).
+PANO_VIEW = {"location": (0.2, -0.3, 0.1), "target": (1.2, 0.9, 0.5), "roll_deg": 15.0}
 
 # name: (width, height, camera settings). Positions and targets are in Blender's Z-up
 # coordinates; `roll_deg` turns the camera about its view axis.
@@ -117,6 +124,56 @@ CAMERAS = {
             "aperture_ratio": 1.6,
         },
     ),
+    # Panoramas, from a point among boxes all around (build_surroundings), looking
+    # off-axis and rolled so that a wrong axis or sign shows.
+    "pano_equirect": (128, 64, {**PANO_VIEW, "panorama": "EQUIRECTANGULAR"}),
+    # A window of the sphere, moved by a lens shift.
+    "pano_equirect_window": (
+        128,
+        64,
+        {
+            **PANO_VIEW,
+            "panorama": "EQUIRECTANGULAR",
+            "latitude_deg": (-30.0, 60.0),
+            "longitude_deg": (-120.0, 75.0),
+            "shift_x": 0.05,
+            "shift_y": -0.1,
+        },
+    ),
+    # A wide fisheye on a landscape image: a circle stretched to an ellipse.
+    "pano_fisheye_equidistant": (96, 64, {**PANO_VIEW, "panorama": "FISHEYE_EQUIDISTANT", "fisheye_fov_deg": 220.0}),
+    # Its circle cut by the sensor's height; the vertical fit spans the height by the sensor's.
+    "pano_fisheye_equisolid": (
+        96,
+        64,
+        {**PANO_VIEW, "panorama": "FISHEYE_EQUISOLID", "fisheye_fov_deg": 190.0, "fisheye_lens": 7.0},
+    ),
+    "pano_fisheye_equisolid_vertical": (
+        64,
+        96,
+        {
+            **PANO_VIEW,
+            "panorama": "FISHEYE_EQUISOLID",
+            "fisheye_fov_deg": 160.0,
+            "fisheye_lens": 5.0,
+            "sensor_fit": "VERTICAL",
+        },
+    ),
+    "pano_mirror_ball": (64, 64, {**PANO_VIEW, "panorama": "MIRRORBALL"}),
+    # Depth of field on a sphere in focus (Cycles focuses panoramas at a distance along
+    # each ray, with the aperture across it), through a six-bladed aperture.
+    "pano_equirect_dof": (
+        128,
+        64,
+        {**PANO_VIEW, "panorama": "EQUIRECTANGULAR", "fstop": 0.04, "focus_distance": 1.2, "blades": 6},
+    ),
+    # Clipped at spheres about the camera: clip_start cuts into the corner boxes, clip_end
+    # into the axis boxes and hides the floor's far parts.
+    "pano_equirect_clipped": (
+        128,
+        64,
+        {**PANO_VIEW, "panorama": "EQUIRECTANGULAR", "clip_start": 2.5, "clip_end": 3.3},
+    ),
 }
 
 
@@ -155,6 +212,37 @@ def build_objects(scene):
     scene.world = world
 
 
+def build_surroundings(scene):
+    """Boxes all around PANO_VIEW's location: one in each axis direction, smaller ones
+    towards the corners, a floor below; a dim world."""
+    centre = Vector(PANO_VIEW["location"])
+    axes = [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)]
+    for k, axis in enumerate(axes):
+        location = centre + 3.0 * Vector(axis)
+        bpy.ops.mesh.primitive_cube_add(size=1.1, location=location, rotation=(0.2 * k, 0.0, 0.35 * k))
+        box = bpy.context.object
+        box.name = box.data.name = f"axis_{k}"
+        box.data.materials.append(emitter(box.name, COLOURS[k]))
+    k = 0
+    for sx in (-1, 1):
+        for sy in (-1, 1):
+            for sz in (-1, 1):
+                location = centre + 1.5 * Vector((sx, sy, sz))
+                bpy.ops.mesh.primitive_cube_add(size=0.5, location=location, rotation=(0.0, 0.4, 0.2 * k))
+                box = bpy.context.object
+                box.name = box.data.name = f"corner_{k}"
+                box.data.materials.append(emitter(box.name, COLOURS[(k + 6) % len(COLOURS)]))
+                k += 1
+    bpy.ops.mesh.primitive_plane_add(size=12.0, location=centre + Vector((0.0, 0.0, -3.6)))
+    floor = bpy.context.object
+    floor.name = floor.data.name = "floor"
+    floor.data.materials.append(emitter("floor", (0.25, 0.125, 0.0625)))
+    world = bpy.data.worlds.new("world")
+    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.0625, 0.125, 0.1875, 1.0)
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
+    scene.world = world
+
+
 def add_camera(scene, settings):
     bpy.ops.object.camera_add(location=settings["location"])
     cam = bpy.context.object
@@ -169,6 +257,15 @@ def add_camera(scene, settings):
     data.sensor_fit = settings.get("sensor_fit", "AUTO")
     data.shift_x = settings.get("shift_x", 0.0)
     data.shift_y = settings.get("shift_y", 0.0)
+    if "panorama" in settings:
+        data.type = "PANO"
+        data.panorama_type = settings["panorama"]
+        data.latitude_min, data.latitude_max = (math.radians(a) for a in settings.get("latitude_deg", (-90.0, 90.0)))
+        data.longitude_min, data.longitude_max = (
+            math.radians(a) for a in settings.get("longitude_deg", (-180.0, 180.0))
+        )
+        data.fisheye_fov = math.radians(settings.get("fisheye_fov_deg", 180.0))
+        data.fisheye_lens = settings.get("fisheye_lens", 10.5)
     if "clip_start" in settings:
         data.clip_start, data.clip_end = settings["clip_start"], settings["clip_end"]
     if "fstop" in settings:
@@ -217,7 +314,7 @@ def main():
         width, height, settings = CAMERAS[name]
         bpy.ops.wm.read_factory_settings(use_empty=True)
         scene = bpy.context.scene
-        build_objects(scene)
+        (build_surroundings if name.startswith("pano_") else build_objects)(scene)
         add_camera(scene, settings)
         set_up_cycles(scene, width, height, args.spp)
         bpy.context.view_layer.update()

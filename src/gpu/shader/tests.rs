@@ -42,6 +42,7 @@ fn feature_sets() -> Vec<FeatureSet> {
             normal_maps: on(0) != on(4) && on(7),
             sampling: if on(0) { Sampling::Nee } else { Sampling::Resampled },
             depth_of_field: on(4) != on(6),
+            panorama: on(2) != on(5),
             light_tree: on(0) && on(4) != on(7),
             aovs: on(3) != on(7),
             adaptive: on(1) != on(5),
@@ -74,6 +75,7 @@ fn plain() -> FeatureSet {
         normal_maps: false,
         sampling: Sampling::Nee,
         depth_of_field: false,
+        panorama: false,
         light_tree: false,
         aovs: false,
         adaptive: false,
@@ -217,6 +219,8 @@ fn absent_effects_leave_no_code() {
         "@group(2)",
         "fn sample_aperture",
         "frame.aperture_radius",
+        "fn panorama_direction",
+        "frame.panorama",
         "struct Lamp",
         "lamps",
         "@binding(10)",
@@ -252,6 +256,8 @@ fn absent_effects_leave_no_code() {
     for program in [Program::Integrator, Program::Trace] {
         let lens = assemble(program, &FeatureSet { depth_of_field: true, ..plain });
         assert!(lens.contains("fn sample_aperture"), "no aperture in the depth-of-field {program:?} pipeline");
+        let panorama = assemble(program, &FeatureSet { panorama: true, ..plain });
+        assert!(panorama.contains("fn panorama_direction"), "no panorama in the panoramic {program:?} pipeline");
     }
     // Includes inside dropped blocks are not followed: the files are not there at all.
     for file in [
@@ -263,6 +269,7 @@ fn absent_effects_leave_no_code() {
         "segment.wgsl",
         "texture.wgsl",
         "environment.wgsl",
+        "panorama.wgsl",
     ] {
         assert!(!files_in(&source).contains(&file), "{file} is in the plain pipeline");
     }

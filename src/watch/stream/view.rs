@@ -211,7 +211,7 @@ mod tests {
     /// the matrix's inverse says it does.
     fn check_rays(camera: &Camera, p: Mat4, view: Mat4, (w, h): (u32, u32)) {
         for (x, y) in [(0.0, 0.0), (w as f32, 0.0), (0.3 * w as f32, 0.8 * h as f32), (w as f32, h as f32)] {
-            let (origin, dir) = camera.pixel_ray(x, y, w, h);
+            let (origin, dir) = camera.pixel_ray(x, y, w, h).expect("a ray");
             let ndc = Vec2::new(2.0 * x / w as f32 - 1.0, 1.0 - 2.0 * y / h as f32);
             let eye = p.inverse().project_point3(Vec3::new(ndc.x, ndc.y, -1.0));
             let world = view.inverse().transform_point3(eye);
@@ -239,7 +239,7 @@ mod tests {
         let p = ortho(-2.0, 4.0, -1.5, 3.0);
         let camera = camera_from_view(view, Optics { lens: Lens::Matrix(p), ..Optics::default() }).expect("a camera");
         assert_eq!(camera.projection, Projection::Orthographic { scale: 6.0 });
-        let (origin, dir) = camera.pixel_ray(0.0, 0.0, 60, 45);
+        let (origin, dir) = camera.pixel_ray(0.0, 0.0, 60, 45).expect("a ray");
         assert!((dir - Vec3::NEG_Z).length() < 1e-6);
         assert!((origin - Vec3::new(-2.0, 3.0, 5.0)).length() < 1e-4, "{origin}");
     }

@@ -1,0 +1,71 @@
+// Blender's panoramic cameras, mapped as Cycles maps them
+// (`intern/cycles/kernel/camera/projection.h`): a point (u, v) of Cycles' screen ([0, 1]²,
+// v up, the lens shift added) gives a direction in Cycles' panoramic camera space, x along
+// the view, y to the left, z up (the mirror ball's: x right, y back against the view, z
+// up); `panorama_to_camera` turns it into rt's camera frame, as Cycles' camera matrix
+// (`blender_camera_matrix`) does. `scene::Panorama` is the same on the host.
+
+//#include "common.wgsl"
+
+const PANORAMA_NONE: u32 = 0u;
+const PANORAMA_EQUIRECTANGULAR: u32 = 1u;
+const PANORAMA_FISHEYE_EQUIDISTANT: u32 = 2u;
+const PANORAMA_FISHEYE_EQUISOLID: u32 = 3u;
+const PANORAMA_MIRROR_BALL: u32 = 4u;
+
+// Cycles' `panorama_to_direction`, not normalised; zero outside a fisheye's or a mirror
+// ball's image, where Cycles sends no ray.
+fn panorama_direction(uv: vec2f) -> vec3f {
+    switch frame.panorama {
+        case PANORAMA_EQUIRECTANGULAR: {
+            let range = frame.equirectangular_range;
+            let phi = range.x * uv.x + range.y;
+            let theta = range.z * uv.y + range.w;
+            return vec3f(sin(theta) * cos(phi), sin(theta) * sin(phi), cos(theta));
+        }
+        case PANORAMA_FISHEYE_EQUIDISTANT: {
+            let p = (uv - 0.5) * 2.0;
+            let r = length(p);
+            if r > 1.0 {
+                return vec3f(0.0);
+            }
+            return fisheye_direction(r * frame.fisheye_fov * 0.5, p, r);
+        }
+        case PANORAMA_FISHEYE_EQUISOLID: {
+            let p = (uv - 0.5) * frame.fisheye_sensor;
+            let r = length(p);
+            if r > 2.0 * frame.fisheye_lens * sin(frame.fisheye_fov * 0.25) {
+                return vec3f(0.0);
+            }
+            return fisheye_direction(2.0 * asin(r / (2.0 * frame.fisheye_lens)), p, r);
+        }
+        default: {
+            // The mirror ball: its normal, facing the camera (−y), reflects the view (+y).
+            let x = 2.0 * uv.x - 1.0;
+            let z = 2.0 * uv.y - 1.0;
+            if x * x + z * z > 1.0 {
+                return vec3f(0.0);
+            }
+            let n = vec3f(x, -sqrt(max(1.0 - x * x - z * z, 0.0)), z);
+            let incoming = vec3f(0.0, -1.0, 0.0);
+            return 2.0 * dot(n, incoming) * n - incoming;
+        }
+    }
+}
+
+// Cycles' `fisheye_to_direction`: `theta` from the view, turned towards `p` (at radius `r`).
+fn fisheye_direction(theta: f32, p: vec2f, r: f32) -> vec3f {
+    var phi = acos(clamp(select(0.0, p.x / r, r != 0.0), -1.0, 1.0));
+    if p.y < 0.0 {
+        phi = -phi;
+    }
+    return vec3f(cos(theta), -cos(phi) * sin(theta), sin(phi) * sin(theta));
+}
+
+// Cycles' panoramic camera space to rt's camera frame (x right, y up, z along the view).
+fn panorama_to_camera(d: vec3f) -> vec3f {
+    if frame.panorama == PANORAMA_MIRROR_BALL {
+        return vec3f(d.x, d.z, -d.y);
+    }
+    return vec3f(-d.y, d.z, d.x);
+}

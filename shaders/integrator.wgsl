@@ -222,12 +222,6 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, s
     // coins of blended surfaces.
     var path_key: u32;
     //#endif
-    //#if panorama
-    // Where a panorama sends no ray (outside a fisheye's image), Cycles' pixel is black.
-    if no_camera_ray(camera) {
-        return vec3f(0.0);
-    }
-    //#endif
     loop {
         if starting {
             starting = false;
@@ -253,6 +247,13 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, s
             //#endif
             //#if aovs
             aov_begin();
+            //#endif
+            //#if panorama
+            // Where a panorama sends no ray (outside a fisheye's image), Cycles' pixel is black.
+            if no_camera_ray(camera) {
+                sample_finished = true;
+                continue;
+            }
             //#endif
         }
         var ray_origin = origin;

@@ -42,7 +42,8 @@ impl Aperture {
     /// rt's renderer takes the f-number, and the aperture is half the focal length over it.
     fn depth_of_field(&self, projection: Projection) -> Result<DepthOfField, String> {
         let aperture_diameter = match projection {
-            Projection::FocalLength { mm } => mm * 1e-3,
+            // A panorama's aperture is sized by its camera's ordinary lens, as in Cycles.
+            Projection::FocalLength { mm } | Projection::Panoramic { lens_mm: mm, .. } => mm * 1e-3,
             Projection::Orthographic { .. } => 1.0,
             Projection::FovY { .. } => {
                 return Err("aperture= needs lens=, ortho= or projection= (with fov= the focal length \

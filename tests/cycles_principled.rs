@@ -28,11 +28,17 @@ fn luminance(p: [f32; 3]) -> f64 {
 }
 
 fn check(name: &str) {
-    let dir = repo().join(format!("tests/cycles/scenes/principled_{name}"));
+    check_row(&format!("principled_{name}"));
+}
+
+/// rt against Cycles on the row of five spheres `tests/cycles/scenes/NAME/` (its reference:
+/// `tests/cycles/NAME.exr`, 2048 spp): per sphere within 4 σ, per 8×8 block within 5 σ.
+pub(crate) fn check_row(name: &str) {
+    let dir = repo().join(format!("tests/cycles/scenes/{name}"));
     let scene = rt::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
     let (w, h) = (scene.render.width as usize, scene.render.height as usize);
     let ours = render(scene, w as u32, h as u32, SPP, MAX_BOUNCES);
-    let file = repo().join(format!("tests/cycles/principled_{name}.exr"));
+    let file = repo().join(format!("tests/cycles/{name}.exr"));
     let theirs = image::open(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display())).into_rgb32f();
     let noise_scale = (1.0 + SPP as f64 / REFERENCE_SPP).sqrt();
     let mut worst: f64 = 0.0;
@@ -48,7 +54,7 @@ fn check(name: &str) {
         }
         let n = (COLUMN * h) as f64;
         let z = (a - b).abs() / (var.sqrt() * noise_scale).max(1e-9);
-        println!("principled_{name} sphere {sphere}: rt {:.5} vs Cycles {:.5}, {z:.2} σ", a / n, b / n);
+        println!("{name} sphere {sphere}: rt {:.5} vs Cycles {:.5}, {z:.2} σ", a / n, b / n);
         worst = worst.max(z);
     }
     let mut worst_block: f64 = 0.0;
@@ -68,10 +74,10 @@ fn check(name: &str) {
         }
     }
     reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4))
-        .check_mean(&format!("principled_{name}"), "Cycles");
-    println!("principled_{name}: worst 8x8 block {worst_block:.2} σ (with {TABLE_PRECISION} relative)");
-    assert!(worst <= 4.0, "principled_{name}: a sphere is {worst:.2} σ from Cycles'");
-    assert!(worst_block <= 5.0, "principled_{name}: a block is {worst_block:.2} σ from Cycles'");
+        .check_mean(name, "Cycles");
+    println!("{name}: worst 8x8 block {worst_block:.2} σ (with {TABLE_PRECISION} relative)");
+    assert!(worst <= 4.0, "{name}: a sphere is {worst:.2} σ from Cycles'");
+    assert!(worst_block <= 5.0, "{name}: a block is {worst_block:.2} σ from Cycles'");
 }
 
 #[test]
@@ -117,4 +123,10 @@ fn coat_weight_matches_cycles() {
 #[test]
 fn coat_roughness_and_tint_match_cycles() {
     check("coat_roughness");
+}
+
+/// Cycles dims a Principled's emission by its coat (reflectance and tint); so does rt.
+#[test]
+fn emission_under_the_coat_matches_cycles() {
+    check("emission_coat");
 }

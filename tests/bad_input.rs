@@ -162,7 +162,9 @@ fn microfacet_flag_overrides_the_scene() {
         ),
     );
     let scene = scene.to_str().expect("utf-8 path");
-    for (args, multiscatter) in [(&[][..], true), (&["--microfacet", "single"][..], false), (&["--microfacet", "multiscatter"][..], true)] {
+    for (args, multiscatter) in
+        [(&[][..], true), (&["--microfacet", "single"][..], false), (&["--microfacet", "multiscatter"][..], true)]
+    {
         let (code, stderr) = rt(&[args, &[scene]].concat());
         assert_eq!(code, 0, "{args:?}: {stderr}");
         let features = stderr.lines().find(|l| l.contains("features [")).unwrap_or_else(|| panic!("{stderr}"));

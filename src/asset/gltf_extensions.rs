@@ -72,6 +72,22 @@ mod tests {
         assert!(e.contains("KHR_materials_clearcoat.clearcoatFactor must be a number"), "{e}");
     }
 
+    /// Through the importer: clearcoat becomes rt's coat (index 1.5, untinted); rt's own
+    /// extras, which rt_export.py writes beside it, win.
+    #[test]
+    fn clearcoat_is_imported_as_the_coat() {
+        let dir = crate::asset::fixture::TempDir::new("gltf_clearcoat");
+        let coat = r#""extensions": { "KHR_materials_clearcoat": { "clearcoatFactor": 0.6, "clearcoatRoughnessFactor": 0.3 } }"#;
+        let json = format!(
+            r#"{{ "asset": {{ "version": "2.0" }}, "extensionsUsed": ["KHR_materials_clearcoat"],
+                 "materials": [{{ {coat} }}, {{ {coat}, "extras": {{ "rt_coat": 0.9, "rt_coat_roughness": 0.1 }} }}] }}"#
+        );
+        let mesh = crate::asset::gltf_import::load(&dir.write("coat.gltf", &json)).expect("loads");
+        let [(_, plain), (_, ours)] = &mesh.materials[..] else { panic!("two materials") };
+        assert_eq!((plain.coat, plain.coat_roughness, plain.coat_ior, plain.coat_tint), (0.6, 0.3, 1.5, [1.0; 3]));
+        assert_eq!((ours.coat, ours.coat_roughness), (0.9, 0.1));
+    }
+
     #[test]
     fn glossy_is_the_tinted_specular_lobe_alone() {
         let base = Material { diffuse: 0.5, reflection: 0.5, roughness: 0.3, ..Material::default() };

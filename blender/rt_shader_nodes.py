@@ -24,7 +24,7 @@ that names the material and the node). What each node becomes:
   Add Shader         Emission + X is X with the emission added; otherwise warned
 
 Anything else is a warning naming the material and the node; the material then keeps
-its viewport colour.
+its viewport colour (inside a Mix or Add Shader, the node is black, as an empty input is).
 """
 
 import sys
@@ -108,7 +108,11 @@ def warn(material, node, what):
 def distribution_note(material, node):
     """Cycles' Multiscatter GGX is rt's default model; the others are warned about."""
     distribution = getattr(node, "distribution", "MULTI_GGX")
-    if distribution in {"GGX", "MULTI_GGX"}:
+    if distribution == "MULTI_GGX":
+        return
+    if distribution == "GGX":
+        warn(material, node, "single-scattering GGX: rt renders the scene's [render] microfacet model "
+             "(multiscatter by default, brighter where rough)")
         return
     warn(material, node, f"the {distribution} distribution is rendered as rt's GGX")
 
@@ -202,9 +206,15 @@ def mix(material, node):
         warn(material, node, f"its Fac is linked; rt mixes by its own value {w:g}")
     a_socket, b_socket = shader_inputs(node)
     a, b = shader(material, linked_node(a_socket)), shader(material, linked_node(b_socket))
-    if a is None or b is None:
-        return a or b
+    if a is None and b is None:
+        return None
+    # An input left empty (or unsupported, already warned about) is black in Cycles.
+    a, b = a or black(), b or black()
     return mixed(material, node, a, 1.0 - w, b, w)
+
+
+def black():
+    return Surface(kind="diffuse", base=[0.0, 0.0, 0.0], roughness=1.0, specular_level=0.0)
 
 
 def mixed(material, node, a, wa, b, wb):
@@ -270,7 +280,7 @@ def shader(material, node):
         return shader(material, linked_node(node.inputs[0]))
     mapping = MAPPINGS.get(node.type)
     if mapping is None:
-        warn(material, node, "this shader node is not supported by rt")
+        warn(material, node, "this shader node is not supported by rt (inside a Mix or Add Shader: black)")
         return None
     return mapping(material, node)
 

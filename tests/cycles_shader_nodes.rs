@@ -50,5 +50,11 @@ fn unmappable_nodes_warn_naming_material_and_node() {
     let glass = rt::asset::load_mesh(&out.join("assets/Cube_002")).expect("loads");
     let m = &glass.materials[0].1;
     assert_eq!((m.transmission, m.specular, m.diffuse), (1.0, 0.0, 0.0), "{m:?}");
+    // An empty input of a Mix Shader is black: half of the Diffuse's colour.
+    let half = rt::asset::load_mesh(&out.join("assets/Cube_006")).expect("loads");
+    let m = &half.materials[0].1;
+    let expected = [0.4, 0.3, 0.2];
+    assert!(m.base_color.iter().zip(expected).all(|(a, b)| (a - b).abs() < 1e-6), "{m:?}");
+    assert_eq!((m.diffuse, m.specular_ior_level), (1.0, 0.0), "{m:?}");
     let _ = std::fs::remove_dir_all(&out);
 }

@@ -68,12 +68,20 @@ def translucent(tree):
     return node(tree, "ShaderNodeBsdfTranslucent", "Leaf")
 
 
+def half_empty(tree):
+    """A Mix Shader with one input left empty: Cycles takes it as black."""
+    n = node(tree, "ShaderNodeMixShader", "Half", Fac=0.5)
+    tree.links.new(node(tree, "ShaderNodeBsdfDiffuse", "Paint", Color=(0.8, 0.6, 0.4, 1.0)).outputs[0], n.inputs[1])
+    return n
+
+
 def main():
     out = sys.argv[1]
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     builds = {"toon_mat": toon, "noisy_mix": linked_fac, "glossy_glass": glossy_glass,
-              "skin_mat": subsurface, "felt_mat": rough_diffuse, "leaf_mat": translucent}
+              "skin_mat": subsurface, "felt_mat": rough_diffuse, "leaf_mat": translucent,
+              "half_empty": half_empty}
     for i, (name, build) in enumerate(builds.items()):
         bpy.ops.mesh.primitive_cube_add(location=(3.0 * i, 0.0, 0.0))
         obj = bpy.context.active_object

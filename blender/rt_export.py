@@ -16,8 +16,9 @@ Blender is Z-up, rt is Y-up: (x, y, z) in Blender is (x, z, -y) in rt, for posit
 normals and object matrices (M_rt = C M_blender C^-1). Every file is written to a
 temporary name and renamed into place, and only when its bytes change.
 
-It is one file on purpose: Blender installs a single-file add-on and runs a single
-script with -P, with nothing else on its module path.
+It runs as a script (with -P, or python) and as a module of the rt_blender extension
+(scripts/package_blender). Shader nodes are mapped onto rt's material model by the
+module beside it, rt_shader_nodes.py, which it finds beside itself.
 """
 
 import argparse
@@ -34,6 +35,14 @@ import bpy
 import numpy as np
 from bpy.app.handlers import persistent
 from mathutils import Matrix, Vector
+
+try:
+    from . import rt_shader_nodes
+except ImportError:  # a script: the module lies beside this file
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import rt_shader_nodes
+TEXTURE_SOCKETS = rt_shader_nodes.TEXTURE_SOCKETS
+linked_node, rgb, socket_value = rt_shader_nodes.linked_node, rt_shader_nodes.rgb, rt_shader_nodes.socket_value
 
 bl_info = {
     "name": "rt exporter",
@@ -184,49 +193,6 @@ def rtmesh_bytes(arrays):
 # --- materials --------------------------------------------------------------------
 
 
-def linked_node(socket):
-    return socket.links[0].from_node if socket.is_linked else None
-
-
-# The Principled BSDF's inputs that Blender 4.0 renamed, under their 3.x names (rt
-# supports 4.2+; these let 3.4 export plain materials for the screenshots). 3.x's
-# "Specular Tint" is a number, not 4.x's colour, so it is left out and takes the default.
-PRE_4_0_SOCKETS = {
-    "Emission Color": "Emission",
-    "Transmission Weight": "Transmission",
-    "Specular IOR Level": "Specular",
-    "Coat Weight": "Clearcoat",
-    "Coat Roughness": "Clearcoat Roughness",
-}
-
-
-def socket_value(node, name, default):
-    """A node input's value; a texture or other link stands for what it would give
-    on average, which rt cannot know, so the socket's own value is used and noted."""
-    if node.type == "BSDF_PRINCIPLED" and "Specular IOR Level" not in node.inputs:  # before 4.0
-        if name == "Specular Tint":
-            return default
-        name = PRE_4_0_SOCKETS.get(name, name)
-    socket = node.inputs.get(name)
-    if socket is None:
-        return default
-    source = linked_node(socket)
-    if source is not None:
-        if source.type in {"RGB", "VALUE"}:
-            return source.outputs[0].default_value
-        if source.type in {"TEX_IMAGE", "SEPARATE_COLOR", "NORMAL_MAP"} or (
-            node.type == "BSDF_PRINCIPLED" and name in TEXTURE_SOCKETS
-        ):
-            # Followed, or warned about, by `texture_channel`.
-            return socket.default_value
-        log(f"{node.id_data.name}: {node.name}.{name} is linked to {source.type}; using its own value")
-    return socket.default_value
-
-
-def rgb(value):
-    return [float(value[0]), float(value[1]), float(value[2])]
-
-
 def active_output(tree, kind):
     outputs = [n for n in tree.nodes if n.type == kind]
     for node in outputs:
@@ -274,7 +240,6 @@ def volume_emission(volume):
 # What cannot be followed (procedural textures, Mix, Color Ramp ...) is named in a
 # warning and the socket's own value is used.
 
-TEXTURE_SOCKETS = ("Base Color", "Alpha", "Roughness", "Metallic", "Normal", "Emission Color")
 GLTF_WRAP = {"REPEAT": 10497, "EXTEND": 33071, "CLIP": 33071, "MIRROR": 33648}
 LUMA = np.array([0.2126, 0.7152, 0.0722])
 
@@ -487,35 +452,20 @@ def material_textures(material, surface, out, textures, factors):
 def gltf_material(material, thickness, textures=None):
     """One glTF material (with KHR extensions) from a Blender material, and the uv
     transform of its textures (or None); every factor is written, since rt's importer
-    applies glTF's defaults to absent ones. Its textures go into `textures`."""
+    applies glTF's defaults to absent ones. Its textures go into `textures`. The surface
+    shader is mapped onto rt's model by rt_shader_nodes (which warns about what it cannot
+    map)."""
     name = material.name if material else "default"
-    base, metallic, roughness, ior, transmission = [0.8, 0.8, 0.8], 0.0, 0.5, 1.5, 0.0
-    emission, strength, specular_level, specular_tint = [0.0, 0.0, 0.0], 0.0, 0.5, [1.0, 1.0, 1.0]
-    alpha = 1.0
     output = active_output(material.node_tree, "OUTPUT_MATERIAL") if material and material.node_tree else None
-    surface = linked_node(output.inputs["Surface"]) if output else None
-    if surface is not None and surface.type != "BSDF_PRINCIPLED":
-        # A principled node anywhere upstream beats the viewport colour.
-        principled = [n for n in material.node_tree.nodes if n.type == "BSDF_PRINCIPLED"]
-        surface = principled[0] if principled and surface.type != "EMISSION" else surface
-    if surface is not None and surface.type == "BSDF_PRINCIPLED":
-        base = rgb(socket_value(surface, "Base Color", base))
-        metallic = float(socket_value(surface, "Metallic", metallic))
-        roughness = float(socket_value(surface, "Roughness", roughness))
-        ior = float(socket_value(surface, "IOR", ior))
-        transmission = float(socket_value(surface, "Transmission Weight", transmission))
-        emission = rgb(socket_value(surface, "Emission Color", emission))
-        strength = float(socket_value(surface, "Emission Strength", strength))
-        specular_level = float(socket_value(surface, "Specular IOR Level", specular_level))
-        alpha = float(socket_value(surface, "Alpha", 1.0))
-        specular_tint = rgb(socket_value(surface, "Specular Tint", specular_tint))
-    elif surface is not None and surface.type == "EMISSION":
-        base, roughness = [0.0, 0.0, 0.0], 1.0
-        emission = rgb(socket_value(surface, "Color", (1, 1, 1)))
-        strength = float(socket_value(surface, "Strength", 1.0))
-    elif material is not None:
-        base = rgb(material.diffuse_color)
-        metallic, roughness = float(material.metallic), float(material.roughness)
+    if material is None:
+        s = rt_shader_nodes.Surface()
+    else:
+        s = rt_shader_nodes.surface(material, linked_node(output.inputs["Surface"]) if output else None)
+    base, metallic, roughness, ior, transmission = s.base, s.metallic, s.roughness, s.ior, s.transmission
+    specular_level, specular_tint, alpha = s.specular_level, s.specular_tint, s.alpha
+    surface = s.principled
+    peak = max(s.emission)
+    emission, strength = ([e / peak for e in s.emission], peak) if peak > 0.0 else ([0.0, 0.0, 0.0], 0.0)
 
     out = {
         "name": name,
@@ -537,13 +487,22 @@ def gltf_material(material, thickness, textures=None):
         },
     }
     out["extras"] = {"rt_specular_ior_level": min(max(specular_level, 0.0), 1.0)}
-    if surface is not None and surface.type == "BSDF_PRINCIPLED":
+    if s.glossy is not None:
+        # Cycles' Glossy BSDF: GGX without Fresnel, tinted by its colour; glTF has no such lobe
+        # (its factors above describe a metal of that colour for other readers).
+        out["extras"]["rt_glossy_color"] = [max(c, 0.0) for c in s.glossy]
+    if surface is not None:
         coat = float(socket_value(surface, "Coat Weight", 0.0))
         if coat > 0.0:
-            # glTF's clearcoat has no index or tint: rt reads its own keys.
+            coat_roughness = min(max(float(socket_value(surface, "Coat Roughness", 0.03)), 0.0), 1.0)
+            # glTF's clearcoat (for other readers) has no index or tint: rt reads its own keys first.
+            extensions["KHR_materials_clearcoat"] = {
+                "clearcoatFactor": min(coat, 1.0),
+                "clearcoatRoughnessFactor": coat_roughness,
+            }
             out["extras"].update({
                 "rt_coat": min(coat, 1.0),
-                "rt_coat_roughness": min(max(float(socket_value(surface, "Coat Roughness", 0.03)), 0.0), 1.0),
+                "rt_coat_roughness": coat_roughness,
                 "rt_coat_ior": max(float(socket_value(surface, "Coat IOR", 1.5)), 1.0),
                 "rt_coat_tint": [min(max(c, 0.0), 1.0) for c in rgb(socket_value(surface, "Coat Tint", (1, 1, 1)))],
             })
@@ -573,8 +532,8 @@ def gltf_material(material, thickness, textures=None):
             out["extras"]["rt_volume_emission"] = [float(g) for g in glow]
     out["extensions"] = extensions
     transform = None
-    if textures is not None and surface is not None and surface.type == "BSDF_PRINCIPLED":
-        factors = {"base": base, "roughness": roughness, "metallic": metallic, "strength": strength}
+    if textures is not None and surface is not None:
+        factors = {"base": base, "roughness": roughness, "metallic": metallic, "strength": s.emission_strength}
         transform = material_textures(material, surface, out, textures, factors)
     return out, transform
 

@@ -105,15 +105,15 @@ fn metal_fresnel(ctx: ShadingContext, cos_i: f32) -> vec3f {
     //#endif
 }
 
-// Reflectance of the `specular` lobe: the diffuse's dielectric coating, or 1 (an untinted
-// lobe without Fresnel) for a material without one.
+// Reflectance of the `specular` lobe: the diffuse's dielectric coating, or `specular_tint`
+// (a lobe without Fresnel: Cycles' Glossy BSDF of that colour) for a material without one.
 fn specular_fresnel(ctx: ShadingContext, cos_i: f32) -> vec3f {
     //#if coating
     if ctx.m.coating_eta > 0.0 {
         return coating_fresnel(ctx.m, cos_i);
     }
     //#endif
-    return vec3f(1.0);
+    return ctx.m.specular_tint;
 }
 
 fn luminance(c: vec3f) -> f32 {
@@ -139,11 +139,12 @@ fn shading_context(m: Material, n_shading: vec3f, n_geometric: vec3f, wo_world: 
     //#endif
     let mu = max(wo.z, 1e-6);
     var ctx = ShadingContext(m, basis, vec3f(wo.xy, mu), to_local * n_geometric, eta, vec4f(0.0), smooth_lobe, vec3f(1.0), vec3f(1.0), vec3f(1.0), 1.0, vec3f(0.0), 0.0, vec3f(1.0), vec3f(1.0));
-    var specular_albedo = 1.0;
+    var specular_albedo = luminance(m.specular_tint);
     //#if multiscatter
     ctx.metal_b = f82_b(metal_f0(m), min(m.specular_tint, vec3f(1.0)));
     if rough {
-        var specular_fss = vec3f(1.0);
+        // Without a coating, Cycles' constant Fresnel of a Glossy BSDF: its colour.
+        var specular_fss = m.specular_tint;
         //#if coating
         if m.coating_eta > 0.0 {
             specular_fss = coating_average(m);

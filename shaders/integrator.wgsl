@@ -107,7 +107,11 @@ fn emission_seen(m: Material, hit: Hit, surface: Surface, origin: vec3f, directi
         weight = power_heuristic(bsdf_pdf, light_pdf);
     }
     //#endif
+    //#if coat
+    return coated_emission(m, m.emission, abs(dot(surface.shading_normal, direction))) * weight;
+    //#else
     return m.emission * weight;
+    //#endif
 }
 //#endif
 

@@ -82,25 +82,46 @@ fn dielectric_energy(alpha: f32, mu: f32, eta: f32, tint: vec3f) -> vec3f {
     return energy_compensation(e, table_2d(avg_table, 16u, 16u, rough, z), tint);
 }
 
-// Principled's coat over every other lobe: its energy compensation, what the lobes under
-// it keep (1 − coat × its albedo, times the tint along the refracted view: Cycles'
+// Principled's coat seen from `mu`: its energy compensation, what the lobes and the emission
+// under it keep (1 − coat × its albedo, times the tint along the refracted view: Cycles'
 // `closure_layering_weight` and Beer's law), and its albedo (for sampling).
-fn coat_setup(ctx: ptr<function, ShadingContext>, mu: f32) -> f32 {
-    let m = (*ctx).m;
+struct CoatLayer {
+    energy: vec3f,
+    under: vec3f,
+    albedo: f32,
+}
+
+fn coat_layer(m: Material, mu: f32) -> CoatLayer {
     let r = (m.coat_ior - 1.0) / (m.coat_ior + 1.0);
     let f0 = r * r;
     let estimate = mix(f0, 1.0, coating_fresnel_s(sqrt(m.coat_alpha), mu, m.coat_ior));
+    var energy = vec3f(1.0);
     var darkening = 1.0;
     //#if multiscatter
     if m.coat_alpha >= ALPHA_DELTA {
-        (*ctx).coat_energy = reflection_energy(m.coat_alpha, mu, vec3f(fresnel_dielectric_average(m.coat_ior)));
-        darkening = (*ctx).coat_energy.x * ggx_albedo(m.coat_alpha, mu);
+        energy = reflection_energy(m.coat_alpha, mu, vec3f(fresnel_dielectric_average(m.coat_ior)));
+        darkening = energy.x * ggx_albedo(m.coat_alpha, mu);
     }
     //#endif
     let cos_t = sqrt(max(1e-6, 1.0 - (1.0 - mu * mu) / (m.coat_ior * m.coat_ior)));
     let tint = mix(vec3f(1.0), pow(max(m.coat_tint, vec3f(1e-8)), vec3f(1.0 / cos_t)), m.coat);
-    (*ctx).under_coat = saturate(1.0 - m.coat * estimate * darkening) * tint;
-    return m.coat * estimate;
+    return CoatLayer(energy, saturate(1.0 - m.coat * estimate * darkening) * tint, m.coat * estimate);
+}
+
+fn coat_setup(ctx: ptr<function, ShadingContext>, mu: f32) -> f32 {
+    let layer = coat_layer((*ctx).m, mu);
+    (*ctx).coat_energy = layer.energy;
+    (*ctx).under_coat = layer.under;
+    return layer.albedo;
+}
+
+// Emission under the coat, leaving at cosine `mu` to the shading normal: Cycles sets up a
+// Principled's emission with the weight that its coat leaves the lower layers (`svm/closure.h`).
+fn coated_emission(m: Material, emission: vec3f, mu: f32) -> vec3f {
+    if m.coat <= 0.0 {
+        return emission;
+    }
+    return emission * coat_layer(m, clamp(mu, 1e-6, 1.0)).under;
 }
 
 // How much of the diffuse lobe the coating lets through, seen from `mu`: 1 − the largest

@@ -11,7 +11,7 @@ use rt::render::{
     DroppedSamples, Image, ImageFormat, Progress, RenderFlags, RenderRequest, Session, aov_channels, check_output,
     human, image_format, json_event, write_image, write_layered_exr,
 };
-use rt::scene::{self, LightSampler, MAX_IMAGE_SIDE, RoughTransmission, Sampling, Scene};
+use rt::scene::{self, LightSampler, MAX_IMAGE_SIDE, Microfacet, RoughTransmission, Sampling, Scene};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -94,6 +94,9 @@ struct RenderArgs {
     /// How light sampling picks a lamp or emitter: by power, or down the light tree [default: the scene's].
     #[arg(long, value_enum)]
     light_sampler: Option<LightSampler>,
+    /// Model of rough GGX lobes: Cycles' multiscatter GGX, or single scattering as Mitsuba 3 [default: the scene's].
+    #[arg(long, value_enum)]
+    microfacet: Option<Microfacet>,
     /// Scale every sample down to at most this luminance. Hides fireflies at the
     /// price of bias (bright light goes missing); off by default.
     #[arg(long)]
@@ -140,6 +143,7 @@ impl RenderArgs {
             ris_candidates: self.ris_candidates,
             rough_transmission: self.rough_transmission,
             light_sampler: self.light_sampler,
+            microfacet: self.microfacet,
             seed: self.seed,
             clamp: self.clamp,
             samples_per_dispatch: self.samples_per_dispatch,

@@ -147,3 +147,29 @@ fn usage_errors_exit_with_status_2() {
         assert_eq!(code, 2, "{args:?}: exit code {code}, stderr:\n{stderr}");
     }
 }
+
+/// `--microfacet` overrides the scene's `[render] microfacet`: a rough metal's pipeline
+/// drops multiscatter GGX with `single` and keeps it by default.
+#[test]
+fn microfacet_flag_overrides_the_scene() {
+    let dir = temp_dir("microfacet-flag");
+    let scene = dir.join("scene.toml");
+    write(
+        &scene,
+        &format!(
+            "{CAMERA}[materials.metal]\nreflection = 1.0\ndiffuse = 0.0\nroughness = 0.5\n\
+             [[sphere]]\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\nmaterial = \"metal\"\n"
+        ),
+    );
+    let scene = scene.to_str().expect("utf-8 path");
+    for (args, multiscatter) in
+        [(&[][..], true), (&["--microfacet", "single"][..], false), (&["--microfacet", "multiscatter"][..], true)]
+    {
+        let (code, stderr) = rt(&[args, &[scene]].concat());
+        assert_eq!(code, 0, "{args:?}: {stderr}");
+        let features = stderr.lines().find(|l| l.contains("features [")).unwrap_or_else(|| panic!("{stderr}"));
+        assert_eq!(features.contains("multiscatter"), multiscatter, "{args:?}: {features}");
+    }
+    let (code, stderr) = rt(&["--microfacet", "double", scene]);
+    assert_eq!(code, 2, "{stderr}");
+}

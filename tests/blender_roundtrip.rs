@@ -12,7 +12,7 @@ use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn bpy_python() -> PathBuf {
+pub(crate) fn bpy_python() -> PathBuf {
     let Some(python) = std::env::var_os("RT_BPY_PYTHON") else {
         panic!(
             "RT_BPY_PYTHON is not set: it must name a Python 3.11 with bpy==5.0.1 \

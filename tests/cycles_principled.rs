@@ -28,11 +28,17 @@ fn luminance(p: [f32; 3]) -> f64 {
 }
 
 fn check(name: &str) {
-    let dir = repo().join(format!("tests/cycles/scenes/principled_{name}"));
+    check_row(&format!("principled_{name}"));
+}
+
+/// rt against Cycles on the row of five spheres `tests/cycles/scenes/NAME/` (its reference:
+/// `tests/cycles/NAME.exr`, 2048 spp): per sphere within 4 σ, per 8×8 block within 5 σ.
+pub(crate) fn check_row(name: &str) {
+    let dir = repo().join(format!("tests/cycles/scenes/{name}"));
     let scene = rt::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
     let (w, h) = (scene.render.width as usize, scene.render.height as usize);
     let ours = render(scene, w as u32, h as u32, SPP, MAX_BOUNCES);
-    let file = repo().join(format!("tests/cycles/principled_{name}.exr"));
+    let file = repo().join(format!("tests/cycles/{name}.exr"));
     let theirs = image::open(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display())).into_rgb32f();
     let noise_scale = (1.0 + SPP as f64 / REFERENCE_SPP).sqrt();
     let mut worst: f64 = 0.0;
@@ -48,7 +54,7 @@ fn check(name: &str) {
         }
         let n = (COLUMN * h) as f64;
         let z = (a - b).abs() / (var.sqrt() * noise_scale).max(1e-9);
-        println!("principled_{name} sphere {sphere}: rt {:.5} vs Cycles {:.5}, {z:.2} σ", a / n, b / n);
+        println!("{name} sphere {sphere}: rt {:.5} vs Cycles {:.5}, {z:.2} σ", a / n, b / n);
         worst = worst.max(z);
     }
     let mut worst_block: f64 = 0.0;
@@ -67,11 +73,10 @@ fn check(name: &str) {
             worst_block = worst_block.max((a - b).abs() / n / sigma.max(1e-9));
         }
     }
-    reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4))
-        .check_mean(&format!("principled_{name}"), "Cycles");
-    println!("principled_{name}: worst 8x8 block {worst_block:.2} σ (with {TABLE_PRECISION} relative)");
-    assert!(worst <= 4.0, "principled_{name}: a sphere is {worst:.2} σ from Cycles'");
-    assert!(worst_block <= 5.0, "principled_{name}: a block is {worst_block:.2} σ from Cycles'");
+    reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4)).check_mean(name, "Cycles");
+    println!("{name}: worst 8x8 block {worst_block:.2} σ (with {TABLE_PRECISION} relative)");
+    assert!(worst <= 4.0, "{name}: a sphere is {worst:.2} σ from Cycles'");
+    assert!(worst_block <= 5.0, "{name}: a block is {worst_block:.2} σ from Cycles'");
 }
 
 #[test]
@@ -117,4 +122,66 @@ fn coat_weight_matches_cycles() {
 #[test]
 fn coat_roughness_and_tint_match_cycles() {
     check("coat_roughness");
+}
+
+/// Cycles dims a Principled's emission by its coat (reflectance and tint); so does rt.
+#[test]
+fn emission_under_the_coat_matches_cycles() {
+    check("emission_coat");
+}
+
+/// The exporter writes Blender's coat as `KHR_materials_clearcoat` too (for other glTF
+/// readers), beside rt's own extras.
+#[test]
+fn exporter_writes_the_coat_as_clearcoat() {
+    let file = repo().join("tests/cycles/scenes/principled_emission_coat/assets/Sphere_004/Sphere_004.gltf");
+    let text = std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+    let json: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    let coat = &json["materials"][0]["extensions"]["KHR_materials_clearcoat"];
+    assert_eq!(coat["clearcoatFactor"].as_f64(), Some(1.0), "{coat}");
+    assert!((coat["clearcoatRoughnessFactor"].as_f64().expect("a number") - 0.2).abs() < 1e-6, "{coat}");
+    assert!(json["extensionsUsed"].as_array().expect("a list").iter().any(|e| e == "KHR_materials_clearcoat"));
+}
+
+/// Subsurface scattering is rendered as the diffuse base (README: "Subsurface"): not a match
+/// within the noise, but within the bounds the README gives. Cycles' random walk (radius
+/// scale 1 mm to 10 cm on a 0.45 m sphere) comes out 2.0–2.4% darker per sphere, up to 9.3% on an
+/// 8×8 block.
+#[test]
+fn subsurface_is_the_diffuse_base_within_its_documented_bounds() {
+    const SPHERE_BOUND: f64 = 0.03;
+    const BLOCK_BOUND: f64 = 0.12;
+    let name = "principled_subsurface";
+    let dir = repo().join(format!("tests/cycles/scenes/{name}"));
+    let scene = rt::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let (w, h) = (scene.render.width as usize, scene.render.height as usize);
+    let ours = render(scene, w as u32, h as u32, 32, MAX_BOUNCES);
+    let file = repo().join(format!("tests/cycles/{name}.exr"));
+    let theirs = image::open(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display())).into_rgb32f();
+    let mean = |x0: usize, x1: usize, y0: usize, y1: usize| {
+        let (mut a, mut b) = (0.0, 0.0);
+        for y in y0..y1 {
+            for x in x0..x1 {
+                a += luminance(ours.pixels[y * w + x]);
+                b += luminance(theirs.get_pixel(x as u32, y as u32).0);
+            }
+        }
+        a / b - 1.0
+    };
+    let (mut worst_sphere, mut worst_block): (f64, f64) = (0.0, 0.0);
+    for sphere in 0..w / COLUMN {
+        let d = mean(sphere * COLUMN, (sphere + 1) * COLUMN, 0, h);
+        println!("{name} sphere {sphere}: rt / Cycles - 1 = {:+.2}%", 100.0 * d);
+        worst_sphere = worst_sphere.max(d.abs());
+    }
+    // Blocks on the spheres (the middle rows), where the background does not dilute the difference.
+    for bx in 0..w / BLOCK {
+        for by in 1..h / BLOCK - 1 {
+            let d = mean(bx * BLOCK, (bx + 1) * BLOCK, by * BLOCK, (by + 1) * BLOCK);
+            worst_block = worst_block.max(d.abs());
+        }
+    }
+    println!("{name}: worst sphere {:.2}%, worst 8x8 block {:.2}%", 100.0 * worst_sphere, 100.0 * worst_block);
+    assert!(worst_sphere <= SPHERE_BOUND, "{name}: a sphere is {:.2}% from Cycles'", 100.0 * worst_sphere);
+    assert!(worst_block <= BLOCK_BOUND, "{name}: a block is {:.2}% from Cycles'", 100.0 * worst_block);
 }

@@ -4,7 +4,7 @@ and the viewport's Rendered mode through a streaming rt). Its preferences
 are the path to the rt binary and the cache folder of F12 renders.
 
 In the repository, the modules live beside this folder (blender/rt_export.py,
-blender/rt_engine.py, blender/rt_viewport.py) so that they also run as scripts; scripts/package_blender copies
+blender/rt_shader_nodes.py, blender/rt_engine.py, blender/rt_viewport.py) so that they also run as scripts; scripts/package_blender copies
 them next to this file into rt_blender.zip.
 """
 

@@ -15,7 +15,9 @@
 //! | `KHR_materials_specular` factor `s` (1)                   | `specular_ior_level = s / 2` (with a diffuse part) |
 //! | `extras.rt_specular_ior_level` (absent)                   | `specular_ior_level`, instead of `s / 2` (Blender's level may exceed 0.5) |
 //! | `KHR_materials_specular` colour factor (1, 1, 1)          | `specular_tint`                |
-//! | `extras.rt_coat`, `_roughness`, `_ior`, `_tint` (0, 0.03, 1.5, (1, 1, 1)) | `coat`, `coat_roughness`, `coat_ior`, `coat_tint` |
+//! | `KHR_materials_clearcoat` factor, roughness factor (0, 0)  | `coat`, `coat_roughness` (index 1.5, untinted; its textures are not read) |
+//! | `extras.rt_coat`, `_roughness`, `_ior`, `_tint` (absent, absent, 1.5, (1, 1, 1)) | `coat`, `coat_roughness` (instead of clearcoat's), `coat_ior`, `coat_tint` |
+//! | `extras.rt_glossy_color` `[r, g, b]` (absent)             | Cycles' Glossy BSDF: `specular = 1` tinted by the colour (`specular_tint`), no other lobe |
 //! | `KHR_materials_volume` colour `c` (1), distance `d` (∞)   | `absorption = -ln(c) / d`; 0 if `d = ∞` |
 //! | `extras.rt_volume_emission` `[r, g, b]` (0)               | `volume_emission`              |
 //!
@@ -29,6 +31,7 @@
 //! default material (a rough white metal): rt treats a material-less mesh as plain
 //! geometry, the same as an OBJ without a `.mtl` and a scene material left at defaults.
 
+use super::gltf_extensions::{clearcoat, glossy};
 use super::gltf_textures::{ColorSpace, TextureLoader};
 use super::{AssetError, MeshData};
 use crate::scene::{Material, MaterialTextures};
@@ -366,14 +369,15 @@ fn map_material_with_metallic(m: &gltf::Material, metallic: f32) -> Result<Mater
         Some(level) => level,
         None => m.specular().map_or(1.0, |s| s.specular_factor()) / 2.0,
     };
-    Ok(Material {
+    let clearcoat = clearcoat(m)?;
+    let material = Material {
         base_color: [r, g, b],
         diffuse,
         specular: 0.0,
         specular_ior_level: if diffuse > 0.0 { level.clamp(0.0, 1.0) } else { 0.0 },
         specular_tint: m.specular().map_or([1.0; 3], |s| s.specular_color_factor().map(|c| c.clamp(0.0, 1.0))),
-        coat: extra::<f32>(m.extras(), "rt_coat")?.unwrap_or(0.0).clamp(0.0, 1.0),
-        coat_roughness: extra::<f32>(m.extras(), "rt_coat_roughness")?.unwrap_or(0.03).clamp(0.0, 1.0),
+        coat: extra::<f32>(m.extras(), "rt_coat")?.unwrap_or(clearcoat.factor).clamp(0.0, 1.0),
+        coat_roughness: extra::<f32>(m.extras(), "rt_coat_roughness")?.unwrap_or(clearcoat.roughness).clamp(0.0, 1.0),
         coat_ior: extra::<f32>(m.extras(), "rt_coat_ior")?.unwrap_or(1.5).max(1.0),
         coat_tint: extra::<[f32; 3]>(m.extras(), "rt_coat_tint")?.unwrap_or([1.0; 3]).map(|c| c.clamp(0.0, 1.0)),
         reflection: metallic,
@@ -384,6 +388,10 @@ fn map_material_with_metallic(m: &gltf::Material, metallic: f32) -> Result<Mater
         absorption: m.volume().map_or([0.0; 3], |v| absorption(v.attenuation_color(), v.attenuation_distance())),
         volume_emission: volume_emission(m.extras())?,
         ..Material::default()
+    };
+    Ok(match extra::<[f32; 3]>(m.extras(), "rt_glossy_color")? {
+        Some(color) => glossy(material, color),
+        None => material,
     })
 }
 

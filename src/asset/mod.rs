@@ -4,6 +4,7 @@
 
 pub mod builtin;
 mod gltf_buffers;
+mod gltf_extensions;
 pub mod gltf_import;
 mod gltf_textures;
 pub mod obj_import;

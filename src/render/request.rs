@@ -2,7 +2,7 @@
 //! defaults, the command line's flags override them and are checked like the keys.
 
 use super::Progress;
-use crate::scene::{FeatureSet, LightSampler, RoughTransmission, Sampling, Scene};
+use crate::scene::{FeatureSet, LightSampler, Microfacet, RoughTransmission, Sampling, Scene};
 use anyhow::{Result, bail};
 
 /// Samples per pixel in one GPU dispatch at most.
@@ -90,6 +90,7 @@ pub struct RenderFlags {
     pub ris_candidates: Option<u32>,
     pub rough_transmission: Option<RoughTransmission>,
     pub light_sampler: Option<LightSampler>,
+    pub microfacet: Option<Microfacet>,
     pub seed: u32,
     pub clamp: Option<f32>,
     pub samples_per_dispatch: Option<u32>,
@@ -115,6 +116,7 @@ impl RenderFlags {
         r.sampling = self.sampling.unwrap_or(r.sampling);
         r.rough_transmission = self.rough_transmission.unwrap_or(r.rough_transmission);
         r.light_sampler = self.light_sampler.unwrap_or(r.light_sampler);
+        r.microfacet = self.microfacet.unwrap_or(r.microfacet);
         r.noise_threshold = self.noise_threshold.unwrap_or(r.noise_threshold);
         if let Err((key, message)) = r.check() {
             bail!("{}: {message}", flag_of(key));

@@ -147,7 +147,9 @@ impl FeatureSet {
             transmission,
             media: transmissive.iter().any(|m| m.has_medium()),
             lamps: LampKinds::of(&scene.lights),
-            textures: materials_in_use.iter().any(|m| m.textures.any()),
+            // Alpha from a factor alone (a Mix Shader with Transparent) still reads the
+            // texture code that tests opacity.
+            textures: materials_in_use.iter().any(|m| m.textures.any() || m.textures.has_alpha()),
             alpha_mask: materials_in_use.iter().any(|m| m.textures.has_alpha()),
             alpha_blend: materials_in_use.iter().any(|m| m.textures.alpha_blend),
             normal_maps: materials_in_use.iter().any(|m| m.textures.normal.is_some()),

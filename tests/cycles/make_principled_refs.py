@@ -48,6 +48,17 @@ ROWS = {
         {"Base Color": (0.1, 0.3, 0.8), "Roughness": 0.6, "Coat Weight": 1.0, "Coat Tint": (0.9, 0.7, 0.5)},
         [{"Coat Roughness": r} for r in STEPS],
     ),
+    # Emission under the coat, which dims it by its reflectance and its tint (Cycles' svm/closure.h).
+    "emission_coat": (
+        {"Base Color": (0.05, 0.05, 0.05), "Roughness": 0.5, "Emission Color": (1.0, 0.6, 0.3),
+         "Emission Strength": 2.0, "Coat Roughness": 0.2, "Coat Tint": (0.6, 0.8, 1.0)},
+        [{"Coat Weight": w} for w in STEPS],
+    ),
+    # Subsurface scattering, which rt renders as the diffuse base: close for a small radius.
+    "subsurface": (
+        {"Base Color": (0.8, 0.4, 0.3), "Roughness": 0.5, "Subsurface Weight": 1.0},
+        [{"Subsurface Scale": r} for r in (0.001, 0.003, 0.01, 0.03, 0.1)],
+    ),
     "metal_tint": (
         {"Base Color": (0.9, 0.85, 0.8), "Metallic": 1.0, "Roughness": 0.3},
         [{"Specular Tint": t} for t in TINTS],

@@ -1,0 +1,315 @@
+"""Blender's shader nodes on rt's material model, for rt_export.py.
+
+rt renders one material model, Cycles' Principled BSDF. `surface()` follows the node
+linked to a material's Material Output and describes it as a `Surface`: the Principled
+inputs that give the same light (exactly where rt can, else the nearest, with a warning
+that names the material and the node). What each node becomes:
+
+  Principled BSDF    itself (Subsurface Weight > 0: the diffuse base, ~2% brighter than
+                     Cycles' random walk, with a warning)
+  Diffuse BSDF       Lambertian diffuse of its Color, no specular layer (Roughness > 0,
+                     Cycles' Oren-Nayar, is warned about and rendered Lambertian)
+  Glossy BSDF        a GGX lobe without Fresnel tinted by its Color (`extras.rt_glossy_color`),
+                     as Cycles' Glossy: exact for (Multiscatter) GGX
+  Glass BSDF         transmission of its IOR and Roughness, tinted by Color per refraction
+                     (a tinted Color also tints the reflection in Cycles, not in rt: warned)
+  Refraction BSDF    the same glass (Cycles' Refraction does not reflect: warned)
+  Emission           black, emitting Color x Strength
+  Transparent BSDF   alpha 0 (a colour other than white is warned about)
+  Translucent BSDF   Lambertian diffuse of its Color (warned: rt has no diffuse transmission)
+  Mix Shader         constant Fac, two mappable shaders: Transparent mixes into alpha,
+                     Emission into the other's emission with the other's lobes scaled (exact
+                     when the other is Diffuse or Emission), two Diffuse into one;
+                     otherwise the dominant shader, warned
+  Add Shader         Emission + X is X with the emission added; otherwise warned
+
+Anything else is a warning naming the material and the node; the material then keeps
+its viewport colour (inside a Mix or Add Shader, the node is black, as an empty input is).
+"""
+
+import sys
+
+import numpy as np
+
+# Inputs of a Principled BSDF that rt_export.py follows into textures.
+TEXTURE_SOCKETS = ("Base Color", "Alpha", "Roughness", "Metallic", "Normal", "Emission Color")
+
+
+def log(message):
+    print(f"rt_export: {message}", file=sys.stderr)
+
+
+def linked_node(socket):
+    return socket.links[0].from_node if socket.is_linked else None
+
+
+# The Principled BSDF's inputs that Blender 4.0 renamed, under their 3.x names (rt
+# supports 4.2+; these let 3.4 export plain materials for the screenshots). 3.x's
+# "Specular Tint" is a number, not 4.x's colour, so it is left out and takes the default.
+PRE_4_0_SOCKETS = {
+    "Emission Color": "Emission",
+    "Transmission Weight": "Transmission",
+    "Specular IOR Level": "Specular",
+    "Coat Weight": "Clearcoat",
+    "Coat Roughness": "Clearcoat Roughness",
+}
+
+
+def socket_value(node, name, default):
+    """A node input's value; a texture or other link stands for what it would give
+    on average, which rt cannot know, so the socket's own value is used and noted."""
+    if node.type == "BSDF_PRINCIPLED" and "Specular IOR Level" not in node.inputs:  # before 4.0
+        if name == "Specular Tint":
+            return default
+        name = PRE_4_0_SOCKETS.get(name, name)
+    socket = node.inputs.get(name)
+    if socket is None:
+        return default
+    source = linked_node(socket)
+    if source is not None:
+        if source.type in {"RGB", "VALUE"}:
+            return source.outputs[0].default_value
+        if source.type in {"TEX_IMAGE", "SEPARATE_COLOR", "NORMAL_MAP"} or (
+            node.type == "BSDF_PRINCIPLED" and name in TEXTURE_SOCKETS
+        ):
+            # Followed, or warned about, by rt_export's `texture_channel`.
+            return socket.default_value
+        log(f"{node.id_data.name}: {node.name}.{name} is linked to {source.type}; using its own value")
+    return socket.default_value
+
+
+def rgb(value):
+    return [float(value[0]), float(value[1]), float(value[2])]
+
+
+class Surface:
+    """A surface shader as Principled inputs. `emission` is radiance (colour x strength);
+    `glossy` is the colour of a Glossy BSDF's lobe (then base, metallic and the specular
+    layer are unused); `principled` is the Principled BSDF node whose textures and coat
+    the export follows, if the surface is one."""
+
+    def __init__(self, **fields):
+        self.base = [0.8, 0.8, 0.8]
+        self.metallic = 0.0
+        self.roughness = 0.5
+        self.ior = 1.5
+        self.transmission = 0.0
+        self.emission = [0.0, 0.0, 0.0]
+        self.specular_level = 0.5
+        self.specular_tint = [1.0, 1.0, 1.0]
+        self.alpha = 1.0
+        self.glossy = None
+        self.principled = None
+        # The Principled's own Emission Strength times what mixing scaled it by (for its texture).
+        self.emission_strength = 0.0
+        self.kind = "principled"
+        for key, value in fields.items():
+            setattr(self, key, value)
+
+    def scaled_lobes(self, w):
+        """This surface with its lobes and emission scaled by w, when that is exact."""
+        # Not a Glossy BSDF's colour: Cycles compensates its lost energy by the unscaled colour.
+        if self.kind == "diffuse":
+            self.base = [c * w for c in self.base]
+        elif self.kind != "emission":
+            return False
+        self.emission = [e * w for e in self.emission]
+        return True
+
+
+def warn(material, node, what):
+    log(f"{material.name}: {node.name!r} ({node.bl_idname}): {what}")
+
+
+def distribution_note(material, node):
+    """Cycles' Multiscatter GGX is rt's default model; the others are warned about."""
+    distribution = getattr(node, "distribution", "MULTI_GGX")
+    if distribution == "MULTI_GGX":
+        return
+    if distribution == "GGX":
+        warn(material, node, "single-scattering GGX: rt renders the scene's [render] microfacet model "
+             "(multiscatter by default, brighter where rough)")
+        return
+    warn(material, node, f"the {distribution} distribution is rendered as rt's GGX")
+
+
+def principled(material, node):
+    s = Surface(principled=node)
+    s.base = rgb(socket_value(node, "Base Color", s.base))
+    s.metallic = float(socket_value(node, "Metallic", 0.0))
+    s.roughness = float(socket_value(node, "Roughness", 0.5))
+    s.ior = float(socket_value(node, "IOR", 1.5))
+    s.transmission = float(socket_value(node, "Transmission Weight", 0.0))
+    strength = float(socket_value(node, "Emission Strength", 0.0))
+    s.emission = [c * strength for c in rgb(socket_value(node, "Emission Color", (0, 0, 0)))]
+    s.emission_strength = strength
+    s.specular_level = float(socket_value(node, "Specular IOR Level", 0.5))
+    s.specular_tint = rgb(socket_value(node, "Specular Tint", s.specular_tint))
+    s.alpha = float(socket_value(node, "Alpha", 1.0))
+    subsurface = float(socket_value(node, "Subsurface Weight", 0.0))
+    if subsurface > 0.0 and s.metallic < 1.0 and s.transmission < 1.0:
+        # Cycles' random walk is set up so that the light it scatters back has the base colour
+        # as its albedo: the diffuse base is its nearest lobe. Measured against Cycles
+        # (tests/cycles_principled.rs), rt is about 2% brighter, more at grazing angles.
+        radius = max(rgb(socket_value(node, "Subsurface Radius", (1, 1, 1))))
+        scale = float(socket_value(node, "Subsurface Scale", 0.05))
+        warn(material, node, f"Subsurface Weight {subsurface:g} is rendered as the diffuse base "
+             f"(no light travels under the surface: radius {radius * scale:g} m)")
+    return s
+
+
+def diffuse(material, node):
+    roughness = float(socket_value(node, "Roughness", 0.0))
+    if roughness > 0.0:
+        warn(material, node, f"Roughness {roughness:g} (Oren-Nayar) is not rendered by rt: Lambertian")
+    return Surface(kind="diffuse", base=rgb(socket_value(node, "Color", (0.8, 0.8, 0.8))), roughness=1.0,
+                   specular_level=0.0)
+
+
+def glossy(material, node):
+    distribution_note(material, node)
+    if float(socket_value(node, "Anisotropy", 0.0)) != 0.0:
+        warn(material, node, "anisotropy is not rendered by rt: isotropic")
+    color = rgb(socket_value(node, "Color", (0.8, 0.8, 0.8)))
+    return Surface(kind="glossy", glossy=color, base=[min(max(c, 0.0), 1.0) for c in color], metallic=1.0,
+                   roughness=float(socket_value(node, "Roughness", 0.5)), specular_level=0.0)
+
+
+def glass(material, node):
+    distribution_note(material, node)
+    color = [min(max(c, 0.0), 1.0) for c in rgb(socket_value(node, "Color", (1, 1, 1)))]
+    if node.type == "BSDF_REFRACTION":
+        warn(material, node, "rendered as glass: rt's refraction also reflects (Fresnel)")
+    elif any(c < 1.0 for c in color):
+        warn(material, node, "its Color tints refraction only: rt's glass reflects untinted")
+    # rt's glass (as Cycles' Principled) tints each refraction by the square root of its base colour.
+    return Surface(kind="glass", base=[c * c for c in color], transmission=1.0,
+                   ior=float(socket_value(node, "IOR", 1.5)), roughness=float(socket_value(node, "Roughness", 0.0)))
+
+
+def emission(material, node):
+    strength = float(socket_value(node, "Strength", 1.0))
+    radiance = [c * strength for c in rgb(socket_value(node, "Color", (1, 1, 1)))]
+    return Surface(kind="emission", base=[0.0, 0.0, 0.0], roughness=1.0, specular_level=0.0, emission=radiance)
+
+
+def transparent(material, node):
+    color = rgb(socket_value(node, "Color", (1, 1, 1)))
+    if any(abs(c - 1.0) > 1e-6 for c in color):
+        warn(material, node, "rt's transparency is colourless: rendered white")
+    return Surface(kind="transparent", alpha=0.0)
+
+
+def translucent(material, node):
+    warn(material, node, "rt has no diffuse transmission: rendered as a diffuse reflector")
+    return Surface(kind="diffuse", base=rgb(socket_value(node, "Color", (0.8, 0.8, 0.8))), roughness=1.0,
+                   specular_level=0.0)
+
+
+def shader_inputs(node):
+    return [s for s in node.inputs if s.type == "SHADER"]
+
+
+def with_transparency(surface, opacity):
+    surface.alpha *= opacity
+    return surface
+
+
+def mix(material, node):
+    fac_socket = node.inputs["Fac"]
+    w = min(max(float(fac_socket.default_value), 0.0), 1.0)
+    if fac_socket.is_linked:
+        warn(material, node, f"its Fac is linked; rt mixes by its own value {w:g}")
+    a_socket, b_socket = shader_inputs(node)
+    a, b = shader(material, linked_node(a_socket)), shader(material, linked_node(b_socket))
+    if a is None and b is None:
+        return None
+    # An input left empty (or unsupported, already warned about) is black in Cycles.
+    a, b = a or black(), b or black()
+    return mixed(material, node, a, 1.0 - w, b, w)
+
+
+def black():
+    return Surface(kind="diffuse", base=[0.0, 0.0, 0.0], roughness=1.0, specular_level=0.0)
+
+
+def mixed(material, node, a, wa, b, wb):
+    """a x wa + b x wb, in parameters where that is exact."""
+    if wb == 0.0 or wa == 0.0:
+        return a if wb == 0.0 else b
+    if b.kind == "transparent":
+        return with_transparency(a, wa)
+    if a.kind == "transparent":
+        return with_transparency(b, wb)
+    if b.kind == "emission" or a.kind == "emission":
+        light, lw, other, ow = (b, wb, a, wa) if b.kind == "emission" else (a, wa, b, wb)
+        glow = [e * lw for e in light.emission]
+        if not other.scaled_lobes(ow):
+            warn(material, node, f"rt cannot scale a {other.kind} surface by {ow:g}: its lobes keep their full "
+                 "weight beside the mixed-in emission")
+            other.emission = [e * ow for e in other.emission]
+            other.emission_strength *= ow
+        other.emission = [e + g for e, g in zip(other.emission, glow)]
+        return other
+    if a.kind == "diffuse" and b.kind == "diffuse":
+        a.base = [x * wa + y * wb for x, y in zip(a.base, b.base)]
+        return a
+    dominant, weight = (a, wa) if wa >= wb else (b, wb)
+    warn(material, node, f"rt cannot mix a {a.kind} and a {b.kind} surface: using the {dominant.kind} one "
+         f"(weight {weight:g})")
+    return dominant
+
+
+def add(material, node):
+    a_socket, b_socket = shader_inputs(node)
+    a, b = shader(material, linked_node(a_socket)), shader(material, linked_node(b_socket))
+    if a is None or b is None:
+        return a or b
+    if b.kind == "emission" or a.kind == "emission":
+        light, other = (b, a) if b.kind == "emission" else (a, b)
+        other.emission = [e + g for e, g in zip(other.emission, light.emission)]
+        return other
+    warn(material, node, f"rt cannot add a {a.kind} and a {b.kind} surface: using the first one")
+    return a
+
+
+MAPPINGS = {
+    "BSDF_PRINCIPLED": principled,
+    "BSDF_DIFFUSE": diffuse,
+    "BSDF_GLOSSY": glossy,
+    "BSDF_GLASS": glass,
+    "BSDF_REFRACTION": glass,
+    "EMISSION": emission,
+    "BSDF_TRANSPARENT": transparent,
+    "BSDF_TRANSLUCENT": translucent,
+    "MIX_SHADER": mix,
+    "ADD_SHADER": add,
+}
+
+
+def shader(material, node):
+    """The Surface of the shader node `node` (None for no node), warning about what rt
+    cannot render. An unsupported node gives None."""
+    if node is None:
+        return None
+    if node.type == "REROUTE":
+        return shader(material, linked_node(node.inputs[0]))
+    mapping = MAPPINGS.get(node.type)
+    if mapping is None:
+        warn(material, node, "this shader node is not supported by rt (inside a Mix or Add Shader: black)")
+        return None
+    return mapping(material, node)
+
+
+def surface(material, node):
+    """The Surface of what is linked to a Material Output's Surface (`node`), or one of the
+    material's viewport colour (with a warning) when rt cannot render that node."""
+    found = shader(material, node) if node is not None else None
+    if found is None:
+        found = Surface(kind="viewport", base=rgb(material.diffuse_color), metallic=float(material.metallic),
+                        roughness=float(material.roughness))
+        if node is not None:
+            log(f"{material.name}: its surface is rendered with the material's viewport colour")
+    # Clamped as Cycles clamps the Principled's inputs.
+    found.alpha = float(np.clip(found.alpha, 0.0, 1.0))
+    return found

@@ -1,0 +1,123 @@
+#!/usr/bin/env python3
+"""Rows of five spheres under a uniform world, each sphere's material built from Blender's
+shader nodes other than the Principled BSDF, rendered with Cycles and exported with
+blender/rt_export.py, for `tests/cycles_shader_nodes.rs`:
+
+    /work/main/.venv-bpy/bin/python tests/cycles/make_shader_node_refs.py [--spp 2048] [NAME...]
+
+For each NAME it writes `tests/cycles/nodes_NAME.exr` (Cycles, linear, 32-bit) and
+`tests/cycles/scenes/nodes_NAME/` (the exported assets and `scene.toml`). Cycles is set up
+as a reference as in make_texture_refs.py; the nodes use Multiscatter GGX, rt's default.
+Every node set-up here is one that the exporter maps exactly (README: "Other shader nodes").
+"""
+
+import argparse
+import math
+import os
+import sys
+
+import bpy
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import make_principled_refs as principled_refs  # noqa: E402
+import make_texture_refs as refs  # noqa: E402
+
+
+def node(tree, kind, **inputs):
+    n = tree.nodes.new(kind)
+    for key, value in inputs.items():
+        if key == "distribution":
+            n.distribution = value
+        else:
+            principled_refs.set_input(n, key, value)
+    return n
+
+
+def diffuse(tree, color, roughness=0.0):
+    return node(tree, "ShaderNodeBsdfDiffuse", Color=color, Roughness=roughness)
+
+
+def glossy(tree, color, roughness):
+    return node(tree, "ShaderNodeBsdfGlossy", Color=color, Roughness=roughness, distribution="MULTI_GGX")
+
+
+def glass(tree, roughness, ior=1.45):
+    return node(tree, "ShaderNodeBsdfGlass", Color=(1.0, 1.0, 1.0), Roughness=roughness, IOR=ior,
+                distribution="MULTI_GGX")
+
+
+def emission(tree, color, strength):
+    return node(tree, "ShaderNodeEmission", Color=color, Strength=strength)
+
+
+def transparent(tree):
+    return node(tree, "ShaderNodeBsdfTransparent", Color=(1.0, 1.0, 1.0))
+
+
+def mix(tree, fac, a, b):
+    n = tree.nodes.new("ShaderNodeMixShader")
+    n.inputs["Fac"].default_value = fac
+    tree.links.new(a.outputs[0], n.inputs[1])
+    tree.links.new(b.outputs[0], n.inputs[2])
+    return n
+
+
+def add(tree, a, b):
+    n = tree.nodes.new("ShaderNodeAddShader")
+    tree.links.new(a.outputs[0], n.inputs[0])
+    tree.links.new(b.outputs[0], n.inputs[1])
+    return n
+
+
+# Per row, per sphere: a function of the node tree that returns the surface shader node.
+ROWS = {
+    "single": [
+        lambda t: diffuse(t, (0.8, 0.3, 0.2)),
+        lambda t: glossy(t, (0.9, 0.6, 0.3), 0.3),
+        lambda t: glossy(t, (0.3, 0.6, 0.9), 0.0),
+        lambda t: glass(t, 0.1),
+        lambda t: emission(t, (1.0, 0.5, 0.2), 2.0),
+    ],
+    "mixed": [
+        lambda t: mix(t, 0.4, diffuse(t, (0.2, 0.4, 0.8)), transparent(t)),
+        lambda t: mix(t, 0.3, diffuse(t, (0.3, 0.8, 0.3)), emission(t, (1.0, 0.8, 0.2), 3.0)),
+        lambda t: add(t, emission(t, (0.2, 0.3, 1.0), 0.5), glossy(t, (0.8, 0.8, 0.8), 0.5)),
+        lambda t: mix(t, 0.25, diffuse(t, (0.9, 0.1, 0.1)), diffuse(t, (0.1, 0.1, 0.9))),
+        lambda t: mix(t, 0.7, transparent(t), glossy(t, (0.9, 0.9, 0.2), 0.2)),
+    ],
+}
+
+
+def build(scene, name):
+    refs.world(scene, (1.0, 1.0, 1.0))
+    for i, make in enumerate(ROWS[name]):
+        m = bpy.data.materials.new(f"{name}_{i}")
+        tree = m.node_tree
+        tree.nodes.remove(tree.nodes["Principled BSDF"])
+        tree.links.new(make(tree).outputs[0], tree.nodes["Material Output"].inputs["Surface"])
+        refs.add_object(scene, f"sphere_{i}", bpy.ops.mesh.primitive_uv_sphere_add, m, radius=0.45,
+                        segments=48, ring_count=24, location=(i - 2.0, 0.0, 0.0))
+        bpy.ops.object.shade_smooth()
+    refs.camera(scene, (0.0, -12.0, 0.0), (0.0, 0.0, 0.0), 2.0 * math.degrees(math.atan(0.5 / 12.0)))
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--spp", type=int, default=2048)
+    parser.add_argument("names", nargs="*", default=list(ROWS))
+    args = parser.parse_args()
+    for name in args.names:
+        scene = refs.reset()
+        scene.render.resolution_x, scene.render.resolution_y = principled_refs.WIDTH, principled_refs.HEIGHT
+        build(scene, name)
+        scene.cycles.samples = args.spp
+        out = os.path.join(HERE, "scenes", f"nodes_{name}")
+        refs.rt_export.export_scene(scene, os.path.join(out, "assets"), os.path.join(out, "scene.toml"))
+        scene.render.filepath = os.path.join(HERE, f"nodes_{name}.exr")
+        bpy.ops.render.render(write_still=True)
+        print(f"nodes_{name}: {args.spp} spp -> {scene.render.filepath}", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()

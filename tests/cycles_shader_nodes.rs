@@ -1,0 +1,60 @@
+//! Blender's shader nodes other than the Principled BSDF, as rt_export.py maps them onto
+//! rt's material model (README: "Other shader nodes"). `tests/cycles/make_shader_node_refs.py`
+//! builds rows of five spheres in bpy (Diffuse, Glossy, Glass, Emission, and Mix and Add
+//! Shaders of them with Transparent and Emission), renders them with Cycles
+//! (`tests/cycles/nodes_NAME.exr`, 2048 spp) and exports them
+//! (`tests/cycles/scenes/nodes_NAME/`); rt must match per sphere and per 8×8 block within
+//! the noise (the bounds of `cycles_principled`). What the exporter cannot map is a warning
+//! naming the material and the node.
+
+use crate::blender_roundtrip::bpy_python;
+use crate::common;
+use crate::cycles_principled::check_row;
+
+use common::repo;
+use std::process::Command;
+
+#[test]
+fn single_nodes_match_cycles() {
+    check_row("nodes_single");
+}
+
+#[test]
+fn mixed_and_added_nodes_match_cycles() {
+    check_row("nodes_mixed");
+}
+
+#[test]
+fn unmappable_nodes_warn_naming_material_and_node() {
+    let out = std::env::temp_dir().join(format!("rt-test-{}-shader-node-warnings", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let run = Command::new(bpy_python())
+        .arg(repo().join("tests/blender/shader_node_warnings.py"))
+        .arg(&out)
+        .output()
+        .expect("bpy runs");
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "export failed:\n{stderr}");
+    for needle in [
+        "toon_mat: 'Cartoon' (ShaderNodeBsdfToon): this shader node is not supported by rt",
+        "toon_mat: its surface is rendered with the material's viewport colour",
+        "noisy_mix: 'Blend' (ShaderNodeMixShader): its Fac is linked",
+        "glossy_glass: 'Both' (ShaderNodeMixShader): rt cannot mix a glossy and a glass surface: using the glass one",
+        "skin_mat: 'Skin' (ShaderNodeBsdfPrincipled): Subsurface Weight 0.5 is rendered as the diffuse base",
+        "felt_mat: 'Felt' (ShaderNodeBsdfDiffuse): Roughness 0.5 (Oren-Nayar) is not rendered by rt",
+        "leaf_mat: 'Leaf' (ShaderNodeBsdfTranslucent): rt has no diffuse transmission",
+    ] {
+        assert!(stderr.contains(needle), "{needle:?} missing from:\n{stderr}");
+    }
+    // The dominant shader of the mix is what rt renders: Glass (weight 0.7) over Glossy.
+    let glass = rt::asset::load_mesh(&out.join("assets/Cube_002")).expect("loads");
+    let m = &glass.materials[0].1;
+    assert_eq!((m.transmission, m.specular, m.diffuse), (1.0, 0.0, 0.0), "{m:?}");
+    // An empty input of a Mix Shader is black: half of the Diffuse's colour.
+    let half = rt::asset::load_mesh(&out.join("assets/Cube_006")).expect("loads");
+    let m = &half.materials[0].1;
+    let expected = [0.4, 0.3, 0.2];
+    assert!(m.base_color.iter().zip(expected).all(|(a, b)| (a - b).abs() < 1e-6), "{m:?}");
+    assert_eq!((m.diffuse, m.specular_ior_level), (1.0, 0.0), "{m:?}");
+    let _ = std::fs::remove_dir_all(&out);
+}

@@ -55,7 +55,7 @@ bl_info = {
 }
 
 RTMESH_MAGIC = b"RTMESH\0\0"
-RTMESH_VERSION = 2
+RTMESH_VERSION = 3
 RTINST_MAGIC = b"RTINST\0\0"
 RTINST_VERSION = 2
 RTINST_OWN_MATERIALS = 0xFFFFFFFF
@@ -102,11 +102,13 @@ def to_rt(v):
     return np.stack([v[:, 0], v[:, 2], -v[:, 1]], axis=1)
 
 
-def mesh_arrays(mesh, material_count, uv_transforms=None):
+def mesh_arrays(mesh, material_count, uv_transforms=None, second_uv_map=None):
     """Positions, normals, uvs, tangents (per vertex, rt axes), triangle indices and material
     indices of an evaluated mesh. Corners that share all of them share a vertex.
     `uv_transforms[m]`, a 2x3 affine map or None, is applied to the uvs of material m's
-    triangles: a Mapping node in front of that material's textures."""
+    triangles: a Mapping node in front of that material's textures. The uvs are the map
+    Cycles reads by default (see `default_uv_map`); `second_uv_map`, a map's name, adds
+    that map as the second set."""
     mesh.calc_loop_triangles()
     tri_count = len(mesh.loop_triangles)
     corners = np.empty(tri_count * 3, np.int32)
@@ -129,18 +131,14 @@ def mesh_arrays(mesh, material_count, uv_transforms=None):
 
     columns = [to_rt(co.reshape(-1, 3)[corner_vertex[corners]]), to_rt(normals.reshape(-1, 3)[corners])]
     has_uvs = len(mesh.uv_layers) > 0
+    second = has_uvs and second_uv_map is not None and second_uv_map in mesh.uv_layers
     if has_uvs:
-        uvs = np.empty(loop_count * 2, np.float32)
-        mesh.uv_layers[0].uv.foreach_get("vector", uvs)
-        corner_uvs = uvs.reshape(-1, 2)[corners]
-        for m, transform in enumerate(uv_transforms or []):
-            if transform is not None:
-                at = np.repeat(materials == m, 3)
-                corner_uvs[at] = corner_uvs[at] @ transform[:, :2].T + transform[:, 2]
-        columns.append(corner_uvs)
+        columns.append(corner_uv_array(mesh, default_uv_map(mesh), corners, materials, uv_transforms))
         tangents = mesh_tangents(mesh, loop_count)
         if tangents is not None:
             columns.append(np.concatenate([to_rt(tangents[:, :3]), tangents[:, 3:4]], axis=1)[corners])
+    if second:
+        columns.append(corner_uv_array(mesh, second_uv_map, corners, materials, uv_transforms))
     records = np.ascontiguousarray(np.concatenate(columns, axis=1), dtype=np.float32)
     keys = records.view(np.dtype((np.void, records.itemsize * records.shape[1]))).ravel()
     _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
@@ -154,17 +152,36 @@ def mesh_arrays(mesh, material_count, uv_transforms=None):
         "positions": vertices[:, 0:3],
         "normals": vertices[:, 3:6],
         "uvs": vertices[:, 6:8] if has_uvs else None,
-        "tangents": vertices[:, 8:12] if vertices.shape[1] >= 12 else None,
+        "tangents": vertices[:, 8:12] if has_uvs and tangents is not None else None,
+        "second_uvs": vertices[:, -2:] if second else None,
         "indices": indices,
         "materials": materials,
     }
 
 
+def default_uv_map(mesh):
+    """The name of the uv map Cycles reads where a node names none: the active render
+    one. It is rt's first uv set."""
+    return next((layer.name for layer in mesh.uv_layers if layer.active_render), mesh.uv_layers[0].name)
+
+
+def corner_uv_array(mesh, name, corners, materials, uv_transforms):
+    """The uvs of map `name` at each triangle corner, the material's uv transform applied."""
+    uvs = np.empty(len(mesh.loops) * 2, np.float32)
+    mesh.uv_layers[name].uv.foreach_get("vector", uvs)
+    corner_uvs = uvs.reshape(-1, 2)[corners]
+    for m, transform in enumerate(uv_transforms or []):
+        if transform is not None:
+            at = np.repeat(materials == m, 3)
+            corner_uvs[at] = corner_uvs[at] @ transform[:, :2].T + transform[:, 2]
+    return corner_uvs
+
+
 def mesh_tangents(mesh, loop_count):
-    """Per-corner MikkTSpace tangents and bitangent signs (n, 4) of the first uv map, as
+    """Per-corner MikkTSpace tangents and bitangent signs (n, 4) of the first uv set, as
     Cycles computes them for normal maps, or None where Blender cannot compute them."""
     try:
-        mesh.calc_tangents(uvmap=mesh.uv_layers[0].name)
+        mesh.calc_tangents(uvmap=default_uv_map(mesh))
     except RuntimeError as e:
         log(f"{mesh.name}: no tangents ({e})")
         return None
@@ -178,6 +195,7 @@ def mesh_tangents(mesh, loop_count):
 def rtmesh_bytes(arrays):
     """Contract 1: magic, version, flags, counts, then the sections, little-endian."""
     flags = 1 | (2 if arrays["uvs"] is not None else 0) | (4 if arrays.get("tangents") is not None else 0)
+    flags |= 8 if arrays.get("second_uvs") is not None else 0
     header = RTMESH_MAGIC + struct.pack(
         "<4I", RTMESH_VERSION, flags, len(arrays["positions"]), len(arrays["indices"])
     )
@@ -186,6 +204,8 @@ def rtmesh_bytes(arrays):
         sections.append(arrays["uvs"].astype("<f4"))
     if arrays.get("tangents") is not None:
         sections.append(arrays["tangents"].astype("<f4"))
+    if arrays.get("second_uvs") is not None:
+        sections.append(arrays["second_uvs"].astype("<f4"))
     sections += [arrays["indices"].astype("<u4"), arrays["materials"].astype("<u4")]
     return header + b"".join(np.ascontiguousarray(s).tobytes() for s in sections)
 
@@ -301,10 +321,12 @@ def mapping_transform(node):
 
 class Channel:
     """One channel that feeds a socket: an Image Texture node's output, one of its
-    channels or all three (colour), and the uv transform in front of it."""
+    channels or all three (colour), the uv transform in front of it and the uv map it
+    reads ("" for Cycles' default one)."""
 
-    def __init__(self, node, output, component, transform):
+    def __init__(self, node, output, component, transform, uv_map=""):
         self.node, self.output, self.component, self.transform = node, output, component, transform
+        self.uv_map = uv_map
 
     def values(self):
         """(h, w, 3) for colour, (h, w) for one channel."""
@@ -318,9 +340,10 @@ class Channel:
         return pixels[:, :, self.component]
 
 
-def texture_channel(material, node, socket_name):
+def texture_channel(material, node, socket_name, baker=None):
     """The image channel linked into `node.inputs[socket_name]`, or None (then the
-    socket's own value is used; a link rt cannot follow is warned about)."""
+    socket's own value is used; a link rt cannot follow is warned about, or, with a
+    `baker`, baked into an image)."""
     socket = node.inputs.get(socket_name)
     if socket is None or not socket.is_linked:
         return None
@@ -338,8 +361,13 @@ def texture_channel(material, node, socket_name):
             return None
         source, output = inner.links[0].from_node, inner.links[0].from_socket.name
     if source.type != "TEX_IMAGE" or source.image is None:
-        if source.type not in {"RGB", "VALUE"}:
-            log(f"{material.name}: {socket_name} is linked to {source.type}, which rt cannot follow; using its own value")
+        if source.type in {"RGB", "VALUE"}:
+            return None
+        if baker is not None and socket_name in BAKED_SOCKETS:
+            baked = baker.bake(material, socket)
+            if baked is not None:
+                return baked
+        log(f"{material.name}: {socket_name} is linked to {source.type}, which rt cannot follow; using its own value")
         return None
     if component is None and output == "Color" and socket.type == "VALUE":
         component = "luma"
@@ -352,14 +380,25 @@ def texture_channel(material, node, socket_name):
             log(f"{material.name}: {socket_name}'s image coordinates come from {mapping.type}; using the uvs as they are")
     if source.extension == "CLIP":
         log(f"{material.name}: image {source.image.name} clips; rt clamps it to its edge")
-    return Channel(source, output, component, transform)
+    return Channel(source, output, component, transform, image_uv_map(source))
+
+
+def image_uv_map(image_node):
+    """The uv map an Image Texture node reads: a UV Map node's, directly or through a
+    Mapping node, else "" (Cycles' default map)."""
+    vector = image_node.inputs["Vector"]
+    source = vector.links[0].from_node if vector.is_linked else None
+    if source is not None and source.type == "MAPPING" and source.inputs["Vector"].is_linked:
+        source = source.inputs["Vector"].links[0].from_node
+    return source.uv_map if source is not None and source.type == "UVMAP" else ""
 
 
 class Textures:
     """The images and textures of one asset's glTF, built material by material."""
 
-    def __init__(self, base_name):
+    def __init__(self, base_name, baker=None):
         self.base_name = base_name
+        self.baker = baker  # a Baker for links rt cannot follow, or None
         self.images = {}  # file name -> PNG bytes
         self.gltf_images, self.gltf_textures, self.samplers = [], [], []
 
@@ -400,6 +439,158 @@ class Textures:
         return self.gltf_textures.index(texture)
 
 
+# --- baking (--bake) ----------------------------------------------------------------
+#
+# A Principled socket fed by what rt cannot follow (procedural textures, Color Ramp,
+# Mix ...) is baked with Cycles: the sub-graph feeding it is wired for a moment into an
+# Emission shader on the material's output, and an EMIT bake writes its values (linear,
+# scalars as grey) into a float image of the chosen size on rt's first uv set (the map
+# Cycles reads by default). The image becomes that socket's texture like an Image
+# Texture node's would, clamped at its edges. Bakes run before the mesh is evaluated for
+# export, once per material and socket, and the node tree is restored afterwards.
+
+DEFAULT_BAKE_SIZE = 1024
+BAKED_SOCKETS = ("Base Color", "Alpha", "Roughness", "Metallic", "Emission Color")
+COLOUR_SOCKETS = ("Base Color", "Emission Color")
+BAKE_SAMPLES = 16  # per texel: antialiasing of the procedural pattern within a texel
+BAKE_MARGIN = 8  # texels of padding past the uv islands' edges
+
+
+class BakedImage:
+    """Stands for an Image Texture node in a Channel: the baked image's name and edge mode."""
+
+    def __init__(self, name):
+        self.name, self.extension = name, "EXTEND"
+
+
+class BakedChannel(Channel):
+    """A socket's baked values: (h, w, 3) linear colour, or one channel of them for a scalar."""
+
+    def __init__(self, name, pixels, colour):
+        super().__init__(BakedImage(name), "Color", None if colour else 0, None)
+        self.pixels = pixels
+
+    def values(self):
+        return self.pixels[:, :, :3] if self.component is None else self.pixels[:, :, self.component]
+
+
+def principled_surface(material):
+    """The Principled BSDF that `gltf_material` reads of a material, or None."""
+    if material is None or material.node_tree is None:
+        return None
+    output = active_output(material.node_tree, "OUTPUT_MATERIAL")
+    surface = linked_node(output.inputs["Surface"]) if output else None
+    if surface is not None and surface.type not in {"BSDF_PRINCIPLED", "EMISSION"}:
+        principled = [n for n in material.node_tree.nodes if n.type == "BSDF_PRINCIPLED"]
+        surface = principled[0] if principled else surface
+    return surface if surface is not None and surface.type == "BSDF_PRINCIPLED" else None
+
+
+def needs_bake(socket):
+    """Whether `texture_channel` cannot follow what feeds `socket` (through Separate Color too)."""
+    source = linked_node(socket)
+    if source is not None and source.type == "SEPARATE_COLOR" and source.mode == "RGB":
+        source = linked_node(source.inputs["Color"])
+    if source is None or source.type in {"RGB", "VALUE"}:
+        return False
+    return source.type != "TEX_IMAGE" or source.image is None
+
+
+class Baker:
+    """Bakes sockets of one object's materials into images of `size` × `size` texels."""
+
+    def __init__(self, obj, size):
+        self.obj, self.size = obj, size
+        self.baked = {}  # (material name, socket name) -> BakedChannel, or None where baking failed
+
+    def prebake(self, materials):
+        """Bakes every socket that will need it, before the object's mesh is evaluated for export."""
+        for material in materials:
+            surface = principled_surface(material)
+            for name in BAKED_SOCKETS if surface is not None else ():
+                if needs_bake(surface.inputs[name]):
+                    self.bake(material, surface.inputs[name])
+
+    def bake(self, material, socket):
+        key = (material.name, socket.name)
+        if key not in self.baked:
+            self.baked[key] = self._bake(material, socket)
+        return self.baked[key]
+
+    def _bake(self, material, socket):
+        mesh = self.obj.data
+        if self.obj.type != "MESH" or not len(mesh.uv_layers):
+            log(f"{material.name}: {socket.name} cannot be baked: {self.obj.name} has no uv map")
+            return None
+        if self.obj.name not in bpy.context.view_layer.objects:
+            log(f"{material.name}: {socket.name} cannot be baked: {self.obj.name} is not in the view layer")
+            return None
+        tree = material.node_tree
+        output = active_output(tree, "OUTPUT_MATERIAL")
+        surface = output.inputs["Surface"]
+        was_on_surface = surface.links[0].from_socket if surface.is_linked else None
+        image = bpy.data.images.new(f"rt_bake_{material.name}_{socket.name}", self.size, self.size,
+                                    alpha=False, float_buffer=True)
+        image.colorspace_settings.name = "Non-Color"  # the values as the shader gives them
+        emission = tree.nodes.new("ShaderNodeEmission")
+        emission.inputs["Strength"].default_value = 1.0
+        tree.links.new(socket.links[0].from_socket, emission.inputs["Color"])
+        tree.links.new(emission.outputs["Emission"], surface)
+        target = tree.nodes.new("ShaderNodeTexImage")
+        target.image = image
+        was_active = tree.nodes.active
+        tree.nodes.active = target
+        # The bake writes into every material's active image: the object's others get a scratch one.
+        scratch = bpy.data.images.new("rt_bake_scratch", 4, 4, float_buffer=True)
+        others = []
+        for slot in self.obj.material_slots:
+            other = slot.material
+            if other is None or other == material or other.node_tree is None or other in [o for o, _, _ in others]:
+                continue
+            node = other.node_tree.nodes.new("ShaderNodeTexImage")
+            node.image = scratch
+            others.append((other, node, other.node_tree.nodes.active))
+            other.node_tree.nodes.active = node
+        scene = bpy.context.scene
+        layer = bpy.context.view_layer
+        saved = (scene.render.engine, scene.cycles.samples, layer.objects.active,
+                 [o for o in layer.objects if o.select_get()])
+        try:
+            scene.render.engine = "CYCLES"
+            scene.cycles.samples = BAKE_SAMPLES
+            for o in saved[3]:
+                o.select_set(False)
+            self.obj.select_set(True)
+            layer.objects.active = self.obj
+            bpy.ops.object.bake(type="EMIT", margin=BAKE_MARGIN, margin_type="EXTEND", use_clear=True,
+                                target="IMAGE_TEXTURES", uv_layer=default_uv_map(mesh))
+            pixels = np.empty(self.size * self.size * 4, np.float32)
+            image.pixels.foreach_get(pixels)
+            pixels = pixels.reshape(self.size, self.size, 4)[::-1].copy()
+        except RuntimeError as e:
+            log(f"{material.name}: baking {socket.name} failed ({e}); using its own value")
+            return None
+        finally:
+            scene.render.engine, scene.cycles.samples = saved[0], saved[1]
+            self.obj.select_set(False)
+            for o in saved[3]:
+                o.select_set(True)
+            layer.objects.active = saved[2]
+            for other, node, active in others:
+                other.node_tree.nodes.remove(node)
+                other.node_tree.nodes.active = active
+            tree.nodes.remove(target)
+            tree.nodes.remove(emission)
+            if was_on_surface is not None:
+                tree.links.new(was_on_surface, surface)
+            tree.nodes.active = was_active
+            bpy.data.images.remove(image)
+            bpy.data.images.remove(scratch)
+        log(f"{material.name}: baked {socket.name} ({linked_node(socket).type}) into {self.size}x{self.size} "
+            f"texels on uv map {default_uv_map(mesh)!r}")
+        return BakedChannel(f"{material.name}-{socket.name}", pixels, socket.name in COLOUR_SOCKETS)
+
+
 def blake(data):
     import hashlib
 
@@ -410,7 +601,7 @@ def material_textures(material, surface, out, textures, factors):
     """Adds the textures of a Principled BSDF to glTF material `out`; returns the uv
     transform its textures share (or None)."""
     pbr = out["pbrMetallicRoughness"]
-    found = {name: texture_channel(material, surface, name) for name in TEXTURE_SOCKETS}
+    found = {name: texture_channel(material, surface, name, textures.baker) for name in TEXTURE_SOCKETS}
     transforms = [c.transform for c in found.values() if c is not None and c.transform is not None]
     transform = transforms[0] if transforms else None
     if any(not np.allclose(t, transform) for t in transforms):
@@ -421,7 +612,7 @@ def material_textures(material, surface, out, textures, factors):
         rgb_source = [(base, i) for i in range(3)] if base is not None else [float(v) for v in factors["base"]]
         pbr["baseColorFactor"] = [1.0, 1.0, 1.0, 1.0]
         pbr["baseColorTexture"] = {"index": textures.add(rgb_source + [alpha if alpha is not None else 1.0], True,
-                                                          wrap_of(base or alpha))}
+                                                          wrap_of(base or alpha)), UV_MAP_KEY: (base or alpha).uv_map}
         if alpha is not None:
             # Cycles blends by alpha (stochastically): so does rt with glTF's BLEND.
             out["alphaMode"] = "BLEND"
@@ -430,18 +621,21 @@ def material_textures(material, surface, out, textures, factors):
     if rough is not None or metal is not None:
         pbr["metallicRoughnessTexture"] = {"index": textures.add(
             [0.0, rough if rough is not None else factors["roughness"],
-             metal if metal is not None else factors["metallic"], 1.0], False, wrap_of(rough or metal))}
+             metal if metal is not None else factors["metallic"], 1.0], False, wrap_of(rough or metal)),
+            UV_MAP_KEY: (rough or metal).uv_map}
         pbr["roughnessFactor"], pbr["metallicFactor"] = 1.0, 1.0
     normal = found["Normal"]
     if normal is not None:
         node = surface.inputs["Normal"].links[0].from_node
         strength = float(node.inputs["Strength"].default_value) if node.type == "NORMAL_MAP" else 1.0
+        # The Normal Map node's uv map is the one its tangents are of.
+        uv_map = (node.uv_map if node.type == "NORMAL_MAP" else "") or normal.uv_map
         out["normalTexture"] = {"index": textures.add([(normal, i) for i in range(3)] + [1.0], False,
-                                                      wrap_of(normal)), "scale": strength}
+                                                      wrap_of(normal)), "scale": strength, UV_MAP_KEY: uv_map}
     emission = found["Emission Color"]
     if emission is not None:
         out["emissiveTexture"] = {"index": textures.add([(emission, i) for i in range(3)] + [1.0], True,
-                                                        wrap_of(emission))}
+                                                        wrap_of(emission)), UV_MAP_KEY: emission.uv_map}
         strength = factors["strength"]
         if strength > 0.0:
             out["emissiveFactor"] = [1.0, 1.0, 1.0]
@@ -569,11 +763,15 @@ def object_slot_materials(obj):
     return [slot.material for slot in obj.material_slots] or [None]
 
 
-def export_object_mesh(obj, depsgraph, base_name="mesh"):
+def export_object_mesh(obj, depsgraph, base_name="mesh", bake_size=0):
     """(rtmesh bytes, gltf text, {image file: PNG bytes}, triangle count) of an object's
-    evaluated mesh. The materials come first: their Mapping nodes transform the uvs."""
+    evaluated mesh. The materials come first: their Mapping nodes transform the uvs.
+    With `bake_size`, links rt cannot follow are baked into images of that size."""
     materials = object_slot_materials(obj)
-    textures = Textures(base_name)
+    textures = Textures(base_name, Baker(obj, bake_size) if bake_size > 0 else None)
+    if textures.baker is not None:
+        textures.baker.prebake(materials)
+        depsgraph = bpy.context.evaluated_depsgraph_get()
     evaluated = obj.evaluated_get(depsgraph)
     mesh = evaluated.to_mesh()
     try:
@@ -582,17 +780,71 @@ def export_object_mesh(obj, depsgraph, base_name="mesh"):
         evaluated.to_mesh_clear()
 
 
-def warn_other_uv_maps(mesh, materials):
-    """rt carries one uv map, the mesh's first: a UV Map or Normal Map node that names
-    another one is warned about (material and node), and the first one is used."""
-    first = mesh.uv_layers[0].name if len(mesh.uv_layers) else ""
-    for material in materials:
-        if material is None or material.node_tree is None:
-            continue
-        for node in material.node_tree.nodes:
-            if node.type in {"UVMAP", "NORMAL_MAP"} and node.uv_map not in ("", first):
-                log(f"{material.name}: node {node.name!r} reads uv map {node.uv_map!r}; rt carries only "
-                    f"the first one ({first!r}) and uses that")
+# --- uv sets ----------------------------------------------------------------------
+#
+# rt carries two uv sets: the map Cycles reads by default (the active render one) and a
+# second one, the first other map that some texture of the mesh's materials reads (a UV
+# Map node in front of its Image Texture, directly or through a Mapping node). Textures
+# name their map under UV_MAP_KEY while the materials are built; once the mesh's second
+# set is known it becomes glTF's texCoord (1 for the second set). Normal maps read the
+# first set, whose tangents rt carries; a third map is read as the first, with a warning.
+
+UV_MAP_KEY = "_rt_uv_map"
+TEXTURE_INFOS = (("pbrMetallicRoughness", "baseColorTexture"), ("pbrMetallicRoughness", "metallicRoughnessTexture"),
+                 (None, "emissiveTexture"), (None, "normalTexture"))
+
+
+def uv_maps_of(mesh):
+    """(the default uv map's name, every map's name) of a mesh; ("", ()) without uvs."""
+    if not len(mesh.uv_layers):
+        return "", ()
+    return default_uv_map(mesh), tuple(layer.name for layer in mesh.uv_layers)
+
+
+def texture_infos(gltf_material):
+    """(glTF key, texture info) of each texture of a glTF material."""
+    for parent, key in TEXTURE_INFOS:
+        holder = gltf_material.get(parent, {}) if parent else gltf_material
+        if key in holder:
+            yield key, holder[key]
+
+
+def second_uv_map(uv_maps, gltf_materials):
+    """The map rt carries as the second uv set, or None: the first map other than the
+    default that a texture (not a normal map) reads."""
+    default, names = uv_maps
+    for material in gltf_materials:
+        for key, info in texture_infos(material):
+            name = info.get(UV_MAP_KEY, "")
+            if key != "normalTexture" and name not in ("", default) and name in names:
+                return name
+    return None
+
+
+def assign_uv_sets(uv_maps, gltf_materials, second):
+    """Copies of the glTF materials whose textures name their uv set as glTF's texCoord:
+    1 for the map `second`, else the default (warned about where a texture names another)."""
+    import copy
+
+    default, names = uv_maps
+    out = copy.deepcopy(gltf_materials)
+    for material in out:
+        for key, info in texture_infos(material):
+            name = info.pop(UV_MAP_KEY, "")
+            if name in ("", default):
+                continue
+            if name == second and key != "normalTexture":
+                info["texCoord"] = 1
+            elif name not in names:
+                log(f"{material['name']}: {key} reads uv map {name!r}, which the mesh does not have; "
+                    f"rt uses {default!r}")
+            elif key == "normalTexture":
+                log(f"{material['name']}: its normal map reads uv map {name!r}; rt reads normal maps with the "
+                    f"default one ({default!r}), whose tangents it carries")
+            else:
+                log(f"{material['name']}: {key} reads uv map {name!r}; rt carries two ({default!r} and "
+                    f"{second!r}) and uses {default!r}")
+    return out
 
 
 def mesh_thickness(mesh):
@@ -610,9 +862,11 @@ def export_mesh(mesh, materials, textures):
     first: their Mapping nodes transform the uvs."""
     thickness = mesh_thickness(mesh)
     exported = [gltf_material(m, thickness, textures) for m in materials]
-    warn_other_uv_maps(mesh, materials)
-    arrays = mesh_arrays(mesh, len(materials), [transform for _, transform in exported])
-    gltf = gltf_text([material for material, _ in exported], thickness, textures)
+    gltf_materials = [material for material, _ in exported]
+    uv_maps = uv_maps_of(mesh)
+    second = second_uv_map(uv_maps, gltf_materials)
+    arrays = mesh_arrays(mesh, len(materials), [transform for _, transform in exported], second)
+    gltf = gltf_text(assign_uv_sets(uv_maps, gltf_materials, second), thickness, textures)
     return rtmesh_bytes(arrays), gltf, textures.images, len(arrays["indices"])
 
 
@@ -632,6 +886,7 @@ class Export:
         self.triangles = {}
         self.instances = {}  # folder name -> Placements of its instances
         self.images = {}  # folder name -> {image file name: PNG bytes}
+        self.bake_size = 0  # > 0: bake what rt cannot follow into images of this size
 
     def add(self, obj, depsgraph):
         base = sanitize(obj.data.name)
@@ -642,7 +897,7 @@ class Export:
                 if o is not None and o.data == obj.data and plain_instance(o):
                     self.folder_of[obj.name] = folder
                     return
-        rtmesh, gltf, images, triangles = export_object_mesh(obj, depsgraph, base)
+        rtmesh, gltf, images, triangles = export_object_mesh(obj, depsgraph, base, self.bake_size)
         if triangles == 0:
             # Geometry nodes that output only instances leave the object itself empty.
             return
@@ -722,7 +977,10 @@ class InstancedMesh:
         self.index = {}  # material name -> index in the asset's materials
         self.exported = []  # (glTF material, uv transform), the asset's own first
         own = [self.material(m) for m in materials]
-        arrays = mesh_arrays(mesh, len(materials), [self.exported[i][1] for i in own])
+        # Material sets shown later use the own materials' second uv set.
+        self.uv_maps = uv_maps_of(mesh)
+        self.second_uv_map = second_uv_map(self.uv_maps, [self.exported[i][0] for i in own])
+        arrays = mesh_arrays(mesh, len(materials), [self.exported[i][1] for i in own], self.second_uv_map)
         self.rtmesh = rtmesh_bytes(arrays)
         self.triangles = len(arrays["indices"])
         self.slots = len(materials)
@@ -754,7 +1012,8 @@ class InstancedMesh:
         return RTINST_MATERIAL_SET | self.sets.index(indices)
 
     def gltf(self):
-        return gltf_text([material for material, _ in self.exported], self.thickness, self.textures)
+        materials = assign_uv_sets(self.uv_maps, [material for material, _ in self.exported], self.second_uv_map)
+        return gltf_text(materials, self.thickness, self.textures)
 
 
 def instanced_mesh(meshes, obj, materials):
@@ -1253,14 +1512,16 @@ def scene_toml(scene, export, scene_path, objects):
 # --- the export -------------------------------------------------------------------
 
 
-def export_scene(scene, out_dir, scene_path=None, only=None, previous=None):
+def export_scene(scene, out_dir, scene_path=None, only=None, previous=None, bake_size=0):
     """Exports every rendered mesh object of `scene` into `out_dir`, and the scene TOML
     to `scene_path` if given. With `only` (a set of object names) and the `previous`
-    export, objects outside `only` keep the folder they had and are not evaluated."""
+    export, objects outside `only` keep the folder they had and are not evaluated. With
+    `bake_size`, sockets fed by what rt cannot follow are baked (see `Baker`)."""
     depsgraph = bpy.context.evaluated_depsgraph_get()
     # Images may have been painted or reloaded since the last export.
     _linear_pixels.clear()
     export = Export(out_dir)
+    export.bake_size = bake_size
     objects = exported_objects(scene)
     for obj in objects:
         if only is not None and previous is not None and obj.name not in only and obj.name in previous.folder_of:
@@ -1412,6 +1673,18 @@ class RtExportSettings(bpy.types.PropertyGroup):
         ),
         default=False,
     )
+    bake: bpy.props.BoolProperty(
+        name="Bake procedural sockets",
+        description="On Export, bake sockets fed by what rt cannot follow (procedural textures, Color Ramp, Mix ...) "
+                    "with Cycles into image textures (live exports leave them as their own values)",
+        default=False,
+    )
+    bake_size: bpy.props.IntProperty(name="Bake size", description="Width and height of each baked image",
+                                     default=DEFAULT_BAKE_SIZE, min=1, max=8192)
+
+    def bake_texels(self):
+        """The `bake_size` argument of `export_scene`: 0 unless baking is on."""
+        return self.bake_size if self.bake else 0
 
 
 class RT_OT_export(bpy.types.Operator):
@@ -1428,7 +1701,7 @@ class RT_OT_export(bpy.types.Operator):
     def execute(self, context):
         settings = context.scene.rt_export
         scene_path = settings.scene_file if settings.write_scene else None
-        export = export_scene(context.scene, self.directory, scene_path)
+        export = export_scene(context.scene, self.directory, scene_path, bake_size=settings.bake_texels())
         self.report({"INFO"}, f"rt: {len(export.content)} meshes, {len(export.written)} files written")
         return {"FINISHED"}
 
@@ -1444,7 +1717,8 @@ class RT_OT_export_now(bpy.types.Operator):
         if export is None:
             settings = context.scene.rt_export
             scene_path = settings.scene_file if settings.write_scene else None
-            export = export_scene(context.scene, bpy.path.abspath(settings.out_dir), scene_path)
+            export = export_scene(context.scene, bpy.path.abspath(settings.out_dir), scene_path,
+                                  bake_size=settings.bake_texels())
         self.report({"INFO"}, f"rt: {len(export.content)} meshes, {len(export.written)} files written")
         return {"FINISHED"}
 
@@ -1464,6 +1738,10 @@ class RT_PT_panel(bpy.types.Panel):
         row.enabled = settings.write_scene
         row.prop(settings, "scene_file")
         layout.operator(RT_OT_export_now.bl_idname)
+        layout.prop(settings, "bake")
+        row = layout.row()
+        row.enabled = settings.bake
+        row.prop(settings, "bake_size")
         layout.prop(settings, "live")
         layout.prop(settings, "live_edits")
 
@@ -1506,10 +1784,17 @@ def main():
         parser.add_argument("blend", help="the .blend file to export")
     parser.add_argument("--out", required=True, help="folder that receives one asset folder per mesh")
     parser.add_argument("--scene", help="scene TOML to write (asset paths relative to it)")
+    parser.add_argument("--bake", action="store_true",
+                        help="bake sockets fed by what rt cannot follow (procedural textures, Color Ramp, Mix ...) "
+                             "with Cycles into image textures")
+    parser.add_argument("--bake-size", type=int, default=DEFAULT_BAKE_SIZE,
+                        help=f"width and height of each baked image in texels (default {DEFAULT_BAKE_SIZE})")
     args = parser.parse_args(argv)
+    if args.bake_size <= 0:
+        parser.error(f"--bake-size must be positive, not {args.bake_size}")
     if not inside_blender:
         bpy.ops.wm.open_mainfile(filepath=args.blend)
-    export = export_scene(bpy.context.scene, args.out, args.scene)
+    export = export_scene(bpy.context.scene, args.out, args.scene, bake_size=args.bake_size if args.bake else 0)
     for folder in sorted(export.content):
         log(f"{folder}: {export.triangles.get(folder, 0)} triangles")
     log(f"{len(export.content)} meshes, {len(export.written)} files written")

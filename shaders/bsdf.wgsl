@@ -181,6 +181,17 @@ fn shading_context(m: Material, n_shading: vec3f, n_geometric: vec3f, wo_world: 
     return ctx;
 }
 
+// The diffuse lobe's normal in the shading frame: the shading normal (z), but on a
+// normal-mapped surface the map's normal before it was bent (see `set_unmapped_normal`).
+fn diffuse_axis(ctx: ShadingContext) -> vec3f {
+    //#if normal_maps
+    if normal_is_mapped {
+        return transpose(ctx.basis) * diffuse_normal;
+    }
+    //#endif
+    return vec3f(0.0, 0.0, 1.0);
+}
+
 // Whether lobes are folded above the surface (`fold_above`): everywhere but on
 // normal-mapped surfaces.
 fn folds_below_surface() -> bool {
@@ -211,14 +222,18 @@ fn reflect_local(wo: vec3f, m: vec3f) -> vec3f {
 // Normal-mapped surfaces are shaded as Cycles shades them: lobes are not folded above
 // the surface (see `fold_above`); directions below it are cut instead, and diffuse
 // light is shadowed by `bump_shadowing`. Set by the integrator at each surface: the
-// interpolated normal before the normal map, on the viewer's side (world space), and
-// whether a map changed it.
+// interpolated normal before the normal map, on the viewer's side (world space),
+// whether a map changed it, and the mapped normal the diffuse lobe uses: as in Cycles,
+// the map's own, not the one bent to keep the glossy lobes' reflections above the
+// surface (`valid_for_reflection`), which is the shading context's.
 var<private> unmapped_normal: vec3f;
 var<private> normal_is_mapped: bool;
+var<private> diffuse_normal: vec3f;
 
-fn set_unmapped_normal(n: vec3f, mapped: bool) {
+fn set_unmapped_normal(n: vec3f, mapped: bool, diffuse: vec3f) {
     unmapped_normal = n;
     normal_is_mapped = mapped;
+    diffuse_normal = diffuse;
 }
 
 // Cycles' shadowing of a diffuse lobe whose normal a normal map tilted (Conty Estevez,
@@ -228,10 +243,10 @@ fn set_unmapped_normal(n: vec3f, mapped: bool) {
 // shadowed as by that surface's masking; light on the far side of the unmapped
 // surface from the mapped normal is cut. Blender renders normal maps with it.
 fn bump_shadowing(ctx: ShadingContext, wi: vec3f) -> f32 {
-    let n = ctx.basis[2];
+    let n = ctx.basis * diffuse_axis(ctx);
     let cos_d = dot(unmapped_normal, n);
     let cos_i = dot(unmapped_normal, ctx.basis * wi);
-    if cos_i * cos_d * wi.z < 0.0 {
+    if cos_i * cos_d * dot(diffuse_axis(ctx), wi) < 0.0 {
         return 0.0;
     }
     let cd = abs(cos_d);

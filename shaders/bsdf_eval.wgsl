@@ -16,15 +16,19 @@
 
 // f·|cos θi| of one reflection lobe, before folding.
 fn reflection_lobe_eval(ctx: ShadingContext, lobe: u32, wi: vec3f) -> vec3f {
-    if wi.z <= 0.0 {
-        return vec3f(0.0);
-    }
     if lobe == LOBE_DIFFUSE {
-        var f = ctx.m.base_color * (ctx.m.diffuse * ctx.diffuse_kept * wi.z / PI);
+        let cos_i = dot(diffuse_axis(ctx), wi);
+        if cos_i <= 0.0 {
+            return vec3f(0.0);
+        }
+        var f = ctx.m.base_color * (ctx.m.diffuse * ctx.diffuse_kept * cos_i / PI);
         //#if normal_maps
         f *= bump_shadowing(ctx, wi);
         //#endif
         return f;
+    }
+    if wi.z <= 0.0 {
+        return vec3f(0.0);
     }
     //#if glossy
     let m = normalize(ctx.wo + wi);
@@ -40,11 +44,11 @@ fn reflection_lobe_eval(ctx: ShadingContext, lobe: u32, wi: vec3f) -> vec3f {
 }
 
 fn reflection_lobe_pdf(ctx: ShadingContext, lobe: u32, wi: vec3f) -> f32 {
+    if lobe == LOBE_DIFFUSE {
+        return max(dot(diffuse_axis(ctx), wi), 0.0) / PI;
+    }
     if wi.z <= 0.0 {
         return 0.0;
-    }
-    if lobe == LOBE_DIFFUSE {
-        return wi.z / PI;
     }
     //#if glossy
     let m = normalize(ctx.wo + wi);

@@ -170,7 +170,8 @@ struct Material {
     // `specular` lobe is that coating), and its F0 before `specular_tint`.
     coating_eta: f32,
     coating_f0: f32,
-    _pad2: u32,
+    // Bit i: texture slot i reads the second uv set (UV1_* in texture.wgsl).
+    second_uv_set: u32,
     _pad3: u32,
     _pad4: u32,
     // The coat: a dielectric GGX layer of weight `coat` over every other lobe (0: none),
@@ -189,6 +190,13 @@ struct TriangleTangents {
     t0: vec4f,
     t1: vec4f,
     t2: vec4f,
+}
+
+// The second uv set at a triangle's vertices (scenes whose textures read it only).
+struct TriangleUvs {
+    uv0: vec2f,
+    uv1: vec2f,
+    uv2: vec2f,
 }
 
 // One texture of the texture store: its texels start at `offset` in `texels`, levels
@@ -242,4 +250,7 @@ const STAT_STACK_OVERFLOW: u32 = 0u;
 //#endif
 //#if normal_maps
 @group(0) @binding(17) var<storage, read> tangent_frames: array<TriangleTangents>;
+//#endif
+//#if uv_sets
+@group(0) @binding(19) var<storage, read> second_uvs: array<TriangleUvs>;
 //#endif

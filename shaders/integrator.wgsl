@@ -343,7 +343,8 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, s
         let n_geometric = select(-surface.geometric_normal, surface.geometric_normal, entering);
         let n_shading = select(-surface.shading_normal, surface.shading_normal, entering);
         //#if normal_maps
-        set_unmapped_normal(select(-n_unmapped, n_unmapped, entering), m.normal_texture != NO_TEXTURE);
+        let side = select(-1.0, 1.0, entering);
+        set_unmapped_normal(side * n_unmapped, m.normal_texture != NO_TEXTURE, side * diffuse_mapped_normal());
         //#endif
         let ctx = shading_context(m, n_shading, n_geometric, -direction, entering);
         //#if nee

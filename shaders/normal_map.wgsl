@@ -12,6 +12,16 @@
 //#include "transform.wgsl"
 //#include "texture.wgsl"
 
+// The mapped normal of the last `normal_mapped` call before `valid_for_reflection` bent
+// it (outward, world space): Cycles' Principled BSDF gives its diffuse lobe this one and
+// only its glossy, metal and glass lobes the bent one (`maybe_ensure_valid_specular_reflection`
+// in svm/closure.h).
+var<private> unbent_mapped_normal: vec3f;
+
+fn diffuse_mapped_normal() -> vec3f {
+    return unbent_mapped_normal;
+}
+
 // The shading normal (outward, world space) at a hit, perturbed by the material's
 // normal map; unchanged where there is none, or no tangent to orient it by. The map is
 // read at its finest level, whatever the ray cone: shading is not linear in the normal,
@@ -19,6 +29,7 @@
 // share a pixel. The pixel's samples do the averaging, as in Cycles.
 // `wo` points to the viewer, `geometric_normal` is the surface's outward one.
 fn normal_mapped(m: Material, hit: Hit, shading_normal: vec3f, geometric_normal: vec3f, wo: vec3f, uv: vec2f) -> vec3f {
+    unbent_mapped_normal = shading_normal;
     if m.normal_texture == NO_TEXTURE || hit.kind != HIT_TRIANGLE {
         return shading_normal;
     }
@@ -40,9 +51,10 @@ fn normal_mapped(m: Material, hit: Hit, shading_normal: vec3f, geometric_normal:
     if !(length_squared > 0.0) {
         return shading_normal;
     }
+    unbent_mapped_normal = world * inverseSqrt(length_squared);
     // Bent on the viewer's side, then turned back outward.
     let side = select(-1.0, 1.0, dot(geometric_normal, wo) >= 0.0);
-    return side * valid_for_reflection(side * world * inverseSqrt(length_squared), side * geometric_normal, wo);
+    return side * valid_for_reflection(side * unbent_mapped_normal, side * geometric_normal, wo);
 }
 
 // Cycles' `ensure_valid_specular_reflection` (Schüßler et al., "Microfacet-based Normal

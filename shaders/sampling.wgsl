@@ -41,16 +41,19 @@ fn sample_smooth_lobe_direction(ctx: ShadingContext, lobe: u32, rng: ptr<functio
         return select(vec3f(0.0), fold_above(wi, ctx.n_geometric), wi.z > 0.0);
     }
     //#endif
-    var wi = sample_cosine_hemisphere(u);
-    //#if glossy
-    if lobe != LOBE_DIFFUSE {
-        wi = reflect_local(ctx.wo, ggx_sample_visible_normal(ctx.wo, ctx.m.alpha, u));
+    if lobe == LOBE_DIFFUSE {
+        let wi = tangent_frame(diffuse_axis(ctx)) * sample_cosine_hemisphere(u);
+        return select(vec3f(0.0), fold_above(wi, ctx.n_geometric), dot(diffuse_axis(ctx), wi) > 0.0);
     }
-    //#endif
+    //#if glossy
+    let wi = reflect_local(ctx.wo, ggx_sample_visible_normal(ctx.wo, ctx.m.alpha, u));
     if wi.z <= 0.0 {
         return vec3f(0.0);
     }
     return fold_above(wi, ctx.n_geometric);
+    //#else
+    return vec3f(0.0);
+    //#endif
 }
 
 // Picks a lobe with `u` in [0, 1); returns its index and rescales u to [0, 1).

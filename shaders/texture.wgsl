@@ -16,36 +16,86 @@ const TEXTURE_SRGB: u32 = 1u;
 const WRAP_REPEAT: u32 = 0u;
 const WRAP_CLAMP: u32 = 1u;
 const WRAP_MIRROR: u32 = 2u;
+// Bits of Material.second_uv_set: the texture slots that read the second uv set.
+const UV1_BASE_COLOR: u32 = 1u;
+const UV1_METALLIC_ROUGHNESS: u32 = 2u;
+const UV1_EMISSION: u32 = 4u;
 
 struct TexturePoint {
     uv: vec2f,
     // log2 √(texture-space area / world-space area) of the triangle, texture space
     // counted in whole textures: a texture adds log2 √(width·height) to it.
     uv_lod: f32,
+    //#if uv_sets
+    // The same of the second uv set.
+    second_uv: vec2f,
+    second_uv_lod: f32,
+    //#endif
 }
 
-fn triangle_uvs(triangle: u32) -> array<vec2f, 3> {
+// A triangle's texture coordinates in set 0 or (scenes with uv_sets) set 1.
+fn triangle_uvs(triangle: u32, uv_set: u32) -> array<vec2f, 3> {
+    //#if uv_sets
+    if uv_set == 1u {
+        let s = second_uvs[triangle];
+        return array<vec2f, 3>(s.uv0, s.uv1, s.uv2);
+    }
+    //#endif
     let sh = shading[triangle];
     return array<vec2f, 3>(vec2f(sh.u0, sh.v.x), vec2f(sh.u1, sh.v.y), vec2f(sh.u2, sh.v.z));
 }
 
-fn triangle_uv(triangle: u32, b1: f32, b2: f32) -> vec2f {
-    let uv = triangle_uvs(triangle);
+fn triangle_uv(triangle: u32, uv_set: u32, b1: f32, b2: f32) -> vec2f {
+    let uv = triangle_uvs(triangle, uv_set);
     return (1.0 - b1 - b2) * uv[0] + b1 * uv[1] + b2 * uv[2];
 }
 
+// The set that slot `bit` (UV1_*) of material `m` reads.
+fn uv_set_of(m: Material, bit: u32) -> u32 {
+    return select(0u, 1u, (m.second_uv_set & bit) != 0u);
+}
+
+// log2 √(texture-space area / world-space area) of uvs `uv` on a triangle of world area `world_area`.
+fn uv_density_lod(uv: array<vec2f, 3>, world_area: f32) -> f32 {
+    let d1 = uv[1] - uv[0];
+    let d2 = uv[2] - uv[0];
+    return 0.5 * log2(abs(d1.x * d2.y - d1.y * d2.x) / world_area);
+}
+
 fn texture_point(hit: Hit) -> TexturePoint {
+    var p: TexturePoint;
     if hit.kind != HIT_TRIANGLE {
-        return TexturePoint(vec2f(0.0), 0.0);
+        return p;
     }
-    let uv = triangle_uvs(hit.primitive);
     let tri = triangles[hit.primitive];
     let to_world = affine_inverse(instances[hit.instance].world_to_object).m;
     let world_area = length(cross(transform_vector(to_world, tri.v1 - tri.v0), transform_vector(to_world, tri.v2 - tri.v0)));
-    let d1 = uv[1] - uv[0];
-    let d2 = uv[2] - uv[0];
-    let uv_area = abs(d1.x * d2.y - d1.y * d2.x);
-    return TexturePoint(triangle_uv(hit.primitive, hit.b1, hit.b2), 0.5 * log2(uv_area / world_area));
+    p.uv = triangle_uv(hit.primitive, 0u, hit.b1, hit.b2);
+    p.uv_lod = uv_density_lod(triangle_uvs(hit.primitive, 0u), world_area);
+    //#if uv_sets
+    p.second_uv = triangle_uv(hit.primitive, 1u, hit.b1, hit.b2);
+    p.second_uv_lod = uv_density_lod(triangle_uvs(hit.primitive, 1u), world_area);
+    //#endif
+    return p;
+}
+
+// Slot `bit` (UV1_*) of `m` at `p`: its coordinates and the level of detail `footprint_lod` adds to.
+fn slot_uv(m: Material, bit: u32, p: TexturePoint) -> vec2f {
+    //#if uv_sets
+    if (m.second_uv_set & bit) != 0u {
+        return p.second_uv;
+    }
+    //#endif
+    return p.uv;
+}
+
+fn slot_lod(m: Material, bit: u32, p: TexturePoint, footprint_lod: f32) -> f32 {
+    //#if uv_sets
+    if (m.second_uv_set & bit) != 0u {
+        return p.second_uv_lod + footprint_lod;
+    }
+    //#endif
+    return p.uv_lod + footprint_lod;
 }
 
 fn srgb_to_linear(c: vec3f) -> vec3f {
@@ -141,13 +191,14 @@ fn sample_texture(index: u32, uv: vec2f, lod: f32) -> vec4f {
 // cone's width over |cos| there.
 fn textured_material(material: Material, p: TexturePoint, footprint_lod: f32) -> Material {
     var m = material;
-    let lod = p.uv_lod + footprint_lod;
     if m.base_color_texture != NO_TEXTURE {
-        m.base_color *= sample_texture(m.base_color_texture, p.uv, lod).rgb;
+        let lod = slot_lod(m, UV1_BASE_COLOR, p, footprint_lod);
+        m.base_color *= sample_texture(m.base_color_texture, slot_uv(m, UV1_BASE_COLOR, p), lod).rgb;
     }
     if m.metallic_roughness_texture != NO_TEXTURE {
         // glTF's packing: G roughness, B metal. The host's lobe weights are the non-metal part's.
-        let mr = sample_texture(m.metallic_roughness_texture, p.uv, lod);
+        let lod = slot_lod(m, UV1_METALLIC_ROUGHNESS, p, footprint_lod);
+        let mr = sample_texture(m.metallic_roughness_texture, slot_uv(m, UV1_METALLIC_ROUGHNESS, p), lod);
         let metal = m.metallic * mr.b;
         let dielectric = 1.0 - metal;
         m.diffuse *= dielectric;
@@ -158,7 +209,8 @@ fn textured_material(material: Material, p: TexturePoint, footprint_lod: f32) ->
         m.alpha = roughness * roughness;
     }
     if m.emission_texture != NO_TEXTURE {
-        m.emission *= sample_texture(m.emission_texture, p.uv, lod).rgb;
+        let lod = slot_lod(m, UV1_EMISSION, p, footprint_lod);
+        m.emission *= sample_texture(m.emission_texture, slot_uv(m, UV1_EMISSION, p), lod).rgb;
     }
     return m;
 }
@@ -169,7 +221,8 @@ fn textured_emission(m: Material, triangle: u32, b1: f32, b2: f32) -> vec3f {
     if m.emission_texture == NO_TEXTURE {
         return m.emission;
     }
-    return m.emission * sample_level(textures[m.emission_texture], 0u, triangle_uv(triangle, b1, b2)).rgb;
+    let uv = triangle_uv(triangle, uv_set_of(m, UV1_EMISSION), b1, b2);
+    return m.emission * sample_level(textures[m.emission_texture], 0u, uv).rgb;
 }
 
 //#if alpha_mask
@@ -188,7 +241,8 @@ fn opaque_at(inst: Instance, triangle: u32, b1: f32, b2: f32) -> bool {
     }
     var alpha = m.base_alpha;
     if m.base_color_texture != NO_TEXTURE {
-        alpha *= sample_level(textures[m.base_color_texture], 0u, triangle_uv(triangle, b1, b2)).a;
+        let uv = triangle_uv(triangle, uv_set_of(m, UV1_BASE_COLOR), b1, b2);
+        alpha *= sample_level(textures[m.base_color_texture], 0u, uv).a;
     }
     //#if alpha_blend
     if m.alpha_cutoff < 0.0 {

@@ -193,7 +193,9 @@ pub struct GpuMaterial {
     pub coating_eta: f32,
     /// The coating's F0 before `specular_tint` (Specular IOR Level applied).
     pub coating_f0: f32,
-    pub _pad1: [u32; 3],
+    /// Which texture slots read the second uv set (`MaterialTextures::second_uv_set`).
+    pub second_uv_set: u32,
+    pub _pad1: [u32; 2],
     /// Tint of the light crossing the coat, at normal incidence.
     pub coat_tint: [f32; 3],
     /// Weight of the coat layer over every other lobe; 0: none.
@@ -211,6 +213,16 @@ pub struct GpuTriangleTangents {
     pub t0: [f32; 4],
     pub t1: [f32; 4],
     pub t2: [f32; 4],
+}
+
+/// The second uv set's coordinates at a triangle's vertices, in the triangles' order;
+/// only for scenes whose textures read it (zero where a mesh has none).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuTriangleUvs {
+    pub uv0: [f32; 2],
+    pub uv1: [f32; 2],
+    pub uv2: [f32; 2],
 }
 
 /// One texture of the scene's texture store (`shaders/texture.wgsl`).
@@ -427,7 +439,8 @@ impl From<&crate::scene::Material> for GpuMaterial {
             specular_tint: m.specular_tint,
             coating_eta,
             coating_f0,
-            _pad1: [0; 3],
+            second_uv_set: m.textures.second_uv_set,
+            _pad1: [0; 2],
             coat_tint: m.coat_tint,
             coat: m.coat,
             coat_alpha: m.coat_roughness * m.coat_roughness,

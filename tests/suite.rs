@@ -21,6 +21,7 @@ mod blender_environment;
 mod blender_live;
 mod blender_live_watch;
 mod blender_roundtrip;
+mod blender_uv_sets;
 mod camera_lens;
 mod camera_panorama;
 mod cycles_camera;

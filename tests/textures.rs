@@ -22,25 +22,46 @@ fn png(texel: impl Fn(u32, u32) -> [u8; 4]) -> Vec<u8> {
 /// `corners` in order (0,0), (1,0), (1,1), (0,1); its one material is `material`, whose
 /// textures all use image 0 at `image_uri`.
 fn quad_gltf(corners: [[f32; 3]; 4], material: &str, image_uri: &str) -> String {
+    quad_gltf_with_uv_sets(corners, material, image_uri, None)
+}
+
+/// [`quad_gltf`] with a second set of texture coordinates, `TEXCOORD_1`, when given.
+fn quad_gltf_with_uv_sets(
+    corners: [[f32; 3]; 4],
+    material: &str,
+    image_uri: &str,
+    second: Option<[[f32; 2]; 4]>,
+) -> String {
     let mut bytes = Vec::new();
     corners.iter().flatten().for_each(|f| bytes.extend(f.to_le_bytes()));
     [[0.0f32, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]].iter().flatten().for_each(|f| bytes.extend(f.to_le_bytes()));
     [0u32, 1, 2, 0, 2, 3].iter().for_each(|i| bytes.extend(i.to_le_bytes()));
+    let (second_attribute, second_view, second_accessor) = match second {
+        Some(uvs) => {
+            uvs.iter().flatten().for_each(|f| bytes.extend(f.to_le_bytes()));
+            (
+                r#", "TEXCOORD_1": 3"#,
+                r#", { "buffer": 0, "byteOffset": 104, "byteLength": 32 }"#,
+                r#", { "bufferView": 3, "componentType": 5126, "count": 4, "type": "VEC2" }"#,
+            )
+        }
+        None => ("", "", ""),
+    };
     let data = base64::encode(&bytes);
     format!(
         r#"{{
   "asset": {{ "version": "2.0" }}, "scene": 0, "scenes": [{{ "nodes": [0] }}], "nodes": [{{ "mesh": 0 }}],
-  "meshes": [{{ "primitives": [{{ "attributes": {{ "POSITION": 0, "TEXCOORD_0": 1 }}, "indices": 2, "material": 0 }}] }}],
+  "meshes": [{{ "primitives": [{{ "attributes": {{ "POSITION": 0, "TEXCOORD_0": 1{second_attribute} }}, "indices": 2, "material": 0 }}] }}],
   "materials": [{material}],
   "textures": [{{ "source": 0 }}],
   "images": [{{ "uri": "{image_uri}" }}],
   "buffers": [{{ "byteLength": {len}, "uri": "data:application/octet-stream;base64,{data}" }}],
   "bufferViews": [{{ "buffer": 0, "byteLength": 48 }}, {{ "buffer": 0, "byteOffset": 48, "byteLength": 32 }},
-    {{ "buffer": 0, "byteOffset": 80, "byteLength": 24 }}],
+    {{ "buffer": 0, "byteOffset": 80, "byteLength": 24 }}{second_view}],
   "accessors": [
     {{ "bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, -1, -1], "max": [1, 1, 1] }},
     {{ "bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2" }},
-    {{ "bufferView": 2, "componentType": 5125, "count": 6, "type": "SCALAR" }}]
+    {{ "bufferView": 2, "componentType": 5125, "count": 6, "type": "SCALAR" }}{second_accessor}]
 }}"#,
         len = bytes.len()
     )
@@ -99,6 +120,59 @@ fn base_colour_texture_shows_its_texels_in_linear_light_the_right_way_up() {
             }
         }
     }
+}
+
+#[test]
+fn a_texture_reads_the_uv_set_its_tex_coord_names() {
+    // Quadrants as above; the second set turns the image half a turn on the quad.
+    let quadrants = [[[128, 128, 128, 255], [255, 64, 0, 255]], [[0, 0, 255, 255], [255, 255, 255, 255]]];
+    let dir = temp_dir("texture-second-uv-set");
+    std::fs::write(dir.join("quadrants.png"), png(|x, y| quadrants[(y / 32) as usize][(x / 32) as usize]))
+        .expect("png");
+    let corners = [[-1.0, 1.0, 0.0], [1.0, 1.0, 0.0], [1.0, -1.0, 0.0], [-1.0, -1.0, 0.0]];
+    let half_turn = [[1.0, 1.0], [0.0, 1.0], [0.0, 0.0], [1.0, 0.0]];
+    let material = r#"{ "name": "painted", "pbrMetallicRoughness": { "baseColorTexture": { "index": 0, "texCoord": 1 },
+        "metallicFactor": 0.0 }, "extensions": { "KHR_materials_specular": { "specularFactor": 0.0 } } }"#;
+    write(&dir.join("quad.gltf"), &quad_gltf_with_uv_sets(corners, material, "quadrants.png", Some(half_turn)));
+
+    let mesh = load_mesh(&dir.join("quad.gltf")).expect("loads");
+    assert!(mesh.materials[0].1.textures.reads_second_uv_set(0), "base colour reads TEXCOORD_1");
+    // glTF's v from the top becomes rt's from the bottom, in both sets.
+    let second = mesh.second_uvs.as_ref().expect("TEXCOORD_1 is kept: a texture reads it");
+    assert_eq!(second, &half_turn.map(|[u, v]| [u, 1.0 - v]).to_vec());
+
+    let scene = scene_from(&format!(
+        "[sky]\nkind = \"uniform\"\ncolor = [1.0, 1.0, 1.0]\n\
+         [camera]\nposition = [0.0, 0.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y_deg = 30.0\n\
+         [[mesh]]\nasset = {:?}\n",
+        dir.join("quad.gltf").display().to_string()
+    ));
+    let geometry = rt::bvh::SceneGeometry::build(&scene, rt::bvh::BuildQuality::Medium).expect("geometry");
+    let features = rt::scene::FeatureSet::analyse(&scene, &geometry.summary());
+    assert!(features.uv_sets, "{features}");
+    assert_eq!(geometry.second_uvs.len(), geometry.triangles.len());
+    let image = render(scene, 64, 64, 16, 2);
+    for (row, texels) in quadrants.iter().enumerate() {
+        for (column, texel) in texels.iter().enumerate() {
+            // Half a turn: the texel of quadrant (row, column) shows at (1 - row, 1 - column).
+            let (mean, se) = block(&image, 12 + 32 * (1 - column), 12 + 32 * (1 - row));
+            let expected: [f64; 3] = std::array::from_fn(|c| srgb_to_linear(texel[c]));
+            println!(
+                "texel quadrant ({row}, {column}) through TEXCOORD_1: rt {mean:.4?} ± {se:.1e}, texel {expected:.4?}"
+            );
+            for c in 0..3 {
+                assert!(
+                    (mean[c] - expected[c]).abs() <= 5.0 * se + 2e-3,
+                    "quadrant ({row}, {column}): {mean:?} vs {expected:?}"
+                );
+            }
+        }
+    }
+
+    // Without the attribute the texture falls back to the first set (with a warning).
+    write(&dir.join("plain.gltf"), &quad_gltf(corners, material, "quadrants.png"));
+    let mesh = load_mesh(&dir.join("plain.gltf")).expect("loads");
+    assert!(mesh.second_uvs.is_none() && !mesh.materials[0].1.textures.uses_second_uv_set());
 }
 
 #[test]

@@ -93,10 +93,12 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
         mesh,
         normals: Vec::new(),
         uvs: Vec::new(),
+        second_uvs: Vec::new(),
         tangents: Vec::new(),
         all_normals: true,
         all_tangents: true,
         all_uvs: true,
+        all_second_uvs: true,
         default_material: None,
         uv_transforms: &uv_transforms,
     };
@@ -110,6 +112,8 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
     if !mesh.positions.is_empty() {
         mesh.normals = walk.all_normals.then_some(walk.normals);
         mesh.uvs = walk.all_uvs.then_some(walk.uvs);
+        // Only if some material reads it: see `keep_second_uvs_where_read`.
+        mesh.second_uvs = (walk.all_second_uvs && walk.all_uvs).then_some(walk.second_uvs);
         // Tangents without the normals and uvs they belong to mean nothing.
         let frame = mesh.normals.is_some() && mesh.uvs.is_some();
         mesh.tangents = (walk.all_tangents && frame).then_some(walk.tangents);
@@ -124,11 +128,13 @@ struct Walk<'a> {
     mesh: MeshData,
     normals: Vec<[f32; 3]>,
     uvs: Vec<[f32; 2]>,
+    second_uvs: Vec<[f32; 2]>,
     tangents: Vec<[f32; 4]>,
     /// Shading attributes are kept only if every primitive has them.
     all_normals: bool,
     all_tangents: bool,
     all_uvs: bool,
+    all_second_uvs: bool,
     default_material: Option<u32>,
     /// Per material, its textures' `KHR_texture_transform`, baked into the uvs of its primitives.
     uv_transforms: &'a [Option<UvTransform>],
@@ -181,6 +187,7 @@ impl Walk<'_> {
                 (Semantic::Positions, "POSITION", &[T::F32][..], D::Vec3),
                 (Semantic::Normals, "NORMAL", &[T::F32][..], D::Vec3),
                 (Semantic::TexCoords(0), "TEXCOORD_0", &[T::F32, T::U8, T::U16][..], D::Vec2),
+                (Semantic::TexCoords(1), "TEXCOORD_1", &[T::F32, T::U8, T::U16][..], D::Vec2),
                 (Semantic::Tangents, "TANGENT", &[T::F32][..], D::Vec4),
             ];
             for (semantic, name, types, dimensions) in attributes {
@@ -230,16 +237,24 @@ impl Walk<'_> {
                     return Err(format!("{at}: TANGENT and POSITION counts differ"));
                 }
             }
-            if prim.get(&Semantic::TexCoords(0)).is_none() {
-                self.all_uvs = false;
-            } else {
-                let uvs = reader.read_tex_coords(0).ok_or_else(|| unreadable("TEXCOORD_0"))?;
-                let start = self.uvs.len();
-                let transform = prim.material().index().and_then(|i| self.uv_transforms.get(i).copied().flatten());
-                let transformed = uvs.into_f32().map(|uv| transform.map_or(uv, |t| t.apply(uv)));
-                self.uvs.extend(transformed.map(|[u, v]| [u, 1.0 - v]));
-                if self.uvs.len() - start != count {
-                    return Err(format!("{at}: TEXCOORD_0 and POSITION counts differ"));
+            let transform = prim.material().index().and_then(|i| self.uv_transforms.get(i).copied().flatten());
+            for set in [0, 1] {
+                let (all, uvs) = match set {
+                    0 => (&mut self.all_uvs, &mut self.uvs),
+                    _ => (&mut self.all_second_uvs, &mut self.second_uvs),
+                };
+                if prim.get(&Semantic::TexCoords(set)).is_none() {
+                    *all = false;
+                    continue;
+                }
+                let name = format!("TEXCOORD_{set}");
+                let read = reader.read_tex_coords(set).ok_or_else(|| unreadable(&name))?;
+                let start = uvs.len();
+                // The material's texture transform, in both sets: rt keeps one per material.
+                let transformed = read.into_f32().map(|uv| transform.map_or(uv, |t| t.apply(uv)));
+                uvs.extend(transformed.map(|[u, v]| [u, 1.0 - v]));
+                if uvs.len() - start != count {
+                    return Err(format!("{at}: {name} and POSITION counts differ"));
                 }
             }
 
@@ -317,19 +332,29 @@ fn uv_transform(m: &gltf::Material, name: &str) -> Option<UvTransform> {
 /// occlusion itself) are left out, normal maps with a warning.
 fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<MaterialTextures, String> {
     let pbr = m.pbr_metallic_roughness();
-    let mut load = |info: Option<gltf::texture::Info>, space, slot: &str| {
-        info.map(|i| loader.load(&i.texture(), i.tex_coord(), space).map_err(|e| format!("{slot} texture: {e}")))
-            .transpose()
+    let mut second_uv_set = 0;
+    let mut load = |info: Option<gltf::texture::Info>, space, slot: usize, what: &str| {
+        info.map(|i| {
+            second_uv_set |= uv_set_bit(i.tex_coord(), slot, what);
+            loader.load(&i.texture(), space).map_err(|e| format!("{what} texture: {e}"))
+        })
+        .transpose()
     };
-    let base_color = load(pbr.base_color_texture(), ColorSpace::Srgb, "base colour")?;
-    let metallic_roughness = load(pbr.metallic_roughness_texture(), ColorSpace::Linear, "metallic-roughness")?;
-    let emission = load(m.emissive_texture(), ColorSpace::Srgb, "emissive")?;
+    let base_color = load(pbr.base_color_texture(), ColorSpace::Srgb, 0, "base colour")?;
+    let metallic_roughness = load(pbr.metallic_roughness_texture(), ColorSpace::Linear, 1, "metallic-roughness")?;
+    let emission = load(m.emissive_texture(), ColorSpace::Srgb, 2, "emissive")?;
     let normal_info = m.normal_texture();
+    if let Some(n) = normal_info.as_ref().filter(|n| n.tex_coord() != 0) {
+        // Its tangent frame is the first set's (glTF's TANGENT, or MikkTSpace's of TEXCOORD_0).
+        log::warn!(
+            "normal texture {} uses TEXCOORD_{}; rt reads normal maps with TEXCOORD_0",
+            n.texture().index(),
+            n.tex_coord()
+        );
+    }
     let normal = normal_info
         .as_ref()
-        .map(|n| {
-            loader.load(&n.texture(), n.tex_coord(), ColorSpace::Linear).map_err(|e| format!("normal texture: {e}"))
-        })
+        .map(|n| loader.load(&n.texture(), ColorSpace::Linear).map_err(|e| format!("normal texture: {e}")))
         .transpose()?;
     let alpha_cutoff = match m.alpha_mode() {
         AlphaMode::Opaque | AlphaMode::Blend => 0.0,
@@ -345,7 +370,21 @@ fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<M
         alpha_blend: m.alpha_mode() == AlphaMode::Blend,
         normal,
         normal_scale: normal_info.map_or(1.0, |n| n.scale()),
+        second_uv_set,
     })
+}
+
+/// The bit of [`MaterialTextures::second_uv_set`] for a texture of `slot` read with
+/// `TEXCOORD_{tex_coord}`: rt carries two sets, so a third or later one is read as the first.
+fn uv_set_bit(tex_coord: u32, slot: usize, what: &str) -> u32 {
+    match tex_coord {
+        0 => 0,
+        1 => 1 << slot,
+        n => {
+            log::warn!("{what} texture uses TEXCOORD_{n}; rt carries TEXCOORD_0 and TEXCOORD_1 and reads TEXCOORD_0");
+            0
+        }
+    }
 }
 
 /// [`map_material`] as if `metallicFactor` were 0: the non-metal part of a material

@@ -37,11 +37,7 @@ impl<'a> TextureLoader<'a> {
     }
 
     /// The index of `texture` in [`Self::textures`], decoding its image on first use.
-    /// `tex_coord` other than 0 is read as 0 (rt keeps one set of texture coordinates).
-    pub fn load(&mut self, texture: &gltf::Texture, tex_coord: u32, space: ColorSpace) -> Result<u32, String> {
-        if tex_coord != 0 {
-            log::warn!("texture {} uses TEXCOORD_{tex_coord}; rt reads TEXCOORD_0 instead", texture.index());
-        }
+    pub fn load(&mut self, texture: &gltf::Texture, space: ColorSpace) -> Result<u32, String> {
         let sampler = texture.sampler();
         let wraps = [wrap(sampler.wrap_s()), wrap(sampler.wrap_t())];
         let image = texture.source();

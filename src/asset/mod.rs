@@ -29,6 +29,9 @@ pub struct MeshData {
     /// Per-vertex texture coordinates with the origin at the bottom left (the OBJ and
     /// Blender convention); glTF's top-left ones are flipped on import.
     pub uvs: Option<Vec<[f32; 2]>>,
+    /// A second set of texture coordinates (glTF `TEXCOORD_1`, Blender's second uv map),
+    /// same convention, for the textures whose material reads it. Only with `uvs`.
+    pub second_uvs: Option<Vec<[f32; 2]>>,
     /// Per-vertex MikkTSpace tangents (xyz) with the bitangent's sign (w, ±1):
     /// bitangent = w · cross(normal, tangent). Only with `uvs`.
     pub tangents: Option<Vec<[f32; 4]>>,
@@ -67,6 +70,7 @@ pub fn load_mesh(path: &Path) -> Result<MeshData, AssetError> {
     };
     mesh.validate(&files.main)?;
     give_normal_maps_tangents(&mut mesh, &files.main);
+    keep_second_uvs_where_read(&mut mesh, &files.main);
     Ok(mesh)
 }
 
@@ -91,6 +95,25 @@ fn give_normal_maps_tangents(mesh: &mut MeshData, path: &Path) {
     }
 }
 
+/// A texture that reads the second uv set needs one: without it, the texture reads the
+/// first set (with a warning). A second set no material reads is dropped, so that a scene
+/// pays for it only where it is used.
+fn keep_second_uvs_where_read(mesh: &mut MeshData, path: &Path) {
+    let readers = mesh.materials.iter().filter(|(_, m)| m.textures.uses_second_uv_set());
+    if mesh.second_uvs.is_none() || mesh.uvs.is_none() {
+        for (name, _) in readers {
+            log::warn!(
+                "{}: material {name:?} reads a second uv set that the mesh does not have; it reads the first",
+                path.display()
+            );
+        }
+        mesh.materials.iter_mut().for_each(|(_, m)| m.textures.second_uv_set = 0);
+        mesh.second_uvs = None;
+    } else if readers.count() == 0 {
+        mesh.second_uvs = None;
+    }
+}
+
 /// An `.rtmesh`'s geometry with the materials of its sibling glTF, which holds no meshes.
 fn load_rtmesh(path: &Path, materials_path: &Path) -> Result<MeshData, AssetError> {
     let geometry = rtmesh::read(path)?;
@@ -103,6 +126,7 @@ fn load_rtmesh(path: &Path, materials_path: &Path) -> Result<MeshData, AssetErro
         positions: geometry.positions,
         normals: geometry.normals,
         uvs: geometry.uvs,
+        second_uvs: geometry.second_uvs,
         tangents: geometry.tangents,
         indices: geometry.indices,
         material_ids: geometry.material_ids,
@@ -136,12 +160,13 @@ impl MeshData {
                 return fail(format!("vertex {i} has a non-finite normal ({bad:?})"));
             }
         }
-        if let Some(uvs) = &self.uvs {
+        for (set, uvs) in [(0, &self.uvs), (1, &self.second_uvs)] {
+            let Some(uvs) = uvs else { continue };
             if uvs.len() != vertex_count {
-                return fail(format!("{} texture coordinates for {vertex_count} vertices", uvs.len()));
+                return fail(format!("{} texture coordinates of set {set} for {vertex_count} vertices", uvs.len()));
             }
             if let Some((i, bad)) = first_non_finite(uvs) {
-                return fail(format!("vertex {i} has a non-finite texture coordinate ({bad:?})"));
+                return fail(format!("vertex {i} has a non-finite texture coordinate of set {set} ({bad:?})"));
             }
         }
 

@@ -2,16 +2,17 @@
 //!
 //! ```text
 //! bytes 0..8   magic b"RTMESH\0\0"
-//! u32 version (=2) · u32 flags (bit0 normals, bit1 uvs, bit2 tangents) · u32 vertex_count · u32 triangle_count
+//! u32 version (=3) · u32 flags (bit0 normals, bit1 uvs, bit2 tangents, bit3 second uvs) · u32 vertex_count · u32 triangle_count
 //! f32[3] × vertex_count     positions (object space, metres, Y up)
 //! f32[3] × vertex_count     normals            (if bit0)
 //! f32[2] × vertex_count     uvs                (if bit1)
 //! f32[4] × vertex_count     tangents           (if bit2: xyz MikkTSpace tangent, w bitangent sign ±1)
+//! f32[2] × vertex_count     second uvs         (if bit3, with bit1: glTF TEXCOORD_1, Blender's second uv map)
 //! u32[3] × triangle_count   indices
 //! u32    × triangle_count   material index into the sibling .gltf's `materials` array
 //! ```
 //!
-//! Version 1 files (no tangents flag) are still read.
+//! Version 1 files (no tangents flag) and version 2 files (no second uvs flag) are still read.
 //!
 //! Little-endian, no padding. Sections are copied with bytemuck, which reads them as
 //! the host's byte order: rt runs on little-endian machines only (as wgpu's GPUs do).
@@ -20,13 +21,15 @@ use super::{AssetError, MeshData};
 use std::path::Path;
 
 pub const MAGIC: [u8; 8] = *b"RTMESH\0\0";
-pub const VERSION: u32 = 2;
-/// The oldest version this rt reads: version 1 differs only in having no tangents.
+pub const VERSION: u32 = 3;
+/// The oldest version this rt reads: version 1 differs only in having no tangents,
+/// version 2 in having no second uvs.
 const OLDEST_VERSION: u32 = 1;
 const HEADER_BYTES: u64 = 24;
 const FLAG_NORMALS: u32 = 1;
 const FLAG_UVS: u32 = 2;
 const FLAG_TANGENTS: u32 = 4;
+const FLAG_SECOND_UVS: u32 = 8;
 
 /// Geometry read from a `.rtmesh`: everything but the materials, which live in the
 /// sibling `.gltf`.
@@ -35,6 +38,7 @@ pub struct RtMesh {
     pub normals: Option<Vec<[f32; 3]>>,
     pub uvs: Option<Vec<[f32; 2]>>,
     pub tangents: Option<Vec<[f32; 4]>>,
+    pub second_uvs: Option<Vec<[f32; 2]>>,
     pub indices: Vec<[u32; 3]>,
     pub material_ids: Vec<u32>,
 }
@@ -42,7 +46,11 @@ pub struct RtMesh {
 /// The size a header implies, in u64 so that no count can overflow it.
 fn implied_size(flags: u32, vertices: u32, triangles: u32) -> u64 {
     let bytes_if = |flag: u32, bytes: u64| if flags & flag != 0 { bytes } else { 0 };
-    let per_vertex = 12 + bytes_if(FLAG_NORMALS, 12) + bytes_if(FLAG_UVS, 8) + bytes_if(FLAG_TANGENTS, 16);
+    let per_vertex = 12
+        + bytes_if(FLAG_NORMALS, 12)
+        + bytes_if(FLAG_UVS, 8)
+        + bytes_if(FLAG_TANGENTS, 16)
+        + bytes_if(FLAG_SECOND_UVS, 8);
     HEADER_BYTES + per_vertex * vertices as u64 + 16 * triangles as u64
 }
 
@@ -67,11 +75,19 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<RtMesh, AssetError> {
             "unsupported .rtmesh version {version} (this rt reads versions {OLDEST_VERSION} to {VERSION})"
         ));
     }
-    let known = if version == 1 { FLAG_NORMALS | FLAG_UVS } else { FLAG_NORMALS | FLAG_UVS | FLAG_TANGENTS };
+    let known = match version {
+        1 => FLAG_NORMALS | FLAG_UVS,
+        2 => FLAG_NORMALS | FLAG_UVS | FLAG_TANGENTS,
+        _ => FLAG_NORMALS | FLAG_UVS | FLAG_TANGENTS | FLAG_SECOND_UVS,
+    };
     if flags & !known != 0 {
         return fail(format!(
-            "unknown flags {flags:#x} for version {version} (known: bit 0 normals, bit 1 uvs, bit 2 tangents from version 2)"
+            "unknown flags {flags:#x} for version {version} (known: bit 0 normals, bit 1 uvs, bit 2 tangents \
+             from version 2, bit 3 second uvs from version 3)"
         ));
+    }
+    if flags & FLAG_SECOND_UVS != 0 && flags & FLAG_UVS == 0 {
+        return fail(format!("flags {flags:#x}: second uvs (bit 3) without uvs (bit 1)"));
     }
     // Checked before anything is allocated: a header cannot make rt reserve memory the
     // file does not back.
@@ -95,9 +111,10 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<RtMesh, AssetError> {
     let normals = (flags & FLAG_NORMALS != 0).then(|| bytemuck::pod_collect_to_vec(take(12 * v)));
     let uvs = (flags & FLAG_UVS != 0).then(|| bytemuck::pod_collect_to_vec(take(8 * v)));
     let tangents = (flags & FLAG_TANGENTS != 0).then(|| bytemuck::pod_collect_to_vec(take(16 * v)));
+    let second_uvs = (flags & FLAG_SECOND_UVS != 0).then(|| bytemuck::pod_collect_to_vec(take(8 * v)));
     let indices = bytemuck::pod_collect_to_vec(take(12 * t));
     let material_ids = bytemuck::pod_collect_to_vec(take(4 * t));
-    Ok(RtMesh { positions, normals, uvs, tangents, indices, material_ids })
+    Ok(RtMesh { positions, normals, uvs, tangents, second_uvs, indices, material_ids })
 }
 
 /// Reads a `.rtmesh` file's geometry; see [`parse`].
@@ -110,7 +127,8 @@ pub fn read(path: &Path) -> Result<RtMesh, AssetError> {
 pub fn encode(mesh: &MeshData) -> Vec<u8> {
     let flags = mesh.normals.as_ref().map_or(0, |_| FLAG_NORMALS)
         | mesh.uvs.as_ref().map_or(0, |_| FLAG_UVS)
-        | mesh.tangents.as_ref().map_or(0, |_| FLAG_TANGENTS);
+        | mesh.tangents.as_ref().map_or(0, |_| FLAG_TANGENTS)
+        | mesh.second_uvs.as_ref().filter(|_| mesh.uvs.is_some()).map_or(0, |_| FLAG_SECOND_UVS);
     let (v, t) = (mesh.positions.len() as u32, mesh.indices.len() as u32);
     let mut out = Vec::with_capacity(implied_size(flags, v, t) as usize);
     out.extend_from_slice(&MAGIC);
@@ -126,6 +144,9 @@ pub fn encode(mesh: &MeshData) -> Vec<u8> {
     }
     if let Some(tangents) = &mesh.tangents {
         out.extend_from_slice(bytemuck::cast_slice(tangents));
+    }
+    if let (Some(second_uvs), Some(_)) = (&mesh.second_uvs, &mesh.uvs) {
+        out.extend_from_slice(bytemuck::cast_slice(second_uvs));
     }
     out.extend_from_slice(bytemuck::cast_slice(&mesh.indices));
     out.extend_from_slice(bytemuck::cast_slice(&mesh.material_ids));
@@ -151,6 +172,7 @@ mod tests {
             normals: Some(vec![[0.0, 0.0, 1.0]; 4]),
             uvs: Some(vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]),
             tangents: Some(vec![[1.0, 0.0, 0.0, -1.0]; 4]),
+            second_uvs: Some(vec![[0.5, 0.0], [1.0, 0.5], [0.5, 1.0], [0.0, 0.5]]),
             indices: vec![[0, 1, 2], [0, 2, 3]],
             material_ids: vec![0, 1],
             materials: vec![("a".into(), Material::default()), ("b".into(), Material::default())],
@@ -166,18 +188,20 @@ mod tests {
     fn round_trips_every_section() {
         let mesh = quad();
         let bytes = encode(&mesh);
-        assert_eq!(bytes.len(), 24 + 4 * 48 + 2 * 16);
+        assert_eq!(bytes.len(), 24 + 4 * 56 + 2 * 16);
         let back = parse(Path::new("m.rtmesh"), &bytes).expect("parses");
         assert_eq!(back.positions, mesh.positions);
         assert_eq!(back.normals, mesh.normals);
         assert_eq!(back.uvs, mesh.uvs);
         assert_eq!(back.tangents, mesh.tangents);
+        assert_eq!(back.second_uvs, mesh.second_uvs);
         assert_eq!(back.indices, mesh.indices);
         assert_eq!(back.material_ids, mesh.material_ids);
 
-        let bare = MeshData { normals: None, uvs: None, tangents: None, ..quad() };
+        let bare = MeshData { normals: None, uvs: None, tangents: None, second_uvs: None, ..quad() };
         let back = parse(Path::new("m.rtmesh"), &encode(&bare)).expect("parses");
         assert!(back.normals.is_none() && back.uvs.is_none() && back.tangents.is_none());
+        assert!(back.second_uvs.is_none());
         assert_eq!(back.indices, bare.indices);
     }
 
@@ -205,18 +229,34 @@ mod tests {
         bytes[0] = b'X';
         assert!(error(&bytes).contains("bad magic"));
         let mut bytes = good.clone();
-        bytes[8] = 3;
-        assert!(error(&bytes).contains("unsupported .rtmesh version 3"));
+        bytes[8] = 4;
+        assert!(error(&bytes).contains("unsupported .rtmesh version 4"));
+        let mut bytes = good.clone();
+        bytes[12] = 31;
+        assert!(error(&bytes).contains("unknown flags 0x1f"));
         let mut bytes = good;
-        bytes[12] = 15;
-        assert!(error(&bytes).contains("unknown flags 0xf"));
+        bytes[12] = 8 | 1;
+        assert!(error(&bytes).contains("second uvs (bit 3) without uvs"), "{}", error(&bytes));
     }
 
     /// A version 1 file: the header says 1 and there is no tangents section.
     fn version_1(mesh: &MeshData) -> Vec<u8> {
-        let mut bytes = encode(&MeshData { tangents: None, ..mesh.clone() });
+        let mut bytes = encode(&MeshData { tangents: None, second_uvs: None, ..mesh.clone() });
         bytes[8..12].copy_from_slice(&1u32.to_le_bytes());
         bytes
+    }
+
+    #[test]
+    fn version_2_files_are_still_read() {
+        let mesh = quad();
+        let mut bytes = encode(&MeshData { second_uvs: None, ..mesh.clone() });
+        bytes[8..12].copy_from_slice(&2u32.to_le_bytes());
+        let back = parse(Path::new("m.rtmesh"), &bytes).expect("version 2 parses");
+        assert_eq!((back.tangents, back.second_uvs), (mesh.tangents.clone(), None));
+
+        // Bit 3 meant nothing in version 2.
+        bytes[12] |= 8;
+        assert!(error(&bytes).contains("unknown flags 0xf for version 2"), "{}", error(&bytes));
     }
 
     #[test]

@@ -73,18 +73,25 @@ pub fn generate(mesh: &mut MeshData) -> bool {
     let clean = |t: [f32; 4]| if t.iter().all(|c| c.is_finite()) { t } else { [0.0; 4] };
     let mut tangents: Vec<Option<[f32; 4]>> = vec![None; mesh.positions.len()];
     let mut splits: HashMap<(u32, [u32; 4]), u32> = HashMap::new();
-    for (face, triangle) in mesh.indices.iter_mut().enumerate() {
-        for (corner, vertex) in triangle.iter_mut().enumerate() {
+    for face in 0..mesh.indices.len() {
+        for corner in 0..3 {
             let t = clean(per_corner[face * 3 + corner]);
-            let v = *vertex as usize;
+            let v = mesh.indices[face][corner] as usize;
             match tangents[v] {
                 None => tangents[v] = Some(t),
                 Some(existing) if existing == t => {}
                 Some(_) => {
-                    *vertex = *splits.entry((*vertex, t.map(f32::to_bits))).or_insert_with(|| {
-                        tangents.push(Some(t));
-                        split_vertex(&mut mesh.positions, &mut mesh.normals, &mut mesh.uvs, v)
-                    });
+                    let key = (v as u32, t.map(f32::to_bits));
+                    let split = match splits.get(&key) {
+                        Some(&split) => split,
+                        None => {
+                            tangents.push(Some(t));
+                            let split = split_vertex(mesh, v);
+                            splits.insert(key, split);
+                            split
+                        }
+                    };
+                    mesh.indices[face][corner] = split;
                 }
             }
         }
@@ -93,21 +100,16 @@ pub fn generate(mesh: &mut MeshData) -> bool {
     true
 }
 
-/// Appends a copy of vertex `v`'s attributes; returns its index.
-fn split_vertex(
-    positions: &mut Vec<[f32; 3]>,
-    normals: &mut Option<Vec<[f32; 3]>>,
-    uvs: &mut Option<Vec<[f32; 2]>>,
-    v: usize,
-) -> u32 {
-    positions.push(positions[v]);
-    if let Some(n) = normals {
+/// Appends a copy of vertex `v`'s attributes (but its tangent); returns its index.
+fn split_vertex(mesh: &mut MeshData, v: usize) -> u32 {
+    mesh.positions.push(mesh.positions[v]);
+    if let Some(n) = &mut mesh.normals {
         n.push(n[v]);
     }
-    if let Some(uv) = uvs {
+    for uv in [&mut mesh.uvs, &mut mesh.second_uvs].into_iter().flatten() {
         uv.push(uv[v]);
     }
-    (positions.len() - 1) as u32
+    (mesh.positions.len() - 1) as u32
 }
 
 #[cfg(test)]

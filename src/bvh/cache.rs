@@ -2,7 +2,7 @@
 //! render loads it with a read and a copy instead of importing and building again.
 //!
 //! ```text
-//! header (296 bytes, see `Header`): magic b"RTBVH\0\0\0", format version, header size,
+//! header (312 bytes, see `Header`): magic b"RTBVH\0\0\0", format version, header size,
 //!     BLAKE3 of the source files, of the build parameters, and of the whole file
 //!     (with this checksum field zeroed), the node layout's name, the mesh's bounds,
 //!     vertex and triangle counts of the source, BvhStats, and the section table
@@ -16,6 +16,8 @@
 //!     texels      u32 × (every texture's mip chain, RGBA8, in table order)
 //!     tangents    GpuTriangleTangents × m, or none: only a mesh with tangents and a
 //!                 normal-mapped material keeps them (version 5 on)
+//!     second uvs  GpuTriangleUvs × m, or none: only a mesh with a second uv set that
+//!                 some material's texture reads keeps it (version 6 on)
 //! ```
 //!
 //! Textures are decoded and their mips built at pack time, so a render never decodes
@@ -37,7 +39,7 @@ use super::mesh_bvh::{BuildQuality, MeshBvh};
 use super::node::BvhStats;
 use super::wide_node::NODE_LAYOUT;
 use crate::asset::{AssetError, AssetFiles, TextureImage};
-use crate::layout::{GpuTriangle, GpuTriangleShading, GpuTriangleTangents, GpuWideNode};
+use crate::layout::{GpuTriangle, GpuTriangleShading, GpuTriangleTangents, GpuTriangleUvs, GpuWideNode};
 use crate::scene::Material;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
@@ -47,7 +49,7 @@ use std::path::Path;
 use std::time::Duration;
 
 pub const MAGIC: [u8; 8] = *b"RTBVH\0\0\0";
-pub const FORMAT_VERSION: u32 = 5;
+pub const FORMAT_VERSION: u32 = 6;
 const ALIGN: u64 = 16;
 
 #[repr(C)]
@@ -65,7 +67,8 @@ const NAMES: usize = 4;
 const TEXTURES: usize = 5;
 const TEXELS: usize = 6;
 const TANGENTS: usize = 7;
-const SECTION_COUNT: usize = 8;
+const SECOND_UVS: usize = 8;
+const SECTION_COUNT: usize = 9;
 
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
@@ -152,6 +155,7 @@ pub fn params_hash(quality: BuildQuality) -> [u8; 32] {
         size_of::<GpuTriangle>(),
         size_of::<GpuTriangleShading>(),
         size_of::<GpuTriangleTangents>(),
+        size_of::<GpuTriangleUvs>(),
     ];
     let params = format!(
         "rtbvh {FORMAT_VERSION} {NODE_LAYOUT} {quality:?} {sizes:?} {} {}",
@@ -200,6 +204,7 @@ pub fn encode(mesh: &PackedMesh, source_hash: [u8; 32], params_hash: [u8; 32]) -
         bytemuck::cast_slice(&texture_table),
         bytemuck::cast_slice(&texels),
         bytemuck::cast_slice(&mesh.bvh.tangents),
+        bytemuck::cast_slice(&mesh.bvh.second_uvs),
     ];
     let mut sections = [Section::default(); SECTION_COUNT];
     let mut offset = align(HEADER_BYTES);
@@ -304,6 +309,13 @@ pub fn read(path: &Path, source_hash: [u8; 32], params_hash: [u8; 32]) -> Result
     if let Some(i) = tangents.iter().position(|t| ![t.t0, t.t1, t.t2].into_iter().flatten().all(f32::is_finite)) {
         return Err(invalid(format!("triangle {i} has a non-finite tangent")));
     }
+    let second_uvs: Vec<GpuTriangleUvs> = bytemuck::cast_slice(section(SECOND_UVS)).to_vec();
+    if !second_uvs.is_empty() && second_uvs.len() != triangles.len() {
+        return Err(invalid(format!("{} triangles' second uvs for {} triangles", second_uvs.len(), triangles.len())));
+    }
+    if let Some(i) = second_uvs.iter().position(|t| ![t.uv0, t.uv1, t.uv2].into_iter().flatten().all(f32::is_finite)) {
+        return Err(invalid(format!("triangle {i} has a non-finite texture coordinate of set 1")));
+    }
     check_contents(&nodes, &triangles, &shading, materials, names.len(), bounds).map_err(invalid)?;
     if let Some((i, t)) = materials
         .iter()
@@ -324,6 +336,7 @@ pub fn read(path: &Path, source_hash: [u8; 32], params_hash: [u8; 32]) -> Result
         triangles,
         shading,
         tangents,
+        second_uvs,
         bounds_min: Vec3::from_array(header.bounds_min),
         bounds_max: Vec3::from_array(header.bounds_max),
         stats,
@@ -365,6 +378,7 @@ fn check_header(header: &Header, len: u64) -> Result<(), CacheProblem> {
         size_of::<CachedTexture>(),
         4,
         size_of::<GpuTriangleTangents>(),
+        size_of::<GpuTriangleUvs>(),
     ];
     let mut end = align(HEADER_BYTES);
     for (i, (s, size)) in header.sections.iter().zip(element_sizes).enumerate() {

@@ -47,6 +47,8 @@ pub struct CachedMaterial {
     pub coat_roughness: f32,
     pub coat_ior: f32,
     pub coat_tint: [f32; 3],
+    /// `MaterialTextures::second_uv_set`.
+    pub second_uv_set: u32,
 }
 
 impl From<&Material> for CachedMaterial {
@@ -78,6 +80,7 @@ impl From<&Material> for CachedMaterial {
             coat_roughness: m.coat_roughness,
             coat_ior: m.coat_ior,
             coat_tint: m.coat_tint,
+            second_uv_set: m.textures.second_uv_set,
         }
     }
 }
@@ -112,6 +115,7 @@ impl From<&CachedMaterial> for Material {
                 alpha_blend: m.alpha_blend != 0,
                 normal: unslot(m.normal_texture),
                 normal_scale: m.normal_scale,
+                second_uv_set: m.second_uv_set,
             },
         }
     }

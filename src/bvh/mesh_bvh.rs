@@ -3,7 +3,7 @@
 use super::node::BvhStats;
 use super::wide_node::{convert_cwbvh, wide_stats};
 use crate::asset::MeshData;
-use crate::layout::{GpuTriangle, GpuTriangleShading, GpuTriangleTangents, GpuWideNode};
+use crate::layout::{GpuTriangle, GpuTriangleShading, GpuTriangleTangents, GpuTriangleUvs, GpuWideNode};
 use glam::{Vec3, Vec3A};
 use obvhs::{
     BvhBuildParams,
@@ -42,6 +42,9 @@ pub struct MeshBvh {
     /// Per triangle (in `triangles`' order), for normal maps: empty unless the mesh has
     /// tangents and some material of it has a normal map.
     pub tangents: Vec<GpuTriangleTangents>,
+    /// Per triangle (in `triangles`' order): the second uv set, empty unless some
+    /// material of the mesh reads it (see `asset::load_mesh`).
+    pub second_uvs: Vec<GpuTriangleUvs>,
     pub bounds_min: Vec3,
     pub bounds_max: Vec3,
     pub stats: BvhStats,
@@ -97,9 +100,20 @@ impl MeshBvh {
                 .collect(),
             _ => Vec::new(),
         };
+        let second_uvs = match &mesh.second_uvs {
+            Some(uvs) => order
+                .iter()
+                .map(|&i| {
+                    let [uv0, uv1, uv2] = mesh.indices[i as usize].map(|k| uvs[k as usize]);
+                    GpuTriangleUvs { uv0, uv1, uv2 }
+                })
+                .collect(),
+            None => Vec::new(),
+        };
         let (bounds_min, bounds_max) = bounds(&mesh.positions);
         let stats = wide_stats(&nodes);
-        Self { nodes, triangles, shading, tangents, bounds_min, bounds_max, stats, build_time: start.elapsed() }
+        let build_time = start.elapsed();
+        Self { nodes, triangles, shading, tangents, second_uvs, bounds_min, bounds_max, stats, build_time }
     }
 }
 

@@ -27,6 +27,9 @@ pub struct SceneGeometry {
     /// Per triangle, for normal maps: empty when no mesh has tangents, else zero for
     /// the triangles of meshes that have none.
     pub tangents: Vec<GpuTriangleTangents>,
+    /// Per triangle, the second uv set: empty when no mesh keeps one, else zero for the
+    /// triangles of meshes that have none.
+    pub second_uvs: Vec<GpuTriangleUvs>,
     pub instances: Vec<GpuInstance>,
     pub tlas_primitives: Vec<u32>,
     pub spheres: Vec<GpuSphere>,
@@ -77,6 +80,7 @@ impl SceneGeometry {
             + self.triangles.len() * size_of::<GpuTriangle>()
             + self.shading.len() * size_of::<GpuTriangleShading>()
             + self.tangents.len() * size_of::<GpuTriangleTangents>()
+            + self.second_uvs.len() * size_of::<GpuTriangleUvs>()
     }
 
     /// GPU bytes that grow with the instances and spheres: their records, the top
@@ -135,6 +139,8 @@ impl SceneGeometry {
         let mut shading = Vec::new();
         let mut tangents = Vec::new();
         let any_tangents = meshes.iter().any(|m| !m.bvh.tangents.is_empty());
+        let mut second_uvs = Vec::new();
+        let any_second_uvs = meshes.iter().any(|m| !m.bvh.second_uvs.is_empty());
         let mut slots = Vec::new();
         // Each mesh's textures follow the previous meshes' in the scene's texture table.
         let mut texture_base = 0u32;
@@ -152,6 +158,12 @@ impl SceneGeometry {
                 match mesh.bvh.tangents.is_empty() {
                     true => tangents.resize(triangles.len(), GpuTriangleTangents::default()),
                     false => tangents.extend_from_slice(&mesh.bvh.tangents),
+                }
+            }
+            if any_second_uvs {
+                match mesh.bvh.second_uvs.is_empty() {
+                    true => second_uvs.resize(triangles.len(), GpuTriangleUvs::default()),
+                    false => second_uvs.extend_from_slice(&mesh.bvh.second_uvs),
                 }
             }
             materials.extend(mesh.materials.iter().map(|(_, m)| with_texture_base(m, texture_base)));
@@ -265,6 +277,7 @@ impl SceneGeometry {
             triangles,
             shading,
             tangents,
+            second_uvs,
             instances,
             tlas_primitives,
             spheres,

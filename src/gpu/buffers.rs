@@ -21,7 +21,7 @@ pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     use Binding::*;
     let bindings = [
         Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadWrite, ReadOnly, ReadOnly,
-        Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly,
+        Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly,
     ];
     sequential_layout(device, "scene", wgpu::ShaderStages::COMPUTE, &bindings)
 }
@@ -64,11 +64,13 @@ struct SceneData {
     tangents: wgpu::Buffer,
     /// Cycles' microfacet albedo tables (see `super::microfacet_tables`).
     microfacet_tables: wgpu::Buffer,
+    /// Per-triangle second uv set, for textures that read it.
+    second_uvs: wgpu::Buffer,
 }
 
 impl SceneData {
     /// The buffers in binding order (see [`scene_bind_group_layout`]).
-    fn bindings(&self) -> [&wgpu::Buffer; 19] {
+    fn bindings(&self) -> [&wgpu::Buffer; 20] {
         [
             &self.frame,
             &self.nodes,
@@ -89,6 +91,7 @@ impl SceneData {
             &self.light_tree_trails,
             &self.tangents,
             &self.microfacet_tables,
+            &self.second_uvs,
         ]
     }
 }
@@ -113,9 +116,18 @@ fn storage<T: Pod + Default>(ctx: &GpuContext, label: &str, data: &[T], extra: w
 }
 
 /// The geometry's buffers: (top-level nodes, triangles, shading, instances, top-level primitives,
-/// spheres, bottom-level nodes, tangents).
-type GeometryBuffers =
-    (wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer, wgpu::Buffer);
+/// spheres, bottom-level nodes, tangents, second uvs).
+type GeometryBuffers = (
+    wgpu::Buffer,
+    wgpu::Buffer,
+    wgpu::Buffer,
+    wgpu::Buffer,
+    wgpu::Buffer,
+    wgpu::Buffer,
+    wgpu::Buffer,
+    wgpu::Buffer,
+    wgpu::Buffer,
+);
 
 fn geometry_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<GeometryBuffers> {
     check_sizes(ctx, geometry)?;
@@ -129,6 +141,7 @@ fn geometry_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<Geomet
         storage(ctx, "spheres", &geometry.spheres, none),
         storage(ctx, "wide nodes", &geometry.wide_nodes, none),
         storage(ctx, "tangents", &geometry.tangents, none),
+        storage(ctx, "second uvs", &geometry.second_uvs, none),
     ))
 }
 
@@ -163,7 +176,7 @@ fn material_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer
 
 impl SceneBuffers {
     pub fn new(ctx: &GpuContext, geometry: &SceneGeometry, layout: &wgpu::BindGroupLayout) -> Result<Self> {
-        let (nodes, triangles, shading, instances, tlas, spheres, wide_nodes, tangents) =
+        let (nodes, triangles, shading, instances, tlas, spheres, wide_nodes, tangents, second_uvs) =
             geometry_buffers(ctx, geometry)?;
         let (materials, emitters) = material_buffers(ctx, geometry);
         let frame = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -196,6 +209,7 @@ impl SceneBuffers {
             light_tree_trails,
             tangents,
             microfacet_tables: storage(ctx, "microfacet tables", &microfacet_tables(), wgpu::BufferUsages::empty()),
+            second_uvs,
         };
         let bind_group = bind_group(ctx, "scene", layout, &data.bindings());
         Ok(Self { data, bind_group, sky_bind_group: None })
@@ -210,7 +224,7 @@ impl SceneBuffers {
         layout: &wgpu::BindGroupLayout,
     ) -> Result<()> {
         let d = &mut self.data;
-        (d.nodes, d.triangles, d.shading, d.instances, d.tlas, d.spheres, d.wide_nodes, d.tangents) =
+        (d.nodes, d.triangles, d.shading, d.instances, d.tlas, d.spheres, d.wide_nodes, d.tangents, d.second_uvs) =
             geometry_buffers(ctx, geometry)?;
         (d.materials, d.emitters) = material_buffers(ctx, geometry);
         (d.lamps, d.lamp_info) = lamp_buffers(ctx, geometry);
@@ -261,6 +275,7 @@ fn check_sizes(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<()> {
         ("triangles", std::mem::size_of_val(geometry.triangles.as_slice())),
         ("triangle shading", std::mem::size_of_val(geometry.shading.as_slice())),
         ("triangle tangents", std::mem::size_of_val(geometry.tangents.as_slice())),
+        ("second uvs", std::mem::size_of_val(geometry.second_uvs.as_slice())),
         ("instances", std::mem::size_of_val(geometry.instances.as_slice())),
         ("emitters", std::mem::size_of_val(geometry.emitters.as_slice())),
         ("light tree nodes", std::mem::size_of_val(geometry.light_tree.nodes.as_slice())),

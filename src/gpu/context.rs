@@ -20,10 +20,10 @@ pub struct GpuContext {
     errors: Arc<Mutex<Vec<String>>>,
 }
 
-/// Storage buffers the integrator binds in one stage: 17 in the scene group (see
+/// Storage buffers the integrator binds in one stage: 18 in the scene group (see
 /// `shaders/common.wgsl`; the microfacet tables' in `shaders/microfacet_tables.wgsl`), 5 of
 /// the accumulation (with AOVs and adaptive sampling's counts) and the atmosphere's tables.
-const STORAGE_BUFFERS_NEEDED: u32 = 23;
+const STORAGE_BUFFERS_NEEDED: u32 = 24;
 
 const NO_ADAPTER_HELP: &str = "no GPU adapter found. rt needs Vulkan; on a machine without a GPU, \
 install Mesa's CPU driver (lavapipe): `sudo apt-get install mesa-vulkan-drivers`";

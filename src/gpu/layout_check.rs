@@ -127,6 +127,7 @@ fn host_structs_match_wgsl_layouts() {
                 specular_tint,
                 coating_eta,
                 coating_f0,
+                second_uv_set,
                 coat_tint,
                 coat,
                 coat_alpha,
@@ -134,6 +135,7 @@ fn host_structs_match_wgsl_layouts() {
             ]
         ),
         host_layout!("TriangleTangents", GpuTriangleTangents, [t0, t1, t2]),
+        host_layout!("TriangleUvs", GpuTriangleUvs, [uv0, uv1, uv2]),
         host_layout!("Emitter", GpuEmitter, [primitive, instance, cdf]),
         host_layout!("Lamp", GpuLamp, [position, kind, emission, radius, axis_u, len_u, axis_v, len_v, normal, cdf]),
         host_layout!("LampInfo", GpuLampInfo, [count, sun_share, emitter_share, lamp_share]),

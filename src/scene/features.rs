@@ -79,6 +79,8 @@ pub struct FeatureSet {
     pub alpha_blend: bool,
     /// Tangent-space normal maps on some material.
     pub normal_maps: bool,
+    /// Some material's texture reads a mesh's second uv set.
+    pub uv_sets: bool,
     pub sampling: Sampling,
     /// A thin-lens camera: rays start across the aperture.
     pub depth_of_field: bool,
@@ -153,6 +155,7 @@ impl FeatureSet {
             alpha_mask: materials_in_use.iter().any(|m| m.textures.has_alpha()),
             alpha_blend: materials_in_use.iter().any(|m| m.textures.alpha_blend),
             normal_maps: materials_in_use.iter().any(|m| m.textures.normal.is_some()),
+            uv_sets: materials_in_use.iter().any(|m| m.textures.uses_second_uv_set()),
             sampling: settings.sampling,
             depth_of_field: scene.camera.depth_of_field.is_some(),
             panorama: matches!(scene.camera.projection, Projection::Panoramic { .. }),
@@ -190,6 +193,7 @@ impl FeatureSet {
             alpha_mask: true,
             alpha_blend: true,
             normal_maps: true,
+            uv_sets: true,
             sampling,
             depth_of_field: true,
             panorama: true,
@@ -229,6 +233,7 @@ impl FeatureSet {
             "alpha_mask" => self.alpha_mask,
             "alpha_blend" => self.alpha_blend,
             "normal_maps" => self.normal_maps,
+            "uv_sets" => self.uv_sets,
             "nee" => self.sampling == Sampling::Nee,
             "depth_of_field" => self.depth_of_field,
             "panorama" => self.panorama,
@@ -261,6 +266,7 @@ impl fmt::Display for FeatureSet {
             (self.light_tree, "light-tree"),
             (self.alpha_blend, "alpha-blend"),
             (self.normal_maps, "normal-maps"),
+            (self.uv_sets, "uv-sets"),
             (self.aovs, "aovs"),
             (self.adaptive, "adaptive"),
             (self.multiscatter, "multiscatter"),

@@ -63,6 +63,10 @@ pub struct MaterialTextures {
     pub normal: Option<u32>,
     /// glTF's `normalTexture.scale`: multiplies the map's x and y.
     pub normal_scale: f32,
+    /// Which texture slots read the mesh's second uv set (glTF `texCoord` 1): bit i for
+    /// slot i of [`Self::indices_mut`] (base colour, metallic-roughness, emission); the
+    /// others read the first. Normal maps always read the first: their tangents are its.
+    pub second_uv_set: u32,
 }
 
 impl Default for MaterialTextures {
@@ -77,6 +81,7 @@ impl Default for MaterialTextures {
             alpha_blend: false,
             normal: None,
             normal_scale: 1.0,
+            second_uv_set: 0,
         }
     }
 }
@@ -92,6 +97,16 @@ impl MaterialTextures {
     /// The indices, for offsetting into a scene-wide texture list.
     pub fn indices_mut(&mut self) -> [&mut Option<u32>; 4] {
         [&mut self.base_color, &mut self.metallic_roughness, &mut self.emission, &mut self.normal]
+    }
+
+    /// Whether texture slot `slot` (an index into [`Self::indices_mut`]) reads the second uv set.
+    pub fn reads_second_uv_set(&self, slot: usize) -> bool {
+        self.second_uv_set & (1 << slot) != 0
+    }
+
+    /// Some texture reads the second uv set.
+    pub fn uses_second_uv_set(&self) -> bool {
+        self.second_uv_set != 0
     }
 
     /// Some of the surface may be missing: a cut-out or a blend.

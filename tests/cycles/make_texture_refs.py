@@ -216,6 +216,55 @@ def scene_emissive(scene):
     camera(scene, (0.0, -2.8, 1.6), (0.0, 0.2, 0.4), 45.0)
 
 
+def scene_uv_sets(scene):
+    """A sunlit plane with two uv maps: its base colour (a checker) reads the second map
+    through a UV Map node, laid out unlike the first (turned a quarter, scaled, moved),
+    and its roughness (stripes) reads the default map, so the sun's glint shows them."""
+    world(scene, (0.2, 0.2, 0.2))
+    m, tree, bsdf = principled("two_maps")
+    bsdf.inputs["Specular IOR Level"].default_value = 0.5
+    colour = image_node(tree, image("checker", checker(4, (0.8, 0.15, 0.1), (0.9, 0.9, 0.85))))
+    uv_node = tree.nodes.new("ShaderNodeUVMap")
+    uv_node.uv_map = "second"
+    tree.links.new(uv_node.outputs["UV"], colour.inputs["Vector"])
+    tree.links.new(colour.outputs["Color"], bsdf.inputs["Base Color"])
+    y, x = np.mgrid[0:32, 0:32]
+    stripes = np.where((x // 8) % 2 == 0, 0.15, 0.6)[:, :, None].repeat(3, 2)
+    rough = image_node(tree, image("stripes", np.concatenate([stripes, np.ones((32, 32, 1))], 2), srgb=False))
+    tree.links.new(rough.outputs["Color"], bsdf.inputs["Roughness"])
+    plane = add_object(scene, "plane", bpy.ops.mesh.primitive_plane_add, m, size=2.0,
+                       rotation=(math.radians(60), 0, 0))
+    mesh = plane.data
+    second = mesh.uv_layers.new(name="second")
+    first = mesh.uv_layers[0]
+    uvs = np.empty(len(mesh.loops) * 2, np.float32)
+    first.uv.foreach_get("vector", uvs)
+    u, v = uvs[0::2].copy(), uvs[1::2].copy()
+    uvs[0::2], uvs[1::2] = 1.5 * (1.0 - v) + 0.1, 1.5 * u + 0.2
+    second.uv.foreach_set("vector", uvs)
+    first.active_render = True
+    mesh.uv_layers.active = first
+    # The sun near the mirror direction of the view at the plane's centre.
+    sun(scene, (math.radians(48.0), 0.0, math.radians(8.0)))
+    camera(scene, (0.0, -3.0, 1.2), (0.0, 0.0, 0.0), 40.0)
+
+
+def scene_baked_noise(scene):
+    """A Noise Texture (procedural, in the plane's generated coordinates) into Base Color
+    of a sunlit plane: Cycles renders the procedural material, rt the exporter's bake of
+    it (`--bake`, BAKE_SIZES texels a side)."""
+    world(scene, (0.3, 0.3, 0.3))
+    m, tree, bsdf = principled("noise")
+    bsdf.inputs["Roughness"].default_value = 1.0
+    noise = tree.nodes.new("ShaderNodeTexNoise")
+    noise.inputs["Scale"].default_value = 4.0
+    noise.inputs["Detail"].default_value = 2.0
+    tree.links.new(noise.outputs["Color"], bsdf.inputs["Base Color"])
+    add_object(scene, "plane", bpy.ops.mesh.primitive_plane_add, m, size=2.0, rotation=(math.radians(60), 0, 0))
+    sun(scene, (math.radians(30.0), 0.0, math.radians(20.0)))
+    camera(scene, (0.0, -3.0, 1.2), (0.0, 0.0, 0.0), 40.0)
+
+
 def blender_gltf(scene, out):
     """The same scene through Blender's own glTF exporter (a .glb with its textures
     embedded), placed by a copy of the exported scene file: for the test that rt reads
@@ -233,7 +282,11 @@ SCENES = {
     "rough_metal": scene_rough_metal,
     "leaves": scene_leaves,
     "emissive": scene_emissive,
+    "uv_sets": scene_uv_sets,
+    "baked_noise": scene_baked_noise,
 }
+# Scenes exported with --bake, and the size of their baked images.
+BAKE_SIZES = {"baked_noise": 512}
 
 
 def main():
@@ -246,7 +299,8 @@ def main():
         SCENES[name](scene)
         scene.cycles.samples = args.spp
         out = os.path.join(HERE, "scenes", f"texture_{name}")
-        rt_export.export_scene(scene, os.path.join(out, "assets"), os.path.join(out, "scene.toml"))
+        rt_export.export_scene(scene, os.path.join(out, "assets"), os.path.join(out, "scene.toml"),
+                               bake_size=BAKE_SIZES.get(name, 0))
         if name == "leaves":
             blender_gltf(scene, out)
         scene.render.filepath = os.path.join(HERE, f"texture_{name}.exr")

@@ -14,6 +14,9 @@
 //#if microfacet_tables
 //#include "principled.wgsl"
 //#endif
+//#if sheen
+//#include "sheen.wgsl"
+//#endif
 
 const ALPHA_DELTA: f32 = 1e-3;
 
@@ -24,6 +27,8 @@ const LOBE_TRANSMISSION: u32 = 3u;
 // The coat, sampled before the other lobes (see `bsdf_sample`); its samples are labelled
 // LOBE_SPECULAR.
 const LOBE_COAT: u32 = 4u;
+// The sheen, sampled before the coat; its samples are labelled LOBE_DIFFUSE (as Cycles' are).
+const LOBE_SHEEN: u32 = 5u;
 
 struct ShadingContext {
     m: Material,
@@ -52,6 +57,14 @@ struct ShadingContext {
     coat_probability: f32,
     coat_energy: vec3f,
     under_coat: vec3f,
+    // The sheen (see sheen.wgsl): the probability of sampling it, its colour (sheen × tint ×
+    // albedo), its transform (a, b; a = 0: no sheen) and frame's x axis in the shading frame,
+    // and what everything under it keeps (1 without a sheen).
+    sheen_probability: f32,
+    sheen_color: vec3f,
+    sheen_transform: vec2f,
+    sheen_side: vec2f,
+    under_sheen: f32,
 }
 
 struct BsdfSample {
@@ -138,7 +151,7 @@ fn shading_context(m: Material, n_shading: vec3f, n_geometric: vec3f, wo_world: 
     smooth_lobe.w = f32(rough);
     //#endif
     let mu = max(wo.z, 1e-6);
-    var ctx = ShadingContext(m, basis, vec3f(wo.xy, mu), to_local * n_geometric, eta, vec4f(0.0), smooth_lobe, vec3f(1.0), vec3f(1.0), vec3f(1.0), 1.0, vec3f(0.0), 0.0, vec3f(1.0), vec3f(1.0));
+    var ctx = ShadingContext(m, basis, vec3f(wo.xy, mu), to_local * n_geometric, eta, vec4f(0.0), smooth_lobe, vec3f(1.0), vec3f(1.0), vec3f(1.0), 1.0, vec3f(0.0), 0.0, vec3f(1.0), vec3f(1.0), 0.0, vec3f(0.0), vec2f(0.0), vec2f(1.0, 0.0), 1.0);
     var specular_albedo = 1.0;
     //#if multiscatter
     ctx.metal_b = f82_b(metal_f0(m), min(m.specular_tint, vec3f(1.0)));
@@ -170,11 +183,21 @@ fn shading_context(m: Material, n_shading: vec3f, n_geometric: vec3f, wo_world: 
     let p = vec4f(m.diffuse * ctx.diffuse_kept * luminance(m.base_color), m.specular * specular_albedo, m.reflection * luminance(m.base_color), m.transmission);
     let total = p.x + p.y + p.z + p.w;
     ctx.lobe_probability = select(vec4f(0.0), p / total, total > 0.0);
+    // The albedo of what lies under the sheen, for its sampling probability.
+    var below = total;
     //#if coat
     if m.coat > 0.0 {
         let coat_albedo = coat_setup(&ctx, mu);
         let rest = total * luminance(ctx.under_coat);
         ctx.coat_probability = select(1.0, coat_albedo / (coat_albedo + rest), coat_albedo + rest > 0.0);
+        below = coat_albedo + rest;
+    }
+    //#endif
+    //#if sheen
+    if m.sheen > 0.0 {
+        let sheen_albedo = sheen_setup(&ctx, mu);
+        let rest = below * ctx.under_sheen;
+        ctx.sheen_probability = select(0.0, sheen_albedo / (sheen_albedo + rest), sheen_albedo > 0.0);
     }
     //#endif
     return ctx;

@@ -74,6 +74,9 @@ fn bsdf_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
     //#if coat
     f = f * ctx.under_coat + coat_eval(ctx, wi);
     //#endif
+    //#if sheen
+    f = f * ctx.under_sheen + sheen_eval(ctx, wi);
+    //#endif
     return f;
 }
 
@@ -96,6 +99,9 @@ fn bsdf_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
     //#endif
     //#if coat
     pdf = mix(pdf, coat_pdf(ctx, wi), ctx.coat_probability);
+    //#endif
+    //#if sheen
+    pdf = mix(pdf, sheen_pdf(ctx, wi), ctx.sheen_probability);
     //#endif
     return pdf;
 }

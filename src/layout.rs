@@ -175,7 +175,9 @@ pub struct GpuMaterial {
     pub coating_eta: f32,
     /// The coating's F0 before `specular_tint` (Specular IOR Level applied).
     pub coating_f0: f32,
-    pub _pad1: [u32; 3],
+    /// Roughness of the sheen layer (Cycles clamps it to [0.001, 1] for its table).
+    pub sheen_roughness: f32,
+    pub _pad1: [u32; 2],
     /// Tint of the light crossing the coat, at normal incidence.
     pub coat_tint: [f32; 3],
     /// Weight of the coat layer over every other lobe; 0: none.
@@ -183,6 +185,10 @@ pub struct GpuMaterial {
     pub coat_alpha: f32,
     pub coat_ior: f32,
     pub _pad2: [u32; 2],
+    /// Colour of the sheen layer.
+    pub sheen_tint: [f32; 3],
+    /// Weight of the sheen layer over every other lobe (the coat included); 0: none.
+    pub sheen: f32,
 }
 
 /// The object-space tangents of a triangle's vertices (xyz, MikkTSpace) with the
@@ -409,12 +415,15 @@ impl From<&crate::scene::Material> for GpuMaterial {
             specular_tint: m.specular_tint,
             coating_eta,
             coating_f0,
-            _pad1: [0; 3],
+            sheen_roughness: m.sheen_roughness.clamp(1e-3, 1.0),
+            _pad1: [0; 2],
             coat_tint: m.coat_tint,
             coat: m.coat,
             coat_alpha: m.coat_roughness * m.coat_roughness,
             coat_ior: m.coat_ior,
             _pad2: [0; 2],
+            sheen_tint: m.sheen_tint,
+            sheen: m.sheen,
         }
     }
 }

@@ -1,5 +1,5 @@
 //! The Principled BSDF, rt against Cycles: rows of five spheres under a uniform white
-//! world, one Principled input swept along each row. `tests/cycles/make_principled_refs.py`
+//! world (the `_sun` rows: a sun in a black world), one Principled input swept along each row. `tests/cycles/make_principled_refs.py`
 //! builds each row in bpy, renders it with Cycles (`tests/cycles/principled_NAME.exr`,
 //! Multiscatter GGX) and exports it with `blender/rt_export.py`
 //! (`tests/cycles/scenes/principled_NAME/`). rt renders the export; each sphere's mean,
@@ -117,4 +117,24 @@ fn coat_weight_matches_cycles() {
 #[test]
 fn coat_roughness_and_tint_match_cycles() {
     check("coat_roughness");
+}
+
+#[test]
+fn sheen_weight_matches_cycles() {
+    check("sheen_weight");
+}
+
+#[test]
+fn sheen_roughness_and_tint_match_cycles() {
+    check("sheen_roughness");
+}
+
+#[test]
+fn sheen_weight_under_a_sun_matches_cycles() {
+    check("sheen_weight_sun");
+}
+
+#[test]
+fn sheen_roughness_under_a_sun_matches_cycles() {
+    check("sheen_roughness_sun");
 }

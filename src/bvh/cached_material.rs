@@ -47,6 +47,10 @@ pub struct CachedMaterial {
     pub coat_roughness: f32,
     pub coat_ior: f32,
     pub coat_tint: [f32; 3],
+    pub sheen: f32,
+    pub sheen_roughness: f32,
+    pub sheen_tint: [f32; 3],
+    pub _pad: [u32; 3],
 }
 
 impl From<&Material> for CachedMaterial {
@@ -78,6 +82,10 @@ impl From<&Material> for CachedMaterial {
             coat_roughness: m.coat_roughness,
             coat_ior: m.coat_ior,
             coat_tint: m.coat_tint,
+            sheen: m.sheen,
+            sheen_roughness: m.sheen_roughness,
+            sheen_tint: m.sheen_tint,
+            _pad: [0; 3],
         }
     }
 }
@@ -98,6 +106,9 @@ impl From<&CachedMaterial> for Material {
             coat_roughness: m.coat_roughness,
             coat_ior: m.coat_ior,
             coat_tint: m.coat_tint,
+            sheen: m.sheen,
+            sheen_roughness: m.sheen_roughness,
+            sheen_tint: m.sheen_tint,
             hardness: (m.hardness > 0.0).then_some(m.hardness),
             emission: m.emission,
             absorption: m.absorption,
@@ -119,8 +130,15 @@ impl From<&CachedMaterial> for Material {
 
 impl CachedMaterial {
     pub fn all_finite(&self) -> bool {
-        let vectors =
-            [self.base_color, self.emission, self.absorption, self.volume_emission, self.specular_tint, self.coat_tint];
+        let vectors = [
+            self.base_color,
+            self.emission,
+            self.absorption,
+            self.volume_emission,
+            self.specular_tint,
+            self.coat_tint,
+            self.sheen_tint,
+        ];
         let scalars = [
             self.diffuse,
             self.specular,
@@ -132,6 +150,8 @@ impl CachedMaterial {
             self.coat,
             self.coat_roughness,
             self.coat_ior,
+            self.sheen,
+            self.sheen_roughness,
             self.hardness,
             self.metallic,
             self.base_alpha,

@@ -122,10 +122,13 @@ fn host_structs_match_wgsl_layouts() {
                 specular_tint,
                 coating_eta,
                 coating_f0,
+                sheen_roughness,
                 coat_tint,
                 coat,
                 coat_alpha,
-                coat_ior
+                coat_ior,
+                sheen_tint,
+                sheen
             ]
         ),
         host_layout!("TriangleTangents", GpuTriangleTangents, [t0, t1, t2]),

@@ -71,6 +71,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("rng.wgsl"),
     shader!("sampling.wgsl"),
     shader!("segment.wgsl"),
+    shader!("sheen.wgsl"),
     shader!("sky.wgsl"),
     shader!("sphere.wgsl"),
     shader!("sphere_test.wgsl"),

@@ -93,6 +93,8 @@ pub struct FeatureSet {
     pub coating: bool,
     /// Some material has a coat layer (`coat`).
     pub coat: bool,
+    /// Some material has a sheen layer (`sheen`).
+    pub sheen: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -164,6 +166,7 @@ impl FeatureSet {
                 }),
             coating: materials_in_use.iter().any(|m| m.dielectric_coating().is_some()),
             coat: materials_in_use.iter().any(|m| m.coat > 0.0),
+            sheen: materials_in_use.iter().any(|m| m.sheen > 0.0),
         }
     }
 
@@ -191,6 +194,7 @@ impl FeatureSet {
             multiscatter: true,
             coating: true,
             coat: true,
+            sheen: true,
         }
     }
 
@@ -229,7 +233,8 @@ impl FeatureSet {
             "multiscatter" => self.multiscatter,
             "coating" => self.coating,
             "coat" => self.coat,
-            "microfacet_tables" => self.multiscatter || self.coating || self.coat,
+            "sheen" => self.sheen,
+            "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen,
             _ => return None,
         })
     }
@@ -256,6 +261,7 @@ impl fmt::Display for FeatureSet {
             (self.multiscatter, "multiscatter"),
             (self.coating, "coating"),
             (self.coat, "coat"),
+            (self.sheen, "sheen"),
         ] {
             if on {
                 parts.push(name.to_string());

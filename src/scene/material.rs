@@ -28,6 +28,11 @@ pub struct Material {
     pub coat_roughness: f32,
     pub coat_ior: f32,
     pub coat_tint: [f32; 3],
+    /// Principled's Sheen: the weight of Cycles' microfiber sheen layer over every other lobe
+    /// (the coat included), its roughness and its colour.
+    pub sheen: f32,
+    pub sheen_roughness: f32,
+    pub sheen_tint: [f32; 3],
     /// The seed renderer's Phong-like exponent; mapped to `roughness` when given.
     pub hardness: Option<f32>,
     pub emission: [f32; 3],
@@ -116,6 +121,9 @@ impl Default for Material {
             coat_roughness: 0.03,
             coat_ior: 1.5,
             coat_tint: [1.0; 3],
+            sheen: 0.0,
+            sheen_roughness: 0.5,
+            sheen_tint: [1.0; 3],
             hardness: None,
             emission: [0.0; 3],
             absorption: [0.0; 3],

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Rows of Principled BSDF spheres under a uniform world, one row per swept input, rendered
-with Cycles and exported with blender/rt_export.py, for `tests/cycles_principled.rs`:
+"""Rows of Principled BSDF spheres under a uniform world (or a sun, for the rows named in
+SUNLIT), one row per swept input, rendered with Cycles and exported with blender/rt_export.py, for `tests/cycles_principled.rs`:
 
     /work/main/.venv-bpy/bin/python tests/cycles/make_principled_refs.py [--spp 1024] [NAME...]
 
@@ -25,6 +25,9 @@ import make_texture_refs as refs  # noqa: E402
 WIDTH, HEIGHT = 160, 32
 STEPS = [0.0, 0.25, 0.5, 0.75, 1.0]
 TINTS = [(1.0, 1.0, 1.0), (1.0, 0.4, 0.4), (0.4, 1.0, 0.4), (0.4, 0.4, 1.0), (1.0, 0.8, 0.2)]
+# The sheen shows on a dark base.
+SHEEN_BASE = {"Base Color": (0.05, 0.05, 0.08), "Roughness": 0.5}
+SHEEN_ROUGHNESS_BASE = {**SHEEN_BASE, "Sheen Weight": 1.0, "Sheen Tint": (1.0, 0.8, 0.6)}
 
 # Per row: the inputs every sphere shares, and per sphere the inputs that change.
 ROWS = {
@@ -52,6 +55,17 @@ ROWS = {
         {"Base Color": (0.9, 0.85, 0.8), "Metallic": 1.0, "Roughness": 0.3},
         [{"Specular Tint": t} for t in TINTS],
     ),
+    "sheen_weight": (SHEEN_BASE, [{"Sheen Weight": w} for w in STEPS]),
+    "sheen_roughness": (SHEEN_ROUGHNESS_BASE, [{"Sheen Roughness": r} for r in STEPS]),
+    "sheen_weight_sun": (SHEEN_BASE, [{"Sheen Weight": w} for w in STEPS]),
+    "sheen_roughness_sun": (SHEEN_ROUGHNESS_BASE, [{"Sheen Roughness": r} for r in STEPS]),
+}
+
+# Rows lit by a sun from the right, a little behind the spheres, in a black world: the
+# terminator and the grazing light along it.
+SUNLIT = {
+    "sheen_weight_sun": (math.radians(70), 0.0, math.radians(70)),
+    "sheen_roughness_sun": (math.radians(70), 0.0, math.radians(70)),
 }
 
 
@@ -62,7 +76,11 @@ def set_input(bsdf, name, value):
 
 def build(scene, name):
     shared, spheres = ROWS[name]
-    refs.world(scene, (1.0, 1.0, 1.0))
+    if name in SUNLIT:
+        refs.world(scene, (0.0, 0.0, 0.0))
+        refs.sun(scene, SUNLIT[name])
+    else:
+        refs.world(scene, (1.0, 1.0, 1.0))
     for i, own in enumerate(spheres):
         m = bpy.data.materials.new(f"{name}_{i}")
         bsdf = m.node_tree.nodes["Principled BSDF"]

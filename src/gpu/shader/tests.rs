@@ -48,6 +48,7 @@ fn feature_sets() -> Vec<FeatureSet> {
             multiscatter: on(7) != on(1),
             coating: on(5) != on(7),
             coat: on(3) != on(6),
+            sheen: on(2) != on(5),
         });
     }
     sets
@@ -80,6 +81,7 @@ fn plain() -> FeatureSet {
         multiscatter: false,
         coating: false,
         coat: false,
+        sheen: false,
     }
 }
 

@@ -17,6 +17,9 @@
 //#if sheen
 //#include "sheen.wgsl"
 //#endif
+//#if anisotropy
+//#include "anisotropy.wgsl"
+//#endif
 
 const ALPHA_DELTA: f32 = 1e-3;
 
@@ -37,6 +40,8 @@ struct ShadingContext {
     wo: vec3f,
     // The geometric normal in the local frame, on the viewer's side.
     n_geometric: vec3f,
+    // GGX (αx, αy) of the rough lobes along the frame's x and y (see anisotropy.wgsl).
+    alpha: vec2f,
     // Refractive index beyond the surface over the index on the viewer's side.
     eta: f32,
     // Probability of picking each lobe when sampling (diffuse, specular, reflection, transmission).
@@ -141,7 +146,14 @@ fn shading_context(m: Material, n_shading: vec3f, n_geometric: vec3f, wo_world: 
     if dot(n, wo_world) <= 1e-4 {
         n = n_geometric;
     }
-    let basis = tangent_frame(n);
+    var basis = tangent_frame(n);
+    var alpha = vec2f(m.alpha);
+    //#if anisotropy
+    if m.anisotropy > 0.0 {
+        basis = anisotropic_frame(n, m.anisotropy_rotation);
+        alpha = anisotropic_alpha(m.alpha, m.anisotropy);
+    }
+    //#endif
     let to_local = transpose(basis);
     let wo = to_local * wo_world;
     let eta = select(1.0 / m.ior, m.ior, entering);
@@ -151,7 +163,7 @@ fn shading_context(m: Material, n_shading: vec3f, n_geometric: vec3f, wo_world: 
     smooth_lobe.w = f32(rough);
     //#endif
     let mu = max(wo.z, 1e-6);
-    var ctx = ShadingContext(m, basis, vec3f(wo.xy, mu), to_local * n_geometric, eta, vec4f(0.0), smooth_lobe, vec3f(1.0), vec3f(1.0), vec3f(1.0), 1.0, vec3f(0.0), 0.0, vec3f(1.0), vec3f(1.0), 0.0, vec3f(0.0), vec2f(0.0), vec2f(1.0, 0.0), 1.0);
+    var ctx = ShadingContext(m, basis, vec3f(wo.xy, mu), to_local * n_geometric, alpha, eta, vec4f(0.0), smooth_lobe, vec3f(1.0), vec3f(1.0), vec3f(1.0), 1.0, vec3f(0.0), 0.0, vec3f(1.0), vec3f(1.0), 0.0, vec3f(0.0), vec2f(0.0), vec2f(1.0, 0.0), 1.0);
     var specular_albedo = 1.0;
     //#if multiscatter
     ctx.metal_b = f82_b(metal_f0(m), min(m.specular_tint, vec3f(1.0)));

@@ -28,7 +28,7 @@ fn reflection_lobe_eval(ctx: ShadingContext, lobe: u32, wi: vec3f) -> vec3f {
     }
     //#if glossy
     let m = normalize(ctx.wo + wi);
-    let a = ctx.m.alpha;
+    let a = ctx.alpha;
     let microfacet = ggx_d(m, a) * ggx_g2(ctx.wo, wi, a) / (4.0 * ctx.wo.z);
     if lobe == LOBE_SPECULAR {
         return ctx.m.specular * microfacet * specular_fresnel(ctx, dot(ctx.wo, m)) * ctx.energy_specular;
@@ -48,7 +48,7 @@ fn reflection_lobe_pdf(ctx: ShadingContext, lobe: u32, wi: vec3f) -> f32 {
     }
     //#if glossy
     let m = normalize(ctx.wo + wi);
-    return ggx_visible_pdf(ctx.wo, m, ctx.m.alpha) / (4.0 * dot(ctx.wo, m));
+    return ggx_visible_pdf(ctx.wo, m, ctx.alpha) / (4.0 * dot(ctx.wo, m));
     //#else
     return 0.0;
     //#endif
@@ -125,7 +125,7 @@ fn coat_lobe_eval(ctx: ShadingContext, wi: vec3f) -> f32 {
         return 0.0;
     }
     let m = normalize(ctx.wo + wi);
-    let a = ctx.m.coat_alpha;
+    let a = vec2f(ctx.m.coat_alpha);
     return ggx_d(m, a) * ggx_g2(ctx.wo, wi, a) / (4.0 * ctx.wo.z) * fresnel_dielectric(dot(ctx.wo, m), ctx.m.coat_ior);
 }
 
@@ -142,6 +142,6 @@ fn coat_lobe_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
         return 0.0;
     }
     let m = normalize(ctx.wo + wi);
-    return ggx_visible_pdf(ctx.wo, m, ctx.m.coat_alpha) / (4.0 * dot(ctx.wo, m));
+    return ggx_visible_pdf(ctx.wo, m, vec2f(ctx.m.coat_alpha)) / (4.0 * dot(ctx.wo, m));
 }
 //#endif

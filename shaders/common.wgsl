@@ -164,8 +164,10 @@ struct Material {
     coating_f0: f32,
     // Roughness of the sheen layer, in [0.001, 1].
     sheen_roughness: f32,
-    _pad3: u32,
-    _pad4: u32,
+    // The rough lobes' stretch along the surface tangent, and the tangent's turn about
+    // the normal (1: a full turn).
+    anisotropy: f32,
+    anisotropy_rotation: f32,
     // The coat: a dielectric GGX layer of weight `coat` over every other lobe (0: none),
     // and the tint of the light crossing it at normal incidence.
     coat_tint: vec3f,

@@ -269,6 +269,9 @@ fn trace_path(pixel: vec2u, rng: ptr<function, Rng>) -> vec3f {
         //#if normal_maps
         set_unmapped_normal(select(-n_unmapped, n_unmapped, entering), m.normal_texture != NO_TEXTURE);
         //#endif
+        //#if anisotropy
+        set_surface_tangent(hit, surface.position);
+        //#endif
         let ctx = shading_context(m, n_shading, n_geometric, -direction, entering);
         //#if nee
         shadow = direct_light(ctx, surface, n_geometric, medium_absorption, rng);

@@ -42,14 +42,14 @@ fn sample_smooth_lobe_direction(ctx: ShadingContext, lobe: u32, rng: ptr<functio
     //#endif
     //#if coat
     if lobe == LOBE_COAT {
-        let wi = reflect_local(ctx.wo, ggx_sample_visible_normal(ctx.wo, ctx.m.coat_alpha, u));
+        let wi = reflect_local(ctx.wo, ggx_sample_visible_normal(ctx.wo, vec2f(ctx.m.coat_alpha), u));
         return select(vec3f(0.0), fold_above(wi, ctx.n_geometric), wi.z > 0.0);
     }
     //#endif
     var wi = sample_cosine_hemisphere(u);
     //#if glossy
     if lobe != LOBE_DIFFUSE {
-        wi = reflect_local(ctx.wo, ggx_sample_visible_normal(ctx.wo, ctx.m.alpha, u));
+        wi = reflect_local(ctx.wo, ggx_sample_visible_normal(ctx.wo, ctx.alpha, u));
     }
     //#endif
     if wi.z <= 0.0 {

@@ -177,7 +177,9 @@ pub struct GpuMaterial {
     pub coating_f0: f32,
     /// Roughness of the sheen layer (Cycles clamps it to [0.001, 1] for its table).
     pub sheen_roughness: f32,
-    pub _pad1: [u32; 2],
+    /// Principled's Anisotropic and Anisotropic Rotation (a turn is 1).
+    pub anisotropy: f32,
+    pub anisotropy_rotation: f32,
     /// Tint of the light crossing the coat, at normal incidence.
     pub coat_tint: [f32; 3],
     /// Weight of the coat layer over every other lobe; 0: none.
@@ -416,7 +418,8 @@ impl From<&crate::scene::Material> for GpuMaterial {
             coating_eta,
             coating_f0,
             sheen_roughness: m.sheen_roughness.clamp(1e-3, 1.0),
-            _pad1: [0; 2],
+            anisotropy: m.anisotropy,
+            anisotropy_rotation: m.anisotropy_rotation,
             coat_tint: m.coat_tint,
             coat: m.coat,
             coat_alpha: m.coat_roughness * m.coat_roughness,

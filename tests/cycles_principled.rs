@@ -138,3 +138,18 @@ fn sheen_weight_under_a_sun_matches_cycles() {
 fn sheen_roughness_under_a_sun_matches_cycles() {
     check("sheen_roughness_sun");
 }
+
+#[test]
+fn anisotropy_matches_cycles() {
+    check("anisotropy_sun");
+}
+
+#[test]
+fn anisotropy_rotation_matches_cycles() {
+    check("anisotropy_rotation_sun");
+}
+
+#[test]
+fn anisotropic_dielectric_matches_cycles() {
+    check("anisotropy_dielectric_sun");
+}

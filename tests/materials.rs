@@ -194,6 +194,12 @@ fn hard_materials_stay_finite() {
         ),
         ("sheen of roughness 0 (no lobe in the fit)", "sheen = 1.0\nsheen_roughness = 0.0", 0.0),
         ("grazing view of a sheen", "sheen = 1.0\nsheen_roughness = 1.0\nbase_color = [0.0, 0.0, 0.0]", 89.9),
+        (
+            "anisotropic rough metal at grazing",
+            "diffuse = 0.0\nreflection = 1.0\nroughness = 1.0\nanisotropy = 1.0\nanisotropy_rotation = 0.3",
+            89.9,
+        ),
+        ("anisotropic rough glass", "diffuse = 0.0\ntransmission = 1.0\nroughness = 0.5\nanisotropy = 1.0", 0.0),
         ("hardness 10000", "diffuse = 0.5\nspecular = 0.5\nhardness = 10000.0", 0.0),
         ("emission 1e6", "emission = [1e6, 1e6, 1e6]", 0.0),
         ("absorption 1e6", "diffuse = 0.0\ntransmission = 1.0\nabsorption = [1e6, 1e6, 1e6]", 0.0),

@@ -17,6 +17,7 @@
 //! | `KHR_materials_specular` colour factor (1, 1, 1)          | `specular_tint`                |
 //! | `extras.rt_coat`, `_roughness`, `_ior`, `_tint` (0, 0.03, 1.5, (1, 1, 1)) | `coat`, `coat_roughness`, `coat_ior`, `coat_tint` |
 //! | `extras.rt_sheen`, `_roughness`, `_tint` (0, 0.5, (1, 1, 1)) | `sheen`, `sheen_roughness`, `sheen_tint` |
+//! | `extras.rt_anisotropy`, `rt_anisotropy_rotation` (0, 0)     | `anisotropy`, `anisotropy_rotation` |
 //! | `KHR_materials_volume` colour `c` (1), distance `d` (∞)   | `absorption = -ln(c) / d`; 0 if `d = ∞` |
 //! | `extras.rt_volume_emission` `[r, g, b]` (0)               | `volume_emission`              |
 //!
@@ -380,6 +381,8 @@ fn map_material_with_metallic(m: &gltf::Material, metallic: f32) -> Result<Mater
         sheen: extra::<f32>(m.extras(), "rt_sheen")?.unwrap_or(0.0).clamp(0.0, 1.0),
         sheen_roughness: extra::<f32>(m.extras(), "rt_sheen_roughness")?.unwrap_or(0.5).clamp(0.0, 1.0),
         sheen_tint: extra::<[f32; 3]>(m.extras(), "rt_sheen_tint")?.unwrap_or([1.0; 3]).map(|c| c.clamp(0.0, 1.0)),
+        anisotropy: extra::<f32>(m.extras(), "rt_anisotropy")?.unwrap_or(0.0).clamp(0.0, 1.0),
+        anisotropy_rotation: extra::<f32>(m.extras(), "rt_anisotropy_rotation")?.unwrap_or(0.0).rem_euclid(1.0),
         reflection: metallic,
         transmission: dielectric * transmission,
         ior: m.ior().unwrap_or(1.5),
@@ -543,6 +546,8 @@ mod tests {
                 sheen: 0.0,
                 sheen_roughness: 0.5,
                 sheen_tint: [1.0; 3],
+                anisotropy: 0.0,
+                anisotropy_rotation: 0.0,
                 hardness: None,
                 emission: [4.0, 2.0, 0.0],
                 absorption: [ln2 / 2.0, 2.0 * ln2 / 2.0, 0.0],

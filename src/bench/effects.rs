@@ -96,6 +96,7 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
     force("media", own.media, FeatureSet { media: true, transmission: glass, ..own });
     // Normal maps are texture lookups: forcing them on forces the texture code too.
     force("sheen", own.sheen, FeatureSet { sheen: true, ..own });
+    force("anisotropy", own.anisotropy, FeatureSet { anisotropy: true, ..own });
     force("normal maps", own.normal_maps, FeatureSet { normal_maps: true, textures: true, ..own });
     v
 }

@@ -50,7 +50,9 @@ pub struct CachedMaterial {
     pub sheen: f32,
     pub sheen_roughness: f32,
     pub sheen_tint: [f32; 3],
-    pub _pad: [u32; 3],
+    pub anisotropy: f32,
+    pub anisotropy_rotation: f32,
+    pub _pad: u32,
 }
 
 impl From<&Material> for CachedMaterial {
@@ -85,7 +87,9 @@ impl From<&Material> for CachedMaterial {
             sheen: m.sheen,
             sheen_roughness: m.sheen_roughness,
             sheen_tint: m.sheen_tint,
-            _pad: [0; 3],
+            anisotropy: m.anisotropy,
+            anisotropy_rotation: m.anisotropy_rotation,
+            _pad: 0,
         }
     }
 }
@@ -109,6 +113,8 @@ impl From<&CachedMaterial> for Material {
             sheen: m.sheen,
             sheen_roughness: m.sheen_roughness,
             sheen_tint: m.sheen_tint,
+            anisotropy: m.anisotropy,
+            anisotropy_rotation: m.anisotropy_rotation,
             hardness: (m.hardness > 0.0).then_some(m.hardness),
             emission: m.emission,
             absorption: m.absorption,
@@ -152,6 +158,8 @@ impl CachedMaterial {
             self.coat_ior,
             self.sheen,
             self.sheen_roughness,
+            self.anisotropy,
+            self.anisotropy_rotation,
             self.hardness,
             self.metallic,
             self.base_alpha,

@@ -123,6 +123,8 @@ fn host_structs_match_wgsl_layouts() {
                 coating_eta,
                 coating_f0,
                 sheen_roughness,
+                anisotropy,
+                anisotropy_rotation,
                 coat_tint,
                 coat,
                 coat_alpha,

@@ -49,6 +49,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("atmosphere_sky.wgsl"),
     shader!("atmosphere_steps.wgsl"),
     shader!("atmosphere_tables.wgsl"),
+    shader!("anisotropy.wgsl"),
     shader!("bottom_level.wgsl"),
     shader!("bsdf.wgsl"),
     shader!("bsdf_eval.wgsl"),

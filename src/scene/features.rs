@@ -95,6 +95,8 @@ pub struct FeatureSet {
     pub coat: bool,
     /// Some material has a sheen layer (`sheen`).
     pub sheen: bool,
+    /// Some material's rough lobes are anisotropic (`anisotropy`).
+    pub anisotropy: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -167,6 +169,7 @@ impl FeatureSet {
             coating: materials_in_use.iter().any(|m| m.dielectric_coating().is_some()),
             coat: materials_in_use.iter().any(|m| m.coat > 0.0),
             sheen: materials_in_use.iter().any(|m| m.sheen > 0.0),
+            anisotropy: materials_in_use.iter().any(|m| m.anisotropy > 0.0),
         }
     }
 
@@ -195,6 +198,7 @@ impl FeatureSet {
             coating: true,
             coat: true,
             sheen: true,
+            anisotropy: true,
         }
     }
 
@@ -234,6 +238,7 @@ impl FeatureSet {
             "coating" => self.coating,
             "coat" => self.coat,
             "sheen" => self.sheen,
+            "anisotropy" => self.anisotropy,
             "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen,
             _ => return None,
         })
@@ -262,6 +267,7 @@ impl fmt::Display for FeatureSet {
             (self.coating, "coating"),
             (self.coat, "coat"),
             (self.sheen, "sheen"),
+            (self.anisotropy, "anisotropy"),
         ] {
             if on {
                 parts.push(name.to_string());

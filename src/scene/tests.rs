@@ -232,6 +232,8 @@ fn out_of_range_values_are_located() {
         [materials.m] | coat_ior = 0.5 => 2:12: [materials.m]: coat_ior must be at least 1, got 0.5
         [materials.m] | sheen = -0.5 => 2:9: [materials.m]: sheen must be in [0, 1], got -0.5
         [materials.m] | sheen_roughness = 2 => 2:19: [materials.m]: sheen_roughness must be in [0, 1], got 2
+        [materials.m] | anisotropy = -0.1 => 2:14: [materials.m]: anisotropy must be in [0, 1], got -0.1
+        [materials.m] | anisotropy_rotation = 1.5 => 2:23: [materials.m]: anisotropy_rotation must be in [0, 1], got 1.5
         [materials.m] | sheen_tint = [1, 1.5, 1] => 2:14: [materials.m]: sheen_tint must be in [0, 1], got 1.5
         [materials.m] | specular = 0.5 | specular_ior_level = 0.5 => 3:22: [materials.m]: specular_ior_level excludes `specular` (the coating is the diffuse's own glossy layer)
         [materials.m] | volume_emission = [0, 0, -1] => 2:19: [materials.m]: volume_emission must be non-negative, got -1

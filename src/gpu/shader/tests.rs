@@ -49,6 +49,7 @@ fn feature_sets() -> Vec<FeatureSet> {
             coating: on(5) != on(7),
             coat: on(3) != on(6),
             sheen: on(2) != on(5),
+            anisotropy: on(2) != on(6),
         });
     }
     sets
@@ -82,6 +83,7 @@ fn plain() -> FeatureSet {
         coating: false,
         coat: false,
         sheen: false,
+        anisotropy: false,
     }
 }
 

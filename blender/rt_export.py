@@ -700,6 +700,22 @@ def gltf_material(material, thickness, textures=None):
                 "rt_coat_ior": max(float(socket_value(surface, "Coat IOR", 1.5)), 1.0),
                 "rt_coat_tint": [min(max(c, 0.0), 1.0) for c in rgb(socket_value(surface, "Coat Tint", (1, 1, 1)))],
             })
+        sheen = float(socket_value(surface, "Sheen Weight", 0.0))
+        if sheen > 0.0:
+            # glTF's KHR_materials_sheen is another model (a colour without a weight): rt reads its own keys.
+            out["extras"].update({
+                "rt_sheen": min(sheen, 1.0),
+                "rt_sheen_roughness": min(max(float(socket_value(surface, "Sheen Roughness", 0.5)), 0.0), 1.0),
+                "rt_sheen_tint": [min(max(c, 0.0), 1.0) for c in rgb(socket_value(surface, "Sheen Tint", (1, 1, 1)))],
+            })
+        anisotropy = float(socket_value(surface, "Anisotropic", 0.0))
+        if anisotropy > 0.0:
+            out["extras"].update({
+                "rt_anisotropy": min(anisotropy, 1.0),
+                "rt_anisotropy_rotation": float(socket_value(surface, "Anisotropic Rotation", 0.0)) % 1.0,
+            })
+            if surface.inputs["Tangent"].is_linked:
+                log(f"{name}: rt ignores the Principled BSDF's Tangent input (it uses the radial tangent about Z)")
     if transmission > 0.0:
         extensions["KHR_materials_transmission"] = {"transmissionFactor": transmission}
     peak = max(emission)

@@ -14,6 +14,12 @@
 //#if microfacet_tables
 //#include "principled.wgsl"
 //#endif
+//#if sheen
+//#include "sheen.wgsl"
+//#endif
+//#if anisotropy
+//#include "anisotropy.wgsl"
+//#endif
 
 const ALPHA_DELTA: f32 = 1e-3;
 
@@ -24,6 +30,8 @@ const LOBE_TRANSMISSION: u32 = 3u;
 // The coat, sampled before the other lobes (see `bsdf_sample`); its samples are labelled
 // LOBE_SPECULAR.
 const LOBE_COAT: u32 = 4u;
+// The sheen, sampled before the coat; its samples are labelled LOBE_DIFFUSE (as Cycles' are).
+const LOBE_SHEEN: u32 = 5u;
 
 struct ShadingContext {
     m: Material,
@@ -32,6 +40,8 @@ struct ShadingContext {
     wo: vec3f,
     // The geometric normal in the local frame, on the viewer's side.
     n_geometric: vec3f,
+    // GGX (αx, αy) of the rough lobes along the frame's x and y (see anisotropy.wgsl).
+    alpha: vec2f,
     // Refractive index beyond the surface over the index on the viewer's side.
     eta: f32,
     // Probability of picking each lobe when sampling (diffuse, specular, reflection, transmission).
@@ -52,6 +62,14 @@ struct ShadingContext {
     coat_probability: f32,
     coat_energy: vec3f,
     under_coat: vec3f,
+    // The sheen (see sheen.wgsl): the probability of sampling it, its colour (sheen × tint ×
+    // albedo), its transform (a, b; a = 0: no sheen) and frame's x axis in the shading frame,
+    // and what everything under it keeps (1 without a sheen).
+    sheen_probability: f32,
+    sheen_color: vec3f,
+    sheen_transform: vec2f,
+    sheen_side: vec2f,
+    under_sheen: f32,
 }
 
 struct BsdfSample {
@@ -128,7 +146,14 @@ fn shading_context(m: Material, n_shading: vec3f, n_geometric: vec3f, wo_world: 
     if dot(n, wo_world) <= 1e-4 {
         n = n_geometric;
     }
-    let basis = tangent_frame(n);
+    var basis = tangent_frame(n);
+    var alpha = vec2f(m.alpha);
+    //#if anisotropy
+    if m.anisotropy > 0.0 {
+        basis = anisotropic_frame(n, m.anisotropy_rotation);
+        alpha = anisotropic_alpha(m.alpha, m.anisotropy);
+    }
+    //#endif
     let to_local = transpose(basis);
     let wo = to_local * wo_world;
     let eta = select(1.0 / m.ior, m.ior, entering);
@@ -138,7 +163,7 @@ fn shading_context(m: Material, n_shading: vec3f, n_geometric: vec3f, wo_world: 
     smooth_lobe.w = f32(rough);
     //#endif
     let mu = max(wo.z, 1e-6);
-    var ctx = ShadingContext(m, basis, vec3f(wo.xy, mu), to_local * n_geometric, eta, vec4f(0.0), smooth_lobe, vec3f(1.0), vec3f(1.0), vec3f(1.0), 1.0, vec3f(0.0), 0.0, vec3f(1.0), vec3f(1.0));
+    var ctx = ShadingContext(m, basis, vec3f(wo.xy, mu), to_local * n_geometric, alpha, eta, vec4f(0.0), smooth_lobe, vec3f(1.0), vec3f(1.0), vec3f(1.0), 1.0, vec3f(0.0), 0.0, vec3f(1.0), vec3f(1.0), 0.0, vec3f(0.0), vec2f(0.0), vec2f(1.0, 0.0), 1.0);
     var specular_albedo = luminance(m.specular_tint);
     //#if multiscatter
     ctx.metal_b = f82_b(metal_f0(m), min(m.specular_tint, vec3f(1.0)));
@@ -171,11 +196,21 @@ fn shading_context(m: Material, n_shading: vec3f, n_geometric: vec3f, wo_world: 
     let p = vec4f(m.diffuse * ctx.diffuse_kept * luminance(m.base_color), m.specular * specular_albedo, m.reflection * luminance(m.base_color), m.transmission);
     let total = p.x + p.y + p.z + p.w;
     ctx.lobe_probability = select(vec4f(0.0), p / total, total > 0.0);
+    // The albedo of what lies under the sheen, for its sampling probability.
+    var below = total;
     //#if coat
     if m.coat > 0.0 {
         let coat_albedo = coat_setup(&ctx, mu);
         let rest = total * luminance(ctx.under_coat);
         ctx.coat_probability = select(1.0, coat_albedo / (coat_albedo + rest), coat_albedo + rest > 0.0);
+        below = coat_albedo + rest;
+    }
+    //#endif
+    //#if sheen
+    if m.sheen > 0.0 {
+        let sheen_albedo = sheen_setup(&ctx, mu);
+        let rest = below * ctx.under_sheen;
+        ctx.sheen_probability = select(0.0, sheen_albedo / (sheen_albedo + rest), sheen_albedo > 0.0);
     }
     //#endif
     return ctx;

@@ -32,7 +32,7 @@ fn reflection_lobe_eval(ctx: ShadingContext, lobe: u32, wi: vec3f) -> vec3f {
     }
     //#if glossy
     let m = normalize(ctx.wo + wi);
-    let a = ctx.m.alpha;
+    let a = ctx.alpha;
     let microfacet = ggx_d(m, a) * ggx_g2(ctx.wo, wi, a) / (4.0 * ctx.wo.z);
     if lobe == LOBE_SPECULAR {
         return ctx.m.specular * microfacet * specular_fresnel(ctx, dot(ctx.wo, m)) * ctx.energy_specular;
@@ -52,7 +52,7 @@ fn reflection_lobe_pdf(ctx: ShadingContext, lobe: u32, wi: vec3f) -> f32 {
     }
     //#if glossy
     let m = normalize(ctx.wo + wi);
-    return ggx_visible_pdf(ctx.wo, m, ctx.m.alpha) / (4.0 * dot(ctx.wo, m));
+    return ggx_visible_pdf(ctx.wo, m, ctx.alpha) / (4.0 * dot(ctx.wo, m));
     //#else
     return 0.0;
     //#endif
@@ -78,6 +78,9 @@ fn bsdf_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
     //#if coat
     f = f * ctx.under_coat + coat_eval(ctx, wi);
     //#endif
+    //#if sheen
+    f = f * ctx.under_sheen + sheen_eval(ctx, wi);
+    //#endif
     return f;
 }
 
@@ -101,6 +104,9 @@ fn bsdf_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
     //#if coat
     pdf = mix(pdf, coat_pdf(ctx, wi), ctx.coat_probability);
     //#endif
+    //#if sheen
+    pdf = mix(pdf, sheen_pdf(ctx, wi), ctx.sheen_probability);
+    //#endif
     return pdf;
 }
 
@@ -123,7 +129,7 @@ fn coat_lobe_eval(ctx: ShadingContext, wi: vec3f) -> f32 {
         return 0.0;
     }
     let m = normalize(ctx.wo + wi);
-    let a = ctx.m.coat_alpha;
+    let a = vec2f(ctx.m.coat_alpha);
     return ggx_d(m, a) * ggx_g2(ctx.wo, wi, a) / (4.0 * ctx.wo.z) * fresnel_dielectric(dot(ctx.wo, m), ctx.m.coat_ior);
 }
 
@@ -140,6 +146,6 @@ fn coat_lobe_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
         return 0.0;
     }
     let m = normalize(ctx.wo + wi);
-    return ggx_visible_pdf(ctx.wo, m, ctx.m.coat_alpha) / (4.0 * dot(ctx.wo, m));
+    return ggx_visible_pdf(ctx.wo, m, vec2f(ctx.m.coat_alpha)) / (4.0 * dot(ctx.wo, m));
 }
 //#endif

@@ -170,18 +170,25 @@ struct Material {
     // `specular` lobe is that coating), and its F0 before `specular_tint`.
     coating_eta: f32,
     coating_f0: f32,
-    // Bit i: texture slot i reads the second uv set (UV1_* in texture.wgsl).
-    second_uv_set: u32,
-    _pad3: u32,
-    _pad4: u32,
+    // Roughness of the sheen layer, in [0.001, 1].
+    sheen_roughness: f32,
+    // The rough lobes' stretch along the surface tangent, and the tangent's turn about
+    // the normal (1: a full turn).
+    anisotropy: f32,
+    anisotropy_rotation: f32,
     // The coat: a dielectric GGX layer of weight `coat` over every other lobe (0: none),
     // and the tint of the light crossing it at normal incidence.
     coat_tint: vec3f,
     coat: f32,
     coat_alpha: f32,
     coat_ior: f32,
-    _pad5: u32,
+    // Bit i: texture slot i reads the second uv set (UV1_* in texture.wgsl).
+    second_uv_set: u32,
     _pad6: u32,
+    // The sheen: Cycles' microfiber layer of weight `sheen` and colour `sheen_tint` over
+    // every other lobe, the coat included (0: none).
+    sheen_tint: vec3f,
+    sheen: f32,
 }
 
 // Object-space vertex tangents (xyz) and bitangent signs (w) of one triangle; zero

@@ -90,7 +90,7 @@ fn rough_dielectric_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
     if m.z == 0.0 {
         return vec3f(0.0);
     }
-    let a = ctx.m.alpha;
+    let a = ctx.alpha;
     let f = fresnel_dielectric(dot(ctx.wo, m), ctx.eta);
     let dg = ggx_d(m, a) * ggx_g2(ctx.wo, wi, a);
     if reflect {
@@ -112,7 +112,7 @@ fn rough_dielectric_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
         return 0.0;
     }
     let f = fresnel_dielectric(dot(ctx.wo, m), ctx.eta);
-    let visible = ggx_visible_pdf(ctx.wo, m, ctx.m.alpha);
+    let visible = ggx_visible_pdf(ctx.wo, m, ctx.alpha);
     if reflect {
         return visible / (4.0 * abs(dot(ctx.wo, m))) * f;
     }
@@ -121,7 +121,7 @@ fn rough_dielectric_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
 }
 
 fn rough_dielectric_sample(ctx: ShadingContext, u: vec3f) -> vec3f {
-    let m = ggx_sample_visible_normal(ctx.wo, ctx.m.alpha, u.xy);
+    let m = ggx_sample_visible_normal(ctx.wo, ctx.alpha, u.xy);
     let f = fresnel_dielectric(dot(ctx.wo, m), ctx.eta);
     if u.z < f {
         let wi = reflect_local(ctx.wo, m);

@@ -346,6 +346,9 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, s
         let side = select(-1.0, 1.0, entering);
         set_unmapped_normal(side * n_unmapped, m.normal_texture != NO_TEXTURE, side * diffuse_mapped_normal());
         //#endif
+        //#if anisotropy
+        set_surface_tangent(hit, surface.position);
+        //#endif
         let ctx = shading_context(m, n_shading, n_geometric, -direction, entering);
         //#if nee
         shadow = direct_light(ctx, surface, n_geometric, medium_absorption, &rng);

@@ -4,31 +4,32 @@
 // (as Cycles), else Walter's separable G1(wo)·G1(wi) (as Mitsuba 3, so that rt can
 // be validated against it); sampled by its distribution of
 // visible normals (Heitz, "Sampling the GGX Distribution of Visible Normals", JCGT 2018).
-// Directions are in a local frame whose z axis is the shading normal.
+// Directions are in a local frame whose z axis is the shading normal; α is (αx, αy),
+// the roughness along the frame's x and y axes (anisotropic GGX, as Cycles'; equal for
+// an isotropic lobe).
 
 //#include "constants.wgsl"
 
-fn ggx_d(m: vec3f, alpha: f32) -> f32 {
-    let a2 = alpha * alpha;
-    let c2 = m.z * m.z;
-    let d = c2 * (a2 - 1.0) + 1.0;
-    return a2 / (PI * d * d);
+fn ggx_d(m: vec3f, alpha: vec2f) -> f32 {
+    let s = m.xy / alpha;
+    let d = dot(s, s) + m.z * m.z;
+    return 1.0 / (PI * alpha.x * alpha.y * d * d);
 }
 
-fn ggx_lambda(w: vec3f, alpha: f32) -> f32 {
+fn ggx_lambda(w: vec3f, alpha: vec2f) -> f32 {
     let c2 = w.z * w.z;
     if c2 <= 0.0 {
         return INFINITY;
     }
-    let tan2 = max(0.0, 1.0 - c2) / c2;
-    return 0.5 * (sqrt(1.0 + alpha * alpha * tan2) - 1.0);
+    let s = w.xy * alpha;
+    return 0.5 * (sqrt(1.0 + dot(s, s) / c2) - 1.0);
 }
 
-fn ggx_g1(w: vec3f, alpha: f32) -> f32 {
+fn ggx_g1(w: vec3f, alpha: vec2f) -> f32 {
     return 1.0 / (1.0 + ggx_lambda(w, alpha));
 }
 
-fn ggx_g2(wo: vec3f, wi: vec3f, alpha: f32) -> f32 {
+fn ggx_g2(wo: vec3f, wi: vec3f, alpha: vec2f) -> f32 {
     //#if multiscatter
     return 1.0 / (1.0 + ggx_lambda(wo, alpha) + ggx_lambda(wi, alpha));
     //#else
@@ -37,12 +38,12 @@ fn ggx_g2(wo: vec3f, wi: vec3f, alpha: f32) -> f32 {
 }
 
 // Density of visible normal m seen from wo (wo.z > 0).
-fn ggx_visible_pdf(wo: vec3f, m: vec3f, alpha: f32) -> f32 {
+fn ggx_visible_pdf(wo: vec3f, m: vec3f, alpha: vec2f) -> f32 {
     return ggx_g1(wo, alpha) * max(0.0, dot(wo, m)) * ggx_d(m, alpha) / wo.z;
 }
 
-fn ggx_sample_visible_normal(wo: vec3f, alpha: f32, u: vec2f) -> vec3f {
-    let vh = normalize(vec3f(alpha * wo.x, alpha * wo.y, wo.z));
+fn ggx_sample_visible_normal(wo: vec3f, alpha: vec2f, u: vec2f) -> vec3f {
+    let vh = normalize(vec3f(alpha * wo.xy, wo.z));
     let len2 = vh.x * vh.x + vh.y * vh.y;
     var t1 = vec3f(1.0, 0.0, 0.0);
     if len2 > 0.0 {
@@ -55,7 +56,7 @@ fn ggx_sample_visible_normal(wo: vec3f, alpha: f32, u: vec2f) -> vec3f {
     let s = 0.5 * (1.0 + vh.z);
     let p2 = (1.0 - s) * sqrt(max(0.0, 1.0 - p1 * p1)) + s * r * sin(phi);
     let nh = p1 * t1 + p2 * t2 + sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
-    return normalize(vec3f(alpha * nh.x, alpha * nh.y, max(1e-7, nh.z)));
+    return normalize(vec3f(alpha * nh.xy, max(1e-7, nh.z)));
 }
 
 // Refraction of wo (pointing away from the surface, on the side of m) through

@@ -35,9 +35,14 @@ fn sample_smooth_lobe_direction(ctx: ShadingContext, lobe: u32, rng: ptr<functio
         return rough_dielectric_sample(ctx, vec3f(u, rng_next(rng)));
     }
     //#endif
+    //#if sheen
+    if lobe == LOBE_SHEEN {
+        return sheen_sample_direction(ctx, u);
+    }
+    //#endif
     //#if coat
     if lobe == LOBE_COAT {
-        let wi = reflect_local(ctx.wo, ggx_sample_visible_normal(ctx.wo, ctx.m.coat_alpha, u));
+        let wi = reflect_local(ctx.wo, ggx_sample_visible_normal(ctx.wo, vec2f(ctx.m.coat_alpha), u));
         return select(vec3f(0.0), fold_above(wi, ctx.n_geometric), wi.z > 0.0);
     }
     //#endif
@@ -46,7 +51,7 @@ fn sample_smooth_lobe_direction(ctx: ShadingContext, lobe: u32, rng: ptr<functio
         return select(vec3f(0.0), fold_above(wi, ctx.n_geometric), dot(diffuse_axis(ctx), wi) > 0.0);
     }
     //#if glossy
-    let wi = reflect_local(ctx.wo, ggx_sample_visible_normal(ctx.wo, ctx.m.alpha, u));
+    let wi = reflect_local(ctx.wo, ggx_sample_visible_normal(ctx.wo, ctx.alpha, u));
     if wi.z <= 0.0 {
         return vec3f(0.0);
     }
@@ -72,6 +77,14 @@ fn pick_lobe(ctx: ShadingContext, u: ptr<function, f32>) -> u32 {
 }
 
 fn bsdf_sample(ctx: ShadingContext, rng: ptr<function, Rng>) -> BsdfSample {
+    //#if sheen
+    if ctx.sheen_probability > 0.0 && rng_next(rng) < ctx.sheen_probability {
+        var s = sample_smooth_part(ctx, LOBE_SHEEN, rng);
+        s.lobe = LOBE_DIFFUSE;
+        s.direction = ctx.basis * s.direction;
+        return s;
+    }
+    //#endif
     //#if coat
     if ctx.coat_probability > 0.0 && rng_next(rng) < ctx.coat_probability {
         var s = sample_coat(ctx, rng);
@@ -92,6 +105,7 @@ fn bsdf_sample(ctx: ShadingContext, rng: ptr<function, Rng>) -> BsdfSample {
         //#if coat
         s.weight *= ctx.under_coat / (1.0 - ctx.coat_probability);
         //#endif
+        s.weight *= under_sheen_delta(ctx);
     }
     s.direction = ctx.basis * s.direction;
     return s;
@@ -107,9 +121,18 @@ fn sample_coat(ctx: ShadingContext, rng: ptr<function, Rng>) -> BsdfSample {
     }
     let mirror = fold_above(vec3f(-ctx.wo.xy, ctx.wo.z), ctx.n_geometric);
     let f = ctx.m.coat * fresnel_dielectric(ctx.wo.z, ctx.m.coat_ior);
-    return BsdfSample(mirror, vec3f(f / ctx.coat_probability), 0.0, true, false, LOBE_SPECULAR);
+    return BsdfSample(mirror, vec3f(f / ctx.coat_probability) * under_sheen_delta(ctx), 0.0, true, false, LOBE_SPECULAR);
 }
 //#endif
+
+// What a delta lobe under the sheen keeps, over the probability of sampling under it.
+fn under_sheen_delta(ctx: ShadingContext) -> f32 {
+    //#if sheen
+    return ctx.under_sheen / (1.0 - ctx.sheen_probability);
+    //#else
+    return 1.0;
+    //#endif
+}
 
 // Delta lobes: perfect mirrors and smooth (or cone-jittered) refraction.
 fn sample_delta_lobe(ctx: ShadingContext, lobe: u32, u: f32, rng: ptr<function, Rng>) -> BsdfSample {
@@ -158,6 +181,13 @@ fn resample_smooth_part(ctx: ShadingContext, lobe: u32, rng: ptr<function, Rng>)
     p_coat = ctx.coat_probability * f32(ctx.m.coat_alpha >= ALPHA_DELTA);
     p_smooth = p_dense * (1.0 - ctx.coat_probability) + p_coat;
     //#endif
+    // The sheen, sampled before the rest, is all smooth.
+    var p_sheen = 0.0;
+    //#if sheen
+    p_sheen = ctx.sheen_probability;
+    p_smooth = p_sheen + (1.0 - p_sheen) * p_smooth;
+    p_coat *= 1.0 - p_sheen;
+    //#endif
     var sun_share = 0.0;
     //#if sun
     sun_share = 0.5;
@@ -174,9 +204,12 @@ fn resample_smooth_part(ctx: ShadingContext, lobe: u32, rng: ptr<function, Rng>)
             //#endif
         } else {
             var u = rng_next(rng);
-            var candidate_lobe = LOBE_COAT;
-            if u * p_smooth >= p_coat {
-                u = (u * p_smooth - p_coat) / (p_smooth - p_coat);
+            var candidate_lobe = LOBE_SHEEN;
+            if u * p_smooth >= p_sheen {
+                candidate_lobe = LOBE_COAT;
+            }
+            if u * p_smooth >= p_sheen + p_coat {
+                u = (u * p_smooth - p_sheen - p_coat) / (p_smooth - p_sheen - p_coat);
                 candidate_lobe = pick_lobe(lobe_choice, &u);
             }
             x = sample_smooth_lobe_direction(ctx, candidate_lobe, rng);

@@ -193,16 +193,24 @@ pub struct GpuMaterial {
     pub coating_eta: f32,
     /// The coating's F0 before `specular_tint` (Specular IOR Level applied).
     pub coating_f0: f32,
-    /// Which texture slots read the second uv set (`MaterialTextures::second_uv_set`).
-    pub second_uv_set: u32,
-    pub _pad1: [u32; 2],
+    /// Roughness of the sheen layer (Cycles clamps it to [0.001, 1] for its table).
+    pub sheen_roughness: f32,
+    /// Principled's Anisotropic and Anisotropic Rotation (a turn is 1).
+    pub anisotropy: f32,
+    pub anisotropy_rotation: f32,
     /// Tint of the light crossing the coat, at normal incidence.
     pub coat_tint: [f32; 3],
     /// Weight of the coat layer over every other lobe; 0: none.
     pub coat: f32,
     pub coat_alpha: f32,
     pub coat_ior: f32,
-    pub _pad2: [u32; 2],
+    /// Which texture slots read the second uv set (`MaterialTextures::second_uv_set`).
+    pub second_uv_set: u32,
+    pub _pad2: u32,
+    /// Colour of the sheen layer.
+    pub sheen_tint: [f32; 3],
+    /// Weight of the sheen layer over every other lobe (the coat included); 0: none.
+    pub sheen: f32,
 }
 
 /// The object-space tangents of a triangle's vertices (xyz, MikkTSpace) with the
@@ -439,13 +447,17 @@ impl From<&crate::scene::Material> for GpuMaterial {
             specular_tint: m.specular_tint,
             coating_eta,
             coating_f0,
-            second_uv_set: m.textures.second_uv_set,
-            _pad1: [0; 2],
+            sheen_roughness: m.sheen_roughness.clamp(1e-3, 1.0),
+            anisotropy: m.anisotropy,
+            anisotropy_rotation: m.anisotropy_rotation,
             coat_tint: m.coat_tint,
             coat: m.coat,
             coat_alpha: m.coat_roughness * m.coat_roughness,
             coat_ior: m.coat_ior,
-            _pad2: [0; 2],
+            second_uv_set: m.textures.second_uv_set,
+            _pad2: 0,
+            sheen_tint: m.sheen_tint,
+            sheen: m.sheen,
         }
     }
 }

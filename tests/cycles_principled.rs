@@ -1,5 +1,5 @@
 //! The Principled BSDF, rt against Cycles: rows of five spheres under a uniform white
-//! world, one Principled input swept along each row. `tests/cycles/make_principled_refs.py`
+//! world (the `_sun` rows: a sun in a black world), one Principled input swept along each row. `tests/cycles/make_principled_refs.py`
 //! builds each row in bpy, renders it with Cycles (`tests/cycles/principled_NAME.exr`,
 //! Multiscatter GGX) and exports it with `blender/rt_export.py`
 //! (`tests/cycles/scenes/principled_NAME/`). rt renders the export; each sphere's mean,
@@ -184,4 +184,39 @@ fn subsurface_is_the_diffuse_base_within_its_documented_bounds() {
     println!("{name}: worst sphere {:.2}%, worst 8x8 block {:.2}%", 100.0 * worst_sphere, 100.0 * worst_block);
     assert!(worst_sphere <= SPHERE_BOUND, "{name}: a sphere is {:.2}% from Cycles'", 100.0 * worst_sphere);
     assert!(worst_block <= BLOCK_BOUND, "{name}: a block is {:.2}% from Cycles'", 100.0 * worst_block);
+}
+
+#[test]
+fn sheen_weight_matches_cycles() {
+    check("sheen_weight");
+}
+
+#[test]
+fn sheen_roughness_and_tint_match_cycles() {
+    check("sheen_roughness");
+}
+
+#[test]
+fn sheen_weight_under_a_sun_matches_cycles() {
+    check("sheen_weight_sun");
+}
+
+#[test]
+fn sheen_roughness_under_a_sun_matches_cycles() {
+    check("sheen_roughness_sun");
+}
+
+#[test]
+fn anisotropy_matches_cycles() {
+    check("anisotropy_sun");
+}
+
+#[test]
+fn anisotropy_rotation_matches_cycles() {
+    check("anisotropy_rotation_sun");
+}
+
+#[test]
+fn anisotropic_dielectric_matches_cycles() {
+    check("anisotropy_dielectric_sun");
 }

@@ -18,6 +18,8 @@
 //! | `KHR_materials_clearcoat` factor, roughness factor (0, 0)  | `coat`, `coat_roughness` (index 1.5, untinted; its textures are not read) |
 //! | `extras.rt_coat`, `_roughness`, `_ior`, `_tint` (absent, absent, 1.5, (1, 1, 1)) | `coat`, `coat_roughness` (instead of clearcoat's), `coat_ior`, `coat_tint` |
 //! | `extras.rt_glossy_color` `[r, g, b]` (absent)             | Cycles' Glossy BSDF: `specular = 1` tinted by the colour (`specular_tint`), no other lobe |
+//! | `extras.rt_sheen`, `_roughness`, `_tint` (0, 0.5, (1, 1, 1)) | `sheen`, `sheen_roughness`, `sheen_tint` |
+//! | `extras.rt_anisotropy`, `rt_anisotropy_rotation` (0, 0)     | `anisotropy`, `anisotropy_rotation` |
 //! | `KHR_materials_volume` colour `c` (1), distance `d` (∞)   | `absorption = -ln(c) / d`; 0 if `d = ∞` |
 //! | `extras.rt_volume_emission` `[r, g, b]` (0)               | `volume_emission`              |
 //!
@@ -419,6 +421,11 @@ fn map_material_with_metallic(m: &gltf::Material, metallic: f32) -> Result<Mater
         coat_roughness: extra::<f32>(m.extras(), "rt_coat_roughness")?.unwrap_or(clearcoat.roughness).clamp(0.0, 1.0),
         coat_ior: extra::<f32>(m.extras(), "rt_coat_ior")?.unwrap_or(1.5).max(1.0),
         coat_tint: extra::<[f32; 3]>(m.extras(), "rt_coat_tint")?.unwrap_or([1.0; 3]).map(|c| c.clamp(0.0, 1.0)),
+        sheen: extra::<f32>(m.extras(), "rt_sheen")?.unwrap_or(0.0).clamp(0.0, 1.0),
+        sheen_roughness: extra::<f32>(m.extras(), "rt_sheen_roughness")?.unwrap_or(0.5).clamp(0.0, 1.0),
+        sheen_tint: extra::<[f32; 3]>(m.extras(), "rt_sheen_tint")?.unwrap_or([1.0; 3]).map(|c| c.clamp(0.0, 1.0)),
+        anisotropy: extra::<f32>(m.extras(), "rt_anisotropy")?.unwrap_or(0.0).clamp(0.0, 1.0),
+        anisotropy_rotation: extra::<f32>(m.extras(), "rt_anisotropy_rotation")?.unwrap_or(0.0).rem_euclid(1.0),
         reflection: metallic,
         transmission: dielectric * transmission,
         ior: m.ior().unwrap_or(1.5),
@@ -583,6 +590,11 @@ mod tests {
                 coat_roughness: 0.03,
                 coat_ior: 1.5,
                 coat_tint: [1.0; 3],
+                sheen: 0.0,
+                sheen_roughness: 0.5,
+                sheen_tint: [1.0; 3],
+                anisotropy: 0.0,
+                anisotropy_rotation: 0.0,
                 hardness: None,
                 emission: [4.0, 2.0, 0.0],
                 absorption: [ln2 / 2.0, 2.0 * ln2 / 2.0, 0.0],

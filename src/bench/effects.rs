@@ -95,6 +95,8 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
     let glass = if own.transmission == Transmission::None { Transmission::Smooth } else { own.transmission };
     force("media", own.media, FeatureSet { media: true, transmission: glass, ..own });
     // Normal maps are texture lookups: forcing them on forces the texture code too.
+    force("sheen", own.sheen, FeatureSet { sheen: true, ..own });
+    force("anisotropy", own.anisotropy, FeatureSet { anisotropy: true, ..own });
     force("normal maps", own.normal_maps, FeatureSet { normal_maps: true, textures: true, ..own });
     force("second uv sets", own.uv_sets, FeatureSet { uv_sets: true, textures: true, ..own });
     v

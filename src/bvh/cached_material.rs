@@ -47,6 +47,11 @@ pub struct CachedMaterial {
     pub coat_roughness: f32,
     pub coat_ior: f32,
     pub coat_tint: [f32; 3],
+    pub sheen: f32,
+    pub sheen_roughness: f32,
+    pub sheen_tint: [f32; 3],
+    pub anisotropy: f32,
+    pub anisotropy_rotation: f32,
     /// `MaterialTextures::second_uv_set`.
     pub second_uv_set: u32,
 }
@@ -80,6 +85,11 @@ impl From<&Material> for CachedMaterial {
             coat_roughness: m.coat_roughness,
             coat_ior: m.coat_ior,
             coat_tint: m.coat_tint,
+            sheen: m.sheen,
+            sheen_roughness: m.sheen_roughness,
+            sheen_tint: m.sheen_tint,
+            anisotropy: m.anisotropy,
+            anisotropy_rotation: m.anisotropy_rotation,
             second_uv_set: m.textures.second_uv_set,
         }
     }
@@ -101,6 +111,11 @@ impl From<&CachedMaterial> for Material {
             coat_roughness: m.coat_roughness,
             coat_ior: m.coat_ior,
             coat_tint: m.coat_tint,
+            sheen: m.sheen,
+            sheen_roughness: m.sheen_roughness,
+            sheen_tint: m.sheen_tint,
+            anisotropy: m.anisotropy,
+            anisotropy_rotation: m.anisotropy_rotation,
             hardness: (m.hardness > 0.0).then_some(m.hardness),
             emission: m.emission,
             absorption: m.absorption,
@@ -123,8 +138,15 @@ impl From<&CachedMaterial> for Material {
 
 impl CachedMaterial {
     pub fn all_finite(&self) -> bool {
-        let vectors =
-            [self.base_color, self.emission, self.absorption, self.volume_emission, self.specular_tint, self.coat_tint];
+        let vectors = [
+            self.base_color,
+            self.emission,
+            self.absorption,
+            self.volume_emission,
+            self.specular_tint,
+            self.coat_tint,
+            self.sheen_tint,
+        ];
         let scalars = [
             self.diffuse,
             self.specular,
@@ -136,6 +158,10 @@ impl CachedMaterial {
             self.coat,
             self.coat_roughness,
             self.coat_ior,
+            self.sheen,
+            self.sheen_roughness,
+            self.anisotropy,
+            self.anisotropy_rotation,
             self.hardness,
             self.metallic,
             self.base_alpha,

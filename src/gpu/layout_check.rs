@@ -127,11 +127,16 @@ fn host_structs_match_wgsl_layouts() {
                 specular_tint,
                 coating_eta,
                 coating_f0,
-                second_uv_set,
+                sheen_roughness,
+                anisotropy,
+                anisotropy_rotation,
                 coat_tint,
                 coat,
                 coat_alpha,
-                coat_ior
+                coat_ior,
+                second_uv_set,
+                sheen_tint,
+                sheen
             ]
         ),
         host_layout!("TriangleTangents", GpuTriangleTangents, [t0, t1, t2]),

@@ -99,6 +99,10 @@ pub struct FeatureSet {
     pub coating: bool,
     /// Some material has a coat layer (`coat`).
     pub coat: bool,
+    /// Some material has a sheen layer (`sheen`).
+    pub sheen: bool,
+    /// Some material's rough lobes are anisotropic (`anisotropy`).
+    pub anisotropy: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -174,6 +178,8 @@ impl FeatureSet {
                 }),
             coating: materials_in_use.iter().any(|m| m.dielectric_coating().is_some()),
             coat: materials_in_use.iter().any(|m| m.coat > 0.0),
+            sheen: materials_in_use.iter().any(|m| m.sheen > 0.0),
+            anisotropy: materials_in_use.iter().any(|m| m.anisotropy > 0.0),
         }
     }
 
@@ -203,6 +209,8 @@ impl FeatureSet {
             multiscatter: true,
             coating: true,
             coat: true,
+            sheen: true,
+            anisotropy: true,
         }
     }
 
@@ -243,7 +251,9 @@ impl FeatureSet {
             "multiscatter" => self.multiscatter,
             "coating" => self.coating,
             "coat" => self.coat,
-            "microfacet_tables" => self.multiscatter || self.coating || self.coat,
+            "sheen" => self.sheen,
+            "anisotropy" => self.anisotropy,
+            "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen,
             _ => return None,
         })
     }
@@ -272,6 +282,8 @@ impl fmt::Display for FeatureSet {
             (self.multiscatter, "multiscatter"),
             (self.coating, "coating"),
             (self.coat, "coat"),
+            (self.sheen, "sheen"),
+            (self.anisotropy, "anisotropy"),
         ] {
             if on {
                 parts.push(name.to_string());

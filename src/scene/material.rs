@@ -28,6 +28,16 @@ pub struct Material {
     pub coat_roughness: f32,
     pub coat_ior: f32,
     pub coat_tint: [f32; 3],
+    /// Principled's Sheen: the weight of Cycles' microfiber sheen layer over every other lobe
+    /// (the coat included), its roughness and its colour.
+    pub sheen: f32,
+    pub sheen_roughness: f32,
+    pub sheen_tint: [f32; 3],
+    /// Principled's Anisotropic and Anisotropic Rotation: the rough lobes' GGX is stretched
+    /// along the surface's tangent (α / aspect along it, α × aspect across it, aspect =
+    /// √(1 − 0.9 × anisotropy)), the tangent turned about the normal by rotation × 360°.
+    pub anisotropy: f32,
+    pub anisotropy_rotation: f32,
     /// The seed renderer's Phong-like exponent; mapped to `roughness` when given.
     pub hardness: Option<f32>,
     pub emission: [f32; 3],
@@ -131,6 +141,11 @@ impl Default for Material {
             coat_roughness: 0.03,
             coat_ior: 1.5,
             coat_tint: [1.0; 3],
+            sheen: 0.0,
+            sheen_roughness: 0.5,
+            sheen_tint: [1.0; 3],
+            anisotropy: 0.0,
+            anisotropy_rotation: 0.0,
             hardness: None,
             emission: [0.0; 3],
             absorption: [0.0; 3],

@@ -160,6 +160,7 @@ fn unknown_keys_suggest_in_every_table() {
         [sky] | kind = "uniform" | colr = [1, 1, 1] => 3:1: unknown key `colr` in [sky]; did you mean `color`?
         [sun] | elevation = 1 => 2:1: unknown key `elevation` in [sun]; did you mean `elevation_deg`?
         [materials.m] | | rougness = 0.5 => 3:1: unknown key `rougness` in [materials.m]; did you mean `roughness`?
+        [materials.m] | sheen_tnt = [1, 1, 1] => 2:1: unknown key `sheen_tnt` in [materials.m]; did you mean `sheen_tint`?
         [materials.m] | specular_ior_levl = 0.5 => 2:1: unknown key `specular_ior_levl` in [materials.m]; did you mean `specular_ior_level`?
         [render] | microfacets = "single" => 2:1: unknown key `microfacets` in [render]; did you mean `microfacet`?
         [[mesh]] | asset = "a" | [[mesh]] | asset = "b" | materal = "m" => 5:1: unknown key `materal` in mesh 2; did you mean `material`?
@@ -229,6 +230,11 @@ fn out_of_range_values_are_located() {
         [materials.m] | specular_tint = [1, 2, 1] => 2:17: [materials.m]: specular_tint must be in [0, 1], got 2
         [materials.m] | coat = 1.5 => 2:8: [materials.m]: coat must be in [0, 1], got 1.5
         [materials.m] | coat_ior = 0.5 => 2:12: [materials.m]: coat_ior must be at least 1, got 0.5
+        [materials.m] | sheen = -0.5 => 2:9: [materials.m]: sheen must be in [0, 1], got -0.5
+        [materials.m] | sheen_roughness = 2 => 2:19: [materials.m]: sheen_roughness must be in [0, 1], got 2
+        [materials.m] | anisotropy = -0.1 => 2:14: [materials.m]: anisotropy must be in [0, 1], got -0.1
+        [materials.m] | anisotropy_rotation = 1.5 => 2:23: [materials.m]: anisotropy_rotation must be in [0, 1], got 1.5
+        [materials.m] | sheen_tint = [1, 1.5, 1] => 2:14: [materials.m]: sheen_tint must be in [0, 1], got 1.5
         [materials.m] | specular = 0.5 | specular_ior_level = 0.5 => 3:22: [materials.m]: specular_ior_level excludes `specular` (the coating is the diffuse's own glossy layer)
         [materials.m] | volume_emission = [0, 0, -1] => 2:19: [materials.m]: volume_emission must be non-negative, got -1
         [[mesh]] | asset = "" => 2:9: mesh 1: asset must name a file or folder, got ""

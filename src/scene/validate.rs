@@ -166,6 +166,11 @@ fn material(src: &Source, p: &[Seg], m: &Material) -> Result<(), SceneError> {
     src.check(p, "coat_roughness", &[m.coat_roughness], "in [0, 1]", |r| (0.0..=1.0).contains(&r))?;
     src.check(p, "coat_ior", &[m.coat_ior], "at least 1", |ior| ior >= 1.0)?;
     src.check(p, "coat_tint", &m.coat_tint, "in [0, 1]", |t| (0.0..=1.0).contains(&t))?;
+    src.check(p, "sheen", &[m.sheen], "in [0, 1]", |s| (0.0..=1.0).contains(&s))?;
+    src.check(p, "sheen_roughness", &[m.sheen_roughness], "in [0, 1]", |r| (0.0..=1.0).contains(&r))?;
+    src.check(p, "sheen_tint", &m.sheen_tint, "in [0, 1]", |t| (0.0..=1.0).contains(&t))?;
+    src.check(p, "anisotropy", &[m.anisotropy], "in [0, 1]", |a| (0.0..=1.0).contains(&a))?;
+    src.check(p, "anisotropy_rotation", &[m.anisotropy_rotation], "in [0, 1]", |r| (0.0..=1.0).contains(&r))?;
     if m.specular_ior_level > 0.0 && m.specular > 0.0 {
         return Err(src.error(
             p,

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Rows of Principled BSDF spheres under a uniform world, one row per swept input, rendered
-with Cycles and exported with blender/rt_export.py, for `tests/cycles_principled.rs`:
+"""Rows of Principled BSDF spheres under a uniform world (or a sun, for the rows named in
+SUNLIT), one row per swept input, rendered with Cycles and exported with blender/rt_export.py, for `tests/cycles_principled.rs`:
 
     /work/main/.venv-bpy/bin/python tests/cycles/make_principled_refs.py [--spp 1024] [NAME...]
 
@@ -25,6 +25,10 @@ import make_texture_refs as refs  # noqa: E402
 WIDTH, HEIGHT = 160, 32
 STEPS = [0.0, 0.25, 0.5, 0.75, 1.0]
 TINTS = [(1.0, 1.0, 1.0), (1.0, 0.4, 0.4), (0.4, 1.0, 0.4), (0.4, 0.4, 1.0), (1.0, 0.8, 0.2)]
+# The sheen shows on a dark base.
+SHEEN_BASE = {"Base Color": (0.05, 0.05, 0.08), "Roughness": 0.5}
+SHEEN_ROUGHNESS_BASE = {**SHEEN_BASE, "Sheen Weight": 1.0, "Sheen Tint": (1.0, 0.8, 0.6)}
+ANISOTROPIC_METAL = {"Base Color": (0.95, 0.75, 0.5), "Metallic": 1.0, "Roughness": 0.4}
 
 # Per row: the inputs every sphere shares, and per sphere the inputs that change.
 ROWS = {
@@ -63,6 +67,34 @@ ROWS = {
         {"Base Color": (0.9, 0.85, 0.8), "Metallic": 1.0, "Roughness": 0.3},
         [{"Specular Tint": t} for t in TINTS],
     ),
+    "sheen_weight": (SHEEN_BASE, [{"Sheen Weight": w} for w in STEPS]),
+    "sheen_roughness": (SHEEN_ROUGHNESS_BASE, [{"Sheen Roughness": r} for r in STEPS]),
+    "sheen_weight_sun": (SHEEN_BASE, [{"Sheen Weight": w} for w in STEPS]),
+    "sheen_roughness_sun": (SHEEN_ROUGHNESS_BASE, [{"Sheen Roughness": r} for r in STEPS]),
+    "anisotropy_sun": (ANISOTROPIC_METAL, [{"Anisotropic": a} for a in STEPS]),
+    "anisotropy_rotation_sun": (
+        {**ANISOTROPIC_METAL, "Anisotropic": 0.8},
+        [{"Anisotropic Rotation": r} for r in (0.0, 0.1, 0.2, 0.3, 0.4)],
+    ),
+    "anisotropy_dielectric_sun": (
+        {"Base Color": (0.2, 0.3, 0.6), "Roughness": 0.3},
+        [{"Anisotropic": a} for a in STEPS],
+    ),
+}
+
+# Rows lit by a sun: its rotation and the world's colour. The sheen's from the right, a
+# little behind the spheres (the terminator and the grazing light along it), in a black
+# world; the anisotropic highlights from the front, above and to the right, in a dim
+# world, whose light keeps rt's noise estimate honest where the spheres see only each
+# other (rare paths that a black world would leave to the reference's noise alone).
+SHEEN_SUN = ((math.radians(70), 0.0, math.radians(70)), (0.0, 0.0, 0.0))
+FRONT_SUN = ((math.radians(35), 0.0, math.radians(25)), (0.1, 0.1, 0.1))
+SUNLIT = {
+    "sheen_weight_sun": SHEEN_SUN,
+    "sheen_roughness_sun": SHEEN_SUN,
+    "anisotropy_sun": FRONT_SUN,
+    "anisotropy_rotation_sun": FRONT_SUN,
+    "anisotropy_dielectric_sun": FRONT_SUN,
 }
 
 
@@ -73,7 +105,12 @@ def set_input(bsdf, name, value):
 
 def build(scene, name):
     shared, spheres = ROWS[name]
-    refs.world(scene, (1.0, 1.0, 1.0))
+    if name in SUNLIT:
+        rotation, sky = SUNLIT[name]
+        refs.world(scene, sky)
+        refs.sun(scene, rotation)
+    else:
+        refs.world(scene, (1.0, 1.0, 1.0))
     for i, own in enumerate(spheres):
         m = bpy.data.materials.new(f"{name}_{i}")
         bsdf = m.node_tree.nodes["Principled BSDF"]

@@ -50,6 +50,8 @@ fn feature_sets() -> Vec<FeatureSet> {
             multiscatter: on(7) != on(1),
             coating: on(5) != on(7),
             coat: on(3) != on(6),
+            sheen: on(2) != on(5),
+            anisotropy: on(2) != on(6),
         });
     }
     sets
@@ -84,6 +86,8 @@ fn plain() -> FeatureSet {
         multiscatter: false,
         coating: false,
         coat: false,
+        sheen: false,
+        anisotropy: false,
     }
 }
 

@@ -1,0 +1,90 @@
+// Principled's sheen as Cycles renders it (Blender 4.0 on): the microfiber sheen of Zeltner,
+// Burley & Chiang ("Practical Multiple-Scattering Sheen Using Linearly Transformed
+// Cosines", 2022). Its lobe is a cosine lobe under a linear transform whose two parameters
+// (a on the diagonal, b the shear of x by z, in a frame whose x axis is the viewer's side)
+// and whose albedo come from Cycles' fit table, read at (cos θ of the viewer, roughness).
+// As in Cycles' Principled BSDF it is the outermost layer: its colour is
+// sheen × tint × albedo, and everything under it (the coat included) keeps
+// 1 − the largest channel of that (`closure_layering_weight`).
+
+//#include "constants.wgsl"
+//#include "directions.wgsl"
+//#include "microfacet_tables.wgsl"
+
+// Cycles' `table_sheen_ltc` (src/gpu/sheen_ltc.bin), after the microfacet tables:
+// [3 planes: a, b, albedo][32 roughness][32 mu].
+const TABLE_SHEEN_LTC: u32 = 13856u;
+const SHEEN_PLANE: u32 = 1024u;
+
+// Reads the layer's transform and albedo for the viewer at cos θ = `mu`; returns the
+// luminance of its albedo (for sampling). A fit without a lobe there (a tiny a at the
+// smoothest roughness) reflects nothing.
+fn sheen_setup(ctx: ptr<function, ShadingContext>, mu: f32) -> f32 {
+    let m = (*ctx).m;
+    let a = table_2d(TABLE_SHEEN_LTC, 32u, 32u, mu, m.sheen_roughness);
+    let b = table_2d(TABLE_SHEEN_LTC + SHEEN_PLANE, 32u, 32u, mu, m.sheen_roughness);
+    let albedo = table_2d(TABLE_SHEEN_LTC + 2u * SHEEN_PLANE, 32u, 32u, mu, m.sheen_roughness);
+    if a < 1e-4 || albedo <= 0.0 {
+        return 0.0;
+    }
+    (*ctx).sheen_transform = vec2f(a, b);
+    // The frame's x axis: the viewer's direction projected on the surface (any one at normal incidence).
+    let side = (*ctx).wo.xy;
+    let len = length(side);
+    (*ctx).sheen_side = select(vec2f(1.0, 0.0), side / len, len > 1e-7);
+    let color = m.sheen * m.sheen_tint * albedo;
+    (*ctx).sheen_color = color;
+    (*ctx).under_sheen = saturate(1.0 - max(max(color.x, color.y), color.z));
+    return luminance(color);
+}
+
+fn has_sheen(ctx: ShadingContext) -> bool {
+    return ctx.sheen_transform.x > 0.0;
+}
+
+// The lobe's density at wi (local to the shading frame), which is also its f·cos θi / colour.
+fn sheen_lobe(ctx: ShadingContext, wi: vec3f) -> f32 {
+    if wi.z <= 0.0 {
+        return 0.0;
+    }
+    let t = ctx.sheen_side;
+    let x = dot(t, wi.xy);
+    let y = t.x * wi.y - t.y * wi.x;
+    let a = ctx.sheen_transform.x;
+    let b = ctx.sheen_transform.y;
+    // |M⁻¹ wi|² with M⁻¹ = [[a, 0, b], [0, a, 0], [0, 0, 1]]; the density is the cosine
+    // lobe's at M⁻¹ wi / |M⁻¹ wi| times the Jacobian a² / |M⁻¹ wi|³.
+    let len2 = (a * x + b * wi.z) * (a * x + b * wi.z) + (a * y) * (a * y) + wi.z * wi.z;
+    return wi.z / PI * (a / len2) * (a / len2);
+}
+
+// f·|cos θi| of the sheen layer (folded like the other reflection lobes).
+fn sheen_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
+    if !has_sheen(ctx) || dot(wi, ctx.n_geometric) <= 0.0 {
+        return vec3f(0.0);
+    }
+    let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
+    return ctx.sheen_color * (sheen_lobe(ctx, wi) + f32(folds_below_surface()) * sheen_lobe(ctx, mirrored));
+}
+
+fn sheen_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
+    if !has_sheen(ctx) || dot(wi, ctx.n_geometric) <= 0.0 {
+        return 0.0;
+    }
+    let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
+    return sheen_lobe(ctx, wi) + f32(folds_below_surface()) * sheen_lobe(ctx, mirrored);
+}
+
+// A direction from the lobe: a cosine-distributed one, transformed by M.
+fn sheen_sample_direction(ctx: ShadingContext, u: vec2f) -> vec3f {
+    let c = sample_cosine_hemisphere(u);
+    let a = ctx.sheen_transform.x;
+    let b = ctx.sheen_transform.y;
+    let l = normalize(vec3f((c.x - c.z * b) / a, c.y / a, c.z));
+    let t = ctx.sheen_side;
+    let wi = vec3f(l.x * t - l.y * vec2f(t.y, -t.x), l.z);
+    if wi.z <= 0.0 {
+        return vec3f(0.0);
+    }
+    return fold_above(wi, ctx.n_geometric);
+}

@@ -151,15 +151,7 @@ fn csv_rows(path: &Path, header: &str) -> Vec<Vec<String>> {
 fn report_files_are_written_and_parse() {
     let out = temp_dir("report");
     let scene = rt::scene::default_scene().unwrap_or_else(|e| panic!("{e}"));
-    let options = rt::bench::AccuracyOptions {
-        knobs: vec!["sampling".into(), "samples-per-dispatch".into()],
-        out: out.clone(),
-        size: Some((32, 24)),
-        levels: Some(vec![1, 2, 4]),
-        repeats: Some(1),
-        reference_spp: Some(16),
-        ..Default::default()
-    };
+    let options = common::small_accuracy_options(&["sampling", "samples-per-dispatch"], out.clone());
     let summary = rt::bench::accuracy(gpu(), &scene, &options).unwrap_or_else(|e| panic!("{e:#}"));
     let report = std::fs::read_to_string(&summary.report).expect("report.md");
     assert!(report.contains(&gpu().adapter_info.name), "the report names the adapter");

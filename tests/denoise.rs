@@ -175,15 +175,7 @@ fn a_build_without_open_image_denoise_says_how_to_get_it() {
 fn bench_accuracy_has_denoise_and_adaptive_knobs() {
     let out = temp_dir("bench-knobs");
     let scene = rt::scene::default_scene().unwrap_or_else(|e| panic!("{e}"));
-    let options = rt::bench::AccuracyOptions {
-        knobs: vec!["denoise".into(), "adaptive".into()],
-        out: out.clone(),
-        size: Some((32, 24)),
-        levels: Some(vec![1, 2, 4]),
-        repeats: Some(1),
-        reference_spp: Some(16),
-        ..Default::default()
-    };
+    let options = common::small_accuracy_options(&["denoise", "adaptive"], out.clone());
     let summary = rt::bench::accuracy(common::gpu(), &scene, &options).unwrap_or_else(|e| panic!("{e:#}"));
     let report = std::fs::read_to_string(&summary.report).expect("report.md");
     for section in ["## denoise", "## adaptive", "| on |", "| 0.05 |", "time to SSIM 0.99", "| raw needs |"] {

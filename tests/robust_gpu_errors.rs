@@ -2,13 +2,8 @@
 //! rt's records it, and `GpuContext::take_error` (which `wait` calls after every
 //! submission it waits for) returns it as an `Err` with the GPU's message.
 
+use crate::common;
 use rt::gpu::GpuContext;
-
-/// A device of this test's own: the errors made on purpose here must not reach the
-/// tests that share the binary's device.
-fn own_gpu() -> GpuContext {
-    GpuContext::new(std::env::var("RT_ADAPTER").ok().as_deref()).expect("a Vulkan adapter (lavapipe in CI)")
-}
 
 /// A buffer usage wgpu refuses: MAP_READ may only go with COPY_DST.
 fn invalid_buffer(ctx: &GpuContext) -> wgpu::Buffer {
@@ -22,7 +17,9 @@ fn invalid_buffer(ctx: &GpuContext) -> wgpu::Buffer {
 
 #[test]
 fn an_uncaptured_validation_error_becomes_an_err() {
-    let ctx = &own_gpu();
+    // A device of this test's own: the errors made on purpose here must not reach the
+    // tests that share the binary's device.
+    let ctx = &common::new_gpu();
     ctx.take_error().expect("a fresh device has no error");
     let _buffer = invalid_buffer(ctx);
     let message = ctx.take_error().expect_err("the invalid buffer was recorded").to_string();

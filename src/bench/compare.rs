@@ -118,7 +118,8 @@ fn ratio(rt: f64, other: Option<f64>) -> String {
     other.filter(|o| *o > 0.0).map_or("—".into(), |o| format!("{:.2}×", rt / o))
 }
 
-fn rate(v: Option<f64>) -> String {
+/// A rate, or a dash where there is none.
+pub(super) fn rate(v: Option<f64>) -> String {
     v.map_or("—".into(), human)
 }
 

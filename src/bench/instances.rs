@@ -6,6 +6,7 @@
 //! rates from a camera standing at the field's edge, looking across it as a person
 //! looks into a forest (near instances large, far ones smaller than a pixel).
 
+use super::compare::rate;
 use super::throughput::{ThroughputOptions, measure};
 use crate::asset::rtinst::{self, InstanceRecord, MaterialSets};
 use crate::bvh::{BuildQuality, SceneGeometry};
@@ -54,11 +55,20 @@ fn sphere_obj(rings: u32, segments: u32) -> String {
     obj
 }
 
+/// Instances along a side of the square grid of `count`.
+fn side(count: usize) -> usize {
+    (count as f64).sqrt().ceil() as usize
+}
+
+/// Half the width of the grid of `count`, in metres.
+fn half_width(count: usize) -> f32 {
+    side(count) as f32 * SPACING / 2.0
+}
+
 /// `count` instances on a square grid centred on the origin, each scaled by 0.6–1.2 and
 /// turned about the vertical by a hash of its index.
 fn field(count: usize) -> Vec<InstanceRecord> {
-    let side = (count as f64).sqrt().ceil() as usize;
-    let half = side as f32 * SPACING / 2.0;
+    let (side, half) = (side(count), half_width(count));
     (0..count)
         .map(|k| {
             let h = (k as u32).wrapping_mul(2_654_435_761) as f32 / u32::MAX as f32;
@@ -74,7 +84,7 @@ fn field(count: usize) -> Vec<InstanceRecord> {
 }
 
 fn scene_text(count: usize) -> String {
-    let half = (count as f64).sqrt().ceil() as f32 * SPACING / 2.0;
+    let half = half_width(count);
     format!(
         "[render]\nmax_bounces = 4\n\n[camera]\nposition = [0.0, 12.0, {}]\nlook_at = [0.0, 0.0, {}]\nfov_y_deg = 50.0\n\n\
          [sky]\nkind = \"uniform\"\ncolor = [0.9, 0.95, 1.0]\n\n[materials.clay]\nbase_color = [0.6, 0.5, 0.4]\n\n\
@@ -86,7 +96,7 @@ fn scene_text(count: usize) -> String {
 }
 
 fn ground_obj(count: usize) -> String {
-    let h = (count as f64).sqrt().ceil() as f32 * SPACING / 2.0 + 10.0;
+    let h = half_width(count) + 10.0;
     format!("v {} 0 {}\nv {h} 0 {}\nv {h} 0 {h}\nv {} 0 {h}\nf 1 3 2\nf 1 4 3\n", -h, -h, -h, -h)
 }
 
@@ -116,7 +126,6 @@ fn row(
     let mut session = Session::with_geometry(ctx, scene, geometry)?;
     let t = ThroughputOptions { size: options.size, runs: options.runs, spp: options.spp, lanes: None, rays: true };
     let figures = measure(&mut session, &t, bar)?;
-    let rate = |v: Option<f64>| v.map_or("—".to_owned(), human);
     Ok(format!(
         "| {count} | {build_ms:.1} | {:.1} + {:.1} | {:.1} | {} | {} | {} |",
         meshes as f64 / 1048576.0,

@@ -13,9 +13,13 @@ use std::sync::OnceLock;
 
 pub fn gpu() -> &'static GpuContext {
     static GPU: OnceLock<GpuContext> = OnceLock::new();
-    GPU.get_or_init(|| {
-        GpuContext::new(std::env::var("RT_ADAPTER").ok().as_deref()).expect("a Vulkan adapter (lavapipe in CI)")
-    })
+    GPU.get_or_init(new_gpu)
+}
+
+/// A device of the caller's own (`RT_ADAPTER`, else the default adapter), for tests whose
+/// GPU errors must not reach the tests sharing [`gpu`].
+pub fn new_gpu() -> GpuContext {
+    GpuContext::new(std::env::var("RT_ADAPTER").ok().as_deref()).expect("a Vulkan adapter (lavapipe in CI)")
 }
 
 pub fn repo() -> PathBuf {
@@ -139,5 +143,19 @@ impl TestRng {
         let phi = 2.0 * std::f64::consts::PI * self.next_f64();
         let r = (1.0 - z * z).sqrt();
         [r * phi.cos(), r * phi.sin(), z]
+    }
+}
+
+/// `rt bench accuracy` of `knobs` at its smallest useful size (32×24, levels 1, 2 and 4 spp,
+/// one repeat, a 16-spp reference), its report in `out`.
+pub fn small_accuracy_options(knobs: &[&str], out: PathBuf) -> rt::bench::AccuracyOptions {
+    rt::bench::AccuracyOptions {
+        knobs: knobs.iter().map(|k| k.to_string()).collect(),
+        out,
+        size: Some((32, 24)),
+        levels: Some(vec![1, 2, 4]),
+        repeats: Some(1),
+        reference_spp: Some(16),
+        ..Default::default()
     }
 }

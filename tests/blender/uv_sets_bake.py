@@ -7,20 +7,22 @@ import json
 import os
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "cycles"))
-out = sys.argv[1]
-sys.argv = sys.argv[:1]
+import bpy
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cycles"))
 import make_texture_refs as refs  # noqa: E402
+from cycles_reference import rt_export  # noqa: E402
+
+out = sys.argv[1]
 
 report = {}
 scene = refs.reset()
 refs.scene_uv_sets(scene)
-refs.rt_export.export_scene(scene, os.path.join(out, "uv_sets", "assets"), os.path.join(out, "uv_sets", "scene.toml"))
+rt_export.export_scene(scene, os.path.join(out, "uv_sets", "assets"), os.path.join(out, "uv_sets", "scene.toml"))
 
 scene = refs.reset()
 refs.scene_baked_noise(scene)
-material = refs.bpy.data.materials["noise"]
+material = bpy.data.materials["noise"]
 
 
 def tree_shape(m):
@@ -30,10 +32,10 @@ def tree_shape(m):
 
 
 report["before"] = tree_shape(material)
-refs.rt_export.export_scene(scene, os.path.join(out, "baked", "assets"), os.path.join(out, "baked", "scene.toml"),
+rt_export.export_scene(scene, os.path.join(out, "baked", "assets"), os.path.join(out, "baked", "scene.toml"),
                             bake_size=32)
 report["after"] = tree_shape(material)
-report["images"] = len(refs.bpy.data.images)
-refs.rt_export.export_scene(scene, os.path.join(out, "unbaked", "assets"), os.path.join(out, "unbaked", "scene.toml"))
+report["images"] = len(bpy.data.images)
+rt_export.export_scene(scene, os.path.join(out, "unbaked", "assets"), os.path.join(out, "unbaked", "scene.toml"))
 with open(os.path.join(out, "report.json"), "w") as f:
     json.dump(report, f)

@@ -12,19 +12,13 @@ RGB = (n + 1) / 2 in a Non-Color image, and read by a Normal Map node (tangent s
 the mesh's uv map, strength 1) linked into the Principled BSDF's Normal.
 """
 
-import argparse
 import math
-import os
-import sys
 
 import bpy
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-import make_texture_refs as refs  # noqa: E402
-
-rt_export = refs.rt_export
+import cycles_reference as cycles
+import make_texture_refs as refs
 
 
 def bump_normals(n, bumps_u, bumps_v, amplitude):
@@ -64,7 +58,7 @@ def floor(scene, size=8.0, z=-1.0):
 
 def scene_normal_sphere(scene):
     """A smooth diffuse sphere with a normal map of 8 × 4 bumps, lit by a low sun."""
-    refs.world(scene, (0.2, 0.2, 0.2))
+    cycles.uniform_world(scene, (0.2, 0.2, 0.2))
     refs.sun(scene, (math.radians(55), 0.0, math.radians(-40)))
     m = normal_mapped("bumpy", bump_normals(128, 8, 4, 0.01), (0.8, 0.8, 0.8), 1.0)
     refs.add_object(scene, "sphere", bpy.ops.mesh.primitive_uv_sphere_add, m, radius=1.0, segments=48,
@@ -77,7 +71,7 @@ def scene_normal_sphere(scene):
 def scene_normal_cube(scene):
     """A diffuse cube (each face its own uv island and orientation) with a normal map of
     3 × 3 bumps, under a sun and a grey sky: every face's tangent frame shows."""
-    refs.world(scene, (0.25, 0.25, 0.25))
+    cycles.uniform_world(scene, (0.25, 0.25, 0.25))
     refs.sun(scene, (math.radians(50), 0.0, math.radians(-25)))
     m = normal_mapped("bumpy", bump_normals(128, 3, 3, 0.025), (0.7, 0.55, 0.4), 0.4)
     cube = refs.add_object(scene, "cube", bpy.ops.mesh.primitive_cube_add, m, size=1.4, location=(0, 0, -0.3))
@@ -89,7 +83,7 @@ def scene_normal_cube(scene):
 def scene_alpha_blend(scene):
     """A quad whose base colour texture has alpha 0.25 and 0.75 in stripes, over a floor
     under a sun: Cycles mixes by alpha, for the camera and for the shadow alike."""
-    refs.world(scene, (0.1, 0.1, 0.1))
+    cycles.uniform_world(scene, (0.1, 0.1, 0.1))
     m, tree, bsdf = refs.principled("veil")
     n = 32
     y, x = np.mgrid[0:n, 0:n]
@@ -118,19 +112,12 @@ SCENES = {
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--spp", type=int, default=4096)
-    parser.add_argument("names", nargs="*", default=list(SCENES))
-    args = parser.parse_args()
+    args = cycles.arguments(__doc__, 4096, list(SCENES))
     for name in args.names:
         scene = refs.reset()
         SCENES[name](scene)
-        scene.cycles.samples = args.spp
-        out = os.path.join(HERE, "scenes", f"texture_{name}")
-        rt_export.export_scene(scene, os.path.join(out, "assets"), os.path.join(out, "scene.toml"))
-        scene.render.filepath = os.path.join(HERE, f"texture_{name}.exr")
-        bpy.ops.render.render(write_still=True)
-        print(f"texture_{name}: {args.spp} spp -> {scene.render.filepath}", file=sys.stderr)
+        cycles.export(scene, f"texture_{name}")
+        cycles.render(scene, f"texture_{name}", args)
 
 
 if __name__ == "__main__":

@@ -11,16 +11,12 @@ Cycles is set up as a reference (see make_texture_refs.py) with the Principled B
 default distribution, Multiscatter GGX: rt's `[render] microfacet = "multiscatter"`.
 """
 
-import argparse
 import math
-import os
-import sys
 
 import bpy
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-import make_texture_refs as refs  # noqa: E402
+import cycles_reference as cycles
+import make_texture_refs as refs
 
 WIDTH, HEIGHT = 160, 32
 STEPS = [0.0, 0.25, 0.5, 0.75, 1.0]
@@ -107,36 +103,45 @@ def build(scene, name):
     shared, spheres = ROWS[name]
     if name in SUNLIT:
         rotation, sky = SUNLIT[name]
-        refs.world(scene, sky)
+        cycles.uniform_world(scene, sky)
         refs.sun(scene, rotation)
     else:
-        refs.world(scene, (1.0, 1.0, 1.0))
-    for i, own in enumerate(spheres):
-        m = bpy.data.materials.new(f"{name}_{i}")
-        bsdf = m.node_tree.nodes["Principled BSDF"]
-        for key, value in {**shared, **own}.items():
-            set_input(bsdf, key, value)
-        refs.add_object(scene, f"sphere_{i}", bpy.ops.mesh.primitive_uv_sphere_add, m, radius=0.45,
+        cycles.uniform_world(scene, (1.0, 1.0, 1.0))
+    sphere_row(scene, (principled(f"{name}_{i}", {**shared, **own}) for i, own in enumerate(spheres)))
+
+
+def principled(name, inputs):
+    material = bpy.data.materials.new(name)
+    bsdf = material.node_tree.nodes["Principled BSDF"]
+    for key, value in inputs.items():
+        set_input(bsdf, key, value)
+    return material
+
+
+def row_scene():
+    """A new reference scene of a row's size."""
+    scene = refs.reset()
+    scene.render.resolution_x, scene.render.resolution_y = WIDTH, HEIGHT
+    return scene
+
+
+def sphere_row(scene, materials):
+    """Five smooth spheres side by side, one of each material (made as they are placed), in
+    the view of a narrow camera far in front of them."""
+    for i, material in enumerate(materials):
+        refs.add_object(scene, f"sphere_{i}", bpy.ops.mesh.primitive_uv_sphere_add, material, radius=0.45,
                         segments=48, ring_count=24, location=(i - 2.0, 0.0, 0.0))
         bpy.ops.object.shade_smooth()
     refs.camera(scene, (0.0, -12.0, 0.0), (0.0, 0.0, 0.0), 2.0 * math.degrees(math.atan(0.5 / 12.0)))
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--spp", type=int, default=1024)
-    parser.add_argument("names", nargs="*", default=list(ROWS))
-    args = parser.parse_args()
+    args = cycles.arguments(__doc__, 1024, list(ROWS))
     for name in args.names:
-        scene = refs.reset()
-        scene.render.resolution_x, scene.render.resolution_y = WIDTH, HEIGHT
+        scene = row_scene()
         build(scene, name)
-        scene.cycles.samples = args.spp
-        out = os.path.join(HERE, "scenes", f"principled_{name}")
-        refs.rt_export.export_scene(scene, os.path.join(out, "assets"), os.path.join(out, "scene.toml"))
-        scene.render.filepath = os.path.join(HERE, f"principled_{name}.exr")
-        bpy.ops.render.render(write_still=True)
-        print(f"principled_{name}: {args.spp} spp -> {scene.render.filepath}", file=sys.stderr)
+        cycles.export(scene, f"principled_{name}")
+        cycles.render(scene, f"principled_{name}", args)
 
 
 if __name__ == "__main__":

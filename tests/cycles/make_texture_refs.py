@@ -13,51 +13,24 @@ denoising, no adaptive sampling, blur_glossy 0, bounce limits raised, Multiscatt
 (rt's default model), Specular IOR Level 0 on non-metals (plain Lambert diffuse).
 """
 
-import argparse
 import math
 import os
-import sys
 
 import bpy
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "blender"))
-import rt_export  # noqa: E402
+import cycles_reference as cycles
+from cycles_reference import uniform_world
 
 SIZE = 64
 
 
 def reset():
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    scene.render.engine = "CYCLES"
-    scene.render.resolution_x = scene.render.resolution_y = SIZE
-    scene.render.resolution_percentage = 100
-    c = scene.cycles
-    c.device = "CPU"
-    c.use_adaptive_sampling = False
-    c.use_denoising = False
-    c.pixel_filter_type = "BOX"
-    c.filter_width = 1.0
-    c.sample_clamp_direct = 0.0
-    c.sample_clamp_indirect = 0.0
-    c.blur_glossy = 0.0
-    c.max_bounces = c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = 12
-    c.transparent_max_bounces = 64
-    c.caustics_reflective = c.caustics_refractive = True
-    scene.view_settings.view_transform = "Standard"
-    scene.render.image_settings.file_format = "OPEN_EXR"
-    scene.render.image_settings.color_depth = "32"
+    """A new scene with Cycles set up as the reference, transparent bounces raised for
+    alpha-blended layers."""
+    scene = cycles.new_scene()
+    cycles.set_up(scene, SIZE, bounces=12, transparent_max_bounces=64)
     return scene
-
-
-def world(scene, color):
-    w = bpy.data.worlds.new("world")
-    scene.world = w
-    bg = w.node_tree.nodes["Background"]
-    bg.inputs["Color"].default_value = (*color, 1.0)
-    bg.inputs["Strength"].default_value = 1.0
 
 
 def camera(scene, location, look_at, fov_deg=40.0):
@@ -119,7 +92,7 @@ def checker(n, a, b):
 
 def scene_checker(scene):
     """A checker base colour through a Mapping node (scale, rotation, offset) on a tilted plane."""
-    world(scene, (1.0, 1.0, 1.0))
+    uniform_world(scene, (1.0, 1.0, 1.0))
     m, tree, bsdf = principled("checker")
     tex = image_node(tree, image("checker", checker(8, (0.9, 0.1, 0.05), (0.95, 0.95, 0.9))))
     mapping = tree.nodes.new("ShaderNodeMapping")
@@ -148,7 +121,7 @@ def sun(scene, rotation):
 def scene_rough_metal(scene):
     """Roughness and metallic maps (separate images, combined by the exporter) on a sunlit
     sphere: highlights of rough and sharp metal against diffuse stripes."""
-    world(scene, (0.3, 0.3, 0.3))
+    uniform_world(scene, (0.3, 0.3, 0.3))
     sun(scene, (math.radians(40), 0.0, math.radians(-35)))
     m, tree, bsdf = principled("rough_metal")
     bsdf.inputs["Base Color"].default_value = (0.95, 0.95, 0.95, 1.0)
@@ -171,7 +144,7 @@ def scene_rough_metal(scene):
 
 def scene_leaves(scene):
     """An alpha-masked leaf (a disc with a notch) over a floor, casting its shape's shadow."""
-    world(scene, (0.05, 0.05, 0.05))
+    uniform_world(scene, (0.05, 0.05, 0.05))
     m, tree, bsdf = principled("leaf")
     n = 64
     y, x = (np.mgrid[0:n, 0:n] + 0.5) / n - 0.5
@@ -195,7 +168,7 @@ def scene_leaves(scene):
 
 def scene_emissive(scene):
     """An emission texture (strength 3) on a panel that lights a floor."""
-    world(scene, (0.0, 0.0, 0.0))
+    uniform_world(scene, (0.0, 0.0, 0.0))
     m, tree, bsdf = principled("screen")
     bsdf.inputs["Base Color"].default_value = (0.0, 0.0, 0.0, 1.0)
     y, x = np.mgrid[0:16, 0:16]
@@ -220,7 +193,7 @@ def scene_uv_sets(scene):
     """A sunlit plane with two uv maps: its base colour (a checker) reads the second map
     through a UV Map node, laid out unlike the first (turned a quarter, scaled, moved),
     and its roughness (stripes) reads the default map, so the sun's glint shows them."""
-    world(scene, (0.2, 0.2, 0.2))
+    uniform_world(scene, (0.2, 0.2, 0.2))
     m, tree, bsdf = principled("two_maps")
     bsdf.inputs["Specular IOR Level"].default_value = 0.5
     colour = image_node(tree, image("checker", checker(4, (0.8, 0.15, 0.1), (0.9, 0.9, 0.85))))
@@ -253,7 +226,7 @@ def scene_baked_noise(scene):
     """A Noise Texture (procedural, in the plane's generated coordinates) into Base Color
     of a sunlit plane: Cycles renders the procedural material, rt the exporter's bake of
     it (`--bake`, BAKE_SIZES texels a side)."""
-    world(scene, (0.3, 0.3, 0.3))
+    uniform_world(scene, (0.3, 0.3, 0.3))
     m, tree, bsdf = principled("noise")
     bsdf.inputs["Roughness"].default_value = 1.0
     noise = tree.nodes.new("ShaderNodeTexNoise")
@@ -290,22 +263,14 @@ BAKE_SIZES = {"baked_noise": 512}
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--spp", type=int, default=1024)
-    parser.add_argument("names", nargs="*", default=list(SCENES))
-    args = parser.parse_args()
+    args = cycles.arguments(__doc__, 1024, list(SCENES))
     for name in args.names:
         scene = reset()
         SCENES[name](scene)
-        scene.cycles.samples = args.spp
-        out = os.path.join(HERE, "scenes", f"texture_{name}")
-        rt_export.export_scene(scene, os.path.join(out, "assets"), os.path.join(out, "scene.toml"),
-                               bake_size=BAKE_SIZES.get(name, 0))
+        cycles.export(scene, f"texture_{name}", bake_size=BAKE_SIZES.get(name, 0))
         if name == "leaves":
-            blender_gltf(scene, out)
-        scene.render.filepath = os.path.join(HERE, f"texture_{name}.exr")
-        bpy.ops.render.render(write_still=True)
-        print(f"texture_{name}: {args.spp} spp -> {scene.render.filepath}", file=sys.stderr)
+            blender_gltf(scene, os.path.join(cycles.HERE, "scenes", f"texture_{name}"))
+        cycles.render(scene, f"texture_{name}", args)
 
 
 if __name__ == "__main__":

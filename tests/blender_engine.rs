@@ -6,25 +6,14 @@
 
 use crate::common;
 
-use common::repo;
+use common::{bpy_python, empty_temp_dir, repo};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn bpy_python() -> PathBuf {
-    let Some(python) = std::env::var_os("RT_BPY_PYTHON") else {
-        panic!("RT_BPY_PYTHON is not set: it must name a Python 3.11 with bpy==5.0.1 (scripts/test sets it)");
-    };
-    let python = PathBuf::from(python);
-    if python.is_relative() { repo().join(python) } else { python }
-}
-
 /// A fresh folder for one test; the engine's cache goes under it (TMPDIR).
 fn out_dir(name: &str) -> PathBuf {
-    let out = std::env::temp_dir().join(format!("rt-test-{}-engine-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
-    std::fs::create_dir_all(&out).expect("test folder");
-    out
+    empty_temp_dir(&format!("engine-{name}"))
 }
 
 /// Runs tests/blender/engine.py MODE ARGS with the engine's environment; returns its output.

@@ -4,17 +4,19 @@
 
 use crate::common;
 
-use common::{repo, temp_dir};
+use common::{bpy_python, repo, temp_dir};
 use rt::asset::load_mesh;
 use serde_json::Value;
 use std::process::Command;
 
 #[test]
 fn the_exporter_writes_second_uv_maps_and_bakes_procedural_sockets() {
-    let python = std::env::var_os("RT_BPY_PYTHON").expect("RT_BPY_PYTHON names a Python with bpy==5.0.1");
     let out = temp_dir("blender-uv-sets-bake");
-    let result =
-        Command::new(python).arg(repo().join("tests/blender/uv_sets_bake.py")).arg(&out).output().expect("bpy runs");
+    let result = Command::new(bpy_python())
+        .arg(repo().join("tests/blender/uv_sets_bake.py"))
+        .arg(&out)
+        .output()
+        .expect("bpy runs");
     let log = String::from_utf8_lossy(&result.stderr);
     assert!(result.status.success(), "{log}");
     let report: Value =

@@ -46,6 +46,40 @@ pub fn temp_dir(name: &str) -> PathBuf {
     dir
 }
 
+/// [`temp_dir`] emptied of what an earlier run left there.
+pub fn empty_temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("rt-test-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    temp_dir(name)
+}
+
+/// The Python with Blender's `bpy` that RT_BPY_PYTHON names (relative to the repository
+/// root if relative), checked once to import bpy.
+pub fn bpy_python() -> PathBuf {
+    static PYTHON: OnceLock<PathBuf> = OnceLock::new();
+    PYTHON
+        .get_or_init(|| {
+            let Some(python) = std::env::var_os("RT_BPY_PYTHON") else {
+                panic!(
+                    "RT_BPY_PYTHON is not set: it must name a Python 3.11 with bpy==5.0.1 \
+                     (scripts/test creates .venv-bpy and sets it)"
+                );
+            };
+            let python = PathBuf::from(python);
+            let python = if python.is_relative() { repo().join(python) } else { python };
+            match std::process::Command::new(&python).args(["-c", "import bpy"]).output() {
+                Ok(out) if out.status.success() => python,
+                Ok(out) => panic!(
+                    "RT_BPY_PYTHON={} cannot import bpy:\n{}",
+                    python.display(),
+                    String::from_utf8_lossy(&out.stderr)
+                ),
+                Err(e) => panic!("RT_BPY_PYTHON={} does not run: {e}", python.display()),
+            }
+        })
+        .clone()
+}
+
 /// A closed, subdivided icosahedron of unit radius as OBJ text.
 pub fn icosphere_obj(subdivisions: u32) -> (String, Vec<[f64; 3]>, Vec<[usize; 3]>) {
     let t = (1.0 + 5f64.sqrt()) / 2.0;

@@ -44,16 +44,6 @@ except ImportError:  # a script: the module lies beside this file
 TEXTURE_SOCKETS = rt_shader_nodes.TEXTURE_SOCKETS
 linked_node, rgb, socket_value = rt_shader_nodes.linked_node, rt_shader_nodes.rgb, rt_shader_nodes.socket_value
 
-bl_info = {
-    "name": "rt exporter",
-    "author": "rt",
-    "version": (1, 0, 0),
-    "blender": (4, 2, 0),
-    "location": "File > Export > rt; 3D View > Sidebar > rt",
-    "description": "Export meshes (.rtmesh + .gltf materials) and a scene TOML for the rt path tracer",
-    "category": "Import-Export",
-}
-
 RTMESH_MAGIC = b"RTMESH\0\0"
 RTMESH_VERSION = 3
 RTINST_MAGIC = b"RTINST\0\0"

@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod bounded;
+pub mod quad_gltf;
 pub mod reference;
 
 use rt::bvh::BuildQuality;
@@ -20,6 +21,16 @@ pub fn gpu() -> &'static GpuContext {
 /// GPU errors must not reach the tests sharing [`gpu`].
 pub fn new_gpu() -> GpuContext {
     GpuContext::new(std::env::var("RT_ADAPTER").ok().as_deref()).expect("a Vulkan adapter (lavapipe in CI)")
+}
+
+/// A ray for the trace kernel from `o` along `d` (normalised here), unbounded.
+pub fn trace_ray(o: glam::DVec3, d: glam::DVec3) -> rt::layout::GpuTraceRay {
+    rt::layout::GpuTraceRay {
+        origin: o.as_vec3().to_array(),
+        t_max: f32::MAX,
+        direction: d.normalize().as_vec3().to_array(),
+        _pad: 0,
+    }
 }
 
 pub fn repo() -> PathBuf {

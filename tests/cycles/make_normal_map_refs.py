@@ -49,13 +49,6 @@ def normal_mapped(name, pixels, base_color, roughness):
     return m
 
 
-def floor(scene, size=8.0, z=-1.0):
-    m, _, bsdf = refs.principled("floor")
-    bsdf.inputs["Base Color"].default_value = (0.5, 0.5, 0.5, 1.0)
-    bsdf.inputs["Roughness"].default_value = 1.0
-    refs.add_object(scene, "floor", bpy.ops.mesh.primitive_plane_add, m, size=size, location=(0, 0, z))
-
-
 def scene_normal_sphere(scene):
     """A smooth diffuse sphere with a normal map of 8 × 4 bumps, lit by a low sun."""
     cycles.uniform_world(scene, (0.2, 0.2, 0.2))
@@ -64,7 +57,7 @@ def scene_normal_sphere(scene):
     refs.add_object(scene, "sphere", bpy.ops.mesh.primitive_uv_sphere_add, m, radius=1.0, segments=48,
                     ring_count=24)
     bpy.ops.object.shade_smooth()
-    floor(scene)
+    refs.floor(scene, (0.5, 0.5, 0.5), 8.0, -1.0)
     refs.camera(scene, (0.0, -3.6, 0.8), (0.0, 0.0, -0.1), 45.0)
 
 
@@ -76,7 +69,7 @@ def scene_normal_cube(scene):
     m = normal_mapped("bumpy", bump_normals(128, 3, 3, 0.025), (0.7, 0.55, 0.4), 0.4)
     cube = refs.add_object(scene, "cube", bpy.ops.mesh.primitive_cube_add, m, size=1.4, location=(0, 0, -0.3))
     cube.rotation_euler = (0.0, 0.0, math.radians(35.0))
-    floor(scene)
+    refs.floor(scene, (0.5, 0.5, 0.5), 8.0, -1.0)
     refs.camera(scene, (0.0, -3.4, 1.6), (0.0, 0.0, -0.3), 45.0)
 
 
@@ -99,7 +92,7 @@ def scene_alpha_blend(scene):
     bsdf.inputs["Roughness"].default_value = 1.0
     refs.add_object(scene, "veil", bpy.ops.mesh.primitive_plane_add, m, size=1.6, location=(0, 0, 0.7),
                     rotation=(math.radians(10), 0, 0))
-    floor(scene, 6.0, 0.0)
+    refs.floor(scene, (0.5, 0.5, 0.5), 6.0)
     refs.sun(scene, (math.radians(25), 0.0, math.radians(30)))
     refs.camera(scene, (0.0, -2.6, 3.2), (0.0, 0.0, 0.2), 45.0)
 

@@ -84,6 +84,14 @@ def add_object(scene, name, mesh_op, material, **kwargs):
     return obj
 
 
+def floor(scene, colour, size, z=0.0, roughness=1.0):
+    """A square floor of side `size` at height `z`, diffuse (no specular layer)."""
+    m, _, bsdf = principled("floor")
+    bsdf.inputs["Base Color"].default_value = (*colour, 1.0)
+    bsdf.inputs["Roughness"].default_value = roughness
+    add_object(scene, "floor", bpy.ops.mesh.primitive_plane_add, m, size=size, location=(0, 0, z))
+
+
 def checker(n, a, b):
     y, x = np.mgrid[0:n, 0:n]
     on = ((x + y) % 2 == 0)[:, :, None]
@@ -135,9 +143,8 @@ def scene_rough_metal(scene):
     tree.links.new(metal_tex.outputs["Color"], bsdf.inputs["Metallic"])
     sphere = add_object(scene, "sphere", bpy.ops.mesh.primitive_uv_sphere_add, m, radius=1.0, segments=48, ring_count=24)
     bpy.ops.object.shade_smooth()
-    floor_m, _, floor_bsdf = principled("floor")
-    floor_bsdf.inputs["Base Color"].default_value = (0.5, 0.5, 0.5, 1.0)
-    add_object(scene, "floor", bpy.ops.mesh.primitive_plane_add, floor_m, size=8.0, location=(0, 0, -1.0))
+    # Principled's default roughness.
+    floor(scene, (0.5, 0.5, 0.5), 8.0, -1.0, roughness=0.5)
     sphere.rotation_euler = (0.0, 0.0, math.radians(30.0))
     camera(scene, (0.0, -3.6, 0.8), (0.0, 0.0, -0.1), 45.0)
 
@@ -158,10 +165,7 @@ def scene_leaves(scene):
     bsdf.inputs["Roughness"].default_value = 1.0
     add_object(scene, "leaf", bpy.ops.mesh.primitive_plane_add, m, size=1.6, location=(0, 0, 0.8),
                rotation=(math.radians(10), 0, 0))
-    floor_m, _, floor_bsdf = principled("floor")
-    floor_bsdf.inputs["Base Color"].default_value = (0.8, 0.8, 0.8, 1.0)
-    floor_bsdf.inputs["Roughness"].default_value = 1.0
-    add_object(scene, "floor", bpy.ops.mesh.primitive_plane_add, floor_m, size=6.0)
+    floor(scene, (0.8, 0.8, 0.8), 6.0)
     sun(scene, (math.radians(25), 0.0, math.radians(30)))
     camera(scene, (0.0, -2.6, 3.2), (0.0, 0.0, 0.2), 45.0)
 
@@ -182,10 +186,7 @@ def scene_emissive(scene):
     bsdf.inputs["Emission Strength"].default_value = 3.0
     add_object(scene, "screen", bpy.ops.mesh.primitive_plane_add, m, size=1.2, location=(0, 0.6, 0.7),
                rotation=(math.radians(80), 0, 0))
-    floor_m, _, floor_bsdf = principled("floor")
-    floor_bsdf.inputs["Base Color"].default_value = (0.8, 0.8, 0.8, 1.0)
-    floor_bsdf.inputs["Roughness"].default_value = 1.0
-    add_object(scene, "floor", bpy.ops.mesh.primitive_plane_add, floor_m, size=6.0)
+    floor(scene, (0.8, 0.8, 0.8), 6.0)
     camera(scene, (0.0, -2.8, 1.6), (0.0, 0.2, 0.4), 45.0)
 
 

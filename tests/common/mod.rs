@@ -8,7 +8,7 @@ pub mod reference;
 use rt::bvh::BuildQuality;
 use rt::gpu::GpuContext;
 use rt::render::{Image, RenderRequest, Session};
-use rt::scene::Scene;
+use rt::scene::{FeatureSet, Scene};
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
@@ -43,12 +43,18 @@ pub fn scene_from(text: &str) -> Scene {
 }
 
 pub fn render(scene: Scene, width: u32, height: u32, spp: u32, max_bounces: u32) -> Image {
-    let mut renderer = Session::open(gpu(), scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
-    let mut request = RenderRequest::from_scene(renderer.scene());
-    (request.width, request.height, request.spp, request.max_bounces) = (width, height, spp, max_bounces);
-    let (image, report) = renderer.render(&request, None).unwrap_or_else(|e| panic!("{e:#}"));
+    render_request(scene, |r| (r.width, r.height, r.spp, r.max_bounces) = (width, height, spp, max_bounces)).0
+}
+
+/// Renders `scene` with the request its own settings give, changed by `adjust`; returns the
+/// image and the feature set the session specialised for. No sample may be dropped.
+pub fn render_request(scene: Scene, adjust: impl FnOnce(&mut RenderRequest)) -> (Image, FeatureSet) {
+    let mut session = Session::open(gpu(), scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
+    let mut request = RenderRequest::from_scene(session.scene());
+    adjust(&mut request);
+    let (image, report) = session.render(&request, None).unwrap_or_else(|e| panic!("{e:#}"));
     assert!(report.dropped.is_clean(), "{}", report.dropped);
-    image
+    (image, session.features())
 }
 
 pub fn temp_dir(name: &str) -> PathBuf {

@@ -79,6 +79,12 @@ fn texture_point(hit: Hit) -> TexturePoint {
     return p;
 }
 
+// Whether any texture slot of `m` is in use (the normal map's included).
+fn has_textures(m: Material) -> bool {
+    return m.base_color_texture != NO_TEXTURE || m.metallic_roughness_texture != NO_TEXTURE
+        || m.emission_texture != NO_TEXTURE || m.normal_texture != NO_TEXTURE;
+}
+
 // Slot `bit` (UV1_*) of `m` at `p`: its coordinates and the level of detail `footprint_lod` adds to.
 fn slot_uv(m: Material, bit: u32, p: TexturePoint) -> vec2f {
     //#if uv_sets

@@ -94,9 +94,11 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
     // Media live inside glass: forcing them on forces (at least smooth) glass too.
     let glass = if own.transmission == Transmission::None { Transmission::Smooth } else { own.transmission };
     force("media", own.media, FeatureSet { media: true, transmission: glass, ..own });
-    // Normal maps are texture lookups: forcing them on forces the texture code too.
     force("sheen", own.sheen, FeatureSet { sheen: true, ..own });
     force("anisotropy", own.anisotropy, FeatureSet { anisotropy: true, ..own });
+    // Texture lookups alone, so that the normal maps' own share of their price shows.
+    force("textures", own.textures, FeatureSet { textures: true, ..own });
+    // Normal maps are texture lookups: forcing them on forces the texture code too.
     force("normal maps", own.normal_maps, FeatureSet { normal_maps: true, textures: true, ..own });
     force("second uv sets", own.uv_sets, FeatureSet { uv_sets: true, textures: true, ..own });
     v

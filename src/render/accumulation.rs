@@ -14,8 +14,9 @@ const MEAN_BYTES: u64 = 16;
 const SAMPLE_BYTES: u64 = 16;
 /// Bytes per pixel of the AOVs' means (albedo and depth, normal and hit count).
 const AOV_BYTES: u64 = 32;
-/// The lanes' scratch at most: it holds pixels × samples per dispatch.
-const LANE_SCRATCH_BYTES: u64 = 64 << 20;
+/// The lanes' scratch at most: it holds pixels × samples per dispatch (a 128×128 image
+/// takes its 1024 samples per dispatch in 256 MiB).
+const LANE_SCRATCH_BYTES: u64 = 256 << 20;
 /// Invocations that keep a large GPU busy (an H200 holds 132 × 2048 resident threads):
 /// images with fewer pixels spread each pixel's samples over lanes. Since a path that
 /// ends starts the pixel's next sample at once (path regeneration), an invocation with

@@ -63,3 +63,15 @@ fn dispatches_of_more_than_256_samples_keep_the_image_bit_for_bit() {
     assert_eq!(spread.2, 300, "the 300 samples were not taken in one dispatch");
     assert_eq!((plain.0, plain.1), (spread.0, spread.1), "7 lanes, 300 samples in one dispatch");
 }
+
+// lavapipe silently ends an invocation's loops after 65,535 turns together, about 370
+// samples of this scene: on a CPU a dispatch asked for 1000 samples of one lane takes
+// them in safe pieces, so the image is the one of 12 samples at a time.
+#[test]
+fn long_fixed_dispatches_on_a_cpu_lose_no_samples() {
+    let scene = "scenes/cornell_glass.toml";
+    let plain = render_sized(scene, (6, 5), 1000, Some(1), 12);
+    let long = render_sized(scene, (6, 5), 1000, Some(1), 1000);
+    assert!(plain.0.iter().any(|p| p.iter().any(|c| *c > 0.0)), "a black image proves nothing");
+    assert_eq!((plain.0, plain.1), (long.0, long.1), "1000 samples per dispatch asked for");
+}

@@ -716,6 +716,15 @@ def gltf_material(material, thickness, textures=None):
             })
             if surface.inputs["Tangent"].is_linked:
                 log(f"{name}: rt ignores the Principled BSDF's Tangent input (it uses the radial tangent about Z)")
+        film = float(socket_value(surface, "Thin Film Thickness", 0.0))
+        if film > 0.0:
+            # A film of one thickness: glTF's range collapsed to it (rt reads the maximum).
+            extensions["KHR_materials_iridescence"] = {
+                "iridescenceFactor": 1.0,
+                "iridescenceIor": max(float(socket_value(surface, "Thin Film IOR", 1.33)), 1e-5),
+                "iridescenceThicknessMinimum": film,
+                "iridescenceThicknessMaximum": film,
+            }
     if transmission > 0.0:
         extensions["KHR_materials_transmission"] = {"transmissionFactor": transmission}
     peak = max(emission)

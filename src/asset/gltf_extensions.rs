@@ -1,7 +1,10 @@
-//! What rt reads of a glTF material beyond the `gltf` crate's model: `KHR_materials_clearcoat`
-//! (raw JSON: the crate does not model it) and rt's own Glossy lobe (`extras.rt_glossy_color`).
+//! What rt reads of a glTF material beyond the `gltf` crate's model, as raw JSON (the crate
+//! does not model them): `KHR_materials_clearcoat` and `KHR_materials_iridescence`; and rt's
+//! own Glossy lobe (`extras.rt_glossy_color`). Textures of these extensions are not read:
+//! their factors stand for them, with a warning naming the material.
 
 use crate::scene::Material;
+use gltf::json::Value;
 
 /// Cycles' Glossy BSDF (`extras.rt_glossy_color`, which rt_export.py writes beside factors of
 /// a metal of that colour for other readers): rt's `specular` lobe, GGX without Fresnel
@@ -29,17 +32,62 @@ pub(super) fn clearcoat(m: &gltf::Material) -> Result<Clearcoat, String> {
     let Some(ext) = m.extension_value("KHR_materials_clearcoat") else {
         return Ok(Clearcoat { factor: 0.0, roughness: Material::default().coat_roughness });
     };
-    let factor = |key: &str| -> Result<f32, String> {
-        match ext.get(key) {
-            None => Ok(0.0),
-            Some(v) => v
-                .as_f64()
-                .filter(|f| f.is_finite())
-                .map(|f| f as f32)
-                .ok_or_else(|| format!("KHR_materials_clearcoat.{key} must be a number, got {v}")),
-        }
-    };
+    let factor = |key: &str| number(ext, "KHR_materials_clearcoat", key, 0.0);
     Ok(Clearcoat { factor: factor("clearcoatFactor")?, roughness: factor("clearcoatRoughnessFactor")? })
+}
+
+/// Field `key` of extension `ext` (raw JSON), `default` when absent.
+fn number(ext: &Value, name: &str, key: &str, default: f32) -> Result<f32, String> {
+    match ext.get(key) {
+        None => Ok(default),
+        Some(v) => v
+            .as_f64()
+            .filter(|f| f.is_finite())
+            .map(|f| f as f32)
+            .ok_or_else(|| format!("{name}.{key} must be a number, got {v}")),
+    }
+}
+
+fn material_name(m: &gltf::Material) -> String {
+    match (m.name(), m.index()) {
+        (Some(name), _) => format!("material \"{name}\""),
+        (None, Some(i)) => format!("material {i}"),
+        (None, None) => "the default material".to_string(),
+    }
+}
+
+/// Warns that the textures `keys` of extension `name` that `ext` names are not read.
+fn warn_textures(m: &gltf::Material, ext: &Value, name: &str, keys: &[&str], instead: &str) {
+    for key in keys.iter().filter(|k| ext.get(**k).is_some()) {
+        log::warn!("{}: {name}.{key} is not supported; rt uses {instead}", material_name(m));
+    }
+}
+
+/// `KHR_materials_iridescence` as rt's thin film: thickness (nm) and index, or `None` for no
+/// film (absent, or `iridescenceFactor` 0, glTF's default). rt's film is all or nothing: a
+/// factor between 0 and 1 is rendered as 1, with a warning. Without a thickness texture the
+/// film is `iridescenceThicknessMaximum` thick (glTF's defaults: 400 nm, index 1.3); a
+/// texture is not read and the maximum stands for it.
+pub(super) fn iridescence(m: &gltf::Material) -> Result<Option<(f32, f32)>, String> {
+    const NAME: &str = "KHR_materials_iridescence";
+    let Some(ext) = m.extension_value(NAME) else {
+        return Ok(None);
+    };
+    let factor = number(ext, NAME, "iridescenceFactor", 0.0)?;
+    if factor <= 0.0 {
+        return Ok(None);
+    }
+    if factor < 1.0 {
+        log::warn!(
+            "{}: {NAME}.iridescenceFactor {factor} is rendered as 1 (rt's film has no weight)",
+            material_name(m)
+        );
+    }
+    warn_textures(m, ext, NAME, &["iridescenceTexture"], "iridescenceFactor");
+    warn_textures(m, ext, NAME, &["iridescenceThicknessTexture"], "iridescenceThicknessMaximum");
+    let thickness = number(ext, NAME, "iridescenceThicknessMaximum", 400.0)?.clamp(0.0, 100_000.0);
+    let ior = number(ext, NAME, "iridescenceIor", 1.3)?.max(1.0);
+    Ok(Some((thickness, ior)))
 }
 
 #[cfg(test)]
@@ -86,6 +134,44 @@ mod tests {
         let [(_, plain), (_, ours)] = &mesh.materials[..] else { panic!("two materials") };
         assert_eq!((plain.coat, plain.coat_roughness, plain.coat_ior, plain.coat_tint), (0.6, 0.3, 1.5, [1.0; 3]));
         assert_eq!((ours.coat, ours.coat_roughness), (0.9, 0.1));
+    }
+
+    fn import(name: &str, materials: &str) -> Vec<Material> {
+        let dir = crate::asset::fixture::TempDir::new(name);
+        let json = format!(r#"{{ "asset": {{ "version": "2.0" }}, "materials": [{materials}] }}"#);
+        let mesh = crate::asset::gltf_import::load(&dir.write("m.gltf", &json)).expect("loads");
+        mesh.materials.into_iter().map(|(_, m)| m).collect()
+    }
+
+    /// Iridescence is rt's thin film at the maximum thickness; factor 0 (glTF's default) is none,
+    /// and absent fields take glTF's defaults (index 1.3, 400 nm).
+    #[test]
+    fn iridescence_is_imported_as_the_thin_film() {
+        let m = import(
+            "gltf_iridescence",
+            r#"{ "extensions": { "KHR_materials_iridescence": { "iridescenceFactor": 1, "iridescenceIor": 1.45,
+                  "iridescenceThicknessMinimum": 200, "iridescenceThicknessMaximum": 650 } } },
+               { "extensions": { "KHR_materials_iridescence": { "iridescenceFactor": 0.5 } } },
+               { "extensions": { "KHR_materials_iridescence": { "iridescenceIor": 1.8 } } },
+               { "extensions": { "KHR_materials_iridescence": { "iridescenceFactor": 1,
+                  "iridescenceThicknessTexture": { "index": 0 } } } },
+               {}"#,
+        );
+        let film = |m: &Material| (m.thin_film_thickness, m.thin_film_ior);
+        assert_eq!(film(&m[0]), (650.0, 1.45));
+        assert_eq!(film(&m[1]), (400.0, 1.3));
+        assert!(!m[2].has_thin_film());
+        assert_eq!(film(&m[3]), (400.0, 1.3), "a thickness texture: its maximum");
+        assert!(!m[4].has_thin_film());
+    }
+
+    #[test]
+    fn iridescence_of_the_wrong_type_is_an_error() {
+        let doc = r#"{ "asset": { "version": "2.0" }, "materials": [
+            { "extensions": { "KHR_materials_iridescence": { "iridescenceFactor": 1, "iridescenceIor": "high" } } }] }"#;
+        let gltf = gltf::Gltf::from_slice(doc.as_bytes()).expect("parses");
+        let e = iridescence(&gltf.materials().next().expect("a material")).expect_err("refused");
+        assert!(e.contains("KHR_materials_iridescence.iridescenceIor must be a number"), "{e}");
     }
 
     #[test]

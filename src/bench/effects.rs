@@ -97,6 +97,7 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
     // Normal maps are texture lookups: forcing them on forces the texture code too.
     force("sheen", own.sheen, FeatureSet { sheen: true, ..own });
     force("anisotropy", own.anisotropy, FeatureSet { anisotropy: true, ..own });
+    force("thin film", own.thin_film, FeatureSet { thin_film: true, ..own });
     force("normal maps", own.normal_maps, FeatureSet { normal_maps: true, textures: true, ..own });
     force("second uv sets", own.uv_sets, FeatureSet { uv_sets: true, textures: true, ..own });
     v

@@ -164,3 +164,20 @@ pub fn effects(
         rows,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Sampling, SkyFeature};
+
+    /// A scene without a thin film is timed with it forced on too; one with a film is not.
+    #[test]
+    fn thin_film_is_among_the_forced_effects() {
+        let all = FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx);
+        let without = FeatureSet { thin_film: false, ..all };
+        let forced: Vec<_> =
+            variants(without, RoughTransmission::Ggx).into_iter().filter(|(n, _)| n == "+thin film").collect();
+        assert!(matches!(&forced[..], [(_, f)] if f.thin_film && *f == all), "{forced:?}");
+        assert!(variants(all, RoughTransmission::Ggx).iter().all(|(n, _)| n != "+thin film"));
+    }
+}

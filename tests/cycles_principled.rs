@@ -311,3 +311,10 @@ fn exporter_writes_the_thin_film_as_iridescence() {
     let m = &mesh.materials[0].1;
     assert_eq!((m.thin_film_thickness, m.thin_film_ior), (750.0, 1.6), "{m:?}");
 }
+
+/// At Specular IOR Level 0 a film still reflects: Cycles keeps the specular layer for it,
+/// over an index of 1 (the film-free sphere has none).
+#[test]
+fn thin_film_at_specular_level_zero_matches_cycles() {
+    check_colours("thin_film_level_zero");
+}

@@ -371,3 +371,15 @@ fn instance_set_mistakes_are_located() {
     "#,
     );
 }
+
+/// Specular IOR Level 0 leaves the diffuse without a specular layer, but a thin film keeps
+/// one (over an index of 1), as Cycles sets it up; a film of 0.1 nm or less is none.
+#[test]
+fn a_thin_film_keeps_the_specular_layer_at_level_zero() {
+    let plain = Material { specular_ior_level: 0.0, ..Material::default() };
+    assert_eq!(plain.dielectric_coating(), None);
+    let film = Material { thin_film_thickness: 300.0, ..plain.clone() };
+    assert_eq!(film.dielectric_coating(), Some((1.0, 0.0)));
+    let none = Material { thin_film_thickness: 0.1, ..plain };
+    assert_eq!(none.dielectric_coating(), None);
+}

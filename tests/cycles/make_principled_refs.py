@@ -92,6 +92,11 @@ ROWS = {
     "thin_film_metal": (FILM_METAL, [{"Thin Film Thickness": t} for t in THICKNESSES]),
     "thin_film_metal_sun": (FILM_METAL, [{"Thin Film Thickness": t} for t in THICKNESSES]),
     "thin_film_glass": (FILM_GLASS, [{"Thin Film Thickness": t} for t in THICKNESSES]),
+    # Specular IOR Level 0 leaves no specular layer, but Cycles keeps one for a film (over index 1).
+    "thin_film_level_zero": (
+        {**FILM_DIELECTRIC, "Specular IOR Level": 0.0},
+        [{"Thin Film Thickness": t} for t in THICKNESSES],
+    ),
 }
 
 # Rows lit by a sun: its rotation and the world's colour. The sheen's from the right, a

@@ -692,20 +692,39 @@ def gltf_material(material, thickness, textures=None):
             })
         sheen = float(socket_value(surface, "Sheen Weight", 0.0))
         if sheen > 0.0:
-            # glTF's KHR_materials_sheen is another model (a colour without a weight): rt reads its own keys.
+            sheen_roughness = min(max(float(socket_value(surface, "Sheen Roughness", 0.5)), 0.0), 1.0)
+            sheen_tint = [min(max(c, 0.0), 1.0) for c in rgb(socket_value(surface, "Sheen Tint", (1, 1, 1)))]
+            # glTF's sheen has no weight: for other readers, Blender's exporter's colour and roughness;
+            # rt reads its own keys first.
+            extensions["KHR_materials_sheen"] = {"sheenColorFactor": sheen_tint, "sheenRoughnessFactor": sheen_roughness}
             out["extras"].update({
                 "rt_sheen": min(sheen, 1.0),
-                "rt_sheen_roughness": min(max(float(socket_value(surface, "Sheen Roughness", 0.5)), 0.0), 1.0),
-                "rt_sheen_tint": [min(max(c, 0.0), 1.0) for c in rgb(socket_value(surface, "Sheen Tint", (1, 1, 1)))],
+                "rt_sheen_roughness": sheen_roughness,
+                "rt_sheen_tint": sheen_tint,
             })
         anisotropy = float(socket_value(surface, "Anisotropic", 0.0))
         if anisotropy > 0.0:
+            rotation = float(socket_value(surface, "Anisotropic Rotation", 0.0)) % 1.0
+            # glTF's rotation is in radians (Blender's exporter converts so too).
+            extensions["KHR_materials_anisotropy"] = {
+                "anisotropyStrength": min(anisotropy, 1.0),
+                "anisotropyRotation": rotation * 2.0 * math.pi,
+            }
             out["extras"].update({
                 "rt_anisotropy": min(anisotropy, 1.0),
-                "rt_anisotropy_rotation": float(socket_value(surface, "Anisotropic Rotation", 0.0)) % 1.0,
+                "rt_anisotropy_rotation": rotation,
             })
             if surface.inputs["Tangent"].is_linked:
                 log(f"{name}: rt ignores the Principled BSDF's Tangent input (it uses the radial tangent about Z)")
+        film = float(socket_value(surface, "Thin Film Thickness", 0.0))
+        if film > 0.0:
+            # A film of one thickness: glTF's range collapsed to it (rt reads the maximum).
+            extensions["KHR_materials_iridescence"] = {
+                "iridescenceFactor": 1.0,
+                "iridescenceIor": max(float(socket_value(surface, "Thin Film IOR", 1.33)), 1e-5),
+                "iridescenceThicknessMinimum": film,
+                "iridescenceThicknessMaximum": film,
+            }
     if transmission > 0.0:
         extensions["KHR_materials_transmission"] = {"transmissionFactor": transmission}
     peak = max(emission)

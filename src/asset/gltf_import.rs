@@ -18,8 +18,11 @@
 //! | `KHR_materials_clearcoat` factor, roughness factor (0, 0)  | `coat`, `coat_roughness` (index 1.5, untinted; its textures are not read) |
 //! | `extras.rt_coat`, `_roughness`, `_ior`, `_tint` (absent, absent, 1.5, (1, 1, 1)) | `coat`, `coat_roughness` (instead of clearcoat's), `coat_ior`, `coat_tint` |
 //! | `extras.rt_glossy_color` `[r, g, b]` (absent)             | Cycles' Glossy BSDF: `specular = 1` tinted by the colour (`specular_tint`), no other lobe |
-//! | `extras.rt_sheen`, `_roughness`, `_tint` (0, 0.5, (1, 1, 1)) | `sheen`, `sheen_roughness`, `sheen_tint` |
-//! | `extras.rt_anisotropy`, `rt_anisotropy_rotation` (0, 0)     | `anisotropy`, `anisotropy_rotation` |
+//! | `KHR_materials_sheen` colour, roughness factors ((0, 0, 0), 0) | `sheen = 1`, `sheen_tint`, `sheen_roughness` (as Blender imports it; none without the extension) |
+//! | `extras.rt_sheen`, `_roughness`, `_tint` (absent)          | `sheen`, `sheen_roughness`, `sheen_tint`, instead of the extension's |
+//! | `KHR_materials_anisotropy` strength, rotation (0, 0 rad)  | `anisotropy`, `anisotropy_rotation = rotation / 2π` (as Blender imports it) |
+//! | `extras.rt_anisotropy`, `rt_anisotropy_rotation` (absent) | `anisotropy`, `anisotropy_rotation`, instead of the extension's |
+//! | `KHR_materials_iridescence` factor (0), index (1.3), thickness maximum (400) | `thin_film_ior`, `thin_film_thickness` (the maximum; factor 0: no film) |
 //! | `KHR_materials_volume` colour `c` (1), distance `d` (∞)   | `absorption = -ln(c) / d`; 0 if `d = ∞` |
 //! | `extras.rt_volume_emission` `[r, g, b]` (0)               | `volume_emission`              |
 //!
@@ -33,7 +36,7 @@
 //! default material (a rough white metal): rt treats a material-less mesh as plain
 //! geometry, the same as an OBJ without a `.mtl` and a scene material left at defaults.
 
-use super::gltf_extensions::{clearcoat, glossy};
+use super::gltf_extensions::{Sheen, anisotropy, clearcoat, glossy, iridescence, sheen};
 use super::gltf_textures::{ColorSpace, TextureLoader};
 use super::{AssetError, MeshData};
 use crate::scene::{Material, MaterialTextures};
@@ -411,6 +414,9 @@ fn map_material_with_metallic(m: &gltf::Material, metallic: f32) -> Result<Mater
         None => m.specular().map_or(1.0, |s| s.specular_factor()) / 2.0,
     };
     let clearcoat = clearcoat(m)?;
+    let sheen = sheen(m)?.unwrap_or(Sheen { weight: 0.0, tint: [1.0; 3], roughness: 0.5 });
+    let (anisotropy, anisotropy_rotation) = anisotropy(m)?;
+    let (thin_film_thickness, thin_film_ior) = iridescence(m)?.unwrap_or((0.0, 1.33));
     let material = Material {
         base_color: [r, g, b],
         diffuse,
@@ -421,11 +427,15 @@ fn map_material_with_metallic(m: &gltf::Material, metallic: f32) -> Result<Mater
         coat_roughness: extra::<f32>(m.extras(), "rt_coat_roughness")?.unwrap_or(clearcoat.roughness).clamp(0.0, 1.0),
         coat_ior: extra::<f32>(m.extras(), "rt_coat_ior")?.unwrap_or(1.5).max(1.0),
         coat_tint: extra::<[f32; 3]>(m.extras(), "rt_coat_tint")?.unwrap_or([1.0; 3]).map(|c| c.clamp(0.0, 1.0)),
-        sheen: extra::<f32>(m.extras(), "rt_sheen")?.unwrap_or(0.0).clamp(0.0, 1.0),
-        sheen_roughness: extra::<f32>(m.extras(), "rt_sheen_roughness")?.unwrap_or(0.5).clamp(0.0, 1.0),
-        sheen_tint: extra::<[f32; 3]>(m.extras(), "rt_sheen_tint")?.unwrap_or([1.0; 3]).map(|c| c.clamp(0.0, 1.0)),
-        anisotropy: extra::<f32>(m.extras(), "rt_anisotropy")?.unwrap_or(0.0).clamp(0.0, 1.0),
-        anisotropy_rotation: extra::<f32>(m.extras(), "rt_anisotropy_rotation")?.unwrap_or(0.0).rem_euclid(1.0),
+        sheen: extra::<f32>(m.extras(), "rt_sheen")?.unwrap_or(sheen.weight).clamp(0.0, 1.0),
+        sheen_roughness: extra::<f32>(m.extras(), "rt_sheen_roughness")?.unwrap_or(sheen.roughness).clamp(0.0, 1.0),
+        sheen_tint: extra::<[f32; 3]>(m.extras(), "rt_sheen_tint")?.unwrap_or(sheen.tint).map(|c| c.clamp(0.0, 1.0)),
+        anisotropy: extra::<f32>(m.extras(), "rt_anisotropy")?.unwrap_or(anisotropy).clamp(0.0, 1.0),
+        anisotropy_rotation: extra::<f32>(m.extras(), "rt_anisotropy_rotation")?
+            .unwrap_or(anisotropy_rotation)
+            .rem_euclid(1.0),
+        thin_film_thickness,
+        thin_film_ior,
         reflection: metallic,
         transmission: dielectric * transmission,
         ior: m.ior().unwrap_or(1.5),
@@ -595,6 +605,8 @@ mod tests {
                 sheen_tint: [1.0; 3],
                 anisotropy: 0.0,
                 anisotropy_rotation: 0.0,
+                thin_film_thickness: 0.0,
+                thin_film_ior: 1.33,
                 hardness: None,
                 emission: [4.0, 2.0, 0.0],
                 absorption: [ln2 / 2.0, 2.0 * ln2 / 2.0, 0.0],

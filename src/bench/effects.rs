@@ -96,6 +96,7 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
     force("media", own.media, FeatureSet { media: true, transmission: glass, ..own });
     force("sheen", own.sheen, FeatureSet { sheen: true, ..own });
     force("anisotropy", own.anisotropy, FeatureSet { anisotropy: true, ..own });
+    force("thin film", own.thin_film, FeatureSet { thin_film: true, ..own });
     // Texture lookups alone, so that the normal maps' own share of their price shows.
     force("textures", own.textures, FeatureSet { textures: true, ..own });
     // Normal maps are texture lookups: forcing them on forces the texture code too.
@@ -164,4 +165,21 @@ pub fn effects(
         repeats: repeats.max(1),
         rows,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Sampling, SkyFeature};
+
+    /// A scene without a thin film is timed with it forced on too; one with a film is not.
+    #[test]
+    fn thin_film_is_among_the_forced_effects() {
+        let all = FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx);
+        let without = FeatureSet { thin_film: false, ..all };
+        let forced: Vec<_> =
+            variants(without, RoughTransmission::Ggx).into_iter().filter(|(n, _)| n == "+thin film").collect();
+        assert!(matches!(&forced[..], [(_, f)] if f.thin_film && *f == all), "{forced:?}");
+        assert!(variants(all, RoughTransmission::Ggx).iter().all(|(n, _)| n != "+thin film"));
+    }
 }

@@ -54,6 +54,8 @@ pub struct CachedMaterial {
     pub anisotropy_rotation: f32,
     /// `MaterialTextures::second_uv_set`.
     pub second_uv_set: u32,
+    pub thin_film_thickness: f32,
+    pub thin_film_ior: f32,
 }
 
 impl From<&Material> for CachedMaterial {
@@ -91,6 +93,8 @@ impl From<&Material> for CachedMaterial {
             anisotropy: m.anisotropy,
             anisotropy_rotation: m.anisotropy_rotation,
             second_uv_set: m.textures.second_uv_set,
+            thin_film_thickness: m.thin_film_thickness,
+            thin_film_ior: m.thin_film_ior,
         }
     }
 }
@@ -116,6 +120,8 @@ impl From<&CachedMaterial> for Material {
             sheen_tint: m.sheen_tint,
             anisotropy: m.anisotropy,
             anisotropy_rotation: m.anisotropy_rotation,
+            thin_film_thickness: m.thin_film_thickness,
+            thin_film_ior: m.thin_film_ior,
             hardness: (m.hardness > 0.0).then_some(m.hardness),
             emission: m.emission,
             absorption: m.absorption,
@@ -162,6 +168,8 @@ impl CachedMaterial {
             self.sheen_roughness,
             self.anisotropy,
             self.anisotropy_rotation,
+            self.thin_film_thickness,
+            self.thin_film_ior,
             self.hardness,
             self.metallic,
             self.base_alpha,

@@ -136,7 +136,9 @@ fn host_structs_match_wgsl_layouts() {
                 coat_ior,
                 second_uv_set,
                 sheen_tint,
-                sheen
+                sheen,
+                thin_film_thickness,
+                thin_film_ior
             ]
         ),
         host_layout!("TriangleTangents", GpuTriangleTangents, [t0, t1, t2]),

@@ -103,6 +103,8 @@ pub struct FeatureSet {
     pub sheen: bool,
     /// Some material's rough lobes are anisotropic (`anisotropy`).
     pub anisotropy: bool,
+    /// Some material has a thin film (`thin_film_thickness`).
+    pub thin_film: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -180,6 +182,7 @@ impl FeatureSet {
             coat: materials_in_use.iter().any(|m| m.coat > 0.0),
             sheen: materials_in_use.iter().any(|m| m.sheen > 0.0),
             anisotropy: materials_in_use.iter().any(|m| m.anisotropy > 0.0),
+            thin_film: materials_in_use.iter().any(|m| m.has_thin_film()),
         }
     }
 
@@ -211,6 +214,7 @@ impl FeatureSet {
             coat: true,
             sheen: true,
             anisotropy: true,
+            thin_film: true,
         }
     }
 
@@ -253,7 +257,8 @@ impl FeatureSet {
             "coat" => self.coat,
             "sheen" => self.sheen,
             "anisotropy" => self.anisotropy,
-            "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen,
+            "thin_film" => self.thin_film,
+            "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen || self.thin_film,
             _ => return None,
         })
     }
@@ -284,6 +289,7 @@ impl fmt::Display for FeatureSet {
             (self.coat, "coat"),
             (self.sheen, "sheen"),
             (self.anisotropy, "anisotropy"),
+            (self.thin_film, "thin-film"),
         ] {
             if on {
                 parts.push(name.to_string());

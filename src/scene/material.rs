@@ -38,6 +38,11 @@ pub struct Material {
     /// √(1 − 0.9 × anisotropy)), the tangent turned about the normal by rotation × 360°.
     pub anisotropy: f32,
     pub anisotropy_rotation: f32,
+    /// Principled's Thin Film Thickness (nm; 0: no film) and Thin Film IOR: a film on the
+    /// specular, metal and glass lobes whose interference colours their Fresnel reflectance
+    /// (Belcour & Barla 2017, as Cycles 5.0 renders it).
+    pub thin_film_thickness: f32,
+    pub thin_film_ior: f32,
     /// The seed renderer's Phong-like exponent; mapped to `roughness` when given.
     pub hardness: Option<f32>,
     pub emission: [f32; 3],
@@ -146,6 +151,8 @@ impl Default for Material {
             sheen_tint: [1.0; 3],
             anisotropy: 0.0,
             anisotropy_rotation: 0.0,
+            thin_film_thickness: 0.0,
+            thin_film_ior: 1.33,
             hardness: None,
             emission: [0.0; 3],
             absorption: [0.0; 3],
@@ -188,17 +195,28 @@ impl Material {
     /// The dielectric coating of the diffuse lobe, as Cycles' Principled BSDF sets up its
     /// specular layer: the index whose real Fresnel curve it follows and its F0 (before
     /// `specular_tint`), or `None` for no coating.
+    /// A thin film reflects even over a coating of index 1 (Specular IOR Level 0), as in Cycles.
     pub fn dielectric_coating(&self) -> Option<(f32, f32)> {
-        if self.specular_ior_level <= 0.0 || self.diffuse <= 0.0 {
+        let film = self.has_thin_film();
+        if (self.specular_ior_level <= 0.0 && !film) || self.diffuse <= 0.0 {
             return None;
         }
-        let f0 = f0_from_ior(self.ior) * 2.0 * self.specular_ior_level;
+        let f0 = f0_from_ior(self.ior) * 2.0 * self.specular_ior_level.max(0.0);
         // An F0 of 1 or more would be an infinite index: clamp just below.
         let f0 = f0.min(0.9999);
         let eta = ior_from_f0(f0);
-        (eta > 1.0).then_some((eta, f0))
+        (eta > 1.0 || film).then_some((eta, f0))
+    }
+
+    /// Whether the thin film is there: Cycles ignores films of 0.1 nm and less
+    /// (`THINFILM_THICKNESS_CUTOFF`).
+    pub fn has_thin_film(&self) -> bool {
+        self.thin_film_thickness > THIN_FILM_CUTOFF
     }
 }
+
+/// Thickness (nm) at and below which a film is not there (`THIN_FILM_CUTOFF` in `shaders/thin_film.wgsl`).
+pub const THIN_FILM_CUTOFF: f32 = 0.1;
 
 /// Reflectance at normal incidence of an interface of relative index `ior`.
 pub fn f0_from_ior(ior: f32) -> f32 {

@@ -25,6 +25,13 @@ TINTS = [(1.0, 1.0, 1.0), (1.0, 0.4, 0.4), (0.4, 1.0, 0.4), (0.4, 0.4, 1.0), (1.
 SHEEN_BASE = {"Base Color": (0.05, 0.05, 0.08), "Roughness": 0.5}
 SHEEN_ROUGHNESS_BASE = {**SHEEN_BASE, "Sheen Weight": 1.0, "Sheen Tint": (1.0, 0.8, 0.6)}
 ANISOTROPIC_METAL = {"Base Color": (0.95, 0.75, 0.5), "Metallic": 1.0, "Roughness": 0.4}
+# Thin films from none to 1 µm: on a dark dielectric (the film's colours show in its specular
+# layer), on a metal (Cycles 5.0 puts the film over its F82 conductor too) and on glass.
+THICKNESSES = [0.0, 250.0, 500.0, 750.0, 1000.0]
+FILM_DIELECTRIC = {"Base Color": (0.1, 0.1, 0.12), "Roughness": 0.2, "Thin Film IOR": 1.33}
+FILM_METAL = {"Base Color": (0.9, 0.75, 0.5), "Metallic": 1.0, "Roughness": 0.3, "Thin Film IOR": 1.6}
+FILM_GLASS = {"Base Color": (1.0, 1.0, 1.0), "Transmission Weight": 1.0, "IOR": 1.5, "Roughness": 0.15,
+              "Thin Film IOR": 1.33}
 
 # Per row: the inputs every sphere shares, and per sphere the inputs that change.
 ROWS = {
@@ -76,6 +83,16 @@ ROWS = {
         {"Base Color": (0.2, 0.3, 0.6), "Roughness": 0.3},
         [{"Anisotropic": a} for a in STEPS],
     ),
+    "thin_film_dielectric": (FILM_DIELECTRIC, [{"Thin Film Thickness": t} for t in THICKNESSES]),
+    "thin_film_dielectric_sun": (FILM_DIELECTRIC, [{"Thin Film Thickness": t} for t in THICKNESSES]),
+    "thin_film_metal": (FILM_METAL, [{"Thin Film Thickness": t} for t in THICKNESSES]),
+    "thin_film_metal_sun": (FILM_METAL, [{"Thin Film Thickness": t} for t in THICKNESSES]),
+    "thin_film_glass": (FILM_GLASS, [{"Thin Film Thickness": t} for t in THICKNESSES]),
+    # Specular IOR Level 0 leaves no specular layer, but Cycles keeps one for a film (over index 1).
+    "thin_film_level_zero": (
+        {**FILM_DIELECTRIC, "Specular IOR Level": 0.0},
+        [{"Thin Film Thickness": t} for t in THICKNESSES],
+    ),
 }
 
 # Rows lit by a sun: its rotation and the world's colour. The sheen's from the right, a
@@ -91,6 +108,8 @@ SUNLIT = {
     "anisotropy_sun": FRONT_SUN,
     "anisotropy_rotation_sun": FRONT_SUN,
     "anisotropy_dielectric_sun": FRONT_SUN,
+    "thin_film_dielectric_sun": FRONT_SUN,
+    "thin_film_metal_sun": FRONT_SUN,
 }
 
 

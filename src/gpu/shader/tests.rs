@@ -52,6 +52,7 @@ fn feature_sets() -> Vec<FeatureSet> {
             coat: on(3) != on(6),
             sheen: on(2) != on(5),
             anisotropy: on(2) != on(6),
+            thin_film: on(1) != on(6),
         });
     }
     sets
@@ -88,6 +89,7 @@ fn plain() -> FeatureSet {
         coat: false,
         sheen: false,
         anisotropy: false,
+        thin_film: false,
     }
 }
 

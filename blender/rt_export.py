@@ -802,8 +802,9 @@ def export_object_mesh(obj, depsgraph, base_name="mesh", bake_size=0):
 # second one, the first other map that some texture of the mesh's materials reads (a UV
 # Map node in front of its Image Texture, directly or through a Mapping node). Textures
 # name their map under UV_MAP_KEY while the materials are built; once the mesh's second
-# set is known it becomes glTF's texCoord (1 for the second set). Normal maps read the
-# first set, whose tangents rt carries; a third map is read as the first, with a warning.
+# set is known it becomes glTF's texCoord (1 for the second set). A normal map reads the
+# map its Normal Map node names, in that map's tangent frame (rt makes MikkTSpace's of
+# the second set itself); a third map is read as the first, with a warning.
 
 UV_MAP_KEY = "_rt_uv_map"
 TEXTURE_INFOS = (("pbrMetallicRoughness", "baseColorTexture"), ("pbrMetallicRoughness", "metallicRoughnessTexture"),
@@ -827,12 +828,12 @@ def texture_infos(gltf_material):
 
 def second_uv_map(uv_maps, gltf_materials):
     """The map rt carries as the second uv set, or None: the first map other than the
-    default that a texture (not a normal map) reads."""
+    default that a texture reads."""
     default, names = uv_maps
     for material in gltf_materials:
-        for key, info in texture_infos(material):
+        for _, info in texture_infos(material):
             name = info.get(UV_MAP_KEY, "")
-            if key != "normalTexture" and name not in ("", default) and name in names:
+            if name not in ("", default) and name in names:
                 return name
     return None
 
@@ -849,14 +850,11 @@ def assign_uv_sets(uv_maps, gltf_materials, second):
             name = info.pop(UV_MAP_KEY, "")
             if name in ("", default):
                 continue
-            if name == second and key != "normalTexture":
+            if name == second:
                 info["texCoord"] = 1
             elif name not in names:
                 log(f"{material['name']}: {key} reads uv map {name!r}, which the mesh does not have; "
                     f"rt uses {default!r}")
-            elif key == "normalTexture":
-                log(f"{material['name']}: its normal map reads uv map {name!r}; rt reads normal maps with the "
-                    f"default one ({default!r}), whose tangents it carries")
             else:
                 log(f"{material['name']}: {key} reads uv map {name!r}; rt carries two ({default!r} and "
                     f"{second!r}) and uses {default!r}")

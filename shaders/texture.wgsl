@@ -20,6 +20,7 @@ const WRAP_MIRROR: u32 = 2u;
 const UV1_BASE_COLOR: u32 = 1u;
 const UV1_METALLIC_ROUGHNESS: u32 = 2u;
 const UV1_EMISSION: u32 = 4u;
+const UV1_NORMAL: u32 = 8u;
 
 struct TexturePoint {
     uv: vec2f,

@@ -36,7 +36,7 @@
 use super::gltf_extensions::{clearcoat, glossy};
 use super::gltf_textures::{ColorSpace, TextureLoader};
 use super::{AssetError, MeshData};
-use crate::scene::{Material, MaterialTextures};
+use crate::scene::{Material, MaterialTextures, NORMAL_SLOT};
 use glam::{Mat3, Mat4, Vec3};
 use gltf::json::Value;
 use gltf::material::AlphaMode;
@@ -346,13 +346,10 @@ fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<M
     let metallic_roughness = load(pbr.metallic_roughness_texture(), ColorSpace::Linear, 1, "metallic-roughness")?;
     let emission = load(m.emissive_texture(), ColorSpace::Srgb, 2, "emissive")?;
     let normal_info = m.normal_texture();
-    if let Some(n) = normal_info.as_ref().filter(|n| n.tex_coord() != 0) {
-        // Its tangent frame is the first set's (glTF's TANGENT, or MikkTSpace's of TEXCOORD_0).
-        log::warn!(
-            "normal texture {} uses TEXCOORD_{}; rt reads normal maps with TEXCOORD_0",
-            n.texture().index(),
-            n.tex_coord()
-        );
+    // Its tangent frame is of the set it reads: glTF's TANGENT or MikkTSpace's of
+    // TEXCOORD_0, MikkTSpace's of TEXCOORD_1.
+    if let Some(n) = &normal_info {
+        second_uv_set |= uv_set_bit(n.tex_coord(), NORMAL_SLOT, "normal");
     }
     let normal = normal_info
         .as_ref()

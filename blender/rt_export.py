@@ -105,10 +105,10 @@ def to_rt(v):
 def mesh_arrays(mesh, material_count, uv_transforms=None, second_uv_map=None):
     """Positions, normals, uvs, tangents (per vertex, rt axes), triangle indices and material
     indices of an evaluated mesh. Corners that share all of them share a vertex.
-    `uv_transforms[m]`, a 2x3 affine map or None, is applied to the uvs of material m's
-    triangles: a Mapping node in front of that material's textures. The uvs are the map
-    Cycles reads by default (see `default_uv_map`); `second_uv_map`, a map's name, adds
-    that map as the second set."""
+    `uv_transforms[m]`, {uv map name ("" for the default): 2x3 affine map}, is applied to
+    the uvs of material m's triangles in that map: a Mapping node in front of the
+    material's textures that read it. The uvs are the map Cycles reads by default (see
+    `default_uv_map`); `second_uv_map`, a map's name, adds that map as the second set."""
     mesh.calc_loop_triangles()
     tri_count = len(mesh.loop_triangles)
     corners = np.empty(tri_count * 3, np.int32)
@@ -166,15 +166,26 @@ def default_uv_map(mesh):
 
 
 def corner_uv_array(mesh, name, corners, materials, uv_transforms):
-    """The uvs of map `name` at each triangle corner, the material's uv transform applied."""
+    """The uvs of map `name` at each triangle corner, the material's uv transform of that map applied."""
     uvs = np.empty(len(mesh.loops) * 2, np.float32)
     mesh.uv_layers[name].uv.foreach_get("vector", uvs)
     corner_uvs = uvs.reshape(-1, 2)[corners]
-    for m, transform in enumerate(uv_transforms or []):
+    default = default_uv_map(mesh)
+    for m, transforms in enumerate(uv_transforms or []):
+        transform = map_transform(transforms, name, default)
         if transform is not None:
             at = np.repeat(materials == m, 3)
             corner_uvs[at] = corner_uvs[at] @ transform[:, :2].T + transform[:, 2]
     return corner_uvs
+
+
+def map_transform(transforms, name, default):
+    """The uv transform of map `name` in `transforms` (as `material_textures` returns them), or None."""
+    if not transforms:
+        return None
+    if name == default and "" in transforms:
+        return transforms[""]
+    return transforms.get(name)
 
 
 def mesh_tangents(mesh, loop_count):
@@ -250,8 +261,9 @@ def volume_emission(volume):
 #
 # Image Texture nodes linked into the Principled BSDF become glTF textures: directly, or
 # through Separate Color (one channel), Normal Map (Normal) or a Mapping node in front of
-# the image (its transform is baked into the uvs of the material's triangles: every
-# texture of a material must share it). Each glTF image is composed from the channels
+# the image (its transform is baked into the uvs of the material's triangles in the map
+# the texture reads: the textures of a material that read one map must share it, those
+# reading the other map may have their own). Each glTF image is composed from the channels
 # that feed it, as the linear values Cycles reads (an sRGB image's codes decoded, a
 # Non-Color one's taken as they are), then encoded for its glTF slot (sRGB for base
 # colour and emission, linear for the rest) and written as NAME-HASH.png, the hash
@@ -599,13 +611,20 @@ def blake(data):
 
 def material_textures(material, surface, out, textures, factors):
     """Adds the textures of a Principled BSDF to glTF material `out`; returns the uv
-    transform its textures share (or None)."""
+    transforms its textures share, per uv map they read ({map name, "" for the default: 2x3 map})."""
     pbr = out["pbrMetallicRoughness"]
     found = {name: texture_channel(material, surface, name, textures.baker) for name in TEXTURE_SOCKETS}
-    transforms = [c.transform for c in found.values() if c is not None and c.transform is not None]
-    transform = transforms[0] if transforms else None
-    if any(not np.allclose(t, transform) for t in transforms):
-        log(f"{material.name}: its textures use different Mapping nodes; rt uses the first one's for all")
+    transforms = {}
+    for name, c in found.items():
+        if c is None or c.transform is None:
+            continue
+        uv_map = c.uv_map
+        if name == "Normal" and surface.inputs["Normal"].links[0].from_node.type == "NORMAL_MAP":
+            uv_map = surface.inputs["Normal"].links[0].from_node.uv_map or uv_map
+        first = transforms.setdefault(uv_map, c.transform)
+        if not np.allclose(first, c.transform):
+            log(f"{material.name}: its textures on uv map {uv_map or 'default'!r} use different Mapping nodes; "
+                f"rt uses the first one's for all of them")
     wrap_of = lambda c: c.node.extension  # noqa: E731
     base, alpha = found["Base Color"], found["Alpha"]
     if base is not None or alpha is not None:
@@ -640,12 +659,12 @@ def material_textures(material, surface, out, textures, factors):
         if strength > 0.0:
             out["emissiveFactor"] = [1.0, 1.0, 1.0]
             out.setdefault("extensions", {})["KHR_materials_emissive_strength"] = {"emissiveStrength": strength}
-    return transform
+    return transforms
 
 
 def gltf_material(material, thickness, textures=None):
     """One glTF material (with KHR extensions) from a Blender material, and the uv
-    transform of its textures (or None); every factor is written, since rt's importer
+    transforms of its textures (per uv map, or None); every factor is written, since rt's importer
     applies glTF's defaults to absent ones. Its textures go into `textures`. The surface
     shader is mapped onto rt's model by rt_shader_nodes (which warns about what it cannot
     map)."""
@@ -972,10 +991,9 @@ def rt_rows(matrices):
 
 
 def same_uv_transform(a, b):
-    """Whether two uv transforms (2x3 arrays, or None for none) are one."""
-    if a is None or b is None:
-        return a is b
-    return bool(np.array_equal(a, b))
+    """Whether two materials' uv transforms ({map name: 2x3 array}, or None for none) are one."""
+    a, b = a or {}, b or {}
+    return a.keys() == b.keys() and all(np.array_equal(a[k], b[k]) for k in a)
 
 
 class InstancedMesh:

@@ -67,6 +67,13 @@ fn textures_on_two_uv_maps_match_cycles() {
     check("uv_sets");
 }
 
+// The same plane, each texture behind its own Mapping node (the checker's on the second
+// map, the stripes' on the first): each uv set carries its own transform.
+#[test]
+fn a_mapping_node_per_uv_map_matches_cycles() {
+    check("uv_mappings");
+}
+
 // A Noise Texture into Base Color, exported with `--bake` (512 × 512 texels over the
 // plane, about 12 a pixel), against Cycles' render of the procedural material itself.
 // Cycles evaluates the noise exactly at every sample, rt filters the baked image over

@@ -73,7 +73,7 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
                 ..map_material_dielectric(&m).map_err(|e| err(format!("material `{name}`: {e}")))?
             };
         }
-        uv_transforms.push(uv_transform(&m, &name));
+        uv_transforms.push(uv_transforms_of(&m, &name));
         mesh.materials.push((name, material));
     }
     mesh.textures = loader.textures;
@@ -138,8 +138,9 @@ struct Walk<'a> {
     all_uvs: bool,
     all_second_uvs: bool,
     default_material: Option<u32>,
-    /// Per material, its textures' `KHR_texture_transform`, baked into the uvs of its primitives.
-    uv_transforms: &'a [Option<UvTransform>],
+    /// Per material and uv set, its textures' `KHR_texture_transform`, baked into that set's
+    /// uvs of its primitives.
+    uv_transforms: &'a [[Option<UvTransform>; 2]],
 }
 
 impl Walk<'_> {
@@ -239,7 +240,7 @@ impl Walk<'_> {
                     return Err(format!("{at}: TANGENT and POSITION counts differ"));
                 }
             }
-            let transform = prim.material().index().and_then(|i| self.uv_transforms.get(i).copied().flatten());
+            let transforms = prim.material().index().and_then(|i| self.uv_transforms.get(i).copied());
             for set in [0, 1] {
                 let (all, uvs) = match set {
                     0 => (&mut self.all_uvs, &mut self.uvs),
@@ -252,7 +253,8 @@ impl Walk<'_> {
                 let name = format!("TEXCOORD_{set}");
                 let read = reader.read_tex_coords(set).ok_or_else(|| unreadable(&name))?;
                 let start = uvs.len();
-                // The material's texture transform, in both sets: rt keeps one per material.
+                // The transform of the material's textures that read this set.
+                let transform = transforms.and_then(|t| t[set as usize]);
                 let transformed = read.into_f32().map(|uv| transform.map_or(uv, |t| t.apply(uv)));
                 uvs.extend(transformed.map(|[u, v]| [u, 1.0 - v]));
                 if uvs.len() - start != count {
@@ -303,31 +305,33 @@ impl UvTransform {
     }
 }
 
-/// The texture transform of a material's textures, baked into the uvs of its triangles:
-/// rt keeps one set of uvs, so every texture of a material shares the first one's
-/// (a material whose textures differ gets a warning).
-fn uv_transform(m: &gltf::Material, name: &str) -> Option<UvTransform> {
+/// The texture transforms of a material's textures, per uv set they read, baked into
+/// that set's uvs of its triangles: the textures of a material that read one set share
+/// the first one's (a material whose textures on one set differ gets a warning). A third
+/// set reads as the first (see `uv_set_bit`).
+fn uv_transforms_of(m: &gltf::Material, name: &str) -> [Option<UvTransform>; 2] {
     let pbr = m.pbr_metallic_roughness();
     let infos = [pbr.base_color_texture(), pbr.metallic_roughness_texture(), m.emissive_texture()];
-    let transforms: Vec<Option<UvTransform>> = infos
-        .iter()
-        .flatten()
-        .map(|info| {
-            info.texture_transform().map(|t| {
-                let ([ox, oy], r, [sx, sy]) = (t.offset(), t.rotation(), t.scale());
-                let (sin, cos) = r.sin_cos();
-                // The extension's GLSL matrices are column-major: its rotation is [[c, -s], [s, c]].
-                UvTransform([[cos * sx, -sin * sy, ox], [sin * sx, cos * sy, oy]])
-            })
-        })
-        .collect();
-    let first = transforms.first().copied().flatten();
-    if transforms.iter().any(|t| *t != first) {
-        log::warn!(
-            "material `{name}`: its textures have different texture transforms; rt uses the first one's for all"
-        );
+    let mut transforms: [Vec<Option<UvTransform>>; 2] = Default::default();
+    for info in infos.iter().flatten() {
+        let transform = info.texture_transform().map(|t| {
+            let ([ox, oy], r, [sx, sy]) = (t.offset(), t.rotation(), t.scale());
+            let (sin, cos) = r.sin_cos();
+            // The extension's GLSL matrices are column-major: its rotation is [[c, -s], [s, c]].
+            UvTransform([[cos * sx, -sin * sy, ox], [sin * sx, cos * sy, oy]])
+        });
+        transforms[usize::from(info.tex_coord() == 1)].push(transform);
     }
-    first
+    transforms.each_ref().map(|set| {
+        let first = set.first().copied().flatten();
+        if set.iter().any(|t| *t != first) {
+            log::warn!(
+                "material `{name}`: its textures on one uv set have different texture transforms; rt uses the \
+                 first one's for all of them"
+            );
+        }
+        first
+    })
 }
 
 /// The textures of a material; unsupported ones (occlusion: a path tracer finds

@@ -249,6 +249,32 @@ def scene_uv_sets(scene):
     camera(scene, (0.0, -3.0, 1.2), (0.0, 0.0, 0.0), 40.0)
 
 
+def mapping(tree, scale, rotation_deg, location, source):
+    """A Mapping node (Point) fed by `source`'s output."""
+    node = tree.nodes.new("ShaderNodeMapping")
+    node.inputs["Scale"].default_value = (*scale, 1.0)
+    node.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(rotation_deg))
+    node.inputs["Location"].default_value = (*location, 0.0)
+    tree.links.new(source, node.inputs["Vector"])
+    return node
+
+
+def scene_uv_mappings(scene):
+    """The plane of `scene_uv_sets`, each texture behind its own Mapping node: the checker
+    on the second map scaled, turned and moved one way, the roughness stripes on the
+    default map another, so that each uv set carries its own transform."""
+    scene_uv_sets(scene)
+    tree = bpy.data.materials["two_maps"].node_tree
+    colour = next(n for n in tree.nodes if n.type == "TEX_IMAGE" and n.image.name == "checker")
+    rough = next(n for n in tree.nodes if n.type == "TEX_IMAGE" and n.image.name == "stripes")
+    uv_node = next(n for n in tree.nodes if n.type == "UVMAP")
+    a = mapping(tree, (1.5, 0.75), 30.0, (0.2, -0.1), uv_node.outputs["UV"])
+    tree.links.new(a.outputs["Vector"], colour.inputs["Vector"])
+    coords = tree.nodes.new("ShaderNodeTexCoord")
+    b = mapping(tree, (0.5, 2.0), -15.0, (0.1, 0.3), coords.outputs["UV"])
+    tree.links.new(b.outputs["Vector"], rough.inputs["Vector"])
+
+
 def scene_baked_noise(scene):
     """A Noise Texture (procedural, in the plane's generated coordinates) into Base Color
     of a sunlit plane: Cycles renders the procedural material, rt the exporter's bake of

@@ -366,6 +366,9 @@ def texture_channel(material, node, socket_name, baker=None):
         if not inner.is_linked:
             return None
         source, output = inner.links[0].from_node, inner.links[0].from_socket.name
+        if source.type != "TEX_IMAGE" or source.image is None:
+            # A procedural colour into the Normal Map node: the whole normal is what a bake can give.
+            source = socket.links[0].from_node
     if source.type == "SEPARATE_COLOR" and source.mode == "RGB":
         component = {"Red": 0, "Green": 1, "Blue": 2}[output]
         inner = source.inputs["Color"]
@@ -375,7 +378,7 @@ def texture_channel(material, node, socket_name, baker=None):
     if source.type != "TEX_IMAGE" or source.image is None:
         if source.type in {"RGB", "VALUE"}:
             return None
-        if baker is not None and socket_name in BAKED_SOCKETS:
+        if baker is not None and (socket_name in BAKED_SOCKETS or socket_name == "Normal"):
             baked = baker.bake(material, socket)
             if baked is not None:
                 return baked
@@ -458,8 +461,15 @@ class Textures:
 # Emission shader on the material's output, and an EMIT bake writes its values (linear,
 # scalars as grey) into a float image of the chosen size on rt's first uv set (the map
 # Cycles reads by default). The image becomes that socket's texture like an Image
-# Texture node's would, clamped at its edges. Bakes run before the mesh is evaluated for
-# export, once per material and socket, and the node tree is restored afterwards.
+# Texture node's would, clamped at its edges. A Normal socket fed by a Bump node or a
+# procedural colour into a Normal Map node is baked as Cycles' NORMAL pass in the tangent
+# space of that uv set (the material left as it is), which becomes a normal map of
+# strength 1. Bakes run before the mesh is evaluated for export, once per material and
+# socket, and the node tree is restored afterwards. A mesh seen only as instances
+# (collection, geometry-nodes, particle instances) is baked on a stand-in object that
+# shows it with each set of materials its instances show, linked into the scene for the
+# bake and removed after; geometry made by geometry nodes has no mesh to stand in and
+# is warned about.
 
 DEFAULT_BAKE_SIZE = 1024
 BAKED_SOCKETS = ("Base Color", "Alpha", "Roughness", "Metallic", "Emission Color")
@@ -499,8 +509,13 @@ def principled_surface(material):
 
 
 def needs_bake(socket):
-    """Whether `texture_channel` cannot follow what feeds `socket` (through Separate Color too)."""
+    """Whether `texture_channel` cannot follow what feeds `socket` (through Separate Color
+    too, or for Normal a Normal Map node)."""
     source = linked_node(socket)
+    if source is not None and source.type == "NORMAL_MAP" and socket.name == "Normal":
+        source = linked_node(source.inputs["Color"])
+        if source is None:
+            return False
     if source is not None and source.type == "SEPARATE_COLOR" and source.mode == "RGB":
         source = linked_node(source.inputs["Color"])
     if source is None or source.type in {"RGB", "VALUE"}:
@@ -512,22 +527,22 @@ class Baker:
     """Bakes sockets of one object's materials into images of `size` × `size` texels."""
 
     def __init__(self, obj, size):
-        self.obj, self.size = obj, size
+        self.obj, self.size = obj, size  # obj None: only what was baked before (an instance's stand-in is gone)
         self.baked = {}  # (material name, socket name) -> BakedChannel, or None where baking failed
 
     def prebake(self, materials):
         """Bakes every socket that will need it, before the object's mesh is evaluated for export."""
         for material in materials:
             surface = principled_surface(material)
-            for name in BAKED_SOCKETS if surface is not None else ():
+            for name in BAKED_SOCKETS + ("Normal",) if surface is not None else ():
                 if needs_bake(surface.inputs[name]):
                     self.bake(material, surface.inputs[name])
 
     def bake(self, material, socket):
         key = (material.name, socket.name)
-        if key not in self.baked:
+        if key not in self.baked and self.obj is not None:
             self.baked[key] = self._bake(material, socket)
-        return self.baked[key]
+        return self.baked.get(key)
 
     def _bake(self, material, socket):
         mesh = self.obj.data
@@ -544,10 +559,13 @@ class Baker:
         image = bpy.data.images.new(f"rt_bake_{material.name}_{socket.name}", self.size, self.size,
                                     alpha=False, float_buffer=True)
         image.colorspace_settings.name = "Non-Color"  # the values as the shader gives them
-        emission = tree.nodes.new("ShaderNodeEmission")
-        emission.inputs["Strength"].default_value = 1.0
-        tree.links.new(socket.links[0].from_socket, emission.inputs["Color"])
-        tree.links.new(emission.outputs["Emission"], surface)
+        normal = socket.name == "Normal"
+        emission = None
+        if not normal:
+            emission = tree.nodes.new("ShaderNodeEmission")
+            emission.inputs["Strength"].default_value = 1.0
+            tree.links.new(socket.links[0].from_socket, emission.inputs["Color"])
+            tree.links.new(emission.outputs["Emission"], surface)
         target = tree.nodes.new("ShaderNodeTexImage")
         target.image = image
         was_active = tree.nodes.active
@@ -574,8 +592,10 @@ class Baker:
                 o.select_set(False)
             self.obj.select_set(True)
             layer.objects.active = self.obj
-            bpy.ops.object.bake(type="EMIT", margin=BAKE_MARGIN, margin_type="EXTEND", use_clear=True,
-                                target="IMAGE_TEXTURES", uv_layer=default_uv_map(mesh))
+            # NORMAL: tangent space of the bake's uv map, +X +Y +Z as RGB, as normal maps are read.
+            bpy.ops.object.bake(type="NORMAL" if normal else "EMIT", margin=BAKE_MARGIN, margin_type="EXTEND",
+                                use_clear=True, target="IMAGE_TEXTURES", uv_layer=default_uv_map(mesh),
+                                normal_space="TANGENT", normal_r="POS_X", normal_g="POS_Y", normal_b="POS_Z")
             pixels = np.empty(self.size * self.size * 4, np.float32)
             image.pixels.foreach_get(pixels)
             pixels = pixels.reshape(self.size, self.size, 4)[::-1].copy()
@@ -592,15 +612,16 @@ class Baker:
                 other.node_tree.nodes.remove(node)
                 other.node_tree.nodes.active = active
             tree.nodes.remove(target)
-            tree.nodes.remove(emission)
-            if was_on_surface is not None:
-                tree.links.new(was_on_surface, surface)
+            if emission is not None:
+                tree.nodes.remove(emission)
+                if was_on_surface is not None:
+                    tree.links.new(was_on_surface, surface)
             tree.nodes.active = was_active
             bpy.data.images.remove(image)
             bpy.data.images.remove(scratch)
         log(f"{material.name}: baked {socket.name} ({linked_node(socket).type}) into {self.size}x{self.size} "
             f"texels on uv map {default_uv_map(mesh)!r}")
-        return BakedChannel(f"{material.name}-{socket.name}", pixels, socket.name in COLOUR_SOCKETS)
+        return BakedChannel(f"{material.name}-{socket.name}", pixels, normal or socket.name in COLOUR_SOCKETS)
 
 
 def blake(data):
@@ -646,9 +667,14 @@ def material_textures(material, surface, out, textures, factors):
     normal = found["Normal"]
     if normal is not None:
         node = surface.inputs["Normal"].links[0].from_node
-        strength = float(node.inputs["Strength"].default_value) if node.type == "NORMAL_MAP" else 1.0
-        # The Normal Map node's uv map is the one its tangents are of.
-        uv_map = (node.uv_map if node.type == "NORMAL_MAP" else "") or normal.uv_map
+        mapped = node.type == "NORMAL_MAP" and not isinstance(normal, BakedChannel)
+        # A baked normal has the node's strength in it already, in the default map's tangent space.
+        strength = float(node.inputs["Strength"].default_value) if mapped else 1.0
+        # The Normal Map node's uv map is the one its tangents are of, and the one rt reads the image with.
+        uv_map = (node.uv_map if mapped else "") or normal.uv_map
+        if normal.uv_map not in ("", uv_map):
+            log(f"{material.name}: its normal map's image reads uv map {normal.uv_map!r} but its Normal Map node "
+                f"names {uv_map!r}; rt reads both with {uv_map!r}")
         out["normalTexture"] = {"index": textures.add([(normal, i) for i in range(3)] + [1.0], False,
                                                       wrap_of(normal)), "scale": strength, UV_MAP_KEY: uv_map}
     emission = found["Emission Color"]
@@ -1002,9 +1028,9 @@ class InstancedMesh:
     material set of the instance file (slot i shows the set's i-th asset material), the
     asset's .gltf holding every material some instance shows."""
 
-    def __init__(self, mesh, materials, base):
+    def __init__(self, mesh, materials, base, baker=None):
         self.base = base
-        self.textures = Textures(base)
+        self.textures = Textures(base, baker)
         self.thickness = mesh_thickness(mesh)
         self.index = {}  # material name -> index in the asset's materials
         self.exported = []  # (glTF material, uv transform), the asset's own first
@@ -1048,37 +1074,100 @@ class InstancedMesh:
         return gltf_text(materials, self.thickness, self.textures)
 
 
-def instanced_mesh(meshes, obj, materials):
+def instanced_mesh(meshes, obj, materials, bakers=None):
     """(key into `meshes`, .rtinst material) of an instance of `obj` showing `materials`,
-    exporting its mesh at its first instance; `meshes[key]` is None for an empty mesh."""
+    exporting its mesh at its first instance; `meshes[key]` is None for an empty mesh.
+    `bakers`: what `prebake_instances` baked, per original mesh."""
+    mesh = original_mesh(obj) if bakers else None
+    baker = bakers.get(mesh.as_pointer()) if mesh is not None else None
     key = obj.data.as_pointer()
     if key not in meshes:
-        meshes[key] = InstancedMesh(obj.data, materials, sanitize(obj.data.name))
+        meshes[key] = InstancedMesh(obj.data, materials, sanitize(obj.data.name), baker)
     code = meshes[key].code_of(materials) if meshes[key] else RTINST_OWN_MATERIALS
     if code is None:
         # Shown as no material set can show it: another asset folder (same geometry, other materials).
         key = (key, tuple(m.name if m else "" for m in materials))
         if key not in meshes:
-            meshes[key] = InstancedMesh(obj.data, materials, sanitize(obj.data.name))
+            meshes[key] = InstancedMesh(obj.data, materials, sanitize(obj.data.name), baker)
         code = RTINST_OWN_MATERIALS
     if meshes[key] and meshes[key].triangles == 0:
         meshes[key] = None
     return key, code
 
 
+def exported_instances(depsgraph):
+    """The instances of `depsgraph` that rt exports: mesh instances shown in renders."""
+    for inst in depsgraph.object_instances:
+        obj = inst.object
+        if inst.is_instance and obj.type == "MESH" and obj.data is not None and not obj.original.hide_render:
+            yield inst
+
+
+def original_mesh(obj):
+    """The mesh data-block an instance's evaluated object shows (its object's own data for
+    collection and particle instances, the instanced one's for geometry-nodes instances
+    of an object), or None for geometry made by geometry nodes."""
+    own, shown = obj.original.data, obj.data
+    if own is not None and (shown.name, shown.library) == (own.name, own.library):
+        return own
+    mesh = shown.original
+    return None if mesh.is_evaluated else mesh
+
+
+def prebake_instances(depsgraph, size):
+    """Bakes what rt cannot follow in the materials of meshes that instances show, before
+    the instances are exported (a bake changes the scene, which the depsgraph's instance
+    iterator must not see): {original mesh pointer: Baker}. Each mesh is baked on a
+    stand-in object showing it with each set of materials its instances show."""
+    shown = {}  # original mesh pointer -> (mesh, [material lists])
+    for inst in exported_instances(depsgraph):
+        mesh = original_mesh(inst.object)
+        materials = instance_materials(inst)
+        if not any(needs_bake(surface.inputs[name]) for surface in map(principled_surface, materials)
+                   if surface is not None for name in BAKED_SOCKETS + ("Normal",)):
+            continue
+        if mesh is None:
+            log(f"{inst.object.original.name}: its instances' geometry is made by geometry nodes and has no mesh "
+                f"to bake on; their procedural sockets keep their own values")
+            continue
+        sets = shown.setdefault(mesh.as_pointer(), (mesh, []))[1]
+        if materials not in sets:
+            sets.append(materials)
+    bakers = {}
+    for key, (mesh, sets) in shown.items():
+        stand_in = bpy.data.objects.new(f"rt_bake_{mesh.name}", mesh)
+        bpy.context.scene.collection.objects.link(stand_in)
+        bpy.context.view_layer.update()
+        baker = Baker(stand_in, size)
+        try:
+            for materials in sets:
+                for slot, material in zip(stand_in.material_slots, materials):
+                    slot.link = "OBJECT"
+                    slot.material = material
+                baker.prebake(materials)
+        finally:
+            bpy.data.objects.remove(stand_in)
+        baker.obj = None
+        bakers[key] = baker
+    return bakers
+
+
 def add_instances(export, depsgraph):
     """Every instance that `depsgraph` generates (collection instances, nested ones,
     geometry-nodes instances, particles): each distinct evaluated mesh is exported once,
-    and each instance's matrix and material set are kept for its folder."""
+    and each instance's matrix and material set are kept for its folder. With
+    `export.bake_size`, their materials are baked first (`prebake_instances`)."""
+    bakers = None
+    if export.bake_size > 0:
+        bakers = prebake_instances(depsgraph, export.bake_size)
+        depsgraph = bpy.context.evaluated_depsgraph_get()
     meshes = {}  # mesh identity (with material names for a set that cannot be) -> InstancedMesh, or None when empty
     resolved = {}  # (object, mesh) identity -> what `instanced_mesh` said for it
-    for inst in depsgraph.object_instances:
+    for inst in exported_instances(depsgraph):
         obj = inst.object
-        if not inst.is_instance or obj.type != "MESH" or obj.data is None or obj.original.hide_render:
-            continue
         identity = (obj.original.as_pointer(), obj.data.as_pointer())
         if identity not in resolved:
-            resolved[identity] = instanced_mesh(meshes, obj, instance_materials(inst))
+            resolved[identity] = instanced_mesh(meshes, obj, instance_materials(inst), bakers)
         key, code = resolved[identity]
         entry = meshes[key]
         if entry is None:

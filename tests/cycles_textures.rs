@@ -95,6 +95,23 @@ fn a_baked_procedural_texture_matches_cycles_procedural_original() {
     );
 }
 
+// A Bump node fed by a Noise Texture into Normal of a sunlit glossy plane, exported with
+// `--bake` (Cycles' NORMAL pass in tangent space, 512 × 512 texels) and read by rt as a
+// normal map, against Cycles' render of the procedural bump itself; bounds as above.
+#[test]
+fn a_baked_procedural_bump_matches_cycles_procedural_original() {
+    let dir = repo().join("tests/cycles/scenes/texture_baked_bump");
+    let scene = rt::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let (w, h) = (scene.render.width, scene.render.height);
+    let ours = render(scene, w, h, SPP, MAX_BOUNCES);
+    let file = repo().join("tests/cycles/texture_baked_bump.exr");
+    reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4)).check_within(
+        "texture_baked_bump",
+        "Cycles",
+        0.005,
+    );
+}
+
 #[test]
 fn blender_gltf_export_with_textures_renders_like_rts_own_export() {
     // The leaves scene through Blender's glTF exporter (textures embedded in a .glb, its

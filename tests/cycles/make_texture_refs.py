@@ -2,7 +2,10 @@
 """Builds small textured scenes in bpy, renders them with Cycles and exports them with
 blender/rt_export.py, for `tests/cycles_textures.rs`:
 
-    /work/main/.venv-bpy/bin/python tests/cycles/make_texture_refs.py [--spp 1024] [NAME...]
+    /work/main/.venv-bpy/bin/python tests/cycles/make_texture_refs.py [--spp N] [NAME...]
+
+References are rendered at 4096 samples per pixel (`--spp` overrides it), the figure
+`tests/cycles_textures.rs` assumes.
 
 For each NAME it writes `tests/cycles/texture_NAME.exr` (Cycles, linear, 32-bit) and
 `tests/cycles/scenes/texture_NAME/` (the exported assets, their images and
@@ -291,6 +294,28 @@ def scene_baked_noise(scene):
     camera(scene, (0.0, -3.0, 1.2), (0.0, 0.0, 0.0), 40.0)
 
 
+def scene_baked_bump(scene):
+    """A Bump node fed by a Noise Texture into the Normal of a sunlit glossy plane: Cycles
+    renders the procedural bump, rt the exporter's bake of Cycles' NORMAL pass in tangent
+    space (`--bake`, BAKE_SIZES texels a side) read as a normal map."""
+    world(scene, (0.3, 0.3, 0.3))
+    m, tree, bsdf = principled("bumpy")
+    bsdf.inputs["Base Color"].default_value = (0.6, 0.6, 0.6, 1.0)
+    bsdf.inputs["Roughness"].default_value = 0.5
+    bsdf.inputs["Specular IOR Level"].default_value = 0.5
+    noise = tree.nodes.new("ShaderNodeTexNoise")
+    noise.inputs["Scale"].default_value = 3.0
+    noise.inputs["Detail"].default_value = 1.0
+    bump = tree.nodes.new("ShaderNodeBump")
+    bump.inputs["Strength"].default_value = 1.0
+    bump.inputs["Distance"].default_value = 0.2
+    tree.links.new(noise.outputs["Fac"], bump.inputs["Height"])
+    tree.links.new(bump.outputs["Normal"], bsdf.inputs["Normal"])
+    add_object(scene, "plane", bpy.ops.mesh.primitive_plane_add, m, size=2.0, rotation=(math.radians(60), 0, 0))
+    sun(scene, (math.radians(40.0), 0.0, math.radians(20.0)))
+    camera(scene, (0.0, -3.0, 1.2), (0.0, 0.0, 0.0), 40.0)
+
+
 def blender_gltf(scene, out):
     """The same scene through Blender's own glTF exporter (a .glb with its textures
     embedded), placed by a copy of the exported scene file: for the test that rt reads
@@ -309,21 +334,24 @@ SCENES = {
     "leaves": scene_leaves,
     "emissive": scene_emissive,
     "uv_sets": scene_uv_sets,
+    "uv_mappings": scene_uv_mappings,
     "baked_noise": scene_baked_noise,
+    "baked_bump": scene_baked_bump,
 }
 # Scenes exported with --bake, and the size of their baked images.
-BAKE_SIZES = {"baked_noise": 512}
+BAKE_SIZES = {"baked_noise": 512, "baked_bump": 512}
 
 
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("--spp", type=int, default=1024)
+    parser.add_argument("--spp", type=int, default=None)
     parser.add_argument("names", nargs="*", default=list(SCENES))
     args = parser.parse_args()
     for name in args.names:
         scene = reset()
         SCENES[name](scene)
-        scene.cycles.samples = args.spp
+        spp = args.spp or 4096
+        scene.cycles.samples = spp
         out = os.path.join(HERE, "scenes", f"texture_{name}")
         rt_export.export_scene(scene, os.path.join(out, "assets"), os.path.join(out, "scene.toml"),
                                bake_size=BAKE_SIZES.get(name, 0))
@@ -331,7 +359,7 @@ def main():
             blender_gltf(scene, out)
         scene.render.filepath = os.path.join(HERE, f"texture_{name}.exr")
         bpy.ops.render.render(write_still=True)
-        print(f"texture_{name}: {args.spp} spp -> {scene.render.filepath}", file=sys.stderr)
+        print(f"texture_{name}: {spp} spp -> {scene.render.filepath}", file=sys.stderr)
 
 
 if __name__ == "__main__":

@@ -331,7 +331,7 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, s
         }
         //#if normal_maps
         let n_unmapped = surface.shading_normal;
-        surface.shading_normal = normal_mapped(m, hit, n_unmapped, surface.geometric_normal, -direction, texture_at.uv);
+        surface.shading_normal = normal_mapped(m, hit, n_unmapped, surface.geometric_normal, -direction, slot_uv(m, UV1_NORMAL, texture_at));
         //#endif
         m = textured_material(m, texture_at, log2(cone_width / cos_hit));
         //#endif

@@ -20,6 +20,7 @@ const WRAP_MIRROR: u32 = 2u;
 const UV1_BASE_COLOR: u32 = 1u;
 const UV1_METALLIC_ROUGHNESS: u32 = 2u;
 const UV1_EMISSION: u32 = 4u;
+const UV1_NORMAL: u32 = 8u;
 
 struct TexturePoint {
     uv: vec2f,
@@ -203,8 +204,14 @@ fn textured_material(material: Material, p: TexturePoint, footprint_lod: f32) ->
     }
     if m.metallic_roughness_texture != NO_TEXTURE {
         // glTF's packing: G roughness, B metal. The host's lobe weights are the non-metal part's.
-        let lod = slot_lod(m, UV1_METALLIC_ROUGHNESS, p, footprint_lod);
-        let mr = sample_texture(m.metallic_roughness_texture, slot_uv(m, UV1_METALLIC_ROUGHNESS, p), lod);
+        // Read at the finest level, bilinear, whatever the ray cone (as Cycles reads every
+        // image): the shaded result is not linear in roughness, so a mip's mean roughness
+        // does not give the mean of the lobes it stands for; and the cone's isotropic level
+        // (width over |cos|) blurs far past the pixel across the view at grazing angles:
+        // at the silhouette of a sphere striped in metal and diffuse, the mip's half-metal
+        // lit the metal's edge with diffuse sunlight, 1.4% (9.6 σ) over Cycles on an 8×8
+        // block. The pixel's samples do the averaging, as in Cycles.
+        let mr = sample_level(textures[m.metallic_roughness_texture], 0u, slot_uv(m, UV1_METALLIC_ROUGHNESS, p));
         let metal = m.metallic * mr.b;
         let dielectric = 1.0 - metal;
         m.diffuse *= dielectric;

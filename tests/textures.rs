@@ -237,3 +237,34 @@ fn khr_texture_transform_is_baked_into_the_uvs() {
         assert!((got[0] - want[0]).abs() < 1e-6 && (got[1] - want[1]).abs() < 1e-6, "{uvs:?} vs {expected:?}");
     }
 }
+
+#[test]
+fn each_uv_set_takes_the_texture_transform_of_the_textures_that_read_it() {
+    let dir = temp_dir("texture-transform-per-set");
+    std::fs::write(dir.join("t.png"), png(|_, _| [9, 9, 9, 255])).expect("png");
+    let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+    let second = [[0.0, 0.0], [0.0, 1.0], [1.0, 1.0], [1.0, 0.0]];
+    // Base colour on set 0 moved by (0.5, 0.25); emission on set 1 scaled by 3; the normal map on set 1.
+    let material = r#"{ "name": "two", "pbrMetallicRoughness": { "baseColorTexture": { "index": 0,
+        "extensions": { "KHR_texture_transform": { "offset": [0.5, 0.25] } } } },
+        "emissiveTexture": { "index": 0, "texCoord": 1, "extensions": { "KHR_texture_transform": { "scale": [3, 3] } } },
+        "emissiveFactor": [1, 1, 1], "normalTexture": { "index": 0, "texCoord": 1 } }"#;
+    write(&dir.join("q.gltf"), &quad_gltf_with_uv_sets(corners, material, "t.png", Some(second)));
+    let mesh = load_mesh(&dir.join("q.gltf")).expect("loads");
+    let textures = &mesh.materials[0].1.textures;
+    assert!(!textures.reads_second_uv_set(0) && textures.reads_second_uv_set(2), "{textures:?}");
+    assert_eq!(textures.normal_uv_set(), rt::scene::UvSet::Second, "the normal map reads TEXCOORD_1");
+    // Vertices may be split for tangents: compare through positions.
+    let (first_set, second_set) = (mesh.uvs.as_ref().expect("uvs"), mesh.second_uvs.as_ref().expect("second uvs"));
+    for (v, p) in mesh.positions.iter().enumerate() {
+        let corner = corners.iter().position(|c| c == p).expect("a corner");
+        let [u, w] = [[0.0f32, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]][corner];
+        let [su, sw] = second[corner];
+        // rt stores v from the bottom: 1 - glTF's.
+        assert_eq!(first_set[v], [u + 0.5, 1.0 - (w + 0.25)], "set 0 at {p:?}");
+        assert_eq!(second_set[v], [3.0 * su, 1.0 - 3.0 * sw], "set 1 at {p:?}");
+    }
+    // The second set's own MikkTSpace frame: its u runs along +y of the quad.
+    let tangents = mesh.second_tangents.as_ref().expect("tangents of the second set");
+    assert!(tangents.iter().all(|t| t[1] > 0.99), "{tangents:?}");
+}

@@ -39,7 +39,7 @@
 use super::gltf_extensions::{Sheen, anisotropy, clearcoat, glossy, iridescence, sheen};
 use super::gltf_textures::{ColorSpace, TextureLoader};
 use super::{AssetError, MeshData};
-use crate::scene::{Material, MaterialTextures};
+use crate::scene::{Material, MaterialTextures, NORMAL_SLOT};
 use glam::{Mat3, Mat4, Vec3};
 use gltf::json::Value;
 use gltf::material::AlphaMode;
@@ -76,7 +76,7 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
                 ..map_material_dielectric(&m).map_err(|e| err(format!("material `{name}`: {e}")))?
             };
         }
-        uv_transforms.push(uv_transform(&m, &name));
+        uv_transforms.push(uv_transforms_of(&m, &name));
         mesh.materials.push((name, material));
     }
     mesh.textures = loader.textures;
@@ -141,8 +141,9 @@ struct Walk<'a> {
     all_uvs: bool,
     all_second_uvs: bool,
     default_material: Option<u32>,
-    /// Per material, its textures' `KHR_texture_transform`, baked into the uvs of its primitives.
-    uv_transforms: &'a [Option<UvTransform>],
+    /// Per material and uv set, its textures' `KHR_texture_transform`, baked into that set's
+    /// uvs of its primitives.
+    uv_transforms: &'a [[Option<UvTransform>; 2]],
 }
 
 impl Walk<'_> {
@@ -242,7 +243,7 @@ impl Walk<'_> {
                     return Err(format!("{at}: TANGENT and POSITION counts differ"));
                 }
             }
-            let transform = prim.material().index().and_then(|i| self.uv_transforms.get(i).copied().flatten());
+            let transforms = prim.material().index().and_then(|i| self.uv_transforms.get(i).copied());
             for set in [0, 1] {
                 let (all, uvs) = match set {
                     0 => (&mut self.all_uvs, &mut self.uvs),
@@ -255,7 +256,8 @@ impl Walk<'_> {
                 let name = format!("TEXCOORD_{set}");
                 let read = reader.read_tex_coords(set).ok_or_else(|| unreadable(&name))?;
                 let start = uvs.len();
-                // The material's texture transform, in both sets: rt keeps one per material.
+                // The transform of the material's textures that read this set.
+                let transform = transforms.and_then(|t| t[set as usize]);
                 let transformed = read.into_f32().map(|uv| transform.map_or(uv, |t| t.apply(uv)));
                 uvs.extend(transformed.map(|[u, v]| [u, 1.0 - v]));
                 if uvs.len() - start != count {
@@ -306,31 +308,33 @@ impl UvTransform {
     }
 }
 
-/// The texture transform of a material's textures, baked into the uvs of its triangles:
-/// rt keeps one set of uvs, so every texture of a material shares the first one's
-/// (a material whose textures differ gets a warning).
-fn uv_transform(m: &gltf::Material, name: &str) -> Option<UvTransform> {
+/// The texture transforms of a material's textures, per uv set they read, baked into
+/// that set's uvs of its triangles: the textures of a material that read one set share
+/// the first one's (a material whose textures on one set differ gets a warning). A third
+/// set reads as the first (see `uv_set_bit`).
+fn uv_transforms_of(m: &gltf::Material, name: &str) -> [Option<UvTransform>; 2] {
     let pbr = m.pbr_metallic_roughness();
     let infos = [pbr.base_color_texture(), pbr.metallic_roughness_texture(), m.emissive_texture()];
-    let transforms: Vec<Option<UvTransform>> = infos
-        .iter()
-        .flatten()
-        .map(|info| {
-            info.texture_transform().map(|t| {
-                let ([ox, oy], r, [sx, sy]) = (t.offset(), t.rotation(), t.scale());
-                let (sin, cos) = r.sin_cos();
-                // The extension's GLSL matrices are column-major: its rotation is [[c, -s], [s, c]].
-                UvTransform([[cos * sx, -sin * sy, ox], [sin * sx, cos * sy, oy]])
-            })
-        })
-        .collect();
-    let first = transforms.first().copied().flatten();
-    if transforms.iter().any(|t| *t != first) {
-        log::warn!(
-            "material `{name}`: its textures have different texture transforms; rt uses the first one's for all"
-        );
+    let mut transforms: [Vec<Option<UvTransform>>; 2] = Default::default();
+    for info in infos.iter().flatten() {
+        let transform = info.texture_transform().map(|t| {
+            let ([ox, oy], r, [sx, sy]) = (t.offset(), t.rotation(), t.scale());
+            let (sin, cos) = r.sin_cos();
+            // The extension's GLSL matrices are column-major: its rotation is [[c, -s], [s, c]].
+            UvTransform([[cos * sx, -sin * sy, ox], [sin * sx, cos * sy, oy]])
+        });
+        transforms[usize::from(info.tex_coord() == 1)].push(transform);
     }
-    first
+    transforms.each_ref().map(|set| {
+        let first = set.first().copied().flatten();
+        if set.iter().any(|t| *t != first) {
+            log::warn!(
+                "material `{name}`: its textures on one uv set have different texture transforms; rt uses the \
+                 first one's for all of them"
+            );
+        }
+        first
+    })
 }
 
 /// The textures of a material; unsupported ones (occlusion: a path tracer finds
@@ -349,13 +353,10 @@ fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<M
     let metallic_roughness = load(pbr.metallic_roughness_texture(), ColorSpace::Linear, 1, "metallic-roughness")?;
     let emission = load(m.emissive_texture(), ColorSpace::Srgb, 2, "emissive")?;
     let normal_info = m.normal_texture();
-    if let Some(n) = normal_info.as_ref().filter(|n| n.tex_coord() != 0) {
-        // Its tangent frame is the first set's (glTF's TANGENT, or MikkTSpace's of TEXCOORD_0).
-        log::warn!(
-            "normal texture {} uses TEXCOORD_{}; rt reads normal maps with TEXCOORD_0",
-            n.texture().index(),
-            n.tex_coord()
-        );
+    // Its tangent frame is of the set it reads: glTF's TANGENT or MikkTSpace's of
+    // TEXCOORD_0, MikkTSpace's of TEXCOORD_1.
+    if let Some(n) = &normal_info {
+        second_uv_set |= uv_set_bit(n.tex_coord(), NORMAL_SLOT, "normal");
     }
     let normal = normal_info
         .as_ref()

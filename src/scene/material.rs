@@ -79,10 +79,20 @@ pub struct MaterialTextures {
     /// glTF's `normalTexture.scale`: multiplies the map's x and y.
     pub normal_scale: f32,
     /// Which texture slots read the mesh's second uv set (glTF `texCoord` 1): bit i for
-    /// slot i of [`Self::indices_mut`] (base colour, metallic-roughness, emission); the
-    /// others read the first. Normal maps always read the first: their tangents are its.
+    /// slot i of [`Self::indices_mut`] (base colour, metallic-roughness, emission, normal);
+    /// the others read the first. A normal map's tangents are of the set it reads.
     pub second_uv_set: u32,
 }
+
+/// One of the two sets of texture coordinates a mesh may carry.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UvSet {
+    First = 0,
+    Second = 1,
+}
+
+/// The normal map's slot in [`MaterialTextures::indices_mut`] and `second_uv_set`.
+pub const NORMAL_SLOT: usize = 3;
 
 impl Default for MaterialTextures {
     fn default() -> Self {
@@ -117,6 +127,11 @@ impl MaterialTextures {
     /// Whether texture slot `slot` (an index into [`Self::indices_mut`]) reads the second uv set.
     pub fn reads_second_uv_set(&self, slot: usize) -> bool {
         self.second_uv_set & (1 << slot) != 0
+    }
+
+    /// The uv set the normal map reads (slot 3), and so the tangents it is in.
+    pub fn normal_uv_set(&self) -> UvSet {
+        if self.reads_second_uv_set(NORMAL_SLOT) { UvSet::Second } else { UvSet::First }
     }
 
     /// Some texture reads the second uv set.

@@ -73,6 +73,37 @@ def scene_normal_cube(scene):
     refs.camera(scene, (0.0, -3.4, 1.6), (0.0, 0.0, -0.3), 45.0)
 
 
+def scene_normal_second_uv(scene):
+    """The cube of `scene_normal_cube` with a normal map of 3 × 2 bumps on a second uv map,
+    laid out unlike the first (each face's island turned a quarter and scaled): the
+    Normal Map node and the image (through a UV Map node) name it, so the tangent frame
+    is that map's, and the first map's frame would show other bumps."""
+    cycles.uniform_world(scene, (0.25, 0.25, 0.25))
+    refs.sun(scene, (math.radians(50), 0.0, math.radians(-25)))
+    m = normal_mapped("bumpy", bump_normals(128, 3, 2, 0.025), (0.7, 0.55, 0.4), 0.4)
+    tree = m.node_tree
+    node = next(n for n in tree.nodes if n.type == "NORMAL_MAP")
+    node.uv_map = "second"
+    uv_node = tree.nodes.new("ShaderNodeUVMap")
+    uv_node.uv_map = "second"
+    tex = next(n for n in tree.nodes if n.type == "TEX_IMAGE")
+    tree.links.new(uv_node.outputs["UV"], tex.inputs["Vector"])
+    cube = refs.add_object(scene, "cube", bpy.ops.mesh.primitive_cube_add, m, size=1.4, location=(0, 0, -0.3))
+    cube.rotation_euler = (0.0, 0.0, math.radians(35.0))
+    mesh = cube.data
+    first = mesh.uv_layers[0]
+    second = mesh.uv_layers.new(name="second")
+    uvs = np.empty(len(mesh.loops) * 2, np.float32)
+    first.uv.foreach_get("vector", uvs)
+    u, v = uvs[0::2].copy(), uvs[1::2].copy()
+    uvs[0::2], uvs[1::2] = 2.0 * (1.0 - v), 2.0 * u
+    second.uv.foreach_set("vector", uvs)
+    first.active_render = True
+    mesh.uv_layers.active = first
+    refs.floor(scene, (0.5, 0.5, 0.5), 8.0, -1.0)
+    refs.camera(scene, (0.0, -3.4, 1.6), (0.0, 0.0, -0.3), 45.0)
+
+
 def scene_alpha_blend(scene):
     """A quad whose base colour texture has alpha 0.25 and 0.75 in stripes, over a floor
     under a sun: Cycles mixes by alpha, for the camera and for the shadow alike."""
@@ -100,6 +131,7 @@ def scene_alpha_blend(scene):
 SCENES = {
     "normal_sphere": scene_normal_sphere,
     "normal_cube": scene_normal_cube,
+    "normal_second_uv": scene_normal_second_uv,
     "alpha_blend": scene_alpha_blend,
 }
 

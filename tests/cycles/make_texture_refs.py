@@ -2,7 +2,10 @@
 """Builds small textured scenes in bpy, renders them with Cycles and exports them with
 blender/rt_export.py, for `tests/cycles_textures.rs`:
 
-    /work/main/.venv-bpy/bin/python tests/cycles/make_texture_refs.py [--spp 1024] [NAME...]
+    /work/main/.venv-bpy/bin/python tests/cycles/make_texture_refs.py [--spp N] [NAME...]
+
+References are rendered at 4096 samples per pixel (`--spp` overrides it), the figure
+`tests/cycles_textures.rs` assumes.
 
 For each NAME it writes `tests/cycles/texture_NAME.exr` (Cycles, linear, 32-bit) and
 `tests/cycles/scenes/texture_NAME/` (the exported assets, their images and
@@ -223,6 +226,32 @@ def scene_uv_sets(scene):
     camera(scene, (0.0, -3.0, 1.2), (0.0, 0.0, 0.0), 40.0)
 
 
+def mapping(tree, scale, rotation_deg, location, source):
+    """A Mapping node (Point) fed by `source`'s output."""
+    node = tree.nodes.new("ShaderNodeMapping")
+    node.inputs["Scale"].default_value = (*scale, 1.0)
+    node.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(rotation_deg))
+    node.inputs["Location"].default_value = (*location, 0.0)
+    tree.links.new(source, node.inputs["Vector"])
+    return node
+
+
+def scene_uv_mappings(scene):
+    """The plane of `scene_uv_sets`, each texture behind its own Mapping node: the checker
+    on the second map scaled, turned and moved one way, the roughness stripes on the
+    default map another, so that each uv set carries its own transform."""
+    scene_uv_sets(scene)
+    tree = bpy.data.materials["two_maps"].node_tree
+    colour = next(n for n in tree.nodes if n.type == "TEX_IMAGE" and n.image.name == "checker")
+    rough = next(n for n in tree.nodes if n.type == "TEX_IMAGE" and n.image.name == "stripes")
+    uv_node = next(n for n in tree.nodes if n.type == "UVMAP")
+    a = mapping(tree, (1.5, 0.75), 30.0, (0.2, -0.1), uv_node.outputs["UV"])
+    tree.links.new(a.outputs["Vector"], colour.inputs["Vector"])
+    coords = tree.nodes.new("ShaderNodeTexCoord")
+    b = mapping(tree, (0.5, 2.0), -15.0, (0.1, 0.3), coords.outputs["UV"])
+    tree.links.new(b.outputs["Vector"], rough.inputs["Vector"])
+
+
 def scene_baked_noise(scene):
     """A Noise Texture (procedural, in the plane's generated coordinates) into Base Color
     of a sunlit plane: Cycles renders the procedural material, rt the exporter's bake of
@@ -236,6 +265,28 @@ def scene_baked_noise(scene):
     tree.links.new(noise.outputs["Color"], bsdf.inputs["Base Color"])
     add_object(scene, "plane", bpy.ops.mesh.primitive_plane_add, m, size=2.0, rotation=(math.radians(60), 0, 0))
     sun(scene, (math.radians(30.0), 0.0, math.radians(20.0)))
+    camera(scene, (0.0, -3.0, 1.2), (0.0, 0.0, 0.0), 40.0)
+
+
+def scene_baked_bump(scene):
+    """A Bump node fed by a Noise Texture into the Normal of a sunlit glossy plane: Cycles
+    renders the procedural bump, rt the exporter's bake of Cycles' NORMAL pass in tangent
+    space (`--bake`, BAKE_SIZES texels a side) read as a normal map."""
+    uniform_world(scene, (0.3, 0.3, 0.3))
+    m, tree, bsdf = principled("bumpy")
+    bsdf.inputs["Base Color"].default_value = (0.6, 0.6, 0.6, 1.0)
+    bsdf.inputs["Roughness"].default_value = 0.5
+    bsdf.inputs["Specular IOR Level"].default_value = 0.5
+    noise = tree.nodes.new("ShaderNodeTexNoise")
+    noise.inputs["Scale"].default_value = 3.0
+    noise.inputs["Detail"].default_value = 1.0
+    bump = tree.nodes.new("ShaderNodeBump")
+    bump.inputs["Strength"].default_value = 1.0
+    bump.inputs["Distance"].default_value = 0.2
+    tree.links.new(noise.outputs["Fac"], bump.inputs["Height"])
+    tree.links.new(bump.outputs["Normal"], bsdf.inputs["Normal"])
+    add_object(scene, "plane", bpy.ops.mesh.primitive_plane_add, m, size=2.0, rotation=(math.radians(60), 0, 0))
+    sun(scene, (math.radians(40.0), 0.0, math.radians(20.0)))
     camera(scene, (0.0, -3.0, 1.2), (0.0, 0.0, 0.0), 40.0)
 
 
@@ -257,14 +308,16 @@ SCENES = {
     "leaves": scene_leaves,
     "emissive": scene_emissive,
     "uv_sets": scene_uv_sets,
+    "uv_mappings": scene_uv_mappings,
     "baked_noise": scene_baked_noise,
+    "baked_bump": scene_baked_bump,
 }
 # Scenes exported with --bake, and the size of their baked images.
-BAKE_SIZES = {"baked_noise": 512}
+BAKE_SIZES = {"baked_noise": 512, "baked_bump": 512}
 
 
 def main():
-    args = cycles.arguments(__doc__, 1024, list(SCENES))
+    args = cycles.arguments(__doc__, 4096, list(SCENES))
     for name in args.names:
         scene = reset()
         SCENES[name](scene)

@@ -249,7 +249,7 @@ fn each_uv_set_takes_the_texture_transform_of_the_textures_that_read_it() {
         "extensions": { "KHR_texture_transform": { "offset": [0.5, 0.25] } } } },
         "emissiveTexture": { "index": 0, "texCoord": 1, "extensions": { "KHR_texture_transform": { "scale": [3, 3] } } },
         "emissiveFactor": [1, 1, 1], "normalTexture": { "index": 0, "texCoord": 1 } }"#;
-    write(&dir.join("q.gltf"), &quad_gltf_with_uv_sets(corners, material, "t.png", Some(second)));
+    write(&dir.join("q.gltf"), &textured_quad(corners, material, "t.png", Some(second)));
     let mesh = load_mesh(&dir.join("q.gltf")).expect("loads");
     let textures = &mesh.materials[0].1.textures;
     assert!(!textures.reads_second_uv_set(0) && textures.reads_second_uv_set(2), "{textures:?}");

@@ -14,6 +14,8 @@ const MEAN_BYTES: u64 = 16;
 const SAMPLE_BYTES: u64 = 16;
 /// Bytes per pixel of the AOVs' means (albedo and depth, normal and hit count).
 const AOV_BYTES: u64 = 32;
+/// Bytes of one sample's AOVs in the lanes' scratch (albedo and depth, normal).
+const LANE_AOV_BYTES: u64 = 32;
 /// The lanes' scratch at most: it holds pixels × samples per dispatch.
 const LANE_SCRATCH_BYTES: u64 = 64 << 20;
 /// Invocations that keep a large GPU busy (an H200 holds 132 × 2048 resident threads):
@@ -176,12 +178,13 @@ impl Accumulation {
     }
 
     /// Samples per pixel one dispatch with `lanes` lanes can take: as many as the lanes'
-    /// scratch holds.
-    pub fn max_samples(&self, lanes: u32) -> u32 {
+    /// scratch holds (with `aovs`, each sample's AOVs wait there beside its radiance).
+    pub fn max_samples(&self, lanes: u32, aovs: bool) -> u32 {
         if lanes <= 1 {
             return MAX_SAMPLES_PER_DISPATCH;
         }
-        let per_sample = self.width as u64 * self.height as u64 * SAMPLE_BYTES;
+        let bytes = if aovs { SAMPLE_BYTES + LANE_AOV_BYTES } else { SAMPLE_BYTES };
+        let per_sample = self.width as u64 * self.height as u64 * bytes;
         (self.lane_samples.size() / per_sample).min(MAX_SAMPLES_PER_DISPATCH as u64) as u32
     }
 

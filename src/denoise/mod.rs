@@ -7,6 +7,8 @@
 //! library cannot make a device, asking to denoise is an error that says how to get it.
 
 #[cfg(feature = "denoise")]
+mod oidn_api;
+#[cfg(feature = "denoise")]
 mod oidn_filter;
 
 use crate::render::{Aovs, Image};
@@ -49,7 +51,9 @@ pub fn physical_devices() -> Result<Vec<PhysicalDevice>> {
     }
 }
 
-/// An Open Image Denoise device, made once and reused for every image.
+/// An Open Image Denoise device, made once and reused for every image, with the filters
+/// of the last image size: kept while the size stays (so that re-denoising a refining
+/// image costs only the denoise), made again when it changes.
 pub struct Denoiser {
     #[cfg(feature = "denoise")]
     inner: oidn_filter::OidnDenoiser,
@@ -95,8 +99,26 @@ impl Denoiser {
         }
     }
 
+    /// How many times filters were made: once per image size denoised in a row.
+    pub fn filter_builds(&self) -> u32 {
+        #[cfg(feature = "denoise")]
+        {
+            self.inner.filter_builds()
+        }
+        #[cfg(not(feature = "denoise"))]
+        {
+            unreachable!("a Denoiser cannot be made without Open Image Denoise")
+        }
+    }
+
+    /// Frees the kept filters and their buffers: the next denoise makes them again.
+    pub fn release_filters(&mut self) {
+        #[cfg(feature = "denoise")]
+        self.inner.release_filters();
+    }
+
     /// The denoised radiance of `image`, guided by `aovs` (of the same render).
-    pub fn denoise(&self, image: &Image, aovs: &Aovs) -> Result<Vec<[f32; 3]>> {
+    pub fn denoise(&mut self, image: &Image, aovs: &Aovs) -> Result<Vec<[f32; 3]>> {
         if (image.width, image.height) != (aovs.width, aovs.height) || image.pixels.len() != aovs.albedo.len() {
             bail!(
                 "the AOVs ({}x{}) are not of the image ({}x{}) being denoised",

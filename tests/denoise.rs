@@ -1,6 +1,6 @@
 //! Denoising with Open Image Denoise: a 16-sample image denoised is closer to the
 //! converged one than the raw image at four times the samples, and a missing library
-//! is a clear message, not a crash.
+//! is a clear message, not a crash (nor a loader's error before rt starts).
 
 use crate::common;
 
@@ -70,7 +70,8 @@ fn sixteen_samples_denoised_beat_four_times_the_samples_raw() {
 }
 
 /// Open Image Denoise loads its devices from beside its library: with the library found
-/// but no device beside it, `--denoise` must say what is missing, before rendering.
+/// (in `$OIDN_DIR/lib`) but no device beside it, `--denoise` must say what is missing,
+/// before rendering.
 #[cfg(feature = "denoise")]
 #[test]
 fn missing_device_libraries_are_a_clear_message() {
@@ -84,7 +85,7 @@ fn missing_device_libraries_are_a_clear_message() {
     let out = Command::new(env!("CARGO_BIN_EXE_rt"))
         .args(["render", "--size", "8x8", "--spp", "1", "--denoise", "-o"])
         .arg(lib.join("x.png"))
-        .env("LD_LIBRARY_PATH", &lib)
+        .env("OIDN_DIR", lib.parent().expect("the lib folder's parent"))
         .output()
         .expect("run rt");
     let stderr = String::from_utf8_lossy(&out.stderr);
@@ -263,4 +264,35 @@ fn filters_are_kept_between_denoises_of_one_size() {
     let (image, aovs) = noisy_frame(24, 40, 6);
     kept.denoise(&image, &aovs).unwrap_or_else(|e| panic!("{e:#}"));
     assert_eq!(kept.filter_builds(), 3, "released filters are made again");
+}
+
+/// rt loads Open Image Denoise when it denoises, not when it starts: with the library gone
+/// (`OIDN_DIR` at a folder without it, nothing on the loader's path), a plain render still
+/// works and `--denoise` is an error naming the library, where it looked and how to get it.
+#[cfg(feature = "denoise")]
+#[test]
+fn a_missing_library_stops_only_denoising_and_says_how_to_get_it() {
+    let dir = temp_dir("oidn-gone");
+    let run = |args: &[&str], output: &str| {
+        let out = Command::new(env!("CARGO_BIN_EXE_rt"))
+            .args(args)
+            .arg(dir.join(output))
+            .env("OIDN_DIR", &dir)
+            .env_remove("LD_LIBRARY_PATH")
+            .output()
+            .expect("run rt");
+        (out.status.code(), String::from_utf8_lossy(&out.stderr).into_owned(), dir.join(output).exists())
+    };
+    let (code, stderr, written) = run(&["render", "--size", "8x8", "--spp", "1", "-o"], "plain.png");
+    assert!(!stderr.contains("error while loading shared libraries"), "{stderr}");
+    assert_eq!(code, Some(0), "a render without --denoise needs no denoiser: {stderr}");
+    assert!(written, "{stderr}");
+    let (code, stderr, written) = run(&["render", "--size", "8x8", "--spp", "1", "--denoise", "-o"], "denoised.png");
+    assert_eq!(code, Some(1), "{stderr}");
+    let missing = dir.join("lib").join("libOpenImageDenoise.so.2");
+    for part in ["Open Image Denoise is missing", &missing.display().to_string(), "scripts/fetch_oidn", "OIDN_DIR"] {
+        assert!(stderr.contains(part), "no {part:?} in: {stderr}");
+    }
+    assert!(!written && !stderr.contains("panicked") && !stderr.contains("GPU:"), "before rendering: {stderr}");
+    let _ = std::fs::remove_dir_all(dir);
 }

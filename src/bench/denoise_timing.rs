@@ -133,8 +133,12 @@ fn time_device(kind: DenoiseDevice, image: &Image, aovs: &Aovs, runs: u32) -> Re
         Ok(took)
     };
     let first = run(false)?;
-    let times = (0..runs).map(|_| run(false)).collect::<Result<Vec<_>>>()?;
-    let rebuilt = (0..runs).map(|_| run(true)).collect::<Result<Vec<_>>>()?;
+    // Interleaved, so that a machine whose load changes weighs on both alike.
+    let (mut times, mut rebuilt) = (Vec::new(), Vec::new());
+    for _ in 0..runs {
+        times.push(run(false)?);
+        rebuilt.push(run(true)?);
+    }
     let min = times.iter().min().copied().unwrap_or(first);
     let device = denoiser.describe();
     Ok(DeviceTiming { device, first, median: median(times), min, rebuilt_median: median(rebuilt) })

@@ -2,9 +2,10 @@
 //! and normal AOVs (each prefiltered first, so the guides are clean), on the device
 //! asked for: `auto` takes a CUDA GPU where Open Image Denoise has one, else the CPU.
 //!
-//! Open Image Denoise is a shared library that rt links when built with the `denoise`
-//! feature (`scripts/fetch_oidn` installs it, see README); without it, or when the
-//! library cannot make a device, asking to denoise is an error that says how to get it.
+//! Open Image Denoise is a shared library that rt loads at run time when built with the
+//! `denoise` feature (`scripts/fetch_oidn` installs it, see README); without the feature,
+//! without the library, or when it cannot make a device, asking to denoise is an error
+//! that says how to get it, and everything else works.
 
 #[cfg(feature = "denoise")]
 mod oidn_api;
@@ -43,7 +44,7 @@ pub struct PhysicalDevice {
 pub fn physical_devices() -> Result<Vec<PhysicalDevice>> {
     #[cfg(feature = "denoise")]
     {
-        Ok(oidn_filter::physical_devices())
+        oidn_filter::physical_devices()
     }
     #[cfg(not(feature = "denoise"))]
     {

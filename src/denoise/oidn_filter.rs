@@ -2,7 +2,8 @@
 //! the three `RT` filters (the albedo and the normals prefiltered, then the beauty) with
 //! their buffers, committed once. Committing is what costs (weights loaded, memory
 //! planned): while the size stays, a later denoise of the same device, as `rt watch`
-//! makes of a refining image, only copies pixels in, executes and copies them out.
+//! makes of a refining image, only copies pixels in, executes and copies them out. The
+//! functions come from the library loaded at run time ([`super::oidn_api`]).
 
 use super::oidn_api::*;
 use super::{DenoiseDevice, PhysicalDevice};
@@ -11,26 +12,25 @@ use anyhow::{Result, anyhow, bail};
 use std::ffi::{CStr, c_char};
 
 /// What Open Image Denoise says a device type is.
-#[allow(non_upper_case_globals)]
 fn kind_name(kind: std::os::raw::c_int) -> &'static str {
-    match kind as OIDNDeviceType {
-        OIDNDeviceType_OIDN_DEVICE_TYPE_CPU => "CPU",
-        OIDNDeviceType_OIDN_DEVICE_TYPE_SYCL => "SYCL",
-        OIDNDeviceType_OIDN_DEVICE_TYPE_CUDA => "CUDA",
-        OIDNDeviceType_OIDN_DEVICE_TYPE_HIP => "HIP",
-        OIDNDeviceType_OIDN_DEVICE_TYPE_METAL => "Metal",
+    match kind {
+        OIDN_DEVICE_TYPE_CPU => "CPU",
+        OIDN_DEVICE_TYPE_SYCL => "SYCL",
+        OIDN_DEVICE_TYPE_CUDA => "CUDA",
+        OIDN_DEVICE_TYPE_HIP => "HIP",
+        OIDN_DEVICE_TYPE_METAL => "Metal",
         _ => "unknown",
     }
 }
 
 /// The error Open Image Denoise last recorded on `device` (the null device: errors of
 /// calls that had none), cleared as it is read.
-fn take_error(device: OIDNDevice) -> Result<(), String> {
+fn take_error(api: &Api, device: OIDNDevice) -> Result<(), String> {
     let mut message: *const c_char = std::ptr::null();
     // SAFETY: `device` is live or null (the null device is valid here); the message is
     // a C string Open Image Denoise owns until its next call, copied at once.
-    let code = unsafe { oidnGetDeviceError(device, &mut message) };
-    if code == OIDNError_OIDN_ERROR_NONE {
+    let code = unsafe { (api.oidnGetDeviceError)(device, &mut message) };
+    if code == OIDN_ERROR_NONE {
         return Ok(());
     }
     let text = match message.is_null() {
@@ -41,16 +41,18 @@ fn take_error(device: OIDNDevice) -> Result<(), String> {
     Err(if text.is_empty() { format!("error {code}") } else { text })
 }
 
-/// The devices Open Image Denoise found, fastest first (its own order).
-pub fn physical_devices() -> Vec<PhysicalDevice> {
+/// The devices Open Image Denoise found, fastest first (its own order); an error saying
+/// how to get the library when it cannot be loaded.
+pub fn physical_devices() -> Result<Vec<PhysicalDevice>> {
+    let api = api().map_err(anyhow::Error::msg)?;
     // SAFETY: these calls take no handles; the name is a C string Open Image Denoise
     // owns, copied at once.
     let devices = unsafe {
-        let count = oidnGetNumPhysicalDevices().max(0);
+        let count = (api.oidnGetNumPhysicalDevices)().max(0);
         (0..count)
             .map(|i| {
-                let kind = kind_name(oidnGetPhysicalDeviceInt(i, c"type".as_ptr()));
-                let name = oidnGetPhysicalDeviceString(i, c"name".as_ptr());
+                let kind = kind_name((api.oidnGetPhysicalDeviceInt)(i, c"type".as_ptr()));
+                let name = (api.oidnGetPhysicalDeviceString)(i, c"name".as_ptr());
                 let name = match name.is_null() {
                     true => String::new(),
                     false => CStr::from_ptr(name).to_string_lossy().trim().to_string(),
@@ -60,36 +62,39 @@ pub fn physical_devices() -> Vec<PhysicalDevice> {
             .collect()
     };
     // Errors (none is expected) land on the null device: cleared, so no later call reports them.
-    let _ = take_error(std::ptr::null_mut());
-    devices
+    let _ = take_error(api, std::ptr::null_mut());
+    Ok(devices)
 }
 
 /// A committed Open Image Denoise device, released when dropped.
-struct Device(OIDNDevice);
+struct Device {
+    raw: OIDNDevice,
+    api: &'static Api,
+}
 
 impl Device {
-    fn new(kind: OIDNDeviceType) -> Result<Self, String> {
+    fn new(api: &'static Api, kind: OIDNDeviceType) -> Result<Self, String> {
         // SAFETY: no handles in; the new device is committed before any use.
-        let raw = unsafe { oidnNewDevice(kind) };
+        let raw = unsafe { (api.oidnNewDevice)(kind) };
         if raw.is_null() {
-            return Err(take_error(std::ptr::null_mut()).err().unwrap_or_else(|| "no device".into()));
+            return Err(take_error(api, std::ptr::null_mut()).err().unwrap_or_else(|| "no device".into()));
         }
-        let device = Self(raw);
+        let device = Self { raw, api };
         // SAFETY: `raw` is the live device just made.
-        unsafe { oidnCommitDevice(raw) };
-        take_error(raw)?;
+        unsafe { (api.oidnCommitDevice)(raw) };
+        take_error(api, raw)?;
         Ok(device)
     }
 
     fn check(&self) -> Result<(), String> {
-        take_error(self.0)
+        take_error(self.api, self.raw)
     }
 }
 
 impl Drop for Device {
     fn drop(&mut self) {
         // SAFETY: the device is live and released once; its filters and buffers went first.
-        unsafe { oidnReleaseDevice(self.0) }
+        unsafe { (self.api.oidnReleaseDevice)(self.raw) }
     }
 }
 
@@ -97,21 +102,25 @@ impl Drop for Device {
 struct Buffer {
     raw: OIDNBuffer,
     bytes: usize,
+    api: &'static Api,
 }
 
 impl Drop for Buffer {
     fn drop(&mut self) {
         // SAFETY: live, released once.
-        unsafe { oidnReleaseBuffer(self.raw) }
+        unsafe { (self.api.oidnReleaseBuffer)(self.raw) }
     }
 }
 
-struct Filter(OIDNFilter);
+struct Filter {
+    raw: OIDNFilter,
+    api: &'static Api,
+}
 
 impl Drop for Filter {
     fn drop(&mut self) {
         // SAFETY: live, released once.
-        unsafe { oidnReleaseFilter(self.0) }
+        unsafe { (self.api.oidnReleaseFilter)(self.raw) }
     }
 }
 
@@ -124,42 +133,42 @@ struct Filters {
     color: Buffer,
     albedo: Buffer,
     normal: Buffer,
-    clean_albedo: Buffer,
-    clean_normal: Buffer,
+    /// The prefiltered albedo and normals: only the filters write and read them.
+    _clean_guides: [Buffer; 2],
     output: Buffer,
     size: (usize, usize),
 }
 
 impl Filters {
     fn new(device: &Device, (w, h): (usize, usize)) -> Result<Self, String> {
-        let bytes = w * h * 3 * std::mem::size_of::<f32>();
+        let (api, bytes) = (device.api, w * h * 3 * std::mem::size_of::<f32>());
         let buffer = || -> Result<Buffer, String> {
             // SAFETY: the device is live.
-            let raw = unsafe { oidnNewBuffer(device.0, bytes) };
+            let raw = unsafe { (api.oidnNewBuffer)(device.raw, bytes) };
             if raw.is_null() {
                 return Err(device.check().err().unwrap_or_else(|| format!("no buffer of {bytes} bytes")));
             }
-            Ok(Buffer { raw, bytes })
+            Ok(Buffer { raw, bytes, api })
         };
         let (color, albedo, normal) = (buffer()?, buffer()?, buffer()?);
         let (clean_albedo, clean_normal, output) = (buffer()?, buffer()?, buffer()?);
         let filter = |images: &[(&CStr, &Buffer)], hdr: bool| -> Result<Filter, String> {
             // SAFETY: the device and buffers are live; each buffer holds w·h float3 pixels.
             unsafe {
-                let raw = oidnNewFilter(device.0, c"RT".as_ptr());
+                let raw = (api.oidnNewFilter)(device.raw, c"RT".as_ptr());
                 if raw.is_null() {
                     return Err(device.check().err().unwrap_or_else(|| "no RT filter".into()));
                 }
-                let filter = Filter(raw);
+                let filter = Filter { raw, api };
                 for (name, buffer) in images {
-                    oidnSetFilterImage(raw, name.as_ptr(), buffer.raw, OIDNFormat_OIDN_FORMAT_FLOAT3, w, h, 0, 0, 0);
+                    (api.oidnSetFilterImage)(raw, name.as_ptr(), buffer.raw, OIDN_FORMAT_FLOAT3, w, h, 0, 0, 0);
                 }
                 if hdr {
-                    oidnSetFilterBool(raw, c"hdr".as_ptr(), true);
+                    (api.oidnSetFilterBool)(raw, c"hdr".as_ptr(), true);
                     // The guides were denoised first: trusted as clean, their noise stays out of the image.
-                    oidnSetFilterBool(raw, c"cleanAux".as_ptr(), true);
+                    (api.oidnSetFilterBool)(raw, c"cleanAux".as_ptr(), true);
                 }
-                oidnCommitFilter(raw);
+                (api.oidnCommitFilter)(raw);
                 device.check()?;
                 Ok(filter)
             }
@@ -178,18 +187,18 @@ impl Filters {
             color,
             albedo,
             normal,
-            clean_albedo,
-            clean_normal,
+            _clean_guides: [clean_albedo, clean_normal],
             output,
             size: (w, h),
         })
     }
 
     fn run(&self, device: &Device, color: &[f32], albedo: &[f32], normal: &[f32]) -> Result<Vec<f32>, String> {
+        let api = device.api;
         let write = |buffer: &Buffer, data: &[f32]| {
             debug_assert_eq!(std::mem::size_of_val(data), buffer.bytes);
             // SAFETY: `data` holds exactly the buffer's bytes (both are w·h float3 pixels).
-            unsafe { oidnWriteBuffer(buffer.raw, 0, buffer.bytes, data.as_ptr().cast()) }
+            unsafe { (api.oidnWriteBuffer)(buffer.raw, 0, buffer.bytes, data.as_ptr().cast()) }
         };
         write(&self.color, color);
         write(&self.albedo, albedo);
@@ -197,10 +206,10 @@ impl Filters {
         // SAFETY: the filters are committed on the live device; the output fits the vector.
         let mut out = vec![0.0f32; color.len()];
         unsafe {
-            oidnExecuteFilter(self.albedo_filter.0);
-            oidnExecuteFilter(self.normal_filter.0);
-            oidnExecuteFilter(self.beauty_filter.0);
-            oidnReadBuffer(self.output.raw, 0, self.output.bytes, out.as_mut_ptr().cast());
+            (api.oidnExecuteFilter)(self.albedo_filter.raw);
+            (api.oidnExecuteFilter)(self.normal_filter.raw);
+            (api.oidnExecuteFilter)(self.beauty_filter.raw);
+            (api.oidnReadBuffer)(self.output.raw, 0, self.output.bytes, out.as_mut_ptr().cast());
         }
         device.check()?;
         Ok(out)
@@ -233,10 +242,11 @@ fn no_device(e: impl std::fmt::Display) -> anyhow::Error {
 
 impl OidnDenoiser {
     pub fn new(choice: DenoiseDevice) -> Result<Self> {
-        let found = physical_devices();
+        let found = physical_devices()?;
+        let api = api().map_err(anyhow::Error::msg)?;
         let first = |kind: &str| found.iter().find(|d| d.kind == kind).cloned();
         let cpu = || -> Result<(Device, PhysicalDevice)> {
-            let device = Device::new(OIDNDeviceType_OIDN_DEVICE_TYPE_CPU).map_err(no_device)?;
+            let device = Device::new(api, OIDN_DEVICE_TYPE_CPU).map_err(no_device)?;
             let physical = first("CPU").unwrap_or(PhysicalDevice { kind: "CPU", name: String::new() });
             Ok((device, physical))
         };
@@ -251,7 +261,7 @@ impl OidnDenoiser {
                     if seen.is_empty() { "none".to_string() } else { seen.join(", ") }
                 )
             };
-            let device = Device::new(OIDNDeviceType_OIDN_DEVICE_TYPE_CUDA)
+            let device = Device::new(api, OIDN_DEVICE_TYPE_CUDA)
                 .map_err(|e| anyhow!("Open Image Denoise could not open its CUDA device {}: {e}", physical.name))?;
             Ok((device, physical))
         };

@@ -1,13 +1,13 @@
-//! With the `denoise` feature, rt links Open Image Denoise from `$OIDN_DIR/lib`: the
-//! binaries then look for it there at run time too, so that no LD_LIBRARY_PATH is needed.
+//! With the `denoise` feature, rt loads Open Image Denoise at run time; the `OIDN_DIR` it
+//! is built with is where it looks when none is set then (src/denoise/oidn_api.rs), so
+//! that a build made with scripts/fetch_oidn's library runs with no setting.
 
 fn main() {
     println!("cargo:rerun-if-env-changed=OIDN_DIR");
     if std::env::var_os("CARGO_FEATURE_DENOISE").is_none() {
         return;
     }
-    if let Some(dir) = std::env::var_os("OIDN_DIR").filter(|d| !d.is_empty()) {
-        let lib = std::path::Path::new(&dir).join("lib");
-        println!("cargo:rustc-link-arg=-Wl,-rpath,{}", lib.display());
+    if let Some(dir) = std::env::var("OIDN_DIR").ok().filter(|d| !d.is_empty()) {
+        println!("cargo:rustc-env=RT_OIDN_BUILD_DIR={dir}");
     }
 }

@@ -70,3 +70,25 @@ fn aov_add(m: ptr<function, AovMeans>, sample_index: u32) {
     }
     *m = AovMeans(vec4f(albedo, depth), vec4f(normal, hits));
 }
+
+// Under lanes (`render_lanes`), a finished sample's AOVs wait in the lanes' scratch for
+// `reduce_lanes`, two vec4 per sample after the dispatch's radiance samples: (albedo,
+// depth), (normal, unused). Stored and reloaded as they are, so that the means are the
+// same bit for bit as when `render` adds them at once.
+fn aov_lane_index(slot: u32) -> u32 {
+    return frame.samples_per_dispatch * frame.width * frame.height + 2u * slot;
+}
+
+fn aov_lane_store(slot: u32) {
+    let at = aov_lane_index(slot);
+    lane_samples[at] = vec4f(aov.albedo, aov.depth);
+    lane_samples[at + 1u] = vec4f(aov.normal, 0.0);
+}
+
+// Makes the sample in `slot` the one `aov_add` adds.
+fn aov_lane_load(slot: u32) {
+    let at = aov_lane_index(slot);
+    let a = lane_samples[at];
+    let b = lane_samples[at + 1u];
+    aov = AovSample(a.xyz, b.xyz, a.w, false, vec3f(1.0));
+}

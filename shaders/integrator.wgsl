@@ -154,12 +154,16 @@ var<private> pixel_aovs: AovMeans;
 //#endif
 
 // A finished sample `sample_base + k` of radiance `radiance`: into the pixel's running
-// mean, or, for `render_lanes`, into slot k of `lane_samples`.
+// mean, or, for `render_lanes`, into slot k of `lane_samples` (its AOVs too, after the
+// dispatch's radiance samples).
 fn sample_done(pixel_index: u32, sample_base: u32, k: u32, radiance: vec3f, lanes: bool) {
     let sample_index = sample_base + k;
     if lanes {
         let slot = k * frame.width * frame.height + pixel_index;
         lane_samples[slot] = vec4f(radiance, bitcast<f32>(first_bad_event));
+        //#if aovs
+        aov_lane_store(slot);
+        //#endif
         return;
     }
     // (WGSL passes function-space pointers only.)
@@ -461,8 +465,8 @@ fn render(@builtin(global_invocation_id) id: vec3u) {
 // Small images leave most of a GPU idle with one invocation per pixel: there, each
 // pixel's samples are spread over the dispatch's z lanes, written to `lane_samples`
 // (radiance, and the event of a non-finite one in w) and added up in sample order by
-// `reduce_lanes`, so that the image is the same bit for bit as `render`'s. Under
-// adaptive sampling too: both skip stopped pixels and number samples by the pixel's
+// `reduce_lanes`, so that the image is the same bit for bit as `render`'s; so are the
+// AOVs, whose samples wait beside the radiance's. Under adaptive sampling too: both skip stopped pixels and number samples by the pixel's
 // own count, which `reduce_lanes` advances.
 @compute @workgroup_size(8, 8)
 fn render_lanes(@builtin(global_invocation_id) id: vec3u, @builtin(num_workgroups) groups: vec3u) {
@@ -498,12 +502,24 @@ fn reduce_lanes(@builtin(global_invocation_id) id: vec3u) {
     //#endif
     var acc = accumulation[pixel_index];
     var bad = non_finite[pixel_index];
+    //#if aovs
+    var aovs = aov_load(pixel_index);
+    //#endif
     for (var s = 0u; s < frame.samples_per_dispatch; s++) {
-        let sample = lane_samples[s * pixels + pixel_index];
+        let slot = s * pixels + pixel_index;
+        let sample = lane_samples[slot];
         accumulate(&acc, &bad, sample.xyz, bitcast<u32>(sample.w), sample_base + s);
+        //#if aovs
+        // The AOVs in the same order and by the same sums as `render` adds them.
+        aov_lane_load(slot);
+        aov_add(&aovs, sample_base + s);
+        //#endif
     }
     accumulation[pixel_index] = acc;
     non_finite[pixel_index] = bad;
+    //#if aovs
+    aov_store(pixel_index, aovs);
+    //#endif
     //#if adaptive
     pixel_samples[2u * pixel_index] = sample_base + frame.samples_per_dispatch;
     //#endif

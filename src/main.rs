@@ -352,7 +352,7 @@ struct AccuracyArgs {
     scene: Option<PathBuf>,
     /// Knob to sweep (repeatable) [default: all]: spp, max-bounces, sampling,
     /// light-sampler, ris-candidates, rough-glass, bvh-quality, samples-per-dispatch,
-    /// denoise, adaptive.
+    /// denoise, adaptive, clean-image.
     #[arg(long = "knob")]
     knobs: Vec<String>,
     /// Folder of the report [default: out/bench/SCENE].
@@ -439,7 +439,7 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
         bail!("--aovs: AOVs are written as one multi-layer OpenEXR; give -o an .exr path");
     }
     // Before any rendering: a missing denoiser is known at once.
-    let denoiser = match args.denoise {
+    let mut denoiser = match args.denoise {
         true => Some(Denoiser::new(args.denoise_device).context("--denoise")?),
         false => None,
     };
@@ -459,7 +459,7 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
     }
     let (image, report) = session.render(&request, None)?;
     let aovs = if request.aovs { Some(session.aovs()?) } else { None };
-    let denoised = match (&denoiser, &aovs) {
+    let denoised = match (&mut denoiser, &aovs) {
         (Some(denoiser), Some(aovs)) => {
             let start = std::time::Instant::now();
             let clean = denoiser.denoise(&image, aovs)?;

@@ -177,3 +177,63 @@ fn report_files_are_written_and_parse() {
     assert!(select(&[1, 2, 4], &["nope".into()]).is_err_and(|e| e.contains("samples-per-dispatch")));
     let _ = std::fs::remove_dir_all(out);
 }
+
+/// The `clean-image` knob is one setting per way to a clean image, each applying what
+/// its label says (and nothing of the others).
+#[test]
+fn clean_image_knob_sets_adaptive_and_denoise_together() {
+    let knobs = select(&[1, 2, 4], &["clean-image".to_string()]).expect("the clean-image knob");
+    assert_eq!(knobs.len(), 1);
+    let labels: Vec<&str> = knobs[0].settings.iter().map(|s| s.label.as_str()).collect();
+    assert_eq!(labels, ["raw", "adaptive", "denoised", "adaptive+denoised"]);
+    let scene = rt::scene::default_scene().unwrap_or_else(|e| panic!("{e}"));
+    let base = rt::bench::knobs::Trial::baseline(&scene, (32, 32));
+    let applied: Vec<(bool, bool, bool)> = knobs[0]
+        .settings
+        .iter()
+        .map(|s| {
+            let t = s.trial(&base);
+            (t.request.noise_threshold > 0.0, t.denoise, t.request.aovs)
+        })
+        .collect();
+    assert_eq!(applied, [(false, false, false), (true, false, false), (false, true, true), (true, true, true)]);
+    assert!(knobs[0].settings[0].trial(&base).same_as(&base), "raw is the scene's own settings (measured once)");
+}
+
+/// With a denoiser, the `clean-image` section has a row per setting with its time to the
+/// RMSE target and to SSIM 0.99, each a time, `~` a time, or ∞.
+#[cfg(feature = "denoise")]
+#[test]
+fn clean_image_report_prices_each_way_to_both_targets() {
+    let out = temp_dir("clean-image");
+    let scene = rt::scene::default_scene().unwrap_or_else(|e| panic!("{e}"));
+    let options = common::small_accuracy_options(&["clean-image"], out.clone());
+    let summary = rt::bench::accuracy(gpu(), &scene, &options).unwrap_or_else(|e| panic!("{e:#}"));
+    let report = std::fs::read_to_string(&summary.report).expect("report.md");
+    let section: Vec<&str> = report.lines().skip_while(|l| *l != "## clean-image").collect();
+    assert!(!section.is_empty() && !report.contains("cannot denoise"), "no clean-image section:\n{report}");
+    let header = section.iter().find(|l| l.starts_with("| setting |")).unwrap_or_else(|| panic!("{report}"));
+    let columns: Vec<&str> = header.split('|').map(str::trim).collect();
+    let to_rmse = columns.iter().position(|c| *c == "time to 1.00 %").unwrap_or_else(|| panic!("{header}"));
+    let to_ssim = columns.iter().position(|c| *c == "time to SSIM 0.99").unwrap_or_else(|| panic!("{header}"));
+    let rows: Vec<Vec<&str>> = section
+        .iter()
+        .skip_while(|l| !l.starts_with("|---"))
+        .skip(1)
+        .take_while(|l| l.starts_with('|'))
+        .map(|l| l.split('|').map(str::trim).collect())
+        .collect();
+    let labels: Vec<&str> = rows.iter().map(|r| r[1]).collect();
+    assert_eq!(labels, ["raw", "adaptive", "denoised", "adaptive+denoised"], "{report}");
+    let is_time = |cell: &str| {
+        let t = cell.trim_start_matches('~');
+        cell == "∞" || t.split(' ').next().is_some_and(|v| v.parse::<f64>().is_ok_and(|v| v > 0.0))
+    };
+    for row in &rows {
+        assert_eq!(row.len(), columns.len(), "{row:?}");
+        assert!(is_time(row[to_rmse]) && is_time(row[to_ssim]), "{row:?}");
+    }
+    let settings = csv_rows(&out.join("settings.csv"), SETTING_COLUMNS);
+    assert_eq!(settings.len(), 4, "a row per setting of the one knob");
+    let _ = std::fs::remove_dir_all(out);
+}

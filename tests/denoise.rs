@@ -1,6 +1,6 @@
 //! Denoising with Open Image Denoise: a 16-sample image denoised is closer to the
 //! converged one than the raw image at four times the samples, and a missing library
-//! is a clear message, not a crash.
+//! is a clear message, not a crash (nor a loader's error before rt starts).
 
 use crate::common;
 
@@ -29,7 +29,7 @@ fn sixteen_samples_denoised_beat_four_times_the_samples_raw() {
     use common::{gpu, repo};
     use rt::bvh::BuildQuality;
     use rt::render::{Image, RenderRequest, Session};
-    let denoiser = rt::denoise::Denoiser::new(rt::denoise::DenoiseDevice::Auto).unwrap_or_else(|e| panic!("{e:#}"));
+    let mut denoiser = rt::denoise::Denoiser::new(rt::denoise::DenoiseDevice::Auto).unwrap_or_else(|e| panic!("{e:#}"));
     for name in ["cornell_box", "cornell_glass", "lamps"] {
         let scene = rt::scene::load(&repo().join(format!("scenes/{name}.toml"))).unwrap_or_else(|e| panic!("{e}"));
         let mut session = Session::open(gpu(), scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
@@ -70,7 +70,8 @@ fn sixteen_samples_denoised_beat_four_times_the_samples_raw() {
 }
 
 /// Open Image Denoise loads its devices from beside its library: with the library found
-/// but no device beside it, `--denoise` must say what is missing, before rendering.
+/// (in `$OIDN_DIR/lib`) but no device beside it, `--denoise` must say what is missing,
+/// before rendering.
 #[cfg(feature = "denoise")]
 #[test]
 fn missing_device_libraries_are_a_clear_message() {
@@ -84,7 +85,7 @@ fn missing_device_libraries_are_a_clear_message() {
     let out = Command::new(env!("CARGO_BIN_EXE_rt"))
         .args(["render", "--size", "8x8", "--spp", "1", "--denoise", "-o"])
         .arg(lib.join("x.png"))
-        .env("LD_LIBRARY_PATH", &lib)
+        .env("OIDN_DIR", lib.parent().expect("the lib folder's parent"))
         .output()
         .expect("run rt");
     let stderr = String::from_utf8_lossy(&out.stderr);
@@ -193,4 +194,105 @@ fn bench_accuracy_has_denoise_and_adaptive_knobs() {
     }
     assert!(!report.contains("cannot denoise"), "the denoise knob was skipped:\n{report}");
     let _ = std::fs::remove_dir_all(out);
+}
+
+/// A noisy gradient and its guides (a flat albedo, normals facing the camera), made on
+/// the CPU: `seed` changes the noise.
+#[cfg(feature = "denoise")]
+fn noisy_frame(width: u32, height: u32, seed: u32) -> (rt::render::Image, rt::render::Aovs) {
+    let pixels = (width * height) as usize;
+    let mut state = seed.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+    let mut noise = move || {
+        state = state.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+        (state >> 8) as f32 / (1u32 << 24) as f32
+    };
+    let pixels_rgb: Vec<[f32; 3]> = (0..pixels)
+        .map(|i| {
+            let x = (i as u32 % width) as f32 / width as f32;
+            [0, 1, 2].map(|c| (0.2 + 0.6 * x + 0.1 * c as f32) * 2.0 * noise())
+        })
+        .collect();
+    let image = rt::render::Image {
+        width,
+        height,
+        samples: 4,
+        pixels: pixels_rgb,
+        std_error: vec![0.1; pixels],
+        sample_counts: vec![4; pixels],
+    };
+    let aovs = rt::render::Aovs {
+        width,
+        height,
+        albedo: vec![[0.8, 0.7, 0.6]; pixels],
+        normal: vec![[0.0, 0.0, 1.0]; pixels],
+        depth: vec![1.0; pixels],
+    };
+    (image, aovs)
+}
+
+/// The filters are kept while the size stays and made again when it changes; a kept
+/// filter denoises each new image as a fresh denoiser does (no pixel of an earlier image
+/// stays behind in its buffers).
+#[cfg(feature = "denoise")]
+#[test]
+fn filters_are_kept_between_denoises_of_one_size() {
+    use rt::denoise::{DenoiseDevice, Denoiser};
+    let mut kept = Denoiser::new(DenoiseDevice::Cpu).unwrap_or_else(|e| panic!("{e:#}"));
+    let fresh = |image: &rt::render::Image, aovs: &rt::render::Aovs| {
+        let mut denoiser = Denoiser::new(DenoiseDevice::Cpu).unwrap_or_else(|e| panic!("{e:#}"));
+        denoiser.denoise(image, aovs).unwrap_or_else(|e| panic!("{e:#}"))
+    };
+    let mut previous: Option<Vec<[f32; 3]>> = None;
+    for (i, (w, h, seed)) in [(40, 24, 1), (40, 24, 2), (40, 24, 3), (24, 40, 4), (24, 40, 5)].into_iter().enumerate() {
+        let (image, aovs) = noisy_frame(w, h, seed);
+        let got = kept.denoise(&image, &aovs).unwrap_or_else(|e| panic!("{e:#}"));
+        let expected = fresh(&image, &aovs);
+        let worst =
+            got.iter().zip(&expected).flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs())).fold(0.0, f32::max);
+        // The same filter on the same input: equal but for the order of float sums, if any.
+        assert!(worst < 1e-4, "image {i} ({w}x{h}): kept filters differ from fresh ones by {worst}");
+        let raw_error = image.pixels.iter().zip(&got).map(|(a, b)| (a[0] - b[0]).abs()).sum::<f32>();
+        assert!(raw_error > 1.0, "image {i}: the denoiser changed nothing");
+        if let Some(previous) = &previous {
+            assert_ne!(previous, &got, "image {i}: the last image's result came back");
+        }
+        previous = Some(got);
+        let builds = if i < 3 { 1 } else { 2 };
+        assert_eq!(kept.filter_builds(), builds, "image {i} ({w}x{h}): filters made {} times", kept.filter_builds());
+    }
+    kept.release_filters();
+    let (image, aovs) = noisy_frame(24, 40, 6);
+    kept.denoise(&image, &aovs).unwrap_or_else(|e| panic!("{e:#}"));
+    assert_eq!(kept.filter_builds(), 3, "released filters are made again");
+}
+
+/// rt loads Open Image Denoise when it denoises, not when it starts: with the library gone
+/// (`OIDN_DIR` at a folder without it, nothing on the loader's path), a plain render still
+/// works and `--denoise` is an error naming the library, where it looked and how to get it.
+#[cfg(feature = "denoise")]
+#[test]
+fn a_missing_library_stops_only_denoising_and_says_how_to_get_it() {
+    let dir = temp_dir("oidn-gone");
+    let run = |args: &[&str], output: &str| {
+        let out = Command::new(env!("CARGO_BIN_EXE_rt"))
+            .args(args)
+            .arg(dir.join(output))
+            .env("OIDN_DIR", &dir)
+            .env_remove("LD_LIBRARY_PATH")
+            .output()
+            .expect("run rt");
+        (out.status.code(), String::from_utf8_lossy(&out.stderr).into_owned(), dir.join(output).exists())
+    };
+    let (code, stderr, written) = run(&["render", "--size", "8x8", "--spp", "1", "-o"], "plain.png");
+    assert!(!stderr.contains("error while loading shared libraries"), "{stderr}");
+    assert_eq!(code, Some(0), "a render without --denoise needs no denoiser: {stderr}");
+    assert!(written, "{stderr}");
+    let (code, stderr, written) = run(&["render", "--size", "8x8", "--spp", "1", "--denoise", "-o"], "denoised.png");
+    assert_eq!(code, Some(1), "{stderr}");
+    let missing = dir.join("lib").join("libOpenImageDenoise.so.2");
+    for part in ["Open Image Denoise is missing", &missing.display().to_string(), "scripts/fetch_oidn", "OIDN_DIR"] {
+        assert!(stderr.contains(part), "no {part:?} in: {stderr}");
+    }
+    assert!(!written && !stderr.contains("panicked") && !stderr.contains("GPU:"), "before rendering: {stderr}");
+    let _ = std::fs::remove_dir_all(dir);
 }

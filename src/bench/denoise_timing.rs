@@ -4,7 +4,9 @@
 //! each timed run is the whole denoise as `rt render --denoise` does it: the albedo and
 //! the normals prefiltered, then the beauty (HDR, clean guides), the filters made and
 //! committed, the images copied to the device and back. The first run of each device
-//! loads its kernels and weights and is reported apart.
+//! loads its kernels and weights and makes the filters, and is reported apart; the later
+//! runs keep the filters (as `rt watch` does while the size stays), and the runs that
+//! make them afresh each time are timed beside them.
 
 use crate::bvh::BuildQuality;
 use crate::denoise::{DenoiseDevice, Denoiser, PhysicalDevice, physical_devices};
@@ -30,6 +32,8 @@ pub struct DeviceTiming {
     pub first: Duration,
     pub median: Duration,
     pub min: Duration,
+    /// Median of runs that make the filters afresh, as each denoise did before they were kept.
+    pub rebuilt_median: Duration,
 }
 
 /// Renders the frame, then times each device; prints a table and returns its rows.
@@ -50,10 +54,14 @@ pub fn denoise_bench(scene: Scene, options: &DenoiseBenchOptions, adapter: Optio
     );
     println!(
         "each run: the whole denoise as `rt render --denoise` does it (albedo and normal prefiltered, then the \
-         HDR beauty with clean guides; filters made each run; images copied to the device and back)"
+         HDR beauty with clean guides; images copied to the device and back); the first run makes the filters, \
+         later runs keep them, and the last column makes them afresh each run"
     );
     let runs = options.runs.max(1);
-    println!("\n| device | first run | median of {runs} | fastest | Mpixel/s (median) |\n|---|---|---|---|---|");
+    println!(
+        "\n| device | first run | median of {runs} | fastest | Mpixel/s (median) | filters made each run (median) |\n\
+         |---|---|---|---|---|---|"
+    );
     let mut kinds = vec![DenoiseDevice::Cpu];
     if found.iter().any(|d| d.kind == "CUDA") {
         kinds.insert(0, DenoiseDevice::Cuda);
@@ -64,12 +72,14 @@ pub fn denoise_bench(scene: Scene, options: &DenoiseBenchOptions, adapter: Optio
         match time_device(kind, &image, &aovs, runs) {
             Ok(row) => {
                 let mpix = (w as f64 * h as f64) / 1e6 / row.median.as_secs_f64();
-                println!("| {} | {} | {} | {} | {mpix:.3} |", row.device, ms(row.first), ms(row.median), ms(row.min));
+                let (first, median, min, rebuilt) =
+                    (ms(row.first), ms(row.median), ms(row.min), ms(row.rebuilt_median));
+                println!("| {} | {first} | {median} | {min} | {mpix:.3} | {rebuilt} |", row.device);
                 rows.push(row);
             }
             Err(e) => {
                 let name = if kind == DenoiseDevice::Cuda { "CUDA" } else { "CPU" };
-                println!("| {name} | failed (below) | – | – | – |");
+                println!("| {name} | failed (below) | – | – | – | – |");
                 failures.push(format!("{name}: {e:#}"));
             }
         }
@@ -109,8 +119,11 @@ fn frame(ctx: &GpuContext, scene: Scene, options: &DenoiseBenchOptions) -> Resul
 }
 
 fn time_device(kind: DenoiseDevice, image: &Image, aovs: &Aovs, runs: u32) -> Result<DeviceTiming> {
-    let denoiser = Denoiser::new(kind)?;
-    let run = || -> Result<Duration> {
+    let mut denoiser = Denoiser::new(kind)?;
+    let mut run = |rebuild: bool| -> Result<Duration> {
+        if rebuild {
+            denoiser.release_filters();
+        }
         let start = Instant::now();
         let pixels = denoiser.denoise(image, aovs)?;
         let took = start.elapsed();
@@ -119,8 +132,14 @@ fn time_device(kind: DenoiseDevice, image: &Image, aovs: &Aovs, runs: u32) -> Re
         }
         Ok(took)
     };
-    let first = run()?;
-    let times = (0..runs).map(|_| run()).collect::<Result<Vec<_>>>()?;
+    let first = run(false)?;
+    // Interleaved, so that a machine whose load changes weighs on both alike.
+    let (mut times, mut rebuilt) = (Vec::new(), Vec::new());
+    for _ in 0..runs {
+        times.push(run(false)?);
+        rebuilt.push(run(true)?);
+    }
     let min = times.iter().min().copied().unwrap_or(first);
-    Ok(DeviceTiming { device: denoiser.describe(), first, median: median(times), min })
+    let device = denoiser.describe();
+    Ok(DeviceTiming { device, first, median: median(times), min, rebuilt_median: median(rebuilt) })
 }

@@ -112,6 +112,10 @@ fn with_atmosphere(trial: &mut Trial, change: impl Fn(&mut Atmosphere)) {
     }
 }
 
+/// The noise threshold of the `clean-image` knob's adaptive settings: the loosest of the
+/// `adaptive` knob's, the one that saves samples at the levels a denoiser is used at.
+const CLEAN_IMAGE_THRESHOLD: f32 = 0.05;
+
 /// Every knob, in report order; `levels` are the sweep's samples-per-pixel levels.
 pub fn all_knobs(levels: &[u32]) -> Vec<Knob> {
     let (lo, hi) = (levels.iter().copied().min().unwrap_or(1), levels.iter().copied().max().unwrap_or(1));
@@ -235,6 +239,29 @@ pub fn all_knobs(levels: &[u32]) -> Vec<Knob> {
                 .collect(),
             spp_levels: None,
             inapplicable: always,
+        },
+        Knob {
+            name: "clean-image",
+            about: "the ways to a clean image side by side: raw, adaptive sampling (stops at 0.05 relative \
+                    standard error, after 16 samples), denoised, and adaptive sampling then denoised",
+            settings: [(false, false), (true, false), (false, true), (true, true)]
+                .into_iter()
+                .map(|(adaptive, denoise)| {
+                    let label = match (adaptive, denoise) {
+                        (false, false) => "raw",
+                        (true, false) => "adaptive",
+                        (false, true) => "denoised",
+                        (true, true) => "adaptive+denoised",
+                    };
+                    Setting::new(label, move |t| {
+                        t.request.noise_threshold = if adaptive { CLEAN_IMAGE_THRESHOLD } else { 0.0 };
+                        t.denoise = denoise;
+                        t.request.aovs = denoise;
+                    })
+                })
+                .collect(),
+            spp_levels: None,
+            inapplicable: without_denoiser,
         },
         Knob {
             name: "atmosphere-steps",

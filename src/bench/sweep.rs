@@ -174,7 +174,7 @@ fn measure(
     bar: &ProgressBar,
 ) -> Result<SettingResult> {
     warm_up(session, &trial.request, timer)?;
-    let denoiser = match trial.denoise {
+    let mut denoiser = match trial.denoise {
         true => Some(crate::denoise::Denoiser::new(crate::denoise::DenoiseDevice::Auto)?),
         false => None,
     };
@@ -189,7 +189,7 @@ fn measure(
         for repeat in 0..repeats.max(1) {
             let request = crate::render::RenderRequest { spp, seed: repeat + 1, ..trial.request.clone() };
             let mut render = render_timed(session, &request, timer)?;
-            if let Some(denoiser) = &denoiser {
+            if let Some(denoiser) = &mut denoiser {
                 let start = std::time::Instant::now();
                 render.image.pixels = denoiser.denoise(&render.image, &session.aovs()?)?;
                 render.time += start.elapsed();

@@ -2,10 +2,13 @@
 //! and normal AOVs (each prefiltered first, so the guides are clean), on the device
 //! asked for: `auto` takes a CUDA GPU where Open Image Denoise has one, else the CPU.
 //!
-//! Open Image Denoise is a shared library that rt links when built with the `denoise`
-//! feature (`scripts/fetch_oidn` installs it, see README); without it, or when the
-//! library cannot make a device, asking to denoise is an error that says how to get it.
+//! Open Image Denoise is a shared library that rt loads at run time when built with the
+//! `denoise` feature (`scripts/fetch_oidn` installs it, see README); without the feature,
+//! without the library, or when it cannot make a device, asking to denoise is an error
+//! that says how to get it, and everything else works.
 
+#[cfg(feature = "denoise")]
+mod oidn_api;
 #[cfg(feature = "denoise")]
 mod oidn_filter;
 
@@ -41,7 +44,7 @@ pub struct PhysicalDevice {
 pub fn physical_devices() -> Result<Vec<PhysicalDevice>> {
     #[cfg(feature = "denoise")]
     {
-        Ok(oidn_filter::physical_devices())
+        oidn_filter::physical_devices()
     }
     #[cfg(not(feature = "denoise"))]
     {
@@ -49,7 +52,9 @@ pub fn physical_devices() -> Result<Vec<PhysicalDevice>> {
     }
 }
 
-/// An Open Image Denoise device, made once and reused for every image.
+/// An Open Image Denoise device, made once and reused for every image, with the filters
+/// of the last image size: kept while the size stays (so that re-denoising a refining
+/// image costs only the denoise), made again when it changes.
 pub struct Denoiser {
     #[cfg(feature = "denoise")]
     inner: oidn_filter::OidnDenoiser,
@@ -95,8 +100,26 @@ impl Denoiser {
         }
     }
 
+    /// How many times filters were made: once per image size denoised in a row.
+    pub fn filter_builds(&self) -> u32 {
+        #[cfg(feature = "denoise")]
+        {
+            self.inner.filter_builds()
+        }
+        #[cfg(not(feature = "denoise"))]
+        {
+            unreachable!("a Denoiser cannot be made without Open Image Denoise")
+        }
+    }
+
+    /// Frees the kept filters and their buffers: the next denoise makes them again.
+    pub fn release_filters(&mut self) {
+        #[cfg(feature = "denoise")]
+        self.inner.release_filters();
+    }
+
     /// The denoised radiance of `image`, guided by `aovs` (of the same render).
-    pub fn denoise(&self, image: &Image, aovs: &Aovs) -> Result<Vec<[f32; 3]>> {
+    pub fn denoise(&mut self, image: &Image, aovs: &Aovs) -> Result<Vec<[f32; 3]>> {
         if (image.width, image.height) != (aovs.width, aovs.height) || image.pixels.len() != aovs.albedo.len() {
             bail!(
                 "the AOVs ({}x{}) are not of the image ({}x{}) being denoised",

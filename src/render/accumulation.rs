@@ -14,6 +14,8 @@ const MEAN_BYTES: u64 = 16;
 const SAMPLE_BYTES: u64 = 16;
 /// Bytes per pixel of the AOVs' means (albedo and depth, normal and hit count).
 const AOV_BYTES: u64 = 32;
+/// Bytes of one sample's AOVs in the lanes' scratch (albedo and depth, normal).
+const LANE_AOV_BYTES: u64 = 32;
 /// The lanes' scratch at most: it holds pixels × samples per dispatch (a 128×128 image
 /// takes its 1024 samples per dispatch in 256 MiB).
 const LANE_SCRATCH_BYTES: u64 = 256 << 20;
@@ -185,8 +187,9 @@ impl Accumulation {
     }
 
     /// Samples per pixel one dispatch with `lanes` lanes can take: as many as the lanes'
-    /// scratch holds, and on a CPU as many as its loop limit safely allows.
-    pub fn max_samples(&self, lanes: u32) -> u32 {
+    /// scratch holds (with `aovs`, each sample's AOVs wait there beside its radiance),
+    /// and on a CPU as many as its loop limit safely allows.
+    pub fn max_samples(&self, lanes: u32, aovs: bool) -> u32 {
         let device = match self.cpu {
             true => CPU_SAMPLES_PER_INVOCATION.saturating_mul(lanes.max(1)).min(MAX_SAMPLES_PER_DISPATCH),
             false => MAX_SAMPLES_PER_DISPATCH,
@@ -194,7 +197,8 @@ impl Accumulation {
         if lanes <= 1 {
             return device;
         }
-        let per_sample = self.width as u64 * self.height as u64 * SAMPLE_BYTES;
+        let bytes = if aovs { SAMPLE_BYTES + LANE_AOV_BYTES } else { SAMPLE_BYTES };
+        let per_sample = self.width as u64 * self.height as u64 * bytes;
         (self.lane_samples.size() / per_sample).min(device as u64) as u32
     }
 

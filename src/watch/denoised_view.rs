@@ -42,7 +42,7 @@ pub struct DenoisedView {
 
 impl DenoisedView {
     /// Starts the denoising thread, which owns `denoiser`.
-    pub fn new(denoiser: Denoiser) -> Self {
+    pub fn new(mut denoiser: Denoiser) -> Self {
         let (jobs, inbox) = channel::<Job>();
         let (outbox, results) = channel();
         std::thread::spawn(move || {

@@ -15,8 +15,9 @@ sys.path.insert(0, os.path.join(HERE, "..", "cycles"))
 out = sys.argv[1]
 sys.argv = sys.argv[:1]
 import make_texture_refs as refs  # noqa: E402
+from cycles_reference import rt_export  # noqa: E402
 
-bpy = refs.bpy
+import bpy  # noqa: E402
 MATERIALS = [
     ("sheen_anisotropy", {
         "KHR_materials_sheen": {"sheenColorFactor": [0.9, 0.5, 0.25], "sheenRoughnessFactor": 0.7},
@@ -60,6 +61,6 @@ for name, _ in MATERIALS:
         "tangent_linked": bsdf.inputs["Tangent"].is_linked,
     }
 refs.camera(scene, (0.0, -12.0, 0.0), (0.0, 0.0, 0.0), 30.0)
-refs.rt_export.export_scene(scene, os.path.join(out, "assets"), os.path.join(out, "scene.toml"))
+rt_export.export_scene(scene, os.path.join(out, "assets"), os.path.join(out, "scene.toml"))
 with open(os.path.join(out, "report.json"), "w") as f:
     json.dump(report, f, indent=1)

@@ -249,14 +249,10 @@ impl<'a> Session<'a> {
         let remaining = self.request.spp - self.acc.samples;
         let n = self.sizer.next(remaining);
         let mut lanes = self.acc.lanes(n, self.request.sample_lanes);
-        if self.request.aovs {
-            // The AOVs are kept by the one-invocation-per-pixel kernel only.
-            lanes = 1;
-        }
         if lanes > 1 {
             self.acc.prepare_lanes(self.ctx, &self.pipelines.accumulation_layout);
         }
-        let n = n.min(self.acc.max_samples(lanes));
+        let n = n.min(self.acc.max_samples(lanes, self.request.aovs));
         if n <= 1 {
             // One sample per pixel needs no lanes (and an image too large for the
             // scratch gets none).

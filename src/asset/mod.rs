@@ -6,6 +6,7 @@ pub mod builtin;
 mod gltf_buffers;
 mod gltf_extensions;
 pub mod gltf_import;
+mod gltf_layer_textures;
 mod gltf_textures;
 pub mod obj_import;
 pub mod rtinst;
@@ -74,24 +75,28 @@ pub fn load_mesh(path: &Path) -> Result<MeshData, AssetError> {
     Ok(mesh)
 }
 
-/// A normal map needs a tangent frame: a mesh that uses one and brings no tangents
-/// gets MikkTSpace's (which a mesh without uvs cannot have: its maps are left out).
+/// A normal map needs a tangent frame, and so does anisotropy along the uv map: a mesh
+/// that uses one and brings no tangents gets MikkTSpace's (which a mesh without uvs cannot
+/// have: its maps are left out, and its anisotropy has no tangent to follow).
 fn give_normal_maps_tangents(mesh: &mut MeshData, path: &Path) {
     let normal_mapped: Vec<&str> =
-        mesh.materials.iter().filter(|(_, m)| m.textures.normal.is_some()).map(|(name, _)| name.as_str()).collect();
+        mesh.materials.iter().filter(|(_, m)| m.reads_tangents()).map(|(name, _)| name.as_str()).collect();
     if normal_mapped.is_empty() || mesh.tangents.is_some() {
         return;
     }
     if mesh.uvs.is_none() {
         log::warn!(
-            "{}: material {:?} has a normal map but the mesh has no texture coordinates; the map is left out",
+            "{}: material {:?} has a normal map or uv tangents but the mesh has no texture coordinates; they are left out",
             path.display(),
             normal_mapped[0]
         );
     } else if tangents::generate(mesh) {
-        log::info!("{}: no tangents for its normal maps; generated MikkTSpace tangents", path.display());
+        log::info!("{}: no tangents for its normal maps or uv tangents; generated MikkTSpace tangents", path.display());
     } else {
-        log::warn!("{}: MikkTSpace could not make tangents for its normal maps; they are left out", path.display());
+        log::warn!(
+            "{}: MikkTSpace could not make tangents for its normal maps or uv tangents; they are left out",
+            path.display()
+        );
     }
 }
 

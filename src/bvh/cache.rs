@@ -324,6 +324,9 @@ pub fn read(path: &Path, source_hash: [u8; 32], params_hash: [u8; 32]) -> Result
     {
         return Err(invalid(format!("material {i} uses texture {t} of {}", textures.len())));
     }
+    if let Some(i) = materials.iter().position(|m| !m.tangent_known()) {
+        return Err(invalid(format!("material {i} has an unknown tangent kind")));
+    }
 
     let stats = BvhStats {
         nodes: header.stats_nodes as usize,

@@ -89,9 +89,9 @@ impl MeshBvh {
             .collect();
         let nodes = convert_cwbvh(&bvh, &triangles);
         let shading = order.iter().map(|&i| triangle_shading(mesh, i as usize)).collect();
-        let normal_mapped = mesh.materials.iter().any(|(_, m)| m.textures.normal.is_some());
+        let tangents_read = mesh.materials.iter().any(|(_, m)| m.reads_tangents());
         let tangents = match &mesh.tangents {
-            Some(tangents) if normal_mapped => order
+            Some(tangents) if tangents_read => order
                 .iter()
                 .map(|&i| {
                     let [t0, t1, t2] = mesh.indices[i as usize].map(|k| tangents[k as usize]);

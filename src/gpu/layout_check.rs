@@ -136,7 +136,15 @@ fn host_structs_match_wgsl_layouts() {
                 coat_ior,
                 second_uv_set,
                 sheen_tint,
-                sheen
+                sheen,
+                coat_texture,
+                coat_roughness_texture,
+                coat_tint_texture,
+                sheen_texture,
+                sheen_tint_texture,
+                anisotropy_texture,
+                specular_tint_texture,
+                tangent
             ]
         ),
         host_layout!("TriangleTangents", GpuTriangleTangents, [t0, t1, t2]),

@@ -1,7 +1,7 @@
 //! Feature analysis: which effects a scene needs, so that the GPU runs only their code.
 
 use super::{
-    Light, LightSampler, LightShape, Material, Microfacet, Projection, RoughTransmission, Sampling, Scene, Sky,
+    Light, LightSampler, LightShape, Material, Microfacet, Projection, RoughTransmission, Sampling, Scene, Sky, Tangent,
 };
 use std::fmt;
 
@@ -103,6 +103,10 @@ pub struct FeatureSet {
     pub sheen: bool,
     /// Some material's rough lobes are anisotropic (`anisotropy`).
     pub anisotropy: bool,
+    /// Textures on some material's coat, sheen, anisotropy or specular tint.
+    pub layer_textures: bool,
+    /// Some anisotropic material follows its uv map's tangents (`tangent = "uv"`).
+    pub uv_tangents: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -180,6 +184,8 @@ impl FeatureSet {
             coat: materials_in_use.iter().any(|m| m.coat > 0.0),
             sheen: materials_in_use.iter().any(|m| m.sheen > 0.0),
             anisotropy: materials_in_use.iter().any(|m| m.anisotropy > 0.0),
+            layer_textures: materials_in_use.iter().any(|m| m.textures.layers.any()),
+            uv_tangents: materials_in_use.iter().any(|m| m.anisotropy > 0.0 && m.tangent == Tangent::Uv),
         }
     }
 
@@ -211,6 +217,8 @@ impl FeatureSet {
             coat: true,
             sheen: true,
             anisotropy: true,
+            layer_textures: true,
+            uv_tangents: true,
         }
     }
 
@@ -253,6 +261,12 @@ impl FeatureSet {
             "coat" => self.coat,
             "sheen" => self.sheen,
             "anisotropy" => self.anisotropy,
+            "layer_textures" => self.layer_textures,
+            "uv_tangents" => self.uv_tangents,
+            // Normal maps and uv tangents read the triangles' tangents.
+            "tangent_frames" => self.normal_maps || self.uv_tangents,
+            // Layers over the other lobes, which dim the emission under them.
+            "coat_or_sheen" => self.coat || self.sheen,
             "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen,
             _ => return None,
         })
@@ -284,6 +298,8 @@ impl fmt::Display for FeatureSet {
             (self.coat, "coat"),
             (self.sheen, "sheen"),
             (self.anisotropy, "anisotropy"),
+            (self.layer_textures, "layer-textures"),
+            (self.uv_tangents, "uv-tangents"),
         ] {
             if on {
                 parts.push(name.to_string());

@@ -38,6 +38,9 @@ pub struct Material {
     /// √(1 − 0.9 × anisotropy)), the tangent turned about the normal by rotation × 360°.
     pub anisotropy: f32,
     pub anisotropy_rotation: f32,
+    /// The tangent that `anisotropy` stretches along: Cycles' Tangent node linked into the
+    /// Principled BSDF's Tangent input, radial about an axis or a uv map's.
+    pub tangent: Tangent,
     /// The seed renderer's Phong-like exponent; mapped to `roughness` when given.
     pub hardness: Option<f32>,
     pub emission: [f32; 3],
@@ -46,6 +49,20 @@ pub struct Material {
     /// Image textures, from the asset importers (scene files give none).
     #[serde(skip)]
     pub textures: MaterialTextures,
+}
+
+/// Which tangent the anisotropic lobes follow, in Blender's axes (rt's Y is Blender's Z).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Tangent {
+    /// Circles about the object's Z axis (rt's Y), through its origin: what Cycles uses
+    /// when the Tangent input is unlinked.
+    #[default]
+    RadialZ,
+    RadialX,
+    RadialY,
+    /// The MikkTSpace tangent of the mesh's first uv set (along increasing u).
+    Uv,
 }
 
 /// A material's image textures, as indices into its asset's texture list, and the
@@ -74,9 +91,50 @@ pub struct MaterialTextures {
     /// glTF's `normalTexture.scale`: multiplies the map's x and y.
     pub normal_scale: f32,
     /// Which texture slots read the mesh's second uv set (glTF `texCoord` 1): bit i for
-    /// slot i of [`Self::indices_mut`] (base colour, metallic-roughness, emission); the
-    /// others read the first. Normal maps always read the first: their tangents are its.
+    /// slot i of [`Self::indices_mut`]; the others read the first. Normal maps always
+    /// read the first: their tangents are its.
     pub second_uv_set: u32,
+    /// The layered lobes' textures: [`LayerTextures`].
+    pub layers: LayerTextures,
+}
+
+/// Textures of the coat, sheen, anisotropy and specular tint (Principled's sockets of those
+/// names), each an index into the asset's textures. Factors multiply the texels, as glTF's do.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LayerTextures {
+    /// R × `coat` (glTF's `clearcoatTexture`).
+    pub coat: Option<u32>,
+    /// G × `coat_roughness` (glTF's `clearcoatRoughnessTexture`).
+    pub coat_roughness: Option<u32>,
+    /// RGB (colour) × `coat_tint`.
+    pub coat_tint: Option<u32>,
+    /// R × `sheen`, G × `sheen_roughness`.
+    pub sheen: Option<u32>,
+    /// RGB (colour) × `sheen_tint`.
+    pub sheen_tint: Option<u32>,
+    /// R × `anisotropy`; G + `anisotropy_rotation` is the rotation (a turn is 1).
+    pub anisotropy: Option<u32>,
+    /// RGB (colour) × `specular_tint` (glTF's `specularColorTexture`).
+    pub specular_tint: Option<u32>,
+}
+
+impl LayerTextures {
+    pub fn any(&self) -> bool {
+        self.slots().iter().any(Option::is_some)
+    }
+
+    /// The slots, in the order of [`MaterialTextures::indices_mut`] after its first four.
+    pub fn slots(&self) -> [Option<u32>; 7] {
+        [
+            self.coat,
+            self.coat_roughness,
+            self.coat_tint,
+            self.sheen,
+            self.sheen_tint,
+            self.anisotropy,
+            self.specular_tint,
+        ]
+    }
 }
 
 impl Default for MaterialTextures {
@@ -92,6 +150,7 @@ impl Default for MaterialTextures {
             normal: None,
             normal_scale: 1.0,
             second_uv_set: 0,
+            layers: LayerTextures::default(),
         }
     }
 }
@@ -102,11 +161,26 @@ impl MaterialTextures {
             || self.metallic_roughness.is_some()
             || self.emission.is_some()
             || self.normal.is_some()
+            || self.layers.any()
     }
 
-    /// The indices, for offsetting into a scene-wide texture list.
-    pub fn indices_mut(&mut self) -> [&mut Option<u32>; 4] {
-        [&mut self.base_color, &mut self.metallic_roughness, &mut self.emission, &mut self.normal]
+    /// The indices, for offsetting into a scene-wide texture list; slot i's uv set is bit
+    /// i of `second_uv_set` (`UV1_*` in `shaders/texture.wgsl`).
+    pub fn indices_mut(&mut self) -> [&mut Option<u32>; 11] {
+        let l = &mut self.layers;
+        [
+            &mut self.base_color,
+            &mut self.metallic_roughness,
+            &mut self.emission,
+            &mut self.normal,
+            &mut l.coat,
+            &mut l.coat_roughness,
+            &mut l.coat_tint,
+            &mut l.sheen,
+            &mut l.sheen_tint,
+            &mut l.anisotropy,
+            &mut l.specular_tint,
+        ]
     }
 
     /// Whether texture slot `slot` (an index into [`Self::indices_mut`]) reads the second uv set.
@@ -146,6 +220,7 @@ impl Default for Material {
             sheen_tint: [1.0; 3],
             anisotropy: 0.0,
             anisotropy_rotation: 0.0,
+            tangent: Tangent::RadialZ,
             hardness: None,
             emission: [0.0; 3],
             absorption: [0.0; 3],
@@ -158,6 +233,11 @@ impl Default for Material {
 impl Material {
     pub fn is_emissive(&self) -> bool {
         self.emission.iter().any(|&e| e > 0.0)
+    }
+
+    /// Its shading reads the mesh's tangents: a normal map, or anisotropy along the uv map.
+    pub fn reads_tangents(&self) -> bool {
+        self.textures.normal.is_some() || (self.anisotropy > 0.0 && self.tangent == Tangent::Uv)
     }
 
     /// Absorbs or emits inside (only meaningful with `transmission`).

@@ -130,6 +130,13 @@ fn emission_under_the_coat_matches_cycles() {
     check("emission_coat");
 }
 
+/// Emission under the sheen: Cycles dims it by 1 − the sheen's albedo along the view, as
+/// it dims it under the coat.
+#[test]
+fn emission_under_sheen_matches_cycles() {
+    check("emission_sheen");
+}
+
 /// The exporter writes Blender's coat as `KHR_materials_clearcoat` too (for other glTF
 /// readers), beside rt's own extras.
 #[test]
@@ -219,4 +226,18 @@ fn anisotropy_rotation_matches_cycles() {
 #[test]
 fn anisotropic_dielectric_matches_cycles() {
     check("anisotropy_dielectric_sun");
+}
+
+/// A Tangent node along the uv map into the Tangent input, on spheres whose uv maps run u
+/// along the meridians: the highlights stretch the other way than about the default
+/// radial tangent (the exporter's `tangent = "uv"`, the mesh's MikkTSpace tangents).
+#[test]
+fn anisotropy_along_a_uv_tangent_matches_cycles() {
+    check("anisotropy_uv_tangent_sun");
+}
+
+/// A Tangent node radial about X into the Tangent input (`tangent = "radial_x"`).
+#[test]
+fn anisotropy_along_a_radial_x_tangent_matches_cycles() {
+    check("anisotropy_radial_x_sun");
 }

@@ -58,6 +58,12 @@ ROWS = {
          "Emission Strength": 2.0, "Coat Roughness": 0.2, "Coat Tint": (0.6, 0.8, 1.0)},
         [{"Coat Weight": w} for w in STEPS],
     ),
+    # Emission under the sheen, which dims it by the sheen's albedo (Cycles' svm/closure.h).
+    "emission_sheen": (
+        {"Base Color": (0.05, 0.05, 0.05), "Roughness": 0.5, "Emission Color": (1.0, 0.6, 0.3),
+         "Emission Strength": 2.0, "Sheen Roughness": 0.3, "Sheen Tint": (0.8, 0.9, 1.0)},
+        [{"Sheen Weight": w} for w in STEPS],
+    ),
     # Subsurface scattering, which rt renders as the diffuse base: close for a small radius.
     "subsurface": (
         {"Base Color": (0.8, 0.4, 0.3), "Roughness": 0.5, "Subsurface Weight": 1.0},
@@ -80,7 +86,17 @@ ROWS = {
         {"Base Color": (0.2, 0.3, 0.6), "Roughness": 0.3},
         [{"Anisotropic": a} for a in STEPS],
     ),
+    # A Tangent node into the Tangent input: along the uv map (whose u runs along the
+    # meridians here, see UV_SWAPPED), or radial about X.
+    "anisotropy_uv_tangent_sun": (ANISOTROPIC_METAL, [{"Anisotropic": a} for a in STEPS]),
+    "anisotropy_radial_x_sun": (ANISOTROPIC_METAL, [{"Anisotropic": a} for a in STEPS]),
 }
+
+# Rows whose Principled BSDF's Tangent input is linked to a Tangent node: "UV_MAP" or a radial axis.
+TANGENT_NODES = {"anisotropy_uv_tangent_sun": "UV_MAP", "anisotropy_radial_x_sun": "X"}
+# Rows whose spheres' uv maps swap u and v, so that the uv tangent follows the meridians
+# rather than the parallels (where it would be the default radial tangent about Z).
+UV_SWAPPED = {"anisotropy_uv_tangent_sun"}
 
 # Rows lit by a sun: its rotation and the world's colour. The sheen's from the right, a
 # little behind the spheres (the terminator and the grazing light along it), in a black
@@ -95,12 +111,33 @@ SUNLIT = {
     "anisotropy_sun": FRONT_SUN,
     "anisotropy_rotation_sun": FRONT_SUN,
     "anisotropy_dielectric_sun": FRONT_SUN,
+    "anisotropy_uv_tangent_sun": FRONT_SUN,
+    "anisotropy_radial_x_sun": FRONT_SUN,
 }
 
 
 def set_input(bsdf, name, value):
     socket = bsdf.inputs[name]
     socket.default_value = (*value, 1.0) if isinstance(value, tuple) and len(socket.default_value) == 4 else value
+
+
+def link_tangent(tree, bsdf, kind):
+    """A Tangent node along the uv map (`kind` "UV_MAP") or radial about axis `kind`, into the Tangent input."""
+    node = tree.nodes.new("ShaderNodeTangent")
+    if kind == "UV_MAP":
+        node.direction_type = "UV_MAP"
+    else:
+        node.direction_type = "RADIAL"
+        node.axis = kind
+    tree.links.new(node.outputs["Tangent"], bsdf.inputs["Tangent"])
+
+
+def swap_uv(mesh):
+    layer = mesh.uv_layers[0]
+    uvs = [0.0] * (len(mesh.loops) * 2)
+    layer.uv.foreach_get("vector", uvs)
+    uvs[0::2], uvs[1::2] = uvs[1::2], uvs[0::2]
+    layer.uv.foreach_set("vector", uvs)
 
 
 def build(scene, name):
@@ -116,9 +153,13 @@ def build(scene, name):
         bsdf = m.node_tree.nodes["Principled BSDF"]
         for key, value in {**shared, **own}.items():
             set_input(bsdf, key, value)
-        refs.add_object(scene, f"sphere_{i}", bpy.ops.mesh.primitive_uv_sphere_add, m, radius=0.45,
-                        segments=48, ring_count=24, location=(i - 2.0, 0.0, 0.0))
+        sphere = refs.add_object(scene, f"sphere_{i}", bpy.ops.mesh.primitive_uv_sphere_add, m, radius=0.45,
+                                 segments=48, ring_count=24, location=(i - 2.0, 0.0, 0.0))
         bpy.ops.object.shade_smooth()
+        if name in TANGENT_NODES:
+            link_tangent(m.node_tree, bsdf, TANGENT_NODES[name])
+        if name in UV_SWAPPED:
+            swap_uv(sphere.data)
     refs.camera(scene, (0.0, -12.0, 0.0), (0.0, 0.0, 0.0), 2.0 * math.degrees(math.atan(0.5 / 12.0)))
 
 

@@ -236,6 +236,19 @@ fn anisotropy_along_a_uv_tangent_matches_cycles() {
     check("anisotropy_uv_tangent_sun");
 }
 
+/// The exporter writes a linked Tangent node as `extras.rt_tangent`.
+#[test]
+fn exporter_writes_the_tangent_node() {
+    for (row, tangent) in [("anisotropy_uv_tangent_sun", "uv"), ("anisotropy_radial_x_sun", "radial_x")] {
+        let file = repo().join(format!("tests/cycles/scenes/principled_{row}/assets/Sphere_001/Sphere_001.gltf"));
+        let text = std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+        let json: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+        let extras = &json["materials"][0]["extras"];
+        assert_eq!(extras["rt_tangent"].as_str(), Some(tangent), "{extras}");
+        assert!(extras.get("_rt_tangent_uv_map").is_none(), "an exporter-internal key leaked: {extras}");
+    }
+}
+
 /// A Tangent node radial about X into the Tangent input (`tangent = "radial_x"`).
 #[test]
 fn anisotropy_along_a_radial_x_tangent_matches_cycles() {

@@ -116,6 +116,32 @@ fn anisotropy_and_rotation_maps_match_cycles() {
     check("anisotropy_map");
 }
 
+/// What the exporter wrote for the layered lobes' Image Texture nodes: the coat's one image
+/// (R weight, G roughness) as both of KHR_materials_clearcoat's textures with factors of 1,
+/// the anisotropy's in extras with a rotation factor of 0 (the texture's G is added to it).
+#[test]
+fn exporter_writes_layer_textures_with_unit_factors() {
+    let gltf = |name: &str| -> serde_json::Value {
+        let file = repo().join(format!("tests/cycles/scenes/texture_{name}/assets/Sphere/Sphere.gltf"));
+        let text = std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+        serde_json::from_str(&text).expect("JSON")
+    };
+    let coat = gltf("coat_map");
+    let clearcoat = &coat["materials"][0]["extensions"]["KHR_materials_clearcoat"];
+    assert_eq!(clearcoat["clearcoatTexture"]["index"], clearcoat["clearcoatRoughnessTexture"]["index"], "{clearcoat}");
+    assert_eq!(
+        (clearcoat["clearcoatFactor"].as_f64(), clearcoat["clearcoatRoughnessFactor"].as_f64()),
+        (Some(1.0), Some(1.0))
+    );
+    let aniso = gltf("anisotropy_map");
+    let extras = &aniso["materials"][0]["extras"];
+    assert_eq!((extras["rt_anisotropy"].as_f64(), extras["rt_anisotropy_rotation"].as_f64()), (Some(1.0), Some(0.0)));
+    assert!(extras["rt_anisotropy_texture"]["index"].is_u64(), "{extras}");
+    let sheen = gltf("sheen_map");
+    let extras = &sheen["materials"][0]["extras"];
+    assert_ne!(extras["rt_sheen_texture"]["index"], extras["rt_sheen_tint_texture"]["index"], "{extras}");
+}
+
 #[test]
 fn blender_gltf_export_with_textures_renders_like_rts_own_export() {
     // The leaves scene through Blender's glTF exporter (textures embedded in a .glb, its

@@ -44,16 +44,6 @@ except ImportError:  # a script: the module lies beside this file
 TEXTURE_SOCKETS = rt_shader_nodes.TEXTURE_SOCKETS
 linked_node, rgb, socket_value = rt_shader_nodes.linked_node, rt_shader_nodes.rgb, rt_shader_nodes.socket_value
 
-bl_info = {
-    "name": "rt exporter",
-    "author": "rt",
-    "version": (1, 0, 0),
-    "blender": (4, 2, 0),
-    "location": "File > Export > rt; 3D View > Sidebar > rt",
-    "description": "Export meshes (.rtmesh + .gltf materials) and a scene TOML for the rt path tracer",
-    "category": "Import-Export",
-}
-
 RTMESH_MAGIC = b"RTMESH\0\0"
 RTMESH_VERSION = 3
 RTINST_MAGIC = b"RTINST\0\0"
@@ -105,10 +95,10 @@ def to_rt(v):
 def mesh_arrays(mesh, material_count, uv_transforms=None, second_uv_map=None):
     """Positions, normals, uvs, tangents (per vertex, rt axes), triangle indices and material
     indices of an evaluated mesh. Corners that share all of them share a vertex.
-    `uv_transforms[m]`, a 2x3 affine map or None, is applied to the uvs of material m's
-    triangles: a Mapping node in front of that material's textures. The uvs are the map
-    Cycles reads by default (see `default_uv_map`); `second_uv_map`, a map's name, adds
-    that map as the second set."""
+    `uv_transforms[m]`, {uv map name ("" for the default): 2x3 affine map}, is applied to
+    the uvs of material m's triangles in that map: a Mapping node in front of the
+    material's textures that read it. The uvs are the map Cycles reads by default (see
+    `default_uv_map`); `second_uv_map`, a map's name, adds that map as the second set."""
     mesh.calc_loop_triangles()
     tri_count = len(mesh.loop_triangles)
     corners = np.empty(tri_count * 3, np.int32)
@@ -166,15 +156,26 @@ def default_uv_map(mesh):
 
 
 def corner_uv_array(mesh, name, corners, materials, uv_transforms):
-    """The uvs of map `name` at each triangle corner, the material's uv transform applied."""
+    """The uvs of map `name` at each triangle corner, the material's uv transform of that map applied."""
     uvs = np.empty(len(mesh.loops) * 2, np.float32)
     mesh.uv_layers[name].uv.foreach_get("vector", uvs)
     corner_uvs = uvs.reshape(-1, 2)[corners]
-    for m, transform in enumerate(uv_transforms or []):
+    default = default_uv_map(mesh)
+    for m, transforms in enumerate(uv_transforms or []):
+        transform = map_transform(transforms, name, default)
         if transform is not None:
             at = np.repeat(materials == m, 3)
             corner_uvs[at] = corner_uvs[at] @ transform[:, :2].T + transform[:, 2]
     return corner_uvs
+
+
+def map_transform(transforms, name, default):
+    """The uv transform of map `name` in `transforms` (as `material_textures` returns them), or None."""
+    if not transforms:
+        return None
+    if name == default and "" in transforms:
+        return transforms[""]
+    return transforms.get(name)
 
 
 def mesh_tangents(mesh, loop_count):
@@ -250,8 +251,9 @@ def volume_emission(volume):
 #
 # Image Texture nodes linked into the Principled BSDF become glTF textures: directly, or
 # through Separate Color (one channel), Normal Map (Normal) or a Mapping node in front of
-# the image (its transform is baked into the uvs of the material's triangles: every
-# texture of a material must share it). Each glTF image is composed from the channels
+# the image (its transform is baked into the uvs of the material's triangles in the map
+# the texture reads: the textures of a material that read one map must share it, those
+# reading the other map may have their own). Each glTF image is composed from the channels
 # that feed it, as the linear values Cycles reads (an sRGB image's codes decoded, a
 # Non-Color one's taken as they are), then encoded for its glTF slot (sRGB for base
 # colour and emission, linear for the rest) and written as NAME-HASH.png, the hash
@@ -354,6 +356,9 @@ def texture_channel(material, node, socket_name, baker=None):
         if not inner.is_linked:
             return None
         source, output = inner.links[0].from_node, inner.links[0].from_socket.name
+        if source.type != "TEX_IMAGE" or source.image is None:
+            # A procedural colour into the Normal Map node: the whole normal is what a bake can give.
+            source = socket.links[0].from_node
     if source.type == "SEPARATE_COLOR" and source.mode == "RGB":
         component = {"Red": 0, "Green": 1, "Blue": 2}[output]
         inner = source.inputs["Color"]
@@ -363,7 +368,7 @@ def texture_channel(material, node, socket_name, baker=None):
     if source.type != "TEX_IMAGE" or source.image is None:
         if source.type in {"RGB", "VALUE"}:
             return None
-        if baker is not None and socket_name in BAKED_SOCKETS:
+        if baker is not None and (socket_name in BAKED_SOCKETS or socket_name == "Normal"):
             baked = baker.bake(material, socket)
             if baked is not None:
                 return baked
@@ -446,8 +451,15 @@ class Textures:
 # Emission shader on the material's output, and an EMIT bake writes its values (linear,
 # scalars as grey) into a float image of the chosen size on rt's first uv set (the map
 # Cycles reads by default). The image becomes that socket's texture like an Image
-# Texture node's would, clamped at its edges. Bakes run before the mesh is evaluated for
-# export, once per material and socket, and the node tree is restored afterwards.
+# Texture node's would, clamped at its edges. A Normal socket fed by a Bump node or a
+# procedural colour into a Normal Map node is baked as Cycles' NORMAL pass in the tangent
+# space of that uv set (the material left as it is), which becomes a normal map of
+# strength 1. Bakes run before the mesh is evaluated for export, once per material and
+# socket, and the node tree is restored afterwards. A mesh seen only as instances
+# (collection, geometry-nodes, particle instances) is baked on a stand-in object that
+# shows it with each set of materials its instances show, linked into the scene for the
+# bake and removed after; geometry made by geometry nodes has no mesh to stand in and
+# is warned about.
 
 DEFAULT_BAKE_SIZE = 1024
 BAKED_SOCKETS = ("Base Color", "Alpha", "Roughness", "Metallic", "Emission Color")
@@ -487,8 +499,13 @@ def principled_surface(material):
 
 
 def needs_bake(socket):
-    """Whether `texture_channel` cannot follow what feeds `socket` (through Separate Color too)."""
+    """Whether `texture_channel` cannot follow what feeds `socket` (through Separate Color
+    too, or for Normal a Normal Map node)."""
     source = linked_node(socket)
+    if source is not None and source.type == "NORMAL_MAP" and socket.name == "Normal":
+        source = linked_node(source.inputs["Color"])
+        if source is None:
+            return False
     if source is not None and source.type == "SEPARATE_COLOR" and source.mode == "RGB":
         source = linked_node(source.inputs["Color"])
     if source is None or source.type in {"RGB", "VALUE"}:
@@ -500,22 +517,22 @@ class Baker:
     """Bakes sockets of one object's materials into images of `size` × `size` texels."""
 
     def __init__(self, obj, size):
-        self.obj, self.size = obj, size
+        self.obj, self.size = obj, size  # obj None: only what was baked before (an instance's stand-in is gone)
         self.baked = {}  # (material name, socket name) -> BakedChannel, or None where baking failed
 
     def prebake(self, materials):
         """Bakes every socket that will need it, before the object's mesh is evaluated for export."""
         for material in materials:
             surface = principled_surface(material)
-            for name in BAKED_SOCKETS if surface is not None else ():
+            for name in BAKED_SOCKETS + ("Normal",) if surface is not None else ():
                 if needs_bake(surface.inputs[name]):
                     self.bake(material, surface.inputs[name])
 
     def bake(self, material, socket):
         key = (material.name, socket.name)
-        if key not in self.baked:
+        if key not in self.baked and self.obj is not None:
             self.baked[key] = self._bake(material, socket)
-        return self.baked[key]
+        return self.baked.get(key)
 
     def _bake(self, material, socket):
         mesh = self.obj.data
@@ -532,10 +549,13 @@ class Baker:
         image = bpy.data.images.new(f"rt_bake_{material.name}_{socket.name}", self.size, self.size,
                                     alpha=False, float_buffer=True)
         image.colorspace_settings.name = "Non-Color"  # the values as the shader gives them
-        emission = tree.nodes.new("ShaderNodeEmission")
-        emission.inputs["Strength"].default_value = 1.0
-        tree.links.new(socket.links[0].from_socket, emission.inputs["Color"])
-        tree.links.new(emission.outputs["Emission"], surface)
+        normal = socket.name == "Normal"
+        emission = None
+        if not normal:
+            emission = tree.nodes.new("ShaderNodeEmission")
+            emission.inputs["Strength"].default_value = 1.0
+            tree.links.new(socket.links[0].from_socket, emission.inputs["Color"])
+            tree.links.new(emission.outputs["Emission"], surface)
         target = tree.nodes.new("ShaderNodeTexImage")
         target.image = image
         was_active = tree.nodes.active
@@ -562,8 +582,10 @@ class Baker:
                 o.select_set(False)
             self.obj.select_set(True)
             layer.objects.active = self.obj
-            bpy.ops.object.bake(type="EMIT", margin=BAKE_MARGIN, margin_type="EXTEND", use_clear=True,
-                                target="IMAGE_TEXTURES", uv_layer=default_uv_map(mesh))
+            # NORMAL: tangent space of the bake's uv map, +X +Y +Z as RGB, as normal maps are read.
+            bpy.ops.object.bake(type="NORMAL" if normal else "EMIT", margin=BAKE_MARGIN, margin_type="EXTEND",
+                                use_clear=True, target="IMAGE_TEXTURES", uv_layer=default_uv_map(mesh),
+                                normal_space="TANGENT", normal_r="POS_X", normal_g="POS_Y", normal_b="POS_Z")
             pixels = np.empty(self.size * self.size * 4, np.float32)
             image.pixels.foreach_get(pixels)
             pixels = pixels.reshape(self.size, self.size, 4)[::-1].copy()
@@ -580,15 +602,16 @@ class Baker:
                 other.node_tree.nodes.remove(node)
                 other.node_tree.nodes.active = active
             tree.nodes.remove(target)
-            tree.nodes.remove(emission)
-            if was_on_surface is not None:
-                tree.links.new(was_on_surface, surface)
+            if emission is not None:
+                tree.nodes.remove(emission)
+                if was_on_surface is not None:
+                    tree.links.new(was_on_surface, surface)
             tree.nodes.active = was_active
             bpy.data.images.remove(image)
             bpy.data.images.remove(scratch)
         log(f"{material.name}: baked {socket.name} ({linked_node(socket).type}) into {self.size}x{self.size} "
             f"texels on uv map {default_uv_map(mesh)!r}")
-        return BakedChannel(f"{material.name}-{socket.name}", pixels, socket.name in COLOUR_SOCKETS)
+        return BakedChannel(f"{material.name}-{socket.name}", pixels, normal or socket.name in COLOUR_SOCKETS)
 
 
 def blake(data):
@@ -599,12 +622,20 @@ def blake(data):
 
 def material_textures(material, surface, out, textures, factors, found):
     """Adds the base textures of a Principled BSDF (`found`: socket name -> Channel or None)
-    to glTF material `out`; returns the uv transform its textures share (or None)."""
+    to glTF material `out`; returns the uv transforms its textures share, per uv map they
+    read ({map name, "" for the default: 2x3 map})."""
     pbr = out["pbrMetallicRoughness"]
-    transforms = [c.transform for c in found.values() if c is not None and c.transform is not None]
-    transform = transforms[0] if transforms else None
-    if any(not np.allclose(t, transform) for t in transforms):
-        log(f"{material.name}: its textures use different Mapping nodes; rt uses the first one's for all")
+    transforms = {}
+    for name, c in found.items():
+        if c is None or c.transform is None:
+            continue
+        uv_map = c.uv_map
+        if name == "Normal" and surface.inputs["Normal"].links[0].from_node.type == "NORMAL_MAP":
+            uv_map = surface.inputs["Normal"].links[0].from_node.uv_map or uv_map
+        first = transforms.setdefault(uv_map, c.transform)
+        if not np.allclose(first, c.transform):
+            log(f"{material.name}: its textures on uv map {uv_map or 'default'!r} use different Mapping nodes; "
+                f"rt uses the first one's for all of them")
     wrap_of = lambda c: c.node.extension  # noqa: E731
     base, alpha = found["Base Color"], found["Alpha"]
     if base is not None or alpha is not None:
@@ -626,9 +657,14 @@ def material_textures(material, surface, out, textures, factors, found):
     normal = found["Normal"]
     if normal is not None:
         node = surface.inputs["Normal"].links[0].from_node
-        strength = float(node.inputs["Strength"].default_value) if node.type == "NORMAL_MAP" else 1.0
-        # The Normal Map node's uv map is the one its tangents are of.
-        uv_map = (node.uv_map if node.type == "NORMAL_MAP" else "") or normal.uv_map
+        mapped = node.type == "NORMAL_MAP" and not isinstance(normal, BakedChannel)
+        # A baked normal has the node's strength in it already, in the default map's tangent space.
+        strength = float(node.inputs["Strength"].default_value) if mapped else 1.0
+        # The Normal Map node's uv map is the one its tangents are of, and the one rt reads the image with.
+        uv_map = (node.uv_map if mapped else "") or normal.uv_map
+        if normal.uv_map not in ("", uv_map):
+            log(f"{material.name}: its normal map's image reads uv map {normal.uv_map!r} but its Normal Map node "
+                f"names {uv_map!r}; rt reads both with {uv_map!r}")
         out["normalTexture"] = {"index": textures.add([(normal, i) for i in range(3)] + [1.0], False,
                                                       wrap_of(normal)), "scale": strength, UV_MAP_KEY: uv_map}
     emission = found["Emission Color"]
@@ -639,12 +675,12 @@ def material_textures(material, surface, out, textures, factors, found):
         if strength > 0.0:
             out["emissiveFactor"] = [1.0, 1.0, 1.0]
             out.setdefault("extensions", {})["KHR_materials_emissive_strength"] = {"emissiveStrength": strength}
-    return transform
+    return transforms
 
 
 def gltf_material(material, thickness, textures=None):
     """One glTF material (with KHR extensions) from a Blender material, and the uv
-    transform of its textures (or None); every factor is written, since rt's importer
+    transforms of its textures (per uv map, or None); every factor is written, since rt's importer
     applies glTF's defaults to absent ones. Its textures go into `textures`. The surface
     shader is mapped onto rt's model by rt_shader_nodes (which warns about what it cannot
     map)."""
@@ -707,20 +743,39 @@ def gltf_material(material, thickness, textures=None):
             })
         sheen = float(value("Sheen Weight", 0.0))
         if sheen > 0.0:
-            # glTF's KHR_materials_sheen is another model (a colour without a weight): rt reads its own keys.
+            sheen_roughness = min(max(float(value("Sheen Roughness", 0.5)), 0.0), 1.0)
+            sheen_tint = [min(max(c, 0.0), 1.0) for c in rgb(colour("Sheen Tint"))]
+            # glTF's sheen has no weight: for other readers, Blender's exporter's colour and roughness;
+            # rt reads its own keys first.
+            extensions["KHR_materials_sheen"] = {"sheenColorFactor": sheen_tint, "sheenRoughnessFactor": sheen_roughness}
             out["extras"].update({
                 "rt_sheen": min(sheen, 1.0),
-                "rt_sheen_roughness": min(max(float(value("Sheen Roughness", 0.5)), 0.0), 1.0),
-                "rt_sheen_tint": [min(max(c, 0.0), 1.0) for c in rgb(colour("Sheen Tint"))],
+                "rt_sheen_roughness": sheen_roughness,
+                "rt_sheen_tint": sheen_tint,
             })
         anisotropy = float(value("Anisotropic", 0.0))
         if anisotropy > 0.0:
             rotation = 0.0 if found.get("Anisotropic Rotation") else socket_value(surface, "Anisotropic Rotation", 0.0)
+            rotation = float(rotation) % 1.0
+            # glTF's rotation is in radians (Blender's exporter converts so too).
+            extensions["KHR_materials_anisotropy"] = {
+                "anisotropyStrength": min(anisotropy, 1.0),
+                "anisotropyRotation": rotation * 2.0 * math.pi,
+            }
             out["extras"].update({
                 "rt_anisotropy": min(anisotropy, 1.0),
-                "rt_anisotropy_rotation": float(rotation) % 1.0,
+                "rt_anisotropy_rotation": rotation,
             })
             out["extras"].update(tangent_extras(name, surface.inputs["Tangent"]))
+        film = float(socket_value(surface, "Thin Film Thickness", 0.0))
+        if film > 0.0:
+            # A film of one thickness: glTF's range collapsed to it (rt reads the maximum).
+            extensions["KHR_materials_iridescence"] = {
+                "iridescenceFactor": 1.0,
+                "iridescenceIor": max(float(socket_value(surface, "Thin Film IOR", 1.33)), 1e-5),
+                "iridescenceThicknessMinimum": film,
+                "iridescenceThicknessMaximum": film,
+            }
     if transmission > 0.0:
         extensions["KHR_materials_transmission"] = {"transmissionFactor": transmission}
     peak = max(emission)
@@ -872,8 +927,9 @@ def export_object_mesh(obj, depsgraph, base_name="mesh", bake_size=0):
 # second one, the first other map that some texture of the mesh's materials reads (a UV
 # Map node in front of its Image Texture, directly or through a Mapping node). Textures
 # name their map under UV_MAP_KEY while the materials are built; once the mesh's second
-# set is known it becomes glTF's texCoord (1 for the second set). Normal maps read the
-# first set, whose tangents rt carries; a third map is read as the first, with a warning.
+# set is known it becomes glTF's texCoord (1 for the second set). A normal map reads the
+# map its Normal Map node names, in that map's tangent frame (rt makes MikkTSpace's of
+# the second set itself); a third map is read as the first, with a warning.
 
 UV_MAP_KEY = "_rt_uv_map"
 # The uv map of a Tangent node along a uv map, in a material's extras: rt follows the default one's tangents.
@@ -907,12 +963,12 @@ def texture_infos(gltf_material):
 
 def second_uv_map(uv_maps, gltf_materials):
     """The map rt carries as the second uv set, or None: the first map other than the
-    default that a texture (not a normal map) reads."""
+    default that a texture reads."""
     default, names = uv_maps
     for material in gltf_materials:
-        for key, info in texture_infos(material):
+        for _, info in texture_infos(material):
             name = info.get(UV_MAP_KEY, "")
-            if key != "normalTexture" and name not in ("", default) and name in names:
+            if name not in ("", default) and name in names:
                 return name
     return None
 
@@ -933,14 +989,11 @@ def assign_uv_sets(uv_maps, gltf_materials, second):
             name = info.pop(UV_MAP_KEY, "")
             if name in ("", default):
                 continue
-            if name == second and key != "normalTexture":
+            if name == second:
                 info["texCoord"] = 1
             elif name not in names:
                 log(f"{material['name']}: {key} reads uv map {name!r}, which the mesh does not have; "
                     f"rt uses {default!r}")
-            elif key == "normalTexture":
-                log(f"{material['name']}: its normal map reads uv map {name!r}; rt reads normal maps with the "
-                    f"default one ({default!r}), whose tangents it carries")
             else:
                 log(f"{material['name']}: {key} reads uv map {name!r}; rt carries two ({default!r} and "
                     f"{second!r}) and uses {default!r}")
@@ -1058,10 +1111,9 @@ def rt_rows(matrices):
 
 
 def same_uv_transform(a, b):
-    """Whether two uv transforms (2x3 arrays, or None for none) are one."""
-    if a is None or b is None:
-        return a is b
-    return bool(np.array_equal(a, b))
+    """Whether two materials' uv transforms ({map name: 2x3 array}, or None for none) are one."""
+    a, b = a or {}, b or {}
+    return a.keys() == b.keys() and all(np.array_equal(a[k], b[k]) for k in a)
 
 
 class InstancedMesh:
@@ -1070,9 +1122,9 @@ class InstancedMesh:
     material set of the instance file (slot i shows the set's i-th asset material), the
     asset's .gltf holding every material some instance shows."""
 
-    def __init__(self, mesh, materials, base):
+    def __init__(self, mesh, materials, base, baker=None):
         self.base = base
-        self.textures = Textures(base)
+        self.textures = Textures(base, baker)
         self.thickness = mesh_thickness(mesh)
         self.index = {}  # material name -> index in the asset's materials
         self.exported = []  # (glTF material, uv transform), the asset's own first
@@ -1116,37 +1168,100 @@ class InstancedMesh:
         return gltf_text(materials, self.thickness, self.textures)
 
 
-def instanced_mesh(meshes, obj, materials):
+def instanced_mesh(meshes, obj, materials, bakers=None):
     """(key into `meshes`, .rtinst material) of an instance of `obj` showing `materials`,
-    exporting its mesh at its first instance; `meshes[key]` is None for an empty mesh."""
+    exporting its mesh at its first instance; `meshes[key]` is None for an empty mesh.
+    `bakers`: what `prebake_instances` baked, per original mesh."""
+    mesh = original_mesh(obj) if bakers else None
+    baker = bakers.get(mesh.as_pointer()) if mesh is not None else None
     key = obj.data.as_pointer()
     if key not in meshes:
-        meshes[key] = InstancedMesh(obj.data, materials, sanitize(obj.data.name))
+        meshes[key] = InstancedMesh(obj.data, materials, sanitize(obj.data.name), baker)
     code = meshes[key].code_of(materials) if meshes[key] else RTINST_OWN_MATERIALS
     if code is None:
         # Shown as no material set can show it: another asset folder (same geometry, other materials).
         key = (key, tuple(m.name if m else "" for m in materials))
         if key not in meshes:
-            meshes[key] = InstancedMesh(obj.data, materials, sanitize(obj.data.name))
+            meshes[key] = InstancedMesh(obj.data, materials, sanitize(obj.data.name), baker)
         code = RTINST_OWN_MATERIALS
     if meshes[key] and meshes[key].triangles == 0:
         meshes[key] = None
     return key, code
 
 
+def exported_instances(depsgraph):
+    """The instances of `depsgraph` that rt exports: mesh instances shown in renders."""
+    for inst in depsgraph.object_instances:
+        obj = inst.object
+        if inst.is_instance and obj.type == "MESH" and obj.data is not None and not obj.original.hide_render:
+            yield inst
+
+
+def original_mesh(obj):
+    """The mesh data-block an instance's evaluated object shows (its object's own data for
+    collection and particle instances, the instanced one's for geometry-nodes instances
+    of an object), or None for geometry made by geometry nodes."""
+    own, shown = obj.original.data, obj.data
+    if own is not None and (shown.name, shown.library) == (own.name, own.library):
+        return own
+    mesh = shown.original
+    return None if mesh.is_evaluated else mesh
+
+
+def prebake_instances(depsgraph, size):
+    """Bakes what rt cannot follow in the materials of meshes that instances show, before
+    the instances are exported (a bake changes the scene, which the depsgraph's instance
+    iterator must not see): {original mesh pointer: Baker}. Each mesh is baked on a
+    stand-in object showing it with each set of materials its instances show."""
+    shown = {}  # original mesh pointer -> (mesh, [material lists])
+    for inst in exported_instances(depsgraph):
+        mesh = original_mesh(inst.object)
+        materials = instance_materials(inst)
+        if not any(needs_bake(surface.inputs[name]) for surface in map(principled_surface, materials)
+                   if surface is not None for name in BAKED_SOCKETS + ("Normal",)):
+            continue
+        if mesh is None:
+            log(f"{inst.object.original.name}: its instances' geometry is made by geometry nodes and has no mesh "
+                f"to bake on; their procedural sockets keep their own values")
+            continue
+        sets = shown.setdefault(mesh.as_pointer(), (mesh, []))[1]
+        if materials not in sets:
+            sets.append(materials)
+    bakers = {}
+    for key, (mesh, sets) in shown.items():
+        stand_in = bpy.data.objects.new(f"rt_bake_{mesh.name}", mesh)
+        bpy.context.scene.collection.objects.link(stand_in)
+        bpy.context.view_layer.update()
+        baker = Baker(stand_in, size)
+        try:
+            for materials in sets:
+                for slot, material in zip(stand_in.material_slots, materials):
+                    slot.link = "OBJECT"
+                    slot.material = material
+                baker.prebake(materials)
+        finally:
+            bpy.data.objects.remove(stand_in)
+        baker.obj = None
+        bakers[key] = baker
+    return bakers
+
+
 def add_instances(export, depsgraph):
     """Every instance that `depsgraph` generates (collection instances, nested ones,
     geometry-nodes instances, particles): each distinct evaluated mesh is exported once,
-    and each instance's matrix and material set are kept for its folder."""
+    and each instance's matrix and material set are kept for its folder. With
+    `export.bake_size`, their materials are baked first (`prebake_instances`)."""
+    bakers = None
+    if export.bake_size > 0:
+        bakers = prebake_instances(depsgraph, export.bake_size)
+        depsgraph = bpy.context.evaluated_depsgraph_get()
     meshes = {}  # mesh identity (with material names for a set that cannot be) -> InstancedMesh, or None when empty
     resolved = {}  # (object, mesh) identity -> what `instanced_mesh` said for it
-    for inst in depsgraph.object_instances:
+    for inst in exported_instances(depsgraph):
         obj = inst.object
-        if not inst.is_instance or obj.type != "MESH" or obj.data is None or obj.original.hide_render:
-            continue
         identity = (obj.original.as_pointer(), obj.data.as_pointer())
         if identity not in resolved:
-            resolved[identity] = instanced_mesh(meshes, obj, instance_materials(inst))
+            resolved[identity] = instanced_mesh(meshes, obj, instance_materials(inst), bakers)
         key, code = resolved[identity]
         entry = meshes[key]
         if entry is None:

@@ -20,6 +20,9 @@
 //#if anisotropy
 //#include "anisotropy.wgsl"
 //#endif
+//#if thin_film
+//#include "thin_film.wgsl"
+//#endif
 
 const ALPHA_DELTA: f32 = 1e-3;
 
@@ -116,6 +119,12 @@ fn conductor_fresnel(f0: vec3f, cos_i: f32) -> vec3f {
 // Fresnel reflectance of the `reflection` lobe: Cycles' F82-tint metal with
 // multiscatter GGX, else `conductor_fresnel` (as Mitsuba 3's conductor).
 fn metal_fresnel(ctx: ShadingContext, cos_i: f32) -> vec3f {
+    //#if thin_film
+    if has_thin_film(ctx.m) {
+        let f0 = metal_f0(ctx.m);
+        return thin_film_metal(ctx.m, cos_i, f0, f82_b(f0, min(ctx.m.specular_tint, vec3f(1.0))));
+    }
+    //#endif
     //#if multiscatter
     return f82_fresnel(cos_i, metal_f0(ctx.m), ctx.metal_b);
     //#else
@@ -128,6 +137,11 @@ fn metal_fresnel(ctx: ShadingContext, cos_i: f32) -> vec3f {
 fn specular_fresnel(ctx: ShadingContext, cos_i: f32) -> vec3f {
     //#if coating
     if ctx.m.coating_eta > 0.0 {
+        //#if thin_film
+        if has_thin_film(ctx.m) {
+            return thin_film_coating(ctx.m, cos_i);
+        }
+        //#endif
         return coating_fresnel(ctx.m, cos_i);
     }
     //#endif
@@ -191,6 +205,15 @@ fn shading_context(m: Material, n_shading: vec3f, n_geometric: vec3f, wo_world: 
         //#endif
         ctx.diffuse_kept = coating_transmittance(m, mu, darkening);
         specular_albedo = luminance(mix(saturate(m.coating_f0 * m.specular_tint), vec3f(1.0), coating_fresnel_s(sqrt(m.alpha), mu, m.coating_eta)));
+        //#if thin_film
+        if has_thin_film(m) {
+            // Cycles has no albedo table for a film: its estimate is the film's Fresnel at mu.
+            let film = thin_film_coating(m, mu);
+            let albedo = film * darkening;
+            ctx.diffuse_kept = saturate(1.0 - max(max(albedo.x, albedo.y), albedo.z));
+            specular_albedo = luminance(film);
+        }
+        //#endif
     }
     //#endif
     let p = vec4f(m.diffuse * ctx.diffuse_kept * luminance(m.base_color), m.specular * specular_albedo, m.reflection * luminance(m.base_color), m.transmission);

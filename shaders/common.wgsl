@@ -189,6 +189,11 @@ struct Material {
     // every other lobe, the coat included (0: none).
     sheen_tint: vec3f,
     sheen: f32,
+    // The thin film on the specular, metal and glass lobes (see thin_film.wgsl): its
+    // thickness in nm (at most THIN_FILM_CUTOFF: none) and its index.
+    thin_film_thickness: f32,
+    thin_film_ior: f32,
+    _pad7: vec2u,
     // The layered lobes' textures, or NO_TEXTURE (`layer_textured` in texture.wgsl): coat
     // R × coat, G × coat roughness, coat tint RGB, sheen R × sheen and G × its roughness,
     // sheen tint RGB, anisotropy R × anisotropy and G + rotation, specular tint RGB.

@@ -24,13 +24,29 @@ fn refraction_weight(ctx: ShadingContext) -> vec3f {
     return refraction_tint(ctx.m) / (ctx.eta * ctx.eta);
 }
 
+// Reflectance of the interface at a microfacet: the exact Fresnel, or the thin film's
+// (per channel). Reflection and refraction are chosen by its mean.
+fn glass_fresnel(ctx: ShadingContext, cos_i: f32) -> vec3f {
+    //#if thin_film
+    if has_thin_film(ctx.m) {
+        return thin_film_glass(ctx.m, cos_i, ctx.eta);
+    }
+    //#endif
+    return vec3f(fresnel_dielectric(cos_i, ctx.eta));
+}
+
+fn mean3(v: vec3f) -> f32 {
+    return (v.x + v.y + v.z) / 3.0;
+}
+
 // Perfectly smooth interface (α below ALPHA_DELTA), or the seed's cone model.
 fn smooth_dielectric_sample(ctx: ShadingContext, u: f32, rng: ptr<function, Rng>) -> BsdfSample {
     let scale = ctx.m.transmission / ctx.lobe_probability.w;
-    let f = fresnel_dielectric(ctx.wo.z, ctx.eta);
+    let fr = glass_fresnel(ctx, ctx.wo.z);
+    let f = mean3(fr);
     if u < f {
         let wi = fold_above(vec3f(-ctx.wo.xy, ctx.wo.z), ctx.n_geometric);
-        return BsdfSample(wi, vec3f(scale), 0.0, true, false, LOBE_TRANSMISSION);
+        return BsdfSample(wi, scale * fr / f, 0.0, true, false, LOBE_TRANSMISSION);
     }
     var wi = refract_direction(ctx.wo, vec3f(0.0, 0.0, 1.0), ctx.eta);
     //#if rough_glass_cone
@@ -39,7 +55,7 @@ fn smooth_dielectric_sample(ctx: ShadingContext, u: f32, rng: ptr<function, Rng>
     if dot(wi, ctx.n_geometric) >= 0.0 {
         return invalid_sample();
     }
-    return BsdfSample(wi, scale * refraction_weight(ctx), 0.0, true, true, LOBE_TRANSMISSION);
+    return BsdfSample(wi, scale * refraction_weight(ctx) * (1.0 - fr) / (1.0 - f), 0.0, true, true, LOBE_TRANSMISSION);
 }
 
 //#if rough_glass_cone
@@ -91,10 +107,10 @@ fn rough_dielectric_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
         return vec3f(0.0);
     }
     let a = ctx.alpha;
-    let f = fresnel_dielectric(dot(ctx.wo, m), ctx.eta);
+    let f = glass_fresnel(ctx, dot(ctx.wo, m));
     let dg = ggx_d(m, a) * ggx_g2(ctx.wo, wi, a);
     if reflect {
-        return vec3f(dg * f / (4.0 * ctx.wo.z));
+        return dg * f / (4.0 * ctx.wo.z);
     }
     let etap = ctx.eta;
     let denom = dot(wi, m) + dot(ctx.wo, m) / etap;
@@ -111,7 +127,7 @@ fn rough_dielectric_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
     if m.z == 0.0 {
         return 0.0;
     }
-    let f = fresnel_dielectric(dot(ctx.wo, m), ctx.eta);
+    let f = mean3(glass_fresnel(ctx, dot(ctx.wo, m)));
     let visible = ggx_visible_pdf(ctx.wo, m, ctx.alpha);
     if reflect {
         return visible / (4.0 * abs(dot(ctx.wo, m))) * f;
@@ -122,7 +138,7 @@ fn rough_dielectric_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
 
 fn rough_dielectric_sample(ctx: ShadingContext, u: vec3f) -> vec3f {
     let m = ggx_sample_visible_normal(ctx.wo, ctx.alpha, u.xy);
-    let f = fresnel_dielectric(dot(ctx.wo, m), ctx.eta);
+    let f = mean3(glass_fresnel(ctx, dot(ctx.wo, m)));
     if u.z < f {
         let wi = reflect_local(ctx.wo, m);
         return select(vec3f(0.0), wi, wi.z > 0.0);

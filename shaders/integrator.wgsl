@@ -319,10 +319,15 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, s
         //#if textures
         cone_width += cone_spread * hit.t;
         let cos_hit = max(abs(dot(surface.geometric_normal, direction)), 1e-4);
-        let texture_at = texture_point(hit);
+        // The uv and its footprint, only where the material reads a texture: it costs a
+        // triangle's vertices, its uvs and an instance's inverse transform.
+        var texture_at: TexturePoint;
+        if has_textures(m) {
+            texture_at = texture_point(hit);
+        }
         //#if normal_maps
         let n_unmapped = surface.shading_normal;
-        surface.shading_normal = normal_mapped(m, hit, n_unmapped, surface.geometric_normal, -direction, texture_at.uv);
+        surface.shading_normal = normal_mapped(m, hit, n_unmapped, surface.geometric_normal, -direction, slot_uv(m, UV1_NORMAL, texture_at));
         //#endif
         m = textured_material(m, texture_at, log2(cone_width / cos_hit));
         //#endif

@@ -123,7 +123,12 @@ struct TreePick {
     probability: f32,
 }
 
-fn light_tree_pick(rng: ptr<function, Rng>) -> TreePick {
+// The one walk from the root to a leaf that both directions take: at each inner node
+// to the first child or the second, with the probability of that choice. Sampling
+// (`follow_trail` false) chooses with `rng`; otherwise `trail` chooses, bit d at depth d
+// (1: the second child), and `rng` is not read.
+fn light_tree_walk(follow_trail: bool, trail: u32, rng: ptr<function, Rng>) -> TreePick {
+    var bits = trail;
     var index = 0u;
     var probability = 1.0;
     loop {
@@ -138,7 +143,14 @@ fn light_tree_pick(rng: ptr<function, Rng>) -> TreePick {
         if first < 0.0 {
             return TreePick(0u, 0.0);
         }
-        if rng_next(rng) < first {
+        var take_first: bool;
+        if follow_trail {
+            take_first = (bits & 1u) == 0u;
+            bits >>= 1u;
+        } else {
+            take_first = rng_next(rng) < first;
+        }
+        if take_first {
             probability *= first;
             index += 1u;
         } else {
@@ -149,37 +161,20 @@ fn light_tree_pick(rng: ptr<function, Rng>) -> TreePick {
     return TreePick(0u, 0.0);
 }
 
+fn light_tree_pick(rng: ptr<function, Rng>) -> TreePick {
+    return light_tree_walk(false, 0u, rng);
+}
+
 // The probability that `light_tree_pick` picks the light of trail entry `trail_index`
 // (emitter j: j; lamp i: emitter count + i).
 fn light_tree_probability(trail_index: u32) -> f32 {
-    var trail = light_tree_trails[trail_index];
+    let trail = light_tree_trails[trail_index];
     if trail == LIGHT_TREE_ABSENT {
         return 0.0;
     }
-    var index = 0u;
-    var probability = 1.0;
-    loop {
-        let node = light_tree_nodes[index];
-        if (node.flags & LIGHT_TREE_LEAF) != 0u {
-            if index == 0u && light_tree_importance(node) <= 0.0 {
-                return 0.0;
-            }
-            return probability;
-        }
-        let first = light_tree_first_child_probability(index, node);
-        if first < 0.0 {
-            return 0.0;
-        }
-        if (trail & 1u) == 0u {
-            probability *= first;
-            index += 1u;
-        } else {
-            probability *= 1.0 - first;
-            index = node.link;
-        }
-        trail >>= 1u;
-    }
-    return 0.0;
+    // Never read: the walk follows the trail.
+    var unused = Rng(0u);
+    return light_tree_walk(true, trail, &unused).probability;
 }
 
 // The index in `emitters` of the emitter that is triangle `primitive` of instance

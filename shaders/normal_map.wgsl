@@ -23,7 +23,8 @@ fn diffuse_mapped_normal() -> vec3f {
 }
 
 // The shading normal (outward, world space) at a hit, perturbed by the material's
-// normal map; unchanged where there is none, or no tangent to orient it by. The map is
+// normal map, read at `uv` of the set it reads, whose tangents the triangle carries (see
+// the cache's tangent section); unchanged where there is none, or no tangent to orient it by. The map is
 // read at its finest level, whatever the ray cone: shading is not linear in the normal,
 // and an averaged (shorter, flatter) normal would shade bumps away where many texels
 // share a pixel. The pixel's samples do the averaging, as in Cycles.

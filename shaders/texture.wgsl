@@ -20,7 +20,7 @@ const WRAP_MIRROR: u32 = 2u;
 const UV1_BASE_COLOR: u32 = 1u;
 const UV1_METALLIC_ROUGHNESS: u32 = 2u;
 const UV1_EMISSION: u32 = 4u;
-// (bit 3 is the normal map's, which always reads the first set)
+const UV1_NORMAL: u32 = 8u;
 const UV1_COAT: u32 = 16u;
 const UV1_COAT_ROUGHNESS: u32 = 32u;
 const UV1_COAT_TINT: u32 = 64u;
@@ -85,6 +85,19 @@ fn texture_point(hit: Hit) -> TexturePoint {
     p.second_uv_lod = uv_density_lod(triangle_uvs(hit.primitive, 1u), world_area);
     //#endif
     return p;
+}
+
+// Whether any texture slot of `m` is in use (the normal map's and the layered lobes' included).
+fn has_textures(m: Material) -> bool {
+    var any = m.base_color_texture != NO_TEXTURE || m.metallic_roughness_texture != NO_TEXTURE
+        || m.emission_texture != NO_TEXTURE || m.normal_texture != NO_TEXTURE;
+    //#if layer_textures
+    any = any || m.coat_texture != NO_TEXTURE || m.coat_roughness_texture != NO_TEXTURE
+        || m.coat_tint_texture != NO_TEXTURE || m.sheen_texture != NO_TEXTURE
+        || m.sheen_tint_texture != NO_TEXTURE || m.anisotropy_texture != NO_TEXTURE
+        || m.specular_tint_texture != NO_TEXTURE;
+    //#endif
+    return any;
 }
 
 // Slot `bit` (UV1_*) of `m` at `p`: its coordinates and the level of detail `footprint_lod` adds to.
@@ -205,8 +218,14 @@ fn textured_material(material: Material, p: TexturePoint, footprint_lod: f32) ->
     }
     if m.metallic_roughness_texture != NO_TEXTURE {
         // glTF's packing: G roughness, B metal. The host's lobe weights are the non-metal part's.
-        let lod = slot_lod(m, UV1_METALLIC_ROUGHNESS, p, footprint_lod);
-        let mr = sample_texture(m.metallic_roughness_texture, slot_uv(m, UV1_METALLIC_ROUGHNESS, p), lod);
+        // Read at the finest level, bilinear, whatever the ray cone (as Cycles reads every
+        // image): the shaded result is not linear in roughness, so a mip's mean roughness
+        // does not give the mean of the lobes it stands for; and the cone's isotropic level
+        // (width over |cos|) blurs far past the pixel across the view at grazing angles:
+        // at the silhouette of a sphere striped in metal and diffuse, the mip's half-metal
+        // lit the metal's edge with diffuse sunlight, 1.4% (9.6 σ) over Cycles on an 8×8
+        // block. The pixel's samples do the averaging, as in Cycles.
+        let mr = sample_level(textures[m.metallic_roughness_texture], 0u, slot_uv(m, UV1_METALLIC_ROUGHNESS, p));
         let metal = m.metallic * mr.b;
         let dielectric = 1.0 - metal;
         m.diffuse *= dielectric;

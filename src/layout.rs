@@ -211,6 +211,11 @@ pub struct GpuMaterial {
     pub sheen_tint: [f32; 3],
     /// Weight of the sheen layer over every other lobe (the coat included); 0: none.
     pub sheen: f32,
+    /// The thin film on the specular, metal and glass lobes: its thickness (nm; at most
+    /// `THIN_FILM_CUTOFF`: none) and index.
+    pub thin_film_thickness: f32,
+    pub thin_film_ior: f32,
+    pub _pad7: [u32; 2],
     /// The layered lobes' textures (`LayerTextures`), indices into the texture table or
     /// `NO_TEXTURE`: coat R, coat roughness G, coat tint RGB, sheen R and roughness G.
     pub coat_texture: u32,
@@ -481,6 +486,9 @@ impl From<&crate::scene::Material> for GpuMaterial {
             _pad2: 0,
             sheen_tint: m.sheen_tint,
             sheen: m.sheen,
+            thin_film_thickness: m.thin_film_thickness,
+            thin_film_ior: m.thin_film_ior,
+            _pad7: [0; 2],
             coat_texture: slot(l.coat),
             coat_roughness_texture: slot(l.coat_roughness),
             coat_tint_texture: slot(l.coat_tint),

@@ -130,7 +130,7 @@ fn flags_are_checked_like_keys() {
         (&["--ris-candidates", "0"][..], "--ris-candidates: must be in 1..=64, got 0"),
         (&["--spp", "0"][..], "--spp: must be at least 1, got 0"),
         (&["--clamp=-1"][..], "--clamp: must be a positive, finite luminance, got -1"),
-        (&["--samples-per-dispatch", "0"][..], "--samples-per-dispatch: must be in 1..=256, got 0"),
+        (&["--samples-per-dispatch", "0"][..], "--samples-per-dispatch: must be in 1..=1024, got 0"),
     ] {
         let (code, stderr) = rt(args);
         assert_eq!(code, 1, "{args:?}: exit code {code}, stderr:\n{stderr}");

@@ -1,30 +1,20 @@
 //! rt as Blender's render engine (blender/rt_engine.py): F12 through bpy gives the image
 //! `rt render` gives for the exported scene, Ctrl+F12 renders each frame of a range, a
 //! stop ends rt within a second leaving no files behind, rt's errors reach the report,
-//! and the packaged extension installs and renders. Also `rt render --progress json`.
+//! and the packaged extension installs and renders (and its files install as a legacy
+//! add-on by the package's bl_info). Also `rt render --progress json`.
 //! Needs RT_BPY_PYTHON, a Python with `bpy` (scripts/test sets one up).
 
 use crate::common;
 
-use common::repo;
+use common::{bpy_python, empty_temp_dir, repo};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn bpy_python() -> PathBuf {
-    let Some(python) = std::env::var_os("RT_BPY_PYTHON") else {
-        panic!("RT_BPY_PYTHON is not set: it must name a Python 3.11 with bpy==5.0.1 (scripts/test sets it)");
-    };
-    let python = PathBuf::from(python);
-    if python.is_relative() { repo().join(python) } else { python }
-}
-
 /// A fresh folder for one test; the engine's cache goes under it (TMPDIR).
 fn out_dir(name: &str) -> PathBuf {
-    let out = std::env::temp_dir().join(format!("rt-test-{}-engine-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
-    std::fs::create_dir_all(&out).expect("test folder");
-    out
+    empty_temp_dir(&format!("engine-{name}"))
 }
 
 /// Runs tests/blender/engine.py MODE ARGS with the engine's environment; returns its output.
@@ -160,6 +150,16 @@ fn the_extension_zip_installs_and_renders() {
     let (_, _, via_extension) = exr(&out.join("package.exr"));
     let (_, _, via_script) = exr(&out.join("f12.exr"));
     assert_eq!(via_extension, via_script, "the installed extension renders the same image");
+}
+
+#[test]
+fn the_package_installs_as_a_legacy_add_on_by_its_bl_info() {
+    let out = out_dir("legacy");
+    let zip = out.join("rt_blender.zip");
+    let packaged = Command::new(repo().join("scripts/package_blender")).arg(&zip).status().expect("script runs");
+    assert!(packaged.success());
+    let log = engine_py(&out, &[Path::new("legacy"), &zip, &out]);
+    assert!(log.contains("legacy: listed as 'rt' (0, 1, 0), enabled with the exporter and the engine"), "{log}");
 }
 
 #[test]

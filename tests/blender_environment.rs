@@ -3,7 +3,7 @@
 
 use crate::common;
 
-use common::{repo, temp_dir};
+use common::{bpy_python, repo, temp_dir};
 use rt::scene::Sky;
 use rt::sky::EnvironmentImage;
 use serde_json::Value;
@@ -11,10 +11,12 @@ use std::process::Command;
 
 /// Runs the export script into a folder of its own named `name`.
 fn run_export(name: &str) -> (std::path::PathBuf, Value) {
-    let python = std::env::var_os("RT_BPY_PYTHON").expect("RT_BPY_PYTHON names a Python with bpy==5.0.1");
     let out = temp_dir(name);
-    let result =
-        Command::new(python).arg(repo().join("tests/blender/environment.py")).arg(&out).output().expect("bpy runs");
+    let result = Command::new(bpy_python())
+        .arg(repo().join("tests/blender/environment.py"))
+        .arg(&out)
+        .output()
+        .expect("bpy runs");
     assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
     let report = std::fs::read_to_string(out.join("report.json")).expect("report.json");
     (out.clone(), serde_json::from_str(&report).expect("report parses"))

@@ -8,42 +8,16 @@
 use crate::common;
 use crate::watch_harness;
 
-use common::{repo, temp_dir};
+use common::{bpy_python, empty_temp_dir, repo};
 use serde_json::Value;
-use std::path::{Path, PathBuf};
-use std::process::{Child, Command};
-use std::time::{Duration, Instant};
-use watch_harness::Watcher;
-
-fn bpy_python() -> PathBuf {
-    let python = std::env::var_os("RT_BPY_PYTHON").map(PathBuf::from).unwrap_or_else(|| {
-        panic!("RT_BPY_PYTHON is not set: it must name a Python 3.11 with bpy==5.0.1 (scripts/test sets it)")
-    });
-    if python.is_relative() { repo().join(python) } else { python }
-}
-
-fn fresh(name: &str) -> PathBuf {
-    let out = temp_dir(name);
-    let _ = std::fs::remove_dir_all(&out);
-    std::fs::create_dir_all(&out).expect("output folder");
-    out
-}
+use std::path::Path;
+use std::process::Command;
+use std::time::Duration;
+use watch_harness::{edit_and_expect_reload, watch_blender_session};
 
 fn json(path: &Path) -> Value {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-}
-
-/// Waits for the Blender session to write `name` into `out`.
-fn wait_for_blender(blender: &mut Child, out: &Path, name: &str) {
-    let deadline = Instant::now() + Duration::from_secs(300);
-    while !out.join(name).exists() {
-        if let Ok(Some(status)) = blender.try_wait() {
-            panic!("the Blender session exited ({status}) before writing {name}");
-        }
-        assert!(Instant::now() < deadline, "the Blender session wrote no {name} in 300 s");
-        std::thread::sleep(Duration::from_millis(20));
-    }
 }
 
 /// Whether step `step`'s classified updates name `object` under `kind`.
@@ -57,13 +31,7 @@ fn classified(report: &Value, step: usize, kind: &str, name: &str) -> bool {
 
 #[test]
 fn each_edit_in_blender_is_one_reload_in_rt_watch_without_saving() {
-    let out = fresh("blender-live-edits");
-    let script = repo().join("tests/blender/live_edits.py");
-    let mut blender = Command::new(bpy_python()).arg(&script).arg(&out).spawn().expect("start the Blender session");
-    wait_for_blender(&mut blender, &out, "done-0");
-
-    let mut watch = Watcher::start(&out.join("scene.toml"), &out.join("frames"), 2, 32, &[]);
-    watch.wait_for("frame #0 ");
+    let (mut blender, mut watch, out) = watch_blender_session("live_edits.py", "blender-live-edits");
     let steps = [
         (1, "kind=placement cause=scene.toml"),
         (2, "kind=asset cause=cube.gltf"),
@@ -72,12 +40,7 @@ fn each_edit_in_blender_is_one_reload_in_rt_watch_without_saving() {
         (5, "kind=placement cause=scene.toml"),
     ];
     for (step, expected) in steps {
-        std::fs::write(out.join(format!("go-{step}")), "").expect("signal the Blender session");
-        wait_for_blender(&mut blender, &out, &format!("done-{step}"));
-        let reload = watch.wait_for(&format!("reload #{step} "));
-        assert!(reload.contains(expected), "step {step}: {reload}\n{}", watch.log().join("\n"));
-        watch.wait_for(&format!("frame #{step} "));
-        assert!(watch.frame(step - 1) != watch.frame(step), "step {step} left the image as it was");
+        edit_and_expect_reload(&mut blender, &mut watch, step, expected);
         if step < 5 {
             // One reload for one edit: nothing more comes before the next edit.
             std::thread::sleep(Duration::from_millis(500));
@@ -89,8 +52,7 @@ fn each_edit_in_blender_is_one_reload_in_rt_watch_without_saving() {
             );
         }
     }
-    let status = blender.wait().expect("the Blender session");
-    assert!(status.success(), "the Blender session: {status}");
+    blender.finish();
     // The drag's held-back last state lands as a reload of its own (or merged into the
     // first one by the watcher's debouncing): placements only, at most two.
     std::thread::sleep(Duration::from_millis(1000));
@@ -113,7 +75,7 @@ fn each_edit_in_blender_is_one_reload_in_rt_watch_without_saving() {
 
 #[test]
 fn the_viewport_streams_blenders_camera_and_each_edit() {
-    let out = fresh("blender-viewport");
+    let out = empty_temp_dir("blender-viewport");
     let result = Command::new(bpy_python())
         .arg(repo().join("tests/blender/viewport.py"))
         .arg(&out)

@@ -3,33 +3,14 @@
 
 use crate::common;
 
-use common::{render, repo};
+use common::{bpy_python, render, repo};
 use glam::{Mat4, Vec3};
 use rt::asset::{MeshData, load_mesh};
 use rt::bvh::{BuildQuality, Provenance, SceneGeometry};
 use rt::scene::Scene;
 use serde_json::Value;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
-
-pub(crate) fn bpy_python() -> PathBuf {
-    let Some(python) = std::env::var_os("RT_BPY_PYTHON") else {
-        panic!(
-            "RT_BPY_PYTHON is not set: it must name a Python 3.11 with bpy==5.0.1 \
-             (scripts/test creates .venv-bpy and sets it)"
-        );
-    };
-    let python = PathBuf::from(python);
-    let python = if python.is_relative() { repo().join(python) } else { python };
-    let check = Command::new(&python).args(["-c", "import bpy"]).output();
-    match check {
-        Ok(out) if out.status.success() => python,
-        Ok(out) => {
-            panic!("RT_BPY_PYTHON={} cannot import bpy:\n{}", python.display(), String::from_utf8_lossy(&out.stderr))
-        }
-        Err(e) => panic!("RT_BPY_PYTHON={} does not run: {e}", python.display()),
-    }
-}
 
 /// Runs a command, failing the test with its output if it fails; returns stderr.
 fn run(command: &mut Command) -> String {

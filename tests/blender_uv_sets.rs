@@ -4,17 +4,19 @@
 
 use crate::common;
 
-use common::{repo, temp_dir};
+use common::{bpy_python, repo, temp_dir};
 use rt::asset::load_mesh;
 use serde_json::Value;
 use std::process::Command;
 
 #[test]
 fn the_exporter_writes_second_uv_maps_and_bakes_procedural_sockets() {
-    let python = std::env::var_os("RT_BPY_PYTHON").expect("RT_BPY_PYTHON names a Python with bpy==5.0.1");
     let out = temp_dir("blender-uv-sets-bake");
-    let result =
-        Command::new(python).arg(repo().join("tests/blender/uv_sets_bake.py")).arg(&out).output().expect("bpy runs");
+    let result = Command::new(bpy_python())
+        .arg(repo().join("tests/blender/uv_sets_bake.py"))
+        .arg(&out)
+        .output()
+        .expect("bpy runs");
     let log = String::from_utf8_lossy(&result.stderr);
     assert!(result.status.success(), "{log}");
     let report: Value =
@@ -40,4 +42,28 @@ fn the_exporter_writes_second_uv_maps_and_bakes_procedural_sockets() {
     let unbaked = load_mesh(&out.join("unbaked/assets/Plane")).unwrap_or_else(|e| panic!("{e}"));
     assert!(unbaked.materials[0].1.textures.base_color.is_none());
     assert!(log.contains("Base Color is linked to TEX_NOISE, which rt cannot follow"), "{log}");
+
+    // Seen only through collection instances (its own collection excluded), the plane is
+    // baked on a stand-in object, which is gone afterwards.
+    let instanced = load_mesh(&out.join("instanced/assets/Plane")).unwrap_or_else(|e| panic!("{e}"));
+    let index = instanced.materials[0].1.textures.base_color.expect("the instanced plane's baked base colour");
+    let reds: Vec<u8> =
+        instanced.textures[index as usize].texels[..32 * 32].iter().map(|t| t.to_le_bytes()[0]).collect();
+    assert!(reds.iter().max() > reds.iter().min(), "the instances' bake is not a constant");
+    let objects = report["objects_after_instanced_bake"].as_array().expect("object names");
+    assert!(objects.iter().all(|o| !o.as_str().unwrap_or("").starts_with("rt_bake")), "{objects:?}");
+
+    // A Bump node fed by the noise into Normal: Cycles' NORMAL pass in tangent space becomes
+    // a normal map of strength 1 that tilts the normal (x and y away from 0.5 somewhere),
+    // facing out (z above 0.5 everywhere); the node tree is as it was.
+    let bumped = load_mesh(&out.join("bump/assets/Plane")).unwrap_or_else(|e| panic!("{e}"));
+    let textures = &bumped.materials[0].1.textures;
+    let index = textures.normal.expect("a baked normal map") as usize;
+    assert_eq!(textures.normal_scale, 1.0);
+    let texels: Vec<[u8; 4]> = bumped.textures[index].texels[..32 * 32].iter().map(|t| t.to_le_bytes()).collect();
+    let tilted = texels.iter().filter(|t| t[0].abs_diff(128) > 8 || t[1].abs_diff(128) > 8).count();
+    assert!(tilted > 32, "only {tilted} of 1024 texels are tilted");
+    assert!(texels.iter().all(|t| t[2] > 128), "a baked normal points into the surface");
+    assert_eq!(report["bump_before"], report["bump_after"], "the normal bake leaves the node tree as it was");
+    assert!(log.contains("noise: baked Normal (BUMP) into 32x32 texels"), "{log}");
 }

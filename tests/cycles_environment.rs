@@ -8,9 +8,8 @@
 
 use crate::common;
 
-use common::{gpu, reference, repo};
-use rt::bvh::BuildQuality;
-use rt::render::{Image, RenderRequest, Session};
+use common::{reference, render_request, repo};
+use rt::render::Image;
 use rt::scene::{Sampling, SkyFeature};
 
 /// Samples per pixel of the committed references (`make_environment_refs.py --spp`).
@@ -22,12 +21,8 @@ fn render(name: &str, sampling: Sampling, spp: u32) -> Image {
     let path = repo().join(format!("tests/cycles/scenes/{name}/{name}.toml"));
     let mut scene = rt::scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
     scene.render.sampling = sampling;
-    let mut session = Session::open(gpu(), scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
-    assert_eq!(session.features().sky, SkyFeature::Environment, "{name}");
-    let mut request = RenderRequest::from_scene(session.scene());
-    (request.spp, request.max_bounces) = (spp, MAX_BOUNCES);
-    let (image, report) = session.render(&request, None).unwrap_or_else(|e| panic!("{e:#}"));
-    assert!(report.dropped.is_clean(), "{name}: {}", report.dropped);
+    let (image, features) = render_request(scene, |r| (r.spp, r.max_bounces) = (spp, MAX_BOUNCES));
+    assert_eq!(features.sky, SkyFeature::Environment, "{name}");
     image
 }
 

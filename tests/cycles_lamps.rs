@@ -6,26 +6,22 @@
 
 use crate::common;
 
-use common::{gpu, reference, repo};
-use rt::bvh::BuildQuality;
-use rt::render::{Image, RenderRequest, Session};
+use common::{reference, render_request, repo};
+use rt::render::Image;
 use rt::scene::{LightSampler, Sampling};
 
 /// Samples per pixel of the committed references (`make_refs.py --spp`).
 const REFERENCE_SPP: f64 = 4096.0;
 /// Cycles' `max_bounces` in `make_refs.py` plus one: rt counts the first hit.
 const MAX_BOUNCES: u32 = 5;
+
 fn render(name: &str, sampling: Sampling, spp: u32, sampler: LightSampler) -> Image {
     let path = repo().join(format!("tests/cycles/scenes/{name}/{name}.toml"));
     let mut scene = rt::scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
     scene.render.sampling = sampling;
     scene.render.light_sampler = sampler;
-    let mut session = Session::open(gpu(), scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
-    assert!(session.features().lamps.any(), "{name}: no lamps");
-    let mut request = RenderRequest::from_scene(session.scene());
-    (request.spp, request.max_bounces) = (spp, MAX_BOUNCES);
-    let (image, report) = session.render(&request, None).unwrap_or_else(|e| panic!("{e:#}"));
-    assert!(report.dropped.is_clean(), "{name}: {}", report.dropped);
+    let (image, features) = render_request(scene, |r| (r.spp, r.max_bounces) = (spp, MAX_BOUNCES));
+    assert!(features.lamps.any(), "{name}: no lamps");
     image
 }
 

@@ -45,6 +45,13 @@ fn normal_mapped_cube_matches_cycles() {
     check("normal_cube", Sampling::Nee);
 }
 
+// The Normal Map node and its image name the cube's second uv map (each face's island
+// turned a quarter): rt reads the map with that set, in MikkTSpace's frame of that set.
+#[test]
+fn normal_map_on_the_second_uv_map_matches_cycles() {
+    check("normal_second_uv", Sampling::Nee);
+}
+
 #[test]
 fn alpha_blended_quad_and_its_shadow_match_cycles() {
     check("alpha_blend", Sampling::Nee);

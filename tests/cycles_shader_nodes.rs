@@ -7,11 +7,10 @@
 //! the noise (the bounds of `cycles_principled`). What the exporter cannot map is a warning
 //! naming the material and the node.
 
-use crate::blender_roundtrip::bpy_python;
 use crate::common;
 use crate::cycles_principled::check_row;
 
-use common::repo;
+use common::{bpy_python, repo};
 use std::process::Command;
 
 #[test]

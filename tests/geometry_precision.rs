@@ -4,20 +4,11 @@
 
 use crate::common;
 
-use common::{TestRng, gpu, scene_from, temp_dir, write};
+use common::{TestRng, gpu, scene_from, temp_dir, trace_ray, write};
 use glam::DVec3;
 use rt::bvh::BuildQuality;
 use rt::layout::{EMPTY_LINK, GpuTraceRay, SPHERE_BIT};
 use rt::render::Session;
-
-fn ray(o: DVec3, d: DVec3) -> GpuTraceRay {
-    GpuTraceRay {
-        origin: o.as_vec3().to_array(),
-        t_max: f32::MAX,
-        direction: d.normalize().as_vec3().to_array(),
-        _pad: 0,
-    }
-}
 
 fn v(p: [f32; 3]) -> DVec3 {
     DVec3::from(p.map(f64::from))
@@ -72,7 +63,7 @@ fn spawned_rays_never_rehit_their_own_triangle_from_1e_4_to_1e6_m() {
             let (u, w) = if u + w > 1.0 { (1.0 - u, 1.0 - w) } else { (u, w) };
             let target = a + (b - a) * u + (c - a) * w;
             let o = target + DVec3::from(rng.unit_vector()) * scale * log_uniform(&mut rng, 0.1, 10.0);
-            rays.push(ray(o, target - o));
+            rays.push(trace_ray(o, target - o));
         }
     }
     let mut rehits = [0usize; 2];
@@ -122,11 +113,11 @@ fn far_and_planet_sized_spheres_are_hit_at_the_right_distance() {
     for _ in 0..5000 {
         // At the small sphere 10 km away, across its whole disk.
         let target = small.0 + DVec3::from(rng.unit_vector()) * 0.999;
-        rays.push(ray(eye, target - eye));
+        rays.push(trace_ray(eye, target - eye));
         // At the ground from 1.7 m, down to grazing angles 0.1° below the horizon.
         let below = log_uniform(&mut rng, 0.1, 90.0).to_radians();
         let azimuth = rng.next_f64() * std::f64::consts::TAU;
-        rays.push(ray(eye, DVec3::new(below.cos() * azimuth.cos(), -below.sin(), below.cos() * azimuth.sin())));
+        rays.push(trace_ray(eye, DVec3::new(below.cos() * azimuth.cos(), -below.sin(), below.cos() * azimuth.sin())));
     }
     let hits = renderer.trace(&rays).expect("trace");
     let mut worst = [0f64; 2];
@@ -180,13 +171,16 @@ fn tiny_huge_and_degenerate_triangles() {
     let mut rays = Vec::new();
     for _ in 0..2000 {
         let (u, w) = (rng.next_f64() * 0.5, rng.next_f64() * 0.5);
-        rays.push(ray(DVec3::new(2e-5, 2e-5, 1.0), DVec3::new(u * 1e-4, w * 1e-4, 0.0) - DVec3::new(2e-5, 2e-5, 1.0)));
+        rays.push(trace_ray(
+            DVec3::new(2e-5, 2e-5, 1.0),
+            DVec3::new(u * 1e-4, w * 1e-4, 0.0) - DVec3::new(2e-5, 2e-5, 1.0),
+        ));
         let o = DVec3::new(rng.next_f64() * 1e5, rng.next_f64() * 1e5, 100.0);
-        rays.push(ray(o, DVec3::new(0.0, 0.0, -1.0)));
+        rays.push(trace_ray(o, DVec3::new(0.0, 0.0, -1.0)));
         // Straight at the degenerate ones, edge-on and face-on.
         let target = DVec3::new(2.0 + (rng.next_f64() * 3.0).floor(), rng.next_f64() * 2.0, 0.0);
         let from = target + DVec3::from(rng.unit_vector());
-        rays.push(ray(from, target - from));
+        rays.push(trace_ray(from, target - from));
     }
     let hits = renderer.trace(&rays).expect("trace");
     let order = |p: u32| renderer.geometry().triangles[p as usize];
@@ -231,7 +225,7 @@ fn nested_coincident_triangles_never_give_a_silently_wrong_hit() {
         .map(|_| {
             let target = DVec3::new(rng.next_f64() * 0.5, rng.next_f64() * 0.5, 0.0);
             let o = target + DVec3::new(rng.next_f64() - 0.5, rng.next_f64() - 0.5, 1.0);
-            ray(o, target - o)
+            trace_ray(o, target - o)
         })
         .collect();
     let hits = renderer.trace(&rays).expect("trace");

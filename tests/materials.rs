@@ -48,6 +48,8 @@ fn smooth_glass_and_white_mirror_reflect_everything() {
         for (what, material) in [
             ("smooth glass", "diffuse = 0.0\ntransmission = 1.0\nior = 1.5"),
             ("glass, ior 3", "diffuse = 0.0\ntransmission = 1.0\nior = 3.0"),
+            // The film colours reflection and refraction oppositely: per channel they still sum to 1.
+            ("smooth glass with a 400 nm film", "diffuse = 0.0\ntransmission = 1.0\nthin_film_thickness = 400.0"),
             ("white mirror", "diffuse = 0.0\nreflection = 1.0"),
             ("half mirror, half diffuse", "diffuse = 0.5\nreflection = 0.5"),
         ] {
@@ -200,6 +202,22 @@ fn hard_materials_stay_finite() {
             89.9,
         ),
         ("anisotropic rough glass", "diffuse = 0.0\ntransmission = 1.0\nroughness = 0.5\nanisotropy = 1.0", 0.0),
+        (
+            "thin film at its thickest on a smooth metal at grazing",
+            "diffuse = 0.0\nreflection = 1.0\nthin_film_thickness = 100000.0\nthin_film_ior = 3.0",
+            89.9,
+        ),
+        (
+            "0.5 nm film (fading out) on a dielectric of index 1",
+            "specular_ior_level = 0.0\nroughness = 0.3\nthin_film_thickness = 0.5\nthin_film_ior = 1.0",
+            0.0,
+        ),
+        (
+            "thin film on glass, total internal reflection inside",
+            "diffuse = 0.0\ntransmission = 1.0\nior = 3.0\nroughness = 0.2\nthin_film_thickness = 500.0",
+            0.0,
+        ),
+        ("thin film on white smooth glass", "diffuse = 0.0\ntransmission = 1.0\nthin_film_thickness = 300.0", 0.0),
         ("hardness 10000", "diffuse = 0.5\nspecular = 0.5\nhardness = 10000.0", 0.0),
         ("emission 1e6", "emission = [1e6, 1e6, 1e6]", 0.0),
         ("absorption 1e6", "diffuse = 0.0\ntransmission = 1.0\nabsorption = [1e6, 1e6, 1e6]", 0.0),

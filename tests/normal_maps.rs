@@ -7,6 +7,7 @@
 
 use crate::common;
 
+use common::quad_gltf::textured_quad;
 use common::{render, scene_from, temp_dir, write};
 use glam::DVec3;
 
@@ -25,30 +26,12 @@ fn png(rgb: [u8; 3]) -> Vec<u8> {
 /// `normal.png` as its normal map of scale `scale`.
 fn quad_gltf(scale: f64) -> String {
     let corners = [[-1.0f32, 0.0, 1.0], [1.0, 0.0, 1.0], [1.0, 0.0, -1.0], [-1.0, 0.0, -1.0]];
-    let mut bytes = Vec::new();
-    corners.iter().flatten().for_each(|f| bytes.extend(f.to_le_bytes()));
-    [[0.0f32, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]].iter().flatten().for_each(|f| bytes.extend(f.to_le_bytes()));
-    [0u32, 1, 2, 0, 2, 3].iter().for_each(|i| bytes.extend(i.to_le_bytes()));
-    format!(
-        r#"{{
-  "asset": {{ "version": "2.0" }}, "scene": 0, "scenes": [{{ "nodes": [0] }}], "nodes": [{{ "mesh": 0 }}],
-  "meshes": [{{ "primitives": [{{ "attributes": {{ "POSITION": 0, "TEXCOORD_0": 1 }}, "indices": 2, "material": 0 }}] }}],
-  "materials": [{{ "name": "bumped", "normalTexture": {{ "index": 0, "scale": {scale} }},
+    let material = format!(
+        r#"{{ "name": "bumped", "normalTexture": {{ "index": 0, "scale": {scale} }},
     "pbrMetallicRoughness": {{ "baseColorFactor": [{ALBEDO}, {ALBEDO}, {ALBEDO}, 1.0], "metallicFactor": 0.0 }},
-    "extensions": {{ "KHR_materials_specular": {{ "specularFactor": 0.0 }} }} }}],
-  "textures": [{{ "source": 0 }}],
-  "images": [{{ "uri": "normal.png" }}],
-  "buffers": [{{ "byteLength": {len}, "uri": "data:application/octet-stream;base64,{data}" }}],
-  "bufferViews": [{{ "buffer": 0, "byteLength": 48 }}, {{ "buffer": 0, "byteOffset": 48, "byteLength": 32 }},
-    {{ "buffer": 0, "byteOffset": 80, "byteLength": 24 }}],
-  "accessors": [
-    {{ "bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, 0, -1], "max": [1, 0, 1] }},
-    {{ "bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2" }},
-    {{ "bufferView": 2, "componentType": 5125, "count": 6, "type": "SCALAR" }}]
-}}"#,
-        len = bytes.len(),
-        data = base64::encode(&bytes)
-    )
+    "extensions": {{ "KHR_materials_specular": {{ "specularFactor": 0.0 }} }} }}"#
+    );
+    textured_quad(corners, &material, "normal.png", None)
 }
 
 /// The tangent-space normal `n` as 8-bit codes, and what they decode to.

@@ -6,20 +6,11 @@
 
 use crate::common;
 
-use common::{gpu, repo, temp_dir};
+use common::{bpy_python, gpu, repo, temp_dir};
 use rt::bvh::{BuildQuality, SceneGeometry};
 use rt::render::{RenderRequest, Session};
-use std::path::PathBuf;
 use std::process::Command;
 use std::time::Instant;
-
-fn bpy_python() -> PathBuf {
-    let Some(python) = std::env::var_os("RT_BPY_PYTHON") else {
-        panic!("RT_BPY_PYTHON is not set: it must name a Python 3.11 with bpy==5.0.1 (scripts/test sets one up)");
-    };
-    let python = PathBuf::from(python);
-    if python.is_relative() { repo().join(python) } else { python }
-}
 
 /// The process's peak resident memory in MiB (Linux), or NaN where unknown.
 fn peak_rss_mib() -> f64 {

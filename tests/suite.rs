@@ -18,6 +18,7 @@ mod bench_accuracy;
 mod bench_compare;
 mod blender_engine;
 mod blender_environment;
+mod blender_gltf_extensions;
 mod blender_live;
 mod blender_live_watch;
 mod blender_roundtrip;

@@ -4,37 +4,17 @@
 
 use crate::common;
 
+use common::quad_gltf::textured_quad;
 use common::{temp_dir, write};
 use rt::asset::load_mesh;
 use std::path::Path;
 
 /// A unit quad whose material `name` has image 0, at `image_uri`, as base colour texture.
 fn quad_gltf(name: &str, image_uri: &str) -> String {
-    let mut bytes = Vec::new();
-    [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]
-        .iter()
-        .flatten()
-        .for_each(|f| bytes.extend(f.to_le_bytes()));
-    [[0.0f32, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]].iter().flatten().for_each(|f| bytes.extend(f.to_le_bytes()));
-    [0u32, 1, 2, 0, 2, 3].iter().for_each(|i| bytes.extend(i.to_le_bytes()));
-    format!(
-        r#"{{
-  "asset": {{ "version": "2.0" }}, "scene": 0, "scenes": [{{ "nodes": [0] }}], "nodes": [{{ "mesh": 0 }}],
-  "meshes": [{{ "primitives": [{{ "attributes": {{ "POSITION": 0, "TEXCOORD_0": 1 }}, "indices": 2, "material": 0 }}] }}],
-  "materials": [{{ "name": "{name}", "pbrMetallicRoughness": {{ "baseColorTexture": {{ "index": 0 }} }} }}],
-  "textures": [{{ "source": 0 }}],
-  "images": [{{ "uri": "{image_uri}" }}],
-  "buffers": [{{ "byteLength": {len}, "uri": "data:application/octet-stream;base64,{data}" }}],
-  "bufferViews": [{{ "buffer": 0, "byteLength": 48 }}, {{ "buffer": 0, "byteOffset": 48, "byteLength": 32 }},
-    {{ "buffer": 0, "byteOffset": 80, "byteLength": 24 }}],
-  "accessors": [
-    {{ "bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0] }},
-    {{ "bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2" }},
-    {{ "bufferView": 2, "componentType": 5125, "count": 6, "type": "SCALAR" }}]
-}}"#,
-        len = bytes.len(),
-        data = base64::encode(&bytes)
-    )
+    let corners = [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+    let material =
+        format!(r#"{{ "name": "{name}", "pbrMetallicRoughness": {{ "baseColorTexture": {{ "index": 0 }} }} }}"#);
+    textured_quad(corners, &material, image_uri, None)
 }
 
 fn import_error(dir: &Path, material: &str, image_uri: &str) -> String {

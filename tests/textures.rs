@@ -5,6 +5,7 @@
 
 use crate::common;
 
+use common::quad_gltf::textured_quad;
 use common::{render, scene_from, temp_dir, write};
 use rt::asset::load_mesh;
 use rt::render::Image;
@@ -18,53 +19,9 @@ fn png(texel: impl Fn(u32, u32) -> [u8; 4]) -> Vec<u8> {
     bytes
 }
 
-/// One quad with texture coordinates (glTF's: origin at the top left of the image),
-/// `corners` in order (0,0), (1,0), (1,1), (0,1); its one material is `material`, whose
-/// textures all use image 0 at `image_uri`.
+/// A textured quad (`common::quad_gltf::textured_quad`) with one set of texture coordinates.
 fn quad_gltf(corners: [[f32; 3]; 4], material: &str, image_uri: &str) -> String {
-    quad_gltf_with_uv_sets(corners, material, image_uri, None)
-}
-
-/// [`quad_gltf`] with a second set of texture coordinates, `TEXCOORD_1`, when given.
-fn quad_gltf_with_uv_sets(
-    corners: [[f32; 3]; 4],
-    material: &str,
-    image_uri: &str,
-    second: Option<[[f32; 2]; 4]>,
-) -> String {
-    let mut bytes = Vec::new();
-    corners.iter().flatten().for_each(|f| bytes.extend(f.to_le_bytes()));
-    [[0.0f32, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]].iter().flatten().for_each(|f| bytes.extend(f.to_le_bytes()));
-    [0u32, 1, 2, 0, 2, 3].iter().for_each(|i| bytes.extend(i.to_le_bytes()));
-    let (second_attribute, second_view, second_accessor) = match second {
-        Some(uvs) => {
-            uvs.iter().flatten().for_each(|f| bytes.extend(f.to_le_bytes()));
-            (
-                r#", "TEXCOORD_1": 3"#,
-                r#", { "buffer": 0, "byteOffset": 104, "byteLength": 32 }"#,
-                r#", { "bufferView": 3, "componentType": 5126, "count": 4, "type": "VEC2" }"#,
-            )
-        }
-        None => ("", "", ""),
-    };
-    let data = base64::encode(&bytes);
-    format!(
-        r#"{{
-  "asset": {{ "version": "2.0" }}, "scene": 0, "scenes": [{{ "nodes": [0] }}], "nodes": [{{ "mesh": 0 }}],
-  "meshes": [{{ "primitives": [{{ "attributes": {{ "POSITION": 0, "TEXCOORD_0": 1{second_attribute} }}, "indices": 2, "material": 0 }}] }}],
-  "materials": [{material}],
-  "textures": [{{ "source": 0 }}],
-  "images": [{{ "uri": "{image_uri}" }}],
-  "buffers": [{{ "byteLength": {len}, "uri": "data:application/octet-stream;base64,{data}" }}],
-  "bufferViews": [{{ "buffer": 0, "byteLength": 48 }}, {{ "buffer": 0, "byteOffset": 48, "byteLength": 32 }},
-    {{ "buffer": 0, "byteOffset": 80, "byteLength": 24 }}{second_view}],
-  "accessors": [
-    {{ "bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, -1, -1], "max": [1, 1, 1] }},
-    {{ "bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2" }},
-    {{ "bufferView": 2, "componentType": 5125, "count": 6, "type": "SCALAR" }}{second_accessor}]
-}}"#,
-        len = bytes.len()
-    )
+    textured_quad(corners, material, image_uri, None)
 }
 
 fn srgb_to_linear(c: u8) -> f64 {
@@ -133,7 +90,7 @@ fn a_texture_reads_the_uv_set_its_tex_coord_names() {
     let half_turn = [[1.0, 1.0], [0.0, 1.0], [0.0, 0.0], [1.0, 0.0]];
     let material = r#"{ "name": "painted", "pbrMetallicRoughness": { "baseColorTexture": { "index": 0, "texCoord": 1 },
         "metallicFactor": 0.0 }, "extensions": { "KHR_materials_specular": { "specularFactor": 0.0 } } }"#;
-    write(&dir.join("quad.gltf"), &quad_gltf_with_uv_sets(corners, material, "quadrants.png", Some(half_turn)));
+    write(&dir.join("quad.gltf"), &textured_quad(corners, material, "quadrants.png", Some(half_turn)));
 
     let mesh = load_mesh(&dir.join("quad.gltf")).expect("loads");
     assert!(mesh.materials[0].1.textures.reads_second_uv_set(0), "base colour reads TEXCOORD_1");
@@ -279,4 +236,35 @@ fn khr_texture_transform_is_baked_into_the_uvs() {
     for (got, want) in uvs.iter().zip(expected) {
         assert!((got[0] - want[0]).abs() < 1e-6 && (got[1] - want[1]).abs() < 1e-6, "{uvs:?} vs {expected:?}");
     }
+}
+
+#[test]
+fn each_uv_set_takes_the_texture_transform_of_the_textures_that_read_it() {
+    let dir = temp_dir("texture-transform-per-set");
+    std::fs::write(dir.join("t.png"), png(|_, _| [9, 9, 9, 255])).expect("png");
+    let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+    let second = [[0.0, 0.0], [0.0, 1.0], [1.0, 1.0], [1.0, 0.0]];
+    // Base colour on set 0 moved by (0.5, 0.25); emission on set 1 scaled by 3; the normal map on set 1.
+    let material = r#"{ "name": "two", "pbrMetallicRoughness": { "baseColorTexture": { "index": 0,
+        "extensions": { "KHR_texture_transform": { "offset": [0.5, 0.25] } } } },
+        "emissiveTexture": { "index": 0, "texCoord": 1, "extensions": { "KHR_texture_transform": { "scale": [3, 3] } } },
+        "emissiveFactor": [1, 1, 1], "normalTexture": { "index": 0, "texCoord": 1 } }"#;
+    write(&dir.join("q.gltf"), &textured_quad(corners, material, "t.png", Some(second)));
+    let mesh = load_mesh(&dir.join("q.gltf")).expect("loads");
+    let textures = &mesh.materials[0].1.textures;
+    assert!(!textures.reads_second_uv_set(0) && textures.reads_second_uv_set(2), "{textures:?}");
+    assert_eq!(textures.normal_uv_set(), rt::scene::UvSet::Second, "the normal map reads TEXCOORD_1");
+    // Vertices may be split for tangents: compare through positions.
+    let (first_set, second_set) = (mesh.uvs.as_ref().expect("uvs"), mesh.second_uvs.as_ref().expect("second uvs"));
+    for (v, p) in mesh.positions.iter().enumerate() {
+        let corner = corners.iter().position(|c| c == p).expect("a corner");
+        let [u, w] = [[0.0f32, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]][corner];
+        let [su, sw] = second[corner];
+        // rt stores v from the bottom: 1 - glTF's.
+        assert_eq!(first_set[v], [u + 0.5, 1.0 - (w + 0.25)], "set 0 at {p:?}");
+        assert_eq!(second_set[v], [3.0 * su, 1.0 - 3.0 * sw], "set 1 at {p:?}");
+    }
+    // The second set's own MikkTSpace frame: its u runs along +y of the quad.
+    let tangents = mesh.second_tangents.as_ref().expect("tangents of the second set");
+    assert!(tangents.iter().all(|t| t[1] > 0.99), "{tangents:?}");
 }

@@ -2,7 +2,7 @@
 
 use crate::common;
 
-use common::{TestRng, gpu, icosphere_obj, repo, scene_from, temp_dir, write};
+use common::{TestRng, gpu, icosphere_obj, repo, scene_from, temp_dir, trace_ray, write};
 use glam::DVec3;
 use rt::bvh::BuildQuality;
 use rt::layout::{EMPTY_LINK, GpuTraceRay};
@@ -42,15 +42,6 @@ fn world_triangles(renderer: &Session) -> Vec<[DVec3; 3]> {
         .collect()
 }
 
-fn ray(o: DVec3, d: DVec3) -> GpuTraceRay {
-    GpuTraceRay {
-        origin: o.as_vec3().to_array(),
-        t_max: f32::MAX,
-        direction: d.normalize().as_vec3().to_array(),
-        _pad: 0,
-    }
-}
-
 #[test]
 fn gpu_traversal_matches_cpu_reference_on_the_bunny() {
     let scene = scene_from(
@@ -65,7 +56,7 @@ fn gpu_traversal_matches_cpu_reference_on_the_bunny() {
         .map(|_| {
             let o = centre + DVec3::from(rng.unit_vector()) * 3.0;
             let target = lo + (hi - lo) * DVec3::new(rng.next_f64(), rng.next_f64(), rng.next_f64());
-            ray(o, target - o)
+            trace_ray(o, target - o)
         })
         .collect();
     let hits = renderer.trace(&rays).expect("trace");
@@ -127,7 +118,7 @@ fn no_ray_escapes_a_closed_mesh() {
         let o = if rays.len() % 10 == 0 { DVec3::ZERO } else { DVec3::from(rng.unit_vector()) * 1.5 * rng.next_f64() };
         let target =
             if rays.len() % 4 == 3 { o + DVec3::from(rng.unit_vector()) } else { targets[rays.len() % targets.len()] };
-        rays.push(ray(o, target - o));
+        rays.push(trace_ray(o, target - o));
     }
     let hits = renderer.trace(&rays).expect("trace");
     let escapes = hits.iter().filter(|h| h.primitive == EMPTY_LINK).count();

@@ -12,7 +12,9 @@ from . import rt_engine, rt_export
 
 # For Blender before 4.2, which installs this folder as a legacy add-on (Blender 4.2+ reads
 # blender_manifest.toml instead). rt supports 4.2+; the screenshots in docs/images were
-# taken on 3.4 this way.
+# taken on 3.4 this way. The add-on's only bl_info: Blender reads it from this file's
+# text without running it, so it must stay a literal here; rt_export.py installed on its
+# own would lack rt_shader_nodes.py, so the exporter comes only as part of this package.
 bl_info = {
     "name": "rt",
     "author": "rt",

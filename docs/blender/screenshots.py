@@ -8,7 +8,7 @@
 --enable-event-simulate lets the script press Esc on the first-start splash and drag an
 object with the simulated pointer, and makes Blender ignore the real one). It installs
 rt's add-on from blender/ as a legacy add-on (the blender/rt_blender package, with its
-three modules beside it, in a temporary folder), builds the Cornell box of
+four modules beside it, in a temporary folder), builds the Cornell box of
 docs/blender/cornell.py with rt as the render engine, and steps through the UI with a
 timer: Render Properties with rt's panel, F12 into Blender's render view (the main
 window's Maximized Area), the 3D viewport in Rendered shading (rt's view_draw) while its
@@ -62,7 +62,7 @@ def install_addon(folder, rt_binary):
     package = os.path.join(folder, ADDON)
     os.makedirs(package)
     shutil.copy(os.path.join(REPO, "blender", "rt_blender", "__init__.py"), package)
-    for name in ("rt_export.py", "rt_engine.py", "rt_viewport.py"):
+    for name in ("rt_export.py", "rt_shader_nodes.py", "rt_engine.py", "rt_viewport.py"):
         shutil.copy(os.path.join(REPO, "blender", name), package)
     sys.path.insert(0, folder)
     if addon_utils.enable(ADDON, default_set=True, handle_error=None) is None:

@@ -18,8 +18,11 @@
 //! | `KHR_materials_clearcoat` factor, roughness factor (0, 0)  | `coat`, `coat_roughness` (index 1.5, untinted) |
 //! | `extras.rt_coat`, `_roughness`, `_ior`, `_tint` (absent, absent, 1.5, (1, 1, 1)) | `coat`, `coat_roughness` (instead of clearcoat's), `coat_ior`, `coat_tint` |
 //! | `extras.rt_glossy_color` `[r, g, b]` (absent)             | Cycles' Glossy BSDF: `specular = 1` tinted by the colour (`specular_tint`), no other lobe |
-//! | `extras.rt_sheen`, `_roughness`, `_tint` (0, 0.5, (1, 1, 1)) | `sheen`, `sheen_roughness`, `sheen_tint` |
-//! | `extras.rt_anisotropy`, `rt_anisotropy_rotation` (0, 0)     | `anisotropy`, `anisotropy_rotation` |
+//! | `KHR_materials_sheen` colour, roughness factors ((0, 0, 0), 0) | `sheen = 1`, `sheen_tint`, `sheen_roughness` (as Blender imports it; none without the extension) |
+//! | `extras.rt_sheen`, `_roughness`, `_tint` (absent)          | `sheen`, `sheen_roughness`, `sheen_tint`, instead of the extension's |
+//! | `KHR_materials_anisotropy` strength, rotation (0, 0 rad)  | `anisotropy`, `anisotropy_rotation = rotation / 2π` (as Blender imports it) |
+//! | `extras.rt_anisotropy`, `rt_anisotropy_rotation` (absent) | `anisotropy`, `anisotropy_rotation`, instead of the extension's |
+//! | `KHR_materials_iridescence` factor (0), index (1.3), thickness maximum (400) | `thin_film_ior`, `thin_film_thickness` (the maximum; factor 0: no film) |
 //! | `extras.rt_tangent` (`"radial_z"`)                        | `tangent` |
 //! | `KHR_materials_clearcoat` textures, `KHR_materials_specular` colour texture, `extras.rt_*_texture` | `textures.layers` (`gltf_layer_textures`) |
 //! | `KHR_materials_volume` colour `c` (1), distance `d` (∞)   | `absorption = -ln(c) / d`; 0 if `d = ∞` |
@@ -35,10 +38,10 @@
 //! default material (a rough white metal): rt treats a material-less mesh as plain
 //! geometry, the same as an OBJ without a `.mtl` and a scene material left at defaults.
 
-use super::gltf_extensions::{clearcoat, glossy};
+use super::gltf_extensions::{Sheen, anisotropy, clearcoat, glossy, iridescence, sheen};
 use super::gltf_textures::{ColorSpace, TextureLoader};
 use super::{AssetError, MeshData};
-use crate::scene::{Material, MaterialTextures, Tangent};
+use crate::scene::{Material, MaterialTextures, NORMAL_SLOT, Tangent};
 use glam::{Mat3, Mat4, Vec3};
 use gltf::json::Value;
 use gltf::material::AlphaMode;
@@ -79,7 +82,7 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
                 ..map_material_dielectric(&m).map_err(|e| err(format!("material `{name}`: {e}")))?
             };
         }
-        uv_transforms.push(uv_transform(&m, &name));
+        uv_transforms.push(uv_transforms_of(&m, &name));
         mesh.materials.push((name, material));
     }
     mesh.textures = loader.textures;
@@ -144,8 +147,9 @@ struct Walk<'a> {
     all_uvs: bool,
     all_second_uvs: bool,
     default_material: Option<u32>,
-    /// Per material, its textures' `KHR_texture_transform`, baked into the uvs of its primitives.
-    uv_transforms: &'a [Option<UvTransform>],
+    /// Per material and uv set, its textures' `KHR_texture_transform`, baked into that set's
+    /// uvs of its primitives.
+    uv_transforms: &'a [[Option<UvTransform>; 2]],
 }
 
 impl Walk<'_> {
@@ -245,7 +249,7 @@ impl Walk<'_> {
                     return Err(format!("{at}: TANGENT and POSITION counts differ"));
                 }
             }
-            let transform = prim.material().index().and_then(|i| self.uv_transforms.get(i).copied().flatten());
+            let transforms = prim.material().index().and_then(|i| self.uv_transforms.get(i).copied());
             for set in [0, 1] {
                 let (all, uvs) = match set {
                     0 => (&mut self.all_uvs, &mut self.uvs),
@@ -258,7 +262,8 @@ impl Walk<'_> {
                 let name = format!("TEXCOORD_{set}");
                 let read = reader.read_tex_coords(set).ok_or_else(|| unreadable(&name))?;
                 let start = uvs.len();
-                // The material's texture transform, in both sets: rt keeps one per material.
+                // The transform of the material's textures that read this set.
+                let transform = transforms.and_then(|t| t[set as usize]);
                 let transformed = read.into_f32().map(|uv| transform.map_or(uv, |t| t.apply(uv)));
                 uvs.extend(transformed.map(|[u, v]| [u, 1.0 - v]));
                 if uvs.len() - start != count {
@@ -309,31 +314,33 @@ impl UvTransform {
     }
 }
 
-/// The texture transform of a material's textures, baked into the uvs of its triangles:
-/// rt keeps one set of uvs, so every texture of a material shares the first one's
-/// (a material whose textures differ gets a warning).
-fn uv_transform(m: &gltf::Material, name: &str) -> Option<UvTransform> {
+/// The texture transforms of a material's textures, per uv set they read, baked into
+/// that set's uvs of its triangles: the textures of a material that read one set share
+/// the first one's (a material whose textures on one set differ gets a warning). A third
+/// set reads as the first (see `uv_set_bit`).
+fn uv_transforms_of(m: &gltf::Material, name: &str) -> [Option<UvTransform>; 2] {
     let pbr = m.pbr_metallic_roughness();
     let infos = [pbr.base_color_texture(), pbr.metallic_roughness_texture(), m.emissive_texture()];
-    let transforms: Vec<Option<UvTransform>> = infos
-        .iter()
-        .flatten()
-        .map(|info| {
-            info.texture_transform().map(|t| {
-                let ([ox, oy], r, [sx, sy]) = (t.offset(), t.rotation(), t.scale());
-                let (sin, cos) = r.sin_cos();
-                // The extension's GLSL matrices are column-major: its rotation is [[c, -s], [s, c]].
-                UvTransform([[cos * sx, -sin * sy, ox], [sin * sx, cos * sy, oy]])
-            })
-        })
-        .collect();
-    let first = transforms.first().copied().flatten();
-    if transforms.iter().any(|t| *t != first) {
-        log::warn!(
-            "material `{name}`: its textures have different texture transforms; rt uses the first one's for all"
-        );
+    let mut transforms: [Vec<Option<UvTransform>>; 2] = Default::default();
+    for info in infos.iter().flatten() {
+        let transform = info.texture_transform().map(|t| {
+            let ([ox, oy], r, [sx, sy]) = (t.offset(), t.rotation(), t.scale());
+            let (sin, cos) = r.sin_cos();
+            // The extension's GLSL matrices are column-major: its rotation is [[c, -s], [s, c]].
+            UvTransform([[cos * sx, -sin * sy, ox], [sin * sx, cos * sy, oy]])
+        });
+        transforms[usize::from(info.tex_coord() == 1)].push(transform);
     }
-    first
+    transforms.each_ref().map(|set| {
+        let first = set.first().copied().flatten();
+        if set.iter().any(|t| *t != first) {
+            log::warn!(
+                "material `{name}`: its textures on one uv set have different texture transforms; rt uses the \
+                 first one's for all of them"
+            );
+        }
+        first
+    })
 }
 
 /// The textures of a material; unsupported ones (occlusion: a path tracer finds
@@ -352,13 +359,10 @@ fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<M
     let metallic_roughness = load(pbr.metallic_roughness_texture(), ColorSpace::Linear, 1, "metallic-roughness")?;
     let emission = load(m.emissive_texture(), ColorSpace::Srgb, 2, "emissive")?;
     let normal_info = m.normal_texture();
-    if let Some(n) = normal_info.as_ref().filter(|n| n.tex_coord() != 0) {
-        // Its tangent frame is the first set's (glTF's TANGENT, or MikkTSpace's of TEXCOORD_0).
-        log::warn!(
-            "normal texture {} uses TEXCOORD_{}; rt reads normal maps with TEXCOORD_0",
-            n.texture().index(),
-            n.tex_coord()
-        );
+    // Its tangent frame is of the set it reads: glTF's TANGENT or MikkTSpace's of
+    // TEXCOORD_0, MikkTSpace's of TEXCOORD_1.
+    if let Some(n) = &normal_info {
+        second_uv_set |= uv_set_bit(n.tex_coord(), NORMAL_SLOT, "normal");
     }
     let normal = normal_info
         .as_ref()
@@ -418,6 +422,9 @@ fn map_material_with_metallic(m: &gltf::Material, metallic: f32) -> Result<Mater
         None => m.specular().map_or(1.0, |s| s.specular_factor()) / 2.0,
     };
     let clearcoat = clearcoat(m)?;
+    let sheen = sheen(m)?.unwrap_or(Sheen { weight: 0.0, tint: [1.0; 3], roughness: 0.5 });
+    let (anisotropy, anisotropy_rotation) = anisotropy(m)?;
+    let (thin_film_thickness, thin_film_ior) = iridescence(m)?.unwrap_or((0.0, 1.33));
     let material = Material {
         base_color: [r, g, b],
         diffuse,
@@ -428,11 +435,15 @@ fn map_material_with_metallic(m: &gltf::Material, metallic: f32) -> Result<Mater
         coat_roughness: extra::<f32>(m.extras(), "rt_coat_roughness")?.unwrap_or(clearcoat.roughness).clamp(0.0, 1.0),
         coat_ior: extra::<f32>(m.extras(), "rt_coat_ior")?.unwrap_or(1.5).max(1.0),
         coat_tint: extra::<[f32; 3]>(m.extras(), "rt_coat_tint")?.unwrap_or([1.0; 3]).map(|c| c.clamp(0.0, 1.0)),
-        sheen: extra::<f32>(m.extras(), "rt_sheen")?.unwrap_or(0.0).clamp(0.0, 1.0),
-        sheen_roughness: extra::<f32>(m.extras(), "rt_sheen_roughness")?.unwrap_or(0.5).clamp(0.0, 1.0),
-        sheen_tint: extra::<[f32; 3]>(m.extras(), "rt_sheen_tint")?.unwrap_or([1.0; 3]).map(|c| c.clamp(0.0, 1.0)),
-        anisotropy: extra::<f32>(m.extras(), "rt_anisotropy")?.unwrap_or(0.0).clamp(0.0, 1.0),
-        anisotropy_rotation: extra::<f32>(m.extras(), "rt_anisotropy_rotation")?.unwrap_or(0.0).rem_euclid(1.0),
+        sheen: extra::<f32>(m.extras(), "rt_sheen")?.unwrap_or(sheen.weight).clamp(0.0, 1.0),
+        sheen_roughness: extra::<f32>(m.extras(), "rt_sheen_roughness")?.unwrap_or(sheen.roughness).clamp(0.0, 1.0),
+        sheen_tint: extra::<[f32; 3]>(m.extras(), "rt_sheen_tint")?.unwrap_or(sheen.tint).map(|c| c.clamp(0.0, 1.0)),
+        anisotropy: extra::<f32>(m.extras(), "rt_anisotropy")?.unwrap_or(anisotropy).clamp(0.0, 1.0),
+        anisotropy_rotation: extra::<f32>(m.extras(), "rt_anisotropy_rotation")?
+            .unwrap_or(anisotropy_rotation)
+            .rem_euclid(1.0),
+        thin_film_thickness,
+        thin_film_ior,
         tangent: tangent(m.extras())?,
         reflection: metallic,
         transmission: dielectric * transmission,
@@ -621,6 +632,8 @@ mod tests {
                 anisotropy: 0.0,
                 anisotropy_rotation: 0.0,
                 tangent: crate::scene::Tangent::RadialZ,
+                thin_film_thickness: 0.0,
+                thin_film_ior: 1.33,
                 hardness: None,
                 emission: [4.0, 2.0, 0.0],
                 absorption: [ln2 / 2.0, 2.0 * ln2 / 2.0, 0.0],

@@ -18,7 +18,7 @@ pub mod texture;
 pub use source::{AssetFiles, AssetKind};
 pub use texture::{TextureImage, Wrap};
 
-use crate::scene::Material;
+use crate::scene::{Material, UvSet};
 use std::path::{Path, PathBuf};
 
 /// A triangle mesh in object space (metres, Y up), ready for BVH building.
@@ -36,6 +36,9 @@ pub struct MeshData {
     /// Per-vertex MikkTSpace tangents (xyz) with the bitangent's sign (w, ±1):
     /// bitangent = w · cross(normal, tangent). Only with `uvs`.
     pub tangents: Option<Vec<[f32; 4]>>,
+    /// The same of the second uv set, for normal maps that read it: MikkTSpace's, made at
+    /// load (no file carries them). Only with `second_uvs`.
+    pub second_tangents: Option<Vec<[f32; 4]>>,
     pub indices: Vec<[u32; 3]>,
     /// Index into `materials` for each triangle.
     pub material_ids: Vec<u32>,
@@ -70,33 +73,54 @@ pub fn load_mesh(path: &Path) -> Result<MeshData, AssetError> {
         AssetKind::RtMesh { ref materials } => load_rtmesh(&files.main, materials)?,
     };
     mesh.validate(&files.main)?;
-    give_normal_maps_tangents(&mut mesh, &files.main);
     keep_second_uvs_where_read(&mut mesh, &files.main);
+    give_normal_maps_tangents(&mut mesh, &files.main);
     Ok(mesh)
 }
 
-/// A normal map needs a tangent frame, and so does anisotropy along the uv map: a mesh
-/// that uses one and brings no tangents gets MikkTSpace's (which a mesh without uvs cannot
-/// have: its maps are left out, and its anisotropy has no tangent to follow).
+/// A normal map needs a tangent frame of the uv set it reads, and anisotropy along the uv
+/// map one of the first set (or, beside a normal map, of the map's set: a triangle carries
+/// one): a mesh that uses one and brings no tangents of that set gets MikkTSpace's (which a
+/// mesh without uvs cannot have: its maps are left out, and its anisotropy has no tangent to
+/// follow). The second set's always come from here.
 fn give_normal_maps_tangents(mesh: &mut MeshData, path: &Path) {
-    let normal_mapped: Vec<&str> =
-        mesh.materials.iter().filter(|(_, m)| m.reads_tangents()).map(|(name, _)| name.as_str()).collect();
-    if normal_mapped.is_empty() || mesh.tangents.is_some() {
-        return;
+    for (name, m) in &mesh.materials {
+        if m.reads_uv_tangents() && m.textures.normal_uv_set() == UvSet::Second {
+            log::warn!(
+                "{}: material {name:?} is anisotropic along its uv map and normal-mapped on the second; \
+                 its anisotropy follows the second set's tangents",
+                path.display()
+            );
+        }
     }
-    if mesh.uvs.is_none() {
-        log::warn!(
-            "{}: material {:?} has a normal map or uv tangents but the mesh has no texture coordinates; they are left out",
-            path.display(),
-            normal_mapped[0]
-        );
-    } else if tangents::generate(mesh) {
-        log::info!("{}: no tangents for its normal maps or uv tangents; generated MikkTSpace tangents", path.display());
-    } else {
-        log::warn!(
-            "{}: MikkTSpace could not make tangents for its normal maps or uv tangents; they are left out",
-            path.display()
-        );
+    for set in [UvSet::First, UvSet::Second] {
+        let readers: Vec<&str> = mesh
+            .materials
+            .iter()
+            .filter(|(_, m)| m.reads_tangents() && m.textures.normal_uv_set() == set)
+            .map(|(name, _)| name.as_str())
+            .collect();
+        if readers.is_empty() || mesh.tangents_of(set).is_some() {
+            continue;
+        }
+        if mesh.uvs_of(set).is_none() {
+            log::warn!(
+                "{}: material {:?} has a normal map or uv tangents but the mesh has no texture coordinates; they are left out",
+                path.display(),
+                readers[0]
+            );
+        } else if tangents::generate(mesh, set) {
+            log::info!(
+                "{}: generated MikkTSpace tangents of uv set {} for its normal maps or uv tangents",
+                path.display(),
+                set as u8
+            );
+        } else {
+            log::warn!(
+                "{}: MikkTSpace could not make tangents for its normal maps or uv tangents; they are left out",
+                path.display()
+            );
+        }
     }
 }
 
@@ -133,6 +157,7 @@ fn load_rtmesh(path: &Path, materials_path: &Path) -> Result<MeshData, AssetErro
         uvs: geometry.uvs,
         second_uvs: geometry.second_uvs,
         tangents: geometry.tangents,
+        second_tangents: None,
         indices: geometry.indices,
         material_ids: geometry.material_ids,
         materials,
@@ -147,6 +172,20 @@ impl From<crate::files::OutputError> for AssetError {
 }
 
 impl MeshData {
+    pub fn uvs_of(&self, set: UvSet) -> Option<&Vec<[f32; 2]>> {
+        match set {
+            UvSet::First => self.uvs.as_ref(),
+            UvSet::Second => self.second_uvs.as_ref(),
+        }
+    }
+
+    pub fn tangents_of(&self, set: UvSet) -> Option<&Vec<[f32; 4]>> {
+        match set {
+            UvSet::First => self.tangents.as_ref(),
+            UvSet::Second => self.second_tangents.as_ref(),
+        }
+    }
+
     /// Checks what the GPU relies on: finite positions, indices in range, one material per
     /// triangle. The shaders trust these, so a bad file must stop here rather than
     /// become NaNs or out-of-bounds reads on the GPU.
@@ -175,12 +214,13 @@ impl MeshData {
             }
         }
 
-        if let Some(tangents) = &self.tangents {
+        for (set, tangents) in [(0, &self.tangents), (1, &self.second_tangents)] {
+            let Some(tangents) = tangents else { continue };
             if tangents.len() != vertex_count {
-                return fail(format!("{} tangents for {vertex_count} vertices", tangents.len()));
+                return fail(format!("{} tangents of set {set} for {vertex_count} vertices", tangents.len()));
             }
             if let Some((i, bad)) = first_non_finite(tangents) {
-                return fail(format!("vertex {i} has a non-finite tangent ({bad:?})"));
+                return fail(format!("vertex {i} has a non-finite tangent of set {set} ({bad:?})"));
             }
         }
 

@@ -173,6 +173,7 @@ mod tests {
             uvs: Some(vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]),
             tangents: Some(vec![[1.0, 0.0, 0.0, -1.0]; 4]),
             second_uvs: Some(vec![[0.5, 0.0], [1.0, 0.5], [0.5, 1.0], [0.0, 0.5]]),
+            second_tangents: None,
             indices: vec![[0, 1, 2], [0, 2, 3]],
             material_ids: vec![0, 1],
             materials: vec![("a".into(), Material::default()), ("b".into(), Material::default())],

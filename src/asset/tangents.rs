@@ -4,8 +4,10 @@
 //!
 //! MikkTSpace gives a tangent per triangle corner; corners that share a vertex may get
 //! different ones (at a mirror seam of the uvs), and such a vertex is split in two.
+//! Either uv set has its own: a normal map's frame is of the set it reads.
 
 use super::MeshData;
+use crate::scene::UvSet;
 use glam::Vec3;
 use std::collections::HashMap;
 
@@ -57,10 +59,11 @@ impl mikktspace::Geometry for Corners<'_> {
     }
 }
 
-/// Gives `mesh` MikkTSpace tangents (it must have uvs), splitting the vertices whose
-/// corners disagree. Returns false, leaving the mesh as it was, when MikkTSpace refuses it.
-pub fn generate(mesh: &mut MeshData) -> bool {
-    let Some(uvs) = mesh.uvs.as_deref() else {
+/// Gives `mesh` MikkTSpace tangents of uv set `set` (it must have that set), splitting
+/// the vertices whose corners disagree. Returns false, leaving the mesh as it was, when
+/// MikkTSpace refuses it.
+pub fn generate(mesh: &mut MeshData, set: UvSet) -> bool {
+    let Some(uvs) = mesh.uvs_of(set).map(Vec::as_slice) else {
         return false;
     };
     let mut corners = Corners { mesh: &*mesh, uvs, tangents: vec![[0.0; 4]; mesh.indices.len() * 3] };
@@ -96,11 +99,16 @@ pub fn generate(mesh: &mut MeshData) -> bool {
             }
         }
     }
-    mesh.tangents = Some(tangents.into_iter().map(|t| t.unwrap_or([0.0; 4])).collect());
+    let tangents = Some(tangents.into_iter().map(|t| t.unwrap_or([0.0; 4])).collect());
+    match set {
+        UvSet::First => mesh.tangents = tangents,
+        UvSet::Second => mesh.second_tangents = tangents,
+    }
     true
 }
 
-/// Appends a copy of vertex `v`'s attributes (but its tangent); returns its index.
+/// Appends a copy of vertex `v`'s attributes (but the tangent of the set being made,
+/// which `generate` sets at the end); returns its index.
 fn split_vertex(mesh: &mut MeshData, v: usize) -> u32 {
     mesh.positions.push(mesh.positions[v]);
     if let Some(n) = &mut mesh.normals {
@@ -108,6 +116,9 @@ fn split_vertex(mesh: &mut MeshData, v: usize) -> u32 {
     }
     for uv in [&mut mesh.uvs, &mut mesh.second_uvs].into_iter().flatten() {
         uv.push(uv[v]);
+    }
+    for t in [&mut mesh.tangents, &mut mesh.second_tangents].into_iter().flatten() {
+        t.push(t[v]);
     }
     (mesh.positions.len() - 1) as u32
 }
@@ -131,7 +142,7 @@ mod tests {
     #[test]
     fn tangent_follows_u_and_sign_follows_v() {
         let mut mesh = quad(vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]);
-        assert!(generate(&mut mesh));
+        assert!(generate(&mut mesh, UvSet::First));
         for t in mesh.tangents.as_ref().expect("tangents") {
             assert!((Vec3::new(t[0], t[1], t[2]) - Vec3::X).length() < 1e-5, "{t:?}");
             // bitangent = w · n × t = +y, where v grows.
@@ -139,8 +150,26 @@ mod tests {
         }
         // v running down the quad instead mirrors the frame: the sign flips.
         let mut mirrored = quad(vec![[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]]);
-        assert!(generate(&mut mirrored));
+        assert!(generate(&mut mirrored, UvSet::First));
         assert!(mirrored.tangents.expect("tangents").iter().all(|t| t[3] == -1.0));
+    }
+
+    #[test]
+    fn the_second_sets_tangents_follow_its_own_u() {
+        // The second map turned a quarter: its u grows along +y, its v along -x.
+        let mut mesh = MeshData {
+            second_uvs: Some(vec![[0.0, 1.0], [0.0, 0.0], [1.0, 0.0], [1.0, 1.0]]),
+            ..quad(vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+        };
+        assert!(generate(&mut mesh, UvSet::First) && generate(&mut mesh, UvSet::Second));
+        let (firsts, seconds) =
+            (mesh.tangents.as_ref().expect("first"), mesh.second_tangents.as_ref().expect("second"));
+        for (first, second) in firsts.iter().zip(seconds) {
+            assert!((Vec3::new(first[0], first[1], first[2]) - Vec3::X).length() < 1e-5, "{first:?}");
+            assert!((Vec3::new(second[0], second[1], second[2]) - Vec3::Y).length() < 1e-5, "{second:?}");
+            // bitangent = w · n × t = -x, where the second map's v grows.
+            assert_eq!(second[3], 1.0);
+        }
     }
 
     #[test]
@@ -162,7 +191,7 @@ mod tests {
             materials: vec![("flat".into(), crate::scene::Material::default())],
             ..Default::default()
         };
-        assert!(generate(&mut mesh));
+        assert!(generate(&mut mesh, UvSet::First));
         assert_eq!(mesh.positions.len(), 8, "the two seam vertices are split");
         let tangents = mesh.tangents.as_ref().expect("tangents");
         for (face, expected_x) in [(0, 1.0), (1, 1.0), (2, -1.0), (3, -1.0)] {

@@ -63,7 +63,7 @@ fn held_in(root: &Path) -> Result<Vec<Case>> {
             name: "Cornell box at 128x128".into(),
             scene: with_bounces(&cornell, 8),
             size: (128, 128),
-            spp: 256,
+            spp: 1024,
             rays: false,
         },
         // The small window's framing at a large size: at 1024x720 a quarter of the camera

@@ -94,9 +94,12 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
     // Media live inside glass: forcing them on forces (at least smooth) glass too.
     let glass = if own.transmission == Transmission::None { Transmission::Smooth } else { own.transmission };
     force("media", own.media, FeatureSet { media: true, transmission: glass, ..own });
-    // Normal maps are texture lookups: forcing them on forces the texture code too.
     force("sheen", own.sheen, FeatureSet { sheen: true, ..own });
     force("anisotropy", own.anisotropy, FeatureSet { anisotropy: true, ..own });
+    force("thin film", own.thin_film, FeatureSet { thin_film: true, ..own });
+    // Texture lookups alone, so that the normal maps' own share of their price shows.
+    force("textures", own.textures, FeatureSet { textures: true, ..own });
+    // Normal maps are texture lookups: forcing them on forces the texture code too.
     force("normal maps", own.normal_maps, FeatureSet { normal_maps: true, textures: true, ..own });
     force("second uv sets", own.uv_sets, FeatureSet { uv_sets: true, textures: true, ..own });
     force("layer textures", own.layer_textures, FeatureSet { layer_textures: true, textures: true, ..own });
@@ -164,4 +167,21 @@ pub fn effects(
         repeats: repeats.max(1),
         rows,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Sampling, SkyFeature};
+
+    /// A scene without a thin film is timed with it forced on too; one with a film is not.
+    #[test]
+    fn thin_film_is_among_the_forced_effects() {
+        let all = FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx);
+        let without = FeatureSet { thin_film: false, ..all };
+        let forced: Vec<_> =
+            variants(without, RoughTransmission::Ggx).into_iter().filter(|(n, _)| n == "+thin film").collect();
+        assert!(matches!(&forced[..], [(_, f)] if f.thin_film && *f == all), "{forced:?}");
+        assert!(variants(all, RoughTransmission::Ggx).iter().all(|(n, _)| n != "+thin film"));
+    }
 }

@@ -54,6 +54,8 @@ pub struct CachedMaterial {
     pub anisotropy_rotation: f32,
     /// `MaterialTextures::second_uv_set`.
     pub second_uv_set: u32,
+    pub thin_film_thickness: f32,
+    pub thin_film_ior: f32,
     /// `LayerTextures`, in the order of its `slots`.
     pub layer_textures: [u32; 7],
     /// `Tangent`: 0 radial Z, 1 radial X, 2 radial Y, 3 the uv map's.
@@ -97,6 +99,8 @@ impl From<&Material> for CachedMaterial {
             anisotropy: m.anisotropy,
             anisotropy_rotation: m.anisotropy_rotation,
             second_uv_set: m.textures.second_uv_set,
+            thin_film_thickness: m.thin_film_thickness,
+            thin_film_ior: m.thin_film_ior,
             layer_textures: m.textures.layers.slots().map(slot),
             tangent: TANGENTS.iter().position(|&t| t == m.tangent).unwrap_or(0) as u32,
         }
@@ -125,6 +129,8 @@ impl From<&CachedMaterial> for Material {
             anisotropy: m.anisotropy,
             anisotropy_rotation: m.anisotropy_rotation,
             tangent: TANGENTS.get(m.tangent as usize).copied().unwrap_or_default(),
+            thin_film_thickness: m.thin_film_thickness,
+            thin_film_ior: m.thin_film_ior,
             hardness: (m.hardness > 0.0).then_some(m.hardness),
             emission: m.emission,
             absorption: m.absorption,
@@ -176,6 +182,8 @@ impl CachedMaterial {
             self.sheen_roughness,
             self.anisotropy,
             self.anisotropy_rotation,
+            self.thin_film_thickness,
+            self.thin_film_ior,
             self.hardness,
             self.metallic,
             self.base_alpha,

@@ -4,6 +4,7 @@ use super::node::BvhStats;
 use super::wide_node::{convert_cwbvh, wide_stats};
 use crate::asset::MeshData;
 use crate::layout::{GpuTriangle, GpuTriangleShading, GpuTriangleTangents, GpuTriangleUvs, GpuWideNode};
+use crate::scene::UvSet;
 use glam::{Vec3, Vec3A};
 use obvhs::{
     BvhBuildParams,
@@ -39,8 +40,9 @@ pub struct MeshBvh {
     pub nodes: Vec<GpuWideNode>,
     pub triangles: Vec<GpuTriangle>,
     pub shading: Vec<GpuTriangleShading>,
-    /// Per triangle (in `triangles`' order), for normal maps: empty unless the mesh has
-    /// tangents and some material of it has a normal map.
+    /// Per triangle (in `triangles`' order), for normal maps: the frame of the uv set its
+    /// material's normal map reads (zero where that set has none); empty unless the mesh
+    /// has tangents and some material of it has a normal map.
     pub tangents: Vec<GpuTriangleTangents>,
     /// Per triangle (in `triangles`' order): the second uv set, empty unless some
     /// material of the mesh reads it (see `asset::load_mesh`).
@@ -90,15 +92,10 @@ impl MeshBvh {
         let nodes = convert_cwbvh(&bvh, &triangles);
         let shading = order.iter().map(|&i| triangle_shading(mesh, i as usize)).collect();
         let tangents_read = mesh.materials.iter().any(|(_, m)| m.reads_tangents());
-        let tangents = match &mesh.tangents {
-            Some(tangents) if tangents_read => order
-                .iter()
-                .map(|&i| {
-                    let [t0, t1, t2] = mesh.indices[i as usize].map(|k| tangents[k as usize]);
-                    GpuTriangleTangents { t0, t1, t2 }
-                })
-                .collect(),
-            _ => Vec::new(),
+        let any_tangents = mesh.tangents.is_some() || mesh.second_tangents.is_some();
+        let tangents = match tangents_read && any_tangents {
+            true => order.iter().map(|&i| triangle_tangents(mesh, i as usize)).collect(),
+            false => Vec::new(),
         };
         let second_uvs = match &mesh.second_uvs {
             Some(uvs) => order
@@ -114,6 +111,20 @@ impl MeshBvh {
         let stats = wide_stats(&nodes);
         let build_time = start.elapsed();
         Self { nodes, triangles, shading, tangents, second_uvs, bounds_min, bounds_max, stats, build_time }
+    }
+}
+
+/// Triangle `i`'s corner tangents of the uv set its material's normal map reads (the first
+/// without one: that of anisotropy along the uv map).
+fn triangle_tangents(mesh: &MeshData, i: usize) -> GpuTriangleTangents {
+    let set =
+        mesh.materials.get(mesh.material_ids[i] as usize).map_or(UvSet::First, |(_, m)| m.textures.normal_uv_set());
+    match mesh.tangents_of(set) {
+        Some(tangents) => {
+            let [t0, t1, t2] = mesh.indices[i].map(|k| tangents[k as usize]);
+            GpuTriangleTangents { t0, t1, t2 }
+        }
+        None => GpuTriangleTangents::default(),
     }
 }
 

@@ -137,6 +137,8 @@ fn host_structs_match_wgsl_layouts() {
                 second_uv_set,
                 sheen_tint,
                 sheen,
+                thin_film_thickness,
+                thin_film_ior,
                 coat_texture,
                 coat_roughness_texture,
                 coat_tint_texture,

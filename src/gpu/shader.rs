@@ -78,6 +78,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("sphere_test.wgsl"),
     shader!("sun.wgsl"),
     shader!("texture.wgsl"),
+    shader!("thin_film.wgsl"),
     shader!("normal_map.wgsl"),
     shader!("panorama.wgsl"),
     shader!("surface.wgsl"),

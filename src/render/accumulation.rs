@@ -14,8 +14,9 @@ const MEAN_BYTES: u64 = 16;
 const SAMPLE_BYTES: u64 = 16;
 /// Bytes per pixel of the AOVs' means (albedo and depth, normal and hit count).
 const AOV_BYTES: u64 = 32;
-/// The lanes' scratch at most: it holds pixels × samples per dispatch.
-const LANE_SCRATCH_BYTES: u64 = 64 << 20;
+/// The lanes' scratch at most: it holds pixels × samples per dispatch (a 128×128 image
+/// takes its 1024 samples per dispatch in 256 MiB).
+const LANE_SCRATCH_BYTES: u64 = 256 << 20;
 /// Invocations that keep a large GPU busy (an H200 holds 132 × 2048 resident threads):
 /// images with fewer pixels spread each pixel's samples over lanes. Since a path that
 /// ends starts the pixel's next sample at once (path regeneration), an invocation with
@@ -24,6 +25,11 @@ const LANE_SCRATCH_BYTES: u64 = 64 << 20;
 /// 750 M paths/s with one lane and 523 M with six (4 M invocations); the 128×128 one at
 /// 517 M with 16 lanes (256 k invocations), 468 M with 64 and 374 M with 256.
 const GPU_INVOCATIONS: u64 = 1 << 18;
+/// Samples one invocation takes in a dispatch at most on a CPU. lavapipe stops an
+/// invocation's loops after 65,535 turns together (Mesa's `LP_MAX_TGSI_LOOP_ITERATIONS`)
+/// and silently drops the rest: a Cornell-box pixel loses what comes after about 370
+/// samples. A CPU gains nothing from longer dispatches, so it keeps a wide margin.
+const CPU_SAMPLES_PER_INVOCATION: u32 = 64;
 
 pub struct Accumulation {
     pub width: u32,
@@ -41,6 +47,8 @@ pub struct Accumulation {
     bind_group: wgpu::BindGroup,
     /// Lanes per pixel that keep the GPU busy; 1 on a CPU adapter.
     lanes_wanted: u32,
+    /// The device is a CPU (see `CPU_SAMPLES_PER_INVOCATION`).
+    cpu: bool,
 }
 
 /// Refuses an image whose running means do not fit one GPU binding, naming the limit.
@@ -95,6 +103,7 @@ impl Accumulation {
             pixel_samples,
             bind_group,
             lanes_wanted,
+            cpu,
         };
         if lanes_wanted > 1 {
             acc.prepare_lanes(ctx, layout);
@@ -176,13 +185,17 @@ impl Accumulation {
     }
 
     /// Samples per pixel one dispatch with `lanes` lanes can take: as many as the lanes'
-    /// scratch holds.
+    /// scratch holds, and on a CPU as many as its loop limit safely allows.
     pub fn max_samples(&self, lanes: u32) -> u32 {
+        let device = match self.cpu {
+            true => CPU_SAMPLES_PER_INVOCATION.saturating_mul(lanes.max(1)).min(MAX_SAMPLES_PER_DISPATCH),
+            false => MAX_SAMPLES_PER_DISPATCH,
+        };
         if lanes <= 1 {
-            return MAX_SAMPLES_PER_DISPATCH;
+            return device;
         }
         let per_sample = self.width as u64 * self.height as u64 * SAMPLE_BYTES;
-        (self.lane_samples.size() / per_sample).min(MAX_SAMPLES_PER_DISPATCH as u64) as u32
+        (self.lane_samples.size() / per_sample).min(device as u64) as u32
     }
 
     /// Records one dispatch of `frame.samples_per_dispatch` samples per pixel over `lanes`

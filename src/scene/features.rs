@@ -1,7 +1,7 @@
 //! Feature analysis: which effects a scene needs, so that the GPU runs only their code.
 
 use super::{
-    Light, LightSampler, LightShape, Material, Microfacet, Projection, RoughTransmission, Sampling, Scene, Sky, Tangent,
+    Light, LightSampler, LightShape, Material, Microfacet, Projection, RoughTransmission, Sampling, Scene, Sky,
 };
 use std::fmt;
 
@@ -103,6 +103,8 @@ pub struct FeatureSet {
     pub sheen: bool,
     /// Some material's rough lobes are anisotropic (`anisotropy`).
     pub anisotropy: bool,
+    /// Some material has a thin film (`thin_film_thickness`).
+    pub thin_film: bool,
     /// Textures on some material's coat, sheen, anisotropy or specular tint.
     pub layer_textures: bool,
     /// Some anisotropic material follows its uv map's tangents (`tangent = "uv"`).
@@ -184,8 +186,9 @@ impl FeatureSet {
             coat: materials_in_use.iter().any(|m| m.coat > 0.0),
             sheen: materials_in_use.iter().any(|m| m.sheen > 0.0),
             anisotropy: materials_in_use.iter().any(|m| m.anisotropy > 0.0),
+            thin_film: materials_in_use.iter().any(|m| m.has_thin_film()),
             layer_textures: materials_in_use.iter().any(|m| m.textures.layers.any()),
-            uv_tangents: materials_in_use.iter().any(|m| m.anisotropy > 0.0 && m.tangent == Tangent::Uv),
+            uv_tangents: materials_in_use.iter().any(|m| m.reads_uv_tangents()),
         }
     }
 
@@ -217,6 +220,7 @@ impl FeatureSet {
             coat: true,
             sheen: true,
             anisotropy: true,
+            thin_film: true,
             layer_textures: true,
             uv_tangents: true,
         }
@@ -261,13 +265,14 @@ impl FeatureSet {
             "coat" => self.coat,
             "sheen" => self.sheen,
             "anisotropy" => self.anisotropy,
+            "thin_film" => self.thin_film,
             "layer_textures" => self.layer_textures,
             "uv_tangents" => self.uv_tangents,
             // Normal maps and uv tangents read the triangles' tangents.
             "tangent_frames" => self.normal_maps || self.uv_tangents,
             // Layers over the other lobes, which dim the emission under them.
             "coat_or_sheen" => self.coat || self.sheen,
-            "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen,
+            "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen || self.thin_film,
             _ => return None,
         })
     }
@@ -298,6 +303,7 @@ impl fmt::Display for FeatureSet {
             (self.coat, "coat"),
             (self.sheen, "sheen"),
             (self.anisotropy, "anisotropy"),
+            (self.thin_film, "thin-film"),
             (self.layer_textures, "layer-textures"),
             (self.uv_tangents, "uv-tangents"),
         ] {

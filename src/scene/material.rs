@@ -41,6 +41,11 @@ pub struct Material {
     /// The tangent that `anisotropy` stretches along: Cycles' Tangent node linked into the
     /// Principled BSDF's Tangent input, radial about an axis or a uv map's.
     pub tangent: Tangent,
+    /// Principled's Thin Film Thickness (nm; 0: no film) and Thin Film IOR: a film on the
+    /// specular, metal and glass lobes whose interference colours their Fresnel reflectance
+    /// (Belcour & Barla 2017, as Cycles 5.0 renders it).
+    pub thin_film_thickness: f32,
+    pub thin_film_ior: f32,
     /// The seed renderer's Phong-like exponent; mapped to `roughness` when given.
     pub hardness: Option<f32>,
     pub emission: [f32; 3],
@@ -91,8 +96,9 @@ pub struct MaterialTextures {
     /// glTF's `normalTexture.scale`: multiplies the map's x and y.
     pub normal_scale: f32,
     /// Which texture slots read the mesh's second uv set (glTF `texCoord` 1): bit i for
-    /// slot i of [`Self::indices_mut`]; the others read the first. Normal maps always
-    /// read the first: their tangents are its.
+    /// slot i of [`Self::indices_mut`] (base colour, metallic-roughness, emission, normal,
+    /// then the layers' seven); the others read the first. A normal map's tangents are of
+    /// the set it reads.
     pub second_uv_set: u32,
     /// The layered lobes' textures: [`LayerTextures`].
     pub layers: LayerTextures,
@@ -136,6 +142,16 @@ impl LayerTextures {
         ]
     }
 }
+
+/// One of the two sets of texture coordinates a mesh may carry.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UvSet {
+    First = 0,
+    Second = 1,
+}
+
+/// The normal map's slot in [`MaterialTextures::indices_mut`] and `second_uv_set`.
+pub const NORMAL_SLOT: usize = 3;
 
 impl Default for MaterialTextures {
     fn default() -> Self {
@@ -188,6 +204,11 @@ impl MaterialTextures {
         self.second_uv_set & (1 << slot) != 0
     }
 
+    /// The uv set the normal map reads (slot 3), and so the tangents it is in.
+    pub fn normal_uv_set(&self) -> UvSet {
+        if self.reads_second_uv_set(NORMAL_SLOT) { UvSet::Second } else { UvSet::First }
+    }
+
     /// Some texture reads the second uv set.
     pub fn uses_second_uv_set(&self) -> bool {
         self.second_uv_set != 0
@@ -221,6 +242,8 @@ impl Default for Material {
             anisotropy: 0.0,
             anisotropy_rotation: 0.0,
             tangent: Tangent::RadialZ,
+            thin_film_thickness: 0.0,
+            thin_film_ior: 1.33,
             hardness: None,
             emission: [0.0; 3],
             absorption: [0.0; 3],
@@ -237,7 +260,12 @@ impl Material {
 
     /// Its shading reads the mesh's tangents: a normal map, or anisotropy along the uv map.
     pub fn reads_tangents(&self) -> bool {
-        self.textures.normal.is_some() || (self.anisotropy > 0.0 && self.tangent == Tangent::Uv)
+        self.textures.normal.is_some() || self.reads_uv_tangents()
+    }
+
+    /// Its anisotropic lobes follow the uv map's tangents.
+    pub fn reads_uv_tangents(&self) -> bool {
+        self.anisotropy > 0.0 && self.tangent == Tangent::Uv
     }
 
     /// Absorbs or emits inside (only meaningful with `transmission`).
@@ -268,17 +296,28 @@ impl Material {
     /// The dielectric coating of the diffuse lobe, as Cycles' Principled BSDF sets up its
     /// specular layer: the index whose real Fresnel curve it follows and its F0 (before
     /// `specular_tint`), or `None` for no coating.
+    /// A thin film reflects even over a coating of index 1 (Specular IOR Level 0), as in Cycles.
     pub fn dielectric_coating(&self) -> Option<(f32, f32)> {
-        if self.specular_ior_level <= 0.0 || self.diffuse <= 0.0 {
+        let film = self.has_thin_film();
+        if (self.specular_ior_level <= 0.0 && !film) || self.diffuse <= 0.0 {
             return None;
         }
-        let f0 = f0_from_ior(self.ior) * 2.0 * self.specular_ior_level;
+        let f0 = f0_from_ior(self.ior) * 2.0 * self.specular_ior_level.max(0.0);
         // An F0 of 1 or more would be an infinite index: clamp just below.
         let f0 = f0.min(0.9999);
         let eta = ior_from_f0(f0);
-        (eta > 1.0).then_some((eta, f0))
+        (eta > 1.0 || film).then_some((eta, f0))
+    }
+
+    /// Whether the thin film is there: Cycles ignores films of 0.1 nm and less
+    /// (`THINFILM_THICKNESS_CUTOFF`).
+    pub fn has_thin_film(&self) -> bool {
+        self.thin_film_thickness > THIN_FILM_CUTOFF
     }
 }
+
+/// Thickness (nm) at and below which a film is not there (`THIN_FILM_CUTOFF` in `shaders/thin_film.wgsl`).
+pub const THIN_FILM_CUTOFF: f32 = 0.1;
 
 /// Reflectance at normal incidence of an interface of relative index `ior`.
 pub fn f0_from_ior(ior: f32) -> f32 {

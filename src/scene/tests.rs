@@ -161,6 +161,7 @@ fn unknown_keys_suggest_in_every_table() {
         [sun] | elevation = 1 => 2:1: unknown key `elevation` in [sun]; did you mean `elevation_deg`?
         [materials.m] | | rougness = 0.5 => 3:1: unknown key `rougness` in [materials.m]; did you mean `roughness`?
         [materials.m] | sheen_tnt = [1, 1, 1] => 2:1: unknown key `sheen_tnt` in [materials.m]; did you mean `sheen_tint`?
+        [materials.m] | thin_film_thicknes = 300 => 2:1: unknown key `thin_film_thicknes` in [materials.m]; did you mean `thin_film_thickness`?
         [materials.m] | specular_ior_levl = 0.5 => 2:1: unknown key `specular_ior_levl` in [materials.m]; did you mean `specular_ior_level`?
         [render] | microfacets = "single" => 2:1: unknown key `microfacets` in [render]; did you mean `microfacet`?
         [[mesh]] | asset = "a" | [[mesh]] | asset = "b" | materal = "m" => 5:1: unknown key `materal` in mesh 2; did you mean `material`?
@@ -235,6 +236,8 @@ fn out_of_range_values_are_located() {
         [materials.m] | sheen_roughness = 2 => 2:19: [materials.m]: sheen_roughness must be in [0, 1], got 2
         [materials.m] | anisotropy = -0.1 => 2:14: [materials.m]: anisotropy must be in [0, 1], got -0.1
         [materials.m] | anisotropy_rotation = 1.5 => 2:23: [materials.m]: anisotropy_rotation must be in [0, 1], got 1.5
+        [materials.m] | thin_film_thickness = -5 => 2:23: [materials.m]: thin_film_thickness must be in [0, 100000] (nm), got -5
+        [materials.m] | thin_film_ior = 0.5 => 2:17: [materials.m]: thin_film_ior must be at least 1, got 0.5
         [materials.m] | sheen_tint = [1, 1.5, 1] => 2:14: [materials.m]: sheen_tint must be in [0, 1], got 1.5
         [materials.m] | specular = 0.5 | specular_ior_level = 0.5 => 3:22: [materials.m]: specular_ior_level excludes `specular` (the coating is the diffuse's own glossy layer)
         [materials.m] | volume_emission = [0, 0, -1] => 2:19: [materials.m]: volume_emission must be non-negative, got -1
@@ -368,4 +371,16 @@ fn instance_set_mistakes_are_located() {
         | instance = [] => 2:1: unknown key `instance` in the top-level table; did you mean `instances`?
     "#,
     );
+}
+
+/// Specular IOR Level 0 leaves the diffuse without a specular layer, but a thin film keeps
+/// one (over an index of 1), as Cycles sets it up; a film of 0.1 nm or less is none.
+#[test]
+fn a_thin_film_keeps_the_specular_layer_at_level_zero() {
+    let plain = Material { specular_ior_level: 0.0, ..Material::default() };
+    assert_eq!(plain.dielectric_coating(), None);
+    let film = Material { thin_film_thickness: 300.0, ..plain.clone() };
+    assert_eq!(film.dielectric_coating(), Some((1.0, 0.0)));
+    let none = Material { thin_film_thickness: 0.1, ..plain };
+    assert_eq!(none.dielectric_coating(), None);
 }

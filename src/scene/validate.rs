@@ -171,6 +171,11 @@ fn material(src: &Source, p: &[Seg], m: &Material) -> Result<(), SceneError> {
     src.check(p, "sheen_tint", &m.sheen_tint, "in [0, 1]", |t| (0.0..=1.0).contains(&t))?;
     src.check(p, "anisotropy", &[m.anisotropy], "in [0, 1]", |a| (0.0..=1.0).contains(&a))?;
     src.check(p, "anisotropy_rotation", &[m.anisotropy_rotation], "in [0, 1]", |r| (0.0..=1.0).contains(&r))?;
+    // Blender's Thin Film Thickness stops at 100 µm.
+    src.check(p, "thin_film_thickness", &[m.thin_film_thickness], "in [0, 100000] (nm)", |t| {
+        (0.0..=100_000.0).contains(&t)
+    })?;
+    src.check(p, "thin_film_ior", &[m.thin_film_ior], "at least 1", |ior| ior >= 1.0)?;
     if m.specular_ior_level > 0.0 && m.specular > 0.0 {
         return Err(src.error(
             p,

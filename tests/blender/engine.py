@@ -11,12 +11,15 @@ and TMPDIR pointing into OUT, so that the engine's cache folder is OUT/rt-engine
     engine.py error OUT      a lamp of negative power (rt refuses it) through F12, and a
                              broken scene file through run_rt; OUT/error.json
     engine.py package ZIP OUT  installs the extension zip, sets its preferences, F12
+    engine.py legacy ZIP OUT   the zip's files as a legacy add-on folder (as Blender before
+                             4.2 installs the package): listed by its bl_info, enabled
 """
 
 import json
 import os
 import sys
 import time
+import zipfile
 
 import bpy
 
@@ -192,9 +195,30 @@ def package(zip_path, out):
     print("package: installed, rendered through its preferences")
 
 
+def legacy(zip_path, out):
+    """The package's files in a folder rt_blender among the user's legacy add-ons: Blender
+    lists it by the bl_info it reads from __init__.py's text, and enabling it registers the
+    exporter and the engine."""
+    import addon_utils  # importable once bpy is
+
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    addons = bpy.utils.user_resource("SCRIPTS", path="addons", create=True)
+    with zipfile.ZipFile(zip_path) as z:
+        z.extractall(os.path.join(addons, "rt_blender"))
+    bpy.utils.refresh_script_paths()  # the new add-ons folder onto sys.path
+    listed = {m.__name__: m.bl_info for m in addon_utils.modules(refresh=True)}
+    info = listed.get("rt_blender")
+    assert info is not None and info["name"] == "rt", f"rt_blender listed as {info}"
+    errors = []
+    assert addon_utils.enable("rt_blender", default_set=True, handle_error=errors.append) is not None, errors
+    bpy.context.scene.render.engine = "RT"  # a TypeError unless the engine registered
+    assert hasattr(bpy.types.Scene, "rt_export"), "the exporter's settings register too"
+    print(f"legacy: listed as {info['name']!r} {info['version']}, enabled with the exporter and the engine")
+
+
 if __name__ == "__main__":
     mode = sys.argv[1]
-    if mode == "package":
-        package(sys.argv[2], sys.argv[3])
+    if mode in ("package", "legacy"):
+        {"package": package, "legacy": legacy}[mode](sys.argv[2], sys.argv[3])
     else:
         {"f12": f12, "frames": frames, "cancel": cancel, "error": error}[mode](sys.argv[2])

@@ -10,35 +10,16 @@ as Blender writes it with ZIP, PIZ, DWAB and no compression.
 """
 
 import json
-import math
 import os
 import sys
 
 import bpy
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(HERE)), "blender"))
-import rt_export  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cycles"))
+from cycles_reference import environment_world, rt_export  # noqa: E402
 
 COURTYARD = os.path.join(bpy.utils.system_resource("DATAFILES"), "studiolights", "world", "courtyard.exr")
-
-
-def world(image, strength, rotation_deg=None):
-    w = bpy.data.worlds.new("environment")
-    tree = w.node_tree
-    background = tree.nodes["Background"]
-    background.inputs["Strength"].default_value = strength
-    texture = tree.nodes.new("ShaderNodeTexEnvironment")
-    texture.image = image
-    tree.links.new(texture.outputs["Color"], background.inputs["Color"])
-    if rotation_deg is not None:
-        coords = tree.nodes.new("ShaderNodeTexCoord")
-        mapping = tree.nodes.new("ShaderNodeMapping")
-        mapping.inputs["Rotation"].default_value = [math.radians(a) for a in rotation_deg]
-        tree.links.new(coords.outputs["Generated"], mapping.inputs["Vector"])
-        tree.links.new(mapping.outputs["Vector"], texture.inputs["Vector"])
-    bpy.context.scene.world = w
 
 
 def main():
@@ -46,7 +27,7 @@ def main():
     bpy.ops.wm.read_factory_settings(use_empty=True)
     bpy.ops.object.camera_add(location=(0.0, -4.0, 1.0))
     bpy.context.scene.camera = bpy.context.object
-    world(bpy.data.images.load(COURTYARD), 2.5, rotation_deg=(10.0, 0.0, 45.0))
+    environment_world(bpy.context.scene, bpy.data.images.load(COURTYARD), 2.5, rotation_deg=(10.0, 0.0, 45.0))
     scene = bpy.context.scene
     toml = os.path.join(out, "hdri.toml")
     first = rt_export.export_scene(scene, os.path.join(out, "assets"), toml).written
@@ -61,7 +42,7 @@ def main():
     image.filepath_raw = os.path.join(out, "ramp.png")
     image.file_format = "PNG"
     image.save()
-    world(bpy.data.images.load(image.filepath_raw), 1.0)
+    environment_world(scene, bpy.data.images.load(image.filepath_raw), 1.0)
     ramp = rt_export.export_scene(scene, os.path.join(out, "assets"), os.path.join(out, "ramp.toml")).written
     report = {
         "first": first,

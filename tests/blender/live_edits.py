@@ -27,8 +27,8 @@ import bpy
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(REPO, "blender"))
 import rt_export  # noqa: E402
-import live_watch  # noqa: E402  (its scene and wait_for)
-from live_watch import wait_for  # noqa: E402
+import live_watch  # noqa: E402  (its scene, edits and wait_for)
+from live_watch import edits, wait_for  # noqa: E402
 
 
 def build():
@@ -40,10 +40,7 @@ def build():
 
 def main(out):
     scene, cube, paint = build()
-    rt_export.register()
-    settings = scene.rt_export
-    settings.out_dir = os.path.join(out, "assets")
-    settings.scene_file = os.path.join(out, "scene.toml")
+    settings = live_watch.exporter(scene, out)
     rt_export.live_export(scene)
     settings.live_edits = True
 
@@ -55,21 +52,6 @@ def main(out):
 
     bpy.app.handlers.depsgraph_update_post.append(record)
     open(os.path.join(out, "done-0"), "w").close()
-
-    def move():
-        cube.location.x += 0.5
-
-    def red():
-        paint.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (0.9, 0.1, 0.1, 1)
-
-    def taller():
-        for vertex in cube.data.vertices:
-            if vertex.co.z > 0:
-                vertex.co.z += 0.5
-        cube.data.update()
-
-    def move_camera():
-        scene.camera.location.x += 0.5
 
     report = {}
     scene_file = settings.scene_file
@@ -89,12 +71,13 @@ def main(out):
         # Exporting again now writes nothing: what the flush wrote is the scene as it is.
         report["last_state_landed"] = not rt_export.export_scene(scene, settings.out_dir, scene_file).written
 
-    for step, edit in enumerate((move, red, taller, move_camera, drag), start=1):
+    # The edits in their order (move, material, mesh, camera), then a drag.
+    for step, step_edit in enumerate((*edits(scene, cube, paint).values(), drag), start=1):
         wait_for(os.path.join(out, f"go-{step}"))
         classified.append([])
         # More than the interval since the last export: the edit goes out at once.
         time.sleep(rt_export.LIVE_EDIT_INTERVAL_S)
-        edit()
+        step_edit()
         bpy.context.view_layer.update()
         open(os.path.join(out, f"done-{step}"), "w").close()
     report["classified"] = classified

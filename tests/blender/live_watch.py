@@ -52,32 +52,49 @@ def build():
     return scene, cube, paint
 
 
-def main(out):
-    scene, cube, paint = build()
-    rt_export.register()
-    settings = scene.rt_export
-    settings.out_dir = os.path.join(out, "assets")
-    settings.scene_file = os.path.join(out, "scene.toml")
-    settings.live = True
-    blend = os.path.join(out, "scene.blend")
-    bpy.ops.wm.save_as_mainfile(filepath=blend)
-    open(os.path.join(out, "done-0"), "w").close()
+def edits(scene, cube, paint):
+    """The live tests' edits of build()'s scene, by name: the cube moves, its material turns
+    red, it grows taller (its mesh changes), the camera moves."""
 
-    def red():
+    def move():
+        cube.location.x += 0.5
+
+    def material():
         paint.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (0.9, 0.1, 0.1, 1)
 
-    def move_camera():
-        scene.camera.location.x += 0.5
-
-    def taller():
+    def mesh():
         for vertex in cube.data.vertices:
             if vertex.co.z > 0:
                 vertex.co.z += 0.5
         cube.data.update()
 
-    for step, edit in enumerate((red, move_camera, taller), start=1):
+    def camera():
+        scene.camera.location.x += 0.5
+
+    return {"move": move, "material": material, "mesh": mesh, "camera": camera}
+
+
+def exporter(scene, out):
+    """The add-on registered, exporting `scene` into OUT/assets and OUT/scene.toml: its settings."""
+    rt_export.register()
+    settings = scene.rt_export
+    settings.out_dir = os.path.join(out, "assets")
+    settings.scene_file = os.path.join(out, "scene.toml")
+    return settings
+
+
+def main(out):
+    scene, cube, paint = build()
+    settings = exporter(scene, out)
+    settings.live = True
+    blend = os.path.join(out, "scene.blend")
+    bpy.ops.wm.save_as_mainfile(filepath=blend)
+    open(os.path.join(out, "done-0"), "w").close()
+
+    edit = edits(scene, cube, paint)
+    for step, name in enumerate(("material", "camera", "mesh"), start=1):
         wait_for(os.path.join(out, f"go-{step}"))
-        edit()
+        edit[name]()
         bpy.context.view_layer.update()
         bpy.ops.wm.save_as_mainfile(filepath=blend)
         open(os.path.join(out, f"done-{step}"), "w").close()

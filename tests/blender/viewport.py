@@ -34,6 +34,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import rt_engine  # noqa: E402
 import rt_viewport  # noqa: E402
 from live_edits import build  # noqa: E402
+from live_watch import edits  # noqa: E402
 
 SPP = 16
 TIMEOUT_S = 300
@@ -114,22 +115,7 @@ def main(out):
             updates.append({"written": written, "reload": reload_line(client, line)})
 
     bpy.app.handlers.depsgraph_update_post.append(view_update)
-    def move():
-        cube.location.x += 0.5
-
-    def material():
-        paint.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (0.9, 0.1, 0.1, 1)
-
-    def mesh():
-        for vertex in cube.data.vertices:
-            if vertex.co.z > 0:
-                vertex.co.z += 0.5
-        cube.data.update()
-
-    def move_camera():
-        scene.camera.location.x += 0.5
-
-    steps = {"move": move, "material": material, "mesh": mesh, "camera": move_camera}
+    steps = edits(scene, cube, paint)
     by_step = {}
     for name, edit in steps.items():
         if name == "camera":

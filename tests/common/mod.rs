@@ -2,12 +2,13 @@
 #![allow(dead_code)]
 
 pub mod bounded;
+pub mod quad_gltf;
 pub mod reference;
 
 use rt::bvh::BuildQuality;
 use rt::gpu::GpuContext;
 use rt::render::{Image, RenderRequest, Session};
-use rt::scene::Scene;
+use rt::scene::{FeatureSet, Scene};
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
@@ -22,6 +23,16 @@ pub fn new_gpu() -> GpuContext {
     GpuContext::new(std::env::var("RT_ADAPTER").ok().as_deref()).expect("a Vulkan adapter (lavapipe in CI)")
 }
 
+/// A ray for the trace kernel from `o` along `d` (normalised here), unbounded.
+pub fn trace_ray(o: glam::DVec3, d: glam::DVec3) -> rt::layout::GpuTraceRay {
+    rt::layout::GpuTraceRay {
+        origin: o.as_vec3().to_array(),
+        t_max: f32::MAX,
+        direction: d.normalize().as_vec3().to_array(),
+        _pad: 0,
+    }
+}
+
 pub fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
@@ -32,18 +43,58 @@ pub fn scene_from(text: &str) -> Scene {
 }
 
 pub fn render(scene: Scene, width: u32, height: u32, spp: u32, max_bounces: u32) -> Image {
-    let mut renderer = Session::open(gpu(), scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
-    let mut request = RenderRequest::from_scene(renderer.scene());
-    (request.width, request.height, request.spp, request.max_bounces) = (width, height, spp, max_bounces);
-    let (image, report) = renderer.render(&request, None).unwrap_or_else(|e| panic!("{e:#}"));
+    render_request(scene, |r| (r.width, r.height, r.spp, r.max_bounces) = (width, height, spp, max_bounces)).0
+}
+
+/// Renders `scene` with the request its own settings give, changed by `adjust`; returns the
+/// image and the feature set the session specialised for. No sample may be dropped.
+pub fn render_request(scene: Scene, adjust: impl FnOnce(&mut RenderRequest)) -> (Image, FeatureSet) {
+    let mut session = Session::open(gpu(), scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
+    let mut request = RenderRequest::from_scene(session.scene());
+    adjust(&mut request);
+    let (image, report) = session.render(&request, None).unwrap_or_else(|e| panic!("{e:#}"));
     assert!(report.dropped.is_clean(), "{}", report.dropped);
-    image
+    (image, session.features())
 }
 
 pub fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("rt-test-{}-{name}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     dir
+}
+
+/// [`temp_dir`] emptied of what an earlier run left there.
+pub fn empty_temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("rt-test-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    temp_dir(name)
+}
+
+/// The Python with Blender's `bpy` that RT_BPY_PYTHON names (relative to the repository
+/// root if relative), checked once to import bpy.
+pub fn bpy_python() -> PathBuf {
+    static PYTHON: OnceLock<PathBuf> = OnceLock::new();
+    PYTHON
+        .get_or_init(|| {
+            let Some(python) = std::env::var_os("RT_BPY_PYTHON") else {
+                panic!(
+                    "RT_BPY_PYTHON is not set: it must name a Python 3.11 with bpy==5.0.1 \
+                     (scripts/test creates .venv-bpy and sets it)"
+                );
+            };
+            let python = PathBuf::from(python);
+            let python = if python.is_relative() { repo().join(python) } else { python };
+            match std::process::Command::new(&python).args(["-c", "import bpy"]).output() {
+                Ok(out) if out.status.success() => python,
+                Ok(out) => panic!(
+                    "RT_BPY_PYTHON={} cannot import bpy:\n{}",
+                    python.display(),
+                    String::from_utf8_lossy(&out.stderr)
+                ),
+                Err(e) => panic!("RT_BPY_PYTHON={} does not run: {e}", python.display()),
+            }
+        })
+        .clone()
 }
 
 /// A closed, subdivided icosahedron of unit radius as OBJ text.

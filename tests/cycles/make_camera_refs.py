@@ -20,18 +20,13 @@ Cycles settings: box filter of width 1, no clamping, denoising or adaptive sampl
 blur_glossy 0, linear 32-bit EXR.
 """
 
-import argparse
 import math
-import os
-import sys
 
 import bpy
 from mathutils import Matrix, Vector
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-REPO = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(REPO, "blender"))
-import rt_export  # noqa: E402
+import cycles_reference as cycles
+from cycles_reference import emissive
 
 # Multiples of 1/8, so that Cycles' f32 sum of a pixel's equal samples is exact and the
 # faces' inner pixels match rt's to rounding.
@@ -177,17 +172,6 @@ CAMERAS = {
 }
 
 
-def emitter(name, colour):
-    material = bpy.data.materials.new(name)
-    node = material.node_tree.nodes["Principled BSDF"]
-    node.inputs["Base Color"].default_value = (0.0, 0.0, 0.0, 1.0)
-    node.inputs["Specular IOR Level"].default_value = 0.0
-    node.inputs["Roughness"].default_value = 1.0
-    node.inputs["Emission Color"].default_value = (*colour, 1.0)
-    node.inputs["Emission Strength"].default_value = 1.0
-    return material
-
-
 def build_objects(scene):
     for i in range(3):
         for j in range(3):
@@ -195,21 +179,18 @@ def build_objects(scene):
             bpy.ops.mesh.primitive_cube_add(size=0.9, location=location, rotation=(0.0, 0.0, 0.3 * (i - j)))
             cube = bpy.context.object
             cube.name = cube.data.name = f"cube_{i}_{j}"
-            cube.data.materials.append(emitter(cube.name, COLOURS[3 * j + i]))
+            cube.data.materials.append(emissive(cube.name, COLOURS[3 * j + i]))
     # Small bright points far behind: out of focus they show the aperture's shape.
     for k, (x, z) in enumerate([(-2.2, 1.6), (0.7, 2.0), (2.4, -0.4), (-0.9, -1.9), (1.5, 0.9)]):
         bpy.ops.mesh.primitive_cube_add(size=0.12, location=(x, 5.0, z))
         point = bpy.context.object
         point.name = point.data.name = f"point_{k}"
-        point.data.materials.append(emitter(point.name, (4.0, 4.0, 4.0)))
+        point.data.materials.append(emissive(point.name, (4.0, 4.0, 4.0)))
     bpy.ops.mesh.primitive_plane_add(size=40.0, location=(0.0, 7.0, 0.0), rotation=(math.pi / 2, 0.0, 0.0))
     wall = bpy.context.object
     wall.name = wall.data.name = "wall"
-    wall.data.materials.append(emitter("wall", (0.125, 0.125, 0.25)))
-    world = bpy.data.worlds.new("world")
-    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.0625, 0.0625, 0.0625, 1.0)
-    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
-    scene.world = world
+    wall.data.materials.append(emissive("wall", (0.125, 0.125, 0.25)))
+    cycles.uniform_world(scene, (0.0625, 0.0625, 0.0625))
 
 
 def build_surroundings(scene):
@@ -222,7 +203,7 @@ def build_surroundings(scene):
         bpy.ops.mesh.primitive_cube_add(size=1.1, location=location, rotation=(0.2 * k, 0.0, 0.35 * k))
         box = bpy.context.object
         box.name = box.data.name = f"axis_{k}"
-        box.data.materials.append(emitter(box.name, COLOURS[k]))
+        box.data.materials.append(emissive(box.name, COLOURS[k]))
     k = 0
     for sx in (-1, 1):
         for sy in (-1, 1):
@@ -231,16 +212,13 @@ def build_surroundings(scene):
                 bpy.ops.mesh.primitive_cube_add(size=0.5, location=location, rotation=(0.0, 0.4, 0.2 * k))
                 box = bpy.context.object
                 box.name = box.data.name = f"corner_{k}"
-                box.data.materials.append(emitter(box.name, COLOURS[(k + 6) % len(COLOURS)]))
+                box.data.materials.append(emissive(box.name, COLOURS[(k + 6) % len(COLOURS)]))
                 k += 1
     bpy.ops.mesh.primitive_plane_add(size=12.0, location=centre + Vector((0.0, 0.0, -3.6)))
     floor = bpy.context.object
     floor.name = floor.data.name = "floor"
-    floor.data.materials.append(emitter("floor", (0.25, 0.125, 0.0625)))
-    world = bpy.data.worlds.new("world")
-    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.0625, 0.125, 0.1875, 1.0)
-    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
-    scene.world = world
+    floor.data.materials.append(emissive("floor", (0.25, 0.125, 0.0625)))
+    cycles.uniform_world(scene, (0.0625, 0.125, 0.1875))
 
 
 def add_camera(scene, settings):
@@ -282,47 +260,16 @@ def add_camera(scene, settings):
     return cam
 
 
-def set_up_cycles(scene, width, height, spp):
-    scene.render.engine = "CYCLES"
-    scene.render.resolution_x, scene.render.resolution_y = width, height
-    scene.render.resolution_percentage = 100
-    scene.render.image_settings.file_format = "OPEN_EXR"
-    scene.render.image_settings.color_depth = "32"
-    scene.view_settings.view_transform = "Standard"
-    c = scene.cycles
-    c.device = "CPU"
-    c.samples = spp
-    c.use_adaptive_sampling = False
-    c.use_denoising = False
-    c.pixel_filter_type = "BOX"
-    c.filter_width = 1.0
-    c.sample_clamp_direct = 0.0
-    c.sample_clamp_indirect = 0.0
-    c.blur_glossy = 0.0
-    c.max_bounces = 16
-    c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = 16
-    c.seed = 0
-
-
 def main():
-    argv = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else sys.argv[1:]
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--spp", type=int, default=8192, help="Cycles samples per pixel")
-    parser.add_argument("names", nargs="*", help=f"cameras to render (default: all of {', '.join(CAMERAS)})")
-    args = parser.parse_args(argv)
-    for name in args.names or CAMERAS:
+    args = cycles.arguments(__doc__, 8192, list(CAMERAS))
+    for name in args.names:
         width, height, settings = CAMERAS[name]
-        bpy.ops.wm.read_factory_settings(use_empty=True)
-        scene = bpy.context.scene
+        scene = cycles.new_scene()
         (build_surroundings if name.startswith("pano_") else build_objects)(scene)
         add_camera(scene, settings)
-        set_up_cycles(scene, width, height, args.spp)
-        bpy.context.view_layer.update()
-        folder = os.path.join(HERE, "scenes", f"camera_{name}")
-        rt_export.export_scene(scene, os.path.join(folder, "assets"), os.path.join(folder, "scene.toml"))
-        scene.render.filepath = os.path.join(HERE, f"camera_{name}.exr")
-        bpy.ops.render.render(write_still=True)
-        print(f"camera_{name}: {width}x{height} at {args.spp} spp -> {scene.render.filepath}", flush=True)
+        cycles.set_up(scene, width, height)
+        cycles.export(scene, f"camera_{name}")
+        cycles.render(scene, f"camera_{name}", args)
 
 
 if __name__ == "__main__":

@@ -16,23 +16,16 @@ Cycles counts bounces after the first hit, rt counts hits: Cycles' max_bounces =
 is rt's max_bounces = BOUNCES + 1 (cycles_environment.rs).
 """
 
-import argparse
-import math
 import os
-import sys
 
 import bpy
 import numpy as np
 from mathutils import Vector
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-REPO = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(REPO, "blender"))
-sys.path.insert(0, HERE)
-import rt_export  # noqa: E402
-from make_refs import add, cycles, diffuse  # noqa: E402
+import cycles_reference as cycles
+from cycles_reference import diffuse, environment_world, rt_export
+from make_refs import add, set_up
 
-SIZE = 64
 COURTYARD = os.path.join(bpy.utils.system_resource("DATAFILES"), "studiolights", "world", "courtyard.exr")
 # The synthetic map: its size, its dim level and its 2x2 spot (top-left texel, 10^4 times brighter).
 SPOT_MAP = (128, 64)
@@ -41,8 +34,7 @@ SPOT_TEXEL = (75, 20)
 
 
 def objects():
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
+    scene = cycles.new_scene()
     bpy.ops.mesh.primitive_plane_add(size=6)
     add(bpy.context.object, "floor", diffuse("floor", (0.5, 0.5, 0.5)))
     bpy.ops.mesh.primitive_cube_add(size=0.8, location=(-0.9, 0.5, 0.4), rotation=(0.0, 0.0, 0.5))
@@ -65,26 +57,9 @@ def objects():
     return scene
 
 
-def world(image, strength, rotation=None):
-    world = bpy.data.worlds.new("environment")
-    tree = world.node_tree
-    background = tree.nodes["Background"]
-    background.inputs["Strength"].default_value = strength
-    texture = tree.nodes.new("ShaderNodeTexEnvironment")
-    texture.image = image
-    tree.links.new(texture.outputs["Color"], background.inputs["Color"])
-    if rotation is not None:
-        coords = tree.nodes.new("ShaderNodeTexCoord")
-        mapping = tree.nodes.new("ShaderNodeMapping")
-        mapping.inputs["Rotation"].default_value = [math.radians(a) for a in rotation]
-        tree.links.new(coords.outputs["Generated"], mapping.inputs["Vector"])
-        tree.links.new(mapping.outputs["Vector"], texture.inputs["Vector"])
-    bpy.context.scene.world = world
-
-
 def courtyard():
     scene = objects()
-    world(bpy.data.images.load(COURTYARD), 1.5, rotation=(20.0, 0.0, 110.0))
+    environment_world(scene, bpy.data.images.load(COURTYARD), 1.5, rotation_deg=(20.0, 0.0, 110.0))
     return scene
 
 
@@ -100,7 +75,7 @@ def spot():
     path = os.path.join(bpy.app.tempdir, "spot.exr")
     with open(path, "wb") as f:
         f.write(rt_export.exr_bytes(pixels[:, :, :3]))
-    world(bpy.data.images.load(path), 1.0)
+    environment_world(scene, bpy.data.images.load(path), 1.0)
     return scene
 
 
@@ -108,19 +83,12 @@ SCENES = {"courtyard": courtyard, "spot": spot}
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--spp", type=int, default=2048)
-    parser.add_argument("names", nargs="*", default=sorted(SCENES))
-    args = parser.parse_args()
+    args = cycles.arguments(__doc__, 2048, sorted(SCENES))
     for name in args.names:
         scene = SCENES[name]()
-        cycles(scene, args.spp)
-        folder = os.path.join(HERE, "scenes", f"environment_{name}")
-        os.makedirs(folder, exist_ok=True)
-        rt_export.export_scene(scene, os.path.join(folder, "assets"), os.path.join(folder, f"environment_{name}.toml"))
-        scene.render.filepath = os.path.join(HERE, f"environment_{name}.exr")
-        bpy.ops.render.render(write_still=True)
-        print(f"make_environment_refs: {name}: {args.spp} spp written", flush=True)
+        set_up(scene)
+        cycles.export(scene, f"environment_{name}", f"environment_{name}.toml")
+        cycles.render(scene, f"environment_{name}", args)
 
 
 if __name__ == "__main__":

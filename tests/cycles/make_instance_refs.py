@@ -27,37 +27,15 @@ Cycles settings: box filter of width 1, no clamping, denoising or adaptive sampl
 blur_glossy 0, bounces raised, linear 32-bit EXR.
 """
 
-import argparse
 import math
-import os
-import sys
 
 import bpy
 from mathutils import Vector
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-REPO = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(REPO, "blender"))
-import rt_export  # noqa: E402
+import cycles_reference as cycles
+from cycles_reference import diffuse, emissive
 
 SIZE = 64
-
-
-def diffuse(name, colour):
-    material = bpy.data.materials.new(name)
-    node = material.node_tree.nodes["Principled BSDF"]
-    node.inputs["Base Color"].default_value = (*colour, 1.0)
-    node.inputs["Specular IOR Level"].default_value = 0.0
-    node.inputs["Roughness"].default_value = 1.0
-    return material
-
-
-def emissive(name, colour, strength):
-    material = diffuse(name, (0.0, 0.0, 0.0))
-    node = material.node_tree.nodes["Principled BSDF"]
-    node.inputs["Emission Color"].default_value = (*colour, 1.0)
-    node.inputs["Emission Strength"].default_value = strength
-    return material
 
 
 def hidden_collection(scene, name):
@@ -231,56 +209,18 @@ def add_camera(scene, location, target, lens):
     scene.camera = cam
 
 
-def set_up_cycles(scene, spp):
-    world = bpy.data.worlds.new("world")
-    # Multiples of 1/16, so that Cycles' f32 sum of a sky pixel's equal samples is exact and
-    # the sky matches rt's to rounding.
-    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.875, 0.9375, 1.0, 1.0)
-    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
-    scene.world = world
-    scene.render.engine = "CYCLES"
-    scene.render.resolution_x = scene.render.resolution_y = SIZE
-    scene.render.resolution_percentage = 100
-    scene.render.image_settings.file_format = "OPEN_EXR"
-    scene.render.image_settings.color_depth = "32"
-    scene.view_settings.view_transform = "Standard"
-    c = scene.cycles
-    c.device = "CPU"
-    c.samples = spp
-    c.use_adaptive_sampling = False
-    c.use_denoising = False
-    c.pixel_filter_type = "BOX"
-    c.filter_width = 1.0
-    c.sample_clamp_direct = 0.0
-    c.sample_clamp_indirect = 0.0
-    c.blur_glossy = 0.0
-    c.max_bounces = 16
-    c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = 16
-    c.seed = 0
-
-
 def main():
-    argv = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else sys.argv[1:]
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--spp", type=int, default=8192, help="Cycles samples per pixel")
-    parser.add_argument("--export-only", action="store_true", help="export the scenes, keep the committed references")
-    parser.add_argument("names", nargs="*", help=f"scenes to render (default: all of {', '.join(SCENES)})")
-    args = parser.parse_args(argv)
-    for name in args.names or SCENES:
-        bpy.ops.wm.read_factory_settings(use_empty=True)
-        scene = bpy.context.scene
+    args = cycles.arguments(__doc__, 8192, list(SCENES))
+    for name in args.names:
+        scene = cycles.new_scene()
         add_camera(scene, *SCENES[name](scene))
-        set_up_cycles(scene, args.spp)
-        bpy.context.view_layer.update()
-        folder = os.path.join(HERE, "scenes", f"instances_{name}")
-        export = rt_export.export_scene(scene, os.path.join(folder, "assets"), os.path.join(folder, "scene.toml"))
-        counts = {f: len(m) for f, m in export.instances.items()}
-        if args.export_only:
-            print(f"instances_{name}: exported; instances {counts}", flush=True)
-            continue
-        scene.render.filepath = os.path.join(HERE, f"instances_{name}.exr")
-        bpy.ops.render.render(write_still=True)
-        print(f"instances_{name}: {SIZE}x{SIZE} at {args.spp} spp -> {scene.render.filepath}; instances {counts}", flush=True)
+        # Multiples of 1/16, so that Cycles' f32 sum of a sky pixel's equal samples is exact and
+        # the sky matches rt's to rounding.
+        cycles.uniform_world(scene, (0.875, 0.9375, 1.0))
+        cycles.set_up(scene, SIZE)
+        export = cycles.export(scene, f"instances_{name}")
+        print(f"instances_{name}: instances {({f: len(m) for f, m in export.instances.items()})}", flush=True)
+        cycles.render(scene, f"instances_{name}", args)
 
 
 if __name__ == "__main__":

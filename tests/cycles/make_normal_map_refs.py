@@ -12,19 +12,13 @@ RGB = (n + 1) / 2 in a Non-Color image, and read by a Normal Map node (tangent s
 the mesh's uv map, strength 1) linked into the Principled BSDF's Normal.
 """
 
-import argparse
 import math
-import os
-import sys
 
 import bpy
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-import make_texture_refs as refs  # noqa: E402
-
-rt_export = refs.rt_export
+import cycles_reference as cycles
+import make_texture_refs as refs
 
 
 def bump_normals(n, bumps_u, bumps_v, amplitude):
@@ -55,41 +49,65 @@ def normal_mapped(name, pixels, base_color, roughness):
     return m
 
 
-def floor(scene, size=8.0, z=-1.0):
-    m, _, bsdf = refs.principled("floor")
-    bsdf.inputs["Base Color"].default_value = (0.5, 0.5, 0.5, 1.0)
-    bsdf.inputs["Roughness"].default_value = 1.0
-    refs.add_object(scene, "floor", bpy.ops.mesh.primitive_plane_add, m, size=size, location=(0, 0, z))
-
-
 def scene_normal_sphere(scene):
     """A smooth diffuse sphere with a normal map of 8 × 4 bumps, lit by a low sun."""
-    refs.world(scene, (0.2, 0.2, 0.2))
+    cycles.uniform_world(scene, (0.2, 0.2, 0.2))
     refs.sun(scene, (math.radians(55), 0.0, math.radians(-40)))
     m = normal_mapped("bumpy", bump_normals(128, 8, 4, 0.01), (0.8, 0.8, 0.8), 1.0)
     refs.add_object(scene, "sphere", bpy.ops.mesh.primitive_uv_sphere_add, m, radius=1.0, segments=48,
                     ring_count=24)
     bpy.ops.object.shade_smooth()
-    floor(scene)
+    refs.floor(scene, (0.5, 0.5, 0.5), 8.0, -1.0)
     refs.camera(scene, (0.0, -3.6, 0.8), (0.0, 0.0, -0.1), 45.0)
 
 
 def scene_normal_cube(scene):
     """A diffuse cube (each face its own uv island and orientation) with a normal map of
     3 × 3 bumps, under a sun and a grey sky: every face's tangent frame shows."""
-    refs.world(scene, (0.25, 0.25, 0.25))
+    cycles.uniform_world(scene, (0.25, 0.25, 0.25))
     refs.sun(scene, (math.radians(50), 0.0, math.radians(-25)))
     m = normal_mapped("bumpy", bump_normals(128, 3, 3, 0.025), (0.7, 0.55, 0.4), 0.4)
     cube = refs.add_object(scene, "cube", bpy.ops.mesh.primitive_cube_add, m, size=1.4, location=(0, 0, -0.3))
     cube.rotation_euler = (0.0, 0.0, math.radians(35.0))
-    floor(scene)
+    refs.floor(scene, (0.5, 0.5, 0.5), 8.0, -1.0)
+    refs.camera(scene, (0.0, -3.4, 1.6), (0.0, 0.0, -0.3), 45.0)
+
+
+def scene_normal_second_uv(scene):
+    """The cube of `scene_normal_cube` with a normal map of 3 × 2 bumps on a second uv map,
+    laid out unlike the first (each face's island turned a quarter and scaled): the
+    Normal Map node and the image (through a UV Map node) name it, so the tangent frame
+    is that map's, and the first map's frame would show other bumps."""
+    cycles.uniform_world(scene, (0.25, 0.25, 0.25))
+    refs.sun(scene, (math.radians(50), 0.0, math.radians(-25)))
+    m = normal_mapped("bumpy", bump_normals(128, 3, 2, 0.025), (0.7, 0.55, 0.4), 0.4)
+    tree = m.node_tree
+    node = next(n for n in tree.nodes if n.type == "NORMAL_MAP")
+    node.uv_map = "second"
+    uv_node = tree.nodes.new("ShaderNodeUVMap")
+    uv_node.uv_map = "second"
+    tex = next(n for n in tree.nodes if n.type == "TEX_IMAGE")
+    tree.links.new(uv_node.outputs["UV"], tex.inputs["Vector"])
+    cube = refs.add_object(scene, "cube", bpy.ops.mesh.primitive_cube_add, m, size=1.4, location=(0, 0, -0.3))
+    cube.rotation_euler = (0.0, 0.0, math.radians(35.0))
+    mesh = cube.data
+    first = mesh.uv_layers[0]
+    second = mesh.uv_layers.new(name="second")
+    uvs = np.empty(len(mesh.loops) * 2, np.float32)
+    first.uv.foreach_get("vector", uvs)
+    u, v = uvs[0::2].copy(), uvs[1::2].copy()
+    uvs[0::2], uvs[1::2] = 2.0 * (1.0 - v), 2.0 * u
+    second.uv.foreach_set("vector", uvs)
+    first.active_render = True
+    mesh.uv_layers.active = first
+    refs.floor(scene, (0.5, 0.5, 0.5), 8.0, -1.0)
     refs.camera(scene, (0.0, -3.4, 1.6), (0.0, 0.0, -0.3), 45.0)
 
 
 def scene_alpha_blend(scene):
     """A quad whose base colour texture has alpha 0.25 and 0.75 in stripes, over a floor
     under a sun: Cycles mixes by alpha, for the camera and for the shadow alike."""
-    refs.world(scene, (0.1, 0.1, 0.1))
+    cycles.uniform_world(scene, (0.1, 0.1, 0.1))
     m, tree, bsdf = refs.principled("veil")
     n = 32
     y, x = np.mgrid[0:n, 0:n]
@@ -105,7 +123,7 @@ def scene_alpha_blend(scene):
     bsdf.inputs["Roughness"].default_value = 1.0
     refs.add_object(scene, "veil", bpy.ops.mesh.primitive_plane_add, m, size=1.6, location=(0, 0, 0.7),
                     rotation=(math.radians(10), 0, 0))
-    floor(scene, 6.0, 0.0)
+    refs.floor(scene, (0.5, 0.5, 0.5), 6.0)
     refs.sun(scene, (math.radians(25), 0.0, math.radians(30)))
     refs.camera(scene, (0.0, -2.6, 3.2), (0.0, 0.0, 0.2), 45.0)
 
@@ -113,24 +131,18 @@ def scene_alpha_blend(scene):
 SCENES = {
     "normal_sphere": scene_normal_sphere,
     "normal_cube": scene_normal_cube,
+    "normal_second_uv": scene_normal_second_uv,
     "alpha_blend": scene_alpha_blend,
 }
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--spp", type=int, default=4096)
-    parser.add_argument("names", nargs="*", default=list(SCENES))
-    args = parser.parse_args()
+    args = cycles.arguments(__doc__, 4096, list(SCENES))
     for name in args.names:
         scene = refs.reset()
         SCENES[name](scene)
-        scene.cycles.samples = args.spp
-        out = os.path.join(HERE, "scenes", f"texture_{name}")
-        rt_export.export_scene(scene, os.path.join(out, "assets"), os.path.join(out, "scene.toml"))
-        scene.render.filepath = os.path.join(HERE, f"texture_{name}.exr")
-        bpy.ops.render.render(write_still=True)
-        print(f"texture_{name}: {args.spp} spp -> {scene.render.filepath}", file=sys.stderr)
+        cycles.export(scene, f"texture_{name}")
+        cycles.render(scene, f"texture_{name}", args)
 
 
 if __name__ == "__main__":

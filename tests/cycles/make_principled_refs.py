@@ -11,16 +11,12 @@ Cycles is set up as a reference (see make_texture_refs.py) with the Principled B
 default distribution, Multiscatter GGX: rt's `[render] microfacet = "multiscatter"`.
 """
 
-import argparse
 import math
-import os
-import sys
 
 import bpy
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-import make_texture_refs as refs  # noqa: E402
+import cycles_reference as cycles
+import make_texture_refs as refs
 
 WIDTH, HEIGHT = 160, 32
 STEPS = [0.0, 0.25, 0.5, 0.75, 1.0]
@@ -29,6 +25,13 @@ TINTS = [(1.0, 1.0, 1.0), (1.0, 0.4, 0.4), (0.4, 1.0, 0.4), (0.4, 0.4, 1.0), (1.
 SHEEN_BASE = {"Base Color": (0.05, 0.05, 0.08), "Roughness": 0.5}
 SHEEN_ROUGHNESS_BASE = {**SHEEN_BASE, "Sheen Weight": 1.0, "Sheen Tint": (1.0, 0.8, 0.6)}
 ANISOTROPIC_METAL = {"Base Color": (0.95, 0.75, 0.5), "Metallic": 1.0, "Roughness": 0.4}
+# Thin films from none to 1 µm: on a dark dielectric (the film's colours show in its specular
+# layer), on a metal (Cycles 5.0 puts the film over its F82 conductor too) and on glass.
+THICKNESSES = [0.0, 250.0, 500.0, 750.0, 1000.0]
+FILM_DIELECTRIC = {"Base Color": (0.1, 0.1, 0.12), "Roughness": 0.2, "Thin Film IOR": 1.33}
+FILM_METAL = {"Base Color": (0.9, 0.75, 0.5), "Metallic": 1.0, "Roughness": 0.3, "Thin Film IOR": 1.6}
+FILM_GLASS = {"Base Color": (1.0, 1.0, 1.0), "Transmission Weight": 1.0, "IOR": 1.5, "Roughness": 0.15,
+              "Thin Film IOR": 1.33}
 
 # Per row: the inputs every sphere shares, and per sphere the inputs that change.
 ROWS = {
@@ -90,6 +93,16 @@ ROWS = {
     # meridians here, see UV_SWAPPED), or radial about X.
     "anisotropy_uv_tangent_sun": (ANISOTROPIC_METAL, [{"Anisotropic": a} for a in STEPS]),
     "anisotropy_radial_x_sun": (ANISOTROPIC_METAL, [{"Anisotropic": a} for a in STEPS]),
+    "thin_film_dielectric": (FILM_DIELECTRIC, [{"Thin Film Thickness": t} for t in THICKNESSES]),
+    "thin_film_dielectric_sun": (FILM_DIELECTRIC, [{"Thin Film Thickness": t} for t in THICKNESSES]),
+    "thin_film_metal": (FILM_METAL, [{"Thin Film Thickness": t} for t in THICKNESSES]),
+    "thin_film_metal_sun": (FILM_METAL, [{"Thin Film Thickness": t} for t in THICKNESSES]),
+    "thin_film_glass": (FILM_GLASS, [{"Thin Film Thickness": t} for t in THICKNESSES]),
+    # Specular IOR Level 0 leaves no specular layer, but Cycles keeps one for a film (over index 1).
+    "thin_film_level_zero": (
+        {**FILM_DIELECTRIC, "Specular IOR Level": 0.0},
+        [{"Thin Film Thickness": t} for t in THICKNESSES],
+    ),
 }
 
 # Rows whose Principled BSDF's Tangent input is linked to a Tangent node: "UV_MAP" or a radial axis.
@@ -113,6 +126,8 @@ SUNLIT = {
     "anisotropy_dielectric_sun": FRONT_SUN,
     "anisotropy_uv_tangent_sun": FRONT_SUN,
     "anisotropy_radial_x_sun": FRONT_SUN,
+    "thin_film_dielectric_sun": FRONT_SUN,
+    "thin_film_metal_sun": FRONT_SUN,
 }
 
 
@@ -144,40 +159,52 @@ def build(scene, name):
     shared, spheres = ROWS[name]
     if name in SUNLIT:
         rotation, sky = SUNLIT[name]
-        refs.world(scene, sky)
+        cycles.uniform_world(scene, sky)
         refs.sun(scene, rotation)
     else:
-        refs.world(scene, (1.0, 1.0, 1.0))
-    for i, own in enumerate(spheres):
-        m = bpy.data.materials.new(f"{name}_{i}")
-        bsdf = m.node_tree.nodes["Principled BSDF"]
-        for key, value in {**shared, **own}.items():
-            set_input(bsdf, key, value)
-        sphere = refs.add_object(scene, f"sphere_{i}", bpy.ops.mesh.primitive_uv_sphere_add, m, radius=0.45,
-                                 segments=48, ring_count=24, location=(i - 2.0, 0.0, 0.0))
-        bpy.ops.object.shade_smooth()
+        cycles.uniform_world(scene, (1.0, 1.0, 1.0))
+    materials = [principled(f"{name}_{i}", {**shared, **own}) for i, own in enumerate(spheres)]
+    for material, sphere in zip(materials, sphere_row(scene, materials)):
         if name in TANGENT_NODES:
-            link_tangent(m.node_tree, bsdf, TANGENT_NODES[name])
+            link_tangent(material.node_tree, material.node_tree.nodes["Principled BSDF"], TANGENT_NODES[name])
         if name in UV_SWAPPED:
             swap_uv(sphere.data)
+
+
+def principled(name, inputs):
+    material = bpy.data.materials.new(name)
+    bsdf = material.node_tree.nodes["Principled BSDF"]
+    for key, value in inputs.items():
+        set_input(bsdf, key, value)
+    return material
+
+
+def row_scene():
+    """A new reference scene of a row's size."""
+    scene = refs.reset()
+    scene.render.resolution_x, scene.render.resolution_y = WIDTH, HEIGHT
+    return scene
+
+
+def sphere_row(scene, materials):
+    """Five smooth spheres side by side, one of each material (made as they are placed), in
+    the view of a narrow camera far in front of them; returns the spheres."""
+    spheres = []
+    for i, material in enumerate(materials):
+        spheres.append(refs.add_object(scene, f"sphere_{i}", bpy.ops.mesh.primitive_uv_sphere_add, material,
+                                       radius=0.45, segments=48, ring_count=24, location=(i - 2.0, 0.0, 0.0)))
+        bpy.ops.object.shade_smooth()
     refs.camera(scene, (0.0, -12.0, 0.0), (0.0, 0.0, 0.0), 2.0 * math.degrees(math.atan(0.5 / 12.0)))
+    return spheres
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--spp", type=int, default=1024)
-    parser.add_argument("names", nargs="*", default=list(ROWS))
-    args = parser.parse_args()
+    args = cycles.arguments(__doc__, 1024, list(ROWS))
     for name in args.names:
-        scene = refs.reset()
-        scene.render.resolution_x, scene.render.resolution_y = WIDTH, HEIGHT
+        scene = row_scene()
         build(scene, name)
-        scene.cycles.samples = args.spp
-        out = os.path.join(HERE, "scenes", f"principled_{name}")
-        refs.rt_export.export_scene(scene, os.path.join(out, "assets"), os.path.join(out, "scene.toml"))
-        scene.render.filepath = os.path.join(HERE, f"principled_{name}.exr")
-        bpy.ops.render.render(write_still=True)
-        print(f"principled_{name}: {args.spp} spp -> {scene.render.filepath}", file=sys.stderr)
+        cycles.export(scene, f"principled_{name}")
+        cycles.render(scene, f"principled_{name}", args)
 
 
 if __name__ == "__main__":

@@ -12,31 +12,16 @@ Cycles counts bounces after the first hit (0 = direct light only), rt counts hit
 Cycles' max_bounces = BOUNCES is rt's max_bounces = BOUNCES + 1 (cycles_lamps.rs).
 """
 
-import argparse
 import math
-import os
-import sys
 
 import bpy
 from mathutils import Vector
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-REPO = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(REPO, "blender"))
-import rt_export  # noqa: E402
+import cycles_reference as cycles
+from cycles_reference import diffuse
 
 SIZE = 64
 BOUNCES = 4
-
-
-def diffuse(name, color):
-    """A Principled BSDF with no specular layer: Lambertian in Cycles and in rt."""
-    material = bpy.data.materials.new(name)
-    node = material.node_tree.nodes["Principled BSDF"]
-    node.inputs["Base Color"].default_value = (*color, 1.0)
-    node.inputs["Specular IOR Level"].default_value = 0.0
-    node.inputs["Roughness"].default_value = 1.0
-    return material
 
 
 def add(obj, name, material):
@@ -46,8 +31,7 @@ def add(obj, name, material):
 
 
 def room(background):
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
+    scene = cycles.new_scene()
     bpy.ops.mesh.primitive_plane_add(size=8)
     add(bpy.context.object, "floor", diffuse("floor", (0.5, 0.5, 0.5)))
     bpy.ops.mesh.primitive_plane_add(size=8, location=(0.0, 2.0, 4.0), rotation=(math.pi / 2, 0.0, 0.0))
@@ -61,10 +45,7 @@ def room(background):
     camera.rotation_euler = (Vector((0.0, 0.0, 0.5)) - camera.location).to_track_quat("-Z", "Y").to_euler()
     camera.data.lens = 30
     scene.camera = camera
-    world = bpy.data.worlds.new("sky")
-    world.node_tree.nodes["Background"].inputs["Color"].default_value = (*background, 1.0)
-    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
-    scene.world = world
+    cycles.uniform_world(scene, background, "sky")
     return scene
 
 
@@ -120,47 +101,19 @@ def several():
 SCENES = {"point": point, "spot": spot, "area": area, "sun": sun, "several": several}
 
 
-def cycles(scene, spp):
-    """Cycles as a reference: a box filter of one pixel (as rt samples pixels), no clamping,
-    denoising, adaptive sampling or glossy blur, light threshold off."""
-    scene.render.engine = "CYCLES"
-    c = scene.cycles
-    c.device = "CPU"
-    c.samples = spp
-    c.use_adaptive_sampling = False
-    c.use_denoising = False
-    c.pixel_filter_type = "BOX"
-    scene.render.filter_size = 1.0
-    c.sample_clamp_direct = 0.0
-    c.sample_clamp_indirect = 0.0
-    c.blur_glossy = 0.0
-    c.light_sampling_threshold = 0.0
-    c.max_bounces = c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = BOUNCES
-    c.volume_bounces = 0
-    c.seed = 1
-    scene.render.resolution_x = scene.render.resolution_y = SIZE
-    scene.render.resolution_percentage = 100
-    scene.render.image_settings.file_format = "OPEN_EXR"
-    scene.render.image_settings.color_depth = "32"
-    scene.render.image_settings.exr_codec = "ZIP"
-    scene.view_settings.view_transform = "Standard"
+def set_up(scene):
+    """The reference's Cycles settings, with light threshold off (every lamp sampled)."""
+    cycles.set_up(scene, SIZE, bounces=BOUNCES, seed=1, light_sampling_threshold=0.0)
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--spp", type=int, default=4096)
-    parser.add_argument("names", nargs="*", default=sorted(SCENES))
-    args = parser.parse_args()
+    args = cycles.arguments(__doc__, 4096, sorted(SCENES))
     for name in args.names:
         SCENES[name]()
         scene = bpy.context.scene
-        cycles(scene, args.spp)
-        folder = os.path.join(HERE, "scenes", name)
-        os.makedirs(folder, exist_ok=True)
-        rt_export.export_scene(scene, os.path.join(folder, "assets"), os.path.join(folder, f"{name}.toml"))
-        scene.render.filepath = os.path.join(HERE, f"{name}.exr")
-        bpy.ops.render.render(write_still=True)
-        print(f"make_refs: {name}: {args.spp} spp written", flush=True)
+        set_up(scene)
+        cycles.export(scene, name, f"{name}.toml")
+        cycles.render(scene, name, args)
 
 
 if __name__ == "__main__":

@@ -11,17 +11,10 @@ as a reference as in make_texture_refs.py; the nodes use Multiscatter GGX, rt's 
 Every node set-up here is one that the exporter maps exactly (README: "Other shader nodes").
 """
 
-import argparse
-import math
-import os
-import sys
-
 import bpy
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-import make_principled_refs as principled_refs  # noqa: E402
-import make_texture_refs as refs  # noqa: E402
+import cycles_reference as cycles
+import make_principled_refs as principled_refs
 
 
 def node(tree, kind, **inputs):
@@ -90,33 +83,26 @@ ROWS = {
 
 
 def build(scene, name):
-    refs.world(scene, (1.0, 1.0, 1.0))
-    for i, make in enumerate(ROWS[name]):
-        m = bpy.data.materials.new(f"{name}_{i}")
-        tree = m.node_tree
-        tree.nodes.remove(tree.nodes["Principled BSDF"])
-        tree.links.new(make(tree).outputs[0], tree.nodes["Material Output"].inputs["Surface"])
-        refs.add_object(scene, f"sphere_{i}", bpy.ops.mesh.primitive_uv_sphere_add, m, radius=0.45,
-                        segments=48, ring_count=24, location=(i - 2.0, 0.0, 0.0))
-        bpy.ops.object.shade_smooth()
-    refs.camera(scene, (0.0, -12.0, 0.0), (0.0, 0.0, 0.0), 2.0 * math.degrees(math.atan(0.5 / 12.0)))
+    cycles.uniform_world(scene, (1.0, 1.0, 1.0))
+    principled_refs.sphere_row(scene, (material(f"{name}_{i}", make) for i, make in enumerate(ROWS[name])))
+
+
+def material(name, make):
+    """A material whose surface is the node `make` builds in its tree."""
+    m = bpy.data.materials.new(name)
+    tree = m.node_tree
+    tree.nodes.remove(tree.nodes["Principled BSDF"])
+    tree.links.new(make(tree).outputs[0], tree.nodes["Material Output"].inputs["Surface"])
+    return m
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--spp", type=int, default=2048)
-    parser.add_argument("names", nargs="*", default=list(ROWS))
-    args = parser.parse_args()
+    args = cycles.arguments(__doc__, 2048, list(ROWS))
     for name in args.names:
-        scene = refs.reset()
-        scene.render.resolution_x, scene.render.resolution_y = principled_refs.WIDTH, principled_refs.HEIGHT
+        scene = principled_refs.row_scene()
         build(scene, name)
-        scene.cycles.samples = args.spp
-        out = os.path.join(HERE, "scenes", f"nodes_{name}")
-        refs.rt_export.export_scene(scene, os.path.join(out, "assets"), os.path.join(out, "scene.toml"))
-        scene.render.filepath = os.path.join(HERE, f"nodes_{name}.exr")
-        bpy.ops.render.render(write_still=True)
-        print(f"nodes_{name}: {args.spp} spp -> {scene.render.filepath}", file=sys.stderr)
+        cycles.export(scene, f"nodes_{name}")
+        cycles.render(scene, f"nodes_{name}", args)
 
 
 if __name__ == "__main__":

@@ -2,7 +2,10 @@
 """Builds small textured scenes in bpy, renders them with Cycles and exports them with
 blender/rt_export.py, for `tests/cycles_textures.rs`:
 
-    /work/main/.venv-bpy/bin/python tests/cycles/make_texture_refs.py [--spp 1024] [NAME...]
+    /work/main/.venv-bpy/bin/python tests/cycles/make_texture_refs.py [--spp N] [NAME...]
+
+References are rendered at 4096 samples per pixel (`--spp` overrides it), the figure
+`tests/cycles_textures.rs` assumes.
 
 For each NAME it writes `tests/cycles/texture_NAME.exr` (Cycles, linear, 32-bit) and
 `tests/cycles/scenes/texture_NAME/` (the exported assets, their images and
@@ -13,51 +16,24 @@ denoising, no adaptive sampling, blur_glossy 0, bounce limits raised, Multiscatt
 (rt's default model), Specular IOR Level 0 on non-metals (plain Lambert diffuse).
 """
 
-import argparse
 import math
 import os
-import sys
 
 import bpy
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "blender"))
-import rt_export  # noqa: E402
+import cycles_reference as cycles
+from cycles_reference import uniform_world
 
 SIZE = 64
 
 
 def reset():
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    scene.render.engine = "CYCLES"
-    scene.render.resolution_x = scene.render.resolution_y = SIZE
-    scene.render.resolution_percentage = 100
-    c = scene.cycles
-    c.device = "CPU"
-    c.use_adaptive_sampling = False
-    c.use_denoising = False
-    c.pixel_filter_type = "BOX"
-    c.filter_width = 1.0
-    c.sample_clamp_direct = 0.0
-    c.sample_clamp_indirect = 0.0
-    c.blur_glossy = 0.0
-    c.max_bounces = c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = 12
-    c.transparent_max_bounces = 64
-    c.caustics_reflective = c.caustics_refractive = True
-    scene.view_settings.view_transform = "Standard"
-    scene.render.image_settings.file_format = "OPEN_EXR"
-    scene.render.image_settings.color_depth = "32"
+    """A new scene with Cycles set up as the reference, transparent bounces raised for
+    alpha-blended layers."""
+    scene = cycles.new_scene()
+    cycles.set_up(scene, SIZE, bounces=12, transparent_max_bounces=64)
     return scene
-
-
-def world(scene, color):
-    w = bpy.data.worlds.new("world")
-    scene.world = w
-    bg = w.node_tree.nodes["Background"]
-    bg.inputs["Color"].default_value = (*color, 1.0)
-    bg.inputs["Strength"].default_value = 1.0
 
 
 def camera(scene, location, look_at, fov_deg=40.0):
@@ -111,6 +87,14 @@ def add_object(scene, name, mesh_op, material, **kwargs):
     return obj
 
 
+def floor(scene, colour, size, z=0.0, roughness=1.0):
+    """A square floor of side `size` at height `z`, diffuse (no specular layer)."""
+    m, _, bsdf = principled("floor")
+    bsdf.inputs["Base Color"].default_value = (*colour, 1.0)
+    bsdf.inputs["Roughness"].default_value = roughness
+    add_object(scene, "floor", bpy.ops.mesh.primitive_plane_add, m, size=size, location=(0, 0, z))
+
+
 def checker(n, a, b):
     y, x = np.mgrid[0:n, 0:n]
     on = ((x + y) % 2 == 0)[:, :, None]
@@ -119,7 +103,7 @@ def checker(n, a, b):
 
 def scene_checker(scene):
     """A checker base colour through a Mapping node (scale, rotation, offset) on a tilted plane."""
-    world(scene, (1.0, 1.0, 1.0))
+    uniform_world(scene, (1.0, 1.0, 1.0))
     m, tree, bsdf = principled("checker")
     tex = image_node(tree, image("checker", checker(8, (0.9, 0.1, 0.05), (0.95, 0.95, 0.9))))
     mapping = tree.nodes.new("ShaderNodeMapping")
@@ -148,7 +132,7 @@ def sun(scene, rotation):
 def scene_rough_metal(scene):
     """Roughness and metallic maps (separate images, combined by the exporter) on a sunlit
     sphere: highlights of rough and sharp metal against diffuse stripes."""
-    world(scene, (0.3, 0.3, 0.3))
+    uniform_world(scene, (0.3, 0.3, 0.3))
     sun(scene, (math.radians(40), 0.0, math.radians(-35)))
     m, tree, bsdf = principled("rough_metal")
     bsdf.inputs["Base Color"].default_value = (0.95, 0.95, 0.95, 1.0)
@@ -162,16 +146,15 @@ def scene_rough_metal(scene):
     tree.links.new(metal_tex.outputs["Color"], bsdf.inputs["Metallic"])
     sphere = add_object(scene, "sphere", bpy.ops.mesh.primitive_uv_sphere_add, m, radius=1.0, segments=48, ring_count=24)
     bpy.ops.object.shade_smooth()
-    floor_m, _, floor_bsdf = principled("floor")
-    floor_bsdf.inputs["Base Color"].default_value = (0.5, 0.5, 0.5, 1.0)
-    add_object(scene, "floor", bpy.ops.mesh.primitive_plane_add, floor_m, size=8.0, location=(0, 0, -1.0))
+    # Principled's default roughness.
+    floor(scene, (0.5, 0.5, 0.5), 8.0, -1.0, roughness=0.5)
     sphere.rotation_euler = (0.0, 0.0, math.radians(30.0))
     camera(scene, (0.0, -3.6, 0.8), (0.0, 0.0, -0.1), 45.0)
 
 
 def scene_leaves(scene):
     """An alpha-masked leaf (a disc with a notch) over a floor, casting its shape's shadow."""
-    world(scene, (0.05, 0.05, 0.05))
+    uniform_world(scene, (0.05, 0.05, 0.05))
     m, tree, bsdf = principled("leaf")
     n = 64
     y, x = (np.mgrid[0:n, 0:n] + 0.5) / n - 0.5
@@ -185,17 +168,14 @@ def scene_leaves(scene):
     bsdf.inputs["Roughness"].default_value = 1.0
     add_object(scene, "leaf", bpy.ops.mesh.primitive_plane_add, m, size=1.6, location=(0, 0, 0.8),
                rotation=(math.radians(10), 0, 0))
-    floor_m, _, floor_bsdf = principled("floor")
-    floor_bsdf.inputs["Base Color"].default_value = (0.8, 0.8, 0.8, 1.0)
-    floor_bsdf.inputs["Roughness"].default_value = 1.0
-    add_object(scene, "floor", bpy.ops.mesh.primitive_plane_add, floor_m, size=6.0)
+    floor(scene, (0.8, 0.8, 0.8), 6.0)
     sun(scene, (math.radians(25), 0.0, math.radians(30)))
     camera(scene, (0.0, -2.6, 3.2), (0.0, 0.0, 0.2), 45.0)
 
 
 def scene_emissive(scene):
     """An emission texture (strength 3) on a panel that lights a floor."""
-    world(scene, (0.0, 0.0, 0.0))
+    uniform_world(scene, (0.0, 0.0, 0.0))
     m, tree, bsdf = principled("screen")
     bsdf.inputs["Base Color"].default_value = (0.0, 0.0, 0.0, 1.0)
     y, x = np.mgrid[0:16, 0:16]
@@ -209,10 +189,7 @@ def scene_emissive(scene):
     bsdf.inputs["Emission Strength"].default_value = 3.0
     add_object(scene, "screen", bpy.ops.mesh.primitive_plane_add, m, size=1.2, location=(0, 0.6, 0.7),
                rotation=(math.radians(80), 0, 0))
-    floor_m, _, floor_bsdf = principled("floor")
-    floor_bsdf.inputs["Base Color"].default_value = (0.8, 0.8, 0.8, 1.0)
-    floor_bsdf.inputs["Roughness"].default_value = 1.0
-    add_object(scene, "floor", bpy.ops.mesh.primitive_plane_add, floor_m, size=6.0)
+    floor(scene, (0.8, 0.8, 0.8), 6.0)
     camera(scene, (0.0, -2.8, 1.6), (0.0, 0.2, 0.4), 45.0)
 
 
@@ -220,7 +197,7 @@ def scene_uv_sets(scene):
     """A sunlit plane with two uv maps: its base colour (a checker) reads the second map
     through a UV Map node, laid out unlike the first (turned a quarter, scaled, moved),
     and its roughness (stripes) reads the default map, so the sun's glint shows them."""
-    world(scene, (0.2, 0.2, 0.2))
+    uniform_world(scene, (0.2, 0.2, 0.2))
     m, tree, bsdf = principled("two_maps")
     bsdf.inputs["Specular IOR Level"].default_value = 0.5
     colour = image_node(tree, image("checker", checker(4, (0.8, 0.15, 0.1), (0.9, 0.9, 0.85))))
@@ -249,11 +226,37 @@ def scene_uv_sets(scene):
     camera(scene, (0.0, -3.0, 1.2), (0.0, 0.0, 0.0), 40.0)
 
 
+def mapping(tree, scale, rotation_deg, location, source):
+    """A Mapping node (Point) fed by `source`'s output."""
+    node = tree.nodes.new("ShaderNodeMapping")
+    node.inputs["Scale"].default_value = (*scale, 1.0)
+    node.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(rotation_deg))
+    node.inputs["Location"].default_value = (*location, 0.0)
+    tree.links.new(source, node.inputs["Vector"])
+    return node
+
+
+def scene_uv_mappings(scene):
+    """The plane of `scene_uv_sets`, each texture behind its own Mapping node: the checker
+    on the second map scaled, turned and moved one way, the roughness stripes on the
+    default map another, so that each uv set carries its own transform."""
+    scene_uv_sets(scene)
+    tree = bpy.data.materials["two_maps"].node_tree
+    colour = next(n for n in tree.nodes if n.type == "TEX_IMAGE" and n.image.name == "checker")
+    rough = next(n for n in tree.nodes if n.type == "TEX_IMAGE" and n.image.name == "stripes")
+    uv_node = next(n for n in tree.nodes if n.type == "UVMAP")
+    a = mapping(tree, (1.5, 0.75), 30.0, (0.2, -0.1), uv_node.outputs["UV"])
+    tree.links.new(a.outputs["Vector"], colour.inputs["Vector"])
+    coords = tree.nodes.new("ShaderNodeTexCoord")
+    b = mapping(tree, (0.5, 2.0), -15.0, (0.1, 0.3), coords.outputs["UV"])
+    tree.links.new(b.outputs["Vector"], rough.inputs["Vector"])
+
+
 def scene_baked_noise(scene):
     """A Noise Texture (procedural, in the plane's generated coordinates) into Base Color
     of a sunlit plane: Cycles renders the procedural material, rt the exporter's bake of
     it (`--bake`, BAKE_SIZES texels a side)."""
-    world(scene, (0.3, 0.3, 0.3))
+    uniform_world(scene, (0.3, 0.3, 0.3))
     m, tree, bsdf = principled("noise")
     bsdf.inputs["Roughness"].default_value = 1.0
     noise = tree.nodes.new("ShaderNodeTexNoise")
@@ -265,6 +268,26 @@ def scene_baked_noise(scene):
     camera(scene, (0.0, -3.0, 1.2), (0.0, 0.0, 0.0), 40.0)
 
 
+def scene_baked_bump(scene):
+    """A Bump node fed by a Noise Texture into the Normal of a sunlit glossy plane: Cycles
+    renders the procedural bump, rt the exporter's bake of Cycles' NORMAL pass in tangent
+    space (`--bake`, BAKE_SIZES texels a side) read as a normal map."""
+    uniform_world(scene, (0.3, 0.3, 0.3))
+    m, tree, bsdf = principled("bumpy")
+    bsdf.inputs["Base Color"].default_value = (0.6, 0.6, 0.6, 1.0)
+    bsdf.inputs["Roughness"].default_value = 0.5
+    bsdf.inputs["Specular IOR Level"].default_value = 0.5
+    noise = tree.nodes.new("ShaderNodeTexNoise")
+    noise.inputs["Scale"].default_value = 3.0
+    noise.inputs["Detail"].default_value = 1.0
+    bump = tree.nodes.new("ShaderNodeBump")
+    bump.inputs["Strength"].default_value = 1.0
+    bump.inputs["Distance"].default_value = 0.2
+    tree.links.new(noise.outputs["Fac"], bump.inputs["Height"])
+    tree.links.new(bump.outputs["Normal"], bsdf.inputs["Normal"])
+    add_object(scene, "plane", bpy.ops.mesh.primitive_plane_add, m, size=2.0, rotation=(math.radians(60), 0, 0))
+    sun(scene, (math.radians(40.0), 0.0, math.radians(20.0)))
+    camera(scene, (0.0, -3.0, 1.2), (0.0, 0.0, 0.0), 40.0)
 def stripes(n, period, a, b, axis=1):
     """(n, n, 4) opaque stripes of values a and b, `period` texels wide, across x (axis 1) or y (0)."""
     i = np.mgrid[0:n, 0:n][axis]
@@ -301,7 +324,7 @@ def scene_coat_map(scene):
     The sphere is finely divided: on a coarse one the sun's shadow terminator shows the
     facets, where Cycles and rt differ by a few percent on a line of pixels whatever the
     textures (seen here at 48 × 24 segments as one block 0.4% off)."""
-    world(scene, (0.3, 0.3, 0.3))
+    uniform_world(scene, (0.3, 0.3, 0.3))
     sun(scene, (math.radians(35), 0.0, math.radians(25)))
     tree, bsdf = layered_sphere(scene, "coat_map", {"Base Color": (0.8, 0.2, 0.1), "Roughness": 0.6,
                                                     "Coat Tint": (0.9, 0.8, 0.6)}, segments=192)
@@ -315,7 +338,7 @@ def scene_coat_map(scene):
 def scene_sheen_map(scene):
     """A checker of sheen weight (1 and 0.2, grey) and stripes of sheen tint (warm and cool,
     sRGB) on a dark sphere in a white world, where the sheen glows along the rim."""
-    world(scene, (1.0, 1.0, 1.0))
+    uniform_world(scene, (1.0, 1.0, 1.0))
     tree, bsdf = layered_sphere(scene, "sheen_map", {"Base Color": (0.05, 0.05, 0.08), "Roughness": 0.5,
                                                      "Sheen Roughness": 0.4})
     weight = checker(4, (1.0, 1.0, 1.0), (0.2, 0.2, 0.2))
@@ -329,7 +352,7 @@ def scene_anisotropy_map(scene):
     """One image drives the anisotropy (through Separate Color): R its amount (bands of 1
     and 0.3 along v), G its rotation (stripes of 0 and a quarter turn across u), on a rough
     gold sphere in sunlight."""
-    world(scene, (0.1, 0.1, 0.1))
+    uniform_world(scene, (0.1, 0.1, 0.1))
     sun(scene, (math.radians(35), 0.0, math.radians(25)))
     tree, bsdf = layered_sphere(scene, "anisotropy_map", {"Base Color": (0.95, 0.75, 0.5), "Metallic": 1.0,
                                                           "Roughness": 0.4})
@@ -358,32 +381,26 @@ SCENES = {
     "leaves": scene_leaves,
     "emissive": scene_emissive,
     "uv_sets": scene_uv_sets,
+    "uv_mappings": scene_uv_mappings,
     "baked_noise": scene_baked_noise,
+    "baked_bump": scene_baked_bump,
     "coat_map": scene_coat_map,
     "sheen_map": scene_sheen_map,
     "anisotropy_map": scene_anisotropy_map,
 }
 # Scenes exported with --bake, and the size of their baked images.
-BAKE_SIZES = {"baked_noise": 512}
+BAKE_SIZES = {"baked_noise": 512, "baked_bump": 512}
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--spp", type=int, default=1024)
-    parser.add_argument("names", nargs="*", default=list(SCENES))
-    args = parser.parse_args()
+    args = cycles.arguments(__doc__, 4096, list(SCENES))
     for name in args.names:
         scene = reset()
         SCENES[name](scene)
-        scene.cycles.samples = args.spp
-        out = os.path.join(HERE, "scenes", f"texture_{name}")
-        rt_export.export_scene(scene, os.path.join(out, "assets"), os.path.join(out, "scene.toml"),
-                               bake_size=BAKE_SIZES.get(name, 0))
+        cycles.export(scene, f"texture_{name}", bake_size=BAKE_SIZES.get(name, 0))
         if name == "leaves":
-            blender_gltf(scene, out)
-        scene.render.filepath = os.path.join(HERE, f"texture_{name}.exr")
-        bpy.ops.render.render(write_still=True)
-        print(f"texture_{name}: {args.spp} spp -> {scene.render.filepath}", file=sys.stderr)
+            blender_gltf(scene, os.path.join(cycles.HERE, "scenes", f"texture_{name}"))
+        cycles.render(scene, f"texture_{name}", args)
 
 
 if __name__ == "__main__":

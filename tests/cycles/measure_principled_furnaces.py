@@ -9,14 +9,14 @@ Measured (Blender 5.0.1, 512 spp): metal 0.99975, glass 0.98540, coated 0.99988.
 """
 
 import os
-import sys
 import tempfile
 
 import bpy
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import make_texture_refs as refs  # noqa: E402
+import cycles_reference as cycles
+import make_texture_refs as refs
+from make_principled_refs import principled
 
 CASES = {
     "metal": {"Base Color": (1, 1, 1), "Metallic": 1.0, "Roughness": 1.0},
@@ -30,12 +30,8 @@ for name, inputs in CASES.items():
     scene.render.resolution_x = scene.render.resolution_y = 32
     c = scene.cycles
     c.max_bounces = c.glossy_bounces = c.transmission_bounces = 64
-    refs.world(scene, (1.0, 1.0, 1.0))
-    m = bpy.data.materials.new(name)
-    bsdf = m.node_tree.nodes["Principled BSDF"]
-    for k, v in inputs.items():
-        s = bsdf.inputs[k]
-        s.default_value = (*v, 1.0) if isinstance(v, tuple) else v
+    cycles.uniform_world(scene, (1.0, 1.0, 1.0))
+    m = principled(name, inputs)
     refs.add_object(scene, "s", bpy.ops.mesh.primitive_uv_sphere_add, m, radius=1.0, segments=96, ring_count=48)
     bpy.ops.object.shade_smooth()
     refs.camera(scene, (0.0, -3.0, 0.0), (0.0, 0.0, 0.0), 20.0)

@@ -1,5 +1,9 @@
-//! A running `rt watch --headless` for the tests: its log, its frames, and stopping it.
+//! A running `rt watch --headless` for the tests: its log, its frames, and stopping it;
+//! and a Blender session editing what it watches.
 
+mod blender;
+
+pub use blender::{edit_and_expect_reload, watch_blender_session};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};

@@ -52,6 +52,7 @@ fn feature_sets() -> Vec<FeatureSet> {
             coat: on(3) != on(6),
             sheen: on(2) != on(5),
             anisotropy: on(2) != on(6),
+            thin_film: on(1) != on(6),
             layer_textures: on(0) != on(4) && on(3),
             uv_tangents: on(2) != on(6) && on(1),
         });
@@ -90,6 +91,7 @@ fn plain() -> FeatureSet {
         coat: false,
         sheen: false,
         anisotropy: false,
+        thin_film: false,
         layer_textures: false,
         uv_tangents: false,
     }

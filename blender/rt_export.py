@@ -620,11 +620,11 @@ def blake(data):
     return hashlib.blake2b(data, digest_size=8).hexdigest()
 
 
-def material_textures(material, surface, out, textures, factors):
-    """Adds the textures of a Principled BSDF to glTF material `out`; returns the uv
-    transforms its textures share, per uv map they read ({map name, "" for the default: 2x3 map})."""
+def material_textures(material, surface, out, textures, factors, found):
+    """Adds the base textures of a Principled BSDF (`found`: socket name -> Channel or None)
+    to glTF material `out`; returns the uv transforms its textures share, per uv map they
+    read ({map name, "" for the default: 2x3 map})."""
     pbr = out["pbrMetallicRoughness"]
-    found = {name: texture_channel(material, surface, name, textures.baker) for name in TEXTURE_SOCKETS}
     transforms = {}
     for name, c in found.items():
         if c is None or c.transform is None:
@@ -720,10 +720,16 @@ def gltf_material(material, thickness, textures=None):
         # Cycles' Glossy BSDF: GGX without Fresnel, tinted by its colour; glTF has no such lobe
         # (its factors above describe a metal of that colour for other readers).
         out["extras"]["rt_glossy_color"] = [max(c, 0.0) for c in s.glossy]
+    found = {}
+    if textures is not None and surface is not None:
+        found = {name: texture_channel(material, surface, name, textures.baker) for name in TEXTURE_SOCKETS}
+    # A socket fed by an image takes its values from it: its factor is 1 (a rotation's, added to, 0).
+    value = lambda name, default: (1.0 if found.get(name) else socket_value(surface, name, default))  # noqa: E731
+    colour = lambda name: ((1, 1, 1) if found.get(name) else socket_value(surface, name, (1, 1, 1)))  # noqa: E731
     if surface is not None:
-        coat = float(socket_value(surface, "Coat Weight", 0.0))
+        coat = float(value("Coat Weight", 0.0))
         if coat > 0.0:
-            coat_roughness = min(max(float(socket_value(surface, "Coat Roughness", 0.03)), 0.0), 1.0)
+            coat_roughness = min(max(float(value("Coat Roughness", 0.03)), 0.0), 1.0)
             # glTF's clearcoat (for other readers) has no index or tint: rt reads its own keys first.
             extensions["KHR_materials_clearcoat"] = {
                 "clearcoatFactor": min(coat, 1.0),
@@ -733,12 +739,12 @@ def gltf_material(material, thickness, textures=None):
                 "rt_coat": min(coat, 1.0),
                 "rt_coat_roughness": coat_roughness,
                 "rt_coat_ior": max(float(socket_value(surface, "Coat IOR", 1.5)), 1.0),
-                "rt_coat_tint": [min(max(c, 0.0), 1.0) for c in rgb(socket_value(surface, "Coat Tint", (1, 1, 1)))],
+                "rt_coat_tint": [min(max(c, 0.0), 1.0) for c in rgb(colour("Coat Tint"))],
             })
-        sheen = float(socket_value(surface, "Sheen Weight", 0.0))
+        sheen = float(value("Sheen Weight", 0.0))
         if sheen > 0.0:
-            sheen_roughness = min(max(float(socket_value(surface, "Sheen Roughness", 0.5)), 0.0), 1.0)
-            sheen_tint = [min(max(c, 0.0), 1.0) for c in rgb(socket_value(surface, "Sheen Tint", (1, 1, 1)))]
+            sheen_roughness = min(max(float(value("Sheen Roughness", 0.5)), 0.0), 1.0)
+            sheen_tint = [min(max(c, 0.0), 1.0) for c in rgb(colour("Sheen Tint"))]
             # glTF's sheen has no weight: for other readers, Blender's exporter's colour and roughness;
             # rt reads its own keys first.
             extensions["KHR_materials_sheen"] = {"sheenColorFactor": sheen_tint, "sheenRoughnessFactor": sheen_roughness}
@@ -747,9 +753,10 @@ def gltf_material(material, thickness, textures=None):
                 "rt_sheen_roughness": sheen_roughness,
                 "rt_sheen_tint": sheen_tint,
             })
-        anisotropy = float(socket_value(surface, "Anisotropic", 0.0))
+        anisotropy = float(value("Anisotropic", 0.0))
         if anisotropy > 0.0:
-            rotation = float(socket_value(surface, "Anisotropic Rotation", 0.0)) % 1.0
+            rotation = 0.0 if found.get("Anisotropic Rotation") else socket_value(surface, "Anisotropic Rotation", 0.0)
+            rotation = float(rotation) % 1.0
             # glTF's rotation is in radians (Blender's exporter converts so too).
             extensions["KHR_materials_anisotropy"] = {
                 "anisotropyStrength": min(anisotropy, 1.0),
@@ -759,8 +766,7 @@ def gltf_material(material, thickness, textures=None):
                 "rt_anisotropy": min(anisotropy, 1.0),
                 "rt_anisotropy_rotation": rotation,
             })
-            if surface.inputs["Tangent"].is_linked:
-                log(f"{name}: rt ignores the Principled BSDF's Tangent input (it uses the radial tangent about Z)")
+            out["extras"].update(tangent_extras(name, surface.inputs["Tangent"]))
         film = float(socket_value(surface, "Thin Film Thickness", 0.0))
         if film > 0.0:
             # A film of one thickness: glTF's range collapsed to it (rt reads the maximum).
@@ -798,8 +804,73 @@ def gltf_material(material, thickness, textures=None):
     transform = None
     if textures is not None and surface is not None:
         factors = {"base": base, "roughness": roughness, "metallic": metallic, "strength": s.emission_strength}
-        transform = material_textures(material, surface, out, textures, factors)
+        transform = material_textures(material, surface, out, textures, factors, found)
+        layer_textures(out, textures, found)
     return out, transform
+
+
+def tangent_extras(name, socket):
+    """rt's `tangent` of a Principled BSDF's Tangent input: a Tangent node, radial about an
+    axis or along a uv map (the map's name kept under TANGENT_UV_MAP_KEY for `assign_uv_sets`)."""
+    node = linked_node(socket)
+    if node is None:
+        return {}
+    if node.type == "TANGENT" and node.direction_type == "RADIAL":
+        return {"rt_tangent": f"radial_{node.axis.lower()}"}
+    if node.type == "TANGENT" and node.direction_type == "UV_MAP":
+        return {"rt_tangent": "uv", TANGENT_UV_MAP_KEY: node.uv_map}
+    log(f"{name}: the Principled BSDF's Tangent input is linked to {node.type}, which rt cannot follow; "
+        f"rt uses the radial tangent about Z")
+    return {}
+
+
+class TurnChannel:
+    """A channel of rotations (turns), brought into [0, 1): rt adds it to the rotation factor."""
+
+    def __init__(self, channel):
+        self.channel = channel
+
+    def values(self):
+        return np.mod(self.channel.values(), 1.0)
+
+
+def layer_textures(out, textures, found):
+    """Adds the textures of the coat, sheen, anisotropy and specular tint sockets (`found`,
+    socket name -> Channel or None) to glTF material `out`, whose factors for them are 1
+    (the rotation's 0): the coat's as KHR_materials_clearcoat's textures (R weight, G
+    roughness, one image), the specular tint's as KHR_materials_specular's colour texture,
+    the others in rt's extras (sheen: R weight, G roughness; anisotropy: R amount, G rotation)."""
+    extensions, extras = out["extensions"], out["extras"]
+
+    def info(channels, srgb, first):
+        return {"index": textures.add(channels, srgb, first.node.extension), UV_MAP_KEY: first.uv_map}
+
+    def rgb_of(c):
+        return [(c, i) for i in range(3)] + [1.0]
+
+    weight, rough = found.get("Coat Weight"), found.get("Coat Roughness")
+    clearcoat = extensions.get("KHR_materials_clearcoat")
+    if clearcoat is not None and (weight or rough):
+        index = info([weight or 1.0, rough or 1.0, 0.0, 1.0], False, weight or rough)["index"]
+        for key, channel in (("clearcoatTexture", weight), ("clearcoatRoughnessTexture", rough)):
+            if channel:
+                clearcoat[key] = {"index": index, UV_MAP_KEY: channel.uv_map}
+    if clearcoat is not None and found.get("Coat Tint"):
+        extras["rt_coat_tint_texture"] = info(rgb_of(found["Coat Tint"]), True, found["Coat Tint"])
+    weight, rough = found.get("Sheen Weight"), found.get("Sheen Roughness")
+    if "rt_sheen" in extras and (weight or rough):
+        extras["rt_sheen_texture"] = info([weight or 1.0, rough or 1.0, 0.0, 1.0], False, weight or rough)
+    if "rt_sheen" in extras and found.get("Sheen Tint"):
+        extras["rt_sheen_tint_texture"] = info(rgb_of(found["Sheen Tint"]), True, found["Sheen Tint"])
+    amount, rotation = found.get("Anisotropic"), found.get("Anisotropic Rotation")
+    if "rt_anisotropy" in extras and (amount or rotation):
+        extras["rt_anisotropy_texture"] = info(
+            [amount or 1.0, TurnChannel(rotation) if rotation else 0.0, 0.0, 1.0], False, amount or rotation)
+    tint = found.get("Specular Tint")
+    if tint:
+        specular = extensions["KHR_materials_specular"]
+        specular["specularColorFactor"] = [1.0, 1.0, 1.0]
+        specular["specularColorTexture"] = info(rgb_of(tint), True, tint)
 
 
 def gltf_text(materials, thickness, textures=None):
@@ -861,8 +932,16 @@ def export_object_mesh(obj, depsgraph, base_name="mesh", bake_size=0):
 # the second set itself); a third map is read as the first, with a warning.
 
 UV_MAP_KEY = "_rt_uv_map"
-TEXTURE_INFOS = (("pbrMetallicRoughness", "baseColorTexture"), ("pbrMetallicRoughness", "metallicRoughnessTexture"),
-                 (None, "emissiveTexture"), (None, "normalTexture"))
+# The uv map of a Tangent node along a uv map, in a material's extras: rt follows the default one's tangents.
+TANGENT_UV_MAP_KEY = "_rt_tangent_uv_map"
+TEXTURE_INFOS = ((("pbrMetallicRoughness",), "baseColorTexture"),
+                 (("pbrMetallicRoughness",), "metallicRoughnessTexture"),
+                 ((), "emissiveTexture"), ((), "normalTexture"),
+                 (("extensions", "KHR_materials_clearcoat"), "clearcoatTexture"),
+                 (("extensions", "KHR_materials_clearcoat"), "clearcoatRoughnessTexture"),
+                 (("extensions", "KHR_materials_specular"), "specularColorTexture"),
+                 (("extras",), "rt_coat_tint_texture"), (("extras",), "rt_sheen_texture"),
+                 (("extras",), "rt_sheen_tint_texture"), (("extras",), "rt_anisotropy_texture"))
 
 
 def uv_maps_of(mesh):
@@ -874,8 +953,10 @@ def uv_maps_of(mesh):
 
 def texture_infos(gltf_material):
     """(glTF key, texture info) of each texture of a glTF material."""
-    for parent, key in TEXTURE_INFOS:
-        holder = gltf_material.get(parent, {}) if parent else gltf_material
+    for path, key in TEXTURE_INFOS:
+        holder = gltf_material
+        for step in path:
+            holder = holder.get(step, {})
         if key in holder:
             yield key, holder[key]
 
@@ -900,6 +981,10 @@ def assign_uv_sets(uv_maps, gltf_materials, second):
     default, names = uv_maps
     out = copy.deepcopy(gltf_materials)
     for material in out:
+        tangent_map = material.get("extras", {}).pop(TANGENT_UV_MAP_KEY, "")
+        if tangent_map not in ("", default):
+            log(f"{material['name']}: its Tangent node follows uv map {tangent_map!r}; rt follows the tangents of "
+                f"the default one ({default!r})")
         for key, info in texture_infos(material):
             name = info.pop(UV_MAP_KEY, "")
             if name in ("", default):

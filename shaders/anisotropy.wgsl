@@ -1,33 +1,68 @@
 // Principled's anisotropy: the rough lobes' GGX stretched along the surface's tangent, as
 // Cycles stretches it (α / aspect along the tangent, α × aspect across, aspect =
 // √(1 − 0.9 × anisotropy)), the tangent turned about the normal by rotation × 2π.
-// The tangent is the one Cycles gives a Principled BSDF whose Tangent input is unlinked:
-// its Tangent node (Radial, about Z) on the generated coordinates, (−y, x, 0) about the
-// centre of the object's texture space, in Blender's axes; rt's Y is Blender's Z, so it
-// is (z, 0, −x) of the position in object space. That is Cycles' tangent wherever the
-// object's texture space is centred on its origin with equal x and y extents (a mesh
-// centred on its origin and as wide as deep; Cycles scales x and y by the extents).
-// Spheres of the scene file take their centre for the origin.
+// The tangent is the material's (`tangent`); unlinked, Cycles gives a Principled BSDF's
+// Tangent input its Tangent node, Radial about Z, on the generated coordinates: (−y, x, 0)
+// about the centre of the object's texture space, in Blender's axes; rt's Y is Blender's Z,
+// so it is (z, 0, −x) of the position in object space. A radial tangent is Cycles' wherever
+// the object's texture space is centred on its origin with equal extents across the axis
+// (Cycles scales the generated coordinates by the extents). Spheres of the scene file take
+// their centre for the origin.
 
 //#include "common.wgsl"
 //#include "hit.wgsl"
 //#include "transform.wgsl"
 //#include "directions.wgsl"
 
+// Material.tangent: the Tangent node that Cycles gives the Principled BSDF's Tangent input.
+// Radial about Blender's axis A is the Tangent node's A × (the point's generated
+// coordinates about the texture space's centre), in rt's axes (x, y, z) = Blender's
+// (x, z, −y); uv: the mesh's MikkTSpace tangent of its first uv set, interpolated.
+const TANGENT_RADIAL_Z: u32 = 0u;
+const TANGENT_RADIAL_X: u32 = 1u;
+const TANGENT_RADIAL_Y: u32 = 2u;
+const TANGENT_UV: u32 = 3u;
+
 // The tangent at the surface being shaded (world space, not yet made orthogonal to the
 // normal); set by the integrator at each hit.
 var<private> surface_tangent: vec3f;
 
-fn set_surface_tangent(hit: Hit, position: vec3f) {
+// The radial tangent of `kind` at `p`, a point in object space (rt's axes).
+fn radial_tangent(kind: u32, p: vec3f) -> vec3f {
+    if kind == TANGENT_RADIAL_X {
+        // Blender's (0, −z, y) about X.
+        return vec3f(0.0, -p.z, p.y);
+    }
+    if kind == TANGENT_RADIAL_Y {
+        // Blender's (−z, 0, x) about Y.
+        return vec3f(-p.y, p.x, 0.0);
+    }
+    // Blender's (−y, x, 0) about Z.
+    return vec3f(p.z, 0.0, -p.x);
+}
+
+fn set_surface_tangent(hit: Hit, position: vec3f, kind: u32) {
     if hit.kind == HIT_SPHERE {
+        // A sphere of the scene file has no uv map: its uv tangent is the radial one about Z.
         let p = position - spheres[hit.primitive].center;
-        surface_tangent = vec3f(p.z, 0.0, -p.x);
+        surface_tangent = radial_tangent(select(kind, TANGENT_RADIAL_Z, kind == TANGENT_UV), p);
         return;
     }
     let to_object = instances[hit.instance].world_to_object;
-    let p = transform_point(to_object, position);
+    var t = vec3f(0.0);
+    //#if uv_tangents
+    if kind == TANGENT_UV {
+        // Zero where the mesh has no tangents: then any frame serves (`anisotropic_frame`).
+        let frame = tangent_frames[hit.primitive];
+        t = ((1.0 - hit.b1 - hit.b2) * frame.t0 + hit.b1 * frame.t1 + hit.b2 * frame.t2).xyz;
+    } else {
+        t = radial_tangent(kind, transform_point(to_object, position));
+    }
+    //#else
+    t = radial_tangent(kind, transform_point(to_object, position));
+    //#endif
     // Cycles carries the tangent to world space as a normal.
-    surface_tangent = transform_normal_to_world(to_object, vec3f(p.z, 0.0, -p.x));
+    surface_tangent = transform_normal_to_world(to_object, t);
 }
 
 // The shading frame of an anisotropic lobe: x along the tangent (made orthogonal to n)

@@ -320,3 +320,17 @@ fn bump_shadowing(ctx: ShadingContext, wi: vec3f) -> f32 {
     return 2.0 / (1.0 + sqrt(1.0 + alpha2 * tan2_i));
 }
 //#endif
+
+// Emission under the sheen and the coat, leaving at cosine `mu` to the shading normal:
+// Cycles sets up a Principled's emission with the weight that those layers leave the ones
+// below them (`svm/closure.h`: the sheen's layering weight, then the coat's and its tint).
+fn layered_emission(m: Material, emission: vec3f, mu: f32) -> vec3f {
+    var e = emission;
+    //#if coat
+    e = coated_emission(m, e, mu);
+    //#endif
+    //#if sheen
+    e = sheened_emission(m, e, mu);
+    //#endif
+    return e;
+}

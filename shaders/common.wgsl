@@ -194,6 +194,18 @@ struct Material {
     thin_film_thickness: f32,
     thin_film_ior: f32,
     _pad7: vec2u,
+    // The layered lobes' textures, or NO_TEXTURE (`layer_textured` in texture.wgsl): coat
+    // R × coat, G × coat roughness, coat tint RGB, sheen R × sheen and G × its roughness,
+    // sheen tint RGB, anisotropy R × anisotropy and G + rotation, specular tint RGB.
+    coat_texture: u32,
+    coat_roughness_texture: u32,
+    coat_tint_texture: u32,
+    sheen_texture: u32,
+    sheen_tint_texture: u32,
+    anisotropy_texture: u32,
+    specular_tint_texture: u32,
+    // The anisotropic lobes' tangent: TANGENT_* in anisotropy.wgsl.
+    tangent: u32,
 }
 
 // Object-space vertex tangents (xyz) and bitangent signs (w) of one triangle; zero
@@ -260,7 +272,7 @@ const STAT_STACK_OVERFLOW: u32 = 0u;
 // RGBA8 texels, red in the low byte.
 @group(0) @binding(14) var<storage, read> texels: array<u32>;
 //#endif
-//#if normal_maps
+//#if tangent_frames
 @group(0) @binding(17) var<storage, read> tangent_frames: array<TriangleTangents>;
 //#endif
 //#if uv_sets

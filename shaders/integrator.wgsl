@@ -107,11 +107,7 @@ fn emission_seen(m: Material, hit: Hit, surface: Surface, origin: vec3f, directi
         weight = power_heuristic(bsdf_pdf, light_pdf);
     }
     //#endif
-    //#if coat
-    return coated_emission(m, m.emission, abs(dot(surface.shading_normal, direction))) * weight;
-    //#else
-    return m.emission * weight;
-    //#endif
+    return layered_emission(m, m.emission, abs(dot(surface.shading_normal, direction))) * weight;
 }
 //#endif
 
@@ -356,7 +352,7 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, s
         set_unmapped_normal(side * n_unmapped, m.normal_texture != NO_TEXTURE, side * diffuse_mapped_normal());
         //#endif
         //#if anisotropy
-        set_surface_tangent(hit, surface.position);
+        set_surface_tangent(hit, surface.position, m.tangent);
         //#endif
         let ctx = shading_context(m, n_shading, n_geometric, -direction, entering);
         //#if nee

@@ -191,10 +191,7 @@ fn sample_emitter_at(e: Emitter, tree_selection: f32, p: vec3f, rng: ptr<functio
         }
         let m = materials[s.material];
         let selection = emitter_selection_per_area(m.emission_luminance, tree_selection, 4.0 * PI * s.radius * s.radius);
-        var emission = m.emission;
-        //#if coat
-        emission = coated_emission(m, emission, abs(dot(normalize(p + t * d - s.center), d)));
-        //#endif
+        let emission = layered_emission(m, m.emission, abs(dot(normalize(p + t * d - s.center), d)));
         return LightSample(d, t, emission, sphere_emitter_pdf(p, s, selection), false);
         //#endif
     }
@@ -219,18 +216,21 @@ fn sample_emitter_at(e: Emitter, tree_selection: f32, p: vec3f, rng: ptr<functio
     if material == NO_MATERIAL {
         material = inst.material_base + tri.material;
     }
-    let m = materials[material];
+    var m = materials[material];
     var emission = m.emission;
     //#if textures
     emission = textured_emission(m, e.primitive, su * (1.0 - u.y), su * u.y);
     //#endif
-    //#if coat
-    if m.coat > 0.0 {
-        // The coat is seen along the shading normal, as at a hit (`emission_seen`).
+    //#if coat_or_sheen
+    //#if layer_textures
+    m = layer_textured_at(m, e.primitive, su * (1.0 - u.y), su * u.y);
+    //#endif
+    if m.coat > 0.0 || m.sheen > 0.0 {
+        // The layers are seen along the shading normal, as at a hit (`emission_seen`).
         let sh = shading[e.primitive];
         let n_object = (1.0 - su) * sh.n0 + su * (1.0 - u.y) * sh.n1 + su * u.y * sh.n2;
         let n_shading = normalize(transform_normal_to_world(inst.world_to_object, n_object));
-        emission = coated_emission(m, emission, abs(dot(n_shading, d)));
+        emission = layered_emission(m, emission, abs(dot(n_shading, d)));
     }
     //#endif
     let selection = emitter_selection_per_area(m.emission_luminance, tree_selection, 0.5 * length(normal));

@@ -23,8 +23,8 @@ fn sheen_setup(ctx: ptr<function, ShadingContext>, mu: f32) -> f32 {
     let m = (*ctx).m;
     let a = table_2d(TABLE_SHEEN_LTC, 32u, 32u, mu, m.sheen_roughness);
     let b = table_2d(TABLE_SHEEN_LTC + SHEEN_PLANE, 32u, 32u, mu, m.sheen_roughness);
-    let albedo = table_2d(TABLE_SHEEN_LTC + 2u * SHEEN_PLANE, 32u, 32u, mu, m.sheen_roughness);
-    if a < 1e-4 || albedo <= 0.0 {
+    let albedo = sheen_table_albedo(m, mu, a);
+    if albedo <= 0.0 {
         return 0.0;
     }
     (*ctx).sheen_transform = vec2f(a, b);
@@ -36,6 +36,25 @@ fn sheen_setup(ctx: ptr<function, ShadingContext>, mu: f32) -> f32 {
     (*ctx).sheen_color = color;
     (*ctx).under_sheen = saturate(1.0 - max(max(color.x, color.y), color.z));
     return luminance(color);
+}
+
+// The table's albedo of the layer seen from `mu`, given its transform's `a` there: 0 where
+// the fit has no lobe.
+fn sheen_table_albedo(m: Material, mu: f32, a: f32) -> f32 {
+    let albedo = table_2d(TABLE_SHEEN_LTC + 2u * SHEEN_PLANE, 32u, 32u, mu, m.sheen_roughness);
+    return select(albedo, 0.0, a < 1e-4 || albedo <= 0.0);
+}
+
+// Emission under the sheen, leaving at cosine `mu` to the shading normal: Cycles sets up a
+// Principled's emission with the weight that its sheen leaves the lower layers
+// (`svm/closure.h`), 1 − the largest channel of the sheen's colour there.
+fn sheened_emission(m: Material, emission: vec3f, mu: f32) -> vec3f {
+    if m.sheen <= 0.0 {
+        return emission;
+    }
+    let c = clamp(mu, 1e-6, 1.0);
+    let color = m.sheen * m.sheen_tint * sheen_table_albedo(m, c, table_2d(TABLE_SHEEN_LTC, 32u, 32u, c, m.sheen_roughness));
+    return emission * saturate(1.0 - max(max(color.x, color.y), color.z));
 }
 
 fn has_sheen(ctx: ShadingContext) -> bool {

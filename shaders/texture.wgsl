@@ -21,6 +21,13 @@ const UV1_BASE_COLOR: u32 = 1u;
 const UV1_METALLIC_ROUGHNESS: u32 = 2u;
 const UV1_EMISSION: u32 = 4u;
 const UV1_NORMAL: u32 = 8u;
+const UV1_COAT: u32 = 16u;
+const UV1_COAT_ROUGHNESS: u32 = 32u;
+const UV1_COAT_TINT: u32 = 64u;
+const UV1_SHEEN: u32 = 128u;
+const UV1_SHEEN_TINT: u32 = 256u;
+const UV1_ANISOTROPY: u32 = 512u;
+const UV1_SPECULAR_TINT: u32 = 1024u;
 
 struct TexturePoint {
     uv: vec2f,
@@ -80,10 +87,17 @@ fn texture_point(hit: Hit) -> TexturePoint {
     return p;
 }
 
-// Whether any texture slot of `m` is in use (the normal map's included).
+// Whether any texture slot of `m` is in use (the normal map's and the layered lobes' included).
 fn has_textures(m: Material) -> bool {
-    return m.base_color_texture != NO_TEXTURE || m.metallic_roughness_texture != NO_TEXTURE
+    var any = m.base_color_texture != NO_TEXTURE || m.metallic_roughness_texture != NO_TEXTURE
         || m.emission_texture != NO_TEXTURE || m.normal_texture != NO_TEXTURE;
+    //#if layer_textures
+    any = any || m.coat_texture != NO_TEXTURE || m.coat_roughness_texture != NO_TEXTURE
+        || m.coat_tint_texture != NO_TEXTURE || m.sheen_texture != NO_TEXTURE
+        || m.sheen_tint_texture != NO_TEXTURE || m.anisotropy_texture != NO_TEXTURE
+        || m.specular_tint_texture != NO_TEXTURE;
+    //#endif
+    return any;
 }
 
 // Slot `bit` (UV1_*) of `m` at `p`: its coordinates and the level of detail `footprint_lod` adds to.
@@ -225,8 +239,72 @@ fn textured_material(material: Material, p: TexturePoint, footprint_lod: f32) ->
         let lod = slot_lod(m, UV1_EMISSION, p, footprint_lod);
         m.emission *= sample_texture(m.emission_texture, slot_uv(m, UV1_EMISSION, p), lod).rgb;
     }
+    //#if layer_textures
+    //#if uv_sets
+    m = layer_textured(m, p.uv, p.second_uv);
+    //#else
+    m = layer_textured(m, p.uv, p.uv);
+    //#endif
+    //#endif
     return m;
 }
+
+//#if layer_textures
+// Texture `index` of slot `bit` (UV1_*) of `m` at `uv` (of the first set) or `second_uv`, at
+// its finest level, whatever the ray cone: these parameters shade non-linearly (a rotation,
+// a roughness, an amount of stretch), so a filtered (averaged) texel would shade otherwise
+// than the texels it averages. The pixel's samples do the averaging, as in Cycles, which
+// reads them without mip levels; as normal maps are read.
+fn layer_texel(m: Material, index: u32, bit: u32, uv: vec2f, second_uv: vec2f) -> vec4f {
+    return sample_level(textures[index], 0u, select(uv, second_uv, (m.second_uv_set & bit) != 0u));
+}
+
+// The coat, sheen, anisotropy and specular tint textures applied at the texture
+// coordinates `uv` and `second_uv` (the second set's, or anything without `uv_sets`):
+// texels times the factors (Principled's sockets fed by an image; glTF's clearcoat textures).
+fn layer_textured(material: Material, uv: vec2f, second_uv: vec2f) -> Material {
+    var m = material;
+    if m.coat_texture != NO_TEXTURE {
+        m.coat *= layer_texel(m, m.coat_texture, UV1_COAT, uv, second_uv).r;
+    }
+    if m.coat_roughness_texture != NO_TEXTURE {
+        // α is the square of the (perceptual) roughness that the texel scales.
+        let g = layer_texel(m, m.coat_roughness_texture, UV1_COAT_ROUGHNESS, uv, second_uv).g;
+        m.coat_alpha *= g * g;
+    }
+    if m.coat_tint_texture != NO_TEXTURE {
+        m.coat_tint *= layer_texel(m, m.coat_tint_texture, UV1_COAT_TINT, uv, second_uv).rgb;
+    }
+    if m.sheen_texture != NO_TEXTURE {
+        let t = layer_texel(m, m.sheen_texture, UV1_SHEEN, uv, second_uv);
+        m.sheen *= t.r;
+        m.sheen_roughness = clamp(m.sheen_roughness * t.g, 1e-3, 1.0);
+    }
+    if m.sheen_tint_texture != NO_TEXTURE {
+        m.sheen_tint *= layer_texel(m, m.sheen_tint_texture, UV1_SHEEN_TINT, uv, second_uv).rgb;
+    }
+    if m.anisotropy_texture != NO_TEXTURE {
+        let t = layer_texel(m, m.anisotropy_texture, UV1_ANISOTROPY, uv, second_uv);
+        m.anisotropy *= t.r;
+        m.anisotropy_rotation += t.g;
+    }
+    if m.specular_tint_texture != NO_TEXTURE {
+        m.specular_tint *= layer_texel(m, m.specular_tint_texture, UV1_SPECULAR_TINT, uv, second_uv).rgb;
+    }
+    return m;
+}
+
+// `layer_textured` at barycentrics (b1, b2) of a triangle: for a light sample (the coat and
+// sheen over an emitter dim it).
+fn layer_textured_at(m: Material, triangle: u32, b1: f32, b2: f32) -> Material {
+    let uv = triangle_uv(triangle, 0u, b1, b2);
+    //#if uv_sets
+    return layer_textured(m, uv, triangle_uv(triangle, 1u, b1, b2));
+    //#else
+    return layer_textured(m, uv, uv);
+    //#endif
+}
+//#endif
 
 // The emission of an emissive triangle at barycentrics (b1, b2), at the finest level
 // (a light sample has no footprint).

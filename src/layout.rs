@@ -216,7 +216,26 @@ pub struct GpuMaterial {
     pub thin_film_thickness: f32,
     pub thin_film_ior: f32,
     pub _pad7: [u32; 2],
+    /// The layered lobes' textures (`LayerTextures`), indices into the texture table or
+    /// `NO_TEXTURE`: coat R, coat roughness G, coat tint RGB, sheen R and roughness G.
+    pub coat_texture: u32,
+    pub coat_roughness_texture: u32,
+    pub coat_tint_texture: u32,
+    pub sheen_texture: u32,
+    /// Sheen tint RGB, anisotropy R with the rotation's G, specular tint RGB.
+    pub sheen_tint_texture: u32,
+    pub anisotropy_texture: u32,
+    pub specular_tint_texture: u32,
+    /// The anisotropic lobes' tangent (`TANGENT_*`).
+    pub tangent: u32,
 }
+
+/// `GpuMaterial::tangent`: Cycles' Tangent node, radial about Blender's Z (the default), X
+/// or Y, or the MikkTSpace tangent of the first uv set (`shaders/anisotropy.wgsl`).
+pub const TANGENT_RADIAL_Z: u32 = 0;
+pub const TANGENT_RADIAL_X: u32 = 1;
+pub const TANGENT_RADIAL_Y: u32 = 2;
+pub const TANGENT_UV: u32 = 3;
 
 /// The object-space tangents of a triangle's vertices (xyz, MikkTSpace) with the
 /// bitangent's sign (w), in the triangles' order; zero where a mesh has none.
@@ -422,12 +441,16 @@ pub const NO_TEXTURE: u32 = u32::MAX;
 /// `GpuMaterial::alpha_cutoff` of glTF's `BLEND`: stochastic transparency.
 pub const ALPHA_BLEND: f32 = -1.0;
 
+use crate::scene::Tangent;
+
 impl From<&crate::scene::Material> for GpuMaterial {
     fn from(m: &crate::scene::Material) -> Self {
         let [diffuse, specular, reflection, transmission] = m.lobe_weights();
         let (coating_eta, coating_f0) = m.dielectric_coating().unwrap_or((0.0, 0.0));
         // The coating is the diffuse's own glossy layer, with the diffuse's weight.
         let specular = if coating_eta > 0.0 { diffuse } else { specular };
+        let l = &m.textures.layers;
+        let slot = |t: Option<u32>| t.unwrap_or(NO_TEXTURE);
         Self {
             base_color: m.base_color,
             diffuse,
@@ -466,6 +489,19 @@ impl From<&crate::scene::Material> for GpuMaterial {
             thin_film_thickness: m.thin_film_thickness,
             thin_film_ior: m.thin_film_ior,
             _pad7: [0; 2],
+            coat_texture: slot(l.coat),
+            coat_roughness_texture: slot(l.coat_roughness),
+            coat_tint_texture: slot(l.coat_tint),
+            sheen_texture: slot(l.sheen),
+            sheen_tint_texture: slot(l.sheen_tint),
+            anisotropy_texture: slot(l.anisotropy),
+            specular_tint_texture: slot(l.specular_tint),
+            tangent: match m.tangent {
+                Tangent::RadialZ => TANGENT_RADIAL_Z,
+                Tangent::RadialX => TANGENT_RADIAL_X,
+                Tangent::RadialY => TANGENT_RADIAL_Y,
+                Tangent::Uv => TANGENT_UV,
+            },
         }
     }
 }

@@ -174,6 +174,13 @@ fn emission_under_the_coat_matches_cycles() {
     check("emission_coat");
 }
 
+/// Emission under the sheen: Cycles dims it by 1 − the sheen's albedo along the view, as
+/// it dims it under the coat.
+#[test]
+fn emission_under_sheen_matches_cycles() {
+    check("emission_sheen");
+}
+
 /// The exporter writes Blender's coat as `KHR_materials_clearcoat` too (for other glTF
 /// readers), beside rt's own extras.
 #[test]
@@ -263,6 +270,33 @@ fn anisotropy_rotation_matches_cycles() {
 #[test]
 fn anisotropic_dielectric_matches_cycles() {
     check("anisotropy_dielectric_sun");
+}
+
+/// A Tangent node along the uv map into the Tangent input, on spheres whose uv maps run u
+/// along the meridians: the highlights stretch the other way than about the default
+/// radial tangent (the exporter's `tangent = "uv"`, the mesh's MikkTSpace tangents).
+#[test]
+fn anisotropy_along_a_uv_tangent_matches_cycles() {
+    check("anisotropy_uv_tangent_sun");
+}
+
+/// The exporter writes a linked Tangent node as `extras.rt_tangent`.
+#[test]
+fn exporter_writes_the_tangent_node() {
+    for (row, tangent) in [("anisotropy_uv_tangent_sun", "uv"), ("anisotropy_radial_x_sun", "radial_x")] {
+        let file = repo().join(format!("tests/cycles/scenes/principled_{row}/assets/Sphere_001/Sphere_001.gltf"));
+        let text = std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+        let json: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+        let extras = &json["materials"][0]["extras"];
+        assert_eq!(extras["rt_tangent"].as_str(), Some(tangent), "{extras}");
+        assert!(extras.get("_rt_tangent_uv_map").is_none(), "an exporter-internal key leaked: {extras}");
+    }
+}
+
+/// A Tangent node radial about X into the Tangent input (`tangent = "radial_x"`).
+#[test]
+fn anisotropy_along_a_radial_x_tangent_matches_cycles() {
+    check("anisotropy_radial_x_sun");
 }
 
 /// Thin film 0…1000 nm (index 1.33) on a dark rough dielectric: Cycles 5.0's Airy sum in

@@ -95,6 +95,67 @@ fn a_baked_procedural_texture_matches_cycles_procedural_original() {
     );
 }
 
+// One image through Separate Color: R the coat's weight (stripes of 1 and 0), G its
+// roughness (a ramp from 0.05 to 0.5), exported as KHR_materials_clearcoat's two textures.
+#[test]
+fn coat_weight_and_roughness_maps_match_cycles() {
+    check("coat_map");
+}
+
+// A grey checker of sheen weight and colour stripes of sheen tint (sRGB) on a dark sphere
+// in a white world. There rt's blocks are nearly noiseless (cosine-sampled diffuse under a
+// uniform world is exact), so as in tests/cycles_principled.rs a block may also differ by
+// the 0.1% to which rt's sheen table reproduces Cycles' (measured: 0.06%).
+#[test]
+fn sheen_weight_and_tint_maps_match_cycles() {
+    let dir = repo().join("tests/cycles/scenes/texture_sheen_map");
+    let scene = rt::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let (w, h) = (scene.render.width, scene.render.height);
+    let ours = render(scene, w, h, SPP, MAX_BOUNCES);
+    let file = repo().join("tests/cycles/texture_sheen_map.exr");
+    reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4)).check_within(
+        "texture_sheen_map",
+        "Cycles",
+        0.001,
+    );
+}
+
+// One image through Separate Color: R the anisotropy (bands of 1 and 0.3), G its
+// rotation (stripes of 0 and a quarter turn) on a sunlit rough metal sphere. rt reads these
+// textures at their finest level, as Cycles does: filtered over the ray cone (mip levels),
+// the rotation near the poles averaged 0 and a quarter turn into an eighth and a block
+// was 42 σ off.
+#[test]
+fn anisotropy_and_rotation_maps_match_cycles() {
+    check("anisotropy_map");
+}
+
+/// What the exporter wrote for the layered lobes' Image Texture nodes: the coat's one image
+/// (R weight, G roughness) as both of KHR_materials_clearcoat's textures with factors of 1,
+/// the anisotropy's in extras with a rotation factor of 0 (the texture's G is added to it).
+#[test]
+fn exporter_writes_layer_textures_with_unit_factors() {
+    let gltf = |name: &str| -> serde_json::Value {
+        let file = repo().join(format!("tests/cycles/scenes/texture_{name}/assets/Sphere/Sphere.gltf"));
+        let text = std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+        serde_json::from_str(&text).expect("JSON")
+    };
+    let coat = gltf("coat_map");
+    let clearcoat = &coat["materials"][0]["extensions"]["KHR_materials_clearcoat"];
+    assert_eq!(clearcoat["clearcoatTexture"]["index"], clearcoat["clearcoatRoughnessTexture"]["index"], "{clearcoat}");
+    assert_eq!(
+        (clearcoat["clearcoatFactor"].as_f64(), clearcoat["clearcoatRoughnessFactor"].as_f64()),
+        (Some(1.0), Some(1.0))
+    );
+    let aniso = gltf("anisotropy_map");
+    let extras = &aniso["materials"][0]["extras"];
+    assert_eq!((extras["rt_anisotropy"].as_f64(), extras["rt_anisotropy_rotation"].as_f64()), (Some(1.0), Some(0.0)));
+    assert!(extras["rt_anisotropy_texture"]["index"].is_u64(), "{extras}");
+    let sheen = gltf("sheen_map");
+    let extras = &sheen["materials"][0]["extras"];
+    assert_ne!(extras["rt_sheen_texture"]["index"], extras["rt_sheen_tint_texture"]["index"], "{extras}");
+}
+
 // A Bump node fed by a Noise Texture into Normal of a sunlit glossy plane, exported with
 // `--bake` (Cycles' NORMAL pass in tangent space, 512 × 512 texels) and read by rt as a
 // normal map, against Cycles' render of the procedural bump itself; bounds as above.

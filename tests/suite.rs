@@ -40,6 +40,7 @@ mod fuzz_inputs;
 mod geometry_precision;
 mod instances;
 mod lamps;
+mod layer_textures;
 mod light_tree;
 mod materials;
 mod mitsuba_validation;

@@ -2,8 +2,9 @@
 //! does not model them): `KHR_materials_clearcoat`, `KHR_materials_iridescence`,
 //! `KHR_materials_sheen` and `KHR_materials_anisotropy`, the last two mapped onto the
 //! Principled BSDF as Blender's own glTF importer maps them; and rt's own Glossy lobe
-//! (`extras.rt_glossy_color`). Textures of these extensions are not read: their factors
-//! stand for them, with a warning naming the material.
+//! (`extras.rt_glossy_color`). Textures of the last three are not read: their factors stand
+//! for them, with a warning naming the material (rt's extras carry the sheen's and the
+//! anisotropy's textures; clearcoat's textures: `gltf_layer_textures`).
 
 use crate::scene::Material;
 use gltf::json::Value;
@@ -24,7 +25,7 @@ pub(super) fn glossy(m: Material, color: [f32; 3]) -> Material {
 }
 
 /// `KHR_materials_clearcoat`'s factors (glTF's defaults 0 and 0 for absent keys; no extension:
-/// no coat), which gltf leaves as raw JSON. Its textures are not read.
+/// no coat), which gltf leaves as raw JSON (its textures: `gltf_layer_textures`).
 pub(super) struct Clearcoat {
     pub factor: f32,
     pub roughness: f32,

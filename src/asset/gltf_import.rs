@@ -15,7 +15,7 @@
 //! | `KHR_materials_specular` factor `s` (1)                   | `specular_ior_level = s / 2` (with a diffuse part) |
 //! | `extras.rt_specular_ior_level` (absent)                   | `specular_ior_level`, instead of `s / 2` (Blender's level may exceed 0.5) |
 //! | `KHR_materials_specular` colour factor (1, 1, 1)          | `specular_tint`                |
-//! | `KHR_materials_clearcoat` factor, roughness factor (0, 0)  | `coat`, `coat_roughness` (index 1.5, untinted; its textures are not read) |
+//! | `KHR_materials_clearcoat` factor, roughness factor (0, 0)  | `coat`, `coat_roughness` (index 1.5, untinted) |
 //! | `extras.rt_coat`, `_roughness`, `_ior`, `_tint` (absent, absent, 1.5, (1, 1, 1)) | `coat`, `coat_roughness` (instead of clearcoat's), `coat_ior`, `coat_tint` |
 //! | `extras.rt_glossy_color` `[r, g, b]` (absent)             | Cycles' Glossy BSDF: `specular = 1` tinted by the colour (`specular_tint`), no other lobe |
 //! | `KHR_materials_sheen` colour, roughness factors ((0, 0, 0), 0) | `sheen = 1`, `sheen_tint`, `sheen_roughness` (as Blender imports it; none without the extension) |
@@ -23,6 +23,8 @@
 //! | `KHR_materials_anisotropy` strength, rotation (0, 0 rad)  | `anisotropy`, `anisotropy_rotation = rotation / 2π` (as Blender imports it) |
 //! | `extras.rt_anisotropy`, `rt_anisotropy_rotation` (absent) | `anisotropy`, `anisotropy_rotation`, instead of the extension's |
 //! | `KHR_materials_iridescence` factor (0), index (1.3), thickness maximum (400) | `thin_film_ior`, `thin_film_thickness` (the maximum; factor 0: no film) |
+//! | `extras.rt_tangent` (`"radial_z"`)                        | `tangent` |
+//! | `KHR_materials_clearcoat` textures, `KHR_materials_specular` colour texture, `extras.rt_*_texture` | `textures.layers` (`gltf_layer_textures`) |
 //! | `KHR_materials_volume` colour `c` (1), distance `d` (∞)   | `absorption = -ln(c) / d`; 0 if `d = ∞` |
 //! | `extras.rt_volume_emission` `[r, g, b]` (0)               | `volume_emission`              |
 //!
@@ -39,7 +41,7 @@
 use super::gltf_extensions::{Sheen, anisotropy, clearcoat, glossy, iridescence, sheen};
 use super::gltf_textures::{ColorSpace, TextureLoader};
 use super::{AssetError, MeshData};
-use crate::scene::{Material, MaterialTextures, NORMAL_SLOT};
+use crate::scene::{Material, MaterialTextures, NORMAL_SLOT, Tangent};
 use glam::{Mat3, Mat4, Vec3};
 use gltf::json::Value;
 use gltf::material::AlphaMode;
@@ -69,6 +71,10 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
         let name = m.name().map_or_else(|| format!("material_{i}"), str::to_owned);
         let mut material = map_material(&m).map_err(|e| err(format!("material `{name}`: {e}")))?;
         material.textures = material_textures(&m, &mut loader).map_err(|e| err(format!("material `{name}`: {e}")))?;
+        let (layers, layer_uv_sets) = super::gltf_layer_textures::layer_textures(&document, &m, &mut loader)
+            .map_err(|e| err(format!("material `{name}`: {e}")))?;
+        material.textures.layers = layers;
+        material.textures.second_uv_set |= layer_uv_sets;
         if material.textures.metallic_roughness.is_some() {
             // The lobe weights become those of the non-metal part; the texture sets the metal.
             material = Material {
@@ -377,12 +383,13 @@ fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<M
         normal,
         normal_scale: normal_info.map_or(1.0, |n| n.scale()),
         second_uv_set,
+        layers: Default::default(),
     })
 }
 
 /// The bit of [`MaterialTextures::second_uv_set`] for a texture of `slot` read with
 /// `TEXCOORD_{tex_coord}`: rt carries two sets, so a third or later one is read as the first.
-fn uv_set_bit(tex_coord: u32, slot: usize, what: &str) -> u32 {
+pub(super) fn uv_set_bit(tex_coord: u32, slot: usize, what: &str) -> u32 {
     match tex_coord {
         0 => 0,
         1 => 1 << slot,
@@ -437,6 +444,7 @@ fn map_material_with_metallic(m: &gltf::Material, metallic: f32) -> Result<Mater
             .rem_euclid(1.0),
         thin_film_thickness,
         thin_film_ior,
+        tangent: tangent(m.extras())?,
         reflection: metallic,
         transmission: dielectric * transmission,
         ior: m.ior().unwrap_or(1.5),
@@ -450,6 +458,20 @@ fn map_material_with_metallic(m: &gltf::Material, metallic: f32) -> Result<Mater
         Some(color) => glossy(material, color),
         None => material,
     })
+}
+
+/// `extras.rt_tangent`: the Principled BSDF's linked Tangent input ("radial_z" when absent).
+fn tangent(extras: &gltf::json::Extras) -> Result<Tangent, String> {
+    match extra::<String>(extras, "rt_tangent")?.as_deref() {
+        None | Some("radial_z") => Ok(Tangent::RadialZ),
+        Some("radial_x") => Ok(Tangent::RadialX),
+        Some("radial_y") => Ok(Tangent::RadialY),
+        Some("uv") => Ok(Tangent::Uv),
+        Some(other) => Err(format!(
+            "extras.rt_tangent is {other:?}{}",
+            crate::scene::did_you_mean(other, ["radial_x", "radial_y", "radial_z", "uv"].into_iter())
+        )),
+    }
 }
 
 /// Beer–Lambert: white light keeps fraction `c` after distance `d`.
@@ -467,7 +489,10 @@ fn volume_emission(extras: &gltf::json::Extras) -> Result<[f32; 3], String> {
 }
 
 /// The rt value `key` of a material's `extras`, if there.
-fn extra<T: serde::de::DeserializeOwned>(extras: &gltf::json::Extras, key: &str) -> Result<Option<T>, String> {
+pub(super) fn extra<T: serde::de::DeserializeOwned>(
+    extras: &gltf::json::Extras,
+    key: &str,
+) -> Result<Option<T>, String> {
     let Some(raw) = extras else {
         return Ok(None);
     };
@@ -606,6 +631,7 @@ mod tests {
                 sheen_tint: [1.0; 3],
                 anisotropy: 0.0,
                 anisotropy_rotation: 0.0,
+                tangent: crate::scene::Tangent::RadialZ,
                 thin_film_thickness: 0.0,
                 thin_film_ior: 1.33,
                 hardness: None,

@@ -6,6 +6,7 @@ pub mod builtin;
 mod gltf_buffers;
 mod gltf_extensions;
 pub mod gltf_import;
+mod gltf_layer_textures;
 mod gltf_textures;
 pub mod obj_import;
 pub mod rtinst;
@@ -77,30 +78,48 @@ pub fn load_mesh(path: &Path) -> Result<MeshData, AssetError> {
     Ok(mesh)
 }
 
-/// A normal map needs a tangent frame of the uv set it reads: a mesh that uses one and
-/// brings no tangents of that set gets MikkTSpace's (which a mesh without uvs cannot
-/// have: its maps are left out). The second set's always come from here.
+/// A normal map needs a tangent frame of the uv set it reads, and anisotropy along the uv
+/// map one of the first set (or, beside a normal map, of the map's set: a triangle carries
+/// one): a mesh that uses one and brings no tangents of that set gets MikkTSpace's (which a
+/// mesh without uvs cannot have: its maps are left out, and its anisotropy has no tangent to
+/// follow). The second set's always come from here.
 fn give_normal_maps_tangents(mesh: &mut MeshData, path: &Path) {
+    for (name, m) in &mesh.materials {
+        if m.reads_uv_tangents() && m.textures.normal_uv_set() == UvSet::Second {
+            log::warn!(
+                "{}: material {name:?} is anisotropic along its uv map and normal-mapped on the second; \
+                 its anisotropy follows the second set's tangents",
+                path.display()
+            );
+        }
+    }
     for set in [UvSet::First, UvSet::Second] {
-        let normal_mapped: Vec<&str> = mesh
+        let readers: Vec<&str> = mesh
             .materials
             .iter()
-            .filter(|(_, m)| m.textures.normal.is_some() && m.textures.normal_uv_set() == set)
+            .filter(|(_, m)| m.reads_tangents() && m.textures.normal_uv_set() == set)
             .map(|(name, _)| name.as_str())
             .collect();
-        if normal_mapped.is_empty() || mesh.tangents_of(set).is_some() {
+        if readers.is_empty() || mesh.tangents_of(set).is_some() {
             continue;
         }
         if mesh.uvs_of(set).is_none() {
             log::warn!(
-                "{}: material {:?} has a normal map but the mesh has no texture coordinates; the map is left out",
+                "{}: material {:?} has a normal map or uv tangents but the mesh has no texture coordinates; they are left out",
                 path.display(),
-                normal_mapped[0]
+                readers[0]
             );
         } else if tangents::generate(mesh, set) {
-            log::info!("{}: generated MikkTSpace tangents of uv set {} for its normal maps", path.display(), set as u8);
+            log::info!(
+                "{}: generated MikkTSpace tangents of uv set {} for its normal maps or uv tangents",
+                path.display(),
+                set as u8
+            );
         } else {
-            log::warn!("{}: MikkTSpace could not make tangents for its normal maps; they are left out", path.display());
+            log::warn!(
+                "{}: MikkTSpace could not make tangents for its normal maps or uv tangents; they are left out",
+                path.display()
+            );
         }
     }
 }

@@ -102,6 +102,8 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
     // Normal maps are texture lookups: forcing them on forces the texture code too.
     force("normal maps", own.normal_maps, FeatureSet { normal_maps: true, textures: true, ..own });
     force("second uv sets", own.uv_sets, FeatureSet { uv_sets: true, textures: true, ..own });
+    force("layer textures", own.layer_textures, FeatureSet { layer_textures: true, textures: true, ..own });
+    force("uv tangents", own.uv_tangents, FeatureSet { uv_tangents: true, anisotropy: true, ..own });
     v
 }
 

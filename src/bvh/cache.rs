@@ -10,14 +10,15 @@
 //!     nodes       GpuWideNode × n      (root first; layout `NODE_LAYOUT`)
 //!     triangles   GpuTriangle × m      (leaf order; material index in each)
 //!     shading     GpuTriangleShading × m
-//!     materials   CachedMaterial × k      (the asset's materials, in its own order)
+//!     materials   CachedMaterial × k      (the asset's materials, in its own order; their
+//!                 layer textures and tangent kind from version 8 on)
 //!     names       k × (u32 byte length, UTF-8 bytes): the materials' names
 //!     textures    CachedTexture × j      (size, wrap modes, colour space, texel range)
 //!     texels      u32 × (every texture's mip chain, RGBA8, in table order)
 //!     tangents    GpuTriangleTangents × m, or none: only a mesh with tangents and a
-//!                 normal-mapped material keeps them (version 5 on); each triangle's are
-//!                 of the uv set its material's normal map reads (version 7 on; before,
-//!                 always of the first)
+//!                 normal-mapped material keeps them (version 5 on), or one anisotropic
+//!                 along its uv map (version 8 on); each triangle's are of the uv set its
+//!                 material's normal map reads (version 7 on; before, always of the first)
 //!     second uvs  GpuTriangleUvs × m, or none: only a mesh with a second uv set that
 //!                 some material's texture reads keeps it (version 6 on)
 //! ```
@@ -51,7 +52,7 @@ use std::path::Path;
 use std::time::Duration;
 
 pub const MAGIC: [u8; 8] = *b"RTBVH\0\0\0";
-pub const FORMAT_VERSION: u32 = 7;
+pub const FORMAT_VERSION: u32 = 8;
 const ALIGN: u64 = 16;
 
 #[repr(C)]
@@ -325,6 +326,9 @@ pub fn read(path: &Path, source_hash: [u8; 32], params_hash: [u8; 32]) -> Result
         .find_map(|(i, m)| m.textures().find(|&t| t as usize >= textures.len()).map(|t| (i, t)))
     {
         return Err(invalid(format!("material {i} uses texture {t} of {}", textures.len())));
+    }
+    if let Some(i) = materials.iter().position(|m| !m.tangent_known()) {
+        return Err(invalid(format!("material {i} has an unknown tangent kind")));
     }
 
     let stats = BvhStats {

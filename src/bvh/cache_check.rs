@@ -188,6 +188,18 @@ mod tests {
         assert!(invalid("tangent", &mesh).contains("triangle 4 has a non-finite tangent"));
     }
 
+    /// A material's tangent kind comes back; a layer texture it lacks is refused, as a base one is.
+    #[test]
+    fn tangent_kinds_and_layer_textures_are_kept_and_checked() {
+        let mut mesh = packed();
+        mesh.materials[0].1.tangent = crate::scene::Tangent::RadialY;
+        mesh.materials[0].1.anisotropy = 0.5;
+        let back = read_back("tangent_kind", &mesh).expect("valid");
+        assert_eq!(back.materials, mesh.materials);
+        mesh.materials[0].1.textures.layers.sheen_tint = Some(0);
+        assert!(invalid("layer texture", &mesh).contains("material 0 uses texture 0 of 0"));
+    }
+
     #[test]
     fn tangents_round_trip() {
         let mut mesh = packed();

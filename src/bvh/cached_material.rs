@@ -1,7 +1,7 @@
 //! Materials as a cache file stores them: every field of [`Material`], as
 //! written, so that loading a cache gives exactly what importing the source gives.
 
-use crate::scene::{Material, MaterialTextures};
+use crate::scene::{LayerTextures, Material, MaterialTextures, Tangent};
 
 /// A texture slot left empty.
 pub const NO_TEXTURE: u32 = u32::MAX;
@@ -56,7 +56,13 @@ pub struct CachedMaterial {
     pub second_uv_set: u32,
     pub thin_film_thickness: f32,
     pub thin_film_ior: f32,
+    /// `LayerTextures`, in the order of its `slots`.
+    pub layer_textures: [u32; 7],
+    /// `Tangent`: 0 radial Z, 1 radial X, 2 radial Y, 3 the uv map's.
+    pub tangent: u32,
 }
+
+const TANGENTS: [Tangent; 4] = [Tangent::RadialZ, Tangent::RadialX, Tangent::RadialY, Tangent::Uv];
 
 impl From<&Material> for CachedMaterial {
     fn from(m: &Material) -> Self {
@@ -95,6 +101,8 @@ impl From<&Material> for CachedMaterial {
             second_uv_set: m.textures.second_uv_set,
             thin_film_thickness: m.thin_film_thickness,
             thin_film_ior: m.thin_film_ior,
+            layer_textures: m.textures.layers.slots().map(slot),
+            tangent: TANGENTS.iter().position(|&t| t == m.tangent).unwrap_or(0) as u32,
         }
     }
 }
@@ -120,6 +128,7 @@ impl From<&CachedMaterial> for Material {
             sheen_tint: m.sheen_tint,
             anisotropy: m.anisotropy,
             anisotropy_rotation: m.anisotropy_rotation,
+            tangent: TANGENTS.get(m.tangent as usize).copied().unwrap_or_default(),
             thin_film_thickness: m.thin_film_thickness,
             thin_film_ior: m.thin_film_ior,
             hardness: (m.hardness > 0.0).then_some(m.hardness),
@@ -137,6 +146,11 @@ impl From<&CachedMaterial> for Material {
                 normal: unslot(m.normal_texture),
                 normal_scale: m.normal_scale,
                 second_uv_set: m.second_uv_set,
+                layers: {
+                    let [coat, coat_roughness, coat_tint, sheen, sheen_tint, anisotropy, specular_tint] =
+                        m.layer_textures.map(unslot);
+                    LayerTextures { coat, coat_roughness, coat_tint, sheen, sheen_tint, anisotropy, specular_tint }
+                },
             },
         }
     }
@@ -179,10 +193,16 @@ impl CachedMaterial {
         vectors.into_iter().flatten().chain(scalars).all(f32::is_finite)
     }
 
+    /// Whether `tangent` names a [`Tangent`].
+    pub fn tangent_known(&self) -> bool {
+        (self.tangent as usize) < TANGENTS.len()
+    }
+
     /// The texture slots that are filled.
     pub fn textures(&self) -> impl Iterator<Item = u32> {
         [self.base_color_texture, self.metallic_roughness_texture, self.emission_texture, self.normal_texture]
             .into_iter()
+            .chain(self.layer_textures)
             .filter(|&t| t != NO_TEXTURE)
     }
 }

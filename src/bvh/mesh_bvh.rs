@@ -91,9 +91,9 @@ impl MeshBvh {
             .collect();
         let nodes = convert_cwbvh(&bvh, &triangles);
         let shading = order.iter().map(|&i| triangle_shading(mesh, i as usize)).collect();
-        let normal_mapped = mesh.materials.iter().any(|(_, m)| m.textures.normal.is_some());
+        let tangents_read = mesh.materials.iter().any(|(_, m)| m.reads_tangents());
         let any_tangents = mesh.tangents.is_some() || mesh.second_tangents.is_some();
-        let tangents = match normal_mapped && any_tangents {
+        let tangents = match tangents_read && any_tangents {
             true => order.iter().map(|&i| triangle_tangents(mesh, i as usize)).collect(),
             false => Vec::new(),
         };
@@ -114,7 +114,8 @@ impl MeshBvh {
     }
 }
 
-/// Triangle `i`'s corner tangents of the uv set its material's normal map reads.
+/// Triangle `i`'s corner tangents of the uv set its material's normal map reads (the first
+/// without one: that of anisotropy along the uv map).
 fn triangle_tangents(mesh: &MeshData, i: usize) -> GpuTriangleTangents {
     let set =
         mesh.materials.get(mesh.material_ids[i] as usize).map_or(UvSet::First, |(_, m)| m.textures.normal_uv_set());

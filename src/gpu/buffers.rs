@@ -60,7 +60,7 @@ struct SceneData {
     /// The light tree's nodes and each light's trail (`shaders/light_tree.wgsl`).
     light_tree_nodes: wgpu::Buffer,
     light_tree_trails: wgpu::Buffer,
-    /// Per-triangle tangents, for normal maps.
+    /// Per-triangle tangents, for normal maps and uv tangents.
     tangents: wgpu::Buffer,
     /// Cycles' microfacet albedo tables (see `super::microfacet_tables`).
     microfacet_tables: wgpu::Buffer,

@@ -138,7 +138,15 @@ fn host_structs_match_wgsl_layouts() {
                 sheen_tint,
                 sheen,
                 thin_film_thickness,
-                thin_film_ior
+                thin_film_ior,
+                coat_texture,
+                coat_roughness_texture,
+                coat_tint_texture,
+                sheen_texture,
+                sheen_tint_texture,
+                anisotropy_texture,
+                specular_tint_texture,
+                tangent
             ]
         ),
         host_layout!("TriangleTangents", GpuTriangleTangents, [t0, t1, t2]),

@@ -105,6 +105,10 @@ pub struct FeatureSet {
     pub anisotropy: bool,
     /// Some material has a thin film (`thin_film_thickness`).
     pub thin_film: bool,
+    /// Textures on some material's coat, sheen, anisotropy or specular tint.
+    pub layer_textures: bool,
+    /// Some anisotropic material follows its uv map's tangents (`tangent = "uv"`).
+    pub uv_tangents: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -183,6 +187,8 @@ impl FeatureSet {
             sheen: materials_in_use.iter().any(|m| m.sheen > 0.0),
             anisotropy: materials_in_use.iter().any(|m| m.anisotropy > 0.0),
             thin_film: materials_in_use.iter().any(|m| m.has_thin_film()),
+            layer_textures: materials_in_use.iter().any(|m| m.textures.layers.any()),
+            uv_tangents: materials_in_use.iter().any(|m| m.reads_uv_tangents()),
         }
     }
 
@@ -215,6 +221,8 @@ impl FeatureSet {
             sheen: true,
             anisotropy: true,
             thin_film: true,
+            layer_textures: true,
+            uv_tangents: true,
         }
     }
 
@@ -258,6 +266,12 @@ impl FeatureSet {
             "sheen" => self.sheen,
             "anisotropy" => self.anisotropy,
             "thin_film" => self.thin_film,
+            "layer_textures" => self.layer_textures,
+            "uv_tangents" => self.uv_tangents,
+            // Normal maps and uv tangents read the triangles' tangents.
+            "tangent_frames" => self.normal_maps || self.uv_tangents,
+            // Layers over the other lobes, which dim the emission under them.
+            "coat_or_sheen" => self.coat || self.sheen,
             "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen || self.thin_film,
             _ => return None,
         })
@@ -290,6 +304,8 @@ impl fmt::Display for FeatureSet {
             (self.sheen, "sheen"),
             (self.anisotropy, "anisotropy"),
             (self.thin_film, "thin-film"),
+            (self.layer_textures, "layer-textures"),
+            (self.uv_tangents, "uv-tangents"),
         ] {
             if on {
                 parts.push(name.to_string());

@@ -38,6 +38,9 @@ pub struct Material {
     /// √(1 − 0.9 × anisotropy)), the tangent turned about the normal by rotation × 360°.
     pub anisotropy: f32,
     pub anisotropy_rotation: f32,
+    /// The tangent that `anisotropy` stretches along: Cycles' Tangent node linked into the
+    /// Principled BSDF's Tangent input, radial about an axis or a uv map's.
+    pub tangent: Tangent,
     /// Principled's Thin Film Thickness (nm; 0: no film) and Thin Film IOR: a film on the
     /// specular, metal and glass lobes whose interference colours their Fresnel reflectance
     /// (Belcour & Barla 2017, as Cycles 5.0 renders it).
@@ -51,6 +54,20 @@ pub struct Material {
     /// Image textures, from the asset importers (scene files give none).
     #[serde(skip)]
     pub textures: MaterialTextures,
+}
+
+/// Which tangent the anisotropic lobes follow, in Blender's axes (rt's Y is Blender's Z).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Tangent {
+    /// Circles about the object's Z axis (rt's Y), through its origin: what Cycles uses
+    /// when the Tangent input is unlinked.
+    #[default]
+    RadialZ,
+    RadialX,
+    RadialY,
+    /// The MikkTSpace tangent of the mesh's first uv set (along increasing u).
+    Uv,
 }
 
 /// A material's image textures, as indices into its asset's texture list, and the
@@ -79,9 +96,51 @@ pub struct MaterialTextures {
     /// glTF's `normalTexture.scale`: multiplies the map's x and y.
     pub normal_scale: f32,
     /// Which texture slots read the mesh's second uv set (glTF `texCoord` 1): bit i for
-    /// slot i of [`Self::indices_mut`] (base colour, metallic-roughness, emission, normal);
-    /// the others read the first. A normal map's tangents are of the set it reads.
+    /// slot i of [`Self::indices_mut`] (base colour, metallic-roughness, emission, normal,
+    /// then the layers' seven); the others read the first. A normal map's tangents are of
+    /// the set it reads.
     pub second_uv_set: u32,
+    /// The layered lobes' textures: [`LayerTextures`].
+    pub layers: LayerTextures,
+}
+
+/// Textures of the coat, sheen, anisotropy and specular tint (Principled's sockets of those
+/// names), each an index into the asset's textures. Factors multiply the texels, as glTF's do.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LayerTextures {
+    /// R × `coat` (glTF's `clearcoatTexture`).
+    pub coat: Option<u32>,
+    /// G × `coat_roughness` (glTF's `clearcoatRoughnessTexture`).
+    pub coat_roughness: Option<u32>,
+    /// RGB (colour) × `coat_tint`.
+    pub coat_tint: Option<u32>,
+    /// R × `sheen`, G × `sheen_roughness`.
+    pub sheen: Option<u32>,
+    /// RGB (colour) × `sheen_tint`.
+    pub sheen_tint: Option<u32>,
+    /// R × `anisotropy`; G + `anisotropy_rotation` is the rotation (a turn is 1).
+    pub anisotropy: Option<u32>,
+    /// RGB (colour) × `specular_tint` (glTF's `specularColorTexture`).
+    pub specular_tint: Option<u32>,
+}
+
+impl LayerTextures {
+    pub fn any(&self) -> bool {
+        self.slots().iter().any(Option::is_some)
+    }
+
+    /// The slots, in the order of [`MaterialTextures::indices_mut`] after its first four.
+    pub fn slots(&self) -> [Option<u32>; 7] {
+        [
+            self.coat,
+            self.coat_roughness,
+            self.coat_tint,
+            self.sheen,
+            self.sheen_tint,
+            self.anisotropy,
+            self.specular_tint,
+        ]
+    }
 }
 
 /// One of the two sets of texture coordinates a mesh may carry.
@@ -107,6 +166,7 @@ impl Default for MaterialTextures {
             normal: None,
             normal_scale: 1.0,
             second_uv_set: 0,
+            layers: LayerTextures::default(),
         }
     }
 }
@@ -117,11 +177,26 @@ impl MaterialTextures {
             || self.metallic_roughness.is_some()
             || self.emission.is_some()
             || self.normal.is_some()
+            || self.layers.any()
     }
 
-    /// The indices, for offsetting into a scene-wide texture list.
-    pub fn indices_mut(&mut self) -> [&mut Option<u32>; 4] {
-        [&mut self.base_color, &mut self.metallic_roughness, &mut self.emission, &mut self.normal]
+    /// The indices, for offsetting into a scene-wide texture list; slot i's uv set is bit
+    /// i of `second_uv_set` (`UV1_*` in `shaders/texture.wgsl`).
+    pub fn indices_mut(&mut self) -> [&mut Option<u32>; 11] {
+        let l = &mut self.layers;
+        [
+            &mut self.base_color,
+            &mut self.metallic_roughness,
+            &mut self.emission,
+            &mut self.normal,
+            &mut l.coat,
+            &mut l.coat_roughness,
+            &mut l.coat_tint,
+            &mut l.sheen,
+            &mut l.sheen_tint,
+            &mut l.anisotropy,
+            &mut l.specular_tint,
+        ]
     }
 
     /// Whether texture slot `slot` (an index into [`Self::indices_mut`]) reads the second uv set.
@@ -166,6 +241,7 @@ impl Default for Material {
             sheen_tint: [1.0; 3],
             anisotropy: 0.0,
             anisotropy_rotation: 0.0,
+            tangent: Tangent::RadialZ,
             thin_film_thickness: 0.0,
             thin_film_ior: 1.33,
             hardness: None,
@@ -180,6 +256,16 @@ impl Default for Material {
 impl Material {
     pub fn is_emissive(&self) -> bool {
         self.emission.iter().any(|&e| e > 0.0)
+    }
+
+    /// Its shading reads the mesh's tangents: a normal map, or anisotropy along the uv map.
+    pub fn reads_tangents(&self) -> bool {
+        self.textures.normal.is_some() || self.reads_uv_tangents()
+    }
+
+    /// Its anisotropic lobes follow the uv map's tangents.
+    pub fn reads_uv_tangents(&self) -> bool {
+        self.anisotropy > 0.0 && self.tangent == Tangent::Uv
     }
 
     /// Absorbs or emits inside (only meaningful with `transmission`).

@@ -173,6 +173,7 @@ fn unknown_keys_suggest_in_every_table() {
         sky = { kind = "black", colour = [1, 1, 1] } => 1:25: unknown key `colour` in [sky]; did you mean `color`?
         [sky] | kind = "atmosfere" => 2:8: [sky]: unknown kind `atmosfere`; did you mean `atmosphere`?
         [sky] | kind = "grey" => 2:8: [sky]: unknown kind `grey`; expected one of `black`, `uniform`, `atmosphere`, `environment`
+        [materials.m] | tangent = "radial_w" => 2:11: [materials.m]: unknown tangent `radial_w`; did you mean `radial_z`?
     "#,
     );
 }

@@ -61,6 +61,12 @@ ROWS = {
          "Emission Strength": 2.0, "Coat Roughness": 0.2, "Coat Tint": (0.6, 0.8, 1.0)},
         [{"Coat Weight": w} for w in STEPS],
     ),
+    # Emission under the sheen, which dims it by the sheen's albedo (Cycles' svm/closure.h).
+    "emission_sheen": (
+        {"Base Color": (0.05, 0.05, 0.05), "Roughness": 0.5, "Emission Color": (1.0, 0.6, 0.3),
+         "Emission Strength": 2.0, "Sheen Roughness": 0.3, "Sheen Tint": (0.8, 0.9, 1.0)},
+        [{"Sheen Weight": w} for w in STEPS],
+    ),
     # Subsurface scattering, which rt renders as the diffuse base: close for a small radius.
     "subsurface": (
         {"Base Color": (0.8, 0.4, 0.3), "Roughness": 0.5, "Subsurface Weight": 1.0},
@@ -83,6 +89,10 @@ ROWS = {
         {"Base Color": (0.2, 0.3, 0.6), "Roughness": 0.3},
         [{"Anisotropic": a} for a in STEPS],
     ),
+    # A Tangent node into the Tangent input: along the uv map (whose u runs along the
+    # meridians here, see UV_SWAPPED), or radial about X.
+    "anisotropy_uv_tangent_sun": (ANISOTROPIC_METAL, [{"Anisotropic": a} for a in STEPS]),
+    "anisotropy_radial_x_sun": (ANISOTROPIC_METAL, [{"Anisotropic": a} for a in STEPS]),
     "thin_film_dielectric": (FILM_DIELECTRIC, [{"Thin Film Thickness": t} for t in THICKNESSES]),
     "thin_film_dielectric_sun": (FILM_DIELECTRIC, [{"Thin Film Thickness": t} for t in THICKNESSES]),
     "thin_film_metal": (FILM_METAL, [{"Thin Film Thickness": t} for t in THICKNESSES]),
@@ -94,6 +104,12 @@ ROWS = {
         [{"Thin Film Thickness": t} for t in THICKNESSES],
     ),
 }
+
+# Rows whose Principled BSDF's Tangent input is linked to a Tangent node: "UV_MAP" or a radial axis.
+TANGENT_NODES = {"anisotropy_uv_tangent_sun": "UV_MAP", "anisotropy_radial_x_sun": "X"}
+# Rows whose spheres' uv maps swap u and v, so that the uv tangent follows the meridians
+# rather than the parallels (where it would be the default radial tangent about Z).
+UV_SWAPPED = {"anisotropy_uv_tangent_sun"}
 
 # Rows lit by a sun: its rotation and the world's colour. The sheen's from the right, a
 # little behind the spheres (the terminator and the grazing light along it), in a black
@@ -108,6 +124,8 @@ SUNLIT = {
     "anisotropy_sun": FRONT_SUN,
     "anisotropy_rotation_sun": FRONT_SUN,
     "anisotropy_dielectric_sun": FRONT_SUN,
+    "anisotropy_uv_tangent_sun": FRONT_SUN,
+    "anisotropy_radial_x_sun": FRONT_SUN,
     "thin_film_dielectric_sun": FRONT_SUN,
     "thin_film_metal_sun": FRONT_SUN,
 }
@@ -118,6 +136,25 @@ def set_input(bsdf, name, value):
     socket.default_value = (*value, 1.0) if isinstance(value, tuple) and len(socket.default_value) == 4 else value
 
 
+def link_tangent(tree, bsdf, kind):
+    """A Tangent node along the uv map (`kind` "UV_MAP") or radial about axis `kind`, into the Tangent input."""
+    node = tree.nodes.new("ShaderNodeTangent")
+    if kind == "UV_MAP":
+        node.direction_type = "UV_MAP"
+    else:
+        node.direction_type = "RADIAL"
+        node.axis = kind
+    tree.links.new(node.outputs["Tangent"], bsdf.inputs["Tangent"])
+
+
+def swap_uv(mesh):
+    layer = mesh.uv_layers[0]
+    uvs = [0.0] * (len(mesh.loops) * 2)
+    layer.uv.foreach_get("vector", uvs)
+    uvs[0::2], uvs[1::2] = uvs[1::2], uvs[0::2]
+    layer.uv.foreach_set("vector", uvs)
+
+
 def build(scene, name):
     shared, spheres = ROWS[name]
     if name in SUNLIT:
@@ -126,7 +163,12 @@ def build(scene, name):
         refs.sun(scene, rotation)
     else:
         cycles.uniform_world(scene, (1.0, 1.0, 1.0))
-    sphere_row(scene, (principled(f"{name}_{i}", {**shared, **own}) for i, own in enumerate(spheres)))
+    materials = [principled(f"{name}_{i}", {**shared, **own}) for i, own in enumerate(spheres)]
+    for material, sphere in zip(materials, sphere_row(scene, materials)):
+        if name in TANGENT_NODES:
+            link_tangent(material.node_tree, material.node_tree.nodes["Principled BSDF"], TANGENT_NODES[name])
+        if name in UV_SWAPPED:
+            swap_uv(sphere.data)
 
 
 def principled(name, inputs):
@@ -146,12 +188,14 @@ def row_scene():
 
 def sphere_row(scene, materials):
     """Five smooth spheres side by side, one of each material (made as they are placed), in
-    the view of a narrow camera far in front of them."""
+    the view of a narrow camera far in front of them; returns the spheres."""
+    spheres = []
     for i, material in enumerate(materials):
-        refs.add_object(scene, f"sphere_{i}", bpy.ops.mesh.primitive_uv_sphere_add, material, radius=0.45,
-                        segments=48, ring_count=24, location=(i - 2.0, 0.0, 0.0))
+        spheres.append(refs.add_object(scene, f"sphere_{i}", bpy.ops.mesh.primitive_uv_sphere_add, material,
+                                       radius=0.45, segments=48, ring_count=24, location=(i - 2.0, 0.0, 0.0)))
         bpy.ops.object.shade_smooth()
     refs.camera(scene, (0.0, -12.0, 0.0), (0.0, 0.0, 0.0), 2.0 * math.degrees(math.atan(0.5 / 12.0)))
+    return spheres
 
 
 def main():

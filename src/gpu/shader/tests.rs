@@ -53,6 +53,8 @@ fn feature_sets() -> Vec<FeatureSet> {
             sheen: on(2) != on(5),
             anisotropy: on(2) != on(6),
             thin_film: on(1) != on(6),
+            layer_textures: on(0) != on(4) && on(3),
+            uv_tangents: on(2) != on(6) && on(1),
         });
     }
     sets
@@ -90,6 +92,8 @@ fn plain() -> FeatureSet {
         sheen: false,
         anisotropy: false,
         thin_film: false,
+        layer_textures: false,
+        uv_tangents: false,
     }
 }
 

@@ -1,0 +1,75 @@
+//! The layered lobes' textures of a glTF material ([`LayerTextures`]): `KHR_materials_clearcoat`'s
+//! `clearcoatTexture` (R) and `clearcoatRoughnessTexture` (G), `KHR_materials_specular`'s
+//! `specularColorTexture`, and rt's own extras for what glTF has no texture of:
+//! `rt_coat_tint_texture` (RGB), `rt_sheen_texture` (R weight, G roughness),
+//! `rt_sheen_tint_texture` (RGB) and `rt_anisotropy_texture` (R amount, G rotation), each a
+//! texture info as glTF writes one (`{"index": i, "texCoord": n}`).
+
+use super::gltf_import::{extra, uv_set_bit};
+use super::gltf_textures::{ColorSpace, TextureLoader};
+use crate::scene::LayerTextures;
+use gltf::json::Value;
+
+/// Slots of `MaterialTextures::indices_mut` (and bits of its `second_uv_set`).
+const COAT: usize = 4;
+const COAT_ROUGHNESS: usize = 5;
+const COAT_TINT: usize = 6;
+const SHEEN: usize = 7;
+const SHEEN_TINT: usize = 8;
+const ANISOTROPY: usize = 9;
+const SPECULAR_TINT: usize = 10;
+
+/// A texture info in raw JSON: its texture's index and its `texCoord`.
+fn info(v: &Value, what: &str) -> Result<(usize, u32), String> {
+    let index = v
+        .get("index")
+        .and_then(Value::as_u64)
+        .ok_or_else(|| format!("{what}.index must be a texture index, got {v}"))?;
+    let tex_coord = match v.get("texCoord") {
+        None => 0,
+        Some(t) => t.as_u64().ok_or_else(|| format!("{what}.texCoord must be a whole number, got {t}"))?,
+    };
+    Ok((index as usize, tex_coord as u32))
+}
+
+/// The layer textures of `m` and the bits of `second_uv_set` they add.
+pub(super) fn layer_textures(
+    document: &gltf::Document,
+    m: &gltf::Material,
+    loader: &mut TextureLoader,
+) -> Result<(LayerTextures, u32), String> {
+    let mut second_uv_set = 0;
+    let mut load = |raw: Option<(usize, u32)>, space, slot: usize, what: &str| -> Result<Option<u32>, String> {
+        let Some((index, tex_coord)) = raw else { return Ok(None) };
+        let texture = document
+            .textures()
+            .nth(index)
+            .ok_or_else(|| format!("{what}: no texture {index} (the file has {})", document.textures().len()))?;
+        second_uv_set |= uv_set_bit(tex_coord, slot, what);
+        loader.load(&texture, space).map(Some).map_err(|e| format!("{what} texture: {e}"))
+    };
+    let clearcoat = m.extension_value("KHR_materials_clearcoat");
+    let from_clearcoat = |key: &str| -> Result<Option<(usize, u32)>, String> {
+        clearcoat.and_then(|c| c.get(key)).map(|v| info(v, &format!("KHR_materials_clearcoat.{key}"))).transpose()
+    };
+    let from_extras = |key: &str| -> Result<Option<(usize, u32)>, String> {
+        extra::<Value>(m.extras(), key)?.map(|v| info(&v, &format!("extras.{key}"))).transpose()
+    };
+    let specular_color =
+        m.specular().and_then(|s| s.specular_color_texture()).map(|i| (i.texture().index(), i.tex_coord()));
+    let layers = LayerTextures {
+        coat: load(from_clearcoat("clearcoatTexture")?, ColorSpace::Linear, COAT, "clearcoat")?,
+        coat_roughness: load(
+            from_clearcoat("clearcoatRoughnessTexture")?,
+            ColorSpace::Linear,
+            COAT_ROUGHNESS,
+            "clearcoat roughness",
+        )?,
+        coat_tint: load(from_extras("rt_coat_tint_texture")?, ColorSpace::Srgb, COAT_TINT, "coat tint")?,
+        sheen: load(from_extras("rt_sheen_texture")?, ColorSpace::Linear, SHEEN, "sheen")?,
+        sheen_tint: load(from_extras("rt_sheen_tint_texture")?, ColorSpace::Srgb, SHEEN_TINT, "sheen tint")?,
+        anisotropy: load(from_extras("rt_anisotropy_texture")?, ColorSpace::Linear, ANISOTROPY, "anisotropy")?,
+        specular_tint: load(specular_color, ColorSpace::Srgb, SPECULAR_TINT, "specular colour")?,
+    };
+    Ok((layers, second_uv_set))
+}

@@ -1,0 +1,88 @@
+//! The layered lobes' textures and the tangent as rt reads them from glTF: the clearcoat
+//! textures of `KHR_materials_clearcoat`, `KHR_materials_specular`'s colour texture and rt's
+//! own extras (what `blender/rt_export.py` writes for Principled's coat tint, sheen and
+//! anisotropy sockets), each in its colour space; bad ones refused naming the material.
+
+use crate::common;
+
+use common::{temp_dir, write};
+use rt::asset::load_mesh;
+use rt::scene::Tangent;
+
+/// A unit quad with uvs whose one material is `material` (JSON), with two textures (repeating,
+/// clamped) of one 2 × 2 PNG beside it.
+fn quad_gltf(material: &str) -> String {
+    let mut bytes = Vec::new();
+    [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]
+        .iter()
+        .flatten()
+        .for_each(|f| bytes.extend(f.to_le_bytes()));
+    [[0.0f32, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]].iter().flatten().for_each(|f| bytes.extend(f.to_le_bytes()));
+    [0u32, 1, 2, 0, 2, 3].iter().for_each(|i| bytes.extend(i.to_le_bytes()));
+    format!(
+        r#"{{
+  "asset": {{ "version": "2.0" }}, "scene": 0, "scenes": [{{ "nodes": [0] }}], "nodes": [{{ "mesh": 0 }}],
+  "extensionsUsed": ["KHR_materials_clearcoat", "KHR_materials_specular"],
+  "meshes": [{{ "primitives": [{{ "attributes": {{ "POSITION": 0, "TEXCOORD_0": 1 }}, "indices": 2, "material": 0 }}] }}],
+  "materials": [{material}],
+  "textures": [{{ "source": 0 }}, {{ "source": 0, "sampler": 0 }}],
+  "samplers": [{{ "wrapS": 33071, "wrapT": 33071 }}],
+  "images": [{{ "uri": "grey.png" }}],
+  "buffers": [{{ "byteLength": {len}, "uri": "data:application/octet-stream;base64,{data}" }}],
+  "bufferViews": [{{ "buffer": 0, "byteLength": 48 }}, {{ "buffer": 0, "byteOffset": 48, "byteLength": 32 }},
+    {{ "buffer": 0, "byteOffset": 80, "byteLength": 24 }}],
+  "accessors": [
+    {{ "bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0] }},
+    {{ "bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2" }},
+    {{ "bufferView": 2, "componentType": 5125, "count": 6, "type": "SCALAR" }}]
+}}"#,
+        len = bytes.len(),
+        data = base64::encode(&bytes)
+    )
+}
+
+fn load(name: &str, material: &str) -> Result<rt::asset::MeshData, String> {
+    let dir = temp_dir(name);
+    image::RgbaImage::from_pixel(2, 2, image::Rgba([128, 64, 32, 255]))
+        .save(dir.join("grey.png"))
+        .expect("writes the PNG");
+    write(&dir.join("quad.gltf"), &quad_gltf(material));
+    load_mesh(&dir.join("quad.gltf")).map_err(|e| e.to_string())
+}
+
+#[test]
+fn layer_textures_and_the_tangent_are_read_in_their_colour_spaces() {
+    let material = r#"{ "name": "layers",
+      "extensions": {
+        "KHR_materials_clearcoat": { "clearcoatFactor": 1, "clearcoatTexture": { "index": 0 },
+                                     "clearcoatRoughnessTexture": { "index": 0 } },
+        "KHR_materials_specular": { "specularColorTexture": { "index": 1 } } },
+      "extras": { "rt_coat": 1, "rt_sheen": 1, "rt_anisotropy": 1, "rt_tangent": "radial_x",
+                  "rt_coat_tint_texture": { "index": 1 }, "rt_sheen_texture": { "index": 0 },
+                  "rt_sheen_tint_texture": { "index": 1 }, "rt_anisotropy_texture": { "index": 1, "texCoord": 0 } } }"#;
+    let mesh = load("layer_textures_read", material).unwrap_or_else(|e| panic!("{e}"));
+    let m = &mesh.materials[0].1;
+    assert_eq!(m.tangent, Tangent::RadialX);
+    let l = m.textures.layers;
+    let srgb = |slot: Option<u32>| mesh.textures[slot.expect("a texture") as usize].srgb;
+    // Data: coat weight and roughness, sheen, anisotropy; colour: the tints.
+    assert!(!srgb(l.coat) && !srgb(l.coat_roughness) && !srgb(l.sheen) && !srgb(l.anisotropy), "{l:?}");
+    assert!(srgb(l.coat_tint) && srgb(l.sheen_tint) && srgb(l.specular_tint), "{l:?}");
+    // One image through two samplers, as data and as colour: one texture per use that differs.
+    assert_eq!(l.coat, l.coat_roughness);
+    assert_eq!(l.coat_tint, l.specular_tint);
+    assert_ne!(l.anisotropy, l.coat_tint);
+    assert_eq!(mesh.textures.len(), 3, "data of each sampler, colour of the second");
+    assert_eq!(m.textures.second_uv_set, 0);
+    assert!(m.textures.any() && !m.reads_tangents());
+}
+
+#[test]
+fn a_layer_texture_that_is_not_there_is_refused() {
+    let material = r#"{ "name": "missing", "extras": { "rt_sheen": 1, "rt_sheen_texture": { "index": 7 } } }"#;
+    let e = load("layer_textures_missing", material).expect_err("refused");
+    assert!(e.contains("material `missing`") && e.contains("sheen: no texture 7 (the file has 2)"), "{e}");
+    let material = r#"{ "name": "bent", "extras": { "rt_tangent": "radial_q" } }"#;
+    let e = load("layer_textures_bad_tangent", material).expect_err("refused");
+    assert!(e.contains("material `bent`") && e.contains("extras.rt_tangent is \"radial_q\"; did you mean"), "{e}");
+}

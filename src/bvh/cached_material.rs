@@ -56,6 +56,7 @@ pub struct CachedMaterial {
     pub second_uv_set: u32,
     pub thin_film_thickness: f32,
     pub thin_film_ior: f32,
+    pub diffuse_roughness: f32,
 }
 
 impl From<&Material> for CachedMaterial {
@@ -95,6 +96,7 @@ impl From<&Material> for CachedMaterial {
             second_uv_set: m.textures.second_uv_set,
             thin_film_thickness: m.thin_film_thickness,
             thin_film_ior: m.thin_film_ior,
+            diffuse_roughness: m.diffuse_roughness,
         }
     }
 }
@@ -109,6 +111,7 @@ impl From<&CachedMaterial> for Material {
             transmission: m.transmission,
             ior: m.ior,
             roughness: m.roughness,
+            diffuse_roughness: m.diffuse_roughness,
             specular_tint: m.specular_tint,
             specular_ior_level: m.specular_ior_level,
             coat: m.coat,
@@ -170,6 +173,7 @@ impl CachedMaterial {
             self.anisotropy_rotation,
             self.thin_film_thickness,
             self.thin_film_ior,
+            self.diffuse_roughness,
             self.hardness,
             self.metallic,
             self.base_alpha,

@@ -105,6 +105,8 @@ pub struct FeatureSet {
     pub anisotropy: bool,
     /// Some material has a thin film (`thin_film_thickness`).
     pub thin_film: bool,
+    /// Some diffuse lobe is Oren-Nayar (`diffuse_roughness`).
+    pub rough_diffuse: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -183,6 +185,7 @@ impl FeatureSet {
             sheen: materials_in_use.iter().any(|m| m.sheen > 0.0),
             anisotropy: materials_in_use.iter().any(|m| m.anisotropy > 0.0),
             thin_film: materials_in_use.iter().any(|m| m.has_thin_film()),
+            rough_diffuse: materials_in_use.iter().any(|m| m.has_rough_diffuse()),
         }
     }
 
@@ -215,6 +218,7 @@ impl FeatureSet {
             sheen: true,
             anisotropy: true,
             thin_film: true,
+            rough_diffuse: true,
         }
     }
 
@@ -258,6 +262,7 @@ impl FeatureSet {
             "sheen" => self.sheen,
             "anisotropy" => self.anisotropy,
             "thin_film" => self.thin_film,
+            "rough_diffuse" => self.rough_diffuse,
             "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen || self.thin_film,
             _ => return None,
         })
@@ -290,6 +295,7 @@ impl fmt::Display for FeatureSet {
             (self.sheen, "sheen"),
             (self.anisotropy, "anisotropy"),
             (self.thin_film, "thin-film"),
+            (self.rough_diffuse, "rough-diffuse"),
         ] {
             if on {
                 parts.push(name.to_string());

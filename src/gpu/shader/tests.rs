@@ -53,6 +53,7 @@ fn feature_sets() -> Vec<FeatureSet> {
             sheen: on(2) != on(5),
             anisotropy: on(2) != on(6),
             thin_film: on(1) != on(6),
+            rough_diffuse: on(3) != on(5),
         });
     }
     sets
@@ -90,6 +91,7 @@ fn plain() -> FeatureSet {
         sheen: false,
         anisotropy: false,
         thin_film: false,
+        rough_diffuse: false,
     }
 }
 

@@ -18,6 +18,13 @@ fn single_nodes_match_cycles() {
     check_row("nodes_single");
 }
 
+/// The Diffuse BSDF's Roughness 0…1 under a sun: Cycles 5.0's Oren-Nayar closure, the one
+/// of the Principled's Diffuse Roughness.
+#[test]
+fn rough_diffuse_nodes_match_cycles() {
+    check_row("nodes_rough_diffuse_sun");
+}
+
 #[test]
 fn mixed_and_added_nodes_match_cycles() {
     check_row("nodes_mixed");

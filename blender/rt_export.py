@@ -716,6 +716,10 @@ def gltf_material(material, thickness, textures=None):
         },
     }
     out["extras"] = {"rt_specular_ior_level": min(max(specular_level, 0.0), 1.0)}
+    diffuse_roughness = min(max(s.diffuse_roughness, 0.0), 1.0)
+    if diffuse_roughness > 0.0:
+        # Cycles' Oren-Nayar diffuse (Principled's Diffuse Roughness); glTF has no such input.
+        out["extras"]["rt_diffuse_roughness"] = diffuse_roughness
     if s.glossy is not None:
         # Cycles' Glossy BSDF: GGX without Fresnel, tinted by its colour; glTF has no such lobe
         # (its factors above describe a metal of that colour for other readers).

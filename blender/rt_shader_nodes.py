@@ -7,8 +7,8 @@ that names the material and the node). What each node becomes:
 
   Principled BSDF    itself (Subsurface Weight > 0: the diffuse base, ~2% brighter than
                      Cycles' random walk, with a warning)
-  Diffuse BSDF       Lambertian diffuse of its Color, no specular layer (Roughness > 0,
-                     Cycles' Oren-Nayar, is warned about and rendered Lambertian)
+  Diffuse BSDF       diffuse of its Color and Roughness (Cycles' energy-preserving
+                     Oren-Nayar, the Principled's Diffuse Roughness), no specular layer
   Glossy BSDF        a GGX lobe without Fresnel tinted by its Color (`extras.rt_glossy_color`),
                      as Cycles' Glossy: exact for (Multiscatter) GGX
   Glass BSDF         transmission of its IOR and Roughness, tinted by Color per refraction
@@ -19,7 +19,8 @@ that names the material and the node). What each node becomes:
   Translucent BSDF   Lambertian diffuse of its Color (warned: rt has no diffuse transmission)
   Mix Shader         constant Fac, two mappable shaders: Transparent mixes into alpha,
                      Emission into the other's emission with the other's lobes scaled (exact
-                     when the other is Diffuse or Emission), two Diffuse into one;
+                     when the other is Diffuse or Emission), two Diffuse into one (of their
+                     mean roughness: exact for Lambertian ones, else warned);
                      otherwise the dominant shader, warned
   Add Shader         Emission + X is X with the emission added; otherwise warned
 
@@ -95,6 +96,8 @@ class Surface:
         self.base = [0.8, 0.8, 0.8]
         self.metallic = 0.0
         self.roughness = 0.5
+        # The diffuse lobe's Oren-Nayar roughness (0: Lambertian).
+        self.diffuse_roughness = 0.0
         self.ior = 1.5
         self.transmission = 0.0
         self.emission = [0.0, 0.0, 0.0]
@@ -141,6 +144,7 @@ def principled(material, node):
     s.base = rgb(socket_value(node, "Base Color", s.base))
     s.metallic = float(socket_value(node, "Metallic", 0.0))
     s.roughness = float(socket_value(node, "Roughness", 0.5))
+    s.diffuse_roughness = float(socket_value(node, "Diffuse Roughness", 0.0))
     s.ior = float(socket_value(node, "IOR", 1.5))
     s.transmission = float(socket_value(node, "Transmission Weight", 0.0))
     strength = float(socket_value(node, "Emission Strength", 0.0))
@@ -162,11 +166,9 @@ def principled(material, node):
 
 
 def diffuse(material, node):
-    roughness = float(socket_value(node, "Roughness", 0.0))
-    if roughness > 0.0:
-        warn(material, node, f"Roughness {roughness:g} (Oren-Nayar) is not rendered by rt: Lambertian")
+    # Cycles 5.0 gives the Diffuse BSDF's Roughness the closure of the Principled's Diffuse Roughness.
     return Surface(kind="diffuse", base=rgb(socket_value(node, "Color", (0.8, 0.8, 0.8))), roughness=1.0,
-                   specular_level=0.0)
+                   diffuse_roughness=float(socket_value(node, "Roughness", 0.0)), specular_level=0.0)
 
 
 def glossy(material, node):
@@ -255,7 +257,11 @@ def mixed(material, node, a, wa, b, wb):
         other.emission = [e + g for e, g in zip(other.emission, glow)]
         return other
     if a.kind == "diffuse" and b.kind == "diffuse":
+        if a.diffuse_roughness > 0.0 or b.diffuse_roughness > 0.0:
+            warn(material, node, "two Oren-Nayar diffuse surfaces are mixed as one of their mean colour and "
+                 "roughness (close, not exact)")
         a.base = [x * wa + y * wb for x, y in zip(a.base, b.base)]
+        a.diffuse_roughness = a.diffuse_roughness * wa + b.diffuse_roughness * wb
         return a
     dominant, weight = (a, wa) if wa >= wb else (b, wb)
     warn(material, node, f"rt cannot mix a {a.kind} and a {b.kind} surface: using the {dominant.kind} one "

@@ -12,6 +12,9 @@
 //#if coat
 //#include "microfacet.wgsl"
 //#endif
+//#if rough_diffuse
+//#include "oren_nayar.wgsl"
+//#endif
 
 
 // f·|cos θi| of one reflection lobe, before folding.
@@ -22,6 +25,10 @@ fn reflection_lobe_eval(ctx: ShadingContext, lobe: u32, wi: vec3f) -> vec3f {
             return vec3f(0.0);
         }
         var f = ctx.m.base_color * (ctx.m.diffuse * ctx.diffuse_kept * cos_i / PI);
+        //#if rough_diffuse
+        let shape = oren_nayar(ctx.m.diffuse_roughness, ctx.m.base_color, cos_i, dot(diffuse_axis(ctx), ctx.wo), dot(wi, ctx.wo));
+        f = ctx.m.base_color * (ctx.m.diffuse * ctx.diffuse_kept * cos_i) * shape;
+        //#endif
         //#if normal_maps
         f *= bump_shadowing(ctx, wi);
         //#endif

@@ -184,7 +184,8 @@ struct Material {
     coat_ior: f32,
     // Bit i: texture slot i reads the second uv set (UV1_* in texture.wgsl).
     second_uv_set: u32,
-    _pad6: u32,
+    // Oren-Nayar roughness of the diffuse lobe (0: Lambertian; see oren_nayar.wgsl).
+    diffuse_roughness: f32,
     // The sheen: Cycles' microfiber layer of weight `sheen` and colour `sheen_tint` over
     // every other lobe, the coat included (0: none).
     sheen_tint: vec3f,

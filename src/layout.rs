@@ -206,7 +206,8 @@ pub struct GpuMaterial {
     pub coat_ior: f32,
     /// Which texture slots read the second uv set (`MaterialTextures::second_uv_set`).
     pub second_uv_set: u32,
-    pub _pad2: u32,
+    /// Oren-Nayar roughness of the diffuse lobe (0: Lambertian).
+    pub diffuse_roughness: f32,
     /// Colour of the sheen layer.
     pub sheen_tint: [f32; 3],
     /// Weight of the sheen layer over every other lobe (the coat included); 0: none.
@@ -483,7 +484,7 @@ impl From<&crate::scene::Material> for GpuMaterial {
             coat_alpha: m.coat_roughness * m.coat_roughness,
             coat_ior: m.coat_ior,
             second_uv_set: m.textures.second_uv_set,
-            _pad2: 0,
+            diffuse_roughness: m.diffuse_roughness,
             sheen_tint: m.sheen_tint,
             sheen: m.sheen,
             thin_film_thickness: m.thin_film_thickness,

@@ -352,3 +352,15 @@ fn exporter_writes_the_thin_film_as_iridescence() {
 fn thin_film_at_specular_level_zero_matches_cycles() {
     check_colours("thin_film_level_zero");
 }
+
+/// Diffuse Roughness 0…1 on a coloured base under the default specular layer: Cycles'
+/// energy-preserving Oren-Nayar, dimmed by the layer's albedo as the Lambertian is.
+#[test]
+fn diffuse_roughness_matches_cycles() {
+    check("diffuse_roughness");
+}
+
+#[test]
+fn diffuse_roughness_under_a_sun_matches_cycles() {
+    check("diffuse_roughness_sun");
+}

@@ -18,6 +18,13 @@ fn single_nodes_match_cycles() {
     check_row("nodes_single");
 }
 
+/// The Diffuse BSDF's Roughness 0…1 under a sun: Cycles 5.0's Oren-Nayar closure, the one
+/// of the Principled's Diffuse Roughness.
+#[test]
+fn rough_diffuse_nodes_match_cycles() {
+    check_row("nodes_rough_diffuse_sun");
+}
+
 #[test]
 fn mixed_and_added_nodes_match_cycles() {
     check_row("nodes_mixed");
@@ -40,11 +47,19 @@ fn unmappable_nodes_warn_naming_material_and_node() {
         "noisy_mix: 'Blend' (ShaderNodeMixShader): its Fac is linked",
         "glossy_glass: 'Both' (ShaderNodeMixShader): rt cannot mix a glossy and a glass surface: using the glass one",
         "skin_mat: 'Skin' (ShaderNodeBsdfPrincipled): Subsurface Weight 0.5 is rendered as the diffuse base",
-        "felt_mat: 'Felt' (ShaderNodeBsdfDiffuse): Roughness 0.5 (Oren-Nayar) is not rendered by rt",
         "leaf_mat: 'Leaf' (ShaderNodeBsdfTranslucent): rt has no diffuse transmission",
     ] {
         assert!(stderr.contains(needle), "{needle:?} missing from:\n{stderr}");
     }
+    // A rough Diffuse BSDF is Cycles' Oren-Nayar, which rt renders: no warning, its roughness exported.
+    assert!(!stderr.contains("felt_mat"), "a rough Diffuse BSDF is warned about:\n{stderr}");
+    let rough = std::fs::read_dir(out.join("assets"))
+        .expect("assets")
+        .filter_map(|e| rt::asset::load_mesh(&e.expect("entry").path()).ok())
+        .flat_map(|mesh| mesh.materials.into_iter().map(|(_, m)| m))
+        .filter(|m| m.diffuse_roughness > 0.0)
+        .collect::<Vec<_>>();
+    assert!(matches!(&rough[..], [m] if m.diffuse_roughness == 0.5 && m.diffuse == 1.0), "{rough:?}");
     // The dominant shader of the mix is what rt renders: Glass (weight 0.7) over Glossy.
     let glass = rt::asset::load_mesh(&out.join("assets/Cube_002")).expect("loads");
     let m = &glass.materials[0].1;

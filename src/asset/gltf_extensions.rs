@@ -252,6 +252,17 @@ mod tests {
         assert_eq!((m[3].sheen, m[3].anisotropy), (0.0, 0.0));
     }
 
+    /// Diffuse Roughness, which glTF has no field for, comes in rt's extras (clamped to [0, 1]).
+    #[test]
+    fn diffuse_roughness_is_read_from_the_extras() {
+        let m = import(
+            "gltf_diffuse_roughness",
+            r#"{ "extras": { "rt_diffuse_roughness": 0.75 } }, { "extras": { "rt_diffuse_roughness": 3.0 } }, {}"#,
+        );
+        let roughness: Vec<f32> = m.iter().map(|m| m.diffuse_roughness).collect();
+        assert_eq!(roughness, [0.75, 1.0, 0.0]);
+    }
+
     #[test]
     fn glossy_is_the_tinted_specular_lobe_alone() {
         let base = Material { diffuse: 0.5, reflection: 0.5, roughness: 0.3, ..Material::default() };

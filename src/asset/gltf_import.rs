@@ -25,6 +25,7 @@
 //! | `KHR_materials_iridescence` factor (0), index (1.3), thickness maximum (400) | `thin_film_ior`, `thin_film_thickness` (the maximum; factor 0: no film) |
 //! | `extras.rt_tangent` (`"radial_z"`)                        | `tangent` |
 //! | `KHR_materials_clearcoat` textures, `KHR_materials_specular` colour texture, `extras.rt_*_texture` | `textures.layers` (`gltf_layer_textures`) |
+//! | `extras.rt_diffuse_roughness` (0)                         | `diffuse_roughness` (Principled's Diffuse Roughness; glTF has none) |
 //! | `KHR_materials_volume` colour `c` (1), distance `d` (∞)   | `absorption = -ln(c) / d`; 0 if `d = ∞` |
 //! | `extras.rt_volume_emission` `[r, g, b]` (0)               | `volume_emission`              |
 //!
@@ -445,6 +446,7 @@ fn map_material_with_metallic(m: &gltf::Material, metallic: f32) -> Result<Mater
         thin_film_thickness,
         thin_film_ior,
         tangent: tangent(m.extras())?,
+        diffuse_roughness: extra::<f32>(m.extras(), "rt_diffuse_roughness")?.unwrap_or(0.0).clamp(0.0, 1.0),
         reflection: metallic,
         transmission: dielectric * transmission,
         ior: m.ior().unwrap_or(1.5),
@@ -634,6 +636,7 @@ mod tests {
                 tangent: crate::scene::Tangent::RadialZ,
                 thin_film_thickness: 0.0,
                 thin_film_ior: 1.33,
+                diffuse_roughness: 0.0,
                 hardness: None,
                 emission: [4.0, 2.0, 0.0],
                 absorption: [ln2 / 2.0, 2.0 * ln2 / 2.0, 0.0],

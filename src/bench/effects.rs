@@ -97,6 +97,7 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
     force("sheen", own.sheen, FeatureSet { sheen: true, ..own });
     force("anisotropy", own.anisotropy, FeatureSet { anisotropy: true, ..own });
     force("thin film", own.thin_film, FeatureSet { thin_film: true, ..own });
+    force("rough diffuse", own.rough_diffuse, FeatureSet { rough_diffuse: true, ..own });
     // Texture lookups alone, so that the normal maps' own share of their price shows.
     force("textures", own.textures, FeatureSet { textures: true, ..own });
     // Normal maps are texture lookups: forcing them on forces the texture code too.
@@ -183,5 +184,16 @@ mod tests {
             variants(without, RoughTransmission::Ggx).into_iter().filter(|(n, _)| n == "+thin film").collect();
         assert!(matches!(&forced[..], [(_, f)] if f.thin_film && *f == all), "{forced:?}");
         assert!(variants(all, RoughTransmission::Ggx).iter().all(|(n, _)| n != "+thin film"));
+    }
+
+    /// Likewise the rough (Oren-Nayar) diffuse.
+    #[test]
+    fn rough_diffuse_is_among_the_forced_effects() {
+        let all = FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx);
+        let without = FeatureSet { rough_diffuse: false, ..all };
+        let forced: Vec<_> =
+            variants(without, RoughTransmission::Ggx).into_iter().filter(|(n, _)| n == "+rough diffuse").collect();
+        assert!(matches!(&forced[..], [(_, f)] if f.rough_diffuse && *f == all), "{forced:?}");
+        assert!(variants(all, RoughTransmission::Ggx).iter().all(|(n, _)| n != "+rough diffuse"));
     }
 }

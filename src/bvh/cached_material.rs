@@ -60,6 +60,7 @@ pub struct CachedMaterial {
     pub layer_textures: [u32; 7],
     /// `Tangent`: 0 radial Z, 1 radial X, 2 radial Y, 3 the uv map's.
     pub tangent: u32,
+    pub diffuse_roughness: f32,
 }
 
 const TANGENTS: [Tangent; 4] = [Tangent::RadialZ, Tangent::RadialX, Tangent::RadialY, Tangent::Uv];
@@ -103,6 +104,7 @@ impl From<&Material> for CachedMaterial {
             thin_film_ior: m.thin_film_ior,
             layer_textures: m.textures.layers.slots().map(slot),
             tangent: TANGENTS.iter().position(|&t| t == m.tangent).unwrap_or(0) as u32,
+            diffuse_roughness: m.diffuse_roughness,
         }
     }
 }
@@ -117,6 +119,7 @@ impl From<&CachedMaterial> for Material {
             transmission: m.transmission,
             ior: m.ior,
             roughness: m.roughness,
+            diffuse_roughness: m.diffuse_roughness,
             specular_tint: m.specular_tint,
             specular_ior_level: m.specular_ior_level,
             coat: m.coat,
@@ -184,6 +187,7 @@ impl CachedMaterial {
             self.anisotropy_rotation,
             self.thin_film_thickness,
             self.thin_film_ior,
+            self.diffuse_roughness,
             self.hardness,
             self.metallic,
             self.base_alpha,

@@ -135,6 +135,7 @@ fn host_structs_match_wgsl_layouts() {
                 coat_alpha,
                 coat_ior,
                 second_uv_set,
+                diffuse_roughness,
                 sheen_tint,
                 sheen,
                 thin_film_thickness,

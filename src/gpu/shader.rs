@@ -80,6 +80,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("texture.wgsl"),
     shader!("thin_film.wgsl"),
     shader!("normal_map.wgsl"),
+    shader!("oren_nayar.wgsl"),
     shader!("panorama.wgsl"),
     shader!("surface.wgsl"),
     shader!("trace_kernel.wgsl"),

@@ -109,6 +109,8 @@ pub struct FeatureSet {
     pub layer_textures: bool,
     /// Some anisotropic material follows its uv map's tangents (`tangent = "uv"`).
     pub uv_tangents: bool,
+    /// Some diffuse lobe is Oren-Nayar (`diffuse_roughness`).
+    pub rough_diffuse: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -189,6 +191,7 @@ impl FeatureSet {
             thin_film: materials_in_use.iter().any(|m| m.has_thin_film()),
             layer_textures: materials_in_use.iter().any(|m| m.textures.layers.any()),
             uv_tangents: materials_in_use.iter().any(|m| m.reads_uv_tangents()),
+            rough_diffuse: materials_in_use.iter().any(|m| m.has_rough_diffuse()),
         }
     }
 
@@ -223,6 +226,7 @@ impl FeatureSet {
             thin_film: true,
             layer_textures: true,
             uv_tangents: true,
+            rough_diffuse: true,
         }
     }
 
@@ -272,6 +276,7 @@ impl FeatureSet {
             "tangent_frames" => self.normal_maps || self.uv_tangents,
             // Layers over the other lobes, which dim the emission under them.
             "coat_or_sheen" => self.coat || self.sheen,
+            "rough_diffuse" => self.rough_diffuse,
             "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen || self.thin_film,
             _ => return None,
         })
@@ -306,6 +311,7 @@ impl fmt::Display for FeatureSet {
             (self.thin_film, "thin-film"),
             (self.layer_textures, "layer-textures"),
             (self.uv_tangents, "uv-tangents"),
+            (self.rough_diffuse, "rough-diffuse"),
         ] {
             if on {
                 parts.push(name.to_string());

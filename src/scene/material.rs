@@ -14,6 +14,10 @@ pub struct Material {
     pub transmission: f32,
     pub ior: f32,
     pub roughness: f32,
+    /// Principled's Diffuse Roughness (the Diffuse BSDF's Roughness): the `diffuse` lobe is
+    /// Cycles' energy-preserving Oren-Nayar of this roughness (Fujii's model with OpenPBR's
+    /// multiple-scattering term); 0: Lambertian.
+    pub diffuse_roughness: f32,
     /// Principled's Specular Tint: the F82 tint of the `reflection` metal and a tint of the
     /// dielectric coating's F0.
     pub specular_tint: [f32; 3],
@@ -230,6 +234,7 @@ impl Default for Material {
             transmission: 0.0,
             ior: 1.5,
             roughness: 0.0,
+            diffuse_roughness: 0.0,
             specular_tint: [1.0; 3],
             specular_ior_level: 0.0,
             coat: 0.0,
@@ -307,6 +312,11 @@ impl Material {
         let f0 = f0.min(0.9999);
         let eta = ior_from_f0(f0);
         (eta > 1.0 || film).then_some((eta, f0))
+    }
+
+    /// Whether the diffuse lobe is Oren-Nayar rather than Lambertian.
+    pub fn has_rough_diffuse(&self) -> bool {
+        self.diffuse > 0.0 && self.diffuse_roughness > 0.0
     }
 
     /// Whether the thin film is there: Cycles ignores films of 0.1 nm and less

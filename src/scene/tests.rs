@@ -161,6 +161,7 @@ fn unknown_keys_suggest_in_every_table() {
         [sun] | elevation = 1 => 2:1: unknown key `elevation` in [sun]; did you mean `elevation_deg`?
         [materials.m] | | rougness = 0.5 => 3:1: unknown key `rougness` in [materials.m]; did you mean `roughness`?
         [materials.m] | sheen_tnt = [1, 1, 1] => 2:1: unknown key `sheen_tnt` in [materials.m]; did you mean `sheen_tint`?
+        [materials.m] | diffuse_roughnes = 0.5 => 2:1: unknown key `diffuse_roughnes` in [materials.m]; did you mean `diffuse_roughness`?
         [materials.m] | thin_film_thicknes = 300 => 2:1: unknown key `thin_film_thicknes` in [materials.m]; did you mean `thin_film_thickness`?
         [materials.m] | specular_ior_levl = 0.5 => 2:1: unknown key `specular_ior_levl` in [materials.m]; did you mean `specular_ior_level`?
         [render] | microfacets = "single" => 2:1: unknown key `microfacets` in [render]; did you mean `microfacet`?
@@ -236,6 +237,7 @@ fn out_of_range_values_are_located() {
         [materials.m] | sheen_roughness = 2 => 2:19: [materials.m]: sheen_roughness must be in [0, 1], got 2
         [materials.m] | anisotropy = -0.1 => 2:14: [materials.m]: anisotropy must be in [0, 1], got -0.1
         [materials.m] | anisotropy_rotation = 1.5 => 2:23: [materials.m]: anisotropy_rotation must be in [0, 1], got 1.5
+        [materials.m] | diffuse_roughness = 1.5 => 2:21: [materials.m]: diffuse_roughness must be in [0, 1], got 1.5
         [materials.m] | thin_film_thickness = -5 => 2:23: [materials.m]: thin_film_thickness must be in [0, 100000] (nm), got -5
         [materials.m] | thin_film_ior = 0.5 => 2:17: [materials.m]: thin_film_ior must be at least 1, got 0.5
         [materials.m] | sheen_tint = [1, 1.5, 1] => 2:14: [materials.m]: sheen_tint must be in [0, 1], got 1.5

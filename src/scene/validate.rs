@@ -160,6 +160,7 @@ fn material(src: &Source, p: &[Seg], m: &Material) -> Result<(), SceneError> {
     }
     src.check(p, "ior", &[m.ior], "at least 1", |ior| ior >= 1.0)?;
     src.check(p, "roughness", &[m.roughness], "in [0, 1]", |r| (0.0..=1.0).contains(&r))?;
+    src.check(p, "diffuse_roughness", &[m.diffuse_roughness], "in [0, 1]", |r| (0.0..=1.0).contains(&r))?;
     src.check(p, "specular_tint", &m.specular_tint, "in [0, 1]", |t| (0.0..=1.0).contains(&t))?;
     src.check(p, "specular_ior_level", &[m.specular_ior_level], "in [0, 1]", |l| (0.0..=1.0).contains(&l))?;
     src.check(p, "coat", &[m.coat], "in [0, 1]", |c| (0.0..=1.0).contains(&c))?;

@@ -1,6 +1,6 @@
 """Materials whose shader nodes rt cannot render exactly, exported with rt_export.py, for
 `tests/blender_shader_nodes.rs`: every approximation is a warning naming the material and
-the node.
+the node (and a rough Diffuse BSDF, which rt renders as Cycles does, is not warned about).
 
     python tests/blender/shader_node_warnings.py OUT_DIR
 """

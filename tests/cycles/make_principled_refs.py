@@ -32,6 +32,9 @@ FILM_DIELECTRIC = {"Base Color": (0.1, 0.1, 0.12), "Roughness": 0.2, "Thin Film 
 FILM_METAL = {"Base Color": (0.9, 0.75, 0.5), "Metallic": 1.0, "Roughness": 0.3, "Thin Film IOR": 1.6}
 FILM_GLASS = {"Base Color": (1.0, 1.0, 1.0), "Transmission Weight": 1.0, "IOR": 1.5, "Roughness": 0.15,
               "Thin Film IOR": 1.33}
+# Diffuse Roughness (Cycles' energy-preserving Oren-Nayar) on a coloured base under the
+# default specular layer (Specular IOR Level 0.5).
+ROUGH_DIFFUSE = {"Base Color": (0.8, 0.35, 0.2), "Roughness": 0.5}
 
 # Per row: the inputs every sphere shares, and per sphere the inputs that change.
 ROWS = {
@@ -98,6 +101,8 @@ ROWS = {
     "thin_film_metal": (FILM_METAL, [{"Thin Film Thickness": t} for t in THICKNESSES]),
     "thin_film_metal_sun": (FILM_METAL, [{"Thin Film Thickness": t} for t in THICKNESSES]),
     "thin_film_glass": (FILM_GLASS, [{"Thin Film Thickness": t} for t in THICKNESSES]),
+    "diffuse_roughness": (ROUGH_DIFFUSE, [{"Diffuse Roughness": r} for r in STEPS]),
+    "diffuse_roughness_sun": (ROUGH_DIFFUSE, [{"Diffuse Roughness": r} for r in STEPS]),
     # Specular IOR Level 0 leaves no specular layer, but Cycles keeps one for a film (over index 1).
     "thin_film_level_zero": (
         {**FILM_DIELECTRIC, "Specular IOR Level": 0.0},
@@ -128,6 +133,7 @@ SUNLIT = {
     "anisotropy_radial_x_sun": FRONT_SUN,
     "thin_film_dielectric_sun": FRONT_SUN,
     "thin_film_metal_sun": FRONT_SUN,
+    "diffuse_roughness_sun": FRONT_SUN,
 }
 
 

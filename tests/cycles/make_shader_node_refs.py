@@ -15,6 +15,7 @@ import bpy
 
 import cycles_reference as cycles
 import make_principled_refs as principled_refs
+import make_texture_refs as refs
 
 
 def node(tree, kind, **inputs):
@@ -79,11 +80,20 @@ ROWS = {
         lambda t: mix(t, 0.25, diffuse(t, (0.9, 0.1, 0.1)), diffuse(t, (0.1, 0.1, 0.9))),
         lambda t: mix(t, 0.7, transparent(t), glossy(t, (0.9, 0.9, 0.2), 0.2)),
     ],
+    # The Diffuse BSDF's Roughness: Cycles' Oren-Nayar closure, the Principled's Diffuse Roughness.
+    "rough_diffuse_sun": [lambda t, r=r: diffuse(t, (0.3, 0.5, 0.9), r) for r in principled_refs.STEPS],
 }
+# Rows lit by a sun (from the front, in a dim world) rather than a white world.
+SUNLIT = {"rough_diffuse_sun": principled_refs.FRONT_SUN}
 
 
 def build(scene, name):
-    cycles.uniform_world(scene, (1.0, 1.0, 1.0))
+    if name in SUNLIT:
+        rotation, sky = SUNLIT[name]
+        cycles.uniform_world(scene, sky)
+        refs.sun(scene, rotation)
+    else:
+        cycles.uniform_world(scene, (1.0, 1.0, 1.0))
     principled_refs.sphere_row(scene, (material(f"{name}_{i}", make) for i, make in enumerate(ROWS[name])))
 
 

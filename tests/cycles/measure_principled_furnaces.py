@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """What Cycles keeps of white light: white Principled spheres at roughness 1 (metal, glass,
-a coated white diffuse) filling the view under a white world, the scenes of
-`tests/furnace.rs` (`kept`). Prints each image's mean luminance:
+a coated white diffuse, a rough Oren-Nayar diffuse) filling the view under a white world, the
+scenes of `tests/furnace.rs` (`kept`). Prints each image's mean luminance:
 
-    /work/main/.venv-bpy/bin/python tests/cycles/measure_principled_furnaces.py
+    /work/main/.venv-bpy/bin/python tests/cycles/measure_principled_furnaces.py [CASE...]
 
-Measured (Blender 5.0.1, 512 spp): metal 0.99975, glass 0.98540, coated 0.99988.
+Measured (Blender 5.0.1, 512 spp): metal 0.99975, glass 0.98540, coated 0.99988, rough_diffuse 0.99987.
 """
 
 import os
+import sys
 import tempfile
 
 import bpy
@@ -23,9 +24,12 @@ CASES = {
     "glass": {"Base Color": (1, 1, 1), "Transmission Weight": 1.0, "Roughness": 1.0, "IOR": 1.5},
     "coated": {"Base Color": (1, 1, 1), "Roughness": 1.0, "Specular IOR Level": 0.5},
     "coat": {"Base Color": (1, 1, 1), "Specular IOR Level": 0.0, "Coat Weight": 1.0, "Coat Roughness": 1.0},
+    "rough_diffuse": {"Base Color": (1, 1, 1), "Specular IOR Level": 0.0, "Diffuse Roughness": 1.0},
 }
 OUT = tempfile.mkdtemp()
 for name, inputs in CASES.items():
+    if sys.argv[1:] and name not in sys.argv[1:]:
+        continue
     scene = refs.reset()
     scene.render.resolution_x = scene.render.resolution_y = 32
     c = scene.cycles

@@ -55,6 +55,7 @@ fn feature_sets() -> Vec<FeatureSet> {
             thin_film: on(1) != on(6),
             layer_textures: on(0) != on(4) && on(3),
             uv_tangents: on(2) != on(6) && on(1),
+            rough_diffuse: on(3) != on(5),
         });
     }
     sets
@@ -94,6 +95,7 @@ fn plain() -> FeatureSet {
         thin_film: false,
         layer_textures: false,
         uv_tangents: false,
+        rough_diffuse: false,
     }
 }
 

@@ -1,6 +1,6 @@
 // The `transmission` lobe: a dielectric interface with exact Fresnel
-// reflectance and total internal reflection. Reflection is untinted, refraction
-// is tinted by `base_color`, and refracted radiance is scaled by 1/η² (radiance
+// reflectance and total internal reflection. Reflection is tinted only at normal
+// incidence, by `specular_tint` (as Cycles' Principled glass), refraction is tinted by `base_color`, and refracted radiance is scaled by 1/η² (radiance
 // is not conserved across a change of index). See `refraction_tint`.
 
 //#include "constants.wgsl"
@@ -32,7 +32,21 @@ fn glass_fresnel(ctx: ShadingContext, cos_i: f32) -> vec3f {
         return thin_film_glass(ctx.m, cos_i, ctx.eta);
     }
     //#endif
-    return vec3f(fresnel_dielectric(cos_i, ctx.eta));
+    let f = fresnel_dielectric(cos_i, ctx.eta);
+    if all(ctx.m.specular_tint == vec3f(1.0)) {
+        return vec3f(f);
+    }
+    return specular_tinted_fresnel(f, ctx.m.specular_tint, ctx.m.ior);
+}
+
+// Cycles' Principled glass (a generalised Schlick Fresnel that follows the real curve):
+// F0 is tinted by Specular Tint, and the real Fresnel's rise from its F0 to 1 (at grazing
+// angles and in total internal reflection) is kept, per channel.
+fn specular_tinted_fresnel(f: f32, tint: vec3f, ior: f32) -> vec3f {
+    let r = (ior - 1.0) / (ior + 1.0);
+    let f0_real = r * r;
+    let s = saturate((f - f0_real) / (1.0 - f0_real));
+    return mix(saturate(f0_real * tint), vec3f(1.0), s);
 }
 
 fn mean3(v: vec3f) -> f32 {

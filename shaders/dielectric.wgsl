@@ -1,7 +1,8 @@
-// The `transmission` lobe: a dielectric interface with exact Fresnel
-// reflectance and total internal reflection. Reflection is tinted only at normal
-// incidence, by `specular_tint` (as Cycles' Principled glass), refraction is tinted by `base_color`, and refracted radiance is scaled by 1/η² (radiance
-// is not conserved across a change of index). See `refraction_tint`.
+// The `transmission` lobe: a dielectric interface with exact Fresnel reflectance and
+// total internal reflection. Reflection is tinted only towards normal incidence, by
+// `specular_tint` (as Cycles' Principled glass); refraction is tinted by `base_color`,
+// and refracted radiance is scaled by 1/η² (radiance is not conserved across a change of
+// index). See `refraction_tint`.
 
 //#include "constants.wgsl"
 //#include "rng.wgsl"

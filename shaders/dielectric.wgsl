@@ -44,8 +44,7 @@ fn glass_fresnel(ctx: ShadingContext, cos_i: f32) -> vec3f {
 // F0 is tinted by Specular Tint, and the real Fresnel's rise from its F0 to 1 (at grazing
 // angles and in total internal reflection) is kept, per channel.
 fn specular_tinted_fresnel(f: f32, tint: vec3f, ior: f32) -> vec3f {
-    let r = (ior - 1.0) / (ior + 1.0);
-    let f0_real = r * r;
+    let f0_real = fresnel_dielectric_f0(ior);
     let s = saturate((f - f0_real) / (1.0 - f0_real));
     return mix(saturate(f0_real * tint), vec3f(1.0), s);
 }

@@ -92,8 +92,7 @@ struct CoatLayer {
 }
 
 fn coat_layer(m: Material, mu: f32) -> CoatLayer {
-    let r = (m.coat_ior - 1.0) / (m.coat_ior + 1.0);
-    let f0 = r * r;
+    let f0 = fresnel_dielectric_f0(m.coat_ior);
     let estimate = mix(f0, 1.0, coating_fresnel_s(sqrt(m.coat_alpha), mu, m.coat_ior));
     var energy = vec3f(1.0);
     var darkening = 1.0;

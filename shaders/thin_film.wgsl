@@ -115,8 +115,7 @@ fn thin_film_dielectric(m: Material, cos_1: f32, substrate: f32, film_ior: f32) 
 // Schlick): each channel scaled by f0 / F0 of the index, the more the closer it lies to
 // that F0 than to 1.
 fn thin_film_f0_scaled(f: vec3f, f0: vec3f, eta: f32) -> vec3f {
-    let r = (eta - 1.0) / (eta + 1.0);
-    let f0_real = r * r;
+    let f0_real = fresnel_dielectric_f0(eta);
     if f0_real <= 1e-5 || all(f == vec3f(1.0)) {
         return f;
     }
@@ -135,8 +134,7 @@ fn thin_film_coating(m: Material, cos_i: f32) -> vec3f {
 fn thin_film_glass(m: Material, cos_i: f32, eta: f32) -> vec3f {
     let film_ior = select(m.thin_film_ior / m.ior, m.thin_film_ior, eta == m.ior);
     let f = thin_film_dielectric(m, cos_i, eta, film_ior);
-    let r = (m.ior - 1.0) / (m.ior + 1.0);
-    return thin_film_f0_scaled(f, saturate(r * r * m.specular_tint), eta);
+    return thin_film_f0_scaled(f, saturate(fresnel_dielectric_f0(m.ior) * m.specular_tint), eta);
 }
 
 // The reflectances of a conductor of index n + ik under a film of index `eta1` at `cos_i`

@@ -3,21 +3,15 @@
 
 use crate::common;
 
-use common::{bpy_python, repo, temp_dir};
+use common::temp_dir;
 use rt::scene::Sky;
 use rt::sky::EnvironmentImage;
 use serde_json::Value;
-use std::process::Command;
 
 /// Runs the export script into a folder of its own named `name`.
 fn run_export(name: &str) -> (std::path::PathBuf, Value) {
     let out = temp_dir(name);
-    let result = Command::new(bpy_python())
-        .arg(repo().join("tests/blender/environment.py"))
-        .arg(&out)
-        .output()
-        .expect("bpy runs");
-    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    common::run_bpy_script("environment.py", &out);
     let report = std::fs::read_to_string(out.join("report.json")).expect("report.json");
     (out.clone(), serde_json::from_str(&report).expect("report parses"))
 }

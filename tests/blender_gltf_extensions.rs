@@ -7,11 +7,10 @@
 
 use crate::common;
 
-use common::{repo, temp_dir};
+use common::temp_dir;
 use rt::scene::Material;
 use serde_json::Value;
 use std::path::Path;
-use std::process::Command;
 
 fn materials(path: &Path) -> Vec<(String, Material)> {
     rt::asset::gltf_import::load(path).unwrap_or_else(|e| panic!("{e}")).materials
@@ -37,11 +36,8 @@ fn assert_as_blender(what: &str, m: &Material, blender: &Value) {
 
 #[test]
 fn sheen_and_anisotropy_import_as_in_blender_and_survive_the_export() {
-    let python = std::env::var_os("RT_BPY_PYTHON").expect("RT_BPY_PYTHON names a Python with bpy==5.0.1");
     let out = temp_dir("blender-gltf-extensions");
-    let result =
-        Command::new(python).arg(repo().join("tests/blender/gltf_extensions.py")).arg(&out).output().expect("bpy runs");
-    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    common::run_bpy_script("gltf_extensions.py", &out);
     let report: Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).expect("report")).expect("JSON");
     let names = ["sheen_anisotropy", "defaults"];

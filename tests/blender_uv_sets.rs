@@ -4,21 +4,14 @@
 
 use crate::common;
 
-use common::{bpy_python, repo, temp_dir};
+use common::temp_dir;
 use rt::asset::load_mesh;
 use serde_json::Value;
-use std::process::Command;
 
 #[test]
 fn the_exporter_writes_second_uv_maps_and_bakes_procedural_sockets() {
     let out = temp_dir("blender-uv-sets-bake");
-    let result = Command::new(bpy_python())
-        .arg(repo().join("tests/blender/uv_sets_bake.py"))
-        .arg(&out)
-        .output()
-        .expect("bpy runs");
-    let log = String::from_utf8_lossy(&result.stderr);
-    assert!(result.status.success(), "{log}");
+    let log = common::run_bpy_script("uv_sets_bake.py", &out);
     let report: Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).expect("report")).expect("JSON");
 

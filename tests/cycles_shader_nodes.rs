@@ -10,9 +10,6 @@
 use crate::common;
 use crate::cycles_principled::check_row;
 
-use common::{bpy_python, repo};
-use std::process::Command;
-
 #[test]
 fn single_nodes_match_cycles() {
     check_row("nodes_single");
@@ -32,15 +29,8 @@ fn mixed_and_added_nodes_match_cycles() {
 
 #[test]
 fn unmappable_nodes_warn_naming_material_and_node() {
-    let out = std::env::temp_dir().join(format!("rt-test-{}-shader-node-warnings", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
-    let run = Command::new(bpy_python())
-        .arg(repo().join("tests/blender/shader_node_warnings.py"))
-        .arg(&out)
-        .output()
-        .expect("bpy runs");
-    let stderr = String::from_utf8_lossy(&run.stderr);
-    assert!(run.status.success(), "export failed:\n{stderr}");
+    let out = common::empty_temp_dir("shader-node-warnings");
+    let stderr = common::run_bpy_script("shader_node_warnings.py", &out);
     for needle in [
         "toon_mat: 'Cartoon' (ShaderNodeBsdfToon): this shader node is not supported by rt",
         "toon_mat: its surface is rendered with the material's viewport colour",

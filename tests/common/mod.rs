@@ -97,6 +97,19 @@ pub fn bpy_python() -> PathBuf {
         .clone()
 }
 
+/// Runs `tests/blender/<script>` with Blender's Python, its output folder `out` the
+/// argument, and returns what it wrote to stderr; panics with that log if it fails.
+pub fn run_bpy_script(script: &str, out: &Path) -> String {
+    let result = std::process::Command::new(bpy_python())
+        .arg(repo().join("tests/blender").join(script))
+        .arg(out)
+        .output()
+        .expect("bpy runs");
+    let log = String::from_utf8_lossy(&result.stderr).into_owned();
+    assert!(result.status.success(), "{script} failed:\n{log}");
+    log
+}
+
 /// A closed, subdivided icosahedron of unit radius as OBJ text.
 pub fn icosphere_obj(subdivisions: u32) -> (String, Vec<[f64; 3]>, Vec<[usize; 3]>) {
     let t = (1.0 + 5f64.sqrt()) / 2.0;

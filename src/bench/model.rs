@@ -149,7 +149,10 @@ pub fn log_log_slope(points: &[(f64, f64)]) -> Option<f64> {
 /// SSIM has no one power law: under heavy noise its contrast term saturates and 1 − SSIM
 /// falls nearer 1/√spp, under light noise as 1/spp; the last measured slope is the
 /// shallower one, so a prediction beyond the levels errs towards more samples. `None`
-/// where the last segment does not fall (more samples did not help).
+/// where the last segment does not fall (more samples did not help), and beyond the
+/// highest level where it falls more slowly than 1/√spp: noise alone falls at least that
+/// fast, so a flatter slope is a floor (pixels that stopped sampling, a denoiser's bias)
+/// that more samples do not get under, not a rate to extrapolate.
 pub fn spp_for_dssim(points: &[(f64, f64)], target: f64) -> Option<f64> {
     let mut pts: Vec<(f64, f64)> =
         points.iter().filter(|(x, y)| *x > 0.0 && *y > 0.0).map(|(x, y)| (x.ln(), y.ln())).collect();
@@ -171,7 +174,10 @@ pub fn spp_for_dssim(points: &[(f64, f64)], target: f64) -> Option<f64> {
     }
     match pts.windows(2).find(|w| w[0].1 > goal && goal >= w[1].1) {
         Some(w) => along(w[0], w[1]),
-        None => along(pts[pts.len() - 2], pts[pts.len() - 1]),
+        None => {
+            let (a, b) = (pts[pts.len() - 2], pts[pts.len() - 1]);
+            ((b.1 - a.1) / (b.0 - a.0) <= -0.5).then(|| along(a, b)).flatten()
+        }
     }
 }
 
@@ -193,6 +199,11 @@ mod tests {
         assert!((spp_for_dssim(&pts, 0.03125).expect("reachable") - 128.0).abs() < 1e-9);
         // More samples that did not help predict nothing.
         assert_eq!(spp_for_dssim(&[(4.0, 0.2), (16.0, 0.1), (64.0, 0.1)], 0.01), None);
+        // Nor do ones that barely helped: a floor is not extrapolated to astronomical spp.
+        assert_eq!(spp_for_dssim(&[(16.0, 0.04), (64.0, 0.035), (256.0, 0.0349)], 0.01), None);
+        // Falling as 1/√spp is still noise, and extrapolated.
+        let got = spp_for_dssim(&[(16.0, 0.04), (64.0, 0.02)], 0.01).expect("reachable");
+        assert!((got - 256.0).abs() < 1e-6, "{got}");
         assert_eq!(spp_for_dssim(&[(4.0, 0.2)], 0.01), None);
     }
 

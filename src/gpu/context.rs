@@ -21,9 +21,10 @@ pub struct GpuContext {
 }
 
 /// Storage buffers the integrator binds in one stage: 18 in the scene group (see
-/// `shaders/common.wgsl`; the microfacet tables' in `shaders/microfacet_tables.wgsl`), 5 of
-/// the accumulation (with AOVs and adaptive sampling's counts) and the atmosphere's tables.
-const STORAGE_BUFFERS_NEEDED: u32 = 24;
+/// `shaders/common.wgsl`; the microfacet tables' in `shaders/microfacet_tables.wgsl`), 6 of
+/// the accumulation (with AOVs, adaptive sampling's counts and the lanes' chunk counters)
+/// and the atmosphere's tables.
+const STORAGE_BUFFERS_NEEDED: u32 = 25;
 
 const NO_ADAPTER_HELP: &str = "no GPU adapter found. rt needs Vulkan; on a machine without a GPU, \
 install Mesa's CPU driver (lavapipe): `sudo apt-get install mesa-vulkan-drivers`";

@@ -36,7 +36,7 @@ impl PipelineCache {
         Self {
             scene_layout: scene_bind_group_layout(&ctx.device),
             // Means, non-finite counts, lane scratch, AOVs, adaptive sampling's counts.
-            accumulation_layout: io_bind_group_layout(&ctx.device, 5),
+            accumulation_layout: io_bind_group_layout(&ctx.device, 6),
             trace_layout: io_bind_group_layout(&ctx.device, 2),
             sky_layout: sky_bind_group_layout(&ctx.device, false),
             files: ShaderFiles::BuiltIn,

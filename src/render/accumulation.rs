@@ -42,6 +42,9 @@ pub struct Accumulation {
     /// Samples spread over lanes wait here for `reduce_lanes` (a token buffer when
     /// the image is large enough to keep the GPU busy on its own).
     lane_samples: wgpu::Buffer,
+    /// Per pixel, the chunks of samples its lanes claimed (`next_sample` in
+    /// `shaders/integrator.wgsl`): zeroed before each dispatch over lanes.
+    lane_chunks: wgpu::Buffer,
     /// The AOVs' running means (a token buffer until a render asks for them).
     aovs: wgpu::Buffer,
     /// Samples taken per pixel under adaptive sampling (a token buffer until then).
@@ -90,9 +93,10 @@ impl Accumulation {
         let cpu = ctx.adapter_info.device_type == wgpu::DeviceType::Cpu;
         let lanes_wanted = if cpu { 1 } else { GPU_INVOCATIONS.div_ceil(pixels).min(MAX_LANES as u64) as u32 };
         let lane_samples = buffer("lane samples", SAMPLE_BYTES);
+        let lane_chunks = buffer("lane chunks", 16);
         let aovs = buffer("aovs", AOV_BYTES);
         let pixel_samples = buffer("pixel samples", 16);
-        let buffers = [&means, &non_finite, &lane_samples, &aovs, &pixel_samples];
+        let buffers = [&means, &non_finite, &lane_samples, &aovs, &pixel_samples, &lane_chunks];
         let bind_group = crate::gpu::bind_group(ctx, "accumulation", layout, &buffers);
         let mut acc = Self {
             width,
@@ -101,6 +105,7 @@ impl Accumulation {
             means,
             non_finite,
             lane_samples,
+            lane_chunks,
             aovs,
             pixel_samples,
             bind_group,
@@ -129,11 +134,18 @@ impl Accumulation {
             usage: wgpu::BufferUsages::STORAGE,
             mapped_at_creation: false,
         });
+        self.lane_chunks = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("lane chunks"),
+            size: pixels * 4,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         self.rebind(ctx, layout);
     }
 
     fn rebind(&mut self, ctx: &GpuContext, layout: &wgpu::BindGroupLayout) {
-        let buffers = [&self.means, &self.non_finite, &self.lane_samples, &self.aovs, &self.pixel_samples];
+        let buffers =
+            [&self.means, &self.non_finite, &self.lane_samples, &self.aovs, &self.pixel_samples, &self.lane_chunks];
         self.bind_group = crate::gpu::bind_group(ctx, "accumulation", layout, &buffers);
     }
 
@@ -218,6 +230,9 @@ impl Accumulation {
         let n = frame.samples_per_dispatch;
         let frame = GpuFrame { sample_base: self.samples, ..*frame };
         scene.write_frame(ctx, &frame);
+        if lanes > 1 {
+            encoder.clear_buffer(&self.lane_chunks, 0, None);
+        }
         let mut pass =
             encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("render"), timestamp_writes });
         pass.set_bind_group(0, &scene.bind_group, &[]);

@@ -2,7 +2,8 @@
 //! converged state, closer to a converged render than the raw frame of the same samples
 //! written beside it; refinement goes on while the denoiser runs; a reload gets a denoise
 //! of its own state, never one of the state before; and a missing library stops
-//! `rt watch --denoise` at start, as it stops `rt render --denoise`.
+//! `rt watch --denoise` at start, as it stops `rt render --denoise`. The window's test is
+//! in `watch_denoise/window.rs`.
 
 use crate::common;
 
@@ -84,6 +85,9 @@ fn denoise_is_not_an_option_of_stream() {
     assert!(stderr.contains("--denoise") && stderr.contains("--stream"), "{stderr}");
 }
 
+#[cfg(feature = "denoise")]
+mod window;
+
 /// What needs Open Image Denoise.
 #[cfg(feature = "denoise")]
 mod with_open_image_denoise {
@@ -146,7 +150,7 @@ mod with_open_image_denoise {
     }
 
     /// What `rt watch --denoise` renders of `scene` at `spp` (seed 0, its AOVs), rendered here.
-    fn render_here(scene: &Path, spp: u32) -> (rt::render::Image, rt::render::Aovs) {
+    pub(super) fn render_here(scene: &Path, spp: u32) -> (rt::render::Image, rt::render::Aovs) {
         let mut scene = rt::scene::load(scene).unwrap_or_else(|e| panic!("{e}"));
         let flags =
             rt::render::RenderFlags { spp: Some(spp), size: Some((SIZE, SIZE)), aovs: true, ..Default::default() };
@@ -173,10 +177,13 @@ mod with_open_image_denoise {
     }
 
     fn worst_difference(a: &[[f32; 3]], b: &[[f32; 3]]) -> f32 {
-        a.iter().zip(b).flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs() / (1.0 + b[c].abs()))).fold(0.0, f32::max)
+        a.iter()
+            .zip(b)
+            .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs() / (1.0 + b[c].abs())))
+            .fold(0.0, f32::max)
     }
 
-    fn denoise_here(image: &rt::render::Image, aovs: &rt::render::Aovs) -> Vec<[f32; 3]> {
+    pub(super) fn denoise_here(image: &rt::render::Image, aovs: &rt::render::Aovs) -> Vec<[f32; 3]> {
         let mut denoiser =
             rt::denoise::Denoiser::new(rt::denoise::DenoiseDevice::Auto).unwrap_or_else(|e| panic!("{e:#}"));
         denoiser.denoise(image, aovs).unwrap_or_else(|e| panic!("{e:#}"))
@@ -303,7 +310,8 @@ mod with_open_image_denoise {
             let (code, stderr) = run(args);
             assert_eq!(code, Some(1), "{args:?}: {stderr}");
             let missing = dir.join("lib").join("libOpenImageDenoise.so.2");
-            for part in ["--denoise", "Open Image Denoise is missing", &missing.display().to_string(), "scripts/fetch_oidn"]
+            for part in
+                ["--denoise", "Open Image Denoise is missing", &missing.display().to_string(), "scripts/fetch_oidn"]
             {
                 assert!(stderr.contains(part), "{args:?}: no {part:?} in: {stderr}");
             }

@@ -161,8 +161,13 @@ mod tests {
             std_error: vec![0.0; n],
             sample_counts: vec![samples; n],
         };
-        let aovs =
-            Aovs { width: 2, height: 2, albedo: vec![[0.5; 3]; n], normal: vec![[0.0, 0.0, 1.0]; n], depth: vec![1.0; n] };
+        let aovs = Aovs {
+            width: 2,
+            height: 2,
+            albedo: vec![[0.5; 3]; n],
+            normal: vec![[0.0, 0.0, 1.0]; n],
+            depth: vec![1.0; n],
+        };
         (image, aovs)
     }
 

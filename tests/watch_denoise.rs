@@ -11,8 +11,6 @@ use common::temp_dir;
 use std::path::PathBuf;
 use std::process::Command;
 
-const SIZE: u32 = 64;
-
 /// The Cornell box with a ball of `color` in it, refined to `spp` (its `[render]` spp).
 fn scene_text(color: [f32; 3], spp: u32) -> String {
     let box_obj = common::repo().join("assets/cornell_box/cornell_box.obj");
@@ -91,10 +89,12 @@ mod window;
 /// What needs Open Image Denoise.
 #[cfg(feature = "denoise")]
 mod with_open_image_denoise {
-    use super::{SIZE, common, project, scene_text, temp_dir};
+    use super::{common, project, scene_text, temp_dir};
     use std::path::Path;
     use std::process::{Child, Command, Stdio};
     use std::time::{Duration, Instant};
+
+    pub(super) const SIZE: u32 = 64;
 
     /// `rt watch --headless --denoise` on `scene`, EXR frames, with `extra` flags.
     fn start(scene: &Path, frames: &Path, extra: &[&str]) -> Child {

@@ -2,8 +2,8 @@
 //! is the display of its denoise, the title says `denoised` while it is shown, and `N`
 //! (pressed through XTest) turns it to `raw` and back.
 
-use super::with_open_image_denoise::{denoise_here, render_here};
-use super::{SIZE, project, scene_text};
+use super::with_open_image_denoise::{SIZE, denoise_here, render_here};
+use super::{project, scene_text};
 use rt::render::tonemap::display_pixel;
 use std::ffi::{CStr, CString};
 use std::io::{BufRead, BufReader};

@@ -207,7 +207,7 @@ mod with_open_image_denoise {
         let runs = denoises(&log, 0);
         let samples: Vec<u32> = runs.iter().map(|r| r.0).collect();
         eprintln!("denoises (spp, refined to when it came back): {runs:?}");
-        assert!(samples.len() >= 3 && samples[0] >= 4 && samples[0] < spp, "{log:#?}");
+        assert!(samples.len() >= 2 && samples[0] >= 4 && samples[0] < spp, "{log:#?}");
         assert_eq!(samples.last(), Some(&spp), "the converged image is denoised: {log:#?}");
         assert!(samples.windows(2).all(|w| w[1] >= 2 * w[0] || w[1] == spp), "{samples:?}");
         for &(denoised, refined) in &runs {
@@ -261,15 +261,21 @@ mod with_open_image_denoise {
         let old = denoises(&log, 0);
         let new = denoises(&log, 1);
         eprintln!("state 0 denoised at {old:?}, state 1 at {new:?}");
-        // The new state's denoises count its own samples from none: the first of them at 4
-        // to 31 (counting on from the old state's, whose last was at 16 or more, it would
-        // wait for 32 or more), the last of the converged image.
+        // The new state's denoises count its own samples from none, up to the converged
+        // image's. With no denoise of the old state in flight at the reload (none dropped),
+        // the first is sent at the first dispatch past 4 samples: 4 to 7, since a dispatch
+        // after a restart takes one sample and each next at most twice the last's (counting
+        // on from the old state's, whose last was at 16 or more, it would wait for 32).
         let samples: Vec<u32> = new.iter().map(|r| r.0).collect();
         assert!(old.last().is_some_and(|o| o.0 >= 16), "{log:#?}");
-        assert!(samples.first().is_some_and(|s| (4..32).contains(s)) && samples.last() == Some(&64), "{log:#?}");
-        let reload = log.iter().position(|l| l.starts_with("reload #1 ")).expect("reload line");
-        let first_new = log.iter().position(|l| l.starts_with("denoise #1 ")).expect("a denoise of state 1");
-        assert!(reload < first_new, "{log:#?}");
+        assert!(samples.iter().all(|s| (4..=64).contains(s)) && samples.last() == Some(&64), "{log:#?}");
+        let at = |prefix: &str| log.iter().position(|l| l.starts_with(prefix));
+        let reload = at("reload #1 ").expect("reload line");
+        assert!(at("denoise #1 ").is_some_and(|first| reload < first), "{log:#?}");
+        match at("denoise dropped ") {
+            None => assert!((4..=7).contains(&samples[0]), "{log:#?}"),
+            Some(dropped) => assert!(reload < dropped, "a denoise dropped before the reload: {log:#?}"),
+        }
         assert!(!frames.join("frame-0000.exr").exists(), "the first state never converged");
 
         let frame = exr(&frames.join("frame-0001.exr"));

@@ -3,7 +3,7 @@
 //! `frame-NNNN.png` (or `.exr`), NNNN being the reload's number. For tests, CI and
 //! measuring latency. It stops when `DIR/stop` appears, or after `--max-reloads`.
 //! With `--denoise`, the frame is the denoise of the converged image, and the raw image
-//! is written beside it as `frame-NNNN-raw.png`.
+//! is written beside it as `frame-NNNN-raw.png` (or `.exr`).
 
 use super::fs_watch::{Batch, FileWatcher};
 use super::headless_denoise::HeadlessDenoise;

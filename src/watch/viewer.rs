@@ -1,8 +1,9 @@
 //! `rt watch`'s window (winit + a wgpu surface): the running mean, refined every frame,
 //! re-rendered as the scene's files change; the title shows spp, samples/s, ms per
 //! frame and the last reload, or the error of the last failed one. With `--frames-dir`
-//! it also writes each state's display as `frame-NNNN.png` once it reaches `--spp`,
-//! and stops on `DIR/stop` or `--max-reloads`, like headless mode.
+//! it also writes each state's display as `frame-NNNN.png` once it reaches `--spp`
+//! (with `--denoise`, once the denoise of that image is shown), and stops on `DIR/stop`
+//! or `--max-reloads`, like headless mode.
 
 use super::camera_control::dolly;
 use super::denoised_view::DenoisedView;

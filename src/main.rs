@@ -191,9 +191,10 @@ struct WatchArgs {
     dev: Option<PathBuf>,
     #[arg(long, value_enum, default_value_t)]
     quality: BuildQuality,
-    /// Show the image denoised with Open Image Denoise once it has 4 samples per pixel
-    /// (`N` toggles it; the window only).
-    #[arg(long)]
+    /// Denoise with Open Image Denoise once the image has 4 samples per pixel, again each
+    /// time they double: the window shows it (`N` toggles it); headless, each frame is
+    /// written denoised and the raw one beside it as frame-NNNN-raw.
+    #[arg(long, conflicts_with = "stream")]
     denoise: bool,
     /// Where Open Image Denoise runs: auto takes a CUDA GPU when it has one, else the CPU.
     #[arg(long, value_enum, default_value_t, requires = "denoise")]
@@ -505,6 +506,11 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
 }
 
 fn watch(args: WatchArgs, adapter: Option<&str>) -> Result<()> {
+    // Before any GPU or window: a missing denoiser is known at once, as with `rt render`.
+    let denoiser = match args.denoise {
+        true => Some(Denoiser::new(args.denoise_device).context("--denoise")?),
+        false => None,
+    };
     let options = rt::watch::WatchOptions {
         scene: args.scene,
         quality: args.quality,
@@ -528,9 +534,9 @@ fn watch(args: WatchArgs, adapter: Option<&str>) -> Result<()> {
     } else if args.headless {
         let ctx = GpuContext::new(adapter)?;
         eprintln!("GPU: {}", ctx.describe());
-        rt::watch::run_headless(&ctx, &options, None)
+        rt::watch::run_headless(&ctx, &options, None, denoiser)
     } else {
-        rt::watch::run_window(adapter, options, args.denoise.then_some(args.denoise_device))
+        rt::watch::run_window(adapter, options, denoiser)
     }
 }
 

@@ -60,4 +60,5 @@ mod texture_inputs;
 mod textures;
 mod trace_reference;
 mod watch;
+mod watch_denoise;
 mod watch_stream;

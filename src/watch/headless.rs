@@ -2,11 +2,15 @@
 //! reload) is refined to the target spp and written to the frames folder as
 //! `frame-NNNN.png` (or `.exr`), NNNN being the reload's number. For tests, CI and
 //! measuring latency. It stops when `DIR/stop` appears, or after `--max-reloads`.
+//! With `--denoise`, the frame is the denoise of the converged image, and the raw image
+//! is written beside it as `frame-NNNN-raw.png` (or `.exr`).
 
 use super::fs_watch::{Batch, FileWatcher};
+use super::headless_denoise::HeadlessDenoise;
 use super::live::LiveScene;
 use super::reload_log::ReloadLog;
-use crate::render::{ImageFormat, Pacing, write_image};
+use crate::denoise::Denoiser;
+use crate::render::{Image, ImageFormat, Pacing, Session, write_image};
 use anyhow::Result;
 use std::path::{Path, PathBuf};
 use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender};
@@ -28,6 +32,8 @@ pub struct HeadlessOptions {
     pub max_reloads: Option<u32>,
     /// Told (reload number, when) as each state's first frame is done: for latency benchmarks.
     pub first_frames: Option<Sender<(u32, Instant)>>,
+    /// With `--denoise`.
+    pub denoiser: Option<Denoiser>,
 }
 
 /// The state being refined: which reload made it, and when its edit was seen.
@@ -42,11 +48,12 @@ pub fn run(
     live: &mut LiveScene,
     watcher: &mut FileWatcher,
     batches: &Receiver<Batch>,
-    options: &HeadlessOptions,
+    options: HeadlessOptions,
     log: &mut ReloadLog,
     opened_at: Instant,
 ) -> Result<()> {
     live.session.set_pacing(PACING);
+    let mut denoise = options.denoiser.map(HeadlessDenoise::new);
     let mut state = State { number: 0, since: opened_at, first_frame: None, written: false };
     let stop_file = options.frames_dir.join(STOP_FILE);
     let mut pending: Option<Batch> = None;
@@ -82,11 +89,28 @@ pub fn run(
             }
         }
         let session = &live.session;
+        if let Some(denoise) = &mut denoise {
+            denoise.refine(session, state.number, log)?;
+        }
         if session.converged() && !state.written {
-            let file = options.frames_dir.join(format!("frame-{:04}.{}", state.number, options.format.extension()));
-            write_image(&session.image()?, &file, session.scene().render.exposure)?;
+            let name = |suffix: &str| format!("frame-{:04}{suffix}.{}", state.number, options.format.extension());
+            let file = options.frames_dir.join(name(""));
+            let raw = session.image()?;
+            let raw_file = match &mut denoise {
+                Some(denoise) => {
+                    let clean = denoise.converged(session, state.number, log)?;
+                    write(session, &Image { pixels: clean, ..raw.clone() }, &file)?;
+                    let raw_file = options.frames_dir.join(name("-raw"));
+                    write(session, &raw, &raw_file)?;
+                    Some(raw_file)
+                }
+                None => {
+                    write(session, &raw, &file)?;
+                    None
+                }
+            };
             let first_frame = state.first_frame.unwrap_or_default();
-            log.frame(state.number, session.samples(), &file, first_frame, state.since.elapsed());
+            log.frame(state.number, session.samples(), &file, raw_file.as_deref(), first_frame, state.since.elapsed());
             state.written = true;
             if options.max_reloads.is_some_and(|max| state.number >= max) {
                 return Ok(());
@@ -100,6 +124,10 @@ pub fn run(
             }
         }
     }
+}
+
+fn write(session: &Session, image: &Image, file: &Path) -> Result<()> {
+    write_image(image, file, session.scene().render.exposure)
 }
 
 /// A stop file left from an earlier run (one that was killed before it saw it) must

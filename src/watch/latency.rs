@@ -91,7 +91,7 @@ pub fn watch_latency(asset: &Path, (width, height): (u32, u32), runs: u32, adapt
         let _ = std::fs::write(frames_dir.join(STOP_FILE), "");
         result
     });
-    let watched = run_headless(&ctx, &options, Some(tx));
+    let watched = run_headless(&ctx, &options, Some(tx), None);
     let latencies = editor.join().map_err(|_| anyhow!("the editing thread panicked"))??;
     watched?;
     for (what, times) in ["camera move", "material change", &format!("{name} re-export")].iter().zip(latencies) {

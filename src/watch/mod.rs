@@ -5,10 +5,13 @@
 //! drives it with commands and receives its frames (`stream`: Blender's viewport).
 
 mod camera_control;
+pub mod denoise_schedule;
+pub mod denoise_worker;
 mod denoised_view;
 mod display;
 pub mod fs_watch;
 pub mod headless;
+mod headless_denoise;
 mod input;
 pub mod latency;
 pub mod live;
@@ -24,7 +27,7 @@ pub use live::LiveScene;
 pub use reload_log::LOG_FILE;
 
 use crate::bvh::BuildQuality;
-use crate::denoise::DenoiseDevice;
+use crate::denoise::Denoiser;
 use crate::gpu::GpuContext;
 use crate::render::{ImageFormat, RenderFlags};
 use anyhow::{Context, Result};
@@ -46,11 +49,12 @@ pub struct WatchOptions {
     pub max_reloads: Option<u32>,
 }
 
-/// `rt watch --headless`.
+/// `rt watch --headless`; with `denoiser`, each frame is written denoised, the raw one beside it.
 pub fn run_headless(
     ctx: &GpuContext,
     options: &WatchOptions,
     first_frames: Option<std::sync::mpsc::Sender<(u32, Instant)>>,
+    denoiser: Option<Denoiser>,
 ) -> Result<()> {
     let frames_dir = options.frames_dir.clone().context("--headless needs --frames-dir")?;
     let mut log = ReloadLog::new(Some(&frames_dir))?;
@@ -63,12 +67,20 @@ pub fn run_headless(
     })?;
     watcher.watch(&live.watched_files());
     log.write(&format!("watching {} ({} files)", options.scene.display(), live.watched_files().len()));
-    let headless =
-        HeadlessOptions { frames_dir, format: options.format, max_reloads: options.max_reloads, first_frames };
-    headless::run(&mut live, &mut watcher, &rx, &headless, &mut log, opened_at)
+    if let Some(denoiser) = &denoiser {
+        log.write(&format!("denoising with Open Image Denoise on {}", denoiser.describe()));
+    }
+    let headless = HeadlessOptions {
+        frames_dir,
+        format: options.format,
+        max_reloads: options.max_reloads,
+        first_frames,
+        denoiser,
+    };
+    headless::run(&mut live, &mut watcher, &rx, headless, &mut log, opened_at)
 }
 
-/// `rt watch`: a window; with `denoise`, the denoised image is shown, made on that device.
-pub fn run_window(adapter: Option<&str>, options: WatchOptions, denoise: Option<DenoiseDevice>) -> Result<()> {
-    viewer::run(adapter, options, denoise)
+/// `rt watch`: a window; with `denoiser`, the denoised image is shown.
+pub fn run_window(adapter: Option<&str>, options: WatchOptions, denoiser: Option<Denoiser>) -> Result<()> {
+    viewer::run(adapter, options, denoiser)
 }

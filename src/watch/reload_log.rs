@@ -6,9 +6,12 @@
 //! reload #4 kind=materials cause=scene.toml ms=40.1 features=[triangles glass sky=uniform sampling=nee]
 //! error cause=scene.toml message="scene.toml:4:9: expected `]`"
 //! frame #3 spp=16 file=frame-0003.png first_frame_ms=35.0 converged_ms=180.2
+//! denoise #4 spp=8 ms=21.4 refined_to=12
+//! frame #4 spp=16 file=frame-0004.png raw=frame-0004-raw.png first_frame_ms=34.1 converged_ms=210.9
 //! ```
 //!
-//! `features=` appears when the reload switched to another specialised pipeline.
+//! `features=` appears when the reload switched to another specialised pipeline; `denoise`
+//! lines and `raw=` with `--denoise`.
 
 use super::live::ReloadReport;
 use super::sources::names;
@@ -67,11 +70,21 @@ impl ReloadLog {
     }
 
     /// A state reached its target: `first_frame` after the edit its first frame was done,
-    /// `converged` after it the image was written.
-    pub fn frame(&mut self, number: u32, spp: u32, file: &Path, first_frame: Duration, converged: Duration) {
-        let name = file.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    /// `converged` after it the image was written (with `raw`, the raw one beside it).
+    pub fn frame(
+        &mut self,
+        number: u32,
+        spp: u32,
+        file: &Path,
+        raw: Option<&Path>,
+        first_frame: Duration,
+        converged: Duration,
+    ) {
+        let name = |file: &Path| file.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        let raw = raw.map(|raw| format!(" raw={}", name(raw))).unwrap_or_default();
         self.write(&format!(
-            "frame #{number} spp={spp} file={name} first_frame_ms={:.1} converged_ms={:.1}",
+            "frame #{number} spp={spp} file={}{raw} first_frame_ms={:.1} converged_ms={:.1}",
+            name(file),
             ms(first_frame),
             ms(converged)
         ));

@@ -1,8 +1,9 @@
 //! `rt watch`'s window (winit + a wgpu surface): the running mean, refined every frame,
 //! re-rendered as the scene's files change; the title shows spp, samples/s, ms per
 //! frame and the last reload, or the error of the last failed one. With `--frames-dir`
-//! it also writes each state's display as `frame-NNNN.png` once it reaches `--spp`,
-//! and stops on `DIR/stop` or `--max-reloads`, like headless mode.
+//! it also writes each state's display as `frame-NNNN.png` once it reaches `--spp`
+//! (with `--denoise`, once the denoise of that image is shown), and stops on `DIR/stop`
+//! or `--max-reloads`, like headless mode.
 
 use super::camera_control::dolly;
 use super::denoised_view::DenoisedView;
@@ -13,7 +14,7 @@ use super::input::{Action, Drag, HELP, action, drag, fly_direction};
 use super::live::LiveScene;
 use super::reload_log::ReloadLog;
 use super::{WatchOptions, sources};
-use crate::denoise::{DenoiseDevice, Denoiser};
+use crate::denoise::Denoiser;
 use crate::gpu::{GpuContext, ms};
 use crate::render::{Accumulation, Pacing, Session, human, write_image, write_png};
 use anyhow::{Context, Result, anyhow};
@@ -32,9 +33,7 @@ const PACING: Pacing = Pacing { target: Duration::from_millis(25), max_samples: 
 /// How often an idle window with `--frames-dir` looks for the stop file.
 const STOP_POLL: Duration = Duration::from_millis(100);
 
-pub fn run(adapter: Option<&str>, options: WatchOptions, denoise: Option<DenoiseDevice>) -> Result<()> {
-    // Before any window: a missing denoiser is known at once, as with `rt render`.
-    let denoiser = denoise.map(|device| Denoiser::new(device).context("--denoise")).transpose()?;
+pub fn run(adapter: Option<&str>, options: WatchOptions, denoiser: Option<Denoiser>) -> Result<()> {
     let event_loop = EventLoop::<Batch>::with_user_event().build().context("cannot open a window")?;
     let ctx = GpuContext::new(adapter)?;
     println!("GPU: {}", ctx.describe());
@@ -187,7 +186,9 @@ impl ApplicationHandler<Batch> for Viewer<'_> {
             return;
         }
         let flying = fly_direction(&self.held) != glam::Vec3::ZERO;
-        let refining = self.window.is_some() && !self.live.session.converged();
+        // A denoise running or due after the last sample: drawn once it is back.
+        let denoising = self.denoised.as_ref().is_some_and(|d| d.pending(&self.live.session));
+        let refining = self.window.is_some() && (!self.live.session.converged() || denoising);
         if flying || refining {
             self.request_redraw();
         }
@@ -292,17 +293,11 @@ impl Viewer<'_> {
             _ => None,
         };
         let exposure = self.live.scene().render.exposure;
-        if let Some(denoised) = &mut self.denoised
-            && let Err(e) = denoised.update(ctx, &self.live.session)
-        {
-            self.log.write(&format!("{e:#}"));
-            self.denoised = None;
-        }
         if let Some(texture) = &texture {
             let view = texture.texture.create_view(&Default::default());
             let acc = self.live.session.accumulation();
             let error = self.error.is_some();
-            match self.denoised.as_ref().and_then(|d| d.means(acc.width, acc.height)) {
+            match self.denoised.as_ref().and_then(|d| d.means(&self.live.session)) {
                 Some(means) => w.display.encode_from(ctx, &mut encoder, &view, acc, means, exposure, error),
                 None => w.display.encode(ctx, &mut encoder, &view, acc, exposure, error),
             }
@@ -315,16 +310,24 @@ impl Viewer<'_> {
         }
         ctx.wait()?;
         self.live.session.observe(samples, submitted.elapsed());
+        // After the wait: the image sent to the denoiser has the samples it says it has.
+        if let Some(denoised) = &mut self.denoised
+            && let Err(e) = denoised.update(ctx, &self.live.session)
+        {
+            self.log.write(&format!("{e:#}; the window shows the raw image from now on"));
+            self.denoised = None;
+        }
         if self.state.first_frame.is_none() {
             self.state.first_frame = Some(self.state.since.elapsed());
         }
         let mut title = title(&self.options.scene, &self.live.session, &self.last_reload, self.error.as_deref());
         if let Some(d) = &self.denoised {
-            let acc = self.live.session.accumulation();
-            title.push_str(if d.means(acc.width, acc.height).is_some() { " | denoised" } else { " | raw" });
+            title.push_str(if d.means(&self.live.session).is_some() { " | denoised" } else { " | raw" });
         }
         w.window.set_title(&title);
-        if self.live.session.converged() && !self.state.written {
+        // A converged state's frame shows its own denoise, not one of fewer samples.
+        let denoised = self.denoised.as_ref().is_none_or(|d| !d.shown || d.up_to_date(&self.live.session));
+        if self.live.session.converged() && !self.state.written && denoised {
             self.state.written = true;
             self.write_frame(event_loop)?;
         }
@@ -336,11 +339,11 @@ impl Viewer<'_> {
         let (Some(dir), Some(w)) = (&self.options.frames_dir, &self.window) else { return Ok(()) };
         let file = dir.join(format!("frame-{:04}.png", self.state.number));
         let acc = self.live.session.accumulation();
-        let means = self.denoised.as_ref().and_then(|d| d.means(acc.width, acc.height)).unwrap_or(acc.means());
+        let means = self.denoised.as_ref().and_then(|d| d.means(&self.live.session)).unwrap_or(acc.means());
         let pixels = w.display.screenshot(self.ctx, acc, means, self.live.scene().render.exposure)?;
         write_png(&rgb_image(pixels, acc)?, &file)?;
         let first = self.state.first_frame.unwrap_or_default();
-        self.log.frame(self.state.number, acc.samples, &file, first, self.state.since.elapsed());
+        self.log.frame(self.state.number, acc.samples, &file, None, first, self.state.since.elapsed());
         self.log.write(&format!("presented {} frames", self.presented));
         if self.options.max_reloads.is_some_and(|max| self.state.number >= max) {
             event_loop.exit();
@@ -358,7 +361,7 @@ impl Viewer<'_> {
         if exr {
             write_image(&self.live.session.image()?, &file, exposure)?;
         } else {
-            let means = self.denoised.as_ref().and_then(|d| d.means(acc.width, acc.height)).unwrap_or(acc.means());
+            let means = self.denoised.as_ref().and_then(|d| d.means(&self.live.session)).unwrap_or(acc.means());
             let pixels = w.display.screenshot(self.ctx, acc, means, exposure)?;
             write_png(&rgb_image(pixels, acc)?, &file)?;
         }

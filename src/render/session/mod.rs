@@ -66,6 +66,8 @@ pub struct Session<'a> {
     /// Lanes of the dispatch last encoded.
     encoded_lanes: u32,
     readback: Readback,
+    /// How many times the samples were dropped: what a copy of the image was taken from.
+    restarts: u64,
 }
 
 impl<'a> Session<'a> {
@@ -101,6 +103,7 @@ impl<'a> Session<'a> {
             last_step: Step::default(),
             encoded_lanes: 1,
             readback: Readback::new(),
+            restarts: 0,
         };
         session.set_sky(&sky)?;
         session.share_light_samples();
@@ -154,6 +157,13 @@ impl<'a> Session<'a> {
         self.acc.samples
     }
 
+    /// How many times the accumulation started afresh: an image read back with the same
+    /// count belongs to the accumulation still refining, one with a lower count to an
+    /// older state (another camera, scene or size), whatever their samples.
+    pub fn restarts(&self) -> u64 {
+        self.restarts
+    }
+
     pub fn converged(&self) -> bool {
         self.acc.samples >= self.request.spp
     }
@@ -198,6 +208,7 @@ impl<'a> Session<'a> {
         self.acc.clear(&mut encoder);
         self.ctx.queue.submit([encoder.finish()]);
         self.sizer.restart();
+        self.restarts += 1;
     }
 
     /// The feature set the pipeline runs: the scene's (or the request's) with the

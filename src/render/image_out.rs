@@ -55,25 +55,30 @@ pub fn check_output(path: &Path) -> Result<()> {
 }
 
 pub fn write_image(image: &Image, path: &Path, exposure_ev: f32) -> Result<()> {
-    let format = image_format(path)?;
     let (width, height) = (image.width, image.height);
-    // Encoded in memory first: encoders reword the I/O errors they meet, and a full disk
-    // must be reported as one (the bytes are no larger than the pixels already held).
-    let mut bytes = Cursor::new(Vec::new());
-    match format {
+    match image_format(path)? {
         ImageFormat::Png => {
             let rgb: Vec<u8> = image.pixels.iter().flat_map(|p| display_pixel(*p, exposure_ev)).collect();
             let buf = image::RgbImage::from_raw(width, height, rgb).context("image size mismatch")?;
+            // Encoded in memory first: encoders reword the I/O errors they meet, and a full
+            // disk must be reported as one (the bytes are no larger than the pixels held).
+            let mut bytes = Cursor::new(Vec::new());
             buf.write_to(&mut bytes, image::ImageFormat::Png)
+                .with_context(|| format!("{}: cannot encode the image", path.display()))?;
+            Ok(output::write_atomically(path, bytes.get_ref())?)
         }
         ImageFormat::Exr => {
-            let floats: Vec<f32> = image.pixels.iter().flatten().copied().collect();
-            let buf = image::Rgb32FImage::from_raw(width, height, floats).context("image size mismatch")?;
-            buf.write_to(&mut bytes, image::ImageFormat::OpenExr)
+            // Written by the AOVs' writer, whose scan lines go in increasing order: the
+            // `image` crate's encoder writes tiles in the order its threads finish them, so
+            // the same pixels made different files from run to run.
+            let channels = ["R", "G", "B"]
+                .iter()
+                .enumerate()
+                .map(|(c, name)| (name.to_string(), image.pixels.iter().map(|p| p[c]).collect()))
+                .collect();
+            super::write_layered_exr(path, width, height, channels)
         }
     }
-    .with_context(|| format!("{}: cannot encode the image", path.display()))?;
-    Ok(output::write_atomically(path, bytes.get_ref())?)
 }
 
 /// An 8-bit sRGB image (a screenshot, a plot) as a PNG, written atomically.
@@ -83,4 +88,34 @@ pub fn write_png(image: &image::RgbImage, path: &Path) -> Result<()> {
         .write_to(&mut bytes, image::ImageFormat::Png)
         .with_context(|| format!("{}: cannot encode", path.display()))?;
     Ok(output::write_atomically(path, bytes.get_ref())?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_same_pixels_make_the_same_exr_file_with_scan_lines_in_order() {
+        let (width, height) = (300u32, 200u32);
+        let pixels: Vec<[f32; 3]> = (0..width * height)
+            .map(|i| [(i % 7) as f32 * 0.3, (i % 13) as f32 * 1e3, ((i * 7919) % 101) as f32])
+            .collect();
+        let n = pixels.len();
+        let image = Image { width, height, samples: 1, pixels, std_error: vec![0.0; n], sample_counts: vec![1; n] };
+        let dir = std::env::temp_dir().join(format!("rt-exr-order-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let files: Vec<Vec<u8>> = (0..4)
+            .map(|i| {
+                let path = dir.join(format!("{i}.exr"));
+                write_image(&image, &path, 0.0).unwrap();
+                std::fs::read(&path).unwrap()
+            })
+            .collect();
+        let meta = exr::meta::MetaData::read_from_file(dir.join("0.exr"), false).unwrap();
+        std::fs::remove_dir_all(&dir).ok();
+        assert_eq!(meta.headers[0].line_order, exr::meta::attribute::LineOrder::Increasing);
+        assert!(files.windows(2).all(|w| w[0] == w[1]), "the same image made different files");
+        let read = image::load_from_memory(&files[0]).unwrap().to_rgb32f();
+        assert_eq!(read.as_raw().chunks(3).map(|p| [p[0], p[1], p[2]]).collect::<Vec<_>>(), image.pixels);
+    }
 }

@@ -53,6 +53,7 @@ pub fn write_layered_exr(path: &Path, width: u32, height: u32, channels: Vec<(St
     let layer = Layer::new(
         Vec2(width as usize, height as usize),
         LayerAttributes::default(),
+        // ZIP scan lines in increasing order: the same pixels always make the same file.
         Encoding::SMALL_LOSSLESS,
         AnyChannels::sort(list),
     );

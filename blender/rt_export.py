@@ -720,6 +720,9 @@ def gltf_material(material, thickness, textures=None):
     if diffuse_roughness > 0.0:
         # Cycles' Oren-Nayar diffuse (Principled's Diffuse Roughness); glTF has no such input.
         out["extras"]["rt_diffuse_roughness"] = diffuse_roughness
+    if material is not None and not material.cycles.use_bump_map_correction:
+        # Cycles' Bump Map Correction (on by default) of glossy normals on smooth surfaces.
+        out["extras"]["rt_bump_map_correction"] = False
     if s.glossy is not None:
         # Cycles' Glossy BSDF: GGX without Fresnel, tinted by its colour; glTF has no such lobe
         # (its factors above describe a metal of that colour for other readers).

@@ -194,7 +194,12 @@ struct Material {
     // thickness in nm (at most THIN_FILM_CUTOFF: none) and its index.
     thin_film_thickness: f32,
     thin_film_ior: f32,
-    _pad7: vec2u,
+    // 1: Cycles' Bump Map Correction of glossy normals on smooth-shaded surfaces (see
+    // smooth_shading.wgsl), 0: none.
+    bump_map_correction: u32,
+    // How much of the film there is (KHR_materials_iridescence's factor): the film's
+    // Fresnel and the bare one mixed by it.
+    thin_film_weight: f32,
     // The layered lobes' textures, or NO_TEXTURE (`layer_textured` in texture.wgsl): coat
     // R × coat, G × coat roughness, coat tint RGB, sheen R × sheen and G × its roughness,
     // sheen tint RGB, anisotropy R × anisotropy and G + rotation, specular tint RGB.

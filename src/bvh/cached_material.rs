@@ -61,6 +61,9 @@ pub struct CachedMaterial {
     /// `Tangent`: 0 radial Z, 1 radial X, 2 radial Y, 3 the uv map's.
     pub tangent: u32,
     pub diffuse_roughness: f32,
+    pub thin_film_weight: f32,
+    /// 1: Bump Map Correction.
+    pub bump_map_correction: u32,
 }
 
 const TANGENTS: [Tangent; 4] = [Tangent::RadialZ, Tangent::RadialX, Tangent::RadialY, Tangent::Uv];
@@ -105,6 +108,8 @@ impl From<&Material> for CachedMaterial {
             layer_textures: m.textures.layers.slots().map(slot),
             tangent: TANGENTS.iter().position(|&t| t == m.tangent).unwrap_or(0) as u32,
             diffuse_roughness: m.diffuse_roughness,
+            thin_film_weight: m.thin_film_weight,
+            bump_map_correction: u32::from(m.bump_map_correction),
         }
     }
 }
@@ -134,6 +139,8 @@ impl From<&CachedMaterial> for Material {
             tangent: TANGENTS.get(m.tangent as usize).copied().unwrap_or_default(),
             thin_film_thickness: m.thin_film_thickness,
             thin_film_ior: m.thin_film_ior,
+            thin_film_weight: m.thin_film_weight,
+            bump_map_correction: m.bump_map_correction != 0,
             hardness: (m.hardness > 0.0).then_some(m.hardness),
             emission: m.emission,
             absorption: m.absorption,
@@ -187,6 +194,7 @@ impl CachedMaterial {
             self.anisotropy_rotation,
             self.thin_film_thickness,
             self.thin_film_ior,
+            self.thin_film_weight,
             self.diffuse_roughness,
             self.hardness,
             self.metallic,

@@ -140,6 +140,8 @@ fn host_structs_match_wgsl_layouts() {
                 sheen,
                 thin_film_thickness,
                 thin_film_ior,
+                bump_map_correction,
+                thin_film_weight,
                 coat_texture,
                 coat_roughness_texture,
                 coat_tint_texture,

@@ -50,6 +50,14 @@ pub struct Material {
     /// (Belcour & Barla 2017, as Cycles 5.0 renders it).
     pub thin_film_thickness: f32,
     pub thin_film_ior: f32,
+    /// How much of the film there is (glTF's `iridescenceFactor`; Blender's film is all
+    /// there, 1): the lobes' Fresnel is the film's and the bare one mixed by it.
+    pub thin_film_weight: f32,
+    /// Cycles' Bump Map Correction (Blender's material setting, on by default): on a
+    /// smooth-shaded surface, the glossy, metal, glass and coat lobes take their normal
+    /// tilted just enough that the mirror direction of the view stays above the surface,
+    /// and light below the interpolated normal does not reach them.
+    pub bump_map_correction: bool,
     /// The seed renderer's Phong-like exponent; mapped to `roughness` when given.
     pub hardness: Option<f32>,
     pub emission: [f32; 3],
@@ -249,6 +257,8 @@ impl Default for Material {
             tangent: Tangent::RadialZ,
             thin_film_thickness: 0.0,
             thin_film_ior: 1.33,
+            thin_film_weight: 1.0,
+            bump_map_correction: true,
             hardness: None,
             emission: [0.0; 3],
             absorption: [0.0; 3],
@@ -322,7 +332,7 @@ impl Material {
     /// Whether the thin film is there: Cycles ignores films of 0.1 nm and less
     /// (`THINFILM_THICKNESS_CUTOFF`).
     pub fn has_thin_film(&self) -> bool {
-        self.thin_film_thickness > THIN_FILM_CUTOFF
+        self.thin_film_thickness > THIN_FILM_CUTOFF && self.thin_film_weight > 0.0
     }
 }
 

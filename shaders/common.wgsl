@@ -212,6 +212,12 @@ struct Material {
     specular_tint_texture: u32,
     // The anisotropic lobes' tangent: TANGENT_* in anisotropy.wgsl.
     tangent: u32,
+    // More layer textures: diffuse roughness R × diffuse_roughness, and the film's thickness
+    // G, from thin_film_minimum at 0 to thin_film_thickness at 1.
+    diffuse_roughness_texture: u32,
+    thin_film_texture: u32,
+    thin_film_minimum: f32,
+    _pad8: u32,
 }
 
 // Object-space vertex tangents (xyz) and bitangent signs (w) of one triangle; zero

@@ -232,6 +232,12 @@ pub struct GpuMaterial {
     pub specular_tint_texture: u32,
     /// The anisotropic lobes' tangent (`TANGENT_*`).
     pub tangent: u32,
+    /// Diffuse roughness R, and the film's thickness G (from `thin_film_minimum` at 0 to
+    /// `thin_film_thickness` at 1).
+    pub diffuse_roughness_texture: u32,
+    pub thin_film_texture: u32,
+    pub thin_film_minimum: f32,
+    pub _pad8: u32,
 }
 
 /// `GpuMaterial::tangent`: Cycles' Tangent node, radial about Blender's Z (the default), X
@@ -507,6 +513,10 @@ impl From<&crate::scene::Material> for GpuMaterial {
                 Tangent::RadialY => TANGENT_RADIAL_Y,
                 Tangent::Uv => TANGENT_UV,
             },
+            diffuse_roughness_texture: slot(l.diffuse_roughness),
+            thin_film_texture: slot(l.thin_film_thickness),
+            thin_film_minimum: m.textures.thin_film_minimum,
+            _pad8: 0,
         }
     }
 }

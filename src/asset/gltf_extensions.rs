@@ -82,7 +82,8 @@ fn warn_textures(m: &gltf::Material, ext: &Value, name: &str, keys: &[&str], ins
 /// `KHR_materials_iridescence` as rt's thin film: thickness (nm), index and weight, or `None`
 /// for no film (absent, or `iridescenceFactor` 0, glTF's default). Without a thickness
 /// texture the film is `iridescenceThicknessMaximum` thick (glTF's defaults: 400 nm, index
-/// 1.3); a texture is not read and the maximum stands for it.
+/// 1.3); with one (read by `gltf_layer_textures`) its G runs from the minimum (100 nm) to
+/// the maximum. A texture of the factor is not read: the factor stands for it.
 pub(super) fn iridescence(m: &gltf::Material) -> Result<Option<Film>, String> {
     const NAME: &str = "KHR_materials_iridescence";
     let Some(ext) = m.extension_value(NAME) else {
@@ -93,10 +94,10 @@ pub(super) fn iridescence(m: &gltf::Material) -> Result<Option<Film>, String> {
         return Ok(None);
     }
     warn_textures(m, ext, NAME, &["iridescenceTexture"], "iridescenceFactor");
-    warn_textures(m, ext, NAME, &["iridescenceThicknessTexture"], "iridescenceThicknessMaximum");
     let thickness = number(ext, NAME, "iridescenceThicknessMaximum", 400.0)?.clamp(0.0, 100_000.0);
+    let minimum = number(ext, NAME, "iridescenceThicknessMinimum", 100.0)?.clamp(0.0, 100_000.0);
     let ior = number(ext, NAME, "iridescenceIor", 1.3)?.max(1.0);
-    Ok(Some(Film { thickness, ior, weight: factor.min(1.0) }))
+    Ok(Some(Film { thickness, minimum, ior, weight: factor.min(1.0) }))
 }
 
 /// `KHR_materials_iridescence`: the film's thickness (nm), index, and weight (its factor:
@@ -104,6 +105,8 @@ pub(super) fn iridescence(m: &gltf::Material) -> Result<Option<Film>, String> {
 #[derive(Debug)]
 pub(super) struct Film {
     pub thickness: f32,
+    /// The thickness where a thickness texture reads 0.
+    pub minimum: f32,
     pub ior: f32,
     pub weight: f32,
 }
@@ -211,7 +214,7 @@ mod tests {
                { "extensions": { "KHR_materials_iridescence": { "iridescenceFactor": 0.5 } } },
                { "extensions": { "KHR_materials_iridescence": { "iridescenceIor": 1.8 } } },
                { "extensions": { "KHR_materials_iridescence": { "iridescenceFactor": 1,
-                  "iridescenceThicknessTexture": { "index": 0 } } } },
+                  "iridescenceThicknessMinimum": 50 } } },
                {}"#,
         );
         let film = |m: &Material| (m.thin_film_thickness, m.thin_film_ior);
@@ -219,7 +222,8 @@ mod tests {
         assert_eq!(film(&m[1]), (400.0, 1.3));
         assert_eq!((m[0].thin_film_weight, m[1].thin_film_weight), (1.0, 0.5), "the factor is the film's weight");
         assert!(!m[2].has_thin_film());
-        assert_eq!(film(&m[3]), (400.0, 1.3), "a thickness texture: its maximum");
+        assert_eq!(film(&m[3]), (400.0, 1.3), "without a thickness texture: its maximum");
+        assert_eq!(m[3].textures.thin_film_minimum, 50.0, "kept for a thickness texture");
         assert!(!m[4].has_thin_film());
     }
 

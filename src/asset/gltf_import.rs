@@ -26,6 +26,7 @@
 //! | `extras.rt_tangent` (`"radial_z"`)                        | `tangent` |
 //! | `KHR_materials_clearcoat` textures, `KHR_materials_specular` colour texture, `extras.rt_*_texture` | `textures.layers` (`gltf_layer_textures`) |
 //! | `extras.rt_diffuse_roughness` (0)                         | `diffuse_roughness` (Principled's Diffuse Roughness; glTF has none) |
+//! | `KHR_materials_iridescence` thickness texture, minimum (100), `extras.rt_diffuse_roughness_texture` | `textures.layers` (`gltf_layer_textures`), `textures.thin_film_minimum` |
 //! | `extras.rt_bump_map_correction` (true)                    | `bump_map_correction` (Blender's material setting; glTF has none) |
 //! | `KHR_materials_volume` colour `c` (1), distance `d` (∞)   | `absorption = -ln(c) / d`; 0 if `d = ∞` |
 //! | `extras.rt_volume_emission` `[r, g, b]` (0)               | `volume_emission`              |
@@ -77,6 +78,7 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
             .map_err(|e| err(format!("material `{name}`: {e}")))?;
         material.textures.layers = layers;
         material.textures.second_uv_set |= layer_uv_sets;
+        material.textures.thin_film_minimum = iridescence(&m).ok().flatten().map_or(0.0, |f| f.minimum);
         if material.textures.metallic_roughness.is_some() {
             // The lobe weights become those of the non-metal part; the texture sets the metal.
             material = Material {
@@ -386,6 +388,7 @@ fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<M
         normal_scale: normal_info.map_or(1.0, |n| n.scale()),
         second_uv_set,
         layers: Default::default(),
+        thin_film_minimum: 0.0,
     })
 }
 
@@ -426,7 +429,7 @@ fn map_material_with_metallic(m: &gltf::Material, metallic: f32) -> Result<Mater
     let clearcoat = clearcoat(m)?;
     let sheen = sheen(m)?.unwrap_or(Sheen { weight: 0.0, tint: [1.0; 3], roughness: 0.5 });
     let (anisotropy, anisotropy_rotation) = anisotropy(m)?;
-    let film = iridescence(m)?.unwrap_or(Film { thickness: 0.0, ior: 1.33, weight: 1.0 });
+    let film = iridescence(m)?.unwrap_or(Film { thickness: 0.0, minimum: 0.0, ior: 1.33, weight: 1.0 });
     let material = Material {
         base_color: [r, g, b],
         diffuse,

@@ -57,13 +57,15 @@ pub struct CachedMaterial {
     pub thin_film_thickness: f32,
     pub thin_film_ior: f32,
     /// `LayerTextures`, in the order of its `slots`.
-    pub layer_textures: [u32; 7],
+    pub layer_textures: [u32; 9],
     /// `Tangent`: 0 radial Z, 1 radial X, 2 radial Y, 3 the uv map's.
     pub tangent: u32,
     pub diffuse_roughness: f32,
     pub thin_film_weight: f32,
     /// 1: Bump Map Correction.
     pub bump_map_correction: u32,
+    /// `MaterialTextures::thin_film_minimum`.
+    pub thin_film_minimum: f32,
 }
 
 const TANGENTS: [Tangent; 4] = [Tangent::RadialZ, Tangent::RadialX, Tangent::RadialY, Tangent::Uv];
@@ -110,6 +112,7 @@ impl From<&Material> for CachedMaterial {
             diffuse_roughness: m.diffuse_roughness,
             thin_film_weight: m.thin_film_weight,
             bump_map_correction: u32::from(m.bump_map_correction),
+            thin_film_minimum: m.textures.thin_film_minimum,
         }
     }
 }
@@ -157,10 +160,30 @@ impl From<&CachedMaterial> for Material {
                 normal_scale: m.normal_scale,
                 second_uv_set: m.second_uv_set,
                 layers: {
-                    let [coat, coat_roughness, coat_tint, sheen, sheen_tint, anisotropy, specular_tint] =
-                        m.layer_textures.map(unslot);
-                    LayerTextures { coat, coat_roughness, coat_tint, sheen, sheen_tint, anisotropy, specular_tint }
+                    let [
+                        coat,
+                        coat_roughness,
+                        coat_tint,
+                        sheen,
+                        sheen_tint,
+                        anisotropy,
+                        specular_tint,
+                        diffuse_roughness,
+                        thin_film_thickness,
+                    ] = m.layer_textures.map(unslot);
+                    LayerTextures {
+                        coat,
+                        coat_roughness,
+                        coat_tint,
+                        sheen,
+                        sheen_tint,
+                        anisotropy,
+                        specular_tint,
+                        diffuse_roughness,
+                        thin_film_thickness,
+                    }
                 },
+                thin_film_minimum: m.thin_film_minimum,
             },
         }
     }
@@ -195,6 +218,7 @@ impl CachedMaterial {
             self.thin_film_thickness,
             self.thin_film_ior,
             self.thin_film_weight,
+            self.thin_film_minimum,
             self.diffuse_roughness,
             self.hardness,
             self.metallic,

@@ -149,7 +149,10 @@ fn host_structs_match_wgsl_layouts() {
                 sheen_tint_texture,
                 anisotropy_texture,
                 specular_tint_texture,
-                tangent
+                tangent,
+                diffuse_roughness_texture,
+                thin_film_texture,
+                thin_film_minimum
             ]
         ),
         host_layout!("TriangleTangents", GpuTriangleTangents, [t0, t1, t2]),

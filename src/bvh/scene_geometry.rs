@@ -53,8 +53,8 @@ pub struct SceneGeometry {
     pub meshes: Vec<LoadedMesh>,
     /// Every material some triangle or sphere uses.
     pub materials_in_use: Vec<Material>,
-    /// Some placed triangle has vertex normals that differ (a face with none stores its
-    /// own normal at each vertex).
+    /// Some placed triangle has a vertex normal other than its face's
+    /// ([`MeshBvh::has_interpolated_normals`](super::mesh_bvh::MeshBvh::has_interpolated_normals)).
     pub smooth_normals: bool,
     pub bounds_min: Vec3,
     pub bounds_max: Vec3,
@@ -217,8 +217,7 @@ impl SceneGeometry {
             });
         }
 
-        let smooth_normals =
-            !instances.is_empty() && meshes.iter().any(|m| m.bvh.shading.iter().any(|s| s.n0 != s.n1 || s.n1 != s.n2));
+        let smooth_normals = !instances.is_empty() && meshes.iter().any(|m| m.bvh.has_interpolated_normals());
         let materials_in_use = materials.iter().zip(&in_use).filter(|(_, u)| **u).map(|(m, _)| m.clone()).collect();
         let mesh_triangles: Vec<_> = slots
             .iter()

@@ -720,13 +720,22 @@ def gltf_material(material, thickness, textures=None):
     if diffuse_roughness > 0.0:
         # Cycles' Oren-Nayar diffuse (Principled's Diffuse Roughness); glTF has no such input.
         out["extras"]["rt_diffuse_roughness"] = diffuse_roughness
+    if material is not None and not material.cycles.use_bump_map_correction:
+        # Cycles' Bump Map Correction (on by default) of glossy normals on smooth surfaces.
+        out["extras"]["rt_bump_map_correction"] = False
     if s.glossy is not None:
         # Cycles' Glossy BSDF: GGX without Fresnel, tinted by its colour; glTF has no such lobe
         # (its factors above describe a metal of that colour for other readers).
         out["extras"]["rt_glossy_color"] = [max(c, 0.0) for c in s.glossy]
-    found = {}
+    found, film_range = {}, None
     if textures is not None and surface is not None:
-        found = {name: texture_channel(material, surface, name, textures.baker) for name in TEXTURE_SOCKETS}
+        found = {name: texture_channel(material, surface, name, textures.baker)
+                 for name in TEXTURE_SOCKETS if name != FILM_SOCKET}
+        film_range = film_thickness_texture(material, surface)
+        found[FILM_SOCKET] = film_range[0] if film_range else None
+        if found["Diffuse Roughness"]:
+            # The texels are the roughness: its factor is 1.
+            out["extras"]["rt_diffuse_roughness"] = 1.0
     # A socket fed by an image takes its values from it: its factor is 1 (a rotation's, added to, 0).
     value = lambda name, default: (1.0 if found.get(name) else socket_value(surface, name, default))  # noqa: E731
     colour = lambda name: ((1, 1, 1) if found.get(name) else socket_value(surface, name, (1, 1, 1)))  # noqa: E731
@@ -771,14 +780,16 @@ def gltf_material(material, thickness, textures=None):
                 "rt_anisotropy_rotation": rotation,
             })
             out["extras"].update(tangent_extras(name, surface.inputs["Tangent"]))
-        film = float(socket_value(surface, "Thin Film Thickness", 0.0))
-        if film > 0.0:
-            # A film of one thickness: glTF's range collapsed to it (rt reads the maximum).
+        film = float(socket_value(surface, FILM_SOCKET, 0.0))
+        # A film of one thickness: glTF's range collapsed to it (rt reads the maximum); of a
+        # texture's, the range its texels map to (the texture is added by `layer_textures`).
+        low, high = (film_range[1], film_range[2]) if film_range else (film, film)
+        if high > 0.0:
             extensions["KHR_materials_iridescence"] = {
                 "iridescenceFactor": 1.0,
                 "iridescenceIor": max(float(socket_value(surface, "Thin Film IOR", 1.33)), 1e-5),
-                "iridescenceThicknessMinimum": film,
-                "iridescenceThicknessMaximum": film,
+                "iridescenceThicknessMinimum": low,
+                "iridescenceThicknessMaximum": high,
             }
     if transmission > 0.0:
         extensions["KHR_materials_transmission"] = {"transmissionFactor": transmission}
@@ -839,11 +850,14 @@ class TurnChannel:
 
 
 def layer_textures(out, textures, found):
-    """Adds the textures of the coat, sheen, anisotropy and specular tint sockets (`found`,
-    socket name -> Channel or None) to glTF material `out`, whose factors for them are 1
-    (the rotation's 0): the coat's as KHR_materials_clearcoat's textures (R weight, G
-    roughness, one image), the specular tint's as KHR_materials_specular's colour texture,
-    the others in rt's extras (sheen: R weight, G roughness; anisotropy: R amount, G rotation)."""
+    """Adds the textures of the coat, sheen, anisotropy, specular tint, diffuse roughness and
+    film thickness sockets (`found`, socket name -> Channel or None) to glTF material `out`,
+    whose factors for them are 1 (the rotation's 0): the coat's as KHR_materials_clearcoat's
+    textures (R weight, G roughness, one image), the specular tint's as
+    KHR_materials_specular's colour texture, the film's as KHR_materials_iridescence's
+    thickness texture (G, over the range `film_thickness_texture` found), the others in
+    rt's extras (sheen: R weight, G roughness; anisotropy: R amount, G rotation; diffuse
+    roughness: R)."""
     extensions, extras = out["extensions"], out["extras"]
 
     def info(channels, srgb, first):
@@ -875,6 +889,43 @@ def layer_textures(out, textures, found):
         specular = extensions["KHR_materials_specular"]
         specular["specularColorFactor"] = [1.0, 1.0, 1.0]
         specular["specularColorTexture"] = info(rgb_of(tint), True, tint)
+    roughness = found.get("Diffuse Roughness")
+    if roughness and "rt_diffuse_roughness" in extras:
+        extras["rt_diffuse_roughness_texture"] = info([roughness, 0.0, 0.0, 1.0], False, roughness)
+    film = found.get(FILM_SOCKET)
+    if film and "KHR_materials_iridescence" in extensions:
+        # glTF's thickness texture: G from the minimum (0) to the maximum (1).
+        extensions["KHR_materials_iridescence"]["iridescenceThicknessTexture"] = info(
+            [0.0, film, 0.0, 1.0], False, film)
+
+
+FILM_SOCKET = "Thin Film Thickness"
+
+
+def film_thickness_texture(material, surface):
+    """An image into Principled's Thin Film Thickness (nm, so that an image's 0-1 needs a
+    scale): through a Map Range node (linear, float, its bounds unlinked) or a Math node
+    multiplying the image by a constant. Returns (channel, thickness at 0, thickness at 1),
+    or None (a link rt cannot follow is warned about; the socket's own value is used)."""
+    socket = surface.inputs[FILM_SOCKET]
+    if not socket.is_linked:
+        return None
+    node = socket.links[0].from_node
+    if node.type == "MAP_RANGE" and node.data_type == "FLOAT" and node.interpolation_type == "LINEAR":
+        bounds = [node.inputs[name] for name in ("From Min", "From Max", "To Min", "To Max")]
+        if not any(b.is_linked for b in bounds):
+            from_min, from_max, to_min, to_max = (float(b.default_value) for b in bounds)
+            channel = texture_channel(material, node, "Value")
+            if channel is not None and from_max != from_min:
+                slope = (to_max - to_min) / (from_max - from_min)
+                return channel, to_min - from_min * slope, to_min + (1.0 - from_min) * slope
+    if node.type == "MATH" and node.operation == "MULTIPLY" and not node.inputs[1].is_linked:
+        channel = texture_channel(material, node, "Value")
+        if channel is not None:
+            return channel, 0.0, float(node.inputs[1].default_value)
+    log(f"{material.name}: {FILM_SOCKET} is linked to {node.type}; rt follows an image through a Map Range "
+        f"or a Math Multiply node only, and uses the socket's own value")
+    return None
 
 
 def gltf_text(materials, thickness, textures=None):
@@ -945,7 +996,9 @@ TEXTURE_INFOS = ((("pbrMetallicRoughness",), "baseColorTexture"),
                  (("extensions", "KHR_materials_clearcoat"), "clearcoatRoughnessTexture"),
                  (("extensions", "KHR_materials_specular"), "specularColorTexture"),
                  (("extras",), "rt_coat_tint_texture"), (("extras",), "rt_sheen_texture"),
-                 (("extras",), "rt_sheen_tint_texture"), (("extras",), "rt_anisotropy_texture"))
+                 (("extras",), "rt_sheen_tint_texture"), (("extras",), "rt_anisotropy_texture"),
+                 (("extras",), "rt_diffuse_roughness_texture"),
+                 (("extensions", "KHR_materials_iridescence"), "iridescenceThicknessTexture"))
 
 
 def uv_maps_of(mesh):

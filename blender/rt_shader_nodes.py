@@ -35,7 +35,7 @@ import numpy as np
 # Inputs of a Principled BSDF that rt_export.py follows into textures: the base ones and
 # the layered lobes' (LAYER_SOCKETS).
 LAYER_SOCKETS = ("Coat Weight", "Coat Roughness", "Coat Tint", "Sheen Weight", "Sheen Roughness", "Sheen Tint",
-                 "Anisotropic", "Anisotropic Rotation", "Specular Tint")
+                 "Anisotropic", "Anisotropic Rotation", "Specular Tint", "Diffuse Roughness", "Thin Film Thickness")
 TEXTURE_SOCKETS = ("Base Color", "Alpha", "Roughness", "Metallic", "Normal", "Emission Color") + LAYER_SOCKETS
 
 

@@ -123,19 +123,22 @@ fn conductor_fresnel(f0: vec3f, cos_i: f32) -> vec3f {
 }
 
 // Fresnel reflectance of the `reflection` lobe: Cycles' F82-tint metal with
-// multiscatter GGX, else `conductor_fresnel` (as Mitsuba 3's conductor).
+// multiscatter GGX, else `conductor_fresnel` (as Mitsuba 3's conductor); under a film,
+// the film's mixed with it by the film's weight (KHR_materials_iridescence's factor).
 fn metal_fresnel(ctx: ShadingContext, cos_i: f32) -> vec3f {
+    //#if multiscatter
+    let bare = f82_fresnel(cos_i, metal_f0(ctx.m), ctx.metal_b);
+    //#else
+    let bare = conductor_fresnel(ctx.m.base_color, cos_i);
+    //#endif
     //#if thin_film
     if has_thin_film(ctx.m) {
         let f0 = metal_f0(ctx.m);
-        return thin_film_metal(ctx.m, cos_i, f0, f82_b(f0, min(ctx.m.specular_tint, vec3f(1.0))));
+        let film = thin_film_metal(ctx.m, cos_i, f0, f82_b(f0, min(ctx.m.specular_tint, vec3f(1.0))));
+        return mix(bare, film, ctx.m.thin_film_weight);
     }
     //#endif
-    //#if multiscatter
-    return f82_fresnel(cos_i, metal_f0(ctx.m), ctx.metal_b);
-    //#else
-    return conductor_fresnel(ctx.m.base_color, cos_i);
-    //#endif
+    return bare;
 }
 
 // Reflectance of the `specular` lobe: the diffuse's dielectric coating, or `specular_tint`
@@ -145,7 +148,7 @@ fn specular_fresnel(ctx: ShadingContext, cos_i: f32) -> vec3f {
     if ctx.m.coating_eta > 0.0 {
         //#if thin_film
         if has_thin_film(ctx.m) {
-            return thin_film_coating(ctx.m, cos_i);
+            return mix(coating_fresnel(ctx.m, cos_i), thin_film_coating(ctx.m, cos_i), ctx.m.thin_film_weight);
         }
         //#endif
         return coating_fresnel(ctx.m, cos_i);
@@ -213,11 +216,13 @@ fn shading_context(m: Material, n_shading: vec3f, n_geometric: vec3f, wo_world: 
         specular_albedo = luminance(mix(saturate(m.coating_f0 * m.specular_tint), vec3f(1.0), coating_fresnel_s(sqrt(m.alpha), mu, m.coating_eta)));
         //#if thin_film
         if has_thin_film(m) {
-            // Cycles has no albedo table for a film: its estimate is the film's Fresnel at mu.
+            // Cycles has no albedo table for a film: its estimate is the film's Fresnel at
+            // mu; a partial film (glTF's factor) mixes the estimates with and without it.
             let film = thin_film_coating(m, mu);
             let albedo = film * darkening;
-            ctx.diffuse_kept = saturate(1.0 - max(max(albedo.x, albedo.y), albedo.z));
-            specular_albedo = luminance(film);
+            let kept = saturate(1.0 - max(max(albedo.x, albedo.y), albedo.z));
+            ctx.diffuse_kept = mix(ctx.diffuse_kept, kept, m.thin_film_weight);
+            specular_albedo = mix(specular_albedo, luminance(film), m.thin_film_weight);
         }
         //#endif
     }
@@ -246,24 +251,58 @@ fn shading_context(m: Material, n_shading: vec3f, n_geometric: vec3f, wo_world: 
 }
 
 // The diffuse lobe's normal in the shading frame: the shading normal (z), but on a
-// normal-mapped surface the map's normal before it was bent (see `set_unmapped_normal`).
+// normal-mapped surface the map's normal before it was bent (see `set_unmapped_normal`),
+// and on a smooth-shaded one the interpolated normal before Bump Map Correction bent it
+// (see `set_smooth_shading`).
 fn diffuse_axis(ctx: ShadingContext) -> vec3f {
     //#if normal_maps
     if normal_is_mapped {
         return transpose(ctx.basis) * diffuse_normal;
     }
     //#endif
+    //#if smooth_normals
+    if smooth_shaded {
+        return transpose(ctx.basis) * smooth_normal;
+    }
+    //#endif
     return vec3f(0.0, 0.0, 1.0);
 }
 
 // Whether lobes are folded above the surface (`fold_above`): everywhere but on
-// normal-mapped surfaces.
+// normal-mapped surfaces and on smooth-shaded ones in Cycles' model.
 fn folds_below_surface() -> bool {
+    var folds = true;
     //#if normal_maps
-    return !normal_is_mapped;
-    //#else
-    return true;
+    folds = !normal_is_mapped;
     //#endif
+    //#if smooth_normals
+    folds = folds && !smooth_shaded;
+    //#endif
+    return folds;
+}
+
+// Whether the reflection lobes are evaluated at wi: above the true surface, or anywhere
+// on a smooth-shaded surface in Cycles' model, where the lobes' own hemispheres cut and
+// the geometry decides (a shadow ray below a closed mesh's face meets the mesh).
+fn reaches_reflection_lobes(ctx: ShadingContext, wi: vec3f) -> bool {
+    //#if smooth_normals
+    if smooth_shaded {
+        return true;
+    }
+    //#endif
+    return dot(wi, ctx.n_geometric) > 0.0;
+}
+
+// Whether a glossy lobe (specular, metal, coat) sees wi: Cycles' `bump_shadowing_term`
+// zeroes a glossy closure whose normal Bump Map Correction bent, for light below the
+// interpolated normal.
+fn glossy_sees(ctx: ShadingContext, wi: vec3f) -> bool {
+    //#if smooth_normals
+    if smooth_shaded {
+        return dot(diffuse_axis(ctx), wi) >= 0.0;
+    }
+    //#endif
+    return true;
 }
 
 // Mirrors a direction that the shading normal put below the true surface back
@@ -324,6 +363,28 @@ fn bump_shadowing(ctx: ShadingContext, wi: vec3f) -> f32 {
     let alpha2 = saturate(0.125 * (1.0 / (cd * cd) - 1.0));
     let tan2_i = (1.0 - ci * ci) / (ci * ci);
     return 2.0 / (1.0 + sqrt(1.0 + alpha2 * tan2_i));
+}
+//#endif
+
+//#if smooth_normals
+// Smooth-shaded triangles in Cycles' model (see smooth_shading.wgsl). Set by the
+// integrator at each surface: whether it is one (not normal-mapped: those have their own
+// handling above), and its interpolated normal on the viewer's side (world space), which
+// the diffuse lobe keeps where Bump Map Correction bent the shading context's.
+var<private> smooth_shaded: bool;
+var<private> smooth_normal: vec3f;
+
+fn set_smooth_normal(on: bool, n: vec3f) {
+    smooth_shaded = on;
+    smooth_normal = n;
+}
+
+fn is_smooth_shaded() -> bool {
+    return smooth_shaded;
+}
+
+fn interpolated_normal() -> vec3f {
+    return smooth_normal;
 }
 //#endif
 

@@ -34,7 +34,7 @@ fn reflection_lobe_eval(ctx: ShadingContext, lobe: u32, wi: vec3f) -> vec3f {
         //#endif
         return f;
     }
-    if wi.z <= 0.0 {
+    if wi.z <= 0.0 || !glossy_sees(ctx, wi) {
         return vec3f(0.0);
     }
     //#if glossy
@@ -68,7 +68,7 @@ fn reflection_lobe_pdf(ctx: ShadingContext, lobe: u32, wi: vec3f) -> f32 {
 // f·|cos θi| of all lobes that have a density, at wi.
 fn bsdf_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
     var f = vec3f(0.0);
-    if dot(wi, ctx.n_geometric) > 0.0 {
+    if reaches_reflection_lobes(ctx, wi) {
         let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
         let folded = f32(folds_below_surface());
         for (var lobe = LOBE_DIFFUSE; lobe <= LOBE_REFLECTION; lobe++) {
@@ -94,7 +94,7 @@ fn bsdf_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
 // Density with which `bsdf_sample` produces wi (delta lobes aside).
 fn bsdf_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
     var pdf = 0.0;
-    if dot(wi, ctx.n_geometric) > 0.0 {
+    if reaches_reflection_lobes(ctx, wi) {
         let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
         let folded = f32(folds_below_surface());
         for (var lobe = LOBE_DIFFUSE; lobe <= LOBE_REFLECTION; lobe++) {
@@ -122,17 +122,18 @@ fn rough_coat(ctx: ShadingContext) -> bool {
     return ctx.m.coat > 0.0 && ctx.m.coat_alpha >= ALPHA_DELTA;
 }
 
-// f·|cos θi| of the rough coat (folded like the other reflection lobes).
+// f·|cos θi| of the rough coat (folded, where lobes are, like the other reflection lobes).
 fn coat_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
-    if !rough_coat(ctx) || dot(wi, ctx.n_geometric) <= 0.0 {
+    if !rough_coat(ctx) || !reaches_reflection_lobes(ctx, wi) {
         return vec3f(0.0);
     }
     let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
-    return (coat_lobe_eval(ctx, wi) + coat_lobe_eval(ctx, mirrored)) * ctx.m.coat * ctx.coat_energy;
+    let folded = f32(folds_below_surface());
+    return (coat_lobe_eval(ctx, wi) + folded * coat_lobe_eval(ctx, mirrored)) * ctx.m.coat * ctx.coat_energy;
 }
 
 fn coat_lobe_eval(ctx: ShadingContext, wi: vec3f) -> f32 {
-    if wi.z <= 0.0 {
+    if wi.z <= 0.0 || !glossy_sees(ctx, wi) {
         return 0.0;
     }
     let m = normalize(ctx.wo + wi);
@@ -141,11 +142,11 @@ fn coat_lobe_eval(ctx: ShadingContext, wi: vec3f) -> f32 {
 }
 
 fn coat_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
-    if !rough_coat(ctx) || dot(wi, ctx.n_geometric) <= 0.0 {
+    if !rough_coat(ctx) || !reaches_reflection_lobes(ctx, wi) {
         return 0.0;
     }
     let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
-    return coat_lobe_pdf(ctx, wi) + coat_lobe_pdf(ctx, mirrored);
+    return coat_lobe_pdf(ctx, wi) + f32(folds_below_surface()) * coat_lobe_pdf(ctx, mirrored);
 }
 
 fn coat_lobe_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {

@@ -194,7 +194,12 @@ struct Material {
     // thickness in nm (at most THIN_FILM_CUTOFF: none) and its index.
     thin_film_thickness: f32,
     thin_film_ior: f32,
-    _pad7: vec2u,
+    // 1: Cycles' Bump Map Correction of glossy normals on smooth-shaded surfaces (see
+    // smooth_shading.wgsl), 0: none.
+    bump_map_correction: u32,
+    // How much of the film there is (KHR_materials_iridescence's factor): the film's
+    // Fresnel and the bare one mixed by it.
+    thin_film_weight: f32,
     // The layered lobes' textures, or NO_TEXTURE (`layer_textured` in texture.wgsl): coat
     // R × coat, G × coat roughness, coat tint RGB, sheen R × sheen and G × its roughness,
     // sheen tint RGB, anisotropy R × anisotropy and G + rotation, specular tint RGB.
@@ -207,6 +212,12 @@ struct Material {
     specular_tint_texture: u32,
     // The anisotropic lobes' tangent: TANGENT_* in anisotropy.wgsl.
     tangent: u32,
+    // More layer textures: diffuse roughness R × diffuse_roughness, and the film's thickness
+    // G, from thin_film_minimum at 0 to thin_film_thickness at 1.
+    diffuse_roughness_texture: u32,
+    thin_film_texture: u32,
+    thin_film_minimum: f32,
+    _pad8: u32,
 }
 
 // Object-space vertex tangents (xyz) and bitangent signs (w) of one triangle; zero

@@ -26,18 +26,20 @@ fn refraction_weight(ctx: ShadingContext) -> vec3f {
 }
 
 // Reflectance of the interface at a microfacet: the exact Fresnel, or the thin film's
-// (per channel). Reflection and refraction are chosen by its mean.
+// (per channel) mixed with it by the film's weight. Reflection and refraction are chosen
+// by its mean.
 fn glass_fresnel(ctx: ShadingContext, cos_i: f32) -> vec3f {
+    let f = fresnel_dielectric(cos_i, ctx.eta);
+    var bare = vec3f(f);
+    if any(ctx.m.specular_tint != vec3f(1.0)) {
+        bare = specular_tinted_fresnel(f, ctx.m.specular_tint, ctx.m.ior);
+    }
     //#if thin_film
     if has_thin_film(ctx.m) {
-        return thin_film_glass(ctx.m, cos_i, ctx.eta);
+        return mix(bare, thin_film_glass(ctx.m, cos_i, ctx.eta), ctx.m.thin_film_weight);
     }
     //#endif
-    let f = fresnel_dielectric(cos_i, ctx.eta);
-    if all(ctx.m.specular_tint == vec3f(1.0)) {
-        return vec3f(f);
-    }
-    return specular_tinted_fresnel(f, ctx.m.specular_tint, ctx.m.ior);
+    return bare;
 }
 
 // Cycles' Principled glass (a generalised Schlick Fresnel that follows the real curve):

@@ -34,6 +34,9 @@
 //#if normal_maps
 //#include "normal_map.wgsl"
 //#endif
+//#if smooth_normals
+//#include "smooth_shading.wgsl"
+//#endif
 //#if aovs
 //#include "aovs.wgsl"
 //#endif
@@ -381,10 +384,15 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         // The viewer is outside when the ray meets the outward normal head on.
         let entering = dot(surface.geometric_normal, direction) < 0.0;
         let n_geometric = select(-surface.geometric_normal, surface.geometric_normal, entering);
-        let n_shading = select(-surface.shading_normal, surface.shading_normal, entering);
+        var n_shading = select(-surface.shading_normal, surface.shading_normal, entering);
+        var mapped = false;
         //#if normal_maps
         let side = select(-1.0, 1.0, entering);
-        set_unmapped_normal(side * n_unmapped, m.normal_texture != NO_TEXTURE, side * diffuse_mapped_normal());
+        mapped = m.normal_texture != NO_TEXTURE;
+        set_unmapped_normal(side * n_unmapped, mapped, side * diffuse_mapped_normal());
+        //#endif
+        //#if smooth_normals
+        n_shading = set_smooth_shading(m, hit, n_shading, n_geometric, -direction, mapped);
         //#endif
         //#if anisotropy
         set_surface_tangent(hit, surface.position, m.tangent);

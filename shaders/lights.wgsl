@@ -331,7 +331,11 @@ fn direct_light(ctx: ShadingContext, surface: Surface, n_geometric: vec3f, mediu
     if all(f == vec3f(0.0)) {
         return none;
     }
-    let origin = offset_ray_origin(p, surface.position_error, select(-n_geometric, n_geometric, dot(light.direction, n_geometric) > 0.0));
+    var start = p;
+    //#if smooth_normals
+    start = shadow_ray_lift(p, n_geometric, light.direction);
+    //#endif
+    let origin = offset_ray_origin(start, surface.position_error, select(-n_geometric, n_geometric, dot(light.direction, n_geometric) > 0.0));
     // Stop short of the light's own surface.
     let t_max = select(light.distance * (1.0 - 1e-4), INFINITY, light.distance >= INFINITY);
     var transmittance = vec3f(1.0);

@@ -11,6 +11,7 @@
 //#include "hit.wgsl"
 //#include "transform.wgsl"
 //#include "texture.wgsl"
+//#include "valid_reflection.wgsl"
 
 // The mapped normal of the last `normal_mapped` call before `valid_for_reflection` bent
 // it (outward, world space): Cycles' Principled BSDF gives its diffuse lobe this one and
@@ -56,33 +57,4 @@ fn normal_mapped(m: Material, hit: Hit, shading_normal: vec3f, geometric_normal:
     // Bent on the viewer's side, then turned back outward.
     let side = select(-1.0, 1.0, dot(geometric_normal, wo) >= 0.0);
     return side * valid_for_reflection(side * unbent_mapped_normal, side * geometric_normal, wo);
-}
-
-// Cycles' `ensure_valid_specular_reflection` (Schüßler et al., "Microfacet-based Normal
-// Mapping for Robust Monte Carlo Path Tracing", 2017, as Blender applies it to mapped
-// normals): a normal that would mirror the viewer's direction below the surface is
-// tilted towards the geometric normal `ng` (on the viewer's side) until the mirrored
-// direction clears it by min(0.9 cos θ_o, 0.01). Blender's images of normal maps are made
-// with it, so rt's are too; the rest of rt's shading-normal handling (the fallback to
-// the geometric normal and the folding of leaking directions in bsdf.wgsl) still holds.
-fn valid_for_reflection(n: vec3f, ng: vec3f, wo: vec3f) -> vec3f {
-    let r = 2.0 * dot(n, wo) * n - wo;
-    let iz = dot(wo, ng);
-    let threshold = min(0.9 * iz, 0.01);
-    if dot(ng, r) >= threshold {
-        return n;
-    }
-    let tangential = n - dot(n, ng) * ng;
-    let tangential_length = length(tangential);
-    if !(tangential_length > 0.0) || iz <= 0.0 {
-        return n;
-    }
-    let x = tangential / tangential_length;
-    let ix = dot(wo, x);
-    let a = ix * ix + iz * iz;
-    let b = 2.0 * (a + iz * threshold);
-    let c = (threshold + iz) * (threshold + iz);
-    let root = sqrt(max(b * b - 4.0 * a * c, 0.0));
-    let nz2 = select(0.25 * (b - root) / a, 0.25 * (b + root) / a, ix < 0.0);
-    return sqrt(max(1.0 - nz2, 0.0)) * x + sqrt(max(nz2, 0.0)) * ng;
 }

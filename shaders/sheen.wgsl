@@ -79,7 +79,7 @@ fn sheen_lobe(ctx: ShadingContext, wi: vec3f) -> f32 {
 
 // f·|cos θi| of the sheen layer (folded like the other reflection lobes).
 fn sheen_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
-    if !has_sheen(ctx) || dot(wi, ctx.n_geometric) <= 0.0 {
+    if !has_sheen(ctx) || !reaches_reflection_lobes(ctx, wi) {
         return vec3f(0.0);
     }
     let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
@@ -87,7 +87,7 @@ fn sheen_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
 }
 
 fn sheen_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
-    if !has_sheen(ctx) || dot(wi, ctx.n_geometric) <= 0.0 {
+    if !has_sheen(ctx) || !reaches_reflection_lobes(ctx, wi) {
         return 0.0;
     }
     let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;

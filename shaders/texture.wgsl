@@ -28,6 +28,8 @@ const UV1_SHEEN: u32 = 128u;
 const UV1_SHEEN_TINT: u32 = 256u;
 const UV1_ANISOTROPY: u32 = 512u;
 const UV1_SPECULAR_TINT: u32 = 1024u;
+const UV1_DIFFUSE_ROUGHNESS: u32 = 2048u;
+const UV1_THIN_FILM: u32 = 4096u;
 
 struct TexturePoint {
     uv: vec2f,
@@ -95,7 +97,8 @@ fn has_textures(m: Material) -> bool {
     any = any || m.coat_texture != NO_TEXTURE || m.coat_roughness_texture != NO_TEXTURE
         || m.coat_tint_texture != NO_TEXTURE || m.sheen_texture != NO_TEXTURE
         || m.sheen_tint_texture != NO_TEXTURE || m.anisotropy_texture != NO_TEXTURE
-        || m.specular_tint_texture != NO_TEXTURE;
+        || m.specular_tint_texture != NO_TEXTURE || m.diffuse_roughness_texture != NO_TEXTURE
+        || m.thin_film_texture != NO_TEXTURE;
     //#endif
     return any;
 }
@@ -259,9 +262,11 @@ fn layer_texel(m: Material, index: u32, bit: u32, uv: vec2f, second_uv: vec2f) -
     return sample_level(textures[index], 0u, select(uv, second_uv, (m.second_uv_set & bit) != 0u));
 }
 
-// The coat, sheen, anisotropy and specular tint textures applied at the texture
-// coordinates `uv` and `second_uv` (the second set's, or anything without `uv_sets`):
-// texels times the factors (Principled's sockets fed by an image; glTF's clearcoat textures).
+// The coat, sheen, anisotropy, specular tint, diffuse roughness and film thickness textures
+// applied at the texture coordinates `uv` and `second_uv` (the second set's, or anything
+// without `uv_sets`): texels times the factors (Principled's sockets fed by an image; glTF's
+// clearcoat textures), the film's thickness between its minimum and maximum (glTF's
+// iridescence thickness texture).
 fn layer_textured(material: Material, uv: vec2f, second_uv: vec2f) -> Material {
     var m = material;
     if m.coat_texture != NO_TEXTURE {
@@ -290,6 +295,13 @@ fn layer_textured(material: Material, uv: vec2f, second_uv: vec2f) -> Material {
     }
     if m.specular_tint_texture != NO_TEXTURE {
         m.specular_tint *= layer_texel(m, m.specular_tint_texture, UV1_SPECULAR_TINT, uv, second_uv).rgb;
+    }
+    if m.diffuse_roughness_texture != NO_TEXTURE {
+        m.diffuse_roughness *= layer_texel(m, m.diffuse_roughness_texture, UV1_DIFFUSE_ROUGHNESS, uv, second_uv).r;
+    }
+    if m.thin_film_texture != NO_TEXTURE {
+        let g = layer_texel(m, m.thin_film_texture, UV1_THIN_FILM, uv, second_uv).g;
+        m.thin_film_thickness = mix(m.thin_film_minimum, m.thin_film_thickness, g);
     }
     return m;
 }

@@ -216,7 +216,10 @@ pub struct GpuMaterial {
     /// `THIN_FILM_CUTOFF`: none) and index.
     pub thin_film_thickness: f32,
     pub thin_film_ior: f32,
-    pub _pad7: [u32; 2],
+    /// 1: Cycles' Bump Map Correction of glossy normals on smooth-shaded surfaces; 0: none.
+    pub bump_map_correction: u32,
+    /// How much of the film there is (KHR_materials_iridescence's factor, in [0, 1]).
+    pub thin_film_weight: f32,
     /// The layered lobes' textures (`LayerTextures`), indices into the texture table or
     /// `NO_TEXTURE`: coat R, coat roughness G, coat tint RGB, sheen R and roughness G.
     pub coat_texture: u32,
@@ -229,6 +232,12 @@ pub struct GpuMaterial {
     pub specular_tint_texture: u32,
     /// The anisotropic lobes' tangent (`TANGENT_*`).
     pub tangent: u32,
+    /// Diffuse roughness R, and the film's thickness G (from `thin_film_minimum` at 0 to
+    /// `thin_film_thickness` at 1).
+    pub diffuse_roughness_texture: u32,
+    pub thin_film_texture: u32,
+    pub thin_film_minimum: f32,
+    pub _pad8: u32,
 }
 
 /// `GpuMaterial::tangent`: Cycles' Tangent node, radial about Blender's Z (the default), X
@@ -489,7 +498,8 @@ impl From<&crate::scene::Material> for GpuMaterial {
             sheen: m.sheen,
             thin_film_thickness: m.thin_film_thickness,
             thin_film_ior: m.thin_film_ior,
-            _pad7: [0; 2],
+            bump_map_correction: u32::from(m.bump_map_correction),
+            thin_film_weight: m.thin_film_weight,
             coat_texture: slot(l.coat),
             coat_roughness_texture: slot(l.coat_roughness),
             coat_tint_texture: slot(l.coat_tint),
@@ -503,6 +513,10 @@ impl From<&crate::scene::Material> for GpuMaterial {
                 Tangent::RadialY => TANGENT_RADIAL_Y,
                 Tangent::Uv => TANGENT_UV,
             },
+            diffuse_roughness_texture: slot(l.diffuse_roughness),
+            thin_film_texture: slot(l.thin_film_thickness),
+            thin_film_minimum: m.textures.thin_film_minimum,
+            _pad8: 0,
         }
     }
 }

@@ -109,6 +109,7 @@ fn blender_scene_exports_packs_and_renders() {
     assert_eq!((glass.transmission, glass.diffuse, glass.reflection), (1.0, 0.0, 0.0), "{glass:?}");
     assert!((glass.ior - 1.45).abs() < 1e-6 && (glass.roughness - 0.05).abs() < 1e-6, "{glass:?}");
     let lamp = &asset("lamp").materials[0].1;
+    assert!(!glass.bump_map_correction && lamp.bump_map_correction, "Bump Map Correction: off on the glass only");
     for (got, want) in lamp.emission.iter().zip([5.0, 2.5, 1.25]) {
         assert!((got - want).abs() < 1e-5, "lamp emission {:?}", lamp.emission);
     }

@@ -102,6 +102,27 @@ fn coat_weight_and_roughness_maps_match_cycles() {
     check("coat_map");
 }
 
+// One image through Separate Color: R the Diffuse Roughness (stripes of 1 and 0), G through
+// a Map Range node the Thin Film Thickness (150 to 900 nm along v), exported as rt's
+// diffuse roughness texture and KHR_materials_iridescence's thickness texture.
+#[test]
+fn diffuse_roughness_and_film_thickness_maps_match_cycles() {
+    check("film_roughness_map");
+    let file = repo().join("tests/cycles/scenes/texture_film_roughness_map/assets/Sphere/Sphere.gltf");
+    let text = std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+    let json: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    let m = &json["materials"][0];
+    let film = &m["extensions"]["KHR_materials_iridescence"];
+    assert_eq!(
+        (film["iridescenceThicknessMinimum"].as_f64(), film["iridescenceThicknessMaximum"].as_f64()),
+        (Some(150.0), Some(900.0)),
+        "{film}"
+    );
+    assert!(film["iridescenceThicknessTexture"]["index"].is_u64(), "{film}");
+    assert_eq!(m["extras"]["rt_diffuse_roughness"].as_f64(), Some(1.0), "{m}");
+    assert!(m["extras"]["rt_diffuse_roughness_texture"]["index"].is_u64(), "{m}");
+}
+
 // A grey checker of sheen weight and colour stripes of sheen tint (sRGB) on a dark sphere
 // in a white world. There rt's blocks are nearly noiseless (cosine-sampled diffuse under a
 // uniform world is exact), so as in tests/cycles_principled.rs a block may also differ by

@@ -1,7 +1,8 @@
 //! The layered lobes' textures and the tangent as rt reads them from glTF: the clearcoat
 //! textures of `KHR_materials_clearcoat`, `KHR_materials_specular`'s colour texture and rt's
-//! own extras (what `blender/rt_export.py` writes for Principled's coat tint, sheen and
-//! anisotropy sockets), each in its colour space; bad ones refused naming the material.
+//! own extras (what `blender/rt_export.py` writes for Principled's coat tint, sheen,
+//! anisotropy and diffuse roughness sockets), `KHR_materials_iridescence`'s thickness
+//! texture, each in its colour space; bad ones refused naming the material.
 
 use crate::common;
 
@@ -75,6 +76,24 @@ fn layer_textures_and_the_tangent_are_read_in_their_colour_spaces() {
     assert_eq!(mesh.textures.len(), 3, "data of each sampler, colour of the second");
     assert_eq!(m.textures.second_uv_set, 0);
     assert!(m.textures.any() && !m.reads_tangents());
+}
+
+/// Diffuse roughness (rt's extras) and the film's thickness (`iridescenceThicknessTexture`,
+/// its G between the extension's minimum and maximum) are data textures, the factor the
+/// film's weight.
+#[test]
+fn diffuse_roughness_and_film_thickness_textures_are_read() {
+    let material = r#"{ "name": "film",
+      "extensions": { "KHR_materials_iridescence": { "iridescenceFactor": 0.5, "iridescenceThicknessMinimum": 150,
+                      "iridescenceThicknessMaximum": 900, "iridescenceThicknessTexture": { "index": 0 } } },
+      "extras": { "rt_diffuse_roughness": 1, "rt_diffuse_roughness_texture": { "index": 0 } } }"#;
+    let mesh = load("layer_textures_film", material).unwrap_or_else(|e| panic!("{e}"));
+    let m = &mesh.materials[0].1;
+    let l = m.textures.layers;
+    let srgb = |slot: Option<u32>| mesh.textures[slot.expect("a texture") as usize].srgb;
+    assert!(!srgb(l.diffuse_roughness) && !srgb(l.thin_film_thickness), "{l:?}");
+    assert_eq!((m.thin_film_thickness, m.textures.thin_film_minimum, m.thin_film_weight), (900.0, 150.0, 0.5));
+    assert_eq!(m.diffuse_roughness, 1.0);
 }
 
 #[test]

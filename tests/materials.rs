@@ -245,6 +245,30 @@ fn hard_materials_stay_finite() {
     }
 }
 
+/// glTF's iridescenceFactor (`thin_film_weight`) mixes the Fresnel with and without the film:
+/// on a convex metal sphere under a uniform sky every path reflects once, so the image is
+/// linear in the weight and the half film is the mean of none and all.
+#[test]
+fn a_half_film_is_the_mean_of_none_and_all() {
+    let film = |weight: f64| {
+        sphere_furnace_with(
+            &format!(
+                "diffuse = 0.0\nreflection = 1.0\nbase_color = [0.9, 0.6, 0.3]\nroughness = 0.3\n\
+                 thin_film_thickness = 500.0\nthin_film_ior = 1.6\nthin_film_weight = {weight}"
+            ),
+            "sampling = \"nee\"",
+        )
+    };
+    let [(none, se_none), (half, se_half), (all, se_all)] = [0.0, 0.5, 1.0].map(film);
+    let sigma = (se_half.powi(2) + (se_none.powi(2) + se_all.powi(2)) / 4.0).sqrt();
+    println!(
+        "film weight 0, 0.5, 1: {none:.5}, {half:.5}, {all:.5}; half vs mean {:.2} σ",
+        (half - (none + all) / 2.0) / sigma
+    );
+    assert!((all - none).abs() > 20.0 * sigma, "the film must show: {none} vs {all} ± {sigma}");
+    assert!((half - (none + all) / 2.0).abs() <= 4.0 * sigma, "{half} vs {} ± {sigma}", (none + all) / 2.0);
+}
+
 #[test]
 fn inverted_shading_normals_and_suns_at_and_below_the_horizon_stay_finite() {
     // A quad whose vertex normals point against its winding, and one whose normals

@@ -32,6 +32,7 @@ mod cycles_lamps;
 mod cycles_normal_maps;
 mod cycles_principled;
 mod cycles_shader_nodes;
+mod cycles_terminator;
 mod cycles_textures;
 mod denoise;
 mod environment;

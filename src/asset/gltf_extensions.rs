@@ -79,12 +79,12 @@ fn warn_textures(m: &gltf::Material, ext: &Value, name: &str, keys: &[&str], ins
     }
 }
 
-/// `KHR_materials_iridescence` as rt's thin film: thickness (nm) and index, or `None` for no
-/// film (absent, or `iridescenceFactor` 0, glTF's default). rt's film is all or nothing: a
-/// factor between 0 and 1 is rendered as 1, with a warning. Without a thickness texture the
-/// film is `iridescenceThicknessMaximum` thick (glTF's defaults: 400 nm, index 1.3); a
-/// texture is not read and the maximum stands for it.
-pub(super) fn iridescence(m: &gltf::Material) -> Result<Option<(f32, f32)>, String> {
+/// `KHR_materials_iridescence` as rt's thin film: thickness (nm), index and weight, or `None`
+/// for no film (absent, or `iridescenceFactor` 0, glTF's default). Without a thickness
+/// texture the film is `iridescenceThicknessMaximum` thick (glTF's defaults: 400 nm, index
+/// 1.3); with one (read by `gltf_layer_textures`) its G runs from the minimum (100 nm) to
+/// the maximum. A texture of the factor is not read: the factor stands for it.
+pub(super) fn iridescence(m: &gltf::Material) -> Result<Option<Film>, String> {
     const NAME: &str = "KHR_materials_iridescence";
     let Some(ext) = m.extension_value(NAME) else {
         return Ok(None);
@@ -93,17 +93,22 @@ pub(super) fn iridescence(m: &gltf::Material) -> Result<Option<(f32, f32)>, Stri
     if factor <= 0.0 {
         return Ok(None);
     }
-    if factor < 1.0 {
-        log::warn!(
-            "{}: {NAME}.iridescenceFactor {factor} is rendered as 1 (rt's film has no weight)",
-            material_name(m)
-        );
-    }
     warn_textures(m, ext, NAME, &["iridescenceTexture"], "iridescenceFactor");
-    warn_textures(m, ext, NAME, &["iridescenceThicknessTexture"], "iridescenceThicknessMaximum");
     let thickness = number(ext, NAME, "iridescenceThicknessMaximum", 400.0)?.clamp(0.0, 100_000.0);
+    let minimum = number(ext, NAME, "iridescenceThicknessMinimum", 100.0)?.clamp(0.0, 100_000.0);
     let ior = number(ext, NAME, "iridescenceIor", 1.3)?.max(1.0);
-    Ok(Some((thickness, ior)))
+    Ok(Some(Film { thickness, minimum, ior, weight: factor.min(1.0) }))
+}
+
+/// `KHR_materials_iridescence`: the film's thickness (nm), index, and weight (its factor:
+/// the lobes' Fresnel is the bare one and the film's mixed by it, as the extension defines).
+#[derive(Debug)]
+pub(super) struct Film {
+    pub thickness: f32,
+    /// The thickness where a thickness texture reads 0.
+    pub minimum: f32,
+    pub ior: f32,
+    pub weight: f32,
 }
 
 /// `KHR_materials_sheen` as Blender's importer reads it into the Principled BSDF: Sheen
@@ -198,8 +203,8 @@ mod tests {
         mesh.materials.into_iter().map(|(_, m)| m).collect()
     }
 
-    /// Iridescence is rt's thin film at the maximum thickness; factor 0 (glTF's default) is none,
-    /// and absent fields take glTF's defaults (index 1.3, 400 nm).
+    /// Iridescence is rt's thin film at the maximum thickness, weighted by its factor; factor 0
+    /// (glTF's default) is none, and absent fields take glTF's defaults (index 1.3, 400 nm).
     #[test]
     fn iridescence_is_imported_as_the_thin_film() {
         let m = import(
@@ -209,15 +214,28 @@ mod tests {
                { "extensions": { "KHR_materials_iridescence": { "iridescenceFactor": 0.5 } } },
                { "extensions": { "KHR_materials_iridescence": { "iridescenceIor": 1.8 } } },
                { "extensions": { "KHR_materials_iridescence": { "iridescenceFactor": 1,
-                  "iridescenceThicknessTexture": { "index": 0 } } } },
+                  "iridescenceThicknessMinimum": 50 } } },
                {}"#,
         );
         let film = |m: &Material| (m.thin_film_thickness, m.thin_film_ior);
         assert_eq!(film(&m[0]), (650.0, 1.45));
         assert_eq!(film(&m[1]), (400.0, 1.3));
+        assert_eq!((m[0].thin_film_weight, m[1].thin_film_weight), (1.0, 0.5), "the factor is the film's weight");
         assert!(!m[2].has_thin_film());
-        assert_eq!(film(&m[3]), (400.0, 1.3), "a thickness texture: its maximum");
+        assert_eq!(film(&m[3]), (400.0, 1.3), "without a thickness texture: its maximum");
+        assert_eq!(m[3].textures.thin_film_minimum, 50.0, "kept for a thickness texture");
         assert!(!m[4].has_thin_film());
+    }
+
+    /// Blender's Bump Map Correction comes through the extras (on when absent, as in Blender).
+    #[test]
+    fn bump_map_correction_is_read_from_the_extras() {
+        let m = import(
+            "gltf_bump_map_correction",
+            r#"{ "extras": { "rt_bump_map_correction": false } }, { "extras": { "rt_bump_map_correction": true } }, {}"#,
+        );
+        let on: Vec<bool> = m.iter().map(|m| m.bump_map_correction).collect();
+        assert_eq!(on, [false, true, true]);
     }
 
     #[test]

@@ -22,10 +22,12 @@
 //! | `extras.rt_sheen`, `_roughness`, `_tint` (absent)          | `sheen`, `sheen_roughness`, `sheen_tint`, instead of the extension's |
 //! | `KHR_materials_anisotropy` strength, rotation (0, 0 rad)  | `anisotropy`, `anisotropy_rotation = rotation / 2π` (as Blender imports it) |
 //! | `extras.rt_anisotropy`, `rt_anisotropy_rotation` (absent) | `anisotropy`, `anisotropy_rotation`, instead of the extension's |
-//! | `KHR_materials_iridescence` factor (0), index (1.3), thickness maximum (400) | `thin_film_ior`, `thin_film_thickness` (the maximum; factor 0: no film) |
+//! | `KHR_materials_iridescence` factor (0), index (1.3), thickness maximum (400) | `thin_film_weight` (the factor; 0: no film), `thin_film_ior`, `thin_film_thickness` (the maximum) |
 //! | `extras.rt_tangent` (`"radial_z"`)                        | `tangent` |
 //! | `KHR_materials_clearcoat` textures, `KHR_materials_specular` colour texture, `extras.rt_*_texture` | `textures.layers` (`gltf_layer_textures`) |
 //! | `extras.rt_diffuse_roughness` (0)                         | `diffuse_roughness` (Principled's Diffuse Roughness; glTF has none) |
+//! | `KHR_materials_iridescence` thickness texture, minimum (100), `extras.rt_diffuse_roughness_texture` | `textures.layers` (`gltf_layer_textures`), `textures.thin_film_minimum` |
+//! | `extras.rt_bump_map_correction` (true)                    | `bump_map_correction` (Blender's material setting; glTF has none) |
 //! | `KHR_materials_volume` colour `c` (1), distance `d` (∞)   | `absorption = -ln(c) / d`; 0 if `d = ∞` |
 //! | `extras.rt_volume_emission` `[r, g, b]` (0)               | `volume_emission`              |
 //!
@@ -39,7 +41,7 @@
 //! default material (a rough white metal): rt treats a material-less mesh as plain
 //! geometry, the same as an OBJ without a `.mtl` and a scene material left at defaults.
 
-use super::gltf_extensions::{Sheen, anisotropy, clearcoat, glossy, iridescence, sheen};
+use super::gltf_extensions::{Film, Sheen, anisotropy, clearcoat, glossy, iridescence, sheen};
 use super::gltf_textures::{ColorSpace, TextureLoader};
 use super::{AssetError, MeshData};
 use crate::scene::{Material, MaterialTextures, NORMAL_SLOT, Tangent};
@@ -76,6 +78,7 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
             .map_err(|e| err(format!("material `{name}`: {e}")))?;
         material.textures.layers = layers;
         material.textures.second_uv_set |= layer_uv_sets;
+        material.textures.thin_film_minimum = iridescence(&m).ok().flatten().map_or(0.0, |f| f.minimum);
         if material.textures.metallic_roughness.is_some() {
             // The lobe weights become those of the non-metal part; the texture sets the metal.
             material = Material {
@@ -385,6 +388,7 @@ fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<M
         normal_scale: normal_info.map_or(1.0, |n| n.scale()),
         second_uv_set,
         layers: Default::default(),
+        thin_film_minimum: 0.0,
     })
 }
 
@@ -425,7 +429,7 @@ fn map_material_with_metallic(m: &gltf::Material, metallic: f32) -> Result<Mater
     let clearcoat = clearcoat(m)?;
     let sheen = sheen(m)?.unwrap_or(Sheen { weight: 0.0, tint: [1.0; 3], roughness: 0.5 });
     let (anisotropy, anisotropy_rotation) = anisotropy(m)?;
-    let (thin_film_thickness, thin_film_ior) = iridescence(m)?.unwrap_or((0.0, 1.33));
+    let film = iridescence(m)?.unwrap_or(Film { thickness: 0.0, minimum: 0.0, ior: 1.33, weight: 1.0 });
     let material = Material {
         base_color: [r, g, b],
         diffuse,
@@ -443,10 +447,12 @@ fn map_material_with_metallic(m: &gltf::Material, metallic: f32) -> Result<Mater
         anisotropy_rotation: extra::<f32>(m.extras(), "rt_anisotropy_rotation")?
             .unwrap_or(anisotropy_rotation)
             .rem_euclid(1.0),
-        thin_film_thickness,
-        thin_film_ior,
+        thin_film_thickness: film.thickness,
+        thin_film_ior: film.ior,
+        thin_film_weight: film.weight,
         tangent: tangent(m.extras())?,
         diffuse_roughness: extra::<f32>(m.extras(), "rt_diffuse_roughness")?.unwrap_or(0.0).clamp(0.0, 1.0),
+        bump_map_correction: extra::<bool>(m.extras(), "rt_bump_map_correction")?.unwrap_or(true),
         reflection: metallic,
         transmission: dielectric * transmission,
         ior: m.ior().unwrap_or(1.5),
@@ -636,6 +642,8 @@ mod tests {
                 tangent: crate::scene::Tangent::RadialZ,
                 thin_film_thickness: 0.0,
                 thin_film_ior: 1.33,
+                thin_film_weight: 1.0,
+                bump_map_correction: true,
                 diffuse_roughness: 0.0,
                 hardness: None,
                 emission: [4.0, 2.0, 0.0],

@@ -1,9 +1,11 @@
 //! The layered lobes' textures of a glTF material ([`LayerTextures`]): `KHR_materials_clearcoat`'s
 //! `clearcoatTexture` (R) and `clearcoatRoughnessTexture` (G), `KHR_materials_specular`'s
-//! `specularColorTexture`, and rt's own extras for what glTF has no texture of:
-//! `rt_coat_tint_texture` (RGB), `rt_sheen_texture` (R weight, G roughness),
-//! `rt_sheen_tint_texture` (RGB) and `rt_anisotropy_texture` (R amount, G rotation), each a
-//! texture info as glTF writes one (`{"index": i, "texCoord": n}`).
+//! `specularColorTexture`, `KHR_materials_iridescence`'s `iridescenceThicknessTexture` (G:
+//! the thickness from the extension's minimum to its maximum), and rt's own extras for
+//! what glTF has no texture of: `rt_coat_tint_texture` (RGB), `rt_sheen_texture` (R weight,
+//! G roughness), `rt_sheen_tint_texture` (RGB), `rt_anisotropy_texture` (R amount, G
+//! rotation) and `rt_diffuse_roughness_texture` (R), each a texture info as glTF writes one
+//! (`{"index": i, "texCoord": n}`).
 
 use super::gltf_import::{extra, uv_set_bit};
 use super::gltf_textures::{ColorSpace, TextureLoader};
@@ -18,6 +20,8 @@ const SHEEN: usize = 7;
 const SHEEN_TINT: usize = 8;
 const ANISOTROPY: usize = 9;
 const SPECULAR_TINT: usize = 10;
+const DIFFUSE_ROUGHNESS: usize = 11;
+const THIN_FILM_THICKNESS: usize = 12;
 
 /// A texture info in raw JSON: its texture's index and its `texCoord`.
 fn info(v: &Value, what: &str) -> Result<(usize, u32), String> {
@@ -57,6 +61,11 @@ pub(super) fn layer_textures(
     };
     let specular_color =
         m.specular().and_then(|s| s.specular_color_texture()).map(|i| (i.texture().index(), i.tex_coord()));
+    let film_thickness = m
+        .extension_value("KHR_materials_iridescence")
+        .and_then(|f| f.get("iridescenceThicknessTexture"))
+        .map(|v| info(v, "KHR_materials_iridescence.iridescenceThicknessTexture"))
+        .transpose()?;
     let layers = LayerTextures {
         coat: load(from_clearcoat("clearcoatTexture")?, ColorSpace::Linear, COAT, "clearcoat")?,
         coat_roughness: load(
@@ -70,6 +79,13 @@ pub(super) fn layer_textures(
         sheen_tint: load(from_extras("rt_sheen_tint_texture")?, ColorSpace::Srgb, SHEEN_TINT, "sheen tint")?,
         anisotropy: load(from_extras("rt_anisotropy_texture")?, ColorSpace::Linear, ANISOTROPY, "anisotropy")?,
         specular_tint: load(specular_color, ColorSpace::Srgb, SPECULAR_TINT, "specular colour")?,
+        diffuse_roughness: load(
+            from_extras("rt_diffuse_roughness_texture")?,
+            ColorSpace::Linear,
+            DIFFUSE_ROUGHNESS,
+            "diffuse roughness",
+        )?,
+        thin_film_thickness: load(film_thickness, ColorSpace::Linear, THIN_FILM_THICKNESS, "iridescence thickness")?,
     };
     Ok((layers, second_uv_set))
 }

@@ -98,6 +98,8 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
     force("anisotropy", own.anisotropy, FeatureSet { anisotropy: true, ..own });
     force("thin film", own.thin_film, FeatureSet { thin_film: true, ..own });
     force("rough diffuse", own.rough_diffuse, FeatureSet { rough_diffuse: true, ..own });
+    // Smooth shading reads triangles' vertices and normals: forcing it on forces triangles too.
+    force("smooth normals", own.smooth_normals, FeatureSet { smooth_normals: true, triangles: true, ..own });
     // Texture lookups alone, so that the normal maps' own share of their price shows.
     force("textures", own.textures, FeatureSet { textures: true, ..own });
     // Normal maps are texture lookups: forcing them on forces the texture code too.

@@ -57,10 +57,15 @@ pub struct CachedMaterial {
     pub thin_film_thickness: f32,
     pub thin_film_ior: f32,
     /// `LayerTextures`, in the order of its `slots`.
-    pub layer_textures: [u32; 7],
+    pub layer_textures: [u32; 9],
     /// `Tangent`: 0 radial Z, 1 radial X, 2 radial Y, 3 the uv map's.
     pub tangent: u32,
     pub diffuse_roughness: f32,
+    pub thin_film_weight: f32,
+    /// 1: Bump Map Correction.
+    pub bump_map_correction: u32,
+    /// `MaterialTextures::thin_film_minimum`.
+    pub thin_film_minimum: f32,
 }
 
 const TANGENTS: [Tangent; 4] = [Tangent::RadialZ, Tangent::RadialX, Tangent::RadialY, Tangent::Uv];
@@ -105,6 +110,9 @@ impl From<&Material> for CachedMaterial {
             layer_textures: m.textures.layers.slots().map(slot),
             tangent: TANGENTS.iter().position(|&t| t == m.tangent).unwrap_or(0) as u32,
             diffuse_roughness: m.diffuse_roughness,
+            thin_film_weight: m.thin_film_weight,
+            bump_map_correction: u32::from(m.bump_map_correction),
+            thin_film_minimum: m.textures.thin_film_minimum,
         }
     }
 }
@@ -134,6 +142,8 @@ impl From<&CachedMaterial> for Material {
             tangent: TANGENTS.get(m.tangent as usize).copied().unwrap_or_default(),
             thin_film_thickness: m.thin_film_thickness,
             thin_film_ior: m.thin_film_ior,
+            thin_film_weight: m.thin_film_weight,
+            bump_map_correction: m.bump_map_correction != 0,
             hardness: (m.hardness > 0.0).then_some(m.hardness),
             emission: m.emission,
             absorption: m.absorption,
@@ -150,10 +160,30 @@ impl From<&CachedMaterial> for Material {
                 normal_scale: m.normal_scale,
                 second_uv_set: m.second_uv_set,
                 layers: {
-                    let [coat, coat_roughness, coat_tint, sheen, sheen_tint, anisotropy, specular_tint] =
-                        m.layer_textures.map(unslot);
-                    LayerTextures { coat, coat_roughness, coat_tint, sheen, sheen_tint, anisotropy, specular_tint }
+                    let [
+                        coat,
+                        coat_roughness,
+                        coat_tint,
+                        sheen,
+                        sheen_tint,
+                        anisotropy,
+                        specular_tint,
+                        diffuse_roughness,
+                        thin_film_thickness,
+                    ] = m.layer_textures.map(unslot);
+                    LayerTextures {
+                        coat,
+                        coat_roughness,
+                        coat_tint,
+                        sheen,
+                        sheen_tint,
+                        anisotropy,
+                        specular_tint,
+                        diffuse_roughness,
+                        thin_film_thickness,
+                    }
                 },
+                thin_film_minimum: m.thin_film_minimum,
             },
         }
     }
@@ -187,6 +217,8 @@ impl CachedMaterial {
             self.anisotropy_rotation,
             self.thin_film_thickness,
             self.thin_film_ior,
+            self.thin_film_weight,
+            self.thin_film_minimum,
             self.diffuse_roughness,
             self.hardness,
             self.metallic,

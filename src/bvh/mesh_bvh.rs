@@ -54,6 +54,17 @@ pub struct MeshBvh {
 }
 
 impl MeshBvh {
+    /// Whether some triangle has a vertex normal other than its face's: a face without
+    /// normals stores its own at each vertex, so a flat-shaded mesh has none.
+    pub fn has_interpolated_normals(&self) -> bool {
+        self.triangles.iter().zip(&self.shading).any(|(t, s)| {
+            let [v0, v1, v2] = [t.v0, t.v1, t.v2].map(Vec3::from);
+            let face = (v1 - v0).cross(v2 - v0).normalize_or_zero();
+            face != Vec3::ZERO
+                && [s.n0, s.n1, s.n2].iter().any(|&n| Vec3::from(n).normalize_or_zero().dot(face) < 1.0 - 1e-6)
+        })
+    }
+
     pub fn build(mesh: &MeshData, quality: BuildQuality) -> Self {
         let start = Instant::now();
         let p = |i: u32| Vec3A::from_array(mesh.positions[i as usize]);

@@ -53,6 +53,9 @@ pub struct SceneGeometry {
     pub meshes: Vec<LoadedMesh>,
     /// Every material some triangle or sphere uses.
     pub materials_in_use: Vec<Material>,
+    /// Some placed triangle has a vertex normal other than its face's
+    /// ([`MeshBvh::has_interpolated_normals`](super::mesh_bvh::MeshBvh::has_interpolated_normals)).
+    pub smooth_normals: bool,
     pub bounds_min: Vec3,
     pub bounds_max: Vec3,
 }
@@ -68,6 +71,7 @@ impl SceneGeometry {
         GeometrySummary {
             triangles: !self.instances.is_empty(),
             spheres: !self.spheres.is_empty(),
+            smooth_normals: self.smooth_normals,
             materials_in_use: self.materials_in_use.clone(),
         }
     }
@@ -213,6 +217,7 @@ impl SceneGeometry {
             });
         }
 
+        let smooth_normals = !instances.is_empty() && meshes.iter().any(|m| m.bvh.has_interpolated_normals());
         let materials_in_use = materials.iter().zip(&in_use).filter(|(_, u)| **u).map(|(m, _)| m.clone()).collect();
         let mesh_triangles: Vec<_> = slots
             .iter()
@@ -293,6 +298,7 @@ impl SceneGeometry {
             tlas_build_time,
             meshes,
             materials_in_use,
+            smooth_normals,
             bounds_min,
             bounds_max,
         })

@@ -140,6 +140,8 @@ fn host_structs_match_wgsl_layouts() {
                 sheen,
                 thin_film_thickness,
                 thin_film_ior,
+                bump_map_correction,
+                thin_film_weight,
                 coat_texture,
                 coat_roughness_texture,
                 coat_tint_texture,
@@ -147,7 +149,10 @@ fn host_structs_match_wgsl_layouts() {
                 sheen_tint_texture,
                 anisotropy_texture,
                 specular_tint_texture,
-                tangent
+                tangent,
+                diffuse_roughness_texture,
+                thin_film_texture,
+                thin_film_minimum
             ]
         ),
         host_layout!("TriangleTangents", GpuTriangleTangents, [t0, t1, t2]),

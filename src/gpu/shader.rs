@@ -74,6 +74,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("segment.wgsl"),
     shader!("sheen.wgsl"),
     shader!("sky.wgsl"),
+    shader!("smooth_shading.wgsl"),
     shader!("sphere.wgsl"),
     shader!("sphere_test.wgsl"),
     shader!("sun.wgsl"),
@@ -87,6 +88,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("transform.wgsl"),
     shader!("traverse.wgsl"),
     shader!("triangle.wgsl"),
+    shader!("valid_reflection.wgsl"),
     shader!("wide_bvh.wgsl"),
 ];
 

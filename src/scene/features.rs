@@ -111,6 +111,10 @@ pub struct FeatureSet {
     pub uv_tangents: bool,
     /// Some diffuse lobe is Oren-Nayar (`diffuse_roughness`).
     pub rough_diffuse: bool,
+    /// Triangles with interpolated normals shaded as Cycles shades them (in Cycles'
+    /// material model, `microfacet = "multiscatter"`): the shadow terminator offset,
+    /// directions judged by the geometry rather than folded, and Bump Map Correction.
+    pub smooth_normals: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -122,6 +126,8 @@ pub const ALPHA_DELTA: f32 = 1e-3;
 pub struct GeometrySummary {
     pub triangles: bool,
     pub spheres: bool,
+    /// Some triangle's vertex normals differ from its face's (a smooth-shaded mesh).
+    pub smooth_normals: bool,
     /// Every material some triangle or sphere uses (an asset's own materials may
     /// emit or refract).
     pub materials_in_use: Vec<Material>,
@@ -192,6 +198,8 @@ impl FeatureSet {
             layer_textures: materials_in_use.iter().any(|m| m.textures.layers.any()),
             uv_tangents: materials_in_use.iter().any(|m| m.reads_uv_tangents()),
             rough_diffuse: materials_in_use.iter().any(|m| m.has_rough_diffuse()),
+            // Mitsuba's material model (`single`) folds leaking directions above the surface.
+            smooth_normals: geometry.smooth_normals && settings.microfacet == Microfacet::Multiscatter,
         }
     }
 
@@ -227,6 +235,7 @@ impl FeatureSet {
             layer_textures: true,
             uv_tangents: true,
             rough_diffuse: true,
+            smooth_normals: true,
         }
     }
 
@@ -277,6 +286,7 @@ impl FeatureSet {
             // Layers over the other lobes, which dim the emission under them.
             "coat_or_sheen" => self.coat || self.sheen,
             "rough_diffuse" => self.rough_diffuse,
+            "smooth_normals" => self.smooth_normals,
             "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen || self.thin_film,
             _ => return None,
         })
@@ -312,6 +322,7 @@ impl fmt::Display for FeatureSet {
             (self.layer_textures, "layer-textures"),
             (self.uv_tangents, "uv-tangents"),
             (self.rough_diffuse, "rough-diffuse"),
+            (self.smooth_normals, "smooth-normals"),
         ] {
             if on {
                 parts.push(name.to_string());

@@ -50,6 +50,14 @@ pub struct Material {
     /// (Belcour & Barla 2017, as Cycles 5.0 renders it).
     pub thin_film_thickness: f32,
     pub thin_film_ior: f32,
+    /// How much of the film there is (glTF's `iridescenceFactor`; Blender's film is all
+    /// there, 1): the lobes' Fresnel is the film's and the bare one mixed by it.
+    pub thin_film_weight: f32,
+    /// Cycles' Bump Map Correction (Blender's material setting, on by default): on a
+    /// smooth-shaded surface, the glossy, metal, glass and coat lobes take their normal
+    /// tilted just enough that the mirror direction of the view stays above the surface,
+    /// and light below the interpolated normal does not reach them.
+    pub bump_map_correction: bool,
     /// The seed renderer's Phong-like exponent; mapped to `roughness` when given.
     pub hardness: Option<f32>,
     pub emission: [f32; 3],
@@ -101,15 +109,19 @@ pub struct MaterialTextures {
     pub normal_scale: f32,
     /// Which texture slots read the mesh's second uv set (glTF `texCoord` 1): bit i for
     /// slot i of [`Self::indices_mut`] (base colour, metallic-roughness, emission, normal,
-    /// then the layers' seven); the others read the first. A normal map's tangents are of
+    /// then the layers' nine); the others read the first. A normal map's tangents are of
     /// the set it reads.
     pub second_uv_set: u32,
     /// The layered lobes' textures: [`LayerTextures`].
     pub layers: LayerTextures,
+    /// The film's thickness (nm) where its thickness texture reads 0 (glTF's
+    /// `iridescenceThicknessMinimum`), used with `layers.thin_film_thickness` only.
+    pub thin_film_minimum: f32,
 }
 
-/// Textures of the coat, sheen, anisotropy and specular tint (Principled's sockets of those
-/// names), each an index into the asset's textures. Factors multiply the texels, as glTF's do.
+/// Textures of the coat, sheen, anisotropy, specular tint, diffuse roughness and thin film
+/// thickness (Principled's sockets of those names), each an index into the asset's textures.
+/// Factors multiply the texels, as glTF's do (the film's thickness is a range instead).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct LayerTextures {
     /// R × `coat` (glTF's `clearcoatTexture`).
@@ -126,6 +138,11 @@ pub struct LayerTextures {
     pub anisotropy: Option<u32>,
     /// RGB (colour) × `specular_tint` (glTF's `specularColorTexture`).
     pub specular_tint: Option<u32>,
+    /// R × `diffuse_roughness` (rt's `extras.rt_diffuse_roughness_texture`).
+    pub diffuse_roughness: Option<u32>,
+    /// G: the film's thickness, from `MaterialTextures::thin_film_minimum` at 0 to
+    /// `thin_film_thickness` at 1 (glTF's `iridescenceThicknessTexture`).
+    pub thin_film_thickness: Option<u32>,
 }
 
 impl LayerTextures {
@@ -134,7 +151,7 @@ impl LayerTextures {
     }
 
     /// The slots, in the order of [`MaterialTextures::indices_mut`] after its first four.
-    pub fn slots(&self) -> [Option<u32>; 7] {
+    pub fn slots(&self) -> [Option<u32>; 9] {
         [
             self.coat,
             self.coat_roughness,
@@ -143,6 +160,8 @@ impl LayerTextures {
             self.sheen_tint,
             self.anisotropy,
             self.specular_tint,
+            self.diffuse_roughness,
+            self.thin_film_thickness,
         ]
     }
 }
@@ -171,6 +190,7 @@ impl Default for MaterialTextures {
             normal_scale: 1.0,
             second_uv_set: 0,
             layers: LayerTextures::default(),
+            thin_film_minimum: 0.0,
         }
     }
 }
@@ -186,7 +206,7 @@ impl MaterialTextures {
 
     /// The indices, for offsetting into a scene-wide texture list; slot i's uv set is bit
     /// i of `second_uv_set` (`UV1_*` in `shaders/texture.wgsl`).
-    pub fn indices_mut(&mut self) -> [&mut Option<u32>; 11] {
+    pub fn indices_mut(&mut self) -> [&mut Option<u32>; 13] {
         let l = &mut self.layers;
         [
             &mut self.base_color,
@@ -200,6 +220,8 @@ impl MaterialTextures {
             &mut l.sheen_tint,
             &mut l.anisotropy,
             &mut l.specular_tint,
+            &mut l.diffuse_roughness,
+            &mut l.thin_film_thickness,
         ]
     }
 
@@ -249,6 +271,8 @@ impl Default for Material {
             tangent: Tangent::RadialZ,
             thin_film_thickness: 0.0,
             thin_film_ior: 1.33,
+            thin_film_weight: 1.0,
+            bump_map_correction: true,
             hardness: None,
             emission: [0.0; 3],
             absorption: [0.0; 3],
@@ -322,7 +346,7 @@ impl Material {
     /// Whether the thin film is there: Cycles ignores films of 0.1 nm and less
     /// (`THINFILM_THICKNESS_CUTOFF`).
     pub fn has_thin_film(&self) -> bool {
-        self.thin_film_thickness > THIN_FILM_CUTOFF
+        self.thin_film_thickness > THIN_FILM_CUTOFF && self.thin_film_weight > 0.0
     }
 }
 

@@ -46,7 +46,10 @@ def build(out):
     suzanne.name = suzanne.data.name = "suzanne"
     suzanne.scale = (1.2, 1.2, 1.2)
     suzanne.modifiers.new("subdivision", "SUBSURF").levels = 1
-    suzanne.data.materials.append(principled("glass", Transmission_Weight=1.0, IOR=1.45, Roughness=0.05))
+    glass = principled("glass", Transmission_Weight=1.0, IOR=1.45, Roughness=0.05)
+    # Off here (Blender's default is on): the exporter must say so.
+    glass.cycles.use_bump_map_correction = False
+    suzanne.data.materials.append(glass)
 
     bpy.ops.mesh.primitive_plane_add(size=8)
     plane = bpy.context.object

@@ -36,6 +36,16 @@ FILM_GLASS = {"Base Color": (1.0, 1.0, 1.0), "Transmission Weight": 1.0, "IOR": 
 # default specular layer (Specular IOR Level 0.5).
 ROUGH_DIFFUSE = {"Base Color": (0.8, 0.35, 0.2), "Roughness": 0.5}
 
+# Diffuse (no specular layer, smooth and rough), the default dielectric, a metal and a
+# coated base: each lobe where a coarse sphere's shading normals meet its terminator.
+TERMINATOR = [
+    {"Specular IOR Level": 0.0, "Roughness": 1.0},
+    {"Specular IOR Level": 0.0, "Roughness": 1.0, "Diffuse Roughness": 1.0},
+    {"Roughness": 0.3},
+    {"Metallic": 1.0, "Roughness": 0.3},
+    {"Roughness": 0.5, "Coat Weight": 1.0, "Coat Roughness": 0.1},
+]
+
 # Per row: the inputs every sphere shares, and per sphere the inputs that change.
 ROWS = {
     "dielectric_roughness": ({"Base Color": (0.8, 0.3, 0.2)}, [{"Roughness": r} for r in STEPS]),
@@ -114,6 +124,13 @@ ROWS = {
         {**FILM_DIELECTRIC, "Specular IOR Level": 0.0},
         [{"Thin Film Thickness": t} for t in THICKNESSES],
     ),
+    # Coarse smooth spheres lit from the side (see COARSE): the shadow terminator crosses
+    # facets whose interpolated normals differ from their true ones by up to half a facet.
+    "terminator_sun": ({"Base Color": (0.8, 0.5, 0.3)}, TERMINATOR),
+    "terminator_coat_sun": (
+        {"Base Color": (0.8, 0.2, 0.1), "Roughness": 0.6, "Coat Weight": 1.0},
+        [{"Coat Roughness": r} for r in (0.2, 0.3, 0.4, 0.5, 0.6)],
+    ),
 }
 
 # Rows whose Principled BSDF's Tangent input is linked to a Tangent node: "UV_MAP" or a radial axis.
@@ -129,7 +146,10 @@ UV_SWAPPED = {"anisotropy_uv_tangent_sun"}
 # other (rare paths that a black world would leave to the reference's noise alone).
 SHEEN_SUN = ((math.radians(70), 0.0, math.radians(70)), (0.0, 0.0, 0.0))
 FRONT_SUN = ((math.radians(35), 0.0, math.radians(25)), (0.1, 0.1, 0.1))
+SIDE_SUN = ((math.radians(70), 0.0, math.radians(70)), (0.1, 0.1, 0.1))
 SUNLIT = {
+    "terminator_sun": SIDE_SUN,
+    "terminator_coat_sun": SIDE_SUN,
     "sheen_weight_sun": SHEEN_SUN,
     "sheen_roughness_sun": SHEEN_SUN,
     "anisotropy_sun": FRONT_SUN,
@@ -142,6 +162,9 @@ SUNLIT = {
     "diffuse_roughness_sun": FRONT_SUN,
     "glass_tint_sun": FRONT_SUN,
 }
+
+# Rows of coarse spheres: segments around (and half as many rings), instead of 48.
+COARSE = {"terminator_sun": 12, "terminator_coat_sun": 12}
 
 # Rows whose sun is wider than the default 0.53°: seen only through glass, which no light
 # sampling reaches, a small sun is found by rare samples whose noise the standard errors
@@ -184,7 +207,7 @@ def build(scene, name):
     else:
         cycles.uniform_world(scene, (1.0, 1.0, 1.0))
     materials = [principled(f"{name}_{i}", {**shared, **own}) for i, own in enumerate(spheres)]
-    for material, sphere in zip(materials, sphere_row(scene, materials)):
+    for material, sphere in zip(materials, sphere_row(scene, materials, COARSE.get(name, 48))):
         if name in TANGENT_NODES:
             link_tangent(material.node_tree, material.node_tree.nodes["Principled BSDF"], TANGENT_NODES[name])
         if name in UV_SWAPPED:
@@ -206,13 +229,14 @@ def row_scene():
     return scene
 
 
-def sphere_row(scene, materials):
-    """Five smooth spheres side by side, one of each material (made as they are placed), in
-    the view of a narrow camera far in front of them; returns the spheres."""
+def sphere_row(scene, materials, segments=48):
+    """Five smooth spheres of `segments` around, side by side, one of each material (made as
+    they are placed), in the view of a narrow camera far in front of them; returns the spheres."""
     spheres = []
     for i, material in enumerate(materials):
         spheres.append(refs.add_object(scene, f"sphere_{i}", bpy.ops.mesh.primitive_uv_sphere_add, material,
-                                       radius=0.45, segments=48, ring_count=24, location=(i - 2.0, 0.0, 0.0)))
+                                       radius=0.45, segments=segments, ring_count=segments // 2,
+                                       location=(i - 2.0, 0.0, 0.0)))
         bpy.ops.object.shade_smooth()
     refs.camera(scene, (0.0, -12.0, 0.0), (0.0, 0.0, 0.0), 2.0 * math.degrees(math.atan(0.5 / 12.0)))
     return spheres

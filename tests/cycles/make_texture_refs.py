@@ -321,9 +321,9 @@ def scene_coat_map(scene):
     across u), G its roughness (a ramp from 0.05 at the bottom to 0.5 at the top: a sharp
     edge between a near-mirror coat and a rough one lines the edge with sun glints that
     move with where exactly the two renderers place it), on a red rough sphere in sunlight.
-    The sphere is finely divided: on a coarse one the sun's shadow terminator shows the
-    facets, where Cycles and rt differ by a few percent on a line of pixels whatever the
-    textures (seen here at 48 × 24 segments as one block 0.4% off)."""
+    The sphere is finely divided (192 segments): at 48, before rt started shadow rays near
+    the terminator from the smooth surface as Cycles does (tests/cycles_terminator.rs), the
+    sun's terminator showed the facets (one block 0.4% off)."""
     uniform_world(scene, (0.3, 0.3, 0.3))
     sun(scene, (math.radians(35), 0.0, math.radians(25)))
     tree, bsdf = layered_sphere(scene, "coat_map", {"Base Color": (0.8, 0.2, 0.1), "Roughness": 0.6,
@@ -363,6 +363,26 @@ def scene_anisotropy_map(scene):
     tree.links.new(sep.outputs["Green"], bsdf.inputs["Anisotropic Rotation"])
 
 
+def scene_film_roughness_map(scene):
+    """One image drives the diffuse roughness and the thin film (through Separate Color): R
+    the Diffuse Roughness (stripes of 1 and 0 across u), G through a Map Range node (0-1 to
+    150-900 nm) the Thin Film Thickness (a ramp along v), on a sunlit sphere with the default
+    specular layer."""
+    uniform_world(scene, (0.3, 0.3, 0.3))
+    sun(scene, (math.radians(35), 0.0, math.radians(25)))
+    tree, bsdf = layered_sphere(scene, "film_roughness_map", {"Base Color": (0.6, 0.35, 0.2), "Roughness": 0.3,
+                                                              "Specular IOR Level": 0.5, "Thin Film IOR": 1.33})
+    pixels = stripes(32, 8, (1.0, 0.0, 0.0), (0.0, 0.0, 0.0))
+    pixels[:, :, 1] = np.linspace(1.0, 0.0, 32)[:, None]
+    sep = separated(tree, image_node(tree, image("film_roughness", pixels, srgb=False)))
+    tree.links.new(sep.outputs["Red"], bsdf.inputs["Diffuse Roughness"])
+    thickness = tree.nodes.new("ShaderNodeMapRange")
+    thickness.inputs["To Min"].default_value = 150.0
+    thickness.inputs["To Max"].default_value = 900.0
+    tree.links.new(sep.outputs["Green"], thickness.inputs["Value"])
+    tree.links.new(thickness.outputs["Result"], bsdf.inputs["Thin Film Thickness"])
+
+
 def blender_gltf(scene, out):
     """The same scene through Blender's own glTF exporter (a .glb with its textures
     embedded), placed by a copy of the exported scene file: for the test that rt reads
@@ -387,6 +407,7 @@ SCENES = {
     "coat_map": scene_coat_map,
     "sheen_map": scene_sheen_map,
     "anisotropy_map": scene_anisotropy_map,
+    "film_roughness_map": scene_film_roughness_map,
 }
 # Scenes exported with --bake, and the size of their baked images.
 BAKE_SIZES = {"baked_noise": 512, "baked_bump": 512}

@@ -56,6 +56,7 @@ fn feature_sets() -> Vec<FeatureSet> {
             layer_textures: on(0) != on(4) && on(3),
             uv_tangents: on(2) != on(6) && on(1),
             rough_diffuse: on(3) != on(5),
+            smooth_normals: on(1) != on(3),
         });
     }
     sets
@@ -96,6 +97,7 @@ fn plain() -> FeatureSet {
         layer_textures: false,
         uv_tangents: false,
         rough_diffuse: false,
+        smooth_normals: false,
     }
 }
 

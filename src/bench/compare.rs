@@ -7,7 +7,7 @@ use super::throughput::{Throughput, ThroughputOptions, measure};
 use crate::bvh::BuildQuality;
 use crate::gpu::{GpuContext, GpuTimer};
 use crate::render::{Session, human};
-use crate::scene::{self, Scene};
+use crate::scene::{self, Microfacet, Scene};
 use anyhow::Result;
 use indicatif::ProgressBar;
 use std::path::{Path, PathBuf};
@@ -79,18 +79,28 @@ fn held_in(root: &Path) -> Result<Vec<Case>> {
     ])
 }
 
+/// The cases to time, each rendered by rt as Mitsuba renders it: its single-scattering
+/// lobes, and smooth normals without Cycles' shadow-terminator handling (which Mitsuba
+/// does not have), so that both renderers do the same work.
 fn cases(options: &CompareOptions) -> Result<Vec<Case>> {
-    if options.scenes.is_empty() {
-        return held_in(&options.root);
-    }
-    options
-        .scenes
-        .iter()
-        .map(|path| {
-            let scene = scene::load(path)?;
-            Ok(Case { name: path.display().to_string(), scene, size: options.size, spp: 16, rays: true })
+    let cases = match options.scenes.is_empty() {
+        true => held_in(&options.root)?,
+        false => options
+            .scenes
+            .iter()
+            .map(|path| {
+                let scene = scene::load(path)?;
+                Ok(Case { name: path.display().to_string(), scene, size: options.size, spp: 16, rays: true })
+            })
+            .collect::<Result<_>>()?,
+    };
+    Ok(cases
+        .into_iter()
+        .map(|mut case| {
+            case.scene.render.microfacet = Microfacet::Single;
+            case
         })
-        .collect()
+        .collect())
 }
 
 /// A folder removed when the comparison ends, however it ends.

@@ -31,6 +31,7 @@ mod cycles_instances;
 mod cycles_lamps;
 mod cycles_normal_maps;
 mod cycles_principled;
+mod cycles_rare_paths;
 mod cycles_shader_nodes;
 mod cycles_terminator;
 mod cycles_textures;

@@ -43,7 +43,6 @@ fn checker_through_a_mapping_node_matches_cycles() {
 // while Cycles' falls (0.53454 at 4096, 0.53423 at 16384); without the floor the sphere's
 // sunlit diffuse stripes are 0.03% (6 σ) over Cycles instead.
 #[test]
-#[ignore = "one block of floor is 0.27% (8.6 σ) off: caustics off the sharp metal, heavy-tailed in both renderers"]
 fn roughness_and_metallic_maps_match_cycles() {
     check("rough_metal");
 }

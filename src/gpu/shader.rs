@@ -70,6 +70,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("principled.wgsl"),
     shader!("ray.wgsl"),
     shader!("rng.wgsl"),
+    shader!("sample_lanes.wgsl"),
     shader!("sampling.wgsl"),
     shader!("segment.wgsl"),
     shader!("sheen.wgsl"),

@@ -74,6 +74,14 @@ fn a_mapping_node_per_uv_map_matches_cycles() {
     check("uv_mappings");
 }
 
+// One uv map, two Mapping nodes: the base colour's checker scaled 1.5 and turned 20°, the
+// roughness stripes tiled 4 times, each exported as its own KHR_texture_transform. With one
+// transform per uv map (baked into the uvs), the stripes followed the checker's.
+#[test]
+fn a_mapping_node_per_texture_on_one_uv_map_matches_cycles() {
+    check("mappings");
+}
+
 // A Noise Texture into Base Color, exported with `--bake` (512 × 512 texels over the
 // plane, about 12 a pixel), against Cycles' render of the procedural material itself.
 // Cycles evaluates the noise exactly at every sample, rt filters the baked image over

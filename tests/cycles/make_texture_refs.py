@@ -390,12 +390,14 @@ def scene_anisotropy_map(scene):
 
 def blender_gltf(scene, out):
     """The same scene through Blender's own glTF exporter (a .glb with its textures
-    embedded), placed by a copy of the exported scene file: for the test that rt reads
-    textured glTF files as Blender writes them."""
+    embedded), placed by a copy of the exported scene file: for the tests that rt reads
+    textured glTF files as Blender writes them (its KHR_texture_transform included)."""
     path = os.path.join(out, "blender.glb")
     bpy.ops.export_scene.gltf(filepath=path, export_format="GLB", export_cameras=False, export_lights=False)
     with open(os.path.join(out, "scene.toml")) as f:
-        header = f.read().split("\n# ", 1)[0]
+        # Everything before the first mesh (its "# name" line too): render, camera, sky, lamps.
+        lines = f.read().split("\n[[mesh]]", 1)[0].rstrip("\n").split("\n")
+    header = "\n".join(lines[:-1] if lines[-1].startswith("# ") else lines)
     with open(os.path.join(out, "scene_blender_gltf.toml"), "w") as f:
         f.write(header.rstrip("\n") + '\n\n[[mesh]]\nasset = "blender.glb"\n')
 
@@ -424,7 +426,7 @@ def main():
         scene = reset()
         SCENES[name](scene)
         cycles.export(scene, f"texture_{name}", bake_size=BAKE_SIZES.get(name, 0))
-        if name == "leaves":
+        if name in ("leaves", "mappings"):
             blender_gltf(scene, os.path.join(cycles.HERE, "scenes", f"texture_{name}"))
         cycles.render(scene, f"texture_{name}", args)
 

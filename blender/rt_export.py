@@ -92,13 +92,12 @@ def to_rt(v):
     return np.stack([v[:, 0], v[:, 2], -v[:, 1]], axis=1)
 
 
-def mesh_arrays(mesh, material_count, uv_transforms=None, second_uv_map=None):
+def mesh_arrays(mesh, material_count, second_uv_map=None):
     """Positions, normals, uvs, tangents (per vertex, rt axes), triangle indices and material
-    indices of an evaluated mesh. Corners that share all of them share a vertex.
-    `uv_transforms[m]`, {uv map name ("" for the default): 2x3 affine map}, is applied to
-    the uvs of material m's triangles in that map: a Mapping node in front of the
-    material's textures that read it. The uvs are the map Cycles reads by default (see
-    `default_uv_map`); `second_uv_map`, a map's name, adds that map as the second set."""
+    indices of an evaluated mesh. Corners that share all of them share a vertex. The uvs
+    are the map Cycles reads by default (see `default_uv_map`), as they are (a Mapping node
+    in front of a texture is that texture's KHR_texture_transform); `second_uv_map`, a
+    map's name, adds that map as the second set."""
     mesh.calc_loop_triangles()
     tri_count = len(mesh.loop_triangles)
     corners = np.empty(tri_count * 3, np.int32)
@@ -123,12 +122,12 @@ def mesh_arrays(mesh, material_count, uv_transforms=None, second_uv_map=None):
     has_uvs = len(mesh.uv_layers) > 0
     second = has_uvs and second_uv_map is not None and second_uv_map in mesh.uv_layers
     if has_uvs:
-        columns.append(corner_uv_array(mesh, default_uv_map(mesh), corners, materials, uv_transforms))
+        columns.append(corner_uv_array(mesh, default_uv_map(mesh), corners))
         tangents = mesh_tangents(mesh, loop_count)
         if tangents is not None:
             columns.append(np.concatenate([to_rt(tangents[:, :3]), tangents[:, 3:4]], axis=1)[corners])
     if second:
-        columns.append(corner_uv_array(mesh, second_uv_map, corners, materials, uv_transforms))
+        columns.append(corner_uv_array(mesh, second_uv_map, corners))
     records = np.ascontiguousarray(np.concatenate(columns, axis=1), dtype=np.float32)
     keys = records.view(np.dtype((np.void, records.itemsize * records.shape[1]))).ravel()
     _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
@@ -155,27 +154,11 @@ def default_uv_map(mesh):
     return next((layer.name for layer in mesh.uv_layers if layer.active_render), mesh.uv_layers[0].name)
 
 
-def corner_uv_array(mesh, name, corners, materials, uv_transforms):
-    """The uvs of map `name` at each triangle corner, the material's uv transform of that map applied."""
+def corner_uv_array(mesh, name, corners):
+    """The uvs of map `name` at each triangle corner."""
     uvs = np.empty(len(mesh.loops) * 2, np.float32)
     mesh.uv_layers[name].uv.foreach_get("vector", uvs)
-    corner_uvs = uvs.reshape(-1, 2)[corners]
-    default = default_uv_map(mesh)
-    for m, transforms in enumerate(uv_transforms or []):
-        transform = map_transform(transforms, name, default)
-        if transform is not None:
-            at = np.repeat(materials == m, 3)
-            corner_uvs[at] = corner_uvs[at] @ transform[:, :2].T + transform[:, 2]
-    return corner_uvs
-
-
-def map_transform(transforms, name, default):
-    """The uv transform of map `name` in `transforms` (as `material_textures` returns them), or None."""
-    if not transforms:
-        return None
-    if name == default and "" in transforms:
-        return transforms[""]
-    return transforms.get(name)
+    return uvs.reshape(-1, 2)[corners]
 
 
 def mesh_tangents(mesh, loop_count):
@@ -251,9 +234,9 @@ def volume_emission(volume):
 #
 # Image Texture nodes linked into the Principled BSDF become glTF textures: directly, or
 # through Separate Color (one channel), Normal Map (Normal) or a Mapping node in front of
-# the image (its transform is baked into the uvs of the material's triangles in the map
-# the texture reads: the textures of a material that read one map must share it, those
-# reading the other map may have their own). Each glTF image is composed from the channels
+# the image (its transform becomes the texture info's KHR_texture_transform, so that two
+# textures on one uv map may be tiled differently; the channels packed into one image,
+# such as roughness and metallic, share the first one's). Each glTF image is composed from the channels
 # that feed it, as the linear values Cycles reads (an sRGB image's codes decoded, a
 # Non-Color one's taken as they are), then encoded for its glTF slot (sRGB for base
 # colour and emission, linear for the rest) and written as NAME-HASH.png, the hash
@@ -622,37 +605,27 @@ def blake(data):
 
 def material_textures(material, surface, out, textures, factors, found):
     """Adds the base textures of a Principled BSDF (`found`: socket name -> Channel or None)
-    to glTF material `out`; returns the uv transforms its textures share, per uv map they
-    read ({map name, "" for the default: 2x3 map})."""
+    to glTF material `out`, each with its own Mapping node as its KHR_texture_transform."""
     pbr = out["pbrMetallicRoughness"]
-    transforms = {}
-    for name, c in found.items():
-        if c is None or c.transform is None:
-            continue
-        uv_map = c.uv_map
-        if name == "Normal" and surface.inputs["Normal"].links[0].from_node.type == "NORMAL_MAP":
-            uv_map = surface.inputs["Normal"].links[0].from_node.uv_map or uv_map
-        first = transforms.setdefault(uv_map, c.transform)
-        if not np.allclose(first, c.transform):
-            log(f"{material.name}: its textures on uv map {uv_map or 'default'!r} use different Mapping nodes; "
-                f"rt uses the first one's for all of them")
+    transformed = lambda info, key, *channels: with_uv_transform(info, material.name, key, channels)  # noqa: E731
     wrap_of = lambda c: c.node.extension  # noqa: E731
     base, alpha = found["Base Color"], found["Alpha"]
     if base is not None or alpha is not None:
         rgb_source = [(base, i) for i in range(3)] if base is not None else [float(v) for v in factors["base"]]
         pbr["baseColorFactor"] = [1.0, 1.0, 1.0, 1.0]
-        pbr["baseColorTexture"] = {"index": textures.add(rgb_source + [alpha if alpha is not None else 1.0], True,
-                                                          wrap_of(base or alpha)), UV_MAP_KEY: (base or alpha).uv_map}
+        channels = rgb_source + [alpha if alpha is not None else 1.0]
+        info = {"index": textures.add(channels, True, wrap_of(base or alpha)), UV_MAP_KEY: (base or alpha).uv_map}
+        pbr["baseColorTexture"] = transformed(info, "base colour", base, alpha)
         if alpha is not None:
             # Cycles blends by alpha (stochastically): so does rt with glTF's BLEND.
             out["alphaMode"] = "BLEND"
             out.pop("alphaCutoff", None)
     rough, metal = found["Roughness"], found["Metallic"]
     if rough is not None or metal is not None:
-        pbr["metallicRoughnessTexture"] = {"index": textures.add(
+        pbr["metallicRoughnessTexture"] = transformed({"index": textures.add(
             [0.0, rough if rough is not None else factors["roughness"],
              metal if metal is not None else factors["metallic"], 1.0], False, wrap_of(rough or metal)),
-            UV_MAP_KEY: (rough or metal).uv_map}
+            UV_MAP_KEY: (rough or metal).uv_map}, "roughness and metallic", rough, metal)
         pbr["roughnessFactor"], pbr["metallicFactor"] = 1.0, 1.0
     normal = found["Normal"]
     if normal is not None:
@@ -665,22 +638,64 @@ def material_textures(material, surface, out, textures, factors, found):
         if normal.uv_map not in ("", uv_map):
             log(f"{material.name}: its normal map's image reads uv map {normal.uv_map!r} but its Normal Map node "
                 f"names {uv_map!r}; rt reads both with {uv_map!r}")
-        out["normalTexture"] = {"index": textures.add([(normal, i) for i in range(3)] + [1.0], False,
-                                                      wrap_of(normal)), "scale": strength, UV_MAP_KEY: uv_map}
+        # Its tangents are the uv map's, whatever the Mapping node does (as in Cycles).
+        info = {"index": textures.add([(normal, i) for i in range(3)] + [1.0], False, wrap_of(normal)),
+                "scale": strength, UV_MAP_KEY: uv_map}
+        out["normalTexture"] = transformed(info, "normal map", normal)
     emission = found["Emission Color"]
     if emission is not None:
-        out["emissiveTexture"] = {"index": textures.add([(emission, i) for i in range(3)] + [1.0], True,
-                                                        wrap_of(emission)), UV_MAP_KEY: emission.uv_map}
+        info = {"index": textures.add([(emission, i) for i in range(3)] + [1.0], True, wrap_of(emission)),
+                UV_MAP_KEY: emission.uv_map}
+        out["emissiveTexture"] = transformed(info, "emission", emission)
         strength = factors["strength"]
         if strength > 0.0:
             out["emissiveFactor"] = [1.0, 1.0, 1.0]
             out.setdefault("extensions", {})["KHR_materials_emissive_strength"] = {"emissiveStrength": strength}
-    return transforms
+
+
+def channels_of(channels):
+    """The Channels among a texture's `channels` (Channels, (Channel, index) pairs, TurnChannels, constants)."""
+    for c in channels:
+        c = c[0] if isinstance(c, tuple) else c
+        c = c.channel if isinstance(c, TurnChannel) else c
+        if isinstance(c, Channel):
+            yield c
+
+
+def with_uv_transform(info, material_name, what, channels):
+    """Texture info `info` with the Mapping node of its image's `channels` as its
+    KHR_texture_transform (none for none). One image packs them: where their Mapping
+    nodes differ, the first one's is used, with a warning."""
+    transforms = [c.transform for c in channels_of(channels)]
+    first = transforms[0] if transforms else None
+    if any((t is None) != (first is None) or (t is not None and not np.allclose(t, first)) for t in transforms):
+        log(f"{material_name}: the images packed into its {what} texture come through different Mapping nodes; "
+            f"rt reads them all through the first one's")
+    if first is not None:
+        info.setdefault("extensions", {})["KHR_texture_transform"] = gltf_texture_transform(first, material_name, what)
+    return info
+
+
+def gltf_texture_transform(transform, material_name, what):
+    """A 2x3 map of Blender uvs (a Mapping node: location + rotation (scale * uv)) as
+    KHR_texture_transform, which maps glTF's uvs (v = 1 - Blender's v): the map's 2x2 part
+    as rotation * scale (a Mapping node turned about X or Y is not one: its nearest is used,
+    with a warning), the offset as Blender's glTF exporter writes it."""
+    a, location = np.asarray(transform, np.float64)[:, :2], np.asarray(transform, np.float64)[:, 2]
+    rotation = math.atan2(a[1, 0], a[0, 0])
+    sin, cos = math.sin(rotation), math.cos(rotation)
+    scale = [math.hypot(a[0, 0], a[1, 0]), -sin * a[0, 1] + cos * a[1, 1]]
+    fitted = np.array([[cos, -sin], [sin, cos]]) @ np.diag(scale)
+    if not np.allclose(fitted, a, atol=1e-6):
+        log(f"{material_name}: the Mapping node of its {what} texture is not a rotation about Z with a scale; "
+            f"rt uses the nearest that is")
+    ext = {"offset": [float(location[0] - scale[1] * sin), float(1.0 - location[1] - scale[1] * cos)],
+           "rotation": float(rotation), "scale": [float(scale[0]), float(scale[1])]}
+    return ext
 
 
 def gltf_material(material, thickness, textures=None):
-    """One glTF material (with KHR extensions) from a Blender material, and the uv
-    transforms of its textures (per uv map, or None); every factor is written, since rt's importer
+    """One glTF material (with KHR extensions) from a Blender material; every factor is written, since rt's importer
     applies glTF's defaults to absent ones. Its textures go into `textures`. The surface
     shader is mapped onto rt's model by rt_shader_nodes (which warns about what it cannot
     map)."""
@@ -816,12 +831,11 @@ def gltf_material(material, thickness, textures=None):
         if glow.max() > 0.0:
             out["extras"]["rt_volume_emission"] = [float(g) for g in glow]
     out["extensions"] = extensions
-    transform = None
     if textures is not None and surface is not None:
         factors = {"base": base, "roughness": roughness, "metallic": metallic, "strength": s.emission_strength}
-        transform = material_textures(material, surface, out, textures, factors, found)
+        material_textures(material, surface, out, textures, factors, found)
         layer_textures(out, textures, found)
-    return out, transform
+    return out
 
 
 def tangent_extras(name, socket):
@@ -861,7 +875,8 @@ def layer_textures(out, textures, found):
     extensions, extras = out["extensions"], out["extras"]
 
     def info(channels, srgb, first):
-        return {"index": textures.add(channels, srgb, first.node.extension), UV_MAP_KEY: first.uv_map}
+        return with_uv_transform({"index": textures.add(channels, srgb, first.node.extension),
+                                  UV_MAP_KEY: first.uv_map}, out["name"], "layer", channels)
 
     def rgb_of(c):
         return [(c, i) for i in range(3)] + [1.0]
@@ -872,7 +887,9 @@ def layer_textures(out, textures, found):
         index = info([weight or 1.0, rough or 1.0, 0.0, 1.0], False, weight or rough)["index"]
         for key, channel in (("clearcoatTexture", weight), ("clearcoatRoughnessTexture", rough)):
             if channel:
-                clearcoat[key] = {"index": index, UV_MAP_KEY: channel.uv_map}
+                # One image, two texture infos: each reads it through its own channel's Mapping node.
+                clearcoat[key] = with_uv_transform({"index": index, UV_MAP_KEY: channel.uv_map}, out["name"], key,
+                                                   [channel])
     if clearcoat is not None and found.get("Coat Tint"):
         extras["rt_coat_tint_texture"] = info(rgb_of(found["Coat Tint"]), True, found["Coat Tint"])
     weight, rough = found.get("Sheen Weight"), found.get("Sheen Roughness")
@@ -929,7 +946,10 @@ def film_thickness_texture(material, surface):
 
 
 def gltf_text(materials, thickness, textures=None):
-    used = sorted({ext for m in materials for ext in m.get("extensions", {})})
+    used = {ext for m in materials for ext in m.get("extensions", {})}
+    if any("extensions" in info for m in materials for _, info in texture_infos(m)):
+        used.add("KHR_texture_transform")
+    used = sorted(used)
     document = {
         "asset": {"version": "2.0", "generator": "rt_export.py"},
         "extensionsUsed": used,
@@ -961,7 +981,7 @@ def object_slot_materials(obj):
 
 def export_object_mesh(obj, depsgraph, base_name="mesh", bake_size=0):
     """(rtmesh bytes, gltf text, {image file: PNG bytes}, triangle count) of an object's
-    evaluated mesh. The materials come first: their Mapping nodes transform the uvs.
+    evaluated mesh.
     With `bake_size`, links rt cannot follow are baked into images of that size."""
     materials = object_slot_materials(obj)
     textures = Textures(base_name, Baker(obj, bake_size) if bake_size > 0 else None)
@@ -1069,13 +1089,12 @@ def mesh_thickness(mesh):
 def export_mesh(mesh, materials, textures):
     """(rtmesh bytes, gltf text, {image file: PNG bytes}, triangle count) of an evaluated
     mesh shown with `materials`, its images collected by `textures`. The materials come
-    first: their Mapping nodes transform the uvs."""
+    first: the uv maps their textures read choose the second uv set."""
     thickness = mesh_thickness(mesh)
-    exported = [gltf_material(m, thickness, textures) for m in materials]
-    gltf_materials = [material for material, _ in exported]
+    gltf_materials = [gltf_material(m, thickness, textures) for m in materials]
     uv_maps = uv_maps_of(mesh)
     second = second_uv_map(uv_maps, gltf_materials)
-    arrays = mesh_arrays(mesh, len(materials), [transform for _, transform in exported], second)
+    arrays = mesh_arrays(mesh, len(materials), second)
     gltf = gltf_text(assign_uv_sets(uv_maps, gltf_materials, second), thickness, textures)
     return rtmesh_bytes(arrays), gltf, textures.images, len(arrays["indices"])
 
@@ -1167,12 +1186,6 @@ def rt_rows(matrices):
     return rows, invertible
 
 
-def same_uv_transform(a, b):
-    """Whether two materials' uv transforms ({map name: 2x3 array}, or None for none) are one."""
-    a, b = a or {}, b or {}
-    return a.keys() == b.keys() and all(np.array_equal(a[k], b[k]) for k in a)
-
-
 class InstancedMesh:
     """An evaluated mesh that instances place, exported once: its first instance's
     materials are the asset's own, and an instance showing other materials picks a
@@ -1184,12 +1197,12 @@ class InstancedMesh:
         self.textures = Textures(base, baker)
         self.thickness = mesh_thickness(mesh)
         self.index = {}  # material name -> index in the asset's materials
-        self.exported = []  # (glTF material, uv transform), the asset's own first
+        self.exported = []  # glTF materials, the asset's own first
         own = [self.material(m) for m in materials]
         # Material sets shown later use the own materials' second uv set.
         self.uv_maps = uv_maps_of(mesh)
-        self.second_uv_map = second_uv_map(self.uv_maps, [self.exported[i][0] for i in own])
-        arrays = mesh_arrays(mesh, len(materials), [self.exported[i][1] for i in own], self.second_uv_map)
+        self.second_uv_map = second_uv_map(self.uv_maps, [self.exported[i] for i in own])
+        arrays = mesh_arrays(mesh, len(materials), self.second_uv_map)
         self.rtmesh = rtmesh_bytes(arrays)
         self.triangles = len(arrays["indices"])
         self.slots = len(materials)
@@ -1207,21 +1220,18 @@ class InstancedMesh:
 
     def code_of(self, materials):
         """The .rtinst material of an instance showing `materials`: the asset's own, a
-        material set, or None when a set cannot show them (another slot count, or a
-        Mapping node whose uv transform differs from the slot's own material's)."""
+        material set, or None when a set cannot show them (another slot count)."""
         if len(materials) != self.slots:
             return None
         indices = tuple(self.material(m) for m in materials)
         if indices == tuple(range(self.slots)):
             return RTINST_OWN_MATERIALS
-        if any(not same_uv_transform(self.exported[m][1], self.exported[slot][1]) for slot, m in enumerate(indices)):
-            return None
         if indices not in self.sets:
             self.sets.append(indices)
         return RTINST_MATERIAL_SET | self.sets.index(indices)
 
     def gltf(self):
-        materials = assign_uv_sets(self.uv_maps, [material for material, _ in self.exported], self.second_uv_map)
+        materials = assign_uv_sets(self.uv_maps, self.exported, self.second_uv_map)
         return gltf_text(materials, self.thickness, self.textures)
 
 

@@ -243,9 +243,13 @@ struct Texture {
     height: u32,
     levels: u32,
     flags: u32,
+    // ½ log2 |det| of the uv transform, added to the level of detail.
+    transform_lod: f32,
     _pad0: u32,
     _pad1: u32,
-    _pad2: u32,
+    // The uv transform's rows (xyz): the image is read at (dot(u_row.xyz, (u, v, 1)), dot(v_row.xyz, ...)).
+    u_row: vec4f,
+    v_row: vec4f,
 }
 
 // An emissive triangle (of one instance) or sphere, for next-event estimation.

@@ -189,15 +189,24 @@ fn filter_level(t: Texture, level: u32, uv: vec2f) -> vec4f {
     return mix(top, bottom, f.y);
 }
 
-// One mip level, bilinear, decoded.
-fn sample_level(t: Texture, level: u32, uv: vec2f) -> vec4f {
-    return decoded(t, filter_level(t, level, uv));
+// Where texture `t` reads its image at the uv set's coordinates `uv`: its own uv transform
+// (a texture reference's KHR_texture_transform, a Blender Mapping node) applied.
+fn texture_uv(t: Texture, uv: vec2f) -> vec2f {
+    let p = vec3f(uv, 1.0);
+    return vec2f(dot(t.u_row.xyz, p), dot(t.v_row.xyz, p));
 }
 
-// Texture `index` at `uv`, filtered over a footprint of level `lod` (see the top).
-fn sample_texture(index: u32, uv: vec2f, lod: f32) -> vec4f {
+// One mip level, bilinear, decoded, at the uv set's coordinates `uv`.
+fn sample_level(t: Texture, level: u32, uv: vec2f) -> vec4f {
+    return decoded(t, filter_level(t, level, texture_uv(t, uv)));
+}
+
+// Texture `index` at the uv set's coordinates `set_uv`, filtered over a footprint of level
+// `lod` there (see the top); the transform's scale widens the footprint in the image.
+fn sample_texture(index: u32, set_uv: vec2f, lod: f32) -> vec4f {
     let t = textures[index];
-    var lambda = min(lod + 0.5 * log2(f32(t.width) * f32(t.height)), f32(t.levels - 1u));
+    let uv = texture_uv(t, set_uv);
+    var lambda = min(lod + t.transform_lod + 0.5 * log2(f32(t.width) * f32(t.height)), f32(t.levels - 1u));
     // Also catches a NaN level, from a triangle whose texture coordinates are all alike.
     if !(lambda > 0.0) {
         lambda = 0.0;

@@ -278,7 +278,14 @@ pub struct GpuTexture {
     pub levels: u32,
     /// Bit 0: sRGB; bits 1–2: wrap of u, bits 3–4: wrap of v (`Wrap::code`).
     pub flags: u32,
-    pub _pad: [u32; 3],
+    /// log2 of how much the uv transform scales lengths (½ log2 |det|): added to the
+    /// level of detail, as a uv scaled by 8 has a footprint 8× as wide in texels.
+    pub transform_lod: f32,
+    pub _pad: [u32; 2],
+    /// The uv transform's rows (`asset::UvTransform`), the fourth component unused: the
+    /// image is read at (dot(u_row.xyz, (u, v, 1)), dot(v_row.xyz, (u, v, 1))).
+    pub u_row: [f32; 4],
+    pub v_row: [f32; 4],
 }
 
 /// An emissive triangle or sphere, for next-event estimation.

@@ -22,6 +22,24 @@ fn the_exporter_writes_second_uv_maps_and_bakes_procedural_sockets() {
     let (first, second) = (mesh.uvs.expect("uvs"), mesh.second_uvs.expect("the second uv map"));
     assert!(first.iter().zip(&second).any(|(a, b)| a != b), "the two maps differ");
 
+    // Two Mapping nodes on one uv map: each texture its own transform, Blender's Mapping
+    // (rotation · scale + location) as rt reads it; the uvs as Blender has them (the plane's 0 and 1).
+    let mapped = load_mesh(&out.join("mappings/assets/Plane")).unwrap_or_else(|e| panic!("{e}"));
+    let textures = &mapped.materials[0].1.textures;
+    let transform = |slot: Option<u32>| mapped.textures[slot.expect("a texture") as usize].uv_transform;
+    let (s, c) = 20f32.to_radians().sin_cos();
+    let cases = [
+        (transform(textures.base_color), [[1.5 * c, -1.5 * s, 0.1], [1.5 * s, 1.5 * c, 0.2]]),
+        (transform(textures.metallic_roughness), [[4.0, 0.0, 0.0], [0.0, 4.0, 0.0]]),
+    ];
+    for (got, want) in cases {
+        let close = got.iter().flatten().zip(want.iter().flatten()).all(|(a, b)| (a - b).abs() < 1e-5);
+        assert!(close, "{got:?}, expected {want:?}");
+    }
+    let uvs = mapped.uvs.expect("uvs");
+    assert!(uvs.iter().flatten().all(|&x| x == 0.0 || x == 1.0), "{uvs:?}");
+    assert!(!log.contains("different Mapping nodes"), "{log}");
+
     // Baked: the noise is a base colour texture that varies; the node tree is as it was.
     let baked = load_mesh(&out.join("baked/assets/Plane")).unwrap_or_else(|e| panic!("{e}"));
     let index = baked.materials[0].1.textures.base_color.expect("a baked base colour texture") as usize;

@@ -52,6 +52,14 @@ fn normal_map_on_the_second_uv_map_matches_cycles() {
     check("normal_second_uv", Sampling::Nee);
 }
 
+// The normal map behind a Mapping node (scaled 1.5, turned a quarter) beside a base colour
+// read as it is, on the one uv map: the map read through its own transform, in the uv
+// map's tangent frame, the transform's turn not applied to the frame (as Cycles does).
+#[test]
+fn normal_map_behind_a_mapping_node_matches_cycles() {
+    check("normal_mapping", Sampling::Nee);
+}
+
 #[test]
 fn alpha_blended_quad_and_its_shadow_match_cycles() {
     check("alpha_blend", Sampling::Nee);

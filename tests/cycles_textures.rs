@@ -19,13 +19,18 @@ fn luminance(p: [f32; 3]) -> f64 {
     0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64
 }
 fn check(name: &str) {
+    check_scene(name, "scene.toml");
+}
+
+/// Scene file `toml` of the export of `name` against Cycles' render of `name`.
+fn check_scene(name: &str, toml: &str) {
     let dir = repo().join(format!("tests/cycles/scenes/texture_{name}"));
-    let scene = rt::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let scene = rt::scene::load(&dir.join(toml)).unwrap_or_else(|e| panic!("{e}"));
     let (w, h) = (scene.render.width, scene.render.height);
     let ours = render(scene, w, h, SPP, MAX_BOUNCES);
     let file = repo().join(format!("tests/cycles/texture_{name}.exr"));
     reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4))
-        .check(&format!("texture_{name}"), "Cycles");
+        .check(&format!("texture_{name} ({toml})"), "Cycles");
 }
 
 #[test]
@@ -71,6 +76,22 @@ fn textures_on_two_uv_maps_match_cycles() {
 #[test]
 fn a_mapping_node_per_uv_map_matches_cycles() {
     check("uv_mappings");
+}
+
+// One uv map, two Mapping nodes: the base colour's checker scaled 1.5 and turned 20°, the
+// roughness stripes tiled 4 times, each exported as its own KHR_texture_transform. With one
+// transform per uv map (baked into the uvs), the stripes followed the checker's.
+#[test]
+fn a_mapping_node_per_texture_on_one_uv_map_matches_cycles() {
+    check("mappings");
+}
+
+// The same scene through Blender's own glTF exporter (a .glb), which writes each Mapping
+// node as that texture's KHR_texture_transform, the rotation as the extension's text and
+// its sample model turn it: rt reads it so.
+#[test]
+fn blenders_gltf_export_of_a_mapping_node_per_texture_matches_cycles() {
+    check_scene("mappings", "scene_blender_gltf.toml");
 }
 
 // A Noise Texture into Base Color, exported with `--bake` (512 × 512 texels over the

@@ -220,8 +220,17 @@ fn a_texture_larger_than_the_gpu_binds_is_downscaled_and_still_renders() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `t` applied to rt's coordinates `[u, v]` (v from the bottom).
+fn apply(t: rt::asset::UvTransform, [u, v]: [f32; 2]) -> [f32; 2] {
+    [t[0][0] * u + t[0][1] * v + t[0][2], t[1][0] * u + t[1][1] * v + t[1][2]]
+}
+
+fn near(a: [f32; 2], b: [f32; 2]) -> bool {
+    (a[0] - b[0]).abs() < 1e-6 && (a[1] - b[1]).abs() < 1e-6
+}
+
 #[test]
-fn khr_texture_transform_is_baked_into_the_uvs() {
+fn khr_texture_transform_is_the_textures_own_and_leaves_the_uvs_as_they_are() {
     let dir = temp_dir("texture-transform");
     std::fs::write(dir.join("t.png"), png(|_, _| [9, 9, 9, 255])).expect("png");
     let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
@@ -230,41 +239,72 @@ fn khr_texture_transform_is_baked_into_the_uvs() {
         "extensions": { "KHR_texture_transform": { "offset": [0.5, 0.25], "rotation": 1.5707963, "scale": [2, 1] } } } } }"#;
     write(&dir.join("q.gltf"), &quad_gltf(corners, material, "t.png"));
     let mesh = load_mesh(&dir.join("q.gltf")).expect("loads");
-    // glTF uv (u, v) → (0.5 - v, 0.25 + 2u); rt stores v from the bottom: 1 - that.
-    let expected = [[0.0f32, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]].map(|[u, v]| [0.5 - v, 1.0 - (0.25 + 2.0 * u)]);
-    let uvs = mesh.uvs.expect("uvs");
-    for (got, want) in uvs.iter().zip(expected) {
-        assert!((got[0] - want[0]).abs() < 1e-6 && (got[1] - want[1]).abs() < 1e-6, "{uvs:?} vs {expected:?}");
+    let uvs = mesh.uvs.as_ref().expect("uvs");
+    let gltf_uvs = [[0.0f32, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    // rt stores v from the bottom: 1 - glTF's.
+    assert_eq!(uvs, &gltf_uvs.map(|[u, v]| [u, 1.0 - v]).to_vec(), "the uvs are not transformed");
+    let transform = mesh.textures[mesh.materials[0].1.textures.base_color.expect("a texture") as usize].uv_transform;
+    // A quarter turn in glTF's uv space (v down), as its sample model and Blender rotate:
+    // glTF (u, v) → (v + 0.5, 0.25 − 2u), which rt reads with v from the bottom.
+    for [u, v] in gltf_uvs {
+        let want = [v + 0.5, 1.0 - (0.25 - 2.0 * u)];
+        assert!(near(apply(transform, [u, 1.0 - v]), want), "{transform:?} at ({u}, {v})");
     }
 }
 
 #[test]
-fn each_uv_set_takes_the_texture_transform_of_the_textures_that_read_it() {
-    let dir = temp_dir("texture-transform-per-set");
+fn two_textures_on_one_uv_set_keep_their_own_transforms_and_share_the_image() {
+    let dir = temp_dir("texture-transform-per-texture");
     std::fs::write(dir.join("t.png"), png(|_, _| [9, 9, 9, 255])).expect("png");
     let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
     let second = [[0.0, 0.0], [0.0, 1.0], [1.0, 1.0], [1.0, 0.0]];
-    // Base colour on set 0 moved by (0.5, 0.25); emission on set 1 scaled by 3; the normal map on set 1.
+    // On TEXCOORD_0: base colour moved by (0.5, 0.25), the normal map tiled 8 times, the
+    // metallic-roughness map as it is; emission on TEXCOORD_1 scaled by 3, and a clearcoat
+    // texture moved onto TEXCOORD_1 by its transform's own texCoord.
     let material = r#"{ "name": "two", "pbrMetallicRoughness": { "baseColorTexture": { "index": 0,
-        "extensions": { "KHR_texture_transform": { "offset": [0.5, 0.25] } } } },
+        "extensions": { "KHR_texture_transform": { "offset": [0.5, 0.25] } } },
+        "metallicRoughnessTexture": { "index": 0 } },
         "emissiveTexture": { "index": 0, "texCoord": 1, "extensions": { "KHR_texture_transform": { "scale": [3, 3] } } },
-        "emissiveFactor": [1, 1, 1], "normalTexture": { "index": 0, "texCoord": 1 } }"#;
+        "emissiveFactor": [1, 1, 1],
+        "normalTexture": { "index": 0, "extensions": { "KHR_texture_transform": { "scale": [8, 8] } } },
+        "extensions": { "KHR_materials_clearcoat": { "clearcoatFactor": 1, "clearcoatTexture": { "index": 0,
+            "extensions": { "KHR_texture_transform": { "scale": [2, 2], "texCoord": 1 } } } } } }"#;
     write(&dir.join("q.gltf"), &textured_quad(corners, material, "t.png", Some(second)));
     let mesh = load_mesh(&dir.join("q.gltf")).expect("loads");
     let textures = &mesh.materials[0].1.textures;
     assert!(!textures.reads_second_uv_set(0) && textures.reads_second_uv_set(2), "{textures:?}");
-    assert_eq!(textures.normal_uv_set(), rt::scene::UvSet::Second, "the normal map reads TEXCOORD_1");
-    // Vertices may be split for tangents: compare through positions.
+    assert!(textures.reads_second_uv_set(4), "the clearcoat texture's transform moves it to TEXCOORD_1");
+    assert_eq!(textures.normal_uv_set(), rt::scene::UvSet::First, "the normal map reads TEXCOORD_0");
+    let reference = |slot: Option<u32>| &mesh.textures[slot.expect("a texture") as usize];
+    let (base, metal_rough, emission, normal) = (
+        reference(textures.base_color),
+        reference(textures.metallic_roughness),
+        reference(textures.emission),
+        reference(textures.normal),
+    );
+    let coat = reference(textures.layers.coat);
+    // Each transform maps rt's coordinates (v from the bottom) as glTF's maps its own.
+    let cases = [(base, [1.0, 0.0, 0.5], [0.0, 1.0, -0.25]), (emission, [3.0, 0.0, 0.0], [0.0, 3.0, -2.0])];
+    for (t, u_row, v_row) in cases.into_iter().chain([(normal, [8.0, 0.0, 0.0], [0.0, 8.0, -7.0])]) {
+        assert!(near(apply(t.uv_transform, [0.0, 0.0]), [u_row[2], v_row[2]]), "{:?}", t.uv_transform);
+        assert!(
+            near(apply(t.uv_transform, [1.0, 1.0]), [u_row[0] + u_row[2], v_row[1] + v_row[2]]),
+            "{:?}",
+            t.uv_transform
+        );
+    }
+    assert_eq!(metal_rough.uv_transform, rt::asset::IDENTITY_UV_TRANSFORM);
+    assert_eq!(coat.uv_transform, [[2.0, 0.0, 0.0], [0.0, 2.0, -1.0]]);
+    // One image (in the linear space of the normal and metallic-roughness maps) read two ways: its texels shared.
+    assert_ne!(normal.uv_transform, metal_rough.uv_transform);
+    assert_eq!(normal.texels_id(), metal_rough.texels_id(), "two references, one image");
+    // The uvs are as the file has them, the transforms being the textures' own.
     let (first_set, second_set) = (mesh.uvs.as_ref().expect("uvs"), mesh.second_uvs.as_ref().expect("second uvs"));
     for (v, p) in mesh.positions.iter().enumerate() {
         let corner = corners.iter().position(|c| c == p).expect("a corner");
         let [u, w] = [[0.0f32, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]][corner];
         let [su, sw] = second[corner];
-        // rt stores v from the bottom: 1 - glTF's.
-        assert_eq!(first_set[v], [u + 0.5, 1.0 - (w + 0.25)], "set 0 at {p:?}");
-        assert_eq!(second_set[v], [3.0 * su, 1.0 - 3.0 * sw], "set 1 at {p:?}");
+        assert_eq!(first_set[v], [u, 1.0 - w], "set 0 at {p:?}");
+        assert_eq!(second_set[v], [su, 1.0 - sw], "set 1 at {p:?}");
     }
-    // The second set's own MikkTSpace frame: its u runs along +y of the quad.
-    let tangents = mesh.second_tangents.as_ref().expect("tangents of the second set");
-    assert!(tangents.iter().all(|t| t[1] > 0.99), "{tangents:?}");
 }

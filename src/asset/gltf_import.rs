@@ -42,6 +42,7 @@
 //! geometry, the same as an OBJ without a `.mtl` and a scene material left at defaults.
 
 use super::gltf_extensions::{Film, Sheen, anisotropy, clearcoat, glossy, iridescence, sheen};
+use super::gltf_texture_transform::{of_info, of_normal};
 use super::gltf_textures::{ColorSpace, TextureLoader};
 use super::{AssetError, MeshData};
 use crate::scene::{Material, MaterialTextures, NORMAL_SLOT, Tangent};
@@ -69,7 +70,6 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
     // uses, so that an error names the material and the image.
     let dir = path.parent().unwrap_or(Path::new(""));
     let mut loader = TextureLoader::new(&buffers, dir);
-    let mut uv_transforms = Vec::new();
     for (i, m) in document.materials().enumerate() {
         let name = m.name().map_or_else(|| format!("material_{i}"), str::to_owned);
         let mut material = map_material(&m).map_err(|e| err(format!("material `{name}`: {e}")))?;
@@ -86,7 +86,6 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
                 ..map_material_dielectric(&m).map_err(|e| err(format!("material `{name}`: {e}")))?
             };
         }
-        uv_transforms.push(uv_transforms_of(&m, &name));
         mesh.materials.push((name, material));
     }
     mesh.textures = loader.textures;
@@ -115,7 +114,6 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
         all_uvs: true,
         all_second_uvs: true,
         default_material: None,
-        uv_transforms: &uv_transforms,
     };
     for root in &roots {
         walk.visit(root, Mat4::IDENTITY, 0).map_err(err)?;
@@ -151,9 +149,6 @@ struct Walk<'a> {
     all_uvs: bool,
     all_second_uvs: bool,
     default_material: Option<u32>,
-    /// Per material and uv set, its textures' `KHR_texture_transform`, baked into that set's
-    /// uvs of its primitives.
-    uv_transforms: &'a [[Option<UvTransform>; 2]],
 }
 
 impl Walk<'_> {
@@ -253,7 +248,6 @@ impl Walk<'_> {
                     return Err(format!("{at}: TANGENT and POSITION counts differ"));
                 }
             }
-            let transforms = prim.material().index().and_then(|i| self.uv_transforms.get(i).copied());
             for set in [0, 1] {
                 let (all, uvs) = match set {
                     0 => (&mut self.all_uvs, &mut self.uvs),
@@ -266,10 +260,8 @@ impl Walk<'_> {
                 let name = format!("TEXCOORD_{set}");
                 let read = reader.read_tex_coords(set).ok_or_else(|| unreadable(&name))?;
                 let start = uvs.len();
-                // The transform of the material's textures that read this set.
-                let transform = transforms.and_then(|t| t[set as usize]);
-                let transformed = read.into_f32().map(|uv| transform.map_or(uv, |t| t.apply(uv)));
-                uvs.extend(transformed.map(|[u, v]| [u, 1.0 - v]));
+                // As they are: each texture applies its own transform (`gltf_texture_transform`).
+                uvs.extend(read.into_f32().map(|[u, v]| [u, 1.0 - v]));
                 if uvs.len() - start != count {
                     return Err(format!("{at}: {name} and POSITION counts differ"));
                 }
@@ -306,47 +298,6 @@ impl Walk<'_> {
     }
 }
 
-/// glTF's `KHR_texture_transform` as a 2×3 affine map of glTF texture coordinates:
-/// translation · rotation · scale.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct UvTransform([[f32; 3]; 2]);
-
-impl UvTransform {
-    fn apply(self, [u, v]: [f32; 2]) -> [f32; 2] {
-        let [a, b] = self.0;
-        [a[0] * u + a[1] * v + a[2], b[0] * u + b[1] * v + b[2]]
-    }
-}
-
-/// The texture transforms of a material's textures, per uv set they read, baked into
-/// that set's uvs of its triangles: the textures of a material that read one set share
-/// the first one's (a material whose textures on one set differ gets a warning). A third
-/// set reads as the first (see `uv_set_bit`).
-fn uv_transforms_of(m: &gltf::Material, name: &str) -> [Option<UvTransform>; 2] {
-    let pbr = m.pbr_metallic_roughness();
-    let infos = [pbr.base_color_texture(), pbr.metallic_roughness_texture(), m.emissive_texture()];
-    let mut transforms: [Vec<Option<UvTransform>>; 2] = Default::default();
-    for info in infos.iter().flatten() {
-        let transform = info.texture_transform().map(|t| {
-            let ([ox, oy], r, [sx, sy]) = (t.offset(), t.rotation(), t.scale());
-            let (sin, cos) = r.sin_cos();
-            // The extension's GLSL matrices are column-major: its rotation is [[c, -s], [s, c]].
-            UvTransform([[cos * sx, -sin * sy, ox], [sin * sx, cos * sy, oy]])
-        });
-        transforms[usize::from(info.tex_coord() == 1)].push(transform);
-    }
-    transforms.each_ref().map(|set| {
-        let first = set.first().copied().flatten();
-        if set.iter().any(|t| *t != first) {
-            log::warn!(
-                "material `{name}`: its textures on one uv set have different texture transforms; rt uses the \
-                 first one's for all of them"
-            );
-        }
-        first
-    })
-}
-
 /// The textures of a material; unsupported ones (occlusion: a path tracer finds
 /// occlusion itself) are left out, normal maps with a warning.
 fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<MaterialTextures, String> {
@@ -354,8 +305,9 @@ fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<M
     let mut second_uv_set = 0;
     let mut load = |info: Option<gltf::texture::Info>, space, slot: usize, what: &str| {
         info.map(|i| {
-            second_uv_set |= uv_set_bit(i.tex_coord(), slot, what);
-            loader.load(&i.texture(), space).map_err(|e| format!("{what} texture: {e}"))
+            let used = of_info(&i);
+            second_uv_set |= uv_set_bit(used.tex_coord, slot, what);
+            loader.load(&i.texture(), space, used.transform).map_err(|e| format!("{what} texture: {e}"))
         })
         .transpose()
     };
@@ -365,13 +317,20 @@ fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<M
     let normal_info = m.normal_texture();
     // Its tangent frame is of the set it reads: glTF's TANGENT or MikkTSpace's of
     // TEXCOORD_0, MikkTSpace's of TEXCOORD_1.
-    if let Some(n) = &normal_info {
-        second_uv_set |= uv_set_bit(n.tex_coord(), NORMAL_SLOT, "normal");
-    }
-    let normal = normal_info
-        .as_ref()
-        .map(|n| loader.load(&n.texture(), ColorSpace::Linear).map_err(|e| format!("normal texture: {e}")))
-        .transpose()?;
+    // The frame is the uv set's, whatever the texture's transform (as Cycles' Normal Map
+    // node takes its tangents from the uv map, not from a Mapping node in front of the image).
+    let normal = match &normal_info {
+        Some(n) => {
+            let used = of_normal(n)?;
+            second_uv_set |= uv_set_bit(used.tex_coord, NORMAL_SLOT, "normal");
+            Some(
+                loader
+                    .load(&n.texture(), ColorSpace::Linear, used.transform)
+                    .map_err(|e| format!("normal texture: {e}"))?,
+            )
+        }
+        None => None,
+    };
     let alpha_cutoff = match m.alpha_mode() {
         AlphaMode::Opaque | AlphaMode::Blend => 0.0,
         AlphaMode::Mask => m.alpha_cutoff().unwrap_or(0.5),

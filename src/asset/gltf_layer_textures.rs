@@ -5,9 +5,10 @@
 //! what glTF has no texture of: `rt_coat_tint_texture` (RGB), `rt_sheen_texture` (R weight,
 //! G roughness), `rt_sheen_tint_texture` (RGB), `rt_anisotropy_texture` (R amount, G
 //! rotation) and `rt_diffuse_roughness_texture` (R), each a texture info as glTF writes one
-//! (`{"index": i, "texCoord": n}`).
+//! (`{"index": i, "texCoord": n}`, with its own `KHR_texture_transform`).
 
 use super::gltf_import::{extra, uv_set_bit};
+use super::gltf_texture_transform::{TextureUse, of_info, of_json};
 use super::gltf_textures::{ColorSpace, TextureLoader};
 use crate::scene::LayerTextures;
 use gltf::json::Value;
@@ -23,8 +24,8 @@ const SPECULAR_TINT: usize = 10;
 const DIFFUSE_ROUGHNESS: usize = 11;
 const THIN_FILM_THICKNESS: usize = 12;
 
-/// A texture info in raw JSON: its texture's index and its `texCoord`.
-fn info(v: &Value, what: &str) -> Result<(usize, u32), String> {
+/// A texture info in raw JSON: its texture's index and how it is read.
+fn info(v: &Value, what: &str) -> Result<(usize, TextureUse), String> {
     let index = v
         .get("index")
         .and_then(Value::as_u64)
@@ -33,7 +34,8 @@ fn info(v: &Value, what: &str) -> Result<(usize, u32), String> {
         None => 0,
         Some(t) => t.as_u64().ok_or_else(|| format!("{what}.texCoord must be a whole number, got {t}"))?,
     };
-    Ok((index as usize, tex_coord as u32))
+    let transform = v.get("extensions").and_then(|e| e.get("KHR_texture_transform"));
+    Ok((index as usize, of_json(tex_coord as u32, transform, what)?))
 }
 
 /// The layer textures of `m` and the bits of `second_uv_set` they add.
@@ -43,24 +45,24 @@ pub(super) fn layer_textures(
     loader: &mut TextureLoader,
 ) -> Result<(LayerTextures, u32), String> {
     let mut second_uv_set = 0;
-    let mut load = |raw: Option<(usize, u32)>, space, slot: usize, what: &str| -> Result<Option<u32>, String> {
-        let Some((index, tex_coord)) = raw else { return Ok(None) };
+    let mut load = |raw: Option<(usize, TextureUse)>, space, slot: usize, what: &str| -> Result<Option<u32>, String> {
+        let Some((index, used)) = raw else { return Ok(None) };
         let texture = document
             .textures()
             .nth(index)
             .ok_or_else(|| format!("{what}: no texture {index} (the file has {})", document.textures().len()))?;
-        second_uv_set |= uv_set_bit(tex_coord, slot, what);
-        loader.load(&texture, space).map(Some).map_err(|e| format!("{what} texture: {e}"))
+        second_uv_set |= uv_set_bit(used.tex_coord, slot, what);
+        loader.load(&texture, space, used.transform).map(Some).map_err(|e| format!("{what} texture: {e}"))
     };
     let clearcoat = m.extension_value("KHR_materials_clearcoat");
-    let from_clearcoat = |key: &str| -> Result<Option<(usize, u32)>, String> {
+    let from_clearcoat = |key: &str| -> Result<Option<(usize, TextureUse)>, String> {
         clearcoat.and_then(|c| c.get(key)).map(|v| info(v, &format!("KHR_materials_clearcoat.{key}"))).transpose()
     };
-    let from_extras = |key: &str| -> Result<Option<(usize, u32)>, String> {
+    let from_extras = |key: &str| -> Result<Option<(usize, TextureUse)>, String> {
         extra::<Value>(m.extras(), key)?.map(|v| info(&v, &format!("extras.{key}"))).transpose()
     };
     let specular_color =
-        m.specular().and_then(|s| s.specular_color_texture()).map(|i| (i.texture().index(), i.tex_coord()));
+        m.specular().and_then(|s| s.specular_color_texture()).map(|i| (i.texture().index(), of_info(&i)));
     let film_thickness = m
         .extension_value("KHR_materials_iridescence")
         .and_then(|f| f.get("iridescenceThicknessTexture"))

@@ -1,9 +1,10 @@
 //! The image textures of a glTF file's materials: images embedded in a buffer view
 //! (`.glb`), in data URIs, or in PNG/JPEG files beside the glTF, with their samplers'
-//! wrap modes. Each (image, colour space, wrap modes) becomes one [`TextureImage`],
-//! however many materials use it.
+//! wrap modes. Each (image, colour space, wrap modes, uv transform) becomes one
+//! [`TextureImage`], however many materials use it; those of one image with other uv
+//! transforms share its texels.
 
-use super::texture::{TextureImage, Wrap, decode};
+use super::texture::{TextureImage, UvTransform, Wrap, decode};
 use gltf::texture::WrappingMode;
 use std::collections::HashMap;
 use std::path::Path;
@@ -19,7 +20,9 @@ pub struct TextureLoader<'a> {
     buffers: &'a [gltf::buffer::Data],
     /// The glTF's folder, where relative image URIs point.
     dir: &'a Path,
-    loaded: HashMap<(usize, ColorSpace, [u32; 2]), u32>,
+    /// The first texture of each (image, colour space, wraps), and each texture by its uv transform too.
+    decoded: HashMap<(usize, ColorSpace, [u32; 2]), u32>,
+    loaded: HashMap<(usize, ColorSpace, [u32; 2], [u32; 6]), u32>,
     pub textures: Vec<TextureImage>,
 }
 
@@ -33,23 +36,32 @@ fn wrap(mode: WrappingMode) -> Wrap {
 
 impl<'a> TextureLoader<'a> {
     pub fn new(buffers: &'a [gltf::buffer::Data], dir: &'a Path) -> Self {
-        Self { buffers, dir, loaded: HashMap::new(), textures: Vec::new() }
+        Self { buffers, dir, decoded: HashMap::new(), loaded: HashMap::new(), textures: Vec::new() }
     }
 
-    /// The index of `texture` in [`Self::textures`], decoding its image on first use.
-    pub fn load(&mut self, texture: &gltf::Texture, space: ColorSpace) -> Result<u32, String> {
+    /// The index in [`Self::textures`] of `texture` read through `transform`, decoding its
+    /// image on first use.
+    pub fn load(&mut self, texture: &gltf::Texture, space: ColorSpace, transform: UvTransform) -> Result<u32, String> {
         let sampler = texture.sampler();
         let wraps = [wrap(sampler.wrap_s()), wrap(sampler.wrap_t())];
         let image = texture.source();
         let key = (image.index(), space, wraps.map(Wrap::code));
-        if let Some(&index) = self.loaded.get(&key) {
+        let transform_bits: [u32; 6] = bytemuck::cast(transform);
+        if let Some(&index) = self.loaded.get(&(key.0, key.1, key.2, transform_bits)) {
             return Ok(index);
         }
-        let (what, bytes) = self.image_bytes(&image)?;
-        let (width, height, rgba) = decode(&bytes, &what)?;
-        self.textures.push(TextureImage::new(width, height, &rgba, wraps, space == ColorSpace::Srgb));
+        let reference = match self.decoded.get(&key) {
+            Some(&first) => self.textures[first as usize].with_uv_transform(transform),
+            None => {
+                let (what, bytes) = self.image_bytes(&image)?;
+                let (width, height, rgba) = decode(&bytes, &what)?;
+                self.decoded.insert(key, self.textures.len() as u32);
+                TextureImage::new(width, height, &rgba, wraps, space == ColorSpace::Srgb).with_uv_transform(transform)
+            }
+        };
+        self.textures.push(reference);
         let index = (self.textures.len() - 1) as u32;
-        self.loaded.insert(key, index);
+        self.loaded.insert((key.0, key.1, key.2, transform_bits), index);
         Ok(index)
     }
 

@@ -7,6 +7,7 @@ mod gltf_buffers;
 mod gltf_extensions;
 pub mod gltf_import;
 mod gltf_layer_textures;
+mod gltf_texture_transform;
 mod gltf_textures;
 pub mod obj_import;
 pub mod rtinst;
@@ -16,7 +17,7 @@ mod tangents;
 pub mod texture;
 
 pub use source::{AssetFiles, AssetKind};
-pub use texture::{TextureImage, Wrap};
+pub use texture::{IDENTITY_UV_TRANSFORM, TextureImage, UvTransform, Wrap};
 
 use crate::scene::{Material, UvSet};
 use std::path::{Path, PathBuf};

@@ -9,6 +9,8 @@
 //! are averaged in linear light, so that a checker fades to its true mean, not to
 //! the darker mean of its sRGB codes.
 
+use std::sync::Arc;
+
 /// The largest width or height of a texture rt reads.
 pub const MAX_TEXTURE_SIDE: u32 = 8192;
 
@@ -36,7 +38,16 @@ impl Wrap {
     }
 }
 
-/// An image with its mip chain, ready to be placed in the scene's texture store.
+/// A 2×3 affine map of rt's texture coordinates (v from the bottom), rows `[a, b, c]`:
+/// `u' = a₀u + b₀v + c₀`, `v' = a₁u + b₁v + c₁`. A texture reads its image at the map of
+/// the uv set's coordinates (glTF's `KHR_texture_transform`, Blender's Mapping node).
+pub type UvTransform = [[f32; 3]; 2];
+
+pub const IDENTITY_UV_TRANSFORM: UvTransform = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+
+/// An image with its mip chain and the way one texture reference reads it (wrap modes,
+/// colour space, uv transform), ready to be placed in the scene's texture store. Two
+/// references to one image with other transforms are two of these sharing their texels.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TextureImage {
     pub width: u32,
@@ -45,8 +56,10 @@ pub struct TextureImage {
     pub wrap: [Wrap; 2],
     /// The bytes are sRGB-encoded colour (decoded by the shader); otherwise linear data.
     pub srgb: bool,
-    /// Every level's texels, finest first (see the module's documentation).
-    pub texels: Vec<u32>,
+    /// Every level's texels, finest first (see the module's documentation); shared by the
+    /// references to one image.
+    pub texels: Arc<[u32]>,
+    pub uv_transform: UvTransform,
 }
 
 /// The size of mip level `level` of a `width × height` image.
@@ -144,7 +157,17 @@ impl TextureImage {
             }
             (w, h, floats) = (nw, nh, next);
         }
-        Self { width, height, wrap, srgb, texels }
+        Self { width, height, wrap, srgb, texels: texels.into(), uv_transform: IDENTITY_UV_TRANSFORM }
+    }
+
+    /// The same image (its texels shared) read through `uv_transform`.
+    pub fn with_uv_transform(&self, uv_transform: UvTransform) -> Self {
+        Self { uv_transform, ..self.clone() }
+    }
+
+    /// Which texels `self` holds: two references to one image (not to copies of it) alike.
+    pub fn texels_id(&self) -> usize {
+        Arc::as_ptr(&self.texels) as *const u32 as usize
     }
 
     pub fn levels(&self) -> u32 {
@@ -156,7 +179,7 @@ impl TextureImage {
         let dropped = dropped.min(self.levels() - 1);
         let skip = texels_in_levels(self.width, self.height, dropped) as usize;
         let (width, height) = level_size(self.width, self.height, dropped);
-        Self { width, height, wrap: self.wrap, srgb: self.srgb, texels: self.texels[skip..].to_vec() }
+        Self { width, height, texels: self.texels[skip..].into(), ..self.clone() }
     }
 }
 

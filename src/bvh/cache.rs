@@ -11,10 +11,12 @@
 //!     triangles   GpuTriangle × m      (leaf order; material index in each)
 //!     shading     GpuTriangleShading × m
 //!     materials   CachedMaterial × k      (the asset's materials, in its own order; their
-//!                 layer textures and tangent kind from version 8 on)
+//!                 layer textures and tangent kind from version 8 on, the film's weight,
+//!                 the bump map correction and two more layer slots from version 9 on)
 //!     names       k × (u32 byte length, UTF-8 bytes): the materials' names
-//!     textures    CachedTexture × j      (size, wrap modes, colour space, texel range)
-//!     texels      u32 × (every texture's mip chain, RGBA8, in table order)
+//!     textures    CachedTexture × j      (size, wrap modes, colour space, texel range; its
+//!                 uv transform from version 10 on, references to one image sharing a range)
+//!     texels      u32 × (every image's mip chain, RGBA8, in table order, once each)
 //!     tangents    GpuTriangleTangents × m, or none: only a mesh with tangents and a
 //!                 normal-mapped material keeps them (version 5 on), or one anisotropic
 //!                 along its uv map (version 8 on); each triangle's are of the uv set its
@@ -52,7 +54,7 @@ use std::path::Path;
 use std::time::Duration;
 
 pub const MAGIC: [u8; 8] = *b"RTBVH\0\0\0";
-pub const FORMAT_VERSION: u32 = 9;
+pub const FORMAT_VERSION: u32 = 10;
 const ALIGN: u64 = 16;
 
 #[repr(C)]

@@ -93,7 +93,7 @@ fn host_structs_match_wgsl_layouts() {
         ),
         host_layout!("Triangle", GpuTriangle, [v0, material, v1, v2]),
         host_layout!("TriangleShading", GpuTriangleShading, [n0, u0, n1, u1, n2, u2, v]),
-        host_layout!("Texture", GpuTexture, [offset, width, height, levels, flags]),
+        host_layout!("Texture", GpuTexture, [offset, width, height, levels, flags, transform_lod, u_row, v_row]),
         host_layout!(
             "Instance",
             GpuInstance,

@@ -10,6 +10,7 @@
 use crate::asset::TextureImage;
 use crate::layout::GpuTexture;
 use std::borrow::Cow;
+use std::collections::HashMap;
 
 pub struct TextureStore {
     pub table: Vec<GpuTexture>,
@@ -21,42 +22,69 @@ const MAX_TEXELS: u64 = u32::MAX as u64;
 
 impl TextureStore {
     /// Packs `textures` into at most `max_bytes` of texels (see the module's documentation).
+    /// References to one image ([`TextureImage::texels_id`]) share its texels
+    /// here too: one table entry each, one copy of the texels.
     pub fn pack<'a>(textures: impl Iterator<Item = &'a TextureImage>, max_bytes: u64) -> Self {
-        let mut fitted: Vec<Cow<TextureImage>> = textures.map(Cow::Borrowed).collect();
+        let references: Vec<&TextureImage> = textures.collect();
+        // Each reference's image: the first reference with its texels.
+        let mut image_of = Vec::with_capacity(references.len());
+        let mut images: Vec<Cow<TextureImage>> = Vec::new();
+        let mut first_of_texels = HashMap::new();
+        for t in &references {
+            let index = *first_of_texels.entry(t.texels_id()).or_insert_with(|| {
+                images.push(Cow::Borrowed(*t));
+                images.len() - 1
+            });
+            image_of.push(index);
+        }
         let budget = (max_bytes / 4).min(MAX_TEXELS);
         let total = |set: &[Cow<TextureImage>]| set.iter().map(|t| t.texels.len() as u64).sum::<u64>();
-        while total(&fitted) > budget {
+        while total(&images) > budget {
             let Some(largest) =
-                (0..fitted.len()).filter(|&i| fitted[i].levels() > 1).max_by_key(|&i| fitted[i].texels.len())
+                (0..images.len()).filter(|&i| images[i].levels() > 1).max_by_key(|&i| images[i].texels.len())
             else {
                 break;
             };
-            let t = &fitted[largest];
+            let t = &images[largest];
             let smaller = t.without_finest_levels(1);
             log::warn!(
                 "textures take {} MiB but this GPU binds at most {} MiB per buffer: a {}×{} texture is downscaled to {}×{}",
-                (total(&fitted) * 4) >> 20,
+                (total(&images) * 4) >> 20,
                 max_bytes >> 20,
                 t.width,
                 t.height,
                 smaller.width,
                 smaller.height
             );
-            fitted[largest] = Cow::Owned(smaller);
+            images[largest] = Cow::Owned(smaller);
         }
-        let mut table = Vec::with_capacity(fitted.len());
-        let mut texels = Vec::with_capacity(total(&fitted) as usize);
-        for t in &fitted {
-            table.push(GpuTexture {
-                offset: texels.len() as u32,
-                width: t.width,
-                height: t.height,
-                levels: t.levels(),
-                flags: t.srgb as u32 | t.wrap[0].code() << 1 | t.wrap[1].code() << 3,
-                _pad: [0; 3],
-            });
+        let mut offsets = Vec::with_capacity(images.len());
+        let mut texels = Vec::with_capacity(total(&images) as usize);
+        for t in &images {
+            offsets.push(texels.len() as u32);
             texels.extend_from_slice(&t.texels);
         }
+        let table = references
+            .iter()
+            .zip(image_of)
+            .map(|(reference, i)| {
+                let t = &images[i];
+                let [u_row, v_row] = reference.uv_transform;
+                let det = u_row[0] * v_row[1] - u_row[1] * v_row[0];
+                GpuTexture {
+                    offset: offsets[i],
+                    width: t.width,
+                    height: t.height,
+                    levels: t.levels(),
+                    flags: reference.srgb as u32 | reference.wrap[0].code() << 1 | reference.wrap[1].code() << 3,
+                    // A degenerate transform reads one texel: the coarsest level, as a footprint of all of it.
+                    transform_lod: if det != 0.0 { 0.5 * det.abs().log2() } else { f32::MAX },
+                    _pad: [0; 2],
+                    u_row: [u_row[0], u_row[1], u_row[2], 0.0],
+                    v_row: [v_row[0], v_row[1], v_row[2], 0.0],
+                }
+            })
+            .collect();
         Self { table, texels }
     }
 }
@@ -80,5 +108,17 @@ mod tests {
         assert_eq!((squeezed.table[0].width, squeezed.table[0].height, squeezed.table[0].levels), (16, 8, 5));
         assert_eq!(squeezed.texels.len(), 171 + 21);
         assert_eq!(squeezed.table[1].offset, 171);
+    }
+
+    #[test]
+    fn references_to_one_image_share_its_texels_and_carry_their_own_transforms() {
+        let image = TextureImage::new(4, 4, &[9; 64], [Wrap::Repeat; 2], true);
+        let tiled = image.with_uv_transform([[8.0, 0.0, 0.5], [0.0, 8.0, 0.0]]);
+        let copy = TextureImage::new(4, 4, &[9; 64], [Wrap::Repeat; 2], true);
+        let store = TextureStore::pack([&image, &tiled, &copy].into_iter(), 1 << 20);
+        assert_eq!(store.texels.len(), 2 * image.texels.len(), "the copy is not the same image; the tiled one is");
+        assert_eq!((store.table[0].offset, store.table[1].offset, store.table[2].offset), (0, 0, 21));
+        assert_eq!((store.table[0].transform_lod, store.table[1].transform_lod), (0.0, 3.0));
+        assert_eq!((store.table[1].u_row, store.table[1].v_row), ([8.0, 0.0, 0.5, 0.0], [0.0, 8.0, 0.0, 0.0]));
     }
 }

@@ -1,6 +1,7 @@
 """Exports two scenes of tests/cycles/make_texture_refs.py with blender/rt_export.py into
 the folder given as the first argument, for tests/blender_uv_sets.rs: `uv_sets` (a
-texture on the second uv map, one on the first) and `baked_noise` with --bake (32 texels)
+texture on the second uv map, one on the first), `mappings` (two Mapping nodes on one uv
+map) and `baked_noise` with --bake (32 texels)
 and without; then, with --bake, the noise plane seen only through two collection instances
 (its collection excluded from the view layer), and a plane whose Normal is a Bump node
 fed by the noise. Writes report.json with what the node trees looked like around the bake."""
@@ -21,6 +22,10 @@ report = {}
 scene = refs.reset()
 refs.scene_uv_sets(scene)
 rt_export.export_scene(scene, os.path.join(out, "uv_sets", "assets"), os.path.join(out, "uv_sets", "scene.toml"))
+
+scene = refs.reset()
+refs.scene_mappings(scene)
+rt_export.export_scene(scene, os.path.join(out, "mappings", "assets"), os.path.join(out, "mappings", "scene.toml"))
 
 scene = refs.reset()
 refs.scene_baked_noise(scene)

@@ -104,6 +104,28 @@ def scene_normal_second_uv(scene):
     refs.camera(scene, (0.0, -3.4, 1.6), (0.0, 0.0, -0.3), 45.0)
 
 
+def scene_normal_mapping(scene):
+    """The cube of `scene_normal_cube` with a normal map of 3 × 2 bumps behind a Mapping
+    node (scaled 1.5, turned a quarter, moved) and a checker base colour read as it is, on
+    the one uv map: the map tiles and turns on its own, in the tangent frame of the uv map
+    (Cycles' Normal Map node takes its tangents from the map, not from the Mapping node)."""
+    cycles.uniform_world(scene, (0.25, 0.25, 0.25))
+    refs.sun(scene, (math.radians(50), 0.0, math.radians(-25)))
+    m = normal_mapped("bumpy", bump_normals(128, 3, 2, 0.025), (0.7, 0.55, 0.4), 0.4)
+    tree = m.node_tree
+    tex = next(n for n in tree.nodes if n.type == "TEX_IMAGE")
+    coords = tree.nodes.new("ShaderNodeTexCoord")
+    mapping = refs.mapping(tree, (1.5, 1.5), 90.0, (0.1, 0.05), coords.outputs["UV"])
+    tree.links.new(mapping.outputs["Vector"], tex.inputs["Vector"])
+    bsdf = next(n for n in tree.nodes if n.type == "BSDF_PRINCIPLED")
+    colour = refs.image_node(tree, refs.image("checker", refs.checker(4, (0.7, 0.55, 0.4), (0.3, 0.45, 0.6))))
+    tree.links.new(colour.outputs["Color"], bsdf.inputs["Base Color"])
+    cube = refs.add_object(scene, "cube", bpy.ops.mesh.primitive_cube_add, m, size=1.4, location=(0, 0, -0.3))
+    cube.rotation_euler = (0.0, 0.0, math.radians(35.0))
+    refs.floor(scene, (0.5, 0.5, 0.5), 8.0, -1.0)
+    refs.camera(scene, (0.0, -3.4, 1.6), (0.0, 0.0, -0.3), 45.0)
+
+
 def scene_alpha_blend(scene):
     """A quad whose base colour texture has alpha 0.25 and 0.75 in stripes, over a floor
     under a sun: Cycles mixes by alpha, for the camera and for the shadow alike."""
@@ -132,6 +154,7 @@ SCENES = {
     "normal_sphere": scene_normal_sphere,
     "normal_cube": scene_normal_cube,
     "normal_second_uv": scene_normal_second_uv,
+    "normal_mapping": scene_normal_mapping,
     "alpha_blend": scene_alpha_blend,
 }
 

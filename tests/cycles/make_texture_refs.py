@@ -253,6 +253,31 @@ def scene_uv_mappings(scene):
     tree.links.new(b.outputs["Vector"], rough.inputs["Vector"])
 
 
+def scene_mappings(scene):
+    """A sunlit glossy plane whose base colour (a checker, scaled 1.5 and turned 20°) and
+    roughness (stripes, tiled 4 times) read the one default uv map through Mapping nodes of
+    their own, as a detail map tiled beside a base colour is: each texture its own
+    transform on one uv set."""
+    uniform_world(scene, (0.2, 0.2, 0.2))
+    m, tree, bsdf = principled("mappings")
+    bsdf.inputs["Specular IOR Level"].default_value = 0.5
+    colour = image_node(tree, image("checker", checker(4, (0.8, 0.15, 0.1), (0.9, 0.9, 0.85))))
+    tree.links.new(colour.outputs["Color"], bsdf.inputs["Base Color"])
+    y, x = np.mgrid[0:32, 0:32]
+    stripes = np.where((x // 8) % 2 == 0, 0.15, 0.6)[:, :, None].repeat(3, 2)
+    rough = image_node(tree, image("stripes", np.concatenate([stripes, np.ones((32, 32, 1))], 2), srgb=False))
+    tree.links.new(rough.outputs["Color"], bsdf.inputs["Roughness"])
+    coords = tree.nodes.new("ShaderNodeTexCoord")
+    a = mapping(tree, (1.5, 1.5), 20.0, (0.1, 0.2), coords.outputs["UV"])
+    tree.links.new(a.outputs["Vector"], colour.inputs["Vector"])
+    b = mapping(tree, (4.0, 4.0), 0.0, (0.0, 0.0), coords.outputs["UV"])
+    tree.links.new(b.outputs["Vector"], rough.inputs["Vector"])
+    add_object(scene, "plane", bpy.ops.mesh.primitive_plane_add, m, size=2.0, rotation=(math.radians(60), 0, 0))
+    # The sun near the mirror direction of the view at the plane's centre, as in `scene_uv_sets`.
+    sun(scene, (math.radians(48.0), 0.0, math.radians(8.0)))
+    camera(scene, (0.0, -3.0, 1.2), (0.0, 0.0, 0.0), 40.0)
+
+
 def scene_baked_noise(scene):
     """A Noise Texture (procedural, in the plane's generated coordinates) into Base Color
     of a sunlit plane: Cycles renders the procedural material, rt the exporter's bake of
@@ -386,12 +411,14 @@ def scene_film_roughness_map(scene):
 
 def blender_gltf(scene, out):
     """The same scene through Blender's own glTF exporter (a .glb with its textures
-    embedded), placed by a copy of the exported scene file: for the test that rt reads
-    textured glTF files as Blender writes them."""
+    embedded), placed by a copy of the exported scene file: for the tests that rt reads
+    textured glTF files as Blender writes them (its KHR_texture_transform included)."""
     path = os.path.join(out, "blender.glb")
     bpy.ops.export_scene.gltf(filepath=path, export_format="GLB", export_cameras=False, export_lights=False)
     with open(os.path.join(out, "scene.toml")) as f:
-        header = f.read().split("\n# ", 1)[0]
+        # Everything before the first mesh (its "# name" line too): render, camera, sky, lamps.
+        lines = f.read().split("\n[[mesh]]", 1)[0].rstrip("\n").split("\n")
+    header = "\n".join(lines[:-1] if lines[-1].startswith("# ") else lines)
     with open(os.path.join(out, "scene_blender_gltf.toml"), "w") as f:
         f.write(header.rstrip("\n") + '\n\n[[mesh]]\nasset = "blender.glb"\n')
 
@@ -403,6 +430,7 @@ SCENES = {
     "emissive": scene_emissive,
     "uv_sets": scene_uv_sets,
     "uv_mappings": scene_uv_mappings,
+    "mappings": scene_mappings,
     "baked_noise": scene_baked_noise,
     "baked_bump": scene_baked_bump,
     "coat_map": scene_coat_map,
@@ -420,7 +448,7 @@ def main():
         scene = reset()
         SCENES[name](scene)
         cycles.export(scene, f"texture_{name}", bake_size=BAKE_SIZES.get(name, 0))
-        if name == "leaves":
+        if name in ("leaves", "mappings"):
             blender_gltf(scene, os.path.join(cycles.HERE, "scenes", f"texture_{name}"))
         cycles.render(scene, f"texture_{name}", args)
 

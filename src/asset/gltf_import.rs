@@ -45,7 +45,7 @@ use super::gltf_extensions::{Film, Sheen, anisotropy, clearcoat, glossy, iridesc
 use super::gltf_texture_transform::{of_info, of_normal};
 use super::gltf_textures::{ColorSpace, TextureLoader};
 use super::{AssetError, MeshData};
-use crate::scene::{Material, MaterialTextures, NORMAL_SLOT, Tangent};
+use crate::scene::{Material, MaterialTextures, Tangent, slots};
 use glam::{Mat3, Mat4, Vec3};
 use gltf::json::Value;
 use gltf::material::AlphaMode;
@@ -311,9 +311,10 @@ fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<M
         })
         .transpose()
     };
-    let base_color = load(pbr.base_color_texture(), ColorSpace::Srgb, 0, "base colour")?;
-    let metallic_roughness = load(pbr.metallic_roughness_texture(), ColorSpace::Linear, 1, "metallic-roughness")?;
-    let emission = load(m.emissive_texture(), ColorSpace::Srgb, 2, "emissive")?;
+    let base_color = load(pbr.base_color_texture(), ColorSpace::Srgb, slots::BASE_COLOR, "base colour")?;
+    let metallic_roughness =
+        load(pbr.metallic_roughness_texture(), ColorSpace::Linear, slots::METALLIC_ROUGHNESS, "metallic-roughness")?;
+    let emission = load(m.emissive_texture(), ColorSpace::Srgb, slots::EMISSION, "emissive")?;
     let normal_info = m.normal_texture();
     // Its tangent frame is of the set it reads: glTF's TANGENT or MikkTSpace's of
     // TEXCOORD_0, MikkTSpace's of TEXCOORD_1.
@@ -322,7 +323,7 @@ fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<M
     let normal = match &normal_info {
         Some(n) => {
             let used = of_normal(n)?;
-            second_uv_set |= uv_set_bit(used.tex_coord, NORMAL_SLOT, "normal");
+            second_uv_set |= uv_set_bit(used.tex_coord, slots::NORMAL, "normal");
             Some(
                 loader
                     .load(&n.texture(), ColorSpace::Linear, used.transform)

@@ -11,18 +11,11 @@ use super::gltf_import::{extra, uv_set_bit};
 use super::gltf_texture_transform::{TextureUse, of_info, of_json};
 use super::gltf_textures::{ColorSpace, TextureLoader};
 use crate::scene::LayerTextures;
+use crate::scene::slots::{
+    ANISOTROPY, COAT, COAT_ROUGHNESS, COAT_TINT, DIFFUSE_ROUGHNESS, SHEEN, SHEEN_TINT, SPECULAR_TINT,
+    THIN_FILM_THICKNESS,
+};
 use gltf::json::Value;
-
-/// Slots of `MaterialTextures::indices_mut` (and bits of its `second_uv_set`).
-const COAT: usize = 4;
-const COAT_ROUGHNESS: usize = 5;
-const COAT_TINT: usize = 6;
-const SHEEN: usize = 7;
-const SHEEN_TINT: usize = 8;
-const ANISOTROPY: usize = 9;
-const SPECULAR_TINT: usize = 10;
-const DIFFUSE_ROUGHNESS: usize = 11;
-const THIN_FILM_THICKNESS: usize = 12;
 
 /// A texture info in raw JSON: its texture's index and how it is read.
 fn info(v: &Value, what: &str) -> Result<(usize, TextureUse), String> {

@@ -173,8 +173,24 @@ pub enum UvSet {
     Second = 1,
 }
 
-/// The normal map's slot in [`MaterialTextures::indices_mut`] and `second_uv_set`.
-pub const NORMAL_SLOT: usize = 3;
+/// The texture slots of a material: indices into [`MaterialTextures::indices_mut`] and
+/// bits of its `second_uv_set` (the importers and `shaders/texture.wgsl` number them so).
+pub mod slots {
+    pub const BASE_COLOR: usize = 0;
+    pub const METALLIC_ROUGHNESS: usize = 1;
+    pub const EMISSION: usize = 2;
+    pub const NORMAL: usize = 3;
+    pub const COAT: usize = 4;
+    pub const COAT_ROUGHNESS: usize = 5;
+    pub const COAT_TINT: usize = 6;
+    pub const SHEEN: usize = 7;
+    pub const SHEEN_TINT: usize = 8;
+    pub const ANISOTROPY: usize = 9;
+    pub const SPECULAR_TINT: usize = 10;
+    pub const DIFFUSE_ROUGHNESS: usize = 11;
+    pub const THIN_FILM_THICKNESS: usize = 12;
+    pub const COUNT: usize = 13;
+}
 
 impl Default for MaterialTextures {
     fn default() -> Self {
@@ -204,9 +220,10 @@ impl MaterialTextures {
             || self.layers.any()
     }
 
-    /// The indices, for offsetting into a scene-wide texture list; slot i's uv set is bit
-    /// i of `second_uv_set` (`UV1_*` in `shaders/texture.wgsl`).
-    pub fn indices_mut(&mut self) -> [&mut Option<u32>; 13] {
+    /// The indices, for offsetting into a scene-wide texture list, in the order of
+    /// [`slots`]; slot i's uv set is bit i of `second_uv_set` (`UV1_*` in
+    /// `shaders/texture.wgsl`).
+    pub fn indices_mut(&mut self) -> [&mut Option<u32>; slots::COUNT] {
         let l = &mut self.layers;
         [
             &mut self.base_color,
@@ -230,9 +247,9 @@ impl MaterialTextures {
         self.second_uv_set & (1 << slot) != 0
     }
 
-    /// The uv set the normal map reads (slot 3), and so the tangents it is in.
+    /// The uv set the normal map reads, and so the tangents it is in.
     pub fn normal_uv_set(&self) -> UvSet {
-        if self.reads_second_uv_set(NORMAL_SLOT) { UvSet::Second } else { UvSet::First }
+        if self.reads_second_uv_set(slots::NORMAL) { UvSet::Second } else { UvSet::First }
     }
 
     /// Some texture reads the second uv set.
@@ -368,3 +385,7 @@ pub fn ior_from_f0(f0: f32) -> f32 {
 pub fn luminance(c: [f32; 3]) -> f32 {
     0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
 }
+
+#[cfg(test)]
+#[path = "material_tests.rs"]
+mod tests;

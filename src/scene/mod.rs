@@ -21,7 +21,7 @@ pub use camera::{Camera, DepthOfField, MAX_BLADES, Projection, SensorFit};
 pub use environment::Environment;
 pub use features::{ALPHA_DELTA, FeatureSet, GeometrySummary, LampKinds, SkyFeature, Transmission};
 pub use light::{AreaShape, Light, LightShape};
-pub use material::{LayerTextures, Material, MaterialTextures, NORMAL_SLOT, Tangent, UvSet, luminance};
+pub use material::{LayerTextures, Material, MaterialTextures, Tangent, UvSet, luminance, slots};
 pub use panorama::Panorama;
 pub use parse::{SceneError, hint as did_you_mean, load, parse};
 pub use validate::MAX_IMAGE_SIDE;

@@ -1,0 +1,60 @@
+//! The texture slots' numbers, against the material's fields and the shader's bits.
+
+use super::*;
+
+#[test]
+fn each_slot_names_its_texture() {
+    let mut t = MaterialTextures::default();
+    for (i, index) in t.indices_mut().into_iter().enumerate() {
+        *index = Some(i as u32);
+    }
+    let l = &t.layers;
+    let named = [
+        (slots::BASE_COLOR, t.base_color),
+        (slots::METALLIC_ROUGHNESS, t.metallic_roughness),
+        (slots::EMISSION, t.emission),
+        (slots::NORMAL, t.normal),
+        (slots::COAT, l.coat),
+        (slots::COAT_ROUGHNESS, l.coat_roughness),
+        (slots::COAT_TINT, l.coat_tint),
+        (slots::SHEEN, l.sheen),
+        (slots::SHEEN_TINT, l.sheen_tint),
+        (slots::ANISOTROPY, l.anisotropy),
+        (slots::SPECULAR_TINT, l.specular_tint),
+        (slots::DIFFUSE_ROUGHNESS, l.diffuse_roughness),
+        (slots::THIN_FILM_THICKNESS, l.thin_film_thickness),
+    ];
+    assert_eq!(named.len(), slots::COUNT);
+    for (slot, index) in named {
+        assert_eq!(index, Some(slot as u32), "slot {slot}");
+    }
+}
+
+#[test]
+fn the_shaders_uv_set_bits_are_the_slots() {
+    let wgsl = include_str!("../../shaders/texture.wgsl");
+    let bit = |name: &str| -> u32 {
+        let key = format!("const UV1_{name}: u32 = ");
+        let line = wgsl.lines().find(|l| l.starts_with(&key)).unwrap_or_else(|| panic!("no {key}"));
+        line[key.len()..].trim_end_matches("u;").parse().unwrap_or_else(|e| panic!("{line}: {e}"))
+    };
+    let shader = [
+        ("BASE_COLOR", slots::BASE_COLOR),
+        ("METALLIC_ROUGHNESS", slots::METALLIC_ROUGHNESS),
+        ("EMISSION", slots::EMISSION),
+        ("NORMAL", slots::NORMAL),
+        ("COAT", slots::COAT),
+        ("COAT_ROUGHNESS", slots::COAT_ROUGHNESS),
+        ("COAT_TINT", slots::COAT_TINT),
+        ("SHEEN", slots::SHEEN),
+        ("SHEEN_TINT", slots::SHEEN_TINT),
+        ("ANISOTROPY", slots::ANISOTROPY),
+        ("SPECULAR_TINT", slots::SPECULAR_TINT),
+        ("DIFFUSE_ROUGHNESS", slots::DIFFUSE_ROUGHNESS),
+        ("THIN_FILM", slots::THIN_FILM_THICKNESS),
+    ];
+    assert_eq!(shader.len(), slots::COUNT);
+    for (name, slot) in shader {
+        assert_eq!(bit(name), 1 << slot, "UV1_{name}");
+    }
+}

@@ -3,7 +3,7 @@
 
 use crate::common;
 
-use common::{gpu, repo};
+use common::{gpu, luminance, repo};
 use rt::bvh::BuildQuality;
 use rt::render::{Image, RenderReport, RenderRequest, Session};
 
@@ -60,10 +60,6 @@ fn adaptive_sampling_spread_over_lanes_is_the_same_image_bit_for_bit() {
             SIZE * SIZE
         );
     }
-}
-
-fn luminance(p: [f32; 3]) -> f64 {
-    0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64
 }
 
 #[test]

@@ -11,7 +11,7 @@
 use crate::common;
 
 use common::reference::{self, Noiseless};
-use common::{render, repo};
+use common::{luminance, render, repo};
 
 /// Samples per pixel of the committed references (`make_principled_refs.py --spp`).
 const REFERENCE_SPP: f64 = 2048.0;
@@ -22,10 +22,6 @@ const COLUMN: usize = 32;
 const BLOCK: usize = 8;
 /// Relative difference allowed besides the noise (see above).
 const TABLE_PRECISION: f64 = 1e-3;
-
-fn luminance(p: [f32; 3]) -> f64 {
-    0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64
-}
 
 fn check(name: &str) {
     check_row(&format!("principled_{name}"));

@@ -11,7 +11,7 @@
 //! Cycles, and a spread of a few batches that mostly miss the rare paths underestimates
 //! that (it put silhouette blocks 0.5–1.5% from Cycles at up to 14 σ).
 
-use crate::common::{self, repo};
+use crate::common::{self, luminance, repo};
 use rt::render::Image;
 
 const BATCHES: u32 = 8;
@@ -21,10 +21,6 @@ const MAX_BOUNCES: u32 = 12;
 /// Each sphere is centred in its own 32-pixel-wide column of the 160 × 32 image.
 const COLUMN: usize = 32;
 const BLOCK: usize = 8;
-
-fn luminance(p: [f32; 3]) -> f64 {
-    0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64
-}
 
 /// A rectangle of pixels: x, y, width, height.
 type Region = (usize, usize, usize, usize);

@@ -7,7 +7,7 @@
 use crate::common;
 
 use common::reference::{self, Noiseless};
-use common::{render, repo};
+use common::{luminance, render, repo};
 
 /// Samples per pixel of the committed references (`make_texture_refs.py --spp`).
 const REFERENCE_SPP: f64 = 4096.0;
@@ -15,9 +15,6 @@ const SPP: u32 = 256;
 const MAX_BOUNCES: u32 = 12;
 const BLOCK: usize = 8;
 
-fn luminance(p: [f32; 3]) -> f64 {
-    0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64
-}
 fn check(name: &str) {
     check_scene(name, "scene.toml");
 }

@@ -7,22 +7,6 @@ use crate::common;
 use common::temp_dir;
 use std::process::Command;
 
-/// Squared error of the displayed (tone-mapped, 8-bit sRGB) images, in 0..255 per
-/// value: what a viewer sees, so that the emitters' radiance does not drown the rest.
-#[cfg(feature = "denoise")]
-fn display_mse(a: &[[f32; 3]], b: &[[f32; 3]]) -> f64 {
-    use rt::render::tonemap::display_pixel;
-    let sum: f64 = a
-        .iter()
-        .zip(b)
-        .flat_map(|(a, b)| {
-            let (a, b) = (display_pixel(*a, 0.0), display_pixel(*b, 0.0));
-            (0..3).map(move |c| (a[c] as f64 - b[c] as f64).powi(2))
-        })
-        .sum();
-    sum / (a.len() * 3) as f64
-}
-
 #[cfg(feature = "denoise")]
 #[test]
 fn sixteen_samples_denoised_beat_four_times_the_samples_raw() {
@@ -43,8 +27,8 @@ fn sixteen_samples_denoised_beat_four_times_the_samples_raw() {
         let (half_a, half_b) = (render(192, 1, false), render(192, 4, false));
         let converged: Vec<[f32; 3]> =
             half_a.pixels.iter().zip(&half_b.pixels).map(|(a, b)| [0, 1, 2].map(|c| 0.5 * (a[c] + b[c]))).collect();
-        let own_noise = display_mse(&half_a.pixels, &half_b.pixels) / 4.0;
-        let error = |pixels: &[[f32; 3]]| (display_mse(pixels, &converged) - own_noise).max(0.0).sqrt();
+        let own_noise = common::display_mse(&half_a.pixels, &half_b.pixels) / 4.0;
+        let error = |pixels: &[[f32; 3]]| (common::display_mse(pixels, &converged) - own_noise).max(0.0).sqrt();
         let raw = render(64, 2, false);
         let few = render(16, 3, true);
         let aovs = session.aovs().unwrap_or_else(|e| panic!("{e:#}"));

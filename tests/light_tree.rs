@@ -6,17 +6,13 @@
 
 use crate::common;
 
-use common::{gpu, repo, scene_from};
+use common::{gpu, luminance, repo, scene_from};
 use rt::bvh::BuildQuality;
 use rt::gpu::shader::{Program, assemble};
 use rt::render::{Image, RenderRequest, Session};
 use rt::scene::{FeatureSet, LightSampler, Scene};
 
 const BLOCK: usize = 8;
-
-fn luminance(p: [f32; 3]) -> f64 {
-    0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64
-}
 
 fn render(mut scene: Scene, sampler: LightSampler, all_features: bool, size: (u32, u32), spp: u32, seed: u32) -> Image {
     scene.render.light_sampler = sampler;

@@ -3,15 +3,11 @@
 
 use crate::common;
 
-use common::{render, scene_from, temp_dir, write};
+use common::{luminance, render, scene_from, temp_dir, write};
 use rt::render::Image;
 
 const SKY_ONE: &str = "[sky]\nkind = \"uniform\"\ncolor = [1.0, 1.0, 1.0]\n";
 const CAMERA: &str = "[camera]\nposition = [0.0, 0.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y_deg = 45.0\n";
-
-fn luminance(p: [f32; 3]) -> f64 {
-    0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64
-}
 
 /// Mean luminance over pixels `which` and the standard error of that mean.
 fn mean_of(image: &Image, which: impl Fn(usize, usize) -> bool) -> (f64, f64) {

@@ -162,20 +162,6 @@ mod with_open_image_denoise {
         (image, aovs)
     }
 
-    /// Squared error of the displayed (tone-mapped, 8-bit sRGB) images, per value.
-    fn display_mse(a: &[[f32; 3]], b: &[[f32; 3]]) -> f64 {
-        use rt::render::tonemap::display_pixel;
-        let sum: f64 = a
-            .iter()
-            .zip(b)
-            .flat_map(|(a, b)| {
-                let (a, b) = (display_pixel(*a, 0.0), display_pixel(*b, 0.0));
-                (0..3).map(move |c| (a[c] as f64 - b[c] as f64).powi(2))
-            })
-            .sum();
-        sum / (a.len() * 3) as f64
-    }
-
     fn worst_difference(a: &[[f32; 3]], b: &[[f32; 3]]) -> f32 {
         a.iter()
             .zip(b)
@@ -234,8 +220,8 @@ mod with_open_image_denoise {
         };
         let (a, b) = (half(11), half(12));
         let converged: Vec<[f32; 3]> = a.iter().zip(&b).map(|(a, b)| [0, 1, 2].map(|c| 0.5 * (a[c] + b[c]))).collect();
-        let own_noise = display_mse(&a, &b) / 4.0;
-        let error = |pixels: &[[f32; 3]]| (display_mse(pixels, &converged) - own_noise).max(0.0).sqrt();
+        let own_noise = common::display_mse(&a, &b) / 4.0;
+        let error = |pixels: &[[f32; 3]]| (common::display_mse(pixels, &converged) - own_noise).max(0.0).sqrt();
         let (raw_error, denoised_error) = (error(&raw), error(&denoised));
         eprintln!(
             "display RMSE against 512 spp (its own noise {:.2}): raw {spp} spp {raw_error:.2}, denoised {denoised_error:.2}",

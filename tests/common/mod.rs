@@ -12,6 +12,27 @@ use rt::scene::{FeatureSet, Scene};
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
+/// Rec. 709 luminance of a linear RGB value.
+pub fn luminance(p: [f32; 3]) -> f64 {
+    0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64
+}
+
+/// Squared error of the displayed (tone-mapped, 8-bit sRGB) images, in 0..255 per
+/// value: what a viewer sees, so that the emitters' radiance does not drown the rest.
+#[cfg(feature = "denoise")]
+pub fn display_mse(a: &[[f32; 3]], b: &[[f32; 3]]) -> f64 {
+    use rt::render::tonemap::display_pixel;
+    let sum: f64 = a
+        .iter()
+        .zip(b)
+        .flat_map(|(a, b)| {
+            let (a, b) = (display_pixel(*a, 0.0), display_pixel(*b, 0.0));
+            (0..3).map(move |c| (a[c] as f64 - b[c] as f64).powi(2))
+        })
+        .sum();
+    sum / (a.len() * 3) as f64
+}
+
 pub fn gpu() -> &'static GpuContext {
     static GPU: OnceLock<GpuContext> = OnceLock::new();
     GPU.get_or_init(new_gpu)

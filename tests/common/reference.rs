@@ -2,14 +2,11 @@
 //! the global mean and every 8×8 block's mean of luminance must agree within bounds
 //! derived from the noise at the sample counts used.
 
+use super::luminance;
 use rt::render::Image;
 use std::path::Path;
 
 const BLOCK: usize = 8;
-
-fn luminance(p: [f32; 3]) -> f64 {
-    0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64
-}
 
 /// How closely blocks without noise in rt (background, emitters seen directly) must match.
 #[derive(Clone, Copy)]

@@ -159,30 +159,7 @@ impl From<&CachedMaterial> for Material {
                 normal: unslot(m.normal_texture),
                 normal_scale: m.normal_scale,
                 second_uv_set: m.second_uv_set,
-                layers: {
-                    let [
-                        coat,
-                        coat_roughness,
-                        coat_tint,
-                        sheen,
-                        sheen_tint,
-                        anisotropy,
-                        specular_tint,
-                        diffuse_roughness,
-                        thin_film_thickness,
-                    ] = m.layer_textures.map(unslot);
-                    LayerTextures {
-                        coat,
-                        coat_roughness,
-                        coat_tint,
-                        sheen,
-                        sheen_tint,
-                        anisotropy,
-                        specular_tint,
-                        diffuse_roughness,
-                        thin_film_thickness,
-                    }
-                },
+                layers: LayerTextures::from_slots(m.layer_textures.map(unslot)),
                 thin_film_minimum: m.thin_film_minimum,
             },
         }

@@ -164,6 +164,32 @@ impl LayerTextures {
             self.thin_film_thickness,
         ]
     }
+
+    /// The textures of `slots`, in the order [`Self::slots`] gives them.
+    pub fn from_slots(slots: [Option<u32>; 9]) -> Self {
+        let [
+            coat,
+            coat_roughness,
+            coat_tint,
+            sheen,
+            sheen_tint,
+            anisotropy,
+            specular_tint,
+            diffuse_roughness,
+            thin_film_thickness,
+        ] = slots;
+        Self {
+            coat,
+            coat_roughness,
+            coat_tint,
+            sheen,
+            sheen_tint,
+            anisotropy,
+            specular_tint,
+            diffuse_roughness,
+            thin_film_thickness,
+        }
+    }
 }
 
 /// One of the two sets of texture coordinates a mesh may carry.

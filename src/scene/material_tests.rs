@@ -58,3 +58,9 @@ fn the_shaders_uv_set_bits_are_the_slots() {
         assert_eq!(bit(name), 1 << slot, "UV1_{name}");
     }
 }
+
+#[test]
+fn layer_textures_come_back_from_their_slots() {
+    let slots: [Option<u32>; 9] = std::array::from_fn(|i| Some(i as u32 + 4));
+    assert_eq!(LayerTextures::from_slots(slots).slots(), slots);
+}

@@ -1,0 +1,213 @@
+//! A material's image textures: which texture feeds each of its slots, and the glTF
+//! factors that go with them.
+
+/// A material's image textures, as indices into its asset's texture list, and the
+/// factors that go with them (glTF's metallic-roughness model).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MaterialTextures {
+    /// RGB multiplies `base_color`; A multiplies `base_alpha` for cut-outs.
+    pub base_color: Option<u32>,
+    /// G × `roughness` is the roughness, B × `metallic` the metal fraction. With it, the
+    /// lobe weights are those of the non-metal part (as if `metallic` were 0).
+    pub metallic_roughness: Option<u32>,
+    /// RGB multiplies `emission`.
+    pub emission: Option<u32>,
+    /// glTF's `metallicFactor`, used with `metallic_roughness` only.
+    pub metallic: f32,
+    /// glTF's `baseColorFactor` alpha.
+    pub base_alpha: f32,
+    /// glTF `alphaMode` MASK's `alphaCutoff`: texels whose alpha is below it are not
+    /// there at all, for every ray. 0: opaque.
+    pub alpha_cutoff: f32,
+    /// glTF `alphaMode` BLEND: the opacity is the probability that a ray meets the
+    /// surface (stochastic transparency), for every ray; `alpha_cutoff` is then unused.
+    pub alpha_blend: bool,
+    /// A tangent-space normal map (glTF `normalTexture`, linear RGB: xyz = 2·RGB − 1).
+    pub normal: Option<u32>,
+    /// glTF's `normalTexture.scale`: multiplies the map's x and y.
+    pub normal_scale: f32,
+    /// Which texture slots read the mesh's second uv set (glTF `texCoord` 1): bit i for
+    /// slot i of [`Self::indices_mut`] (base colour, metallic-roughness, emission, normal,
+    /// then the layers' nine); the others read the first. A normal map's tangents are of
+    /// the set it reads.
+    pub second_uv_set: u32,
+    /// The layered lobes' textures: [`LayerTextures`].
+    pub layers: LayerTextures,
+    /// The film's thickness (nm) where its thickness texture reads 0 (glTF's
+    /// `iridescenceThicknessMinimum`), used with `layers.thin_film_thickness` only.
+    pub thin_film_minimum: f32,
+}
+
+/// Textures of the coat, sheen, anisotropy, specular tint, diffuse roughness and thin film
+/// thickness (Principled's sockets of those names), each an index into the asset's textures.
+/// Factors multiply the texels, as glTF's do (the film's thickness is a range instead).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LayerTextures {
+    /// R × `coat` (glTF's `clearcoatTexture`).
+    pub coat: Option<u32>,
+    /// G × `coat_roughness` (glTF's `clearcoatRoughnessTexture`).
+    pub coat_roughness: Option<u32>,
+    /// RGB (colour) × `coat_tint`.
+    pub coat_tint: Option<u32>,
+    /// R × `sheen`, G × `sheen_roughness`.
+    pub sheen: Option<u32>,
+    /// RGB (colour) × `sheen_tint`.
+    pub sheen_tint: Option<u32>,
+    /// R × `anisotropy`; G + `anisotropy_rotation` is the rotation (a turn is 1).
+    pub anisotropy: Option<u32>,
+    /// RGB (colour) × `specular_tint` (glTF's `specularColorTexture`).
+    pub specular_tint: Option<u32>,
+    /// R × `diffuse_roughness` (rt's `extras.rt_diffuse_roughness_texture`).
+    pub diffuse_roughness: Option<u32>,
+    /// G: the film's thickness, from `MaterialTextures::thin_film_minimum` at 0 to
+    /// `thin_film_thickness` at 1 (glTF's `iridescenceThicknessTexture`).
+    pub thin_film_thickness: Option<u32>,
+}
+
+impl LayerTextures {
+    pub fn any(&self) -> bool {
+        self.slots().iter().any(Option::is_some)
+    }
+
+    /// The slots, in the order of [`MaterialTextures::indices_mut`] after its first four.
+    pub fn slots(&self) -> [Option<u32>; 9] {
+        [
+            self.coat,
+            self.coat_roughness,
+            self.coat_tint,
+            self.sheen,
+            self.sheen_tint,
+            self.anisotropy,
+            self.specular_tint,
+            self.diffuse_roughness,
+            self.thin_film_thickness,
+        ]
+    }
+
+    /// The textures of `slots`, in the order [`Self::slots`] gives them.
+    pub fn from_slots(slots: [Option<u32>; 9]) -> Self {
+        let [
+            coat,
+            coat_roughness,
+            coat_tint,
+            sheen,
+            sheen_tint,
+            anisotropy,
+            specular_tint,
+            diffuse_roughness,
+            thin_film_thickness,
+        ] = slots;
+        Self {
+            coat,
+            coat_roughness,
+            coat_tint,
+            sheen,
+            sheen_tint,
+            anisotropy,
+            specular_tint,
+            diffuse_roughness,
+            thin_film_thickness,
+        }
+    }
+}
+
+/// One of the two sets of texture coordinates a mesh may carry.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UvSet {
+    First = 0,
+    Second = 1,
+}
+
+/// The texture slots of a material: indices into [`MaterialTextures::indices_mut`] and
+/// bits of its `second_uv_set` (the importers and `shaders/texture.wgsl` number them so).
+pub mod slots {
+    pub const BASE_COLOR: usize = 0;
+    pub const METALLIC_ROUGHNESS: usize = 1;
+    pub const EMISSION: usize = 2;
+    pub const NORMAL: usize = 3;
+    pub const COAT: usize = 4;
+    pub const COAT_ROUGHNESS: usize = 5;
+    pub const COAT_TINT: usize = 6;
+    pub const SHEEN: usize = 7;
+    pub const SHEEN_TINT: usize = 8;
+    pub const ANISOTROPY: usize = 9;
+    pub const SPECULAR_TINT: usize = 10;
+    pub const DIFFUSE_ROUGHNESS: usize = 11;
+    pub const THIN_FILM_THICKNESS: usize = 12;
+    pub const COUNT: usize = 13;
+}
+
+impl Default for MaterialTextures {
+    fn default() -> Self {
+        Self {
+            base_color: None,
+            metallic_roughness: None,
+            emission: None,
+            metallic: 0.0,
+            base_alpha: 1.0,
+            alpha_cutoff: 0.0,
+            alpha_blend: false,
+            normal: None,
+            normal_scale: 1.0,
+            second_uv_set: 0,
+            layers: LayerTextures::default(),
+            thin_film_minimum: 0.0,
+        }
+    }
+}
+
+impl MaterialTextures {
+    pub fn any(&self) -> bool {
+        self.base_color.is_some()
+            || self.metallic_roughness.is_some()
+            || self.emission.is_some()
+            || self.normal.is_some()
+            || self.layers.any()
+    }
+
+    /// The indices, for offsetting into a scene-wide texture list, in the order of
+    /// [`slots`]; slot i's uv set is bit i of `second_uv_set` (`UV1_*` in
+    /// `shaders/texture.wgsl`).
+    pub fn indices_mut(&mut self) -> [&mut Option<u32>; slots::COUNT] {
+        let l = &mut self.layers;
+        [
+            &mut self.base_color,
+            &mut self.metallic_roughness,
+            &mut self.emission,
+            &mut self.normal,
+            &mut l.coat,
+            &mut l.coat_roughness,
+            &mut l.coat_tint,
+            &mut l.sheen,
+            &mut l.sheen_tint,
+            &mut l.anisotropy,
+            &mut l.specular_tint,
+            &mut l.diffuse_roughness,
+            &mut l.thin_film_thickness,
+        ]
+    }
+
+    /// Whether texture slot `slot` (an index into [`Self::indices_mut`]) reads the second uv set.
+    pub fn reads_second_uv_set(&self, slot: usize) -> bool {
+        self.second_uv_set & (1 << slot) != 0
+    }
+
+    /// The uv set the normal map reads, and so the tangents it is in.
+    pub fn normal_uv_set(&self) -> UvSet {
+        if self.reads_second_uv_set(slots::NORMAL) { UvSet::Second } else { UvSet::First }
+    }
+
+    /// Some texture reads the second uv set.
+    pub fn uses_second_uv_set(&self) -> bool {
+        self.second_uv_set != 0
+    }
+
+    /// Some of the surface may be missing: a cut-out or a blend.
+    pub fn has_alpha(&self) -> bool {
+        self.alpha_cutoff > 0.0 || self.alpha_blend
+    }
+}
+
+#[cfg(test)]
+#[path = "material_textures_tests.rs"]
+mod tests;

@@ -43,6 +43,7 @@ except ImportError:  # a script: the module lies beside this file
     import rt_shader_nodes
 TEXTURE_SOCKETS = rt_shader_nodes.TEXTURE_SOCKETS
 linked_node, rgb, socket_value = rt_shader_nodes.linked_node, rt_shader_nodes.rgb, rt_shader_nodes.socket_value
+owner_name = rt_shader_nodes.owner_name
 
 RTMESH_MAGIC = b"RTMESH\0\0"
 RTMESH_VERSION = 3
@@ -217,7 +218,7 @@ def cycles_absorption(volume):
     absorption_color = np.array(rgb(socket_value(volume, "Absorption Color", (0, 0, 0))))
     absorption = np.maximum(1.0 - color, 0.0) * np.maximum(1.0 - np.sqrt(np.maximum(absorption_color, 0.0)), 0.0)
     if np.any(color > 0.0) and density > 0.0:
-        log(f"{volume.id_data.name}: volume scattering is not rendered by rt; only absorption is exported")
+        log(f"{owner_name(volume)}: volume scattering is not rendered by rt; only absorption is exported")
     return density * absorption
 
 
@@ -751,6 +752,12 @@ def gltf_material(material, thickness, textures=None):
         if found["Diffuse Roughness"]:
             # The texels are the roughness: its factor is 1.
             out["extras"]["rt_diffuse_roughness"] = 1.0
+        if found["Transmission Weight"]:
+            transmission = 1.0
+        if found["Specular IOR Level"]:
+            # The texels are the level (glTF's specular is twice it, at most 1, for other readers).
+            extensions["KHR_materials_specular"]["specularFactor"] = 1.0
+            out["extras"]["rt_specular_ior_level"] = 1.0
     # A socket fed by an image takes its values from it: its factor is 1 (a rotation's, added to, 0).
     value = lambda name, default: (1.0 if found.get(name) else socket_value(surface, name, default))  # noqa: E731
     colour = lambda name: ((1, 1, 1) if found.get(name) else socket_value(surface, name, (1, 1, 1)))  # noqa: E731
@@ -864,11 +871,12 @@ class TurnChannel:
 
 
 def layer_textures(out, textures, found):
-    """Adds the textures of the coat, sheen, anisotropy, specular tint, diffuse roughness and
-    film thickness sockets (`found`, socket name -> Channel or None) to glTF material `out`,
-    whose factors for them are 1 (the rotation's 0): the coat's as KHR_materials_clearcoat's
-    textures (R weight, G roughness, one image), the specular tint's as
-    KHR_materials_specular's colour texture, the film's as KHR_materials_iridescence's
+    """Adds the textures of the coat, sheen, anisotropy, specular tint, diffuse roughness,
+    film thickness, transmission and IOR level sockets (`found`, socket name -> Channel or
+    None) to glTF material `out`, whose factors for them are 1 (the rotation's 0): the coat's
+    as KHR_materials_clearcoat's textures (R weight, G roughness, one image), the specular
+    tint's and level's as KHR_materials_specular's colour texture and texture (A), the
+    transmission's as KHR_materials_transmission's (R), the film's as KHR_materials_iridescence's
     thickness texture (G, over the range `film_thickness_texture` found), the others in
     rt's extras (sheen: R weight, G roughness; anisotropy: R amount, G rotation; diffuse
     roughness: R)."""
@@ -909,6 +917,13 @@ def layer_textures(out, textures, found):
     roughness = found.get("Diffuse Roughness")
     if roughness and "rt_diffuse_roughness" in extras:
         extras["rt_diffuse_roughness_texture"] = info([roughness, 0.0, 0.0, 1.0], False, roughness)
+    weight = found.get("Transmission Weight")
+    if weight and "KHR_materials_transmission" in extensions:
+        extensions["KHR_materials_transmission"]["transmissionTexture"] = info([weight, 0.0, 0.0, 1.0], False, weight)
+    level = found.get("Specular IOR Level")
+    if level:
+        # glTF's specular texture is its alpha.
+        extensions["KHR_materials_specular"]["specularTexture"] = info([1.0, 1.0, 1.0, level], False, level)
     film = found.get(FILM_SOCKET)
     if film and "KHR_materials_iridescence" in extensions:
         # glTF's thickness texture: G from the minimum (0) to the maximum (1).
@@ -1018,7 +1033,9 @@ TEXTURE_INFOS = ((("pbrMetallicRoughness",), "baseColorTexture"),
                  (("extras",), "rt_coat_tint_texture"), (("extras",), "rt_sheen_texture"),
                  (("extras",), "rt_sheen_tint_texture"), (("extras",), "rt_anisotropy_texture"),
                  (("extras",), "rt_diffuse_roughness_texture"),
-                 (("extensions", "KHR_materials_iridescence"), "iridescenceThicknessTexture"))
+                 (("extensions", "KHR_materials_iridescence"), "iridescenceThicknessTexture"),
+                 (("extensions", "KHR_materials_transmission"), "transmissionTexture"),
+                 (("extensions", "KHR_materials_specular"), "specularTexture"))
 
 
 def uv_maps_of(mesh):
@@ -1636,19 +1653,19 @@ def environment_rotation(texture):
     if mapping is None or mapping.type == "TEX_COORD":
         return [0.0, 0.0, 0.0]
     if mapping.type != "MAPPING":
-        log(f"{texture.id_data.name}: {texture.name}.Vector comes from {mapping.type}; using the view direction")
+        log(f"{owner_name(texture)}: {texture.name}.Vector comes from {mapping.type}; using the view direction")
         return [0.0, 0.0, 0.0]
     from mathutils import Euler
 
     inputs = mapping.inputs
     if any(inputs[n].is_linked for n in ("Rotation", "Location", "Scale") if n in inputs):
-        log(f"{mapping.id_data.name}: {mapping.name} has linked inputs; using their own values")
+        log(f"{owner_name(mapping)}: {mapping.name} has linked inputs; using their own values")
     rotation = Euler(inputs["Rotation"].default_value, "XYZ")
     if mapping.vector_type == "POINT" and any(abs(c) > 1e-6 for c in inputs["Location"].default_value):
-        log(f"{mapping.id_data.name}: {mapping.name}: a Location moves no direction of the world; left out")
+        log(f"{owner_name(mapping)}: {mapping.name}: a Location moves no direction of the world; left out")
     scale = list(inputs["Scale"].default_value) if "Scale" in inputs else [1.0, 1.0, 1.0]
     if max(scale) - min(scale) > 1e-6 * max(abs(c) for c in scale):
-        log(f"{mapping.id_data.name}: {mapping.name}: a non-uniform Scale is not supported; left out")
+        log(f"{owner_name(mapping)}: {mapping.name}: a non-uniform Scale is not supported; left out")
     if mapping.vector_type == "TEXTURE":
         rotation = rotation.to_matrix().inverted().to_euler("XYZ")
     return [math.degrees(a) for a in rotation]
@@ -1712,7 +1729,7 @@ def environment_toml(background, texture, export, scene_dir):
     strength = float(socket_value(background, "Strength", 1.0))
     rotation = environment_rotation(texture)
     if texture.interpolation != "Linear":
-        log(f"{texture.id_data.name}: {texture.name}: {texture.interpolation} interpolation; rt interpolates linearly")
+        log(f"{owner_name(texture)}: {texture.name}: {texture.interpolation} interpolation; rt interpolates linearly")
     data, ext = environment_image_bytes(texture.image)
     stem = sanitize(os.path.splitext(os.path.basename(texture.image.name))[0])
     path = os.path.join(export.out_dir, "environment", f"{stem}-{blake(data)}{ext}")
@@ -1731,10 +1748,10 @@ def environment_texture(background):
     if node is None or node.type != "TEX_ENVIRONMENT":
         return None
     if node.image is None:
-        log(f"{node.id_data.name}: {node.name} has no image; using the Background's colour")
+        log(f"{owner_name(node)}: {node.name} has no image; using the Background's colour")
         return None
     if node.projection != "EQUIRECTANGULAR":
-        log(f"{node.id_data.name}: {node.name}: {node.projection} projection is not supported; using the Background's colour")
+        log(f"{owner_name(node)}: {node.name}: {node.projection} projection is not supported; using the Background's colour")
         return None
     return node
 

@@ -35,12 +35,27 @@ import numpy as np
 # Inputs of a Principled BSDF that rt_export.py follows into textures: the base ones and
 # the layered lobes' (LAYER_SOCKETS).
 LAYER_SOCKETS = ("Coat Weight", "Coat Roughness", "Coat Tint", "Sheen Weight", "Sheen Roughness", "Sheen Tint",
-                 "Anisotropic", "Anisotropic Rotation", "Specular Tint", "Diffuse Roughness", "Thin Film Thickness")
+                 "Anisotropic", "Anisotropic Rotation", "Specular Tint", "Diffuse Roughness", "Thin Film Thickness",
+                 "Transmission Weight", "Specular IOR Level")
 TEXTURE_SOCKETS = ("Base Color", "Alpha", "Roughness", "Metallic", "Normal", "Emission Color") + LAYER_SOCKETS
 
 
 def log(message):
     print(f"rt_export: {message}", file=sys.stderr)
+
+
+def owner_name(node):
+    """The name of the material, world or lamp whose node tree holds `node` (their own trees
+    are all named "Shader Nodetree"), or of the node group."""
+    import bpy
+
+    tree = node.id_data
+    if tree.is_embedded_data:
+        for owners in (bpy.data.materials, bpy.data.worlds, bpy.data.lights):
+            for owner in owners:
+                if owner.node_tree == tree:
+                    return owner.name
+    return tree.name
 
 
 def linked_node(socket):
@@ -73,12 +88,17 @@ def socket_value(node, name, default):
     if source is not None:
         if source.type in {"RGB", "VALUE"}:
             return source.outputs[0].default_value
-        if source.type in {"TEX_IMAGE", "SEPARATE_COLOR", "NORMAL_MAP"} or (
-            node.type == "BSDF_PRINCIPLED" and name in TEXTURE_SOCKETS
-        ):
+        if node.type == "BSDF_PRINCIPLED" and name in TEXTURE_SOCKETS:
             # Followed, or warned about, by rt_export's `texture_channel`.
             return socket.default_value
-        log(f"{node.id_data.name}: {node.name}.{name} is linked to {source.type}; using its own value")
+        if node.type == "BSDF_PRINCIPLED" and source.type in {"TEX_IMAGE", "SEPARATE_COLOR"}:
+            log(f"{owner_name(node)}: {node.name}.{name} is linked to an image, which rt reads for no such "
+                f"input; using its own value")
+            return socket.default_value
+        if source.type in {"TEX_IMAGE", "SEPARATE_COLOR", "NORMAL_MAP"}:
+            # The other nodes' images are followed, or warned about, by rt_shader_nodes' mappings.
+            return socket.default_value
+        log(f"{owner_name(node)}: {node.name}.{name} is linked to {source.type}; using its own value")
     return socket.default_value
 
 

@@ -218,6 +218,13 @@ struct Material {
     thin_film_texture: u32,
     thin_film_minimum: f32,
     _pad8: u32,
+    // The transmission texture: R × transmission_factor of the diffuse and its coating
+    // turns to glass (the weights above are those of the part that does not transmit);
+    // the specular IOR level's: A scales the coating's F0.
+    transmission_texture: u32,
+    transmission_factor: f32,
+    specular_level_texture: u32,
+    _pad9: u32,
 }
 
 // Object-space vertex tangents (xyz) and bitangent signs (w) of one triangle; zero

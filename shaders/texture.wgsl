@@ -30,6 +30,8 @@ const UV1_ANISOTROPY: u32 = 512u;
 const UV1_SPECULAR_TINT: u32 = 1024u;
 const UV1_DIFFUSE_ROUGHNESS: u32 = 2048u;
 const UV1_THIN_FILM: u32 = 4096u;
+const UV1_TRANSMISSION: u32 = 8192u;
+const UV1_SPECULAR_LEVEL: u32 = 16384u;
 
 struct TexturePoint {
     uv: vec2f,
@@ -98,7 +100,8 @@ fn has_textures(m: Material) -> bool {
         || m.coat_tint_texture != NO_TEXTURE || m.sheen_texture != NO_TEXTURE
         || m.sheen_tint_texture != NO_TEXTURE || m.anisotropy_texture != NO_TEXTURE
         || m.specular_tint_texture != NO_TEXTURE || m.diffuse_roughness_texture != NO_TEXTURE
-        || m.thin_film_texture != NO_TEXTURE;
+        || m.thin_film_texture != NO_TEXTURE || m.transmission_texture != NO_TEXTURE
+        || m.specular_level_texture != NO_TEXTURE;
     //#endif
     return any;
 }
@@ -271,7 +274,8 @@ fn layer_texel(m: Material, index: u32, bit: u32, uv: vec2f, second_uv: vec2f) -
     return sample_level(textures[index], 0u, select(uv, second_uv, (m.second_uv_set & bit) != 0u));
 }
 
-// The coat, sheen, anisotropy, specular tint, diffuse roughness and film thickness textures
+// The coat, sheen, anisotropy, specular tint, diffuse roughness, film thickness, transmission
+// and specular level textures
 // applied at the texture coordinates `uv` and `second_uv` (the second set's, or anything
 // without `uv_sets`): texels times the factors (Principled's sockets fed by an image; glTF's
 // clearcoat textures), the film's thickness between its minimum and maximum (glTF's
@@ -311,6 +315,22 @@ fn layer_textured(material: Material, uv: vec2f, second_uv: vec2f) -> Material {
     if m.thin_film_texture != NO_TEXTURE {
         let g = layer_texel(m, m.thin_film_texture, UV1_THIN_FILM, uv, second_uv).g;
         m.thin_film_thickness = mix(m.thin_film_minimum, m.thin_film_thickness, g);
+    }
+    if m.transmission_texture != NO_TEXTURE {
+        // Principled's Transmission Weight mixes the glass in for the diffuse and the
+        // dielectric layer over it, the part that is not metal (which the weights hold).
+        let t = m.transmission_factor * layer_texel(m, m.transmission_texture, UV1_TRANSMISSION, uv, second_uv).r;
+        m.transmission = m.diffuse * t;
+        m.diffuse *= 1.0 - t;
+        m.specular *= 1.0 - t;
+    }
+    if m.specular_level_texture != NO_TEXTURE && m.coating_eta > 0.0 {
+        // Cycles' IOR Level scales the layer's F0 (2 × level × F0 of the IOR), and the
+        // layer's index is the one of that F0.
+        let level = layer_texel(m, m.specular_level_texture, UV1_SPECULAR_LEVEL, uv, second_uv).a;
+        m.coating_f0 = min(m.coating_f0 * level, 0.9999);
+        let r = sqrt(m.coating_f0);
+        m.coating_eta = (1.0 + r) / (1.0 - r);
     }
     return m;
 }

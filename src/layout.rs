@@ -238,6 +238,12 @@ pub struct GpuMaterial {
     pub thin_film_texture: u32,
     pub thin_film_minimum: f32,
     pub _pad8: u32,
+    /// The transmission texture (R × `transmission_factor` of the diffuse and its coating
+    /// turns to glass) and the specular IOR level's (A scales the coating's F0).
+    pub transmission_texture: u32,
+    pub transmission_factor: f32,
+    pub specular_level_texture: u32,
+    pub _pad9: u32,
 }
 
 /// `GpuMaterial::tangent`: Cycles' Tangent node, radial about Blender's Z (the default), X
@@ -524,6 +530,10 @@ impl From<&crate::scene::Material> for GpuMaterial {
             thin_film_texture: slot(l.thin_film_thickness),
             thin_film_minimum: m.textures.thin_film_minimum,
             _pad8: 0,
+            transmission_texture: slot(l.transmission),
+            transmission_factor: m.textures.transmission,
+            specular_level_texture: slot(l.specular_level),
+            _pad9: 0,
         }
     }
 }

@@ -38,12 +38,9 @@ fn checker_through_a_mapping_node_matches_cycles() {
 // The metallic-roughness map is read at its finest level (texture.wgsl says why): with its
 // ray-cone mip, the sphere's silhouette, where the cone's level is high, mixed metal with
 // sunlit diffuse and block (3, 1) was 1.4% (9.6 σ) over Cycles; now 1.6 σ, and the global
-// mean within 0.00%. Still ignored for one block of floor, (7, 4), 0.27% (8.6 σ) under
-// Cycles: caustics (sunlight off the sharp metal onto the floor) that both renderers
-// sample as rare bright paths, so that 256 samples a pixel underestimate the block's
-// noise. Measured: rt's block rises with samples (0.53310 at 256 spp, 0.53353 at 2048)
-// while Cycles' falls (0.53454 at 4096, 0.53423 at 16384); without the floor the sphere's
-// sunlit diffuse stripes are 0.03% (6 σ) over Cycles instead.
+// mean within 0.00%. The scene has no floor: one block of it, lit by the sun off the sharp
+// metal, came by rare bright paths that 256 samples a pixel underestimated the noise of
+// (8.6 σ at 256 spp, within 0.02% at 2048).
 #[test]
 fn roughness_and_metallic_maps_match_cycles() {
     check("rough_metal");
@@ -138,6 +135,23 @@ fn diffuse_roughness_and_film_thickness_maps_match_cycles() {
     assert!(film["iridescenceThicknessTexture"]["index"].is_u64(), "{film}");
     assert_eq!(m["extras"]["rt_diffuse_roughness"].as_f64(), Some(1.0), "{m}");
     assert!(m["extras"]["rt_diffuse_roughness_texture"]["index"].is_u64(), "{m}");
+}
+
+// Stripes of rough glass and coated diffuse (a Transmission Weight map) under a ramp of the
+// Specular IOR Level (one image through Separate Color): KHR_materials_transmission's and
+// KHR_materials_specular's textures, the level in rt's extras.
+#[test]
+fn transmission_and_ior_level_maps_match_cycles() {
+    check("transmission_level_map");
+    let file = repo().join("tests/cycles/scenes/texture_transmission_level_map/assets/Sphere/Sphere.gltf");
+    let text = std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+    let json: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    let m = &json["materials"][0];
+    let transmission = &m["extensions"]["KHR_materials_transmission"];
+    assert_eq!(transmission["transmissionFactor"].as_f64(), Some(1.0), "{m}");
+    assert!(transmission["transmissionTexture"]["index"].is_u64(), "{m}");
+    assert!(m["extensions"]["KHR_materials_specular"]["specularTexture"]["index"].is_u64(), "{m}");
+    assert_eq!(m["extras"]["rt_specular_ior_level"].as_f64(), Some(1.0), "{m}");
 }
 
 // A grey checker of sheen weight and colour stripes of sheen tint (sRGB) on a dark sphere

@@ -2,7 +2,8 @@
 //! textures of `KHR_materials_clearcoat`, `KHR_materials_specular`'s colour texture and rt's
 //! own extras (what `blender/rt_export.py` writes for Principled's coat tint, sheen,
 //! anisotropy and diffuse roughness sockets), `KHR_materials_iridescence`'s thickness
-//! texture, each in its colour space; bad ones refused naming the material.
+//! texture, `KHR_materials_transmission`'s and `KHR_materials_specular`'s textures, each in
+//! its colour space; bad ones refused naming the material.
 
 use crate::common;
 
@@ -23,7 +24,7 @@ fn quad_gltf(material: &str) -> String {
     format!(
         r#"{{
   "asset": {{ "version": "2.0" }}, "scene": 0, "scenes": [{{ "nodes": [0] }}], "nodes": [{{ "mesh": 0 }}],
-  "extensionsUsed": ["KHR_materials_clearcoat", "KHR_materials_specular"],
+  "extensionsUsed": ["KHR_materials_clearcoat", "KHR_materials_specular", "KHR_materials_transmission"],
   "meshes": [{{ "primitives": [{{ "attributes": {{ "POSITION": 0, "TEXCOORD_0": 1 }}, "indices": 2, "material": 0 }}] }}],
   "materials": [{material}],
   "textures": [{{ "source": 0 }}, {{ "source": 0, "sampler": 0 }}],
@@ -94,6 +95,32 @@ fn diffuse_roughness_and_film_thickness_textures_are_read() {
     assert!(!srgb(l.diffuse_roughness) && !srgb(l.thin_film_thickness), "{l:?}");
     assert_eq!((m.thin_film_thickness, m.textures.thin_film_minimum, m.thin_film_weight), (900.0, 150.0, 0.5));
     assert_eq!(m.diffuse_roughness, 1.0);
+}
+
+/// A transmission texture (R × the factor) leaves the weights of the part that does not
+/// transmit, beside the metal's, and keeps the factor for the shader; the specular texture
+/// (A × the level) is data.
+#[test]
+fn transmission_and_specular_level_textures_are_read() {
+    let material = r#"{ "name": "glass",
+      "pbrMetallicRoughness": { "metallicFactor": 0.25 },
+      "extensions": { "KHR_materials_transmission": { "transmissionFactor": 0.8, "transmissionTexture": { "index": 0 } },
+                      "KHR_materials_specular": { "specularTexture": { "index": 1 } } },
+      "extras": { "rt_specular_ior_level": 1.0 } }"#;
+    let mesh = load("layer_textures_transmission", material).unwrap_or_else(|e| panic!("{e}"));
+    let m = &mesh.materials[0].1;
+    let l = m.textures.layers;
+    let srgb = |slot: Option<u32>| mesh.textures[slot.expect("a texture") as usize].srgb;
+    assert!(!srgb(l.transmission) && !srgb(l.specular_level), "{l:?}");
+    assert_eq!((m.reflection, m.diffuse, m.transmission), (0.25, 0.75, 0.0));
+    assert_eq!((m.textures.transmission, m.specular_ior_level), (0.8, 1.0));
+    assert!(m.may_transmit() && m.textures.layers.any());
+    // Without the texture the factor is the weight, as before.
+    let material = r#"{ "name": "plain", "pbrMetallicRoughness": { "metallicFactor": 0.25 },
+      "extensions": { "KHR_materials_transmission": { "transmissionFactor": 0.8 } } }"#;
+    let mesh = load("layer_textures_transmission_factor", material).unwrap_or_else(|e| panic!("{e}"));
+    let m = &mesh.materials[0].1;
+    assert!((m.transmission - 0.6).abs() < 1e-6 && (m.diffuse - 0.15).abs() < 1e-6, "{m:?}");
 }
 
 #[test]

@@ -25,6 +25,7 @@
 //! | `KHR_materials_iridescence` factor (0), index (1.3), thickness maximum (400) | `thin_film_weight` (the factor; 0: no film), `thin_film_ior`, `thin_film_thickness` (the maximum) |
 //! | `extras.rt_tangent` (`"radial_z"`)                        | `tangent` |
 //! | `KHR_materials_clearcoat` textures, `KHR_materials_specular` colour texture, `extras.rt_*_texture` | `textures.layers` (`gltf_layer_textures`) |
+//! | `KHR_materials_transmission` texture, `KHR_materials_specular` texture | `textures.layers` (R × the transmission factor, A × the level); with a transmission texture the weights are those of the part that does not transmit and `textures.transmission` is the factor |
 //! | `extras.rt_diffuse_roughness` (0)                         | `diffuse_roughness` (Principled's Diffuse Roughness; glTF has none) |
 //! | `KHR_materials_iridescence` thickness texture, minimum (100), `extras.rt_diffuse_roughness_texture` | `textures.layers` (`gltf_layer_textures`), `textures.thin_film_minimum` |
 //! | `extras.rt_bump_map_correction` (true)                    | `bump_map_correction` (Blender's material setting; glTF has none) |
@@ -79,11 +80,20 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
         material.textures.layers = layers;
         material.textures.second_uv_set |= layer_uv_sets;
         material.textures.thin_film_minimum = iridescence(&m).ok().flatten().map_or(0.0, |f| f.minimum);
-        if material.textures.metallic_roughness.is_some() {
-            // The lobe weights become those of the non-metal part; the texture sets the metal.
+        let textured_metal = material.textures.metallic_roughness.is_some();
+        let textured_transmission = material.textures.layers.transmission.is_some();
+        if textured_metal || textured_transmission {
+            // The lobe weights become those of the part that is not metal, or does not
+            // transmit: the texture sets the rest.
+            material.textures.transmission = transmission_factor(&m);
             material = Material {
                 textures: material.textures,
-                ..map_material_dielectric(&m).map_err(|e| err(format!("material `{name}`: {e}")))?
+                ..map_material_with(
+                    &m,
+                    if textured_metal { 0.0 } else { metallic_factor(&m) },
+                    if textured_transmission { 0.0 } else { transmission_factor(&m) },
+                )
+                .map_err(|e| err(format!("material `{name}`: {e}")))?
             };
         }
         mesh.materials.push((name, material));
@@ -349,6 +359,7 @@ fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<M
         second_uv_set,
         layers: Default::default(),
         thin_film_minimum: 0.0,
+        transmission: 0.0,
     })
 }
 
@@ -365,21 +376,24 @@ pub(super) fn uv_set_bit(tex_coord: u32, slot: usize, what: &str) -> u32 {
     }
 }
 
-/// [`map_material`] as if `metallicFactor` were 0: the non-metal part of a material
-/// whose metal comes from a texture.
-fn map_material_dielectric(m: &gltf::Material) -> Result<Material, String> {
-    map_material_with_metallic(m, 0.0)
+fn metallic_factor(m: &gltf::Material) -> f32 {
+    m.pbr_metallic_roughness().metallic_factor().clamp(0.0, 1.0)
+}
+
+fn transmission_factor(m: &gltf::Material) -> f32 {
+    m.transmission().map_or(0.0, |t| t.transmission_factor()).clamp(0.0, 1.0)
 }
 
 fn map_material(m: &gltf::Material) -> Result<Material, String> {
-    map_material_with_metallic(m, m.pbr_metallic_roughness().metallic_factor().clamp(0.0, 1.0))
+    map_material_with(m, metallic_factor(m), transmission_factor(m))
 }
 
-fn map_material_with_metallic(m: &gltf::Material, metallic: f32) -> Result<Material, String> {
+/// The material with `metallic` and `transmission` for its factors: 0 gives the part that
+/// is not metal, or does not transmit, of a material whose texture sets the rest.
+fn map_material_with(m: &gltf::Material, metallic: f32, transmission: f32) -> Result<Material, String> {
     let pbr = m.pbr_metallic_roughness();
     let [r, g, b, _] = pbr.base_color_factor();
     let dielectric = 1.0 - metallic;
-    let transmission = m.transmission().map_or(0.0, |t| t.transmission_factor()).clamp(0.0, 1.0);
     let strength = m.emissive_strength().unwrap_or(1.0);
     let diffuse = dielectric * (1.0 - transmission);
     let level = match extra::<f32>(m.extras(), "rt_specular_ior_level")? {

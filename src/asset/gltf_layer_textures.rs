@@ -1,6 +1,7 @@
 //! The layered lobes' textures of a glTF material ([`LayerTextures`]): `KHR_materials_clearcoat`'s
 //! `clearcoatTexture` (R) and `clearcoatRoughnessTexture` (G), `KHR_materials_specular`'s
-//! `specularColorTexture`, `KHR_materials_iridescence`'s `iridescenceThicknessTexture` (G:
+//! `specularColorTexture` and `specularTexture` (A), `KHR_materials_transmission`'s
+//! `transmissionTexture` (R), `KHR_materials_iridescence`'s `iridescenceThicknessTexture` (G:
 //! the thickness from the extension's minimum to its maximum), and rt's own extras for
 //! what glTF has no texture of: `rt_coat_tint_texture` (RGB), `rt_sheen_texture` (R weight,
 //! G roughness), `rt_sheen_tint_texture` (RGB), `rt_anisotropy_texture` (R amount, G
@@ -12,8 +13,8 @@ use super::gltf_texture_transform::{TextureUse, of_info, of_json};
 use super::gltf_textures::{ColorSpace, TextureLoader};
 use crate::scene::LayerTextures;
 use crate::scene::slots::{
-    ANISOTROPY, COAT, COAT_ROUGHNESS, COAT_TINT, DIFFUSE_ROUGHNESS, SHEEN, SHEEN_TINT, SPECULAR_TINT,
-    THIN_FILM_THICKNESS,
+    ANISOTROPY, COAT, COAT_ROUGHNESS, COAT_TINT, DIFFUSE_ROUGHNESS, SHEEN, SHEEN_TINT, SPECULAR_LEVEL, SPECULAR_TINT,
+    THIN_FILM_THICKNESS, TRANSMISSION,
 };
 use gltf::json::Value;
 
@@ -54,8 +55,10 @@ pub(super) fn layer_textures(
     let from_extras = |key: &str| -> Result<Option<(usize, TextureUse)>, String> {
         extra::<Value>(m.extras(), key)?.map(|v| info(&v, &format!("extras.{key}"))).transpose()
     };
-    let specular_color =
-        m.specular().and_then(|s| s.specular_color_texture()).map(|i| (i.texture().index(), of_info(&i)));
+    let of = |i: gltf::texture::Info| (i.texture().index(), of_info(&i));
+    let specular_color = m.specular().and_then(|s| s.specular_color_texture()).map(of);
+    let specular_level = m.specular().and_then(|s| s.specular_texture()).map(of);
+    let transmission = m.transmission().and_then(|t| t.transmission_texture()).map(of);
     let film_thickness = m
         .extension_value("KHR_materials_iridescence")
         .and_then(|f| f.get("iridescenceThicknessTexture"))
@@ -81,6 +84,8 @@ pub(super) fn layer_textures(
             "diffuse roughness",
         )?,
         thin_film_thickness: load(film_thickness, ColorSpace::Linear, THIN_FILM_THICKNESS, "iridescence thickness")?,
+        transmission: load(transmission, ColorSpace::Linear, TRANSMISSION, "transmission")?,
+        specular_level: load(specular_level, ColorSpace::Linear, SPECULAR_LEVEL, "specular")?,
     };
     Ok((layers, second_uv_set))
 }

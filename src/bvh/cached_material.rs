@@ -1,7 +1,7 @@
 //! Materials as a cache file stores them: every field of [`Material`], as
 //! written, so that loading a cache gives exactly what importing the source gives.
 
-use crate::scene::{LayerTextures, Material, MaterialTextures, Tangent};
+use crate::scene::{LAYER_COUNT, LayerTextures, Material, MaterialTextures, Tangent};
 
 /// A texture slot left empty.
 pub const NO_TEXTURE: u32 = u32::MAX;
@@ -57,7 +57,7 @@ pub struct CachedMaterial {
     pub thin_film_thickness: f32,
     pub thin_film_ior: f32,
     /// `LayerTextures`, in the order of its `slots`.
-    pub layer_textures: [u32; 9],
+    pub layer_textures: [u32; LAYER_COUNT],
     /// `Tangent`: 0 radial Z, 1 radial X, 2 radial Y, 3 the uv map's.
     pub tangent: u32,
     pub diffuse_roughness: f32,
@@ -66,6 +66,8 @@ pub struct CachedMaterial {
     pub bump_map_correction: u32,
     /// `MaterialTextures::thin_film_minimum`.
     pub thin_film_minimum: f32,
+    /// `MaterialTextures::transmission`.
+    pub transmission_factor: f32,
 }
 
 const TANGENTS: [Tangent; 4] = [Tangent::RadialZ, Tangent::RadialX, Tangent::RadialY, Tangent::Uv];
@@ -113,6 +115,7 @@ impl From<&Material> for CachedMaterial {
             thin_film_weight: m.thin_film_weight,
             bump_map_correction: u32::from(m.bump_map_correction),
             thin_film_minimum: m.textures.thin_film_minimum,
+            transmission_factor: m.textures.transmission,
         }
     }
 }
@@ -161,6 +164,7 @@ impl From<&CachedMaterial> for Material {
                 second_uv_set: m.second_uv_set,
                 layers: LayerTextures::from_slots(m.layer_textures.map(unslot)),
                 thin_film_minimum: m.thin_film_minimum,
+                transmission: m.transmission_factor,
             },
         }
     }
@@ -196,6 +200,7 @@ impl CachedMaterial {
             self.thin_film_ior,
             self.thin_film_weight,
             self.thin_film_minimum,
+            self.transmission_factor,
             self.diffuse_roughness,
             self.hardness,
             self.metallic,

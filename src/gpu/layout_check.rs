@@ -152,7 +152,10 @@ fn host_structs_match_wgsl_layouts() {
                 tangent,
                 diffuse_roughness_texture,
                 thin_film_texture,
-                thin_film_minimum
+                thin_film_minimum,
+                transmission_texture,
+                transmission_factor,
+                specular_level_texture
             ]
         ),
         host_layout!("TriangleTangents", GpuTriangleTangents, [t0, t1, t2]),

@@ -139,7 +139,7 @@ impl FeatureSet {
         let settings = &scene.render;
         let materials_in_use = &geometry.materials_in_use;
         let rough = |m: &&Material| m.alpha() >= ALPHA_DELTA;
-        let transmissive: Vec<&Material> = materials_in_use.iter().filter(|m| m.transmission > 0.0).collect();
+        let transmissive: Vec<&Material> = materials_in_use.iter().filter(|m| m.may_transmit()).collect();
         let transmission = if transmissive.is_empty() {
             Transmission::None
         } else if transmissive.iter().any(rough) {
@@ -185,7 +185,7 @@ impl FeatureSet {
             multiscatter: settings.microfacet == Microfacet::Multiscatter
                 && materials_in_use.iter().any(|m| {
                     m.reflection > 0.0
-                        || m.transmission > 0.0
+                        || m.may_transmit()
                         || m.textures.metallic_roughness.is_some()
                         || (rough(&m) && (m.specular > 0.0 || m.dielectric_coating().is_some()))
                         || m.coat > 0.0

@@ -175,6 +175,11 @@ impl Material {
         (eta > 1.0 || film).then_some((eta, f0))
     }
 
+    /// Whether some of the surface refracts: by its weight, or by its transmission texture.
+    pub fn may_transmit(&self) -> bool {
+        self.transmission > 0.0 || (self.textures.layers.transmission.is_some() && self.textures.transmission > 0.0)
+    }
+
     /// Whether the diffuse lobe is Oren-Nayar rather than Lambertian.
     pub fn has_rough_diffuse(&self) -> bool {
         self.diffuse > 0.0 && self.diffuse_roughness > 0.0

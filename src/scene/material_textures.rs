@@ -28,7 +28,7 @@ pub struct MaterialTextures {
     pub normal_scale: f32,
     /// Which texture slots read the mesh's second uv set (glTF `texCoord` 1): bit i for
     /// slot i of [`Self::indices_mut`] (base colour, metallic-roughness, emission, normal,
-    /// then the layers' nine); the others read the first. A normal map's tangents are of
+    /// then the layers' eleven); the others read the first. A normal map's tangents are of
     /// the set it reads.
     pub second_uv_set: u32,
     /// The layered lobes' textures: [`LayerTextures`].
@@ -36,11 +36,16 @@ pub struct MaterialTextures {
     /// The film's thickness (nm) where its thickness texture reads 0 (glTF's
     /// `iridescenceThicknessMinimum`), used with `layers.thin_film_thickness` only.
     pub thin_film_minimum: f32,
+    /// glTF's `transmissionFactor`, used with `layers.transmission` only. With that texture,
+    /// the lobe weights are those of the part that does not transmit (as if the factor were
+    /// 0), and the shader moves `factor × R` of the diffuse and its coating to the glass.
+    pub transmission: f32,
 }
 
-/// Textures of the coat, sheen, anisotropy, specular tint, diffuse roughness and thin film
-/// thickness (Principled's sockets of those names), each an index into the asset's textures.
-/// Factors multiply the texels, as glTF's do (the film's thickness is a range instead).
+/// Textures of the coat, sheen, anisotropy, specular tint, diffuse roughness, thin film
+/// thickness, transmission and specular IOR level (Principled's sockets of those names),
+/// each an index into the asset's textures. Factors multiply the texels, as glTF's do (the
+/// film's thickness is a range instead).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct LayerTextures {
     /// R × `coat` (glTF's `clearcoatTexture`).
@@ -62,6 +67,11 @@ pub struct LayerTextures {
     /// G: the film's thickness, from `MaterialTextures::thin_film_minimum` at 0 to
     /// `thin_film_thickness` at 1 (glTF's `iridescenceThicknessTexture`).
     pub thin_film_thickness: Option<u32>,
+    /// R × `MaterialTextures::transmission` is the transmission weight (glTF's
+    /// `transmissionTexture`).
+    pub transmission: Option<u32>,
+    /// A × `specular_ior_level` (glTF's `specularTexture`, whose alpha is its factor's).
+    pub specular_level: Option<u32>,
 }
 
 impl LayerTextures {
@@ -70,7 +80,7 @@ impl LayerTextures {
     }
 
     /// The slots, in the order of [`MaterialTextures::indices_mut`] after its first four.
-    pub fn slots(&self) -> [Option<u32>; 9] {
+    pub fn slots(&self) -> [Option<u32>; LAYER_COUNT] {
         [
             self.coat,
             self.coat_roughness,
@@ -81,11 +91,13 @@ impl LayerTextures {
             self.specular_tint,
             self.diffuse_roughness,
             self.thin_film_thickness,
+            self.transmission,
+            self.specular_level,
         ]
     }
 
     /// The textures of `slots`, in the order [`Self::slots`] gives them.
-    pub fn from_slots(slots: [Option<u32>; 9]) -> Self {
+    pub fn from_slots(slots: [Option<u32>; LAYER_COUNT]) -> Self {
         let [
             coat,
             coat_roughness,
@@ -96,6 +108,8 @@ impl LayerTextures {
             specular_tint,
             diffuse_roughness,
             thin_film_thickness,
+            transmission,
+            specular_level,
         ] = slots;
         Self {
             coat,
@@ -107,6 +121,8 @@ impl LayerTextures {
             specular_tint,
             diffuse_roughness,
             thin_film_thickness,
+            transmission,
+            specular_level,
         }
     }
 }
@@ -134,8 +150,13 @@ pub mod slots {
     pub const SPECULAR_TINT: usize = 10;
     pub const DIFFUSE_ROUGHNESS: usize = 11;
     pub const THIN_FILM_THICKNESS: usize = 12;
-    pub const COUNT: usize = 13;
+    pub const TRANSMISSION: usize = 13;
+    pub const SPECULAR_LEVEL: usize = 14;
+    pub const COUNT: usize = 15;
 }
+
+/// How many of the slots are [`LayerTextures`]'s: all but the first four.
+pub const LAYER_COUNT: usize = slots::COUNT - 4;
 
 impl Default for MaterialTextures {
     fn default() -> Self {
@@ -152,6 +173,7 @@ impl Default for MaterialTextures {
             second_uv_set: 0,
             layers: LayerTextures::default(),
             thin_film_minimum: 0.0,
+            transmission: 0.0,
         }
     }
 }
@@ -184,6 +206,8 @@ impl MaterialTextures {
             &mut l.specular_tint,
             &mut l.diffuse_roughness,
             &mut l.thin_film_thickness,
+            &mut l.transmission,
+            &mut l.specular_level,
         ]
     }
 

@@ -23,6 +23,8 @@ fn each_slot_names_its_texture() {
         (slots::SPECULAR_TINT, l.specular_tint),
         (slots::DIFFUSE_ROUGHNESS, l.diffuse_roughness),
         (slots::THIN_FILM_THICKNESS, l.thin_film_thickness),
+        (slots::TRANSMISSION, l.transmission),
+        (slots::SPECULAR_LEVEL, l.specular_level),
     ];
     assert_eq!(named.len(), slots::COUNT);
     for (slot, index) in named {
@@ -52,6 +54,8 @@ fn the_shaders_uv_set_bits_are_the_slots() {
         ("SPECULAR_TINT", slots::SPECULAR_TINT),
         ("DIFFUSE_ROUGHNESS", slots::DIFFUSE_ROUGHNESS),
         ("THIN_FILM", slots::THIN_FILM_THICKNESS),
+        ("TRANSMISSION", slots::TRANSMISSION),
+        ("SPECULAR_LEVEL", slots::SPECULAR_LEVEL),
     ];
     assert_eq!(shader.len(), slots::COUNT);
     for (name, slot) in shader {
@@ -61,6 +65,6 @@ fn the_shaders_uv_set_bits_are_the_slots() {
 
 #[test]
 fn layer_textures_come_back_from_their_slots() {
-    let slots: [Option<u32>; 9] = std::array::from_fn(|i| Some(i as u32 + 4));
+    let slots: [Option<u32>; LAYER_COUNT] = std::array::from_fn(|i| Some(i as u32 + 4));
     assert_eq!(LayerTextures::from_slots(slots).slots(), slots);
 }

@@ -75,13 +75,22 @@ def half_empty(tree):
     return n
 
 
+def image_ior(tree):
+    """An image into the IOR, which rt reads no texture for."""
+    p = node(tree, "ShaderNodeBsdfPrincipled", "Lens")
+    img = tree.nodes.new("ShaderNodeTexImage")
+    img.image = bpy.data.images.new("ior_map", 4, 4)
+    tree.links.new(img.outputs["Color"], p.inputs["IOR"])
+    return p
+
+
 def main():
     out = sys.argv[1]
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     builds = {"toon_mat": toon, "noisy_mix": linked_fac, "glossy_glass": glossy_glass,
               "skin_mat": subsurface, "felt_mat": rough_diffuse, "leaf_mat": translucent,
-              "half_empty": half_empty}
+              "half_empty": half_empty, "lens_mat": image_ior}
     for i, (name, build) in enumerate(builds.items()):
         bpy.ops.mesh.primitive_cube_add(location=(3.0 * i, 0.0, 0.0))
         obj = bpy.context.active_object

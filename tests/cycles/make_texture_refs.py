@@ -409,6 +409,23 @@ def scene_film_roughness_map(scene):
     tree.links.new(thickness.outputs["Result"], bsdf.inputs["Thin Film Thickness"])
 
 
+def scene_transmission_level_map(scene):
+    """One image drives the Transmission Weight and the Specular IOR Level (through Separate
+    Color): R stripes of 1 and 0 across u (rough glass and a coated diffuse), G a ramp of the
+    level along v from 0 at the bottom to 1 at the top, on a dark sphere (so that the level
+    shows) over a dark floor in a white world (no sun: light seen through rough glass would
+    come by rare bright paths)."""
+    uniform_world(scene, (1.0, 1.0, 1.0))
+    floor(scene, (0.1, 0.1, 0.1), 40.0, z=-1.0)
+    tree, bsdf = layered_sphere(scene, "transmission_level_map", {"Base Color": (0.25, 0.06, 0.02), "Roughness": 0.2,
+                                                                  "IOR": 1.5})
+    pixels = stripes(32, 8, (1.0, 0.0, 0.0), (0.0, 0.0, 0.0))
+    pixels[:, :, 1] = np.linspace(1.0, 0.0, 32)[:, None]
+    sep = separated(tree, image_node(tree, image("transmission_level", pixels, srgb=False)))
+    tree.links.new(sep.outputs["Red"], bsdf.inputs["Transmission Weight"])
+    tree.links.new(sep.outputs["Green"], bsdf.inputs["Specular IOR Level"])
+
+
 def blender_gltf(scene, out):
     """The same scene through Blender's own glTF exporter (a .glb with its textures
     embedded), placed by a copy of the exported scene file: for the tests that rt reads
@@ -437,6 +454,7 @@ SCENES = {
     "sheen_map": scene_sheen_map,
     "anisotropy_map": scene_anisotropy_map,
     "film_roughness_map": scene_film_roughness_map,
+    "transmission_level_map": scene_transmission_level_map,
 }
 # Scenes exported with --bake, and the size of their baked images.
 BAKE_SIZES = {"baked_noise": 512, "baked_bump": 512}

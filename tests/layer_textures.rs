@@ -24,7 +24,8 @@ fn quad_gltf(material: &str) -> String {
     format!(
         r#"{{
   "asset": {{ "version": "2.0" }}, "scene": 0, "scenes": [{{ "nodes": [0] }}], "nodes": [{{ "mesh": 0 }}],
-  "extensionsUsed": ["KHR_materials_clearcoat", "KHR_materials_specular", "KHR_materials_transmission"],
+  "extensionsUsed": ["KHR_materials_clearcoat", "KHR_materials_specular", "KHR_materials_transmission",
+    "KHR_materials_sheen", "KHR_materials_anisotropy"],
   "meshes": [{{ "primitives": [{{ "attributes": {{ "POSITION": 0, "TEXCOORD_0": 1 }}, "indices": 2, "material": 0 }}] }}],
   "materials": [{material}],
   "textures": [{{ "source": 0 }}, {{ "source": 0, "sampler": 0 }}],
@@ -121,6 +122,30 @@ fn transmission_and_specular_level_textures_are_read() {
     let mesh = load("layer_textures_transmission_factor", material).unwrap_or_else(|e| panic!("{e}"));
     let m = &mesh.materials[0].1;
     assert!((m.transmission - 0.6).abs() < 1e-6 && (m.diffuse - 0.15).abs() < 1e-6, "{m:?}");
+}
+
+/// glTF's sheen and anisotropy textures fill rt's slots, re-encoded into the channels those
+/// read: the grey texel (128, 64, 32, 255) is a sheen roughness of A = 1 (R, the weight, 1),
+/// and a direction (2·RG − 1) a quarter turn clockwise of the tangent (G = 0.75 turn) with
+/// the strength B (R). The tangent becomes the uv map's, as Blender's importer links it.
+#[test]
+fn sheen_and_anisotropy_textures_of_the_extensions_are_read() {
+    let material = r#"{ "name": "brushed",
+      "extensions": { "KHR_materials_sheen": { "sheenColorFactor": [1, 1, 1], "sheenColorTexture": { "index": 0 },
+                                                "sheenRoughnessFactor": 0.5, "sheenRoughnessTexture": { "index": 0 } },
+                      "KHR_materials_anisotropy": { "anisotropyStrength": 1, "anisotropyTexture": { "index": 0 } } } }"#;
+    let mesh = load("layer_textures_extensions", material).unwrap_or_else(|e| panic!("{e}"));
+    let m = &mesh.materials[0].1;
+    let l = m.textures.layers;
+    let first = |slot: Option<u32>| {
+        let t = &mesh.textures[slot.expect("a texture") as usize];
+        (t.srgb, t.texels[0].to_le_bytes())
+    };
+    assert_eq!(first(l.sheen_tint), (true, [128, 64, 32, 255]));
+    assert_eq!(first(l.sheen), (false, [255, 255, 0, 255]));
+    assert_eq!(first(l.anisotropy), (false, [32, 192, 0, 255]));
+    assert_eq!((m.sheen, m.sheen_roughness, m.anisotropy, m.tangent), (1.0, 0.5, 1.0, Tangent::Uv));
+    assert!(m.reads_uv_tangents());
 }
 
 #[test]

@@ -125,8 +125,6 @@ pub(super) fn sheen(m: &gltf::Material) -> Result<Option<Sheen>, String> {
     let Some(ext) = m.extension_value(NAME) else {
         return Ok(None);
     };
-    warn_textures(m, ext, NAME, &["sheenColorTexture"], "sheenColorFactor");
-    warn_textures(m, ext, NAME, &["sheenRoughnessTexture"], "sheenRoughnessFactor");
     Ok(Some(Sheen {
         weight: 1.0,
         tint: colour(ext, NAME, "sheenColorFactor", [0.0; 3])?.map(|c| c.clamp(0.0, 1.0)),
@@ -137,14 +135,13 @@ pub(super) fn sheen(m: &gltf::Material) -> Result<Option<Sheen>, String> {
 /// `KHR_materials_anisotropy` as Blender's importer reads it without a texture: Anisotropic
 /// `anisotropyStrength` (default 0) and Anisotropic Rotation `anisotropyRotation` / 2π
 /// (radians to turns; default 0), the Tangent input left unlinked. With a texture Blender
-/// links the uv map's tangent and the texture's direction and strength; rt reads neither
-/// and warns. `(0, 0)` without the extension.
+/// links the uv map's tangent and the texture's direction and strength, and so does rt
+/// (`gltf_layer_textures`, the tangent in `gltf_import`). `(0, 0)` without the extension.
 pub(super) fn anisotropy(m: &gltf::Material) -> Result<(f32, f32), String> {
     const NAME: &str = "KHR_materials_anisotropy";
     let Some(ext) = m.extension_value(NAME) else {
         return Ok((0.0, 0.0));
     };
-    warn_textures(m, ext, NAME, &["anisotropyTexture"], "anisotropyStrength and anisotropyRotation");
     let strength = number(ext, NAME, "anisotropyStrength", 0.0)?.clamp(0.0, 1.0);
     let rotation = number(ext, NAME, "anisotropyRotation", 0.0)? / std::f32::consts::TAU;
     Ok((strength, rotation.rem_euclid(1.0)))

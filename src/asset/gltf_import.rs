@@ -20,11 +20,11 @@
 //! | `extras.rt_glossy_color` `[r, g, b]` (absent)             | Cycles' Glossy BSDF: `specular = 1` tinted by the colour (`specular_tint`), no other lobe |
 //! | `KHR_materials_sheen` colour, roughness factors ((0, 0, 0), 0) | `sheen = 1`, `sheen_tint`, `sheen_roughness` (as Blender imports it; none without the extension) |
 //! | `extras.rt_sheen`, `_roughness`, `_tint` (absent)          | `sheen`, `sheen_roughness`, `sheen_tint`, instead of the extension's |
-//! | `KHR_materials_anisotropy` strength, rotation (0, 0 rad)  | `anisotropy`, `anisotropy_rotation = rotation / 2π` (as Blender imports it) |
+//! | `KHR_materials_anisotropy` strength, rotation (0, 0 rad)  | `anisotropy`, `anisotropy_rotation = rotation / 2π` (as Blender imports it); with its texture, the uv map's tangent |
 //! | `extras.rt_anisotropy`, `rt_anisotropy_rotation` (absent) | `anisotropy`, `anisotropy_rotation`, instead of the extension's |
 //! | `KHR_materials_iridescence` factor (0), index (1.3), thickness maximum (400) | `thin_film_weight` (the factor; 0: no film), `thin_film_ior`, `thin_film_thickness` (the maximum) |
 //! | `extras.rt_tangent` (`"radial_z"`)                        | `tangent` |
-//! | `KHR_materials_clearcoat` textures, `KHR_materials_specular` colour texture, `extras.rt_*_texture` | `textures.layers` (`gltf_layer_textures`) |
+//! | `KHR_materials_clearcoat` textures, `KHR_materials_specular` colour texture, `KHR_materials_sheen` and `_anisotropy` textures (re-encoded), `extras.rt_*_texture` | `textures.layers` (`gltf_layer_textures`) |
 //! | `KHR_materials_transmission` texture, `KHR_materials_specular` texture | `textures.layers` (R × the transmission factor, A × the level); with a transmission texture the weights are those of the part that does not transmit and `textures.transmission` is the factor |
 //! | `extras.rt_diffuse_roughness` (0)                         | `diffuse_roughness` (Principled's Diffuse Roughness; glTF has none) |
 //! | `KHR_materials_iridescence` thickness texture, minimum (100), `extras.rt_diffuse_roughness_texture` | `textures.layers` (`gltf_layer_textures`), `textures.thin_film_minimum` |
@@ -424,7 +424,7 @@ fn map_material_with(m: &gltf::Material, metallic: f32, transmission: f32) -> Re
         thin_film_thickness: film.thickness,
         thin_film_ior: film.ior,
         thin_film_weight: film.weight,
-        tangent: tangent(m.extras())?,
+        tangent: tangent(m)?,
         diffuse_roughness: extra::<f32>(m.extras(), "rt_diffuse_roughness")?.unwrap_or(0.0).clamp(0.0, 1.0),
         bump_map_correction: extra::<bool>(m.extras(), "rt_bump_map_correction")?.unwrap_or(true),
         reflection: metallic,
@@ -442,9 +442,13 @@ fn map_material_with(m: &gltf::Material, metallic: f32, transmission: f32) -> Re
     })
 }
 
-/// `extras.rt_tangent`: the Principled BSDF's linked Tangent input ("radial_z" when absent).
-fn tangent(extras: &gltf::json::Extras) -> Result<Tangent, String> {
-    match extra::<String>(extras, "rt_tangent")?.as_deref() {
+/// `extras.rt_tangent`: the Principled BSDF's linked Tangent input; when absent, the uv
+/// map's tangent for a `KHR_materials_anisotropy` texture (whose directions are in its
+/// frame, as Blender's importer links it), else "radial_z".
+fn tangent(m: &gltf::Material) -> Result<Tangent, String> {
+    let textured = m.extension_value("KHR_materials_anisotropy").is_some_and(|a| a.get("anisotropyTexture").is_some());
+    match extra::<String>(m.extras(), "rt_tangent")?.as_deref() {
+        None if textured => Ok(Tangent::Uv),
         None | Some("radial_z") => Ok(Tangent::RadialZ),
         Some("radial_x") => Ok(Tangent::RadialX),
         Some("radial_y") => Ok(Tangent::RadialY),

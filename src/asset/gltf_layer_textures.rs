@@ -10,7 +10,7 @@
 
 use super::gltf_import::{extra, uv_set_bit};
 use super::gltf_texture_transform::{TextureUse, of_info, of_json};
-use super::gltf_textures::{ColorSpace, TextureLoader};
+use super::gltf_textures::{ColorSpace, Reading, Recoded, TextureLoader};
 use crate::scene::LayerTextures;
 use crate::scene::slots::{
     ANISOTROPY, COAT, COAT_ROUGHNESS, COAT_TINT, DIFFUSE_ROUGHNESS, SHEEN, SHEEN_TINT, SPECULAR_LEVEL, SPECULAR_TINT,
@@ -39,15 +39,16 @@ pub(super) fn layer_textures(
     loader: &mut TextureLoader,
 ) -> Result<(LayerTextures, u32), String> {
     let mut second_uv_set = 0;
-    let mut load = |raw: Option<(usize, TextureUse)>, space, slot: usize, what: &str| -> Result<Option<u32>, String> {
+    let mut load = |raw: Option<(usize, TextureUse)>, reading: Reading, slot: usize, what: &str| {
         let Some((index, used)) = raw else { return Ok(None) };
         let texture = document
             .textures()
             .nth(index)
             .ok_or_else(|| format!("{what}: no texture {index} (the file has {})", document.textures().len()))?;
         second_uv_set |= uv_set_bit(used.tex_coord, slot, what);
-        loader.load(&texture, space, used.transform).map(Some).map_err(|e| format!("{what} texture: {e}"))
+        loader.load_as(&texture, reading, used.transform).map(Some).map_err(|e| format!("{what} texture: {e}"))
     };
+    let (srgb, linear) = (Reading::As(ColorSpace::Srgb), Reading::As(ColorSpace::Linear));
     let clearcoat = m.extension_value("KHR_materials_clearcoat");
     let from_clearcoat = |key: &str| -> Result<Option<(usize, TextureUse)>, String> {
         clearcoat.and_then(|c| c.get(key)).map(|v| info(v, &format!("KHR_materials_clearcoat.{key}"))).transpose()
@@ -59,33 +60,62 @@ pub(super) fn layer_textures(
     let specular_color = m.specular().and_then(|s| s.specular_color_texture()).map(of);
     let specular_level = m.specular().and_then(|s| s.specular_texture()).map(of);
     let transmission = m.transmission().and_then(|t| t.transmission_texture()).map(of);
+    // glTF's sheen and anisotropy textures, where rt's own extras give none.
+    let from_extension = |name: &str, key: &str| -> Result<Option<(usize, TextureUse)>, String> {
+        m.extension_value(name).and_then(|e| e.get(key)).map(|v| info(v, &format!("{name}.{key}"))).transpose()
+    };
+    let or_extension = |own: Option<(usize, TextureUse)>, name: &str, key: &str, recoded| {
+        Ok::<_, String>(match own {
+            Some(own) => Some((own, None)),
+            None => from_extension(name, key)?.map(|found| (found, recoded)),
+        })
+    };
+    let sheen = or_extension(
+        from_extras("rt_sheen_texture")?,
+        "KHR_materials_sheen",
+        "sheenRoughnessTexture",
+        Some(Recoded::SheenRoughness),
+    )?;
+    let sheen_tint =
+        or_extension(from_extras("rt_sheen_tint_texture")?, "KHR_materials_sheen", "sheenColorTexture", None)?;
+    let anisotropy = or_extension(
+        from_extras("rt_anisotropy_texture")?,
+        "KHR_materials_anisotropy",
+        "anisotropyTexture",
+        Some(Recoded::AnisotropyDirection),
+    )?;
+    let reading = |found: &Option<((usize, TextureUse), Option<Recoded>)>, own| match found {
+        Some((_, Some(recoded))) => Reading::Recoded(*recoded),
+        _ => own,
+    };
+    let (sheen_reading, anisotropy_reading) = (reading(&sheen, linear), reading(&anisotropy, linear));
     let film_thickness = m
         .extension_value("KHR_materials_iridescence")
         .and_then(|f| f.get("iridescenceThicknessTexture"))
         .map(|v| info(v, "KHR_materials_iridescence.iridescenceThicknessTexture"))
         .transpose()?;
     let layers = LayerTextures {
-        coat: load(from_clearcoat("clearcoatTexture")?, ColorSpace::Linear, COAT, "clearcoat")?,
+        coat: load(from_clearcoat("clearcoatTexture")?, linear, COAT, "clearcoat")?,
         coat_roughness: load(
             from_clearcoat("clearcoatRoughnessTexture")?,
-            ColorSpace::Linear,
+            linear,
             COAT_ROUGHNESS,
             "clearcoat roughness",
         )?,
-        coat_tint: load(from_extras("rt_coat_tint_texture")?, ColorSpace::Srgb, COAT_TINT, "coat tint")?,
-        sheen: load(from_extras("rt_sheen_texture")?, ColorSpace::Linear, SHEEN, "sheen")?,
-        sheen_tint: load(from_extras("rt_sheen_tint_texture")?, ColorSpace::Srgb, SHEEN_TINT, "sheen tint")?,
-        anisotropy: load(from_extras("rt_anisotropy_texture")?, ColorSpace::Linear, ANISOTROPY, "anisotropy")?,
-        specular_tint: load(specular_color, ColorSpace::Srgb, SPECULAR_TINT, "specular colour")?,
+        coat_tint: load(from_extras("rt_coat_tint_texture")?, srgb, COAT_TINT, "coat tint")?,
+        sheen: load(sheen.map(|s| s.0), sheen_reading, SHEEN, "sheen")?,
+        sheen_tint: load(sheen_tint.map(|s| s.0), srgb, SHEEN_TINT, "sheen tint")?,
+        anisotropy: load(anisotropy.map(|a| a.0), anisotropy_reading, ANISOTROPY, "anisotropy")?,
+        specular_tint: load(specular_color, srgb, SPECULAR_TINT, "specular colour")?,
         diffuse_roughness: load(
             from_extras("rt_diffuse_roughness_texture")?,
-            ColorSpace::Linear,
+            linear,
             DIFFUSE_ROUGHNESS,
             "diffuse roughness",
         )?,
-        thin_film_thickness: load(film_thickness, ColorSpace::Linear, THIN_FILM_THICKNESS, "iridescence thickness")?,
-        transmission: load(transmission, ColorSpace::Linear, TRANSMISSION, "transmission")?,
-        specular_level: load(specular_level, ColorSpace::Linear, SPECULAR_LEVEL, "specular")?,
+        thin_film_thickness: load(film_thickness, linear, THIN_FILM_THICKNESS, "iridescence thickness")?,
+        transmission: load(transmission, linear, TRANSMISSION, "transmission")?,
+        specular_level: load(specular_level, linear, SPECULAR_LEVEL, "specular")?,
     };
     Ok((layers, second_uv_set))
 }

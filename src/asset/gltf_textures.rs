@@ -1,6 +1,6 @@
 //! The image textures of a glTF file's materials: images embedded in a buffer view
 //! (`.glb`), in data URIs, or in PNG/JPEG files beside the glTF, with their samplers'
-//! wrap modes. Each (image, colour space, wrap modes, uv transform) becomes one
+//! wrap modes. Each (image, colour space or re-encoding, wrap modes, uv transform) becomes one
 //! [`TextureImage`], however many materials use it; those of one image with other uv
 //! transforms share its texels.
 
@@ -16,13 +16,46 @@ pub enum ColorSpace {
     Linear,
 }
 
+/// A glTF texture whose channels mean something else than the rt slot it fills reads:
+/// re-encoded at import into that slot's channels (linear data).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Recoded {
+    /// `KHR_materials_sheen.sheenRoughnessTexture` (A) as rt's sheen texture: R the
+    /// weight (1), G the roughness.
+    SheenRoughness,
+    /// `KHR_materials_anisotropy.anisotropyTexture` (RG a direction in the tangent frame,
+    /// B the strength) as rt's anisotropy texture: R the strength, G the direction's turn
+    /// from the tangent.
+    AnisotropyDirection,
+}
+
+impl Recoded {
+    fn texel(self, [r, g, b, a]: [u8; 4]) -> [u8; 4] {
+        match self {
+            Self::SheenRoughness => [255, a, 0, 255],
+            Self::AnisotropyDirection => {
+                let unit = |c: u8| f32::from(c) / 255.0 * 2.0 - 1.0;
+                let turn = unit(g).atan2(unit(r)) / std::f32::consts::TAU;
+                [b, (turn.rem_euclid(1.0) * 255.0).round() as u8, 0, 255]
+            }
+        }
+    }
+}
+
+/// How a texture's texels are read: in a colour space, or re-encoded.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Reading {
+    As(ColorSpace),
+    Recoded(Recoded),
+}
+
 pub struct TextureLoader<'a> {
     buffers: &'a [gltf::buffer::Data],
     /// The glTF's folder, where relative image URIs point.
     dir: &'a Path,
-    /// The first texture of each (image, colour space, wraps), and each texture by its uv transform too.
-    decoded: HashMap<(usize, ColorSpace, [u32; 2]), u32>,
-    loaded: HashMap<(usize, ColorSpace, [u32; 2], [u32; 6]), u32>,
+    /// The first texture of each (image, reading, wraps), and each texture by its uv transform too.
+    decoded: HashMap<(usize, Reading, [u32; 2]), u32>,
+    loaded: HashMap<(usize, Reading, [u32; 2], [u32; 6]), u32>,
     pub textures: Vec<TextureImage>,
 }
 
@@ -42,10 +75,20 @@ impl<'a> TextureLoader<'a> {
     /// The index in [`Self::textures`] of `texture` read through `transform`, decoding its
     /// image on first use.
     pub fn load(&mut self, texture: &gltf::Texture, space: ColorSpace, transform: UvTransform) -> Result<u32, String> {
+        self.load_as(texture, Reading::As(space), transform)
+    }
+
+    /// [`Self::load`] of a texture read as `reading` says.
+    pub fn load_as(
+        &mut self,
+        texture: &gltf::Texture,
+        reading: Reading,
+        transform: UvTransform,
+    ) -> Result<u32, String> {
         let sampler = texture.sampler();
         let wraps = [wrap(sampler.wrap_s()), wrap(sampler.wrap_t())];
         let image = texture.source();
-        let key = (image.index(), space, wraps.map(Wrap::code));
+        let key = (image.index(), reading, wraps.map(Wrap::code));
         let transform_bits: [u32; 6] = bytemuck::cast(transform);
         if let Some(&index) = self.loaded.get(&(key.0, key.1, key.2, transform_bits)) {
             return Ok(index);
@@ -54,9 +97,16 @@ impl<'a> TextureLoader<'a> {
             Some(&first) => self.textures[first as usize].with_uv_transform(transform),
             None => {
                 let (what, bytes) = self.image_bytes(&image)?;
-                let (width, height, rgba) = decode(&bytes, &what)?;
+                let (width, height, mut rgba) = decode(&bytes, &what)?;
+                if let Reading::Recoded(recoded) = reading {
+                    for texel in rgba.chunks_exact_mut(4) {
+                        let new = recoded.texel([texel[0], texel[1], texel[2], texel[3]]);
+                        texel.copy_from_slice(&new);
+                    }
+                }
                 self.decoded.insert(key, self.textures.len() as u32);
-                TextureImage::new(width, height, &rgba, wraps, space == ColorSpace::Srgb).with_uv_transform(transform)
+                let srgb = reading == Reading::As(ColorSpace::Srgb);
+                TextureImage::new(width, height, &rgba, wraps, srgb).with_uv_transform(transform)
             }
         };
         self.textures.push(reference);

@@ -224,7 +224,8 @@ struct Material {
     transmission_texture: u32,
     transmission_factor: f32,
     specular_level_texture: u32,
-    _pad9: u32,
+    // 1: the anisotropy texture is glTF's: RG a direction in the tangent frame, B × anisotropy.
+    anisotropy_directions: u32,
 }
 
 // Object-space vertex tangents (xyz) and bitangent signs (w) of one triangle; zero

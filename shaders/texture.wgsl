@@ -303,8 +303,18 @@ fn layer_textured(material: Material, uv: vec2f, second_uv: vec2f) -> Material {
     }
     if m.anisotropy_texture != NO_TEXTURE {
         let t = layer_texel(m, m.anisotropy_texture, UV1_ANISOTROPY, uv, second_uv);
-        m.anisotropy *= t.r;
-        m.anisotropy_rotation += t.g;
+        if m.anisotropy_directions != 0u {
+            // Filtered as directions, then turned into a rotation (as Blender's import of
+            // glTF's texture does, with an arc tangent node after the image).
+            let d = t.rg * 2.0 - 1.0;
+            m.anisotropy *= t.b;
+            if dot(d, d) > 0.0 {
+                m.anisotropy_rotation += atan2(d.y, d.x) / (2.0 * PI);
+            }
+        } else {
+            m.anisotropy *= t.r;
+            m.anisotropy_rotation += t.g;
+        }
     }
     if m.specular_tint_texture != NO_TEXTURE {
         m.specular_tint *= layer_texel(m, m.specular_tint_texture, UV1_SPECULAR_TINT, uv, second_uv).rgb;

@@ -243,7 +243,8 @@ pub struct GpuMaterial {
     pub transmission_texture: u32,
     pub transmission_factor: f32,
     pub specular_level_texture: u32,
-    pub _pad9: u32,
+    /// 1: the anisotropy texture holds glTF's directions (RG) and strengths (B).
+    pub anisotropy_directions: u32,
 }
 
 /// `GpuMaterial::tangent`: Cycles' Tangent node, radial about Blender's Z (the default), X
@@ -533,7 +534,7 @@ impl From<&crate::scene::Material> for GpuMaterial {
             transmission_texture: slot(l.transmission),
             transmission_factor: m.textures.transmission,
             specular_level_texture: slot(l.specular_level),
-            _pad9: 0,
+            anisotropy_directions: u32::from(m.textures.anisotropy_directions),
         }
     }
 }

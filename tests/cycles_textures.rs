@@ -1,6 +1,8 @@
 //! Textured scenes made in Blender, rt against Cycles: `tests/cycles/make_texture_refs.py`
 //! builds each scene in bpy, renders it with Cycles (`tests/cycles/texture_NAME.exr`) and
-//! exports it with `blender/rt_export.py` (`tests/cycles/scenes/texture_NAME/`). rt
+//! exports it with `blender/rt_export.py` (`tests/cycles/scenes/texture_NAME/`);
+//! `make_gltf_import_refs.py` writes glTF files that rt reads as they are, and renders
+//! Blender's import of them. rt
 //! renders the export; 8×8-block means and the global mean must agree within bounds
 //! derived from rt's standard errors and the reference's noise.
 
@@ -152,6 +154,14 @@ fn transmission_and_ior_level_maps_match_cycles() {
     assert!(transmission["transmissionTexture"]["index"].is_u64(), "{m}");
     assert!(m["extensions"]["KHR_materials_specular"]["specularTexture"]["index"].is_u64(), "{m}");
     assert_eq!(m["extras"]["rt_specular_ior_level"].as_f64(), Some(1.0), "{m}");
+}
+
+// A glTF file's KHR_materials_anisotropy texture (directions along the tangent and the
+// bitangent, two strengths, the extension's rotation on top) read by rt directly, against
+// Cycles' render of Blender's import of the file (`make_gltf_import_refs.py`).
+#[test]
+fn a_gltf_anisotropy_texture_renders_as_blender_imports_it() {
+    check("gltf_anisotropy");
 }
 
 // A grey checker of sheen weight and colour stripes of sheen tint (sRGB) on a dark sphere

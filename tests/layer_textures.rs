@@ -124,10 +124,10 @@ fn transmission_and_specular_level_textures_are_read() {
     assert!((m.transmission - 0.6).abs() < 1e-6 && (m.diffuse - 0.15).abs() < 1e-6, "{m:?}");
 }
 
-/// glTF's sheen and anisotropy textures fill rt's slots, re-encoded into the channels those
-/// read: the grey texel (128, 64, 32, 255) is a sheen roughness of A = 1 (R, the weight, 1),
-/// and a direction (2·RG − 1) a quarter turn clockwise of the tangent (G = 0.75 turn) with
-/// the strength B (R). The tangent becomes the uv map's, as Blender's importer links it.
+/// glTF's sheen and anisotropy textures fill rt's slots: the grey texel (128, 64, 32, 255)
+/// is a sheen roughness of A = 1, re-encoded into the G that rt's sheen slot reads (R, the
+/// weight, 1); the anisotropy texture keeps its directions, marked as such for the shader.
+/// The tangent becomes the uv map's, as Blender's importer links it.
 #[test]
 fn sheen_and_anisotropy_textures_of_the_extensions_are_read() {
     let material = r#"{ "name": "brushed",
@@ -143,7 +143,8 @@ fn sheen_and_anisotropy_textures_of_the_extensions_are_read() {
     };
     assert_eq!(first(l.sheen_tint), (true, [128, 64, 32, 255]));
     assert_eq!(first(l.sheen), (false, [255, 255, 0, 255]));
-    assert_eq!(first(l.anisotropy), (false, [32, 192, 0, 255]));
+    assert_eq!(first(l.anisotropy), (false, [128, 64, 32, 255]));
+    assert!(m.textures.anisotropy_directions);
     assert_eq!((m.sheen, m.sheen_roughness, m.anisotropy, m.tangent), (1.0, 0.5, 1.0, Tangent::Uv));
     assert!(m.reads_uv_tangents());
 }

@@ -24,7 +24,7 @@
 //! | `extras.rt_anisotropy`, `rt_anisotropy_rotation` (absent) | `anisotropy`, `anisotropy_rotation`, instead of the extension's |
 //! | `KHR_materials_iridescence` factor (0), index (1.3), thickness maximum (400) | `thin_film_weight` (the factor; 0: no film), `thin_film_ior`, `thin_film_thickness` (the maximum) |
 //! | `extras.rt_tangent` (`"radial_z"`)                        | `tangent` |
-//! | `KHR_materials_clearcoat` textures, `KHR_materials_specular` colour texture, `KHR_materials_sheen` and `_anisotropy` textures (re-encoded), `extras.rt_*_texture` | `textures.layers` (`gltf_layer_textures`) |
+//! | `KHR_materials_clearcoat` textures, `KHR_materials_specular` colour texture, `KHR_materials_sheen` textures (the roughness's re-encoded) and `_anisotropy`'s (its directions), `extras.rt_*_texture` | `textures.layers` (`gltf_layer_textures`) |
 //! | `KHR_materials_transmission` texture, `KHR_materials_specular` texture | `textures.layers` (R × the transmission factor, A × the level); with a transmission texture the weights are those of the part that does not transmit and `textures.transmission` is the factor |
 //! | `extras.rt_diffuse_roughness` (0)                         | `diffuse_roughness` (Principled's Diffuse Roughness; glTF has none) |
 //! | `KHR_materials_iridescence` thickness texture, minimum (100), `extras.rt_diffuse_roughness_texture` | `textures.layers` (`gltf_layer_textures`), `textures.thin_film_minimum` |
@@ -75,10 +75,11 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
         let name = m.name().map_or_else(|| format!("material_{i}"), str::to_owned);
         let mut material = map_material(&m).map_err(|e| err(format!("material `{name}`: {e}")))?;
         material.textures = material_textures(&m, &mut loader).map_err(|e| err(format!("material `{name}`: {e}")))?;
-        let (layers, layer_uv_sets) = super::gltf_layer_textures::layer_textures(&document, &m, &mut loader)
+        let layers = super::gltf_layer_textures::layer_textures(&document, &m, &mut loader)
             .map_err(|e| err(format!("material `{name}`: {e}")))?;
-        material.textures.layers = layers;
-        material.textures.second_uv_set |= layer_uv_sets;
+        material.textures.layers = layers.textures;
+        material.textures.second_uv_set |= layers.second_uv_set;
+        material.textures.anisotropy_directions = layers.anisotropy_directions;
         material.textures.thin_film_minimum = iridescence(&m).ok().flatten().map_or(0.0, |f| f.minimum);
         let textured_metal = material.textures.metallic_roughness.is_some();
         let textured_transmission = material.textures.layers.transmission.is_some();
@@ -360,6 +361,7 @@ fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<M
         layers: Default::default(),
         thin_film_minimum: 0.0,
         transmission: 0.0,
+        anisotropy_directions: false,
     })
 }
 

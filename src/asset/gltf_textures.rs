@@ -23,21 +23,12 @@ pub enum Recoded {
     /// `KHR_materials_sheen.sheenRoughnessTexture` (A) as rt's sheen texture: R the
     /// weight (1), G the roughness.
     SheenRoughness,
-    /// `KHR_materials_anisotropy.anisotropyTexture` (RG a direction in the tangent frame,
-    /// B the strength) as rt's anisotropy texture: R the strength, G the direction's turn
-    /// from the tangent.
-    AnisotropyDirection,
 }
 
 impl Recoded {
-    fn texel(self, [r, g, b, a]: [u8; 4]) -> [u8; 4] {
+    fn texel(self, [_, _, _, a]: [u8; 4]) -> [u8; 4] {
         match self {
             Self::SheenRoughness => [255, a, 0, 255],
-            Self::AnisotropyDirection => {
-                let unit = |c: u8| f32::from(c) / 255.0 * 2.0 - 1.0;
-                let turn = unit(g).atan2(unit(r)) / std::f32::consts::TAU;
-                [b, (turn.rem_euclid(1.0) * 255.0).round() as u8, 0, 255]
-            }
         }
     }
 }

@@ -68,6 +68,8 @@ pub struct CachedMaterial {
     pub thin_film_minimum: f32,
     /// `MaterialTextures::transmission`.
     pub transmission_factor: f32,
+    /// 1: `MaterialTextures::anisotropy_directions`.
+    pub anisotropy_directions: u32,
 }
 
 const TANGENTS: [Tangent; 4] = [Tangent::RadialZ, Tangent::RadialX, Tangent::RadialY, Tangent::Uv];
@@ -116,6 +118,7 @@ impl From<&Material> for CachedMaterial {
             bump_map_correction: u32::from(m.bump_map_correction),
             thin_film_minimum: m.textures.thin_film_minimum,
             transmission_factor: m.textures.transmission,
+            anisotropy_directions: u32::from(m.textures.anisotropy_directions),
         }
     }
 }
@@ -165,6 +168,7 @@ impl From<&CachedMaterial> for Material {
                 layers: LayerTextures::from_slots(m.layer_textures.map(unslot)),
                 thin_film_minimum: m.thin_film_minimum,
                 transmission: m.transmission_factor,
+                anisotropy_directions: m.anisotropy_directions != 0,
             },
         }
     }

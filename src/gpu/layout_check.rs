@@ -155,7 +155,8 @@ fn host_structs_match_wgsl_layouts() {
                 thin_film_minimum,
                 transmission_texture,
                 transmission_factor,
-                specular_level_texture
+                specular_level_texture,
+                anisotropy_directions
             ]
         ),
         host_layout!("TriangleTangents", GpuTriangleTangents, [t0, t1, t2]),

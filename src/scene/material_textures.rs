@@ -40,6 +40,10 @@ pub struct MaterialTextures {
     /// the lobe weights are those of the part that does not transmit (as if the factor were
     /// 0), and the shader moves `factor × R` of the diffuse and its coating to the glass.
     pub transmission: f32,
+    /// `layers.anisotropy` is glTF's `anisotropyTexture`: RG a direction (2·RG − 1) in the
+    /// tangent frame that turns the rotation, B × `anisotropy` (else rt's: R × `anisotropy`,
+    /// G + the rotation).
+    pub anisotropy_directions: bool,
 }
 
 /// Textures of the coat, sheen, anisotropy, specular tint, diffuse roughness, thin film
@@ -174,6 +178,7 @@ impl Default for MaterialTextures {
             layers: LayerTextures::default(),
             thin_film_minimum: 0.0,
             transmission: 0.0,
+            anisotropy_directions: false,
         }
     }
 }

@@ -643,15 +643,41 @@ def material_textures(material, surface, out, textures, factors, found):
         info = {"index": textures.add([(normal, i) for i in range(3)] + [1.0], False, wrap_of(normal)),
                 "scale": strength, UV_MAP_KEY: uv_map}
         out["normalTexture"] = transformed(info, "normal map", normal)
-    emission = found["Emission Color"]
-    if emission is not None:
-        info = {"index": textures.add([(emission, i) for i in range(3)] + [1.0], True, wrap_of(emission)),
-                UV_MAP_KEY: emission.uv_map}
-        out["emissiveTexture"] = transformed(info, "emission", emission)
+    emission, strength_map = found["Emission Color"], found["Emission Strength"]
+    if emission is not None or strength_map is not None:
         strength = factors["strength"]
+        colour = [(emission, i) for i in range(3)] if emission is not None else factors["emission"]
+        if strength_map is not None:
+            # glTF's emission is one texture times a factor: the colour times the strength over
+            # its largest value, which becomes the factor's strength.
+            strength = float(strength_map.values().max())
+            colour = [ScaledChannel(c, strength_map, strength) for c in colour]
+        first = emission or strength_map
+        info = {"index": textures.add(colour + [1.0], True, wrap_of(first)), UV_MAP_KEY: first.uv_map}
+        out["emissiveTexture"] = transformed(info, "emission", emission, strength_map)
         if strength > 0.0:
             out["emissiveFactor"] = [1.0, 1.0, 1.0]
             out.setdefault("extensions", {})["KHR_materials_emissive_strength"] = {"emissiveStrength": strength}
+
+
+class ScaledChannel(Channel):
+    """A channel of colour (a (Channel, index) pair or a constant) times a strength Channel
+    over `scale`, on the larger of the two images' grids (nearest texels)."""
+
+    def __init__(self, colour, strength, scale):
+        super().__init__(strength.node, strength.output, strength.component, strength.transform, strength.uv_map)
+        self.colour, self.strength, self.scale = colour, strength, max(scale, 1e-12)
+
+    def values(self):
+        s = self.strength.values() / self.scale
+        if isinstance(self.colour, tuple):
+            channel, index = self.colour
+            c = channel.values()[:, :, index]
+        else:
+            c = np.full(s.shape, float(self.colour), np.float32)
+        h, w = max(c.shape, s.shape, key=lambda shape: shape[0] * shape[1])
+        nearest = lambda v: v[np.arange(h) * v.shape[0] // h][:, np.arange(w) * v.shape[1] // w]  # noqa: E731
+        return nearest(c) * nearest(s)
 
 
 def channels_of(channels):
@@ -839,7 +865,8 @@ def gltf_material(material, thickness, textures=None):
             out["extras"]["rt_volume_emission"] = [float(g) for g in glow]
     out["extensions"] = extensions
     if textures is not None and surface is not None:
-        factors = {"base": base, "roughness": roughness, "metallic": metallic, "strength": s.emission_strength}
+        factors = {"base": base, "roughness": roughness, "metallic": metallic, "strength": s.emission_strength,
+                   "emission": [float(c) for c in rgb(socket_value(surface, "Emission Color", (0, 0, 0)))]}
         material_textures(material, surface, out, textures, factors, found)
         layer_textures(out, textures, found)
     return out

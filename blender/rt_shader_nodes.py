@@ -37,7 +37,8 @@ import numpy as np
 LAYER_SOCKETS = ("Coat Weight", "Coat Roughness", "Coat Tint", "Sheen Weight", "Sheen Roughness", "Sheen Tint",
                  "Anisotropic", "Anisotropic Rotation", "Specular Tint", "Diffuse Roughness", "Thin Film Thickness",
                  "Transmission Weight", "Specular IOR Level")
-TEXTURE_SOCKETS = ("Base Color", "Alpha", "Roughness", "Metallic", "Normal", "Emission Color") + LAYER_SOCKETS
+TEXTURE_SOCKETS = ("Base Color", "Alpha", "Roughness", "Metallic", "Normal", "Emission Color",
+                   "Emission Strength") + LAYER_SOCKETS
 
 
 def log(message):

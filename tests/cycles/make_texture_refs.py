@@ -194,6 +194,26 @@ def scene_emissive(scene):
     camera(scene, (0.0, -2.8, 1.6), (0.0, 0.2, 0.4), 45.0)
 
 
+def scene_emission_strength_map(scene):
+    """A grey image (a ramp across u from 0.2 to 1, its colour read as a number) into the
+    Emission Strength of a panel of one warm colour that lights a floor. A ramp, not sharp
+    stripes: glTF's emission texture is sRGB, which rt filters before decoding as Cycles
+    filters sRGB images, while Cycles filters this Non-Color image's linear values (between
+    texels of 1 and 0.25 the two differ by up to 12%)."""
+    uniform_world(scene, (0.0, 0.0, 0.0))
+    m, tree, bsdf = principled("strip_light")
+    bsdf.inputs["Base Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+    bsdf.inputs["Emission Color"].default_value = (1.0, 0.7, 0.4, 1.0)
+    pixels = np.ones((16, 16, 4))
+    pixels[:, :, :3] = np.linspace(0.2, 1.0, 16)[None, :, None]
+    tex = image_node(tree, image("strip_light", pixels, srgb=False), "EXTEND")
+    tree.links.new(tex.outputs["Color"], bsdf.inputs["Emission Strength"])
+    add_object(scene, "screen", bpy.ops.mesh.primitive_plane_add, m, size=1.2, location=(0, 0.6, 0.7),
+               rotation=(math.radians(80), 0, 0))
+    floor(scene, (0.8, 0.8, 0.8), 6.0)
+    camera(scene, (0.0, -2.8, 1.6), (0.0, 0.2, 0.4), 45.0)
+
+
 def scene_uv_sets(scene):
     """A sunlit plane with two uv maps: its base colour (a checker) reads the second map
     through a UV Map node, laid out unlike the first (turned a quarter, scaled, moved),
@@ -455,6 +475,7 @@ SCENES = {
     "anisotropy_map": scene_anisotropy_map,
     "film_roughness_map": scene_film_roughness_map,
     "transmission_level_map": scene_transmission_level_map,
+    "emission_strength_map": scene_emission_strength_map,
 }
 # Scenes exported with --bake, and the size of their baked images.
 BAKE_SIZES = {"baked_noise": 512, "baked_bump": 512}

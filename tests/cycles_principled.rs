@@ -1,5 +1,6 @@
 //! The Principled BSDF, rt against Cycles: rows of five spheres under a uniform white
-//! world (the `_sun` rows: a sun in a black world), one Principled input swept along each row. `tests/cycles/make_principled_refs.py`
+//! world (the `_sun` rows: a sun in a black or dim world), one Principled input swept along
+//! each row. `tests/cycles/make_principled_refs.py`
 //! builds each row in bpy, renders it with Cycles (`tests/cycles/principled_NAME.exr`,
 //! Multiscatter GGX) and exports it with `blender/rt_export.py`
 //! (`tests/cycles/scenes/principled_NAME/`). rt renders the export; each sphere's mean,
@@ -162,6 +163,47 @@ fn coat_weight_matches_cycles() {
 #[test]
 fn coat_roughness_and_tint_match_cycles() {
     check("coat_roughness");
+}
+
+// The rows above under a sun in a dim world (roughness from 0.1: see make_principled_refs.py).
+#[test]
+fn dielectric_roughness_under_a_sun_matches_cycles() {
+    check("dielectric_roughness_sun");
+}
+
+#[test]
+fn metal_roughness_under_a_sun_matches_cycles() {
+    check("metal_roughness_sun");
+}
+
+#[test]
+fn ior_under_a_sun_matches_cycles() {
+    check("ior_sun");
+}
+
+#[test]
+fn ior_level_under_a_sun_matches_cycles() {
+    check("ior_level_sun");
+}
+
+#[test]
+fn specular_tint_under_a_sun_matches_cycles() {
+    check("specular_tint_sun");
+}
+
+#[test]
+fn metal_tint_under_a_sun_matches_cycles() {
+    check("metal_tint_sun");
+}
+
+#[test]
+fn coat_weight_under_a_sun_matches_cycles() {
+    check("coat_weight_sun");
+}
+
+#[test]
+fn coat_roughness_and_tint_under_a_sun_match_cycles() {
+    check("coat_roughness_sun");
 }
 
 /// Cycles dims a Principled's emission by its coat (reflectance and tint); so does rt.

@@ -47,6 +47,10 @@ TERMINATOR = [
     {"Roughness": 0.5, "Coat Weight": 1.0, "Coat Roughness": 0.1},
 ]
 
+# Roughness under a sun from 0.1: a mirror's highlight of a 0.53° sun is a few bright
+# samples, whose noise the standard errors underestimate.
+SUN_STEPS = [0.1, 0.3, 0.5, 0.75, 1.0]
+
 # Per row: the inputs every sphere shares, and per sphere the inputs that change.
 ROWS = {
     "dielectric_roughness": ({"Base Color": (0.8, 0.3, 0.2)}, [{"Roughness": r} for r in STEPS]),
@@ -89,6 +93,28 @@ ROWS = {
     "metal_tint": (
         {"Base Color": (0.9, 0.85, 0.8), "Metallic": 1.0, "Roughness": 0.3},
         [{"Specular Tint": t} for t in TINTS],
+    ),
+    # The rows above, under a sun.
+    "dielectric_roughness_sun": ({"Base Color": (0.8, 0.3, 0.2)}, [{"Roughness": r} for r in SUN_STEPS]),
+    "metal_roughness_sun": ({"Base Color": (0.95, 0.65, 0.3), "Metallic": 1.0},
+                            [{"Roughness": r} for r in SUN_STEPS]),
+    "ior_sun": ({"Base Color": (0.2, 0.4, 0.8), "Roughness": 0.3}, [{"IOR": i} for i in (1.05, 1.3, 1.5, 2.0, 3.0)]),
+    "ior_level_sun": (
+        {"Base Color": (0.2, 0.6, 0.3), "Roughness": 0.2},
+        [{"Specular IOR Level": level} for level in STEPS],
+    ),
+    "specular_tint_sun": ({"Base Color": (0.1, 0.1, 0.1), "Roughness": 0.3}, [{"Specular Tint": t} for t in TINTS]),
+    "metal_tint_sun": (
+        {"Base Color": (0.9, 0.85, 0.8), "Metallic": 1.0, "Roughness": 0.3},
+        [{"Specular Tint": t} for t in TINTS],
+    ),
+    "coat_weight_sun": (
+        {"Base Color": (0.8, 0.2, 0.1), "Roughness": 0.6, "Coat Roughness": 0.1},
+        [{"Coat Weight": w} for w in STEPS],
+    ),
+    "coat_roughness_sun": (
+        {"Base Color": (0.1, 0.3, 0.8), "Roughness": 0.6, "Coat Weight": 1.0, "Coat Tint": (0.9, 0.7, 0.5)},
+        [{"Coat Roughness": r} for r in SUN_STEPS],
     ),
     "sheen_weight": (SHEEN_BASE, [{"Sheen Weight": w} for w in STEPS]),
     "sheen_roughness": (SHEEN_ROUGHNESS_BASE, [{"Sheen Roughness": r} for r in STEPS]),
@@ -149,6 +175,14 @@ SHEEN_SUN = ((math.radians(70), 0.0, math.radians(70)), (0.0, 0.0, 0.0))
 FRONT_SUN = ((math.radians(35), 0.0, math.radians(25)), (0.1, 0.1, 0.1))
 SIDE_SUN = ((math.radians(70), 0.0, math.radians(70)), (0.1, 0.1, 0.1))
 SUNLIT = {
+    "dielectric_roughness_sun": FRONT_SUN,
+    "metal_roughness_sun": FRONT_SUN,
+    "ior_sun": FRONT_SUN,
+    "ior_level_sun": FRONT_SUN,
+    "specular_tint_sun": FRONT_SUN,
+    "metal_tint_sun": FRONT_SUN,
+    "coat_weight_sun": FRONT_SUN,
+    "coat_roughness_sun": FRONT_SUN,
     "terminator_sun": SIDE_SUN,
     "terminator_coat_sun": SIDE_SUN,
     "sheen_weight_sun": SHEEN_SUN,

@@ -30,6 +30,7 @@ const UV1_ANISOTROPY: u32 = 512u;
 const UV1_SPECULAR_TINT: u32 = 1024u;
 const UV1_DIFFUSE_ROUGHNESS: u32 = 2048u;
 const UV1_THIN_FILM: u32 = 4096u;
+const UV1_COAT_NORMAL: u32 = 8192u;
 
 struct TexturePoint {
     uv: vec2f,
@@ -99,6 +100,9 @@ fn has_textures(m: Material) -> bool {
         || m.sheen_tint_texture != NO_TEXTURE || m.anisotropy_texture != NO_TEXTURE
         || m.specular_tint_texture != NO_TEXTURE || m.diffuse_roughness_texture != NO_TEXTURE
         || m.thin_film_texture != NO_TEXTURE;
+    //#endif
+    //#if coat_normal
+    any = any || m.coat_normal_texture != NO_TEXTURE;
     //#endif
     return any;
 }

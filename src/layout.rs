@@ -238,6 +238,13 @@ pub struct GpuMaterial {
     pub thin_film_texture: u32,
     pub thin_film_minimum: f32,
     pub _pad8: u32,
+    /// The coat's own normal map (Principled's Coat Normal; the base's own where the two
+    /// share one), its x and y scaled by `coat_normal_scale`, or `NO_TEXTURE`: the coat then
+    /// takes the interpolated normal, whatever `normal_texture` does to the other lobes.
+    pub coat_normal_texture: u32,
+    pub coat_normal_scale: f32,
+    pub _pad9: u32,
+    pub _pad10: u32,
 }
 
 /// `GpuMaterial::tangent`: Cycles' Tangent node, radial about Blender's Z (the default), X
@@ -524,6 +531,10 @@ impl From<&crate::scene::Material> for GpuMaterial {
             thin_film_texture: slot(l.thin_film_thickness),
             thin_film_minimum: m.textures.thin_film_minimum,
             _pad8: 0,
+            coat_normal_texture: m.textures.coat_normal.unwrap_or(NO_TEXTURE),
+            coat_normal_scale: m.textures.coat_normal_scale,
+            _pad9: 0,
+            _pad10: 0,
         }
     }
 }

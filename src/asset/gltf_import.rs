@@ -25,6 +25,7 @@
 //! | `KHR_materials_iridescence` factor (0), index (1.3), thickness maximum (400) | `thin_film_weight` (the factor; 0: no film), `thin_film_ior`, `thin_film_thickness` (the maximum) |
 //! | `extras.rt_tangent` (`"radial_z"`)                        | `tangent` |
 //! | `KHR_materials_clearcoat` textures, `KHR_materials_specular` colour texture, `extras.rt_*_texture` | `textures.layers` (`gltf_layer_textures`) |
+//! | `KHR_materials_clearcoat.clearcoatNormalTexture` (`scale` 1) | `textures.coat_normal`, `coat_normal_scale` (none: the coat is not normal-mapped) |
 //! | `extras.rt_diffuse_roughness` (0)                         | `diffuse_roughness` (Principled's Diffuse Roughness; glTF has none) |
 //! | `KHR_materials_iridescence` thickness texture, minimum (100), `extras.rt_diffuse_roughness_texture` | `textures.layers` (`gltf_layer_textures`), `textures.thin_film_minimum` |
 //! | `extras.rt_bump_map_correction` (true)                    | `bump_map_correction` (Blender's material setting; glTF has none) |
@@ -78,6 +79,11 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
             .map_err(|e| err(format!("material `{name}`: {e}")))?;
         material.textures.layers = layers;
         material.textures.second_uv_set |= layer_uv_sets;
+        let (coat_normal, coat_normal_scale, coat_normal_uv_set) =
+            super::gltf_layer_textures::coat_normal_texture(&m, &document, &mut loader)
+                .map_err(|e| err(format!("material `{name}`: {e}")))?;
+        (material.textures.coat_normal, material.textures.coat_normal_scale) = (coat_normal, coat_normal_scale);
+        material.textures.second_uv_set |= coat_normal_uv_set;
         material.textures.thin_film_minimum = iridescence(&m).ok().flatten().map_or(0.0, |f| f.minimum);
         if material.textures.metallic_roughness.is_some() {
             // The lobe weights become those of the non-metal part; the texture sets the metal.
@@ -346,6 +352,8 @@ fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<M
         alpha_blend: m.alpha_mode() == AlphaMode::Blend,
         normal,
         normal_scale: normal_info.map_or(1.0, |n| n.scale()),
+        coat_normal: None,
+        coat_normal_scale: 1.0,
         second_uv_set,
         layers: Default::default(),
         thin_film_minimum: 0.0,

@@ -12,7 +12,8 @@
 //!     shading     GpuTriangleShading × m
 //!     materials   CachedMaterial × k      (the asset's materials, in its own order; their
 //!                 layer textures and tangent kind from version 8 on, the film's weight,
-//!                 the bump map correction and two more layer slots from version 9 on)
+//!                 the bump map correction and two more layer slots from version 9 on,
+//!                 the coat's normal map and its scale from version 11 on)
 //!     names       k × (u32 byte length, UTF-8 bytes): the materials' names
 //!     textures    CachedTexture × j      (size, wrap modes, colour space, texel range; its
 //!                 uv transform from version 10 on, references to one image sharing a range)
@@ -54,7 +55,7 @@ use std::path::Path;
 use std::time::Duration;
 
 pub const MAGIC: [u8; 8] = *b"RTBVH\0\0\0";
-pub const FORMAT_VERSION: u32 = 10;
+pub const FORMAT_VERSION: u32 = 11;
 const ALIGN: u64 = 16;
 
 #[repr(C)]

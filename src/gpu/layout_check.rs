@@ -152,7 +152,9 @@ fn host_structs_match_wgsl_layouts() {
                 tangent,
                 diffuse_roughness_texture,
                 thin_film_texture,
-                thin_film_minimum
+                thin_film_minimum,
+                coat_normal_texture,
+                coat_normal_scale
             ]
         ),
         host_layout!("TriangleTangents", GpuTriangleTangents, [t0, t1, t2]),

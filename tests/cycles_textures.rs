@@ -168,6 +168,21 @@ fn anisotropy_and_rotation_maps_match_cycles() {
     check("anisotropy_map");
 }
 
+// A coated plane with a strong normal map on Normal and Coat Normal unlinked: Cycles gives
+// the coat the interpolated normal, not the map's (`svm/closure.h`), and so does rt; its
+// highlight is one smooth spot over the bumped diffuse.
+#[test]
+fn a_coat_over_a_normal_map_keeps_the_interpolated_normal_as_in_cycles() {
+    check("coat_over_normal_map");
+}
+
+// The same plane with a normal map on Coat Normal only (exported as clearcoatNormalTexture):
+// the coat's highlight breaks up over the bumps, the diffuse under it stays flat.
+#[test]
+fn a_normal_map_on_coat_normal_only_bends_the_coat_as_in_cycles() {
+    check("coat_normal_map");
+}
+
 /// What the exporter wrote for the layered lobes' Image Texture nodes: the coat's one image
 /// (R weight, G roughness) as both of KHR_materials_clearcoat's textures with factors of 1,
 /// the anisotropy's in extras with a rotation factor of 0 (the texture's G is added to it).

@@ -359,7 +359,8 @@ def texture_channel(material, node, socket_name, baker=None):
             baked = baker.bake(material, socket)
             if baked is not None:
                 return baked
-        log(f"{material.name}: {socket_name} is linked to {source.type}, which rt cannot follow; using its own value")
+        fallback = "the coat takes the interpolated normal" if socket_name == "Coat Normal" else "using its own value"
+        log(f"{material.name}: {socket_name} is linked to {source.type}, which rt cannot follow; {fallback}")
         return None
     if component is None and output == "Color" and socket.type == "VALUE":
         component = "luma"

@@ -189,7 +189,9 @@ fn a_normal_map_on_coat_normal_only_bends_the_coat_as_in_cycles() {
 #[test]
 fn exporter_writes_layer_textures_with_unit_factors() {
     let gltf = |name: &str| -> serde_json::Value {
-        let file = repo().join(format!("tests/cycles/scenes/texture_{name}/assets/Sphere/Sphere.gltf"));
+        let dir = repo().join(format!("tests/cycles/scenes/texture_{name}/assets"));
+        let asset = std::fs::read_dir(&dir).expect("assets").next().expect("one asset").expect("entry").path();
+        let file = asset.join(format!("{}.gltf", asset.file_name().and_then(|n| n.to_str()).expect("a name")));
         let text = std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
         serde_json::from_str(&text).expect("JSON")
     };
@@ -204,6 +206,14 @@ fn exporter_writes_layer_textures_with_unit_factors() {
     let extras = &aniso["materials"][0]["extras"];
     assert_eq!((extras["rt_anisotropy"].as_f64(), extras["rt_anisotropy_rotation"].as_f64()), (Some(1.0), Some(0.0)));
     assert!(extras["rt_anisotropy_texture"]["index"].is_u64(), "{extras}");
+    // Coat Normal unlinked: no coat map beside the base's; linked alone: the coat's map only.
+    let over = gltf("coat_over_normal_map");
+    assert!(over["materials"][0]["normalTexture"]["index"].is_u64(), "{over}");
+    assert!(over["materials"][0]["extensions"]["KHR_materials_clearcoat"].get("clearcoatNormalTexture").is_none());
+    let own = gltf("coat_normal_map");
+    let clearcoat = &own["materials"][0]["extensions"]["KHR_materials_clearcoat"];
+    assert!(own["materials"][0].get("normalTexture").is_none(), "{own}");
+    assert_eq!(clearcoat["clearcoatNormalTexture"]["scale"].as_f64(), Some(1.0), "{clearcoat}");
     let sheen = gltf("sheen_map");
     let extras = &sheen["materials"][0]["extras"];
     assert_ne!(extras["rt_sheen_texture"]["index"], extras["rt_sheen_tint_texture"]["index"], "{extras}");

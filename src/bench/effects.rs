@@ -204,4 +204,14 @@ mod tests {
         assert!(matches!(&forced[..], [(_, f)] if f.rough_diffuse && *f == all), "{forced:?}");
         assert!(variants(all, RoughTransmission::Ggx).iter().all(|(n, _)| n != "+rough diffuse"));
     }
+
+    #[test]
+    fn coat_normal_is_among_the_forced_effects() {
+        let all = FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx);
+        let without = FeatureSet { coat_normal: false, ..all };
+        let forced: Vec<_> =
+            variants(without, RoughTransmission::Ggx).into_iter().filter(|(n, _)| n == "+coat normal").collect();
+        assert!(matches!(&forced[..], [(_, f)] if f.coat_normal && *f == all), "{forced:?}");
+        assert!(variants(all, RoughTransmission::Ggx).iter().all(|(n, _)| n != "+coat normal"));
+    }
 }

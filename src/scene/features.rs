@@ -359,3 +359,36 @@ impl fmt::Display for FeatureSet {
         f.write_str(&parts.join(" "))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::MaterialTextures;
+
+    fn features_of(material: Material) -> FeatureSet {
+        let scene = crate::scene::default_scene().expect("the built-in scene");
+        let geometry = GeometrySummary { triangles: true, materials_in_use: vec![material], ..Default::default() };
+        FeatureSet::analyse(&scene, &geometry)
+    }
+
+    /// A coat over a normal map it does not share, or with one of its own, pays for the coat's
+    /// frame; a coat on the base's own map, a map without a coat or a bare coat do not.
+    #[test]
+    fn the_coat_normal_is_on_where_the_coats_normal_differs() {
+        let coat = Material { coat: 1.0, ..Default::default() };
+        let base_map = MaterialTextures { normal: Some(0), ..Default::default() };
+        let on = |m: Material| features_of(m).coat_normal;
+        assert!(on(Material { textures: base_map, ..coat.clone() }));
+        assert!(on(Material { textures: MaterialTextures { coat_normal: Some(0), ..Default::default() }, ..coat.clone() }));
+        let shared = MaterialTextures { coat_normal: Some(0), ..base_map };
+        assert!(!on(Material { textures: shared, ..coat.clone() }));
+        assert!(!on(Material { textures: base_map, ..Default::default() }));
+        assert!(!on(coat));
+        let own = features_of(Material {
+            coat: 1.0,
+            textures: MaterialTextures { coat_normal: Some(0), ..Default::default() },
+            ..Default::default()
+        });
+        assert!(own.normal_maps && own.textures && own.coat, "the coat's map runs the normal-map code: {own}");
+    }
+}

@@ -39,7 +39,8 @@ fn coat_normal_exports_as_the_clearcoat_normal_texture() {
 
     let bumped = gltf("bumped");
     assert!(bumped["extensions"]["KHR_materials_clearcoat"].get("clearcoatNormalTexture").is_none(), "{bumped}");
-    let needle = "bumped: Coat Normal is linked to BUMP, which rt cannot follow; the coat takes the interpolated normal";
+    let needle =
+        "bumped: Coat Normal is linked to BUMP, which rt cannot follow; the coat takes the interpolated normal";
     assert!(stderr.contains(needle), "{needle:?} missing from:\n{stderr}");
     let _ = std::fs::remove_dir_all(&out);
 }

@@ -54,14 +54,17 @@ pub(super) fn coat_normal_texture(
     let (index, used) = info(v, WHAT)?;
     let scale = match v.get("scale") {
         None => 1.0,
-        Some(s) => s.as_f64().filter(|s| s.is_finite()).ok_or_else(|| format!("{WHAT}.scale must be a number, got {s}"))?
-            as f32,
+        Some(s) => {
+            s.as_f64().filter(|s| s.is_finite()).ok_or_else(|| format!("{WHAT}.scale must be a number, got {s}"))?
+                as f32
+        }
     };
     let texture = texture(document, index, WHAT)?;
     let bit = uv_set_bit(used.tex_coord, COAT_NORMAL, "clearcoat normal");
     // As the base's normal map: the tangent frame is the uv set's, whatever the transform.
-    let loaded =
-        loader.load(&texture, ColorSpace::Linear, used.transform).map_err(|e| format!("clearcoat normal texture: {e}"))?;
+    let loaded = loader
+        .load(&texture, ColorSpace::Linear, used.transform)
+        .map_err(|e| format!("clearcoat normal texture: {e}"))?;
     Ok((Some(loaded), scale, bit))
 }
 

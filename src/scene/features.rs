@@ -379,7 +379,10 @@ mod tests {
         let base_map = MaterialTextures { normal: Some(0), ..Default::default() };
         let on = |m: Material| features_of(m).coat_normal;
         assert!(on(Material { textures: base_map, ..coat.clone() }));
-        assert!(on(Material { textures: MaterialTextures { coat_normal: Some(0), ..Default::default() }, ..coat.clone() }));
+        assert!(on(Material {
+            textures: MaterialTextures { coat_normal: Some(0), ..Default::default() },
+            ..coat.clone()
+        }));
         let shared = MaterialTextures { coat_normal: Some(0), ..base_map };
         assert!(!on(Material { textures: shared, ..coat.clone() }));
         assert!(!on(Material { textures: base_map, ..Default::default() }));

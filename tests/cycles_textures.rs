@@ -176,6 +176,14 @@ fn a_coat_over_a_normal_map_keeps_the_interpolated_normal_as_in_cycles() {
     check("coat_over_normal_map");
 }
 
+// A smooth sunlit sphere of the same material, 8 × 4 bumps on Normal: the coat takes the
+// sphere's interpolated normal, bent by Bump Map Correction where the view grazes it, and
+// sees no light below the interpolated surface.
+#[test]
+fn a_coat_over_a_normal_mapped_sphere_keeps_its_interpolated_normal_as_in_cycles() {
+    check("coat_over_normal_map_sphere");
+}
+
 // The same plane with a normal map on Coat Normal only (exported as clearcoatNormalTexture):
 // the coat's highlight breaks up over the bumps, the diffuse under it stays flat.
 #[test]

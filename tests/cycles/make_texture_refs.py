@@ -454,6 +454,24 @@ def scene_coat_normal_map(scene):
     tree.links.new(normal_map_node(tree, "coat_bumps", 3).outputs["Normal"], bsdf.inputs["Coat Normal"])
 
 
+def scene_coat_over_normal_map_sphere(scene):
+    """A smooth sphere (96 segments) of `coated_plane`'s material with a normal map of 8 × 4
+    bumps on Normal, Coat Normal unlinked, in sunlight: the coat takes the sphere's
+    interpolated normal, bent by Bump Map Correction where the view grazes it."""
+    uniform_world(scene, (0.2, 0.2, 0.2))
+    sun(scene, (math.radians(35), 0.0, math.radians(25)))
+    tree, bsdf = layered_sphere(scene, "coat_over_normal_map_sphere",
+                                {"Base Color": (0.7, 0.15, 0.1), "Roughness": 0.8, "Coat Weight": 1.0,
+                                 "Coat Roughness": 0.3, "Coat Tint": (0.9, 0.8, 0.6)}, segments=96)
+    from make_normal_map_refs import bump_normals
+
+    tex = image_node(tree, image("sphere_bumps", bump_normals(128, 8, 4, 0.02), srgb=False))
+    node = tree.nodes.new("ShaderNodeNormalMap")
+    node.space = "TANGENT"
+    tree.links.new(tex.outputs["Color"], node.inputs["Color"])
+    tree.links.new(node.outputs["Normal"], bsdf.inputs["Normal"])
+
+
 def blender_gltf(scene, out):
     """The same scene through Blender's own glTF exporter (a .glb with its textures
     embedded), placed by a copy of the exported scene file: for the tests that rt reads
@@ -484,6 +502,7 @@ SCENES = {
     "film_roughness_map": scene_film_roughness_map,
     "coat_over_normal_map": scene_coat_over_normal_map,
     "coat_normal_map": scene_coat_normal_map,
+    "coat_over_normal_map_sphere": scene_coat_over_normal_map_sphere,
 }
 # Scenes exported with --bake, and the size of their baked images.
 BAKE_SIZES = {"baked_noise": 512, "baked_bump": 512}

@@ -326,6 +326,10 @@ class Channel:
         return pixels[:, :, self.component]
 
 
+# The Principled inputs that take a normal: followed through a Normal Map node into its image.
+NORMAL_SOCKETS = ("Normal", "Coat Normal")
+
+
 def texture_channel(material, node, socket_name, baker=None):
     """The image channel linked into `node.inputs[socket_name]`, or None (then the
     socket's own value is used; a link rt cannot follow is warned about, or, with a
@@ -335,7 +339,7 @@ def texture_channel(material, node, socket_name, baker=None):
         return None
     link = socket.links[0]
     source, output, component = link.from_node, link.from_socket.name, None
-    if source.type == "NORMAL_MAP" and socket_name == "Normal":
+    if source.type == "NORMAL_MAP" and socket_name in NORMAL_SOCKETS:
         inner = source.inputs["Color"]
         if not inner.is_linked:
             return None
@@ -356,7 +360,8 @@ def texture_channel(material, node, socket_name, baker=None):
             baked = baker.bake(material, socket)
             if baked is not None:
                 return baked
-        log(f"{material.name}: {socket_name} is linked to {source.type}, which rt cannot follow; using its own value")
+        fallback = "the coat takes the interpolated normal" if socket_name == "Coat Normal" else "using its own value"
+        log(f"{material.name}: {socket_name} is linked to {source.type}, which rt cannot follow; {fallback}")
         return None
     if component is None and output == "Color" and socket.type == "VALUE":
         component = "luma"
@@ -628,21 +633,8 @@ def material_textures(material, surface, out, textures, factors, found):
              metal if metal is not None else factors["metallic"], 1.0], False, wrap_of(rough or metal)),
             UV_MAP_KEY: (rough or metal).uv_map}, "roughness and metallic", rough, metal)
         pbr["roughnessFactor"], pbr["metallicFactor"] = 1.0, 1.0
-    normal = found["Normal"]
-    if normal is not None:
-        node = surface.inputs["Normal"].links[0].from_node
-        mapped = node.type == "NORMAL_MAP" and not isinstance(normal, BakedChannel)
-        # A baked normal has the node's strength in it already, in the default map's tangent space.
-        strength = float(node.inputs["Strength"].default_value) if mapped else 1.0
-        # The Normal Map node's uv map is the one its tangents are of, and the one rt reads the image with.
-        uv_map = (node.uv_map if mapped else "") or normal.uv_map
-        if normal.uv_map not in ("", uv_map):
-            log(f"{material.name}: its normal map's image reads uv map {normal.uv_map!r} but its Normal Map node "
-                f"names {uv_map!r}; rt reads both with {uv_map!r}")
-        # Its tangents are the uv map's, whatever the Mapping node does (as in Cycles).
-        info = {"index": textures.add([(normal, i) for i in range(3)] + [1.0], False, wrap_of(normal)),
-                "scale": strength, UV_MAP_KEY: uv_map}
-        out["normalTexture"] = transformed(info, "normal map", normal)
+    if found["Normal"] is not None:
+        out["normalTexture"] = normal_map_info(material, surface, "Normal", found["Normal"], textures)
     emission, strength_map = found["Emission Color"], found["Emission Strength"]
     if emission is not None or strength_map is not None:
         strength = factors["strength"]
@@ -678,6 +670,41 @@ class ScaledChannel(Channel):
         h, w = max(c.shape, s.shape, key=lambda shape: shape[0] * shape[1])
         nearest = lambda v: v[np.arange(h) * v.shape[0] // h][:, np.arange(w) * v.shape[1] // w]  # noqa: E731
         return nearest(c) * nearest(s)
+def normal_map_info(material, surface, socket_name, normal, textures):
+    """The texture info (with its scale) of the normal map `normal` that feeds socket
+    `socket_name` of `surface`, through a Normal Map node or baked."""
+    node = surface.inputs[socket_name].links[0].from_node
+    mapped = node.type == "NORMAL_MAP" and not isinstance(normal, BakedChannel)
+    # A baked normal has the node's strength in it already, in the default map's tangent space.
+    strength = float(node.inputs["Strength"].default_value) if mapped else 1.0
+    # The Normal Map node's uv map is the one its tangents are of, and the one rt reads the image with.
+    uv_map = (node.uv_map if mapped else "") or normal.uv_map
+    if normal.uv_map not in ("", uv_map):
+        log(f"{material.name}: its {socket_name} map's image reads uv map {normal.uv_map!r} but its Normal Map node "
+            f"names {uv_map!r}; rt reads both with {uv_map!r}")
+    # Its tangents are the uv map's, whatever the Mapping node does (as in Cycles).
+    info = {"index": textures.add([(normal, i) for i in range(3)] + [1.0], False, normal.node.extension),
+            "scale": strength, UV_MAP_KEY: uv_map}
+    return with_uv_transform(info, material.name, f"{socket_name} map", [normal])
+
+
+def coat_normal_texture(material, surface, out, textures, channel):
+    """KHR_materials_clearcoat's clearcoatNormalTexture of a coated material whose Coat Normal
+    is fed by a Normal Map node with an image (`channel`): the base's normal texture where
+    the Normal input's Normal Map node is the same one, else its own. Unlinked, the coat
+    takes the interpolated normal, as in Cycles, and has none."""
+    clearcoat = out["extensions"].get("KHR_materials_clearcoat")
+    node = linked_node(surface.inputs["Coat Normal"])
+    if clearcoat is None or node is None:
+        return
+    if node == linked_node(surface.inputs["Normal"]):
+        # One Normal Map node feeds both: one texture, read the same way.
+        import copy
+
+        if "normalTexture" in out:
+            clearcoat["clearcoatNormalTexture"] = copy.deepcopy(out["normalTexture"])
+    elif channel is not None:
+        clearcoat["clearcoatNormalTexture"] = normal_map_info(material, surface, "Coat Normal", channel, textures)
 
 
 def channels_of(channels):
@@ -773,6 +800,11 @@ def gltf_material(material, thickness, textures=None):
     if textures is not None and surface is not None:
         found = {name: texture_channel(material, surface, name, textures.baker)
                  for name in TEXTURE_SOCKETS if name != FILM_SOCKET}
+        # The coat's own normal map (not baked: a Bump node there is warned about), unless it is
+        # the Normal input's (see `coat_normal_texture`). Only a coat reads it.
+        coated = float(socket_value(surface, "Coat Weight", 0.0)) > 0.0 or found.get("Coat Weight")
+        if coated and linked_node(surface.inputs["Coat Normal"]) != linked_node(surface.inputs["Normal"]):
+            found["Coat Normal"] = texture_channel(material, surface, "Coat Normal")
         film_range = film_thickness_texture(material, surface)
         found[FILM_SOCKET] = film_range[0] if film_range else None
         if found["Diffuse Roughness"]:
@@ -869,6 +901,7 @@ def gltf_material(material, thickness, textures=None):
                    "emission": [float(c) for c in rgb(socket_value(surface, "Emission Color", (0, 0, 0)))]}
         material_textures(material, surface, out, textures, factors, found)
         layer_textures(out, textures, found)
+        coat_normal_texture(material, surface, out, textures, found.get("Coat Normal"))
     return out
 
 
@@ -1056,6 +1089,7 @@ TEXTURE_INFOS = ((("pbrMetallicRoughness",), "baseColorTexture"),
                  ((), "emissiveTexture"), ((), "normalTexture"),
                  (("extensions", "KHR_materials_clearcoat"), "clearcoatTexture"),
                  (("extensions", "KHR_materials_clearcoat"), "clearcoatRoughnessTexture"),
+                 (("extensions", "KHR_materials_clearcoat"), "clearcoatNormalTexture"),
                  (("extensions", "KHR_materials_specular"), "specularColorTexture"),
                  (("extras",), "rt_coat_tint_texture"), (("extras",), "rt_sheen_texture"),
                  (("extras",), "rt_sheen_tint_texture"), (("extras",), "rt_anisotropy_texture"),

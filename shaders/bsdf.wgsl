@@ -23,6 +23,9 @@
 //#if thin_film
 //#include "thin_film.wgsl"
 //#endif
+//#if coat_normal
+//#include "coat_normal.wgsl"
+//#endif
 
 const ALPHA_DELTA: f32 = 1e-3;
 
@@ -234,7 +237,11 @@ fn shading_context(m: Material, n_shading: vec3f, n_geometric: vec3f, wo_world: 
     var below = total;
     //#if coat
     if m.coat > 0.0 {
-        let coat_albedo = coat_setup(&ctx, mu);
+        var coat_mu = mu;
+        //#if coat_normal
+        coat_mu = coat_frame_setup(basis, wo_world, n_geometric);
+        //#endif
+        let coat_albedo = coat_setup(&ctx, coat_mu);
         let rest = total * luminance(ctx.under_coat);
         ctx.coat_probability = select(1.0, coat_albedo / (coat_albedo + rest), coat_albedo + rest > 0.0);
         below = coat_albedo + rest;

@@ -128,17 +128,37 @@ fn coat_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
         return vec3f(0.0);
     }
     let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
-    let folded = f32(folds_below_surface());
+    let folded = f32(coat_folds());
     return (coat_lobe_eval(ctx, wi) + folded * coat_lobe_eval(ctx, mirrored)) * ctx.m.coat * ctx.coat_energy;
 }
 
-fn coat_lobe_eval(ctx: ShadingContext, wi: vec3f) -> f32 {
-    if wi.z <= 0.0 || !glossy_sees(ctx, wi) {
+// Whether the coat's lobe is folded above the surface: as the other lobes are, but never
+// where the coat has a frame of its own (see coat_normal.wgsl; Cycles folds nothing).
+fn coat_folds() -> bool {
+    var folds = folds_below_surface();
+    //#if coat_normal
+    folds = folds && !coat_has_own_frame();
+    //#endif
+    return folds;
+}
+
+// `wi` in the shading frame; the lobe is evaluated in the coat's.
+fn coat_lobe_eval(ctx: ShadingContext, wi_shading: vec3f) -> f32 {
+    var wi = wi_shading;
+    var wo = ctx.wo;
+    //#if coat_normal
+    if !coat_sees(wi_shading) {
         return 0.0;
     }
-    let m = normalize(ctx.wo + wi);
+    wi = to_coat_frame(wi_shading);
+    wo = coat_viewer();
+    //#endif
+    if wi.z <= 0.0 || !glossy_sees(ctx, wi_shading) {
+        return 0.0;
+    }
+    let m = normalize(wo + wi);
     let a = vec2f(ctx.m.coat_alpha);
-    return ggx_d(m, a) * ggx_g2(ctx.wo, wi, a) / (4.0 * ctx.wo.z) * fresnel_dielectric(dot(ctx.wo, m), ctx.m.coat_ior);
+    return ggx_d(m, a) * ggx_g2(wo, wi, a) / (4.0 * wo.z) * fresnel_dielectric(dot(wo, m), ctx.m.coat_ior);
 }
 
 fn coat_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
@@ -146,14 +166,20 @@ fn coat_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
         return 0.0;
     }
     let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
-    return coat_lobe_pdf(ctx, wi) + f32(folds_below_surface()) * coat_lobe_pdf(ctx, mirrored);
+    return coat_lobe_pdf(ctx, wi) + f32(coat_folds()) * coat_lobe_pdf(ctx, mirrored);
 }
 
-fn coat_lobe_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
+fn coat_lobe_pdf(ctx: ShadingContext, wi_shading: vec3f) -> f32 {
+    var wi = wi_shading;
+    var wo = ctx.wo;
+    //#if coat_normal
+    wi = to_coat_frame(wi_shading);
+    wo = coat_viewer();
+    //#endif
     if wi.z <= 0.0 {
         return 0.0;
     }
-    let m = normalize(ctx.wo + wi);
-    return ggx_visible_pdf(ctx.wo, m, vec2f(ctx.m.coat_alpha)) / (4.0 * dot(ctx.wo, m));
+    let m = normalize(wo + wi);
+    return ggx_visible_pdf(wo, m, vec2f(ctx.m.coat_alpha)) / (4.0 * dot(wo, m));
 }
 //#endif

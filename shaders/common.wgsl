@@ -226,6 +226,12 @@ struct Material {
     specular_level_texture: u32,
     // 1: the anisotropy texture is glTF's: RG a direction in the tangent frame, B × anisotropy.
     anisotropy_directions: u32,
+    // The coat's own normal map (Principled's Coat Normal), its x and y scaled by
+    // coat_normal_scale, or NO_TEXTURE: the coat takes the interpolated normal (coat_normal.wgsl).
+    coat_normal_texture: u32,
+    coat_normal_scale: f32,
+    _pad9: u32,
+    _pad10: u32,
 }
 
 // Object-space vertex tangents (xyz) and bitangent signs (w) of one triangle; zero

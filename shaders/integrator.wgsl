@@ -336,6 +336,9 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         let n_unmapped = surface.shading_normal;
         surface.shading_normal = normal_mapped(m, hit, n_unmapped, surface.geometric_normal, -direction, slot_uv(m, UV1_NORMAL, texture_at));
         //#endif
+        //#if coat_normal
+        let coat_normal = coat_normal_mapped(m, hit, n_unmapped, surface.geometric_normal, -direction, slot_uv(m, UV1_COAT_NORMAL, texture_at));
+        //#endif
         m = textured_material(m, texture_at, log2(cone_width / cos_hit));
         //#endif
         //#if emission
@@ -355,6 +358,9 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         let side = select(-1.0, 1.0, entering);
         mapped = m.normal_texture != NO_TEXTURE;
         set_unmapped_normal(side * n_unmapped, mapped, side * diffuse_mapped_normal());
+        //#endif
+        //#if coat_normal
+        set_coat_normal(side * coat_normal, side * n_unmapped);
         //#endif
         //#if smooth_normals
         n_shading = set_smooth_shading(m, hit, n_shading, n_geometric, -direction, mapped);

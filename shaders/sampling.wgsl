@@ -42,8 +42,19 @@ fn sample_smooth_lobe_direction(ctx: ShadingContext, lobe: u32, rng: ptr<functio
     //#endif
     //#if coat
     if lobe == LOBE_COAT {
-        let wi = reflect_local(ctx.wo, ggx_sample_visible_normal(ctx.wo, vec2f(ctx.m.coat_alpha), u));
-        return select(vec3f(0.0), fold_above(wi, ctx.n_geometric), wi.z > 0.0);
+        // In the coat's frame (see coat_normal.wgsl), returned in the shading frame.
+        var wo = ctx.wo;
+        //#if coat_normal
+        wo = coat_viewer();
+        //#endif
+        var wi = reflect_local(wo, ggx_sample_visible_normal(wo, vec2f(ctx.m.coat_alpha), u));
+        if wi.z <= 0.0 {
+            return vec3f(0.0);
+        }
+        //#if coat_normal
+        wi = from_coat_frame(wi);
+        //#endif
+        return select(wi, fold_above(wi, ctx.n_geometric), coat_folds());
     }
     //#endif
     if lobe == LOBE_DIFFUSE {
@@ -119,8 +130,16 @@ fn sample_coat(ctx: ShadingContext, rng: ptr<function, Rng>) -> BsdfSample {
         s.lobe = LOBE_SPECULAR;
         return s;
     }
-    let mirror = fold_above(vec3f(-ctx.wo.xy, ctx.wo.z), ctx.n_geometric);
-    let f = ctx.m.coat * fresnel_dielectric(ctx.wo.z, ctx.m.coat_ior);
+    var wo = ctx.wo;
+    //#if coat_normal
+    wo = coat_viewer();
+    //#endif
+    var mirror = vec3f(-wo.xy, wo.z);
+    //#if coat_normal
+    mirror = from_coat_frame(mirror);
+    //#endif
+    mirror = select(mirror, fold_above(mirror, ctx.n_geometric), coat_folds());
+    let f = ctx.m.coat * fresnel_dielectric(wo.z, ctx.m.coat_ior);
     return BsdfSample(mirror, vec3f(f / ctx.coat_probability) * under_sheen_delta(ctx), 0.0, true, false, LOBE_SPECULAR);
 }
 //#endif

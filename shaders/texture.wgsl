@@ -32,6 +32,7 @@ const UV1_DIFFUSE_ROUGHNESS: u32 = 2048u;
 const UV1_THIN_FILM: u32 = 4096u;
 const UV1_TRANSMISSION: u32 = 8192u;
 const UV1_SPECULAR_LEVEL: u32 = 16384u;
+const UV1_COAT_NORMAL: u32 = 32768u;
 
 struct TexturePoint {
     uv: vec2f,
@@ -102,6 +103,9 @@ fn has_textures(m: Material) -> bool {
         || m.specular_tint_texture != NO_TEXTURE || m.diffuse_roughness_texture != NO_TEXTURE
         || m.thin_film_texture != NO_TEXTURE || m.transmission_texture != NO_TEXTURE
         || m.specular_level_texture != NO_TEXTURE;
+    //#endif
+    //#if coat_normal
+    any = any || m.coat_normal_texture != NO_TEXTURE;
     //#endif
     return any;
 }

@@ -245,6 +245,13 @@ pub struct GpuMaterial {
     pub specular_level_texture: u32,
     /// 1: the anisotropy texture holds glTF's directions (RG) and strengths (B).
     pub anisotropy_directions: u32,
+    /// The coat's own normal map (Principled's Coat Normal; the base's own where the two
+    /// share one), its x and y scaled by `coat_normal_scale`, or `NO_TEXTURE`: the coat then
+    /// takes the interpolated normal, whatever `normal_texture` does to the other lobes.
+    pub coat_normal_texture: u32,
+    pub coat_normal_scale: f32,
+    pub _pad9: u32,
+    pub _pad10: u32,
 }
 
 /// `GpuMaterial::tangent`: Cycles' Tangent node, radial about Blender's Z (the default), X
@@ -535,6 +542,10 @@ impl From<&crate::scene::Material> for GpuMaterial {
             transmission_factor: m.textures.transmission,
             specular_level_texture: slot(l.specular_level),
             anisotropy_directions: u32::from(m.textures.anisotropy_directions),
+            coat_normal_texture: m.textures.coat_normal.unwrap_or(NO_TEXTURE),
+            coat_normal_scale: m.textures.coat_normal_scale,
+            _pad9: 0,
+            _pad10: 0,
         }
     }
 }

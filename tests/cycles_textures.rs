@@ -211,13 +211,38 @@ fn anisotropy_and_rotation_maps_match_cycles() {
     check("anisotropy_map");
 }
 
+// A coated plane with a strong normal map on Normal and Coat Normal unlinked: Cycles gives
+// the coat the interpolated normal, not the map's (`svm/closure.h`), and so does rt; its
+// highlight is one smooth spot over the bumped diffuse.
+#[test]
+fn a_coat_over_a_normal_map_keeps_the_interpolated_normal_as_in_cycles() {
+    check("coat_over_normal_map");
+}
+
+// A smooth sunlit sphere of the same material, 8 × 4 bumps on Normal: the coat takes the
+// sphere's interpolated normal, bent by Bump Map Correction where the view grazes it, and
+// sees no light below the interpolated surface.
+#[test]
+fn a_coat_over_a_normal_mapped_sphere_keeps_its_interpolated_normal_as_in_cycles() {
+    check("coat_over_normal_map_sphere");
+}
+
+// The same plane with a normal map on Coat Normal only (exported as clearcoatNormalTexture):
+// the coat's highlight breaks up over the bumps, the diffuse under it stays flat.
+#[test]
+fn a_normal_map_on_coat_normal_only_bends_the_coat_as_in_cycles() {
+    check("coat_normal_map");
+}
+
 /// What the exporter wrote for the layered lobes' Image Texture nodes: the coat's one image
 /// (R weight, G roughness) as both of KHR_materials_clearcoat's textures with factors of 1,
 /// the anisotropy's in extras with a rotation factor of 0 (the texture's G is added to it).
 #[test]
 fn exporter_writes_layer_textures_with_unit_factors() {
     let gltf = |name: &str| -> serde_json::Value {
-        let file = repo().join(format!("tests/cycles/scenes/texture_{name}/assets/Sphere/Sphere.gltf"));
+        let dir = repo().join(format!("tests/cycles/scenes/texture_{name}/assets"));
+        let asset = std::fs::read_dir(&dir).expect("assets").next().expect("one asset").expect("entry").path();
+        let file = asset.join(format!("{}.gltf", asset.file_name().and_then(|n| n.to_str()).expect("a name")));
         let text = std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
         serde_json::from_str(&text).expect("JSON")
     };
@@ -232,6 +257,14 @@ fn exporter_writes_layer_textures_with_unit_factors() {
     let extras = &aniso["materials"][0]["extras"];
     assert_eq!((extras["rt_anisotropy"].as_f64(), extras["rt_anisotropy_rotation"].as_f64()), (Some(1.0), Some(0.0)));
     assert!(extras["rt_anisotropy_texture"]["index"].is_u64(), "{extras}");
+    // Coat Normal unlinked: no coat map beside the base's; linked alone: the coat's map only.
+    let over = gltf("coat_over_normal_map");
+    assert!(over["materials"][0]["normalTexture"]["index"].is_u64(), "{over}");
+    assert!(over["materials"][0]["extensions"]["KHR_materials_clearcoat"].get("clearcoatNormalTexture").is_none());
+    let own = gltf("coat_normal_map");
+    let clearcoat = &own["materials"][0]["extensions"]["KHR_materials_clearcoat"];
+    assert!(own["materials"][0].get("normalTexture").is_none(), "{own}");
+    assert_eq!(clearcoat["clearcoatNormalTexture"]["scale"].as_f64(), Some(1.0), "{clearcoat}");
     let sheen = gltf("sheen_map");
     let extras = &sheen["materials"][0]["extras"];
     assert_ne!(extras["rt_sheen_texture"]["index"], extras["rt_sheen_tint_texture"]["index"], "{extras}");

@@ -3,7 +3,8 @@
 //! own extras (what `blender/rt_export.py` writes for Principled's coat tint, sheen,
 //! anisotropy and diffuse roughness sockets), `KHR_materials_iridescence`'s thickness
 //! texture, `KHR_materials_transmission`'s and `KHR_materials_specular`'s textures, each in
-//! its colour space; bad ones refused naming the material.
+//! its colour space, and the coat's own normal map (`clearcoatNormalTexture`); bad ones
+//! refused naming the file and the material.
 
 use crate::common;
 
@@ -157,4 +158,50 @@ fn a_layer_texture_that_is_not_there_is_refused() {
     let material = r#"{ "name": "bent", "extras": { "rt_tangent": "radial_q" } }"#;
     let e = load("layer_textures_bad_tangent", material).expect_err("refused");
     assert!(e.contains("material `bent`") && e.contains("extras.rt_tangent is \"radial_q\"; did you mean"), "{e}");
+}
+
+/// The coat's normal map: linear data with its scale and its own uv transform, beside a base
+/// normal map of another scale; the quad gets MikkTSpace tangents for it.
+#[test]
+fn the_clearcoat_normal_texture_is_the_coats_own_normal_map() {
+    let material = r#"{ "name": "paint", "normalTexture": { "index": 1, "scale": 2 },
+      "extensions": { "KHR_materials_clearcoat": { "clearcoatFactor": 1,
+        "clearcoatNormalTexture": { "index": 0, "scale": 0.5,
+          "extensions": { "KHR_texture_transform": { "scale": [4, 4] } } } } } }"#;
+    let mesh = load("layer_textures_coat_normal", material).unwrap_or_else(|e| panic!("{e}"));
+    let m = &mesh.materials[0].1;
+    let t = &m.textures;
+    let coat_normal = t.coat_normal.expect("a coat normal map") as usize;
+    assert_eq!((t.coat_normal_scale, t.normal_scale), (0.5, 2.0));
+    assert!(!mesh.textures[coat_normal].srgb);
+    let [u_row, v_row] = mesh.textures[coat_normal].uv_transform;
+    assert_eq!((u_row[0], v_row[1]), (4.0, 4.0), "its own KHR_texture_transform");
+    assert_ne!(t.coat_normal, t.normal, "another texture, another transform");
+    assert!(m.has_own_coat_normal() && m.reads_tangents());
+    assert!(mesh.tangents.is_some(), "tangents for the normal maps");
+
+    // Alone, without a base normal map: the coat's still needs tangents.
+    let material = r#"{ "name": "coat_only", "extensions": { "KHR_materials_clearcoat": { "clearcoatFactor": 1,
+        "clearcoatNormalTexture": { "index": 0 } } } }"#;
+    let mesh = load("layer_textures_coat_normal_only", material).unwrap_or_else(|e| panic!("{e}"));
+    let m = &mesh.materials[0].1;
+    assert_eq!((m.textures.normal, m.textures.coat_normal_scale), (None, 1.0), "glTF's default scale");
+    assert!(m.has_own_coat_normal() && mesh.tangents.is_some());
+}
+
+#[test]
+fn a_bad_clearcoat_normal_texture_is_refused_naming_the_file() {
+    let material = r#"{ "name": "flakes", "extensions": { "KHR_materials_clearcoat": { "clearcoatFactor": 1,
+        "clearcoatNormalTexture": { "index": 9 } } } }"#;
+    let e = load("layer_textures_coat_normal_missing", material).expect_err("refused");
+    assert!(
+        e.contains("quad.gltf")
+            && e.contains("material `flakes`")
+            && e.contains("KHR_materials_clearcoat.clearcoatNormalTexture: no texture 9 (the file has 2)"),
+        "{e}"
+    );
+    let material = r#"{ "name": "flakes", "extensions": { "KHR_materials_clearcoat": { "clearcoatFactor": 1,
+        "clearcoatNormalTexture": { "index": 0, "scale": "strong" } } } }"#;
+    let e = load("layer_textures_coat_normal_scale", material).expect_err("refused");
+    assert!(e.contains("clearcoatNormalTexture.scale must be a number, got \"strong\""), "{e}");
 }

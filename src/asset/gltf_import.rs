@@ -26,6 +26,7 @@
 //! | `extras.rt_tangent` (`"radial_z"`)                        | `tangent` |
 //! | `KHR_materials_clearcoat` textures, `KHR_materials_specular` colour texture, `KHR_materials_sheen` textures (the roughness's re-encoded) and `_anisotropy`'s (its directions), `extras.rt_*_texture` | `textures.layers` (`gltf_layer_textures`) |
 //! | `KHR_materials_transmission` texture, `KHR_materials_specular` texture | `textures.layers` (R × the transmission factor, A × the level); with a transmission texture the weights are those of the part that does not transmit and `textures.transmission` is the factor |
+//! | `KHR_materials_clearcoat.clearcoatNormalTexture` (`scale` 1) | `textures.coat_normal`, `coat_normal_scale` (none: the coat is not normal-mapped) |
 //! | `extras.rt_diffuse_roughness` (0)                         | `diffuse_roughness` (Principled's Diffuse Roughness; glTF has none) |
 //! | `KHR_materials_iridescence` thickness texture, minimum (100), `extras.rt_diffuse_roughness_texture` | `textures.layers` (`gltf_layer_textures`), `textures.thin_film_minimum` |
 //! | `extras.rt_bump_map_correction` (true)                    | `bump_map_correction` (Blender's material setting; glTF has none) |
@@ -80,6 +81,11 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
         material.textures.layers = layers.textures;
         material.textures.second_uv_set |= layers.second_uv_set;
         material.textures.anisotropy_directions = layers.anisotropy_directions;
+        let (coat_normal, coat_normal_scale, coat_normal_uv_set) =
+            super::gltf_layer_textures::coat_normal_texture(&m, &document, &mut loader)
+                .map_err(|e| err(format!("material `{name}`: {e}")))?;
+        (material.textures.coat_normal, material.textures.coat_normal_scale) = (coat_normal, coat_normal_scale);
+        material.textures.second_uv_set |= coat_normal_uv_set;
         material.textures.thin_film_minimum = iridescence(&m).ok().flatten().map_or(0.0, |f| f.minimum);
         let textured_metal = material.textures.metallic_roughness.is_some();
         let textured_transmission = material.textures.layers.transmission.is_some();
@@ -357,6 +363,8 @@ fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<M
         alpha_blend: m.alpha_mode() == AlphaMode::Blend,
         normal,
         normal_scale: normal_info.map_or(1.0, |n| n.scale()),
+        coat_normal: None,
+        coat_normal_scale: 1.0,
         second_uv_set,
         layers: Default::default(),
         thin_film_minimum: 0.0,

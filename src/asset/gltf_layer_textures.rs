@@ -6,15 +6,16 @@
 //! what glTF has no texture of: `rt_coat_tint_texture` (RGB), `rt_sheen_texture` (R weight,
 //! G roughness), `rt_sheen_tint_texture` (RGB), `rt_anisotropy_texture` (R amount, G
 //! rotation) and `rt_diffuse_roughness_texture` (R), each a texture info as glTF writes one
-//! (`{"index": i, "texCoord": n}`, with its own `KHR_texture_transform`).
+//! (`{"index": i, "texCoord": n}`, with its own `KHR_texture_transform`). Beside them, the
+//! coat's own normal map: `clearcoatNormalTexture` (with its `scale`).
 
 use super::gltf_import::{extra, uv_set_bit};
 use super::gltf_texture_transform::{TextureUse, of_info, of_json};
 use super::gltf_textures::{ColorSpace, Reading, Recoded, TextureLoader};
 use crate::scene::LayerTextures;
 use crate::scene::slots::{
-    ANISOTROPY, COAT, COAT_ROUGHNESS, COAT_TINT, DIFFUSE_ROUGHNESS, SHEEN, SHEEN_TINT, SPECULAR_LEVEL, SPECULAR_TINT,
-    THIN_FILM_THICKNESS, TRANSMISSION,
+    ANISOTROPY, COAT, COAT_NORMAL, COAT_ROUGHNESS, COAT_TINT, DIFFUSE_ROUGHNESS, SHEEN, SHEEN_TINT, SPECULAR_LEVEL,
+    SPECULAR_TINT, THIN_FILM_THICKNESS, TRANSMISSION,
 };
 use gltf::json::Value;
 
@@ -30,6 +31,42 @@ fn info(v: &Value, what: &str) -> Result<(usize, TextureUse), String> {
     };
     let transform = v.get("extensions").and_then(|e| e.get("KHR_texture_transform"));
     Ok((index as usize, of_json(tex_coord as u32, transform, what)?))
+}
+
+/// The texture `index` of `document`, loaded for `what`.
+fn texture<'a>(document: &'a gltf::Document, index: usize, what: &str) -> Result<gltf::Texture<'a>, String> {
+    document
+        .textures()
+        .nth(index)
+        .ok_or_else(|| format!("{what}: no texture {index} (the file has {})", document.textures().len()))
+}
+
+/// The coat's normal map (`KHR_materials_clearcoat.clearcoatNormalTexture`): its texture,
+/// its `scale` (glTF's default 1) and the bit of `second_uv_set` it adds.
+pub(super) fn coat_normal_texture(
+    m: &gltf::Material,
+    document: &gltf::Document,
+    loader: &mut TextureLoader,
+) -> Result<(Option<u32>, f32, u32), String> {
+    const WHAT: &str = "KHR_materials_clearcoat.clearcoatNormalTexture";
+    let Some(v) = m.extension_value("KHR_materials_clearcoat").and_then(|c| c.get("clearcoatNormalTexture")) else {
+        return Ok((None, 1.0, 0));
+    };
+    let (index, used) = info(v, WHAT)?;
+    let scale = match v.get("scale") {
+        None => 1.0,
+        Some(s) => {
+            s.as_f64().filter(|s| s.is_finite()).ok_or_else(|| format!("{WHAT}.scale must be a number, got {s}"))?
+                as f32
+        }
+    };
+    let texture = texture(document, index, WHAT)?;
+    let bit = uv_set_bit(used.tex_coord, COAT_NORMAL, "clearcoat normal");
+    // As the base's normal map: the tangent frame is the uv set's, whatever the transform.
+    let loaded = loader
+        .load(&texture, ColorSpace::Linear, used.transform)
+        .map_err(|e| format!("clearcoat normal texture: {e}"))?;
+    Ok((Some(loaded), scale, bit))
 }
 
 /// The layer textures of a material, and what goes with them.
@@ -50,10 +87,7 @@ pub(super) fn layer_textures(
     let mut second_uv_set = 0;
     let mut load = |raw: Option<(usize, TextureUse)>, reading: Reading, slot: usize, what: &str| {
         let Some((index, used)) = raw else { return Ok(None) };
-        let texture = document
-            .textures()
-            .nth(index)
-            .ok_or_else(|| format!("{what}: no texture {index} (the file has {})", document.textures().len()))?;
+        let texture = texture(document, index, what)?;
         second_uv_set |= uv_set_bit(used.tex_coord, slot, what);
         loader.load_as(&texture, reading, used.transform).map(Some).map_err(|e| format!("{what} texture: {e}"))
     };

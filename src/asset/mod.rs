@@ -19,7 +19,7 @@ pub mod texture;
 pub use source::{AssetFiles, AssetKind};
 pub use texture::{IDENTITY_UV_TRANSFORM, TextureImage, UvTransform, Wrap};
 
-use crate::scene::{Material, UvSet};
+use crate::scene::{Material, UvSet, slots};
 use std::path::{Path, PathBuf};
 
 /// A triangle mesh in object space (metres, Y up), ready for BVH building.
@@ -90,6 +90,19 @@ fn give_normal_maps_tangents(mesh: &mut MeshData, path: &Path) {
             log::warn!(
                 "{}: material {name:?} is anisotropic along its uv map and normal-mapped on the second; \
                  its anisotropy follows the second set's tangents",
+                path.display()
+            );
+        }
+    }
+    for (name, m) in &mesh.materials {
+        let t = &m.textures;
+        if t.normal.is_some()
+            && t.coat_normal.is_some()
+            && t.reads_second_uv_set(slots::NORMAL) != t.reads_second_uv_set(slots::COAT_NORMAL)
+        {
+            log::warn!(
+                "{}: material {name:?} has normal maps on two uv sets (the base's and the coat's); \
+                 the coat's map is oriented by the base's set's tangents",
                 path.display()
             );
         }

@@ -106,6 +106,12 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
     force("normal maps", own.normal_maps, FeatureSet { normal_maps: true, textures: true, ..own });
     force("second uv sets", own.uv_sets, FeatureSet { uv_sets: true, textures: true, ..own });
     force("layer textures", own.layer_textures, FeatureSet { layer_textures: true, textures: true, ..own });
+    // The coat's own normal map: the coat and the normal-map code come with it.
+    force(
+        "coat normal",
+        own.coat_normal,
+        FeatureSet { coat_normal: true, coat: true, normal_maps: true, textures: true, ..own },
+    );
     force("uv tangents", own.uv_tangents, FeatureSet { uv_tangents: true, anisotropy: true, ..own });
     v
 }
@@ -197,5 +203,15 @@ mod tests {
             variants(without, RoughTransmission::Ggx).into_iter().filter(|(n, _)| n == "+rough diffuse").collect();
         assert!(matches!(&forced[..], [(_, f)] if f.rough_diffuse && *f == all), "{forced:?}");
         assert!(variants(all, RoughTransmission::Ggx).iter().all(|(n, _)| n != "+rough diffuse"));
+    }
+
+    #[test]
+    fn coat_normal_is_among_the_forced_effects() {
+        let all = FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx);
+        let without = FeatureSet { coat_normal: false, ..all };
+        let forced: Vec<_> =
+            variants(without, RoughTransmission::Ggx).into_iter().filter(|(n, _)| n == "+coat normal").collect();
+        assert!(matches!(&forced[..], [(_, f)] if f.coat_normal && *f == all), "{forced:?}");
+        assert!(variants(all, RoughTransmission::Ggx).iter().all(|(n, _)| n != "+coat normal"));
     }
 }

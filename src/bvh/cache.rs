@@ -13,8 +13,9 @@
 //!     materials   CachedMaterial × k      (the asset's materials, in its own order; their
 //!                 layer textures and tangent kind from version 8 on, the film's weight,
 //!                 the bump map correction and two more layer slots from version 9 on,
-//!                 transmission and specular-level slots and the transmission factor
-//!                 from version 11 on)
+//!                 the coat's normal map and its scale, transmission and specular-level
+//!                 slots, the transmission factor and the anisotropy texture's kind from
+//!                 version 11 on)
 //!     names       k × (u32 byte length, UTF-8 bytes): the materials' names
 //!     textures    CachedTexture × j      (size, wrap modes, colour space, texel range; its
 //!                 uv transform from version 10 on, references to one image sharing a range)

@@ -70,6 +70,9 @@ pub struct CachedMaterial {
     pub transmission_factor: f32,
     /// 1: `MaterialTextures::anisotropy_directions`.
     pub anisotropy_directions: u32,
+    /// `MaterialTextures::coat_normal` and its scale (from version 11 on).
+    pub coat_normal_texture: u32,
+    pub coat_normal_scale: f32,
 }
 
 const TANGENTS: [Tangent; 4] = [Tangent::RadialZ, Tangent::RadialX, Tangent::RadialY, Tangent::Uv];
@@ -119,6 +122,8 @@ impl From<&Material> for CachedMaterial {
             thin_film_minimum: m.textures.thin_film_minimum,
             transmission_factor: m.textures.transmission,
             anisotropy_directions: u32::from(m.textures.anisotropy_directions),
+            coat_normal_texture: slot(m.textures.coat_normal),
+            coat_normal_scale: m.textures.coat_normal_scale,
         }
     }
 }
@@ -164,6 +169,8 @@ impl From<&CachedMaterial> for Material {
                 alpha_blend: m.alpha_blend != 0,
                 normal: unslot(m.normal_texture),
                 normal_scale: m.normal_scale,
+                coat_normal: unslot(m.coat_normal_texture),
+                coat_normal_scale: m.coat_normal_scale,
                 second_uv_set: m.second_uv_set,
                 layers: LayerTextures::from_slots(m.layer_textures.map(unslot)),
                 thin_film_minimum: m.thin_film_minimum,
@@ -211,6 +218,7 @@ impl CachedMaterial {
             self.base_alpha,
             self.alpha_cutoff,
             self.normal_scale,
+            self.coat_normal_scale,
         ];
         vectors.into_iter().flatten().chain(scalars).all(f32::is_finite)
     }
@@ -225,6 +233,7 @@ impl CachedMaterial {
         [self.base_color_texture, self.metallic_roughness_texture, self.emission_texture, self.normal_texture]
             .into_iter()
             .chain(self.layer_textures)
+            .chain([self.coat_normal_texture])
             .filter(|&t| t != NO_TEXTURE)
     }
 }

@@ -156,7 +156,9 @@ fn host_structs_match_wgsl_layouts() {
                 transmission_texture,
                 transmission_factor,
                 specular_level_texture,
-                anisotropy_directions
+                anisotropy_directions,
+                coat_normal_texture,
+                coat_normal_scale
             ]
         ),
         host_layout!("TriangleTangents", GpuTriangleTangents, [t0, t1, t2]),

@@ -55,6 +55,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("bsdf_eval.wgsl"),
     shader!("bvh_walk.wgsl"),
     shader!("camera.wgsl"),
+    shader!("coat_normal.wgsl"),
     shader!("common.wgsl"),
     shader!("constants.wgsl"),
     shader!("dielectric.wgsl"),

@@ -99,6 +99,9 @@ pub struct FeatureSet {
     pub coating: bool,
     /// Some material has a coat layer (`coat`).
     pub coat: bool,
+    /// Some coat is shaded with a normal of its own (Principled's Coat Normal): a coat over
+    /// a normal map it does not share, or with a normal map of its own.
+    pub coat_normal: bool,
     /// Some material has a sheen layer (`sheen`).
     pub sheen: bool,
     /// Some material's rough lobes are anisotropic (`anisotropy`).
@@ -172,7 +175,7 @@ impl FeatureSet {
             textures: materials_in_use.iter().any(|m| m.textures.any() || m.textures.has_alpha()),
             alpha_mask: materials_in_use.iter().any(|m| m.textures.has_alpha()),
             alpha_blend: materials_in_use.iter().any(|m| m.textures.alpha_blend),
-            normal_maps: materials_in_use.iter().any(|m| m.textures.normal.is_some()),
+            normal_maps: materials_in_use.iter().any(|m| m.textures.has_normal_map()),
             uv_sets: materials_in_use.iter().any(|m| m.textures.uses_second_uv_set()),
             sampling: settings.sampling,
             depth_of_field: scene.camera.depth_of_field.is_some(),
@@ -192,6 +195,7 @@ impl FeatureSet {
                 }),
             coating: materials_in_use.iter().any(|m| m.dielectric_coating().is_some()),
             coat: materials_in_use.iter().any(|m| m.coat > 0.0),
+            coat_normal: materials_in_use.iter().any(Material::has_own_coat_normal),
             sheen: materials_in_use.iter().any(|m| m.sheen > 0.0),
             anisotropy: materials_in_use.iter().any(|m| m.anisotropy > 0.0),
             thin_film: materials_in_use.iter().any(|m| m.has_thin_film()),
@@ -229,6 +233,7 @@ impl FeatureSet {
             multiscatter: true,
             coating: true,
             coat: true,
+            coat_normal: true,
             sheen: true,
             anisotropy: true,
             thin_film: true,
@@ -276,6 +281,7 @@ impl FeatureSet {
             "multiscatter" => self.multiscatter,
             "coating" => self.coating,
             "coat" => self.coat,
+            "coat_normal" => self.coat_normal,
             "sheen" => self.sheen,
             "anisotropy" => self.anisotropy,
             "thin_film" => self.thin_film,
@@ -316,6 +322,7 @@ impl fmt::Display for FeatureSet {
             (self.multiscatter, "multiscatter"),
             (self.coating, "coating"),
             (self.coat, "coat"),
+            (self.coat_normal, "coat-normal"),
             (self.sheen, "sheen"),
             (self.anisotropy, "anisotropy"),
             (self.thin_film, "thin-film"),
@@ -350,5 +357,41 @@ impl fmt::Display for FeatureSet {
         parts.push(format!("sky={}", format!("{:?}", self.sky).to_lowercase()));
         parts.push(format!("sampling={}", format!("{:?}", self.sampling).to_lowercase()));
         f.write_str(&parts.join(" "))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::MaterialTextures;
+
+    fn features_of(material: Material) -> FeatureSet {
+        let scene = crate::scene::default_scene().expect("the built-in scene");
+        let geometry = GeometrySummary { triangles: true, materials_in_use: vec![material], ..Default::default() };
+        FeatureSet::analyse(&scene, &geometry)
+    }
+
+    /// A coat over a normal map it does not share, or with one of its own, pays for the coat's
+    /// frame; a coat on the base's own map, a map without a coat or a bare coat do not.
+    #[test]
+    fn the_coat_normal_is_on_where_the_coats_normal_differs() {
+        let coat = Material { coat: 1.0, ..Default::default() };
+        let base_map = MaterialTextures { normal: Some(0), ..Default::default() };
+        let on = |m: Material| features_of(m).coat_normal;
+        assert!(on(Material { textures: base_map, ..coat.clone() }));
+        assert!(on(Material {
+            textures: MaterialTextures { coat_normal: Some(0), ..Default::default() },
+            ..coat.clone()
+        }));
+        let shared = MaterialTextures { coat_normal: Some(0), ..base_map };
+        assert!(!on(Material { textures: shared, ..coat.clone() }));
+        assert!(!on(Material { textures: base_map, ..Default::default() }));
+        assert!(!on(coat));
+        let own = features_of(Material {
+            coat: 1.0,
+            textures: MaterialTextures { coat_normal: Some(0), ..Default::default() },
+            ..Default::default()
+        });
+        assert!(own.normal_maps && own.textures && own.coat, "the coat's map runs the normal-map code: {own}");
     }
 }

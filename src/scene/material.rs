@@ -126,7 +126,13 @@ impl Material {
 
     /// Its shading reads the mesh's tangents: a normal map, or anisotropy along the uv map.
     pub fn reads_tangents(&self) -> bool {
-        self.textures.normal.is_some() || self.reads_uv_tangents()
+        self.textures.has_normal_map() || self.reads_uv_tangents()
+    }
+
+    /// Its coat is shaded with a normal of its own (Principled's Coat Normal): it has a coat
+    /// and a normal map that the coat does not share (see `MaterialTextures::coat_normal_differs`).
+    pub fn has_own_coat_normal(&self) -> bool {
+        self.coat > 0.0 && self.textures.coat_normal_differs()
     }
 
     /// Its anisotropic lobes follow the uv map's tangents.

@@ -26,10 +26,17 @@ pub struct MaterialTextures {
     pub normal: Option<u32>,
     /// glTF's `normalTexture.scale`: multiplies the map's x and y.
     pub normal_scale: f32,
+    /// The coat's own tangent-space normal map (Principled's Coat Normal, glTF's
+    /// `clearcoatNormalTexture`). Without one the coat takes the interpolated normal, not
+    /// `normal`'s: a normal map on the base does not bend the coat.
+    pub coat_normal: Option<u32>,
+    /// `clearcoatNormalTexture.scale`: multiplies the coat map's x and y.
+    pub coat_normal_scale: f32,
     /// Which texture slots read the mesh's second uv set (glTF `texCoord` 1): bit i for
     /// slot i of [`Self::indices_mut`] (base colour, metallic-roughness, emission, normal,
-    /// then the layers' eleven); the others read the first. A normal map's tangents are of
-    /// the set it reads.
+    /// then the layers' eleven, then the coat's normal); the others read the first. A normal
+    /// map's tangents are of the set it reads (a triangle carries one set: the base map's,
+    /// or without one the coat map's).
     pub second_uv_set: u32,
     /// The layered lobes' textures: [`LayerTextures`].
     pub layers: LayerTextures,
@@ -156,11 +163,12 @@ pub mod slots {
     pub const THIN_FILM_THICKNESS: usize = 12;
     pub const TRANSMISSION: usize = 13;
     pub const SPECULAR_LEVEL: usize = 14;
-    pub const COUNT: usize = 15;
+    pub const COAT_NORMAL: usize = 15;
+    pub const COUNT: usize = 16;
 }
 
-/// How many of the slots are [`LayerTextures`]'s: all but the first four.
-pub const LAYER_COUNT: usize = slots::COUNT - 4;
+/// How many of the slots are [`LayerTextures`]'s: those from the coat's to the specular level's.
+pub const LAYER_COUNT: usize = slots::COAT_NORMAL - slots::COAT;
 
 impl Default for MaterialTextures {
     fn default() -> Self {
@@ -174,6 +182,8 @@ impl Default for MaterialTextures {
             alpha_blend: false,
             normal: None,
             normal_scale: 1.0,
+            coat_normal: None,
+            coat_normal_scale: 1.0,
             second_uv_set: 0,
             layers: LayerTextures::default(),
             thin_film_minimum: 0.0,
@@ -190,6 +200,7 @@ impl MaterialTextures {
             || self.emission.is_some()
             || self.normal.is_some()
             || self.layers.any()
+            || self.coat_normal.is_some()
     }
 
     /// The indices, for offsetting into a scene-wide texture list, in the order of
@@ -213,6 +224,7 @@ impl MaterialTextures {
             &mut l.thin_film_thickness,
             &mut l.transmission,
             &mut l.specular_level,
+            &mut self.coat_normal,
         ]
     }
 
@@ -221,9 +233,24 @@ impl MaterialTextures {
         self.second_uv_set & (1 << slot) != 0
     }
 
-    /// The uv set the normal map reads, and so the tangents it is in.
+    /// The uv set whose tangents the triangles carry: the normal map's, or without one the
+    /// coat's normal map's.
     pub fn normal_uv_set(&self) -> UvSet {
-        if self.reads_second_uv_set(slots::NORMAL) { UvSet::Second } else { UvSet::First }
+        let slot = if self.normal.is_none() && self.coat_normal.is_some() { slots::COAT_NORMAL } else { slots::NORMAL };
+        if self.reads_second_uv_set(slot) { UvSet::Second } else { UvSet::First }
+    }
+
+    /// Some normal map, the base's or the coat's.
+    pub fn has_normal_map(&self) -> bool {
+        self.normal.is_some() || self.coat_normal.is_some()
+    }
+
+    /// The coat's normal is not the base's: the base has a normal map that the coat does not
+    /// share, or the coat has its own (the same map, scale and uv set as the base's is shared).
+    pub fn coat_normal_differs(&self) -> bool {
+        let same_set = self.reads_second_uv_set(slots::NORMAL) == self.reads_second_uv_set(slots::COAT_NORMAL);
+        self.has_normal_map()
+            && !(self.coat_normal == self.normal && self.coat_normal_scale == self.normal_scale && same_set)
     }
 
     /// Some texture reads the second uv set.

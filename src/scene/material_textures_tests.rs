@@ -25,6 +25,7 @@ fn each_slot_names_its_texture() {
         (slots::THIN_FILM_THICKNESS, l.thin_film_thickness),
         (slots::TRANSMISSION, l.transmission),
         (slots::SPECULAR_LEVEL, l.specular_level),
+        (slots::COAT_NORMAL, t.coat_normal),
     ];
     assert_eq!(named.len(), slots::COUNT);
     for (slot, index) in named {
@@ -56,6 +57,7 @@ fn the_shaders_uv_set_bits_are_the_slots() {
         ("THIN_FILM", slots::THIN_FILM_THICKNESS),
         ("TRANSMISSION", slots::TRANSMISSION),
         ("SPECULAR_LEVEL", slots::SPECULAR_LEVEL),
+        ("COAT_NORMAL", slots::COAT_NORMAL),
     ];
     assert_eq!(shader.len(), slots::COUNT);
     for (name, slot) in shader {
@@ -67,4 +69,18 @@ fn the_shaders_uv_set_bits_are_the_slots() {
 fn layer_textures_come_back_from_their_slots() {
     let slots: [Option<u32>; LAYER_COUNT] = std::array::from_fn(|i| Some(i as u32 + 4));
     assert_eq!(LayerTextures::from_slots(slots).slots(), slots);
+}
+
+#[test]
+fn the_coat_normal_differs_unless_it_is_the_base_maps() {
+    let base = MaterialTextures { normal: Some(2), ..Default::default() };
+    assert!(base.coat_normal_differs(), "a base map does not bend the coat");
+    assert!(!MaterialTextures::default().coat_normal_differs());
+    let shared = MaterialTextures { coat_normal: Some(2), ..base };
+    assert!(!shared.coat_normal_differs());
+    assert!(MaterialTextures { coat_normal_scale: 0.5, ..shared }.coat_normal_differs());
+    assert!(MaterialTextures { second_uv_set: 1 << slots::COAT_NORMAL, ..shared }.coat_normal_differs());
+    let own = MaterialTextures { coat_normal: Some(3), ..Default::default() };
+    assert!(own.coat_normal_differs());
+    assert_eq!(MaterialTextures { second_uv_set: 1 << slots::COAT_NORMAL, ..own }.normal_uv_set(), UvSet::Second);
 }

@@ -446,6 +446,69 @@ def scene_transmission_level_map(scene):
     tree.links.new(sep.outputs["Green"], bsdf.inputs["Specular IOR Level"])
 
 
+def coated_plane(scene, name):
+    """A sunlit plane (the sun near the view's mirror direction, as in `scene_uv_sets`) of a
+    red rough diffuse under a tinted glossy coat: the coat's highlight shows which normal it
+    takes. Returns the material's node tree and BSDF."""
+    uniform_world(scene, (0.2, 0.2, 0.2))
+    m, tree, bsdf = principled(name)
+    bsdf.inputs["Base Color"].default_value = (0.7, 0.15, 0.1, 1.0)
+    bsdf.inputs["Roughness"].default_value = 0.8
+    bsdf.inputs["Coat Weight"].default_value = 1.0
+    bsdf.inputs["Coat Roughness"].default_value = 0.3
+    bsdf.inputs["Coat Tint"].default_value = (0.9, 0.8, 0.6, 1.0)
+    add_object(scene, "plane", bpy.ops.mesh.primitive_plane_add, m, size=2.0, rotation=(math.radians(60), 0, 0))
+    sun(scene, (math.radians(48.0), 0.0, math.radians(8.0)))
+    camera(scene, (0.0, -3.0, 1.2), (0.0, 0.0, 0.0), 40.0)
+    return tree, bsdf
+
+
+def normal_map_node(tree, name, bumps):
+    """A Normal Map node (tangent space, strength 1) reading a map of `bumps` × `bumps` bumps."""
+    from make_normal_map_refs import bump_normals
+
+    tex = image_node(tree, image(name, bump_normals(128, bumps, bumps, 0.06), srgb=False))
+    node = tree.nodes.new("ShaderNodeNormalMap")
+    node.space = "TANGENT"
+    node.inputs["Strength"].default_value = 1.0
+    tree.links.new(tex.outputs["Color"], node.inputs["Color"])
+    return node
+
+
+def scene_coat_over_normal_map(scene):
+    """`coated_plane` with a strong normal map (4 × 4 bumps) on Normal and Coat Normal
+    unlinked: the bumps shade the diffuse, the coat keeps the flat plane's normal (Cycles
+    gives it `sd->N`, glTF no normal map without `clearcoatNormalTexture`), so its highlight
+    is one smooth spot."""
+    tree, bsdf = coated_plane(scene, "coat_over_normal_map")
+    tree.links.new(normal_map_node(tree, "base_bumps", 4).outputs["Normal"], bsdf.inputs["Normal"])
+
+
+def scene_coat_normal_map(scene):
+    """`coated_plane` with a normal map (3 × 3 bumps) on Coat Normal only: the coat's highlight
+    breaks up over the bumps, the diffuse under it stays flat."""
+    tree, bsdf = coated_plane(scene, "coat_normal_map")
+    tree.links.new(normal_map_node(tree, "coat_bumps", 3).outputs["Normal"], bsdf.inputs["Coat Normal"])
+
+
+def scene_coat_over_normal_map_sphere(scene):
+    """A smooth sphere (96 segments) of `coated_plane`'s material with a normal map of 8 × 4
+    bumps on Normal, Coat Normal unlinked, in sunlight: the coat takes the sphere's
+    interpolated normal, bent by Bump Map Correction where the view grazes it."""
+    uniform_world(scene, (0.2, 0.2, 0.2))
+    sun(scene, (math.radians(35), 0.0, math.radians(25)))
+    tree, bsdf = layered_sphere(scene, "coat_over_normal_map_sphere",
+                                {"Base Color": (0.7, 0.15, 0.1), "Roughness": 0.8, "Coat Weight": 1.0,
+                                 "Coat Roughness": 0.3, "Coat Tint": (0.9, 0.8, 0.6)}, segments=96)
+    from make_normal_map_refs import bump_normals
+
+    tex = image_node(tree, image("sphere_bumps", bump_normals(128, 8, 4, 0.02), srgb=False))
+    node = tree.nodes.new("ShaderNodeNormalMap")
+    node.space = "TANGENT"
+    tree.links.new(tex.outputs["Color"], node.inputs["Color"])
+    tree.links.new(node.outputs["Normal"], bsdf.inputs["Normal"])
+
+
 def blender_gltf(scene, out):
     """The same scene through Blender's own glTF exporter (a .glb with its textures
     embedded), placed by a copy of the exported scene file: for the tests that rt reads
@@ -476,6 +539,9 @@ SCENES = {
     "film_roughness_map": scene_film_roughness_map,
     "transmission_level_map": scene_transmission_level_map,
     "emission_strength_map": scene_emission_strength_map,
+    "coat_over_normal_map": scene_coat_over_normal_map,
+    "coat_normal_map": scene_coat_normal_map,
+    "coat_over_normal_map_sphere": scene_coat_over_normal_map_sphere,
 }
 # Scenes exported with --bake, and the size of their baked images.
 BAKE_SIZES = {"baked_noise": 512, "baked_bump": 512}

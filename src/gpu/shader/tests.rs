@@ -50,6 +50,8 @@ fn feature_sets() -> Vec<FeatureSet> {
             multiscatter: on(7) != on(1),
             coating: on(5) != on(7),
             coat: on(3) != on(6),
+            // The coat's own normal comes with a coat and the normal maps' code.
+            coat_normal: on(3) != on(6) && on(0) != on(4) && on(7),
             sheen: on(2) != on(5),
             anisotropy: on(2) != on(6),
             thin_film: on(1) != on(6),
@@ -91,6 +93,7 @@ fn plain() -> FeatureSet {
         multiscatter: false,
         coating: false,
         coat: false,
+        coat_normal: false,
         sheen: false,
         anisotropy: false,
         thin_film: false,

@@ -7,8 +7,10 @@
 //! are made by `tests/cycles/make_principled_refs.py` (`terminator_sun`, `terminator_coat_sun`,
 //! `terminator_glass_sun`, `terminator_sheen_sun`, `coarse_no_correction`) and compared as the
 //! other Principled rows are (`cycles_principled::check_row`), the glass row as the rare
-//! paths' (`cycles_rare_paths::check_batched`).
+//! paths' (`cycles_rare_paths::check_batched`). What the exporter cannot carry, the objects'
+//! own Shadow Terminator offsets, is a warning naming the object.
 
+use crate::common;
 use crate::cycles_principled::check_row;
 use crate::cycles_rare_paths::check_batched;
 
@@ -55,4 +57,20 @@ fn coarse_sheened_spheres_at_the_terminator_match_cycles() {
 #[test]
 fn coarse_spheres_without_bump_map_correction_match_cycles() {
     check_row("principled_coarse_no_correction");
+}
+
+/// rt renders every object with Blender's default Shadow Terminator offsets (Geometry 0.1,
+/// Shading 0): the exporter warns of other settings, naming the object.
+#[test]
+fn shadow_terminator_settings_other_than_the_defaults_are_warned_about() {
+    let out = common::empty_temp_dir("shadow-terminator-warnings");
+    let stderr = common::run_bpy_script("shadow_terminator_warnings.py", &out);
+    for needle in [
+        "object lifted: Shadow Terminator Geometry Offset 0.3 is not supported; rendered with 0.1",
+        "object shifted: Shadow Terminator Shading Offset 0.5 is not supported; rendered with 0",
+    ] {
+        assert!(stderr.contains(needle), "{needle:?} missing from:\n{stderr}");
+    }
+    assert!(!stderr.contains("object plain"), "the defaults are warned about:\n{stderr}");
+    assert_eq!(stderr.matches("Shadow Terminator").count(), 2, "{stderr}");
 }

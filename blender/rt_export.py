@@ -1872,6 +1872,21 @@ def scene_toml(scene, export, scene_path, objects):
 # --- the export -------------------------------------------------------------------
 
 
+# Blender's defaults of an object's Shadow Terminator settings (Object > Shading), the ones rt
+# renders every object with.
+SHADOW_TERMINATOR_DEFAULTS = (("shadow_terminator_geometry_offset", "Geometry Offset", 0.1),
+                              ("shadow_terminator_offset", "Shading Offset", 0.0))
+
+
+def warn_shadow_terminator(obj):
+    """Warns, naming the object, of Shadow Terminator settings other than Blender's defaults:
+    rt has no per-object setting and renders every object with the defaults."""
+    for attribute, label, default in SHADOW_TERMINATOR_DEFAULTS:
+        value = getattr(obj.cycles, attribute, default)
+        if abs(value - default) > 1e-6:
+            log(f"object {obj.name}: Shadow Terminator {label} {value:g} is not supported; rendered with {default:g}")
+
+
 def export_scene(scene, out_dir, scene_path=None, only=None, previous=None, bake_size=0):
     """Exports every rendered mesh object of `scene` into `out_dir`, and the scene TOML
     to `scene_path` if given. With `only` (a set of object names) and the `previous`
@@ -1890,6 +1905,7 @@ def export_scene(scene, out_dir, scene_path=None, only=None, previous=None, bake
             export.content.setdefault(folder, previous.content[folder])
             export.images.setdefault(folder, previous.images.get(folder, {}))
             continue
+        warn_shadow_terminator(obj)
         export.add(obj, depsgraph)
     add_instances(export, depsgraph)
     if scene_path:

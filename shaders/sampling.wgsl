@@ -54,16 +54,16 @@ fn sample_smooth_lobe_direction(ctx: ShadingContext, lobe: u32, rng: ptr<functio
         //#if coat_normal
         wi = from_coat_frame(wi);
         //#endif
-        return select(wi, fold_above(wi, ctx.n_geometric), coat_folds());
+        return select(vec3f(0.0), select(wi, fold_above(wi, ctx.n_geometric), coat_folds()), sample_clears_surface(ctx, wi, false));
     }
     //#endif
     if lobe == LOBE_DIFFUSE {
         let wi = tangent_frame(diffuse_axis(ctx)) * sample_cosine_hemisphere(u);
-        return select(vec3f(0.0), fold_above(wi, ctx.n_geometric), dot(diffuse_axis(ctx), wi) > 0.0);
+        return select(vec3f(0.0), fold_above(wi, ctx.n_geometric), dot(diffuse_axis(ctx), wi) > 0.0 && sample_clears_surface(ctx, wi, false));
     }
     //#if glossy
     let wi = reflect_local(ctx.wo, ggx_sample_visible_normal(ctx.wo, ctx.alpha, u));
-    if wi.z <= 0.0 {
+    if wi.z <= 0.0 || !sample_clears_surface(ctx, wi, false) {
         return vec3f(0.0);
     }
     return fold_above(wi, ctx.n_geometric);
@@ -139,6 +139,9 @@ fn sample_coat(ctx: ShadingContext, rng: ptr<function, Rng>) -> BsdfSample {
     mirror = from_coat_frame(mirror);
     //#endif
     mirror = select(mirror, fold_above(mirror, ctx.n_geometric), coat_folds());
+    if !sample_clears_surface(ctx, mirror, false) {
+        return invalid_sample();
+    }
     let f = ctx.m.coat * fresnel_dielectric(wo.z, ctx.m.coat_ior);
     return BsdfSample(mirror, vec3f(f / ctx.coat_probability) * under_sheen_delta(ctx), 0.0, true, false, LOBE_SPECULAR);
 }
@@ -157,6 +160,9 @@ fn under_sheen_delta(ctx: ShadingContext) -> f32 {
 fn sample_delta_lobe(ctx: ShadingContext, lobe: u32, u: f32, rng: ptr<function, Rng>) -> BsdfSample {
     let p = ctx.lobe_probability[lobe];
     let mirror = fold_above(vec3f(-ctx.wo.xy, ctx.wo.z), ctx.n_geometric);
+    if lobe != LOBE_TRANSMISSION && !sample_clears_surface(ctx, mirror, false) {
+        return invalid_sample();
+    }
     if lobe == LOBE_SPECULAR {
         return BsdfSample(mirror, ctx.m.specular * specular_fresnel(ctx, ctx.wo.z) / p, 0.0, true, false, lobe);
     }

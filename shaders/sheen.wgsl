@@ -5,7 +5,10 @@
 // and whose albedo come from Cycles' fit table, read at (cos θ of the viewer, roughness).
 // As in Cycles' Principled BSDF it is the outermost layer: its colour is
 // sheen × tint × albedo, and everything under it (the coat included) keeps
-// 1 − the largest channel of that (`closure_layering_weight`).
+// 1 − the largest channel of that (`closure_layering_weight`). Its normal is the surface's
+// before Bump Map Correction (`diffuse_axis`): Cycles gives the sheen the Normal input (mixed
+// with the coat's), never the glossy lobes' normal that is bent to keep reflections above
+// the surface.
 
 //#include "constants.wgsl"
 //#include "directions.wgsl"
@@ -16,11 +19,14 @@
 const TABLE_SHEEN_LTC: u32 = 13856u;
 const SHEEN_PLANE: u32 = 1024u;
 
-// Reads the layer's transform and albedo for the viewer at cos θ = `mu`; returns the
-// luminance of its albedo (for sampling). A fit without a lobe there (a tiny a at the
-// smoothest roughness) reflects nothing.
-fn sheen_setup(ctx: ptr<function, ShadingContext>, mu: f32) -> f32 {
+// Reads the layer's transform and albedo for the viewer, at cos θ to the sheen's normal;
+// returns the luminance of its albedo (for sampling). A fit without a lobe there (a tiny a
+// at the smoothest roughness) reflects nothing.
+fn sheen_setup(ctx: ptr<function, ShadingContext>) -> f32 {
     let m = (*ctx).m;
+    let n = diffuse_axis(*ctx);
+    let wo = (*ctx).wo;
+    let mu = clamp(dot(n, wo), 1e-6, 1.0);
     let a = table_2d(TABLE_SHEEN_LTC, 32u, 32u, mu, m.sheen_roughness);
     let b = table_2d(TABLE_SHEEN_LTC + SHEEN_PLANE, 32u, 32u, mu, m.sheen_roughness);
     let albedo = sheen_table_albedo(m, mu, a);
@@ -29,9 +35,9 @@ fn sheen_setup(ctx: ptr<function, ShadingContext>, mu: f32) -> f32 {
     }
     (*ctx).sheen_transform = vec2f(a, b);
     // The frame's x axis: the viewer's direction projected on the surface (any one at normal incidence).
-    let side = (*ctx).wo.xy;
+    let side = wo - dot(wo, n) * n;
     let len = length(side);
-    (*ctx).sheen_side = select(vec2f(1.0, 0.0), side / len, len > 1e-7);
+    (*ctx).sheen_side = select(tangent_frame(n)[0], side / len, len > 1e-7);
     let color = m.sheen * m.sheen_tint * albedo;
     (*ctx).sheen_color = color;
     (*ctx).under_sheen = saturate(1.0 - max(max(color.x, color.y), color.z));
@@ -63,18 +69,20 @@ fn has_sheen(ctx: ShadingContext) -> bool {
 
 // The lobe's density at wi (local to the shading frame), which is also its f·cos θi / colour.
 fn sheen_lobe(ctx: ShadingContext, wi: vec3f) -> f32 {
-    if wi.z <= 0.0 {
+    let n = diffuse_axis(ctx);
+    let z = dot(n, wi);
+    if z <= 0.0 {
         return 0.0;
     }
     let t = ctx.sheen_side;
-    let x = dot(t, wi.xy);
-    let y = t.x * wi.y - t.y * wi.x;
+    let x = dot(t, wi);
+    let y = dot(cross(n, t), wi);
     let a = ctx.sheen_transform.x;
     let b = ctx.sheen_transform.y;
-    // |M⁻¹ wi|² with M⁻¹ = [[a, 0, b], [0, a, 0], [0, 0, 1]]; the density is the cosine
-    // lobe's at M⁻¹ wi / |M⁻¹ wi| times the Jacobian a² / |M⁻¹ wi|³.
-    let len2 = (a * x + b * wi.z) * (a * x + b * wi.z) + (a * y) * (a * y) + wi.z * wi.z;
-    return wi.z / PI * (a / len2) * (a / len2);
+    // |M⁻¹ wi|² with M⁻¹ = [[a, 0, b], [0, a, 0], [0, 0, 1]] in the sheen's frame (t, n × t, n);
+    // the density is the cosine lobe's at M⁻¹ wi / |M⁻¹ wi| times the Jacobian a² / |M⁻¹ wi|³.
+    let len2 = (a * x + b * z) * (a * x + b * z) + (a * y) * (a * y) + z * z;
+    return z / PI * (a / len2) * (a / len2);
 }
 
 // f·|cos θi| of the sheen layer (folded like the other reflection lobes).
@@ -100,9 +108,10 @@ fn sheen_sample_direction(ctx: ShadingContext, u: vec2f) -> vec3f {
     let a = ctx.sheen_transform.x;
     let b = ctx.sheen_transform.y;
     let l = normalize(vec3f((c.x - c.z * b) / a, c.y / a, c.z));
+    let n = diffuse_axis(ctx);
     let t = ctx.sheen_side;
-    let wi = vec3f(l.x * t - l.y * vec2f(t.y, -t.x), l.z);
-    if wi.z <= 0.0 {
+    let wi = l.x * t + l.y * cross(n, t) + l.z * n;
+    if dot(n, wi) <= 0.0 || !sample_clears_surface(ctx, wi, false) {
         return vec3f(0.0);
     }
     return fold_above(wi, ctx.n_geometric);

@@ -60,7 +60,7 @@ fn sigmas(
 
 /// rt against Cycles on the row `tests/cycles/scenes/NAME/`: its mean and each sphere
 /// within 4 σ, σ from `BATCHES` renders of `BATCH_SPP` samples.
-fn check_batched(name: &str, reference_spp: f64) {
+pub(crate) fn check_batched(name: &str, reference_spp: f64) {
     let dir = repo().join(format!("tests/cycles/scenes/{name}"));
     let scene = rt::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
     let (w, h) = (scene.render.width, scene.render.height);

@@ -51,6 +51,15 @@ TERMINATOR = [
 # samples, whose noise the standard errors underestimate.
 SUN_STEPS = [0.1, 0.3, 0.5, 0.75, 1.0]
 
+# Glossy lobes whose normals Bump Map Correction bends: sharp and less sharp metal and dielectric, and a coat.
+GLOSSY_TERMINATOR = [
+    {"Metallic": 1.0, "Roughness": 0.05},
+    {"Metallic": 1.0, "Roughness": 0.15},
+    {"Roughness": 0.05},
+    {"Roughness": 0.15},
+    {"Roughness": 0.5, "Coat Weight": 1.0, "Coat Roughness": 0.05},
+]
+
 # Per row: the inputs every sphere shares, and per sphere the inputs that change.
 ROWS = {
     "dielectric_roughness": ({"Base Color": (0.8, 0.3, 0.2)}, [{"Roughness": r} for r in STEPS]),
@@ -158,6 +167,19 @@ ROWS = {
         {"Base Color": (0.8, 0.2, 0.1), "Roughness": 0.6, "Coat Weight": 1.0},
         [{"Coat Roughness": r} for r in (0.2, 0.3, 0.4, 0.5, 0.6)],
     ),
+    # Rough glass, whose silhouettes Cycles shades by the glass's normal, not by the faces'.
+    "terminator_glass_sun": (
+        {"Base Color": (1.0, 1.0, 1.0), "Transmission Weight": 1.0, "IOR": 1.45},
+        [{"Roughness": r} for r in (0.1, 0.2, 0.3, 0.5, 0.8)],
+    ),
+    # The sheen, on the interpolated normal where Bump Map Correction bends the glossy lobes'.
+    "terminator_sheen_sun": (
+        {**SHEEN_BASE, "Sheen Weight": 1.0, "Sheen Tint": (1.0, 0.8, 0.6)},
+        [{"Sheen Roughness": r} for r in (0.1, 0.3, 0.5, 0.7, 1.0)],
+    ),
+    # Glossy lobes on coarse spheres with the material's Bump Map Correction off (see
+    # NO_BUMP_MAP_CORRECTION), under the white world that their silhouettes mirror.
+    "coarse_no_correction": ({"Base Color": (0.8, 0.5, 0.3)}, GLOSSY_TERMINATOR),
 }
 
 # Rows whose Principled BSDF's Tangent input is linked to a Tangent node: "UV_MAP" or a radial axis.
@@ -185,6 +207,8 @@ SUNLIT = {
     "coat_roughness_sun": FRONT_SUN,
     "terminator_sun": SIDE_SUN,
     "terminator_coat_sun": SIDE_SUN,
+    "terminator_glass_sun": SIDE_SUN,
+    "terminator_sheen_sun": SHEEN_SUN,
     "sheen_weight_sun": SHEEN_SUN,
     "sheen_roughness_sun": SHEEN_SUN,
     "anisotropy_sun": FRONT_SUN,
@@ -199,16 +223,20 @@ SUNLIT = {
 }
 
 # Rows of coarse spheres: segments around (and half as many rings), instead of 48.
-COARSE = {"terminator_sun": 12, "terminator_coat_sun": 12}
+COARSE = {name: 12 for name in ("terminator_sun", "terminator_coat_sun", "terminator_glass_sun", "terminator_sheen_sun",
+                                 "coarse_no_correction")}
+
+# Rows whose materials have Bump Map Correction off (Blender's Material > Settings).
+NO_BUMP_MAP_CORRECTION = {"coarse_no_correction"}
 
 # Rows whose sun is wider than the default 0.53°: seen only through glass, which no light
 # sampling reaches, a small sun is found by rare samples whose noise the standard errors
 # underestimate.
-WIDE_SUNS = {"glass_tint_sun": 20.0}
+WIDE_SUNS = {"glass_tint_sun": 20.0, "terminator_glass_sun": 20.0}
 
 # Rows rendered with more samples than the others, by this factor: light through rare paths
 # (the sun through rough glass) leaves a 2048-spp reference's 8x8 blocks 2-3% from converged.
-SPP_FACTOR = {"glass_tint_sun": 8}
+SPP_FACTOR = {"glass_tint_sun": 8, "terminator_glass_sun": 4}
 
 
 def set_input(bsdf, name, value):
@@ -251,6 +279,8 @@ def build(scene, name):
             link_tangent(material.node_tree, material.node_tree.nodes["Principled BSDF"], TANGENT_NODES[name])
         if name in UV_SWAPPED:
             swap_uv(sphere.data)
+        if name in NO_BUMP_MAP_CORRECTION:
+            material.cycles.use_bump_map_correction = False
 
 
 def principled(name, inputs):

@@ -796,22 +796,27 @@ def gltf_material(material, thickness, textures=None):
         # Cycles' Glossy BSDF: GGX without Fresnel, tinted by its colour; glTF has no such lobe
         # (its factors above describe a metal of that colour for other readers).
         out["extras"]["rt_glossy_color"] = [max(c, 0.0) for c in s.glossy]
-    found, film_range = {}, None
+    found, film_range, ior_ranges = {}, None, {}
     if textures is not None and surface is not None:
         found = {name: texture_channel(material, surface, name, textures.baker)
-                 for name in TEXTURE_SOCKETS if name != FILM_SOCKET}
+                 for name in TEXTURE_SOCKETS if name != FILM_SOCKET and name not in IOR_SOCKETS}
         # The coat's own normal map (not baked: a Bump node there is warned about), unless it is
         # the Normal input's (see `coat_normal_texture`). Only a coat reads it.
         coated = float(socket_value(surface, "Coat Weight", 0.0)) > 0.0 or found.get("Coat Weight")
         if coated and linked_node(surface.inputs["Coat Normal"]) != linked_node(surface.inputs["Normal"]):
             found["Coat Normal"] = texture_channel(material, surface, "Coat Normal")
-        film_range = film_thickness_texture(material, surface)
+        film_range = ranged_texture(material, surface, FILM_SOCKET)
         found[FILM_SOCKET] = film_range[0] if film_range else None
+        ior_ranges = {name: ranged_texture(material, surface, name) for name in IOR_SOCKETS}
         if found["Diffuse Roughness"]:
             # The texels are the roughness: its factor is 1.
             out["extras"]["rt_diffuse_roughness"] = 1.0
         if found["Transmission Weight"]:
             transmission = 1.0
+        if ior_ranges["IOR"]:
+            # The texels' 1 is the factor; their 0 the minimum (`ior_texture`).
+            ior = ior_ranges["IOR"][2]
+            extensions["KHR_materials_ior"]["ior"] = ior
         if found["Specular IOR Level"]:
             # The texels are the level (glTF's specular is twice it, at most 1, for other readers).
             extensions["KHR_materials_specular"]["specularFactor"] = 1.0
@@ -831,7 +836,8 @@ def gltf_material(material, thickness, textures=None):
             out["extras"].update({
                 "rt_coat": min(coat, 1.0),
                 "rt_coat_roughness": coat_roughness,
-                "rt_coat_ior": max(float(socket_value(surface, "Coat IOR", 1.5)), 1.0),
+                "rt_coat_ior": max(ior_ranges["Coat IOR"][2] if ior_ranges.get("Coat IOR")
+                                   else float(socket_value(surface, "Coat IOR", 1.5)), 1.0),
                 "rt_coat_tint": [min(max(c, 0.0), 1.0) for c in rgb(colour("Coat Tint"))],
             })
         sheen = float(value("Sheen Weight", 0.0))
@@ -867,7 +873,8 @@ def gltf_material(material, thickness, textures=None):
         if high > 0.0:
             extensions["KHR_materials_iridescence"] = {
                 "iridescenceFactor": 1.0,
-                "iridescenceIor": max(float(socket_value(surface, "Thin Film IOR", 1.33)), 1e-5),
+                "iridescenceIor": max(ior_ranges["Thin Film IOR"][2] if ior_ranges.get("Thin Film IOR")
+                                      else float(socket_value(surface, "Thin Film IOR", 1.33)), 1e-5),
                 "iridescenceThicknessMinimum": low,
                 "iridescenceThicknessMaximum": high,
             }
@@ -901,6 +908,7 @@ def gltf_material(material, thickness, textures=None):
                    "emission": [float(c) for c in rgb(socket_value(surface, "Emission Color", (0, 0, 0)))]}
         material_textures(material, surface, out, textures, factors, found)
         layer_textures(out, textures, found)
+        ior_texture(out, textures, ior_ranges)
         coat_normal_texture(material, surface, out, textures, found.get("Coat Normal"))
     return out
 
@@ -991,15 +999,40 @@ def layer_textures(out, textures, found):
             [0.0, film, 0.0, 1.0], False, film)
 
 
+def ior_texture(out, textures, ranges):
+    """rt's `extras.rt_ior_texture` of the indices fed by images (`ranges`: socket name ->
+    (channel, value at 0, value at 1) or None): one image, R the IOR, G the coat's, B the
+    film's, each read from its minimum (`rt_ior_minimum`, `rt_coat_ior_minimum`,
+    `rt_thin_film_ior_minimum`) at 0 to the material's own index at 1. glTF has no texture
+    of an index. The coat's and the film's count only where the material has them."""
+    extras = out["extras"]
+    present = {"IOR": True, "Coat IOR": "rt_coat" in extras,
+               "Thin Film IOR": "KHR_materials_iridescence" in out["extensions"]}
+    driven = {name: r for name, r in ranges.items() if r and present[name]}
+    if not driven:
+        return
+    first = next(iter(driven.values()))[0]
+    channels = [driven[name][0] if name in driven else 1.0 for name in IOR_SOCKETS] + [1.0]
+    extras["rt_ior_texture"] = with_uv_transform({"index": textures.add(channels, False, first.node.extension),
+                                                  UV_MAP_KEY: first.uv_map}, out["name"], "index",
+                                                 [c for c in channels if isinstance(c, Channel)])
+    keys = {"IOR": "rt_ior_minimum", "Coat IOR": "rt_coat_ior_minimum", "Thin Film IOR": "rt_thin_film_ior_minimum"}
+    for name, (_, low, _) in driven.items():
+        extras[keys[name]] = low
+
+
 FILM_SOCKET = "Thin Film Thickness"
+# The indices, one image's R, G and B (rt's extras.rt_ior_texture), each over its range.
+IOR_SOCKETS = rt_shader_nodes.IOR_SOCKETS
 
 
-def film_thickness_texture(material, surface):
-    """An image into Principled's Thin Film Thickness (nm, so that an image's 0-1 needs a
-    scale): through a Map Range node (linear, float, its bounds unlinked) or a Math node
-    multiplying the image by a constant. Returns (channel, thickness at 0, thickness at 1),
-    or None (a link rt cannot follow is warned about; the socket's own value is used)."""
-    socket = surface.inputs[FILM_SOCKET]
+def ranged_texture(material, surface, socket_name):
+    """An image into a Principled input whose values an image's 0-1 does not reach (Thin
+    Film Thickness in nm, the indices): through a Map Range node (linear, float, its bounds
+    unlinked) or a Math node multiplying the image by a constant. Returns (channel, value at
+    0, value at 1), or None (a link rt cannot follow is warned about; the socket's own value
+    is used)."""
+    socket = surface.inputs[socket_name]
     if not socket.is_linked:
         return None
     node = socket.links[0].from_node
@@ -1015,7 +1048,7 @@ def film_thickness_texture(material, surface):
         channel = texture_channel(material, node, "Value")
         if channel is not None:
             return channel, 0.0, float(node.inputs[1].default_value)
-    log(f"{material.name}: {FILM_SOCKET} is linked to {node.type}; rt follows an image through a Map Range "
+    log(f"{material.name}: {socket_name} is linked to {node.type}; rt follows an image through a Map Range "
         f"or a Math Multiply node only, and uses the socket's own value")
     return None
 
@@ -1096,7 +1129,8 @@ TEXTURE_INFOS = ((("pbrMetallicRoughness",), "baseColorTexture"),
                  (("extras",), "rt_diffuse_roughness_texture"),
                  (("extensions", "KHR_materials_iridescence"), "iridescenceThicknessTexture"),
                  (("extensions", "KHR_materials_transmission"), "transmissionTexture"),
-                 (("extensions", "KHR_materials_specular"), "specularTexture"))
+                 (("extensions", "KHR_materials_specular"), "specularTexture"),
+                 (("extras",), "rt_ior_texture"))
 
 
 def uv_maps_of(mesh):

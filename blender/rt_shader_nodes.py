@@ -37,8 +37,10 @@ import numpy as np
 LAYER_SOCKETS = ("Coat Weight", "Coat Roughness", "Coat Tint", "Sheen Weight", "Sheen Roughness", "Sheen Tint",
                  "Anisotropic", "Anisotropic Rotation", "Specular Tint", "Diffuse Roughness", "Thin Film Thickness",
                  "Transmission Weight", "Specular IOR Level")
+# The indices, fed by an image through a Map Range or Math Multiply node (rt_export's `ranged_texture`).
+IOR_SOCKETS = ("IOR", "Coat IOR", "Thin Film IOR")
 TEXTURE_SOCKETS = ("Base Color", "Alpha", "Roughness", "Metallic", "Normal", "Emission Color",
-                   "Emission Strength") + LAYER_SOCKETS
+                   "Emission Strength") + LAYER_SOCKETS + IOR_SOCKETS
 
 
 def log(message):

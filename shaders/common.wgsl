@@ -232,6 +232,12 @@ struct Material {
     coat_normal_scale: f32,
     _pad9: u32,
     _pad10: u32,
+    // The indices' texture (R the IOR, G the coat's, B the film's), each from its minimum
+    // here at 0 to the material's own at 1.
+    ior_texture: u32,
+    ior_minimum: f32,
+    coat_ior_minimum: f32,
+    thin_film_ior_minimum: f32,
 }
 
 // Object-space vertex tangents (xyz) and bitangent signs (w) of one triangle; zero

@@ -32,7 +32,8 @@ const UV1_DIFFUSE_ROUGHNESS: u32 = 2048u;
 const UV1_THIN_FILM: u32 = 4096u;
 const UV1_TRANSMISSION: u32 = 8192u;
 const UV1_SPECULAR_LEVEL: u32 = 16384u;
-const UV1_COAT_NORMAL: u32 = 32768u;
+const UV1_IOR: u32 = 32768u;
+const UV1_COAT_NORMAL: u32 = 65536u;
 
 struct TexturePoint {
     uv: vec2f,
@@ -102,7 +103,7 @@ fn has_textures(m: Material) -> bool {
         || m.sheen_tint_texture != NO_TEXTURE || m.anisotropy_texture != NO_TEXTURE
         || m.specular_tint_texture != NO_TEXTURE || m.diffuse_roughness_texture != NO_TEXTURE
         || m.thin_film_texture != NO_TEXTURE || m.transmission_texture != NO_TEXTURE
-        || m.specular_level_texture != NO_TEXTURE;
+        || m.specular_level_texture != NO_TEXTURE || m.ior_texture != NO_TEXTURE;
     //#endif
     //#if coat_normal
     any = any || m.coat_normal_texture != NO_TEXTURE;
@@ -338,6 +339,21 @@ fn layer_textured(material: Material, uv: vec2f, second_uv: vec2f) -> Material {
         m.diffuse *= 1.0 - t;
         m.specular *= 1.0 - t;
     }
+    if m.ior_texture != NO_TEXTURE {
+        // Principled's IOR, Coat IOR and Thin Film IOR, each between its value at 0 and the
+        // material's own at 1. The dielectric layer's F0 keeps its IOR Level's scale of the
+        // new index's F0 (before the level's own texture below).
+        let t = layer_texel(m, m.ior_texture, UV1_IOR, uv, second_uv);
+        let f0 = index_f0(m.ior);
+        m.ior = mix(m.ior_minimum, m.ior, t.r);
+        if m.coating_eta > 0.0 && f0 > 0.0 {
+            m.coating_f0 = min(m.coating_f0 / f0 * index_f0(m.ior), 0.9999);
+            let r = sqrt(m.coating_f0);
+            m.coating_eta = (1.0 + r) / (1.0 - r);
+        }
+        m.coat_ior = mix(m.coat_ior_minimum, m.coat_ior, t.g);
+        m.thin_film_ior = mix(m.thin_film_ior_minimum, m.thin_film_ior, t.b);
+    }
     if m.specular_level_texture != NO_TEXTURE && m.coating_eta > 0.0 {
         // Cycles' IOR Level scales the layer's F0 (2 × level × F0 of the IOR), and the
         // layer's index is the one of that F0.
@@ -347,6 +363,12 @@ fn layer_textured(material: Material, uv: vec2f, second_uv: vec2f) -> Material {
         m.coating_eta = (1.0 + r) / (1.0 - r);
     }
     return m;
+}
+
+// Reflectance at normal incidence of an interface of relative index `ior`.
+fn index_f0(ior: f32) -> f32 {
+    let r = (ior - 1.0) / (ior + 1.0);
+    return r * r;
 }
 
 // `layer_textured` at barycentrics (b1, b2) of a triangle: for a light sample (the coat and

@@ -252,6 +252,12 @@ pub struct GpuMaterial {
     pub coat_normal_scale: f32,
     pub _pad9: u32,
     pub _pad10: u32,
+    /// The indices' texture: R the IOR, G the coat's, B the film's, each from its minimum
+    /// at 0 to the material's own at 1.
+    pub ior_texture: u32,
+    pub ior_minimum: f32,
+    pub coat_ior_minimum: f32,
+    pub thin_film_ior_minimum: f32,
 }
 
 /// `GpuMaterial::tangent`: Cycles' Tangent node, radial about Blender's Z (the default), X
@@ -546,6 +552,10 @@ impl From<&crate::scene::Material> for GpuMaterial {
             coat_normal_scale: m.textures.coat_normal_scale,
             _pad9: 0,
             _pad10: 0,
+            ior_texture: slot(l.ior),
+            ior_minimum: m.textures.ior_minimum[0],
+            coat_ior_minimum: m.textures.ior_minimum[1],
+            thin_film_ior_minimum: m.textures.ior_minimum[2],
         }
     }
 }

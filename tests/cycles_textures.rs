@@ -183,6 +183,25 @@ fn a_gltf_anisotropy_texture_renders_as_blender_imports_it() {
     check("gltf_anisotropy");
 }
 
+// One image's R and G through Map Range nodes into the IOR (stripes of 1.1 and 2.5 under the
+// default IOR Level) and the Coat IOR (a ramp from 1.2 to 2.2): rt's `extras.rt_ior_texture`
+// with each index's value at 0 in `rt_ior_minimum` and `rt_coat_ior_minimum`.
+#[test]
+fn ior_and_coat_ior_maps_match_cycles() {
+    check("ior_map");
+    let file = repo().join("tests/cycles/scenes/texture_ior_map/assets/Sphere/Sphere.gltf");
+    let text = std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+    let json: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    let m = &json["materials"][0];
+    assert!(m["extras"]["rt_ior_texture"]["index"].is_u64(), "{m}");
+    let close = |v: &serde_json::Value, x: f64| v.as_f64().is_some_and(|v| (v - x).abs() < 1e-6);
+    assert!(
+        close(&m["extensions"]["KHR_materials_ior"]["ior"], 2.5) && close(&m["extras"]["rt_ior_minimum"], 1.1),
+        "{m}"
+    );
+    assert!(close(&m["extras"]["rt_coat_ior"], 2.2) && close(&m["extras"]["rt_coat_ior_minimum"], 1.2), "{m}");
+}
+
 // A grey checker of sheen weight and colour stripes of sheen tint (sRGB) on a dark sphere
 // in a white world. There rt's blocks are nearly noiseless (cosine-sampled diffuse under a
 // uniform world is exact), so as in tests/cycles_principled.rs a block may also differ by

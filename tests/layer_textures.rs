@@ -150,6 +150,23 @@ fn sheen_and_anisotropy_textures_of_the_extensions_are_read() {
     assert!(m.reads_uv_tangents());
 }
 
+/// The indices' texture (rt's extras): each index from its minimum at 0 to the material's
+/// own at 1; a minimum left out is the material's own (that channel is not driven).
+#[test]
+fn the_indices_texture_and_its_minimums_are_read() {
+    let material = r#"{ "name": "lens",
+      "extensions": { "KHR_materials_ior": { "ior": 2.5 } },
+      "extras": { "rt_coat": 1, "rt_coat_ior": 2.2, "rt_ior_texture": { "index": 0 }, "rt_ior_minimum": 1.1 } }"#;
+    let mesh = load("layer_textures_ior", material).unwrap_or_else(|e| panic!("{e}"));
+    let m = &mesh.materials[0].1;
+    assert!(!mesh.textures[m.textures.layers.ior.expect("a texture") as usize].srgb);
+    assert_eq!((m.ior, m.coat_ior), (2.5, 2.2));
+    assert_eq!(m.textures.ior_minimum, [1.1, 2.2, m.thin_film_ior]);
+    let material = r#"{ "name": "bad", "extras": { "rt_ior_texture": { "index": 0 }, "rt_ior_minimum": "low" } }"#;
+    let e = load("layer_textures_ior_bad", material).expect_err("refused");
+    assert!(e.contains("material `bad`") && e.contains("rt_ior_minimum"), "{e}");
+}
+
 #[test]
 fn a_layer_texture_that_is_not_there_is_refused() {
     let material = r#"{ "name": "missing", "extras": { "rt_sheen": 1, "rt_sheen_texture": { "index": 7 } } }"#;

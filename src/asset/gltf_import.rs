@@ -27,6 +27,7 @@
 //! | `KHR_materials_clearcoat` textures, `KHR_materials_specular` colour texture, `KHR_materials_sheen` textures (the roughness's re-encoded) and `_anisotropy`'s (its directions), `extras.rt_*_texture` | `textures.layers` (`gltf_layer_textures`) |
 //! | `KHR_materials_transmission` texture, `KHR_materials_specular` texture | `textures.layers` (R × the transmission factor, A × the level); with a transmission texture the weights are those of the part that does not transmit and `textures.transmission` is the factor |
 //! | `KHR_materials_clearcoat.clearcoatNormalTexture` (`scale` 1) | `textures.coat_normal`, `coat_normal_scale` (none: the coat is not normal-mapped) |
+//! | `extras.rt_ior_texture`, `rt_ior_minimum`, `rt_coat_ior_minimum`, `rt_thin_film_ior_minimum` (absent; the material's own indices) | `textures.layers.ior` (R the IOR, G the coat's, B the film's from the minimum at 0 to the factor at 1), `textures.ior_minimum` |
 //! | `extras.rt_diffuse_roughness` (0)                         | `diffuse_roughness` (Principled's Diffuse Roughness; glTF has none) |
 //! | `KHR_materials_iridescence` thickness texture, minimum (100), `extras.rt_diffuse_roughness_texture` | `textures.layers` (`gltf_layer_textures`), `textures.thin_film_minimum` |
 //! | `extras.rt_bump_map_correction` (true)                    | `bump_map_correction` (Blender's material setting; glTF has none) |
@@ -102,6 +103,18 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
                 )
                 .map_err(|e| err(format!("material `{name}`: {e}")))?
             };
+        }
+        // A channel of the indices' texture that an export leaves undriven has the material's own index.
+        if material.textures.layers.ior.is_some() {
+            let mut minimum = [material.ior, material.coat_ior, material.thin_film_ior];
+            for (i, key) in
+                ["rt_ior_minimum", "rt_coat_ior_minimum", "rt_thin_film_ior_minimum"].into_iter().enumerate()
+            {
+                if let Some(v) = extra::<f32>(m.extras(), key).map_err(|e| err(format!("material `{name}`: {e}")))? {
+                    minimum[i] = v;
+                }
+            }
+            material.textures.ior_minimum = minimum;
         }
         mesh.materials.push((name, material));
     }
@@ -370,6 +383,7 @@ fn material_textures(m: &gltf::Material, loader: &mut TextureLoader) -> Result<M
         thin_film_minimum: 0.0,
         transmission: 0.0,
         anisotropy_directions: false,
+        ior_minimum: [1.5, 1.5, 1.33],
     })
 }
 

@@ -5,7 +5,8 @@
 //! the thickness from the extension's minimum to its maximum), and rt's own extras for
 //! what glTF has no texture of: `rt_coat_tint_texture` (RGB), `rt_sheen_texture` (R weight,
 //! G roughness), `rt_sheen_tint_texture` (RGB), `rt_anisotropy_texture` (R amount, G
-//! rotation) and `rt_diffuse_roughness_texture` (R), each a texture info as glTF writes one
+//! rotation), `rt_diffuse_roughness_texture` (R) and `rt_ior_texture` (R the IOR, G the
+//! coat's, B the film's), each a texture info as glTF writes one
 //! (`{"index": i, "texCoord": n}`, with its own `KHR_texture_transform`). Beside them, the
 //! coat's own normal map: `clearcoatNormalTexture` (with its `scale`).
 
@@ -14,8 +15,8 @@ use super::gltf_texture_transform::{TextureUse, of_info, of_json};
 use super::gltf_textures::{ColorSpace, Reading, Recoded, TextureLoader};
 use crate::scene::LayerTextures;
 use crate::scene::slots::{
-    ANISOTROPY, COAT, COAT_NORMAL, COAT_ROUGHNESS, COAT_TINT, DIFFUSE_ROUGHNESS, SHEEN, SHEEN_TINT, SPECULAR_LEVEL,
-    SPECULAR_TINT, THIN_FILM_THICKNESS, TRANSMISSION,
+    ANISOTROPY, COAT, COAT_NORMAL, COAT_ROUGHNESS, COAT_TINT, DIFFUSE_ROUGHNESS, IOR, SHEEN, SHEEN_TINT,
+    SPECULAR_LEVEL, SPECULAR_TINT, THIN_FILM_THICKNESS, TRANSMISSION,
 };
 use gltf::json::Value;
 
@@ -158,6 +159,7 @@ pub(super) fn layer_textures(
         thin_film_thickness: load(film_thickness, linear, THIN_FILM_THICKNESS, "iridescence thickness")?,
         transmission: load(transmission, linear, TRANSMISSION, "transmission")?,
         specular_level: load(specular_level, linear, SPECULAR_LEVEL, "specular")?,
+        ior: load(from_extras("rt_ior_texture")?, linear, IOR, "ior")?,
     };
     Ok(Layers { textures: layers, second_uv_set, anisotropy_directions })
 }

@@ -14,8 +14,8 @@
 //!                 layer textures and tangent kind from version 8 on, the film's weight,
 //!                 the bump map correction and two more layer slots from version 9 on,
 //!                 the coat's normal map and its scale, transmission and specular-level
-//!                 slots, the transmission factor and the anisotropy texture's kind from
-//!                 version 11 on)
+//!                 slots, the indices' slot and its minimums, the transmission factor
+//!                 and the anisotropy texture's kind from version 11 on)
 //!     names       k × (u32 byte length, UTF-8 bytes): the materials' names
 //!     textures    CachedTexture × j      (size, wrap modes, colour space, texel range; its
 //!                 uv transform from version 10 on, references to one image sharing a range)

@@ -73,6 +73,8 @@ pub struct CachedMaterial {
     /// `MaterialTextures::coat_normal` and its scale (from version 11 on).
     pub coat_normal_texture: u32,
     pub coat_normal_scale: f32,
+    /// `MaterialTextures::ior_minimum`.
+    pub ior_minimum: [f32; 3],
 }
 
 const TANGENTS: [Tangent; 4] = [Tangent::RadialZ, Tangent::RadialX, Tangent::RadialY, Tangent::Uv];
@@ -124,6 +126,7 @@ impl From<&Material> for CachedMaterial {
             anisotropy_directions: u32::from(m.textures.anisotropy_directions),
             coat_normal_texture: slot(m.textures.coat_normal),
             coat_normal_scale: m.textures.coat_normal_scale,
+            ior_minimum: m.textures.ior_minimum,
         }
     }
 }
@@ -171,6 +174,7 @@ impl From<&CachedMaterial> for Material {
                 normal_scale: m.normal_scale,
                 coat_normal: unslot(m.coat_normal_texture),
                 coat_normal_scale: m.coat_normal_scale,
+                ior_minimum: m.ior_minimum,
                 second_uv_set: m.second_uv_set,
                 layers: LayerTextures::from_slots(m.layer_textures.map(unslot)),
                 thin_film_minimum: m.thin_film_minimum,
@@ -191,6 +195,7 @@ impl CachedMaterial {
             self.specular_tint,
             self.coat_tint,
             self.sheen_tint,
+            self.ior_minimum,
         ];
         let scalars = [
             self.diffuse,

@@ -158,7 +158,11 @@ fn host_structs_match_wgsl_layouts() {
                 specular_level_texture,
                 anisotropy_directions,
                 coat_normal_texture,
-                coat_normal_scale
+                coat_normal_scale,
+                ior_texture,
+                ior_minimum,
+                coat_ior_minimum,
+                thin_film_ior_minimum
             ]
         ),
         host_layout!("TriangleTangents", GpuTriangleTangents, [t0, t1, t2]),

@@ -34,7 +34,7 @@ pub struct MaterialTextures {
     pub coat_normal_scale: f32,
     /// Which texture slots read the mesh's second uv set (glTF `texCoord` 1): bit i for
     /// slot i of [`Self::indices_mut`] (base colour, metallic-roughness, emission, normal,
-    /// then the layers' eleven, then the coat's normal); the others read the first. A normal
+    /// then the layers' twelve, then the coat's normal); the others read the first. A normal
     /// map's tangents are of the set it reads (a triangle carries one set: the base map's,
     /// or without one the coat map's).
     pub second_uv_set: u32,
@@ -51,10 +51,14 @@ pub struct MaterialTextures {
     /// tangent frame that turns the rotation, B × `anisotropy` (else rt's: R × `anisotropy`,
     /// G + the rotation).
     pub anisotropy_directions: bool,
+    /// The IOR, the coat's and the film's where `layers.ior` reads 0 (rt's
+    /// `extras.rt_ior_minimum`, `rt_coat_ior_minimum`, `rt_thin_film_ior_minimum`; a
+    /// channel the texture does not drive has the material's own).
+    pub ior_minimum: [f32; 3],
 }
 
 /// Textures of the coat, sheen, anisotropy, specular tint, diffuse roughness, thin film
-/// thickness, transmission and specular IOR level (Principled's sockets of those names),
+/// thickness, transmission, specular IOR level and the indices (Principled's sockets of those names),
 /// each an index into the asset's textures. Factors multiply the texels, as glTF's do (the
 /// film's thickness is a range instead).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -83,6 +87,10 @@ pub struct LayerTextures {
     pub transmission: Option<u32>,
     /// A × `specular_ior_level` (glTF's `specularTexture`, whose alpha is its factor's).
     pub specular_level: Option<u32>,
+    /// The indices: R the IOR, G the coat's, B the film's, each from its
+    /// `MaterialTextures::ior_minimum` at 0 to the material's own at 1 (rt's
+    /// `extras.rt_ior_texture`).
+    pub ior: Option<u32>,
 }
 
 impl LayerTextures {
@@ -104,6 +112,7 @@ impl LayerTextures {
             self.thin_film_thickness,
             self.transmission,
             self.specular_level,
+            self.ior,
         ]
     }
 
@@ -121,6 +130,7 @@ impl LayerTextures {
             thin_film_thickness,
             transmission,
             specular_level,
+            ior,
         ] = slots;
         Self {
             coat,
@@ -134,6 +144,7 @@ impl LayerTextures {
             thin_film_thickness,
             transmission,
             specular_level,
+            ior,
         }
     }
 }
@@ -163,8 +174,9 @@ pub mod slots {
     pub const THIN_FILM_THICKNESS: usize = 12;
     pub const TRANSMISSION: usize = 13;
     pub const SPECULAR_LEVEL: usize = 14;
-    pub const COAT_NORMAL: usize = 15;
-    pub const COUNT: usize = 16;
+    pub const IOR: usize = 15;
+    pub const COAT_NORMAL: usize = 16;
+    pub const COUNT: usize = 17;
 }
 
 /// How many of the slots are [`LayerTextures`]'s: those from the coat's to the specular level's.
@@ -189,6 +201,7 @@ impl Default for MaterialTextures {
             thin_film_minimum: 0.0,
             transmission: 0.0,
             anisotropy_directions: false,
+            ior_minimum: [1.5, 1.5, 1.33],
         }
     }
 }
@@ -224,6 +237,7 @@ impl MaterialTextures {
             &mut l.thin_film_thickness,
             &mut l.transmission,
             &mut l.specular_level,
+            &mut l.ior,
             &mut self.coat_normal,
         ]
     }

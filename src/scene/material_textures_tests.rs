@@ -25,6 +25,7 @@ fn each_slot_names_its_texture() {
         (slots::THIN_FILM_THICKNESS, l.thin_film_thickness),
         (slots::TRANSMISSION, l.transmission),
         (slots::SPECULAR_LEVEL, l.specular_level),
+        (slots::IOR, l.ior),
         (slots::COAT_NORMAL, t.coat_normal),
     ];
     assert_eq!(named.len(), slots::COUNT);
@@ -57,6 +58,7 @@ fn the_shaders_uv_set_bits_are_the_slots() {
         ("THIN_FILM", slots::THIN_FILM_THICKNESS),
         ("TRANSMISSION", slots::TRANSMISSION),
         ("SPECULAR_LEVEL", slots::SPECULAR_LEVEL),
+        ("IOR", slots::IOR),
         ("COAT_NORMAL", slots::COAT_NORMAL),
     ];
     assert_eq!(shader.len(), slots::COUNT);

@@ -509,6 +509,32 @@ def scene_coat_over_normal_map_sphere(scene):
     tree.links.new(node.outputs["Normal"], bsdf.inputs["Normal"])
 
 
+def mapped_range(tree, source, low, high):
+    """A Map Range node taking `source` (0-1) to `low`-`high`."""
+    node = tree.nodes.new("ShaderNodeMapRange")
+    node.inputs["To Min"].default_value = low
+    node.inputs["To Max"].default_value = high
+    tree.links.new(source, node.inputs["Value"])
+    return node.outputs["Result"]
+
+
+def scene_ior_map(scene):
+    """One image drives the IOR and the Coat IOR (through Separate Color and Map Range
+    nodes): R stripes across u of IOR 1.1 and 2.5 under the default IOR Level, G a ramp
+    along v of the coat's index from 1.2 at the bottom to 2.2 at the top, on a sunlit dark
+    red sphere with a rough coat."""
+    uniform_world(scene, (0.3, 0.3, 0.3))
+    sun(scene, (math.radians(35), 0.0, math.radians(25)))
+    tree, bsdf = layered_sphere(scene, "ior_map", {"Base Color": (0.3, 0.08, 0.05), "Roughness": 0.25,
+                                                   "Specular IOR Level": 0.5, "Coat Weight": 1.0,
+                                                   "Coat Roughness": 0.3}, segments=192)
+    pixels = stripes(32, 8, (1.0, 0.0, 0.0), (0.0, 0.0, 0.0))
+    pixels[:, :, 1] = np.linspace(1.0, 0.0, 32)[:, None]
+    sep = separated(tree, image_node(tree, image("indices", pixels, srgb=False)))
+    tree.links.new(mapped_range(tree, sep.outputs["Red"], 1.1, 2.5), bsdf.inputs["IOR"])
+    tree.links.new(mapped_range(tree, sep.outputs["Green"], 1.2, 2.2), bsdf.inputs["Coat IOR"])
+
+
 def blender_gltf(scene, out):
     """The same scene through Blender's own glTF exporter (a .glb with its textures
     embedded), placed by a copy of the exported scene file: for the tests that rt reads
@@ -539,6 +565,7 @@ SCENES = {
     "film_roughness_map": scene_film_roughness_map,
     "transmission_level_map": scene_transmission_level_map,
     "emission_strength_map": scene_emission_strength_map,
+    "ior_map": scene_ior_map,
     "coat_over_normal_map": scene_coat_over_normal_map,
     "coat_normal_map": scene_coat_normal_map,
     "coat_over_normal_map_sphere": scene_coat_over_normal_map_sphere,

@@ -38,7 +38,8 @@ fn unmappable_nodes_warn_naming_material_and_node() {
         "glossy_glass: 'Both' (ShaderNodeMixShader): rt cannot mix a glossy and a glass surface: using the glass one",
         "skin_mat: 'Skin' (ShaderNodeBsdfPrincipled): Subsurface Weight 0.5 is rendered as the diffuse base",
         "leaf_mat: 'Leaf' (ShaderNodeBsdfTranslucent): rt has no diffuse transmission",
-        "lens_mat: Lens.IOR is linked to an image, which rt reads for no such input; using its own value",
+        "lens_mat: IOR is linked to TEX_IMAGE; rt follows an image through a Map Range or a Math Multiply node only",
+        "lens_mat: Lens.Subsurface Weight is linked to an image, which rt reads for no such input; using its own value",
     ] {
         assert!(stderr.contains(needle), "{needle:?} missing from:\n{stderr}");
     }

@@ -76,11 +76,13 @@ def half_empty(tree):
 
 
 def image_ior(tree):
-    """An image into the IOR, which rt reads no texture for."""
+    """An image straight into the IOR, whose values (0-1) need a Map Range node to be an index."""
     p = node(tree, "ShaderNodeBsdfPrincipled", "Lens")
     img = tree.nodes.new("ShaderNodeTexImage")
     img.image = bpy.data.images.new("ior_map", 4, 4)
     tree.links.new(img.outputs["Color"], p.inputs["IOR"])
+    # And into the Subsurface Weight, which rt reads no texture of (its subsurface is the diffuse base).
+    tree.links.new(img.outputs["Alpha"], p.inputs["Subsurface Weight"])
     return p
 
 

@@ -12,7 +12,7 @@
 
 use super::gltf_import::{extra, uv_set_bit};
 use super::gltf_texture_transform::{TextureUse, of_info, of_json};
-use super::gltf_textures::{ColorSpace, Reading, Recoded, TextureLoader};
+use super::gltf_textures::{ColorSpace, Reading, TextureLoader};
 use crate::scene::LayerTextures;
 use crate::scene::slots::{
     ANISOTROPY, COAT, COAT_NORMAL, COAT_ROUGHNESS, COAT_TINT, DIFFUSE_ROUGHNESS, IOR, SHEEN, SHEEN_TINT,
@@ -108,30 +108,22 @@ pub(super) fn layer_textures(
     let from_extension = |name: &str, key: &str| -> Result<Option<(usize, TextureUse)>, String> {
         m.extension_value(name).and_then(|e| e.get(key)).map(|v| info(v, &format!("{name}.{key}"))).transpose()
     };
-    let or_extension = |own: Option<(usize, TextureUse)>, name: &str, key: &str, recoded| {
-        Ok::<_, String>(match own {
-            Some(own) => Some((own, None)),
-            None => from_extension(name, key)?.map(|found| (found, recoded)),
+    // The texture, and whether it is the extension's.
+    let own_or_extension = |own: &str, name: &str, key: &str| -> Result<(Option<(usize, TextureUse)>, bool), String> {
+        Ok(match from_extras(own)? {
+            Some(own) => (Some(own), false),
+            None => (from_extension(name, key)?, true),
         })
     };
-    let sheen = or_extension(
-        from_extras("rt_sheen_texture")?,
-        "KHR_materials_sheen",
-        "sheenRoughnessTexture",
-        Some(Recoded::SheenRoughness),
-    )?;
-    let sheen_tint =
-        or_extension(from_extras("rt_sheen_tint_texture")?, "KHR_materials_sheen", "sheenColorTexture", None)?;
+    let (sheen, sheen_of_gltf) = own_or_extension("rt_sheen_texture", "KHR_materials_sheen", "sheenRoughnessTexture")?;
+    let (sheen_tint, _) = own_or_extension("rt_sheen_tint_texture", "KHR_materials_sheen", "sheenColorTexture")?;
     // glTF's anisotropy texture holds directions, which the shader turns into rotations
     // after filtering, as Blender's import of it does (a filtered rotation would turn the
     // wrong way between texels: 3.6% off Cycles on a block at a stripe's edge).
-    let anisotropy =
-        or_extension(from_extras("rt_anisotropy_texture")?, "KHR_materials_anisotropy", "anisotropyTexture", None)?;
-    let anisotropy_directions = from_extras("rt_anisotropy_texture")?.is_none() && anisotropy.is_some();
-    let sheen_reading = match sheen {
-        Some((_, Some(recoded))) => Reading::Recoded(recoded),
-        _ => linear,
-    };
+    let (anisotropy, anisotropy_of_gltf) =
+        own_or_extension("rt_anisotropy_texture", "KHR_materials_anisotropy", "anisotropyTexture")?;
+    let anisotropy_directions = anisotropy_of_gltf && anisotropy.is_some();
+    let sheen_reading = if sheen_of_gltf { Reading::SheenRoughness } else { linear };
     let film_thickness = m
         .extension_value("KHR_materials_iridescence")
         .and_then(|f| f.get("iridescenceThicknessTexture"))
@@ -146,9 +138,9 @@ pub(super) fn layer_textures(
             "clearcoat roughness",
         )?,
         coat_tint: load(from_extras("rt_coat_tint_texture")?, srgb, COAT_TINT, "coat tint")?,
-        sheen: load(sheen.map(|s| s.0), sheen_reading, SHEEN, "sheen")?,
-        sheen_tint: load(sheen_tint.map(|s| s.0), srgb, SHEEN_TINT, "sheen tint")?,
-        anisotropy: load(anisotropy.map(|a| a.0), linear, ANISOTROPY, "anisotropy")?,
+        sheen: load(sheen, sheen_reading, SHEEN, "sheen")?,
+        sheen_tint: load(sheen_tint, srgb, SHEEN_TINT, "sheen tint")?,
+        anisotropy: load(anisotropy, linear, ANISOTROPY, "anisotropy")?,
         specular_tint: load(specular_color, srgb, SPECULAR_TINT, "specular colour")?,
         diffuse_roughness: load(
             from_extras("rt_diffuse_roughness_texture")?,

@@ -16,28 +16,14 @@ pub enum ColorSpace {
     Linear,
 }
 
-/// A glTF texture whose channels mean something else than the rt slot it fills reads:
-/// re-encoded at import into that slot's channels (linear data).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Recoded {
-    /// `KHR_materials_sheen.sheenRoughnessTexture` (A) as rt's sheen texture: R the
-    /// weight (1), G the roughness.
-    SheenRoughness,
-}
-
-impl Recoded {
-    fn texel(self, [_, _, _, a]: [u8; 4]) -> [u8; 4] {
-        match self {
-            Self::SheenRoughness => [255, a, 0, 255],
-        }
-    }
-}
-
-/// How a texture's texels are read: in a colour space, or re-encoded.
+/// How a texture's texels are read: in a colour space, or re-encoded at import into the
+/// channels of the rt slot it fills (linear data).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Reading {
     As(ColorSpace),
-    Recoded(Recoded),
+    /// `KHR_materials_sheen.sheenRoughnessTexture` (A) as rt's sheen texture: R the
+    /// weight (1), G the roughness.
+    SheenRoughness,
 }
 
 pub struct TextureLoader<'a> {
@@ -89,10 +75,10 @@ impl<'a> TextureLoader<'a> {
             None => {
                 let (what, bytes) = self.image_bytes(&image)?;
                 let (width, height, mut rgba) = decode(&bytes, &what)?;
-                if let Reading::Recoded(recoded) = reading {
+                if reading == Reading::SheenRoughness {
                     for texel in rgba.chunks_exact_mut(4) {
-                        let new = recoded.texel([texel[0], texel[1], texel[2], texel[3]]);
-                        texel.copy_from_slice(&new);
+                        let roughness = texel[3];
+                        texel.copy_from_slice(&[255, roughness, 0, 255]);
                     }
                 }
                 self.decoded.insert(key, self.textures.len() as u32);

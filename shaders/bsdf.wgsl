@@ -11,6 +11,7 @@
 
 //#include "common.wgsl"
 //#include "directions.wgsl"
+//#include "reflectance.wgsl"
 //#if microfacet_tables
 //#include "principled.wgsl"
 //#endif
@@ -109,11 +110,6 @@ fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
     return 0.5 * (r_parallel * r_parallel + r_perpendicular * r_perpendicular);
 }
 
-// Reflectance of a dielectric of relative index `eta` at normal incidence (Cycles' `F0_from_ior`).
-fn fresnel_dielectric_f0(eta: f32) -> f32 {
-    let r = (eta - 1.0) / (eta + 1.0);
-    return r * r;
-}
 
 // Fresnel reflectance of the `reflection` lobe's conductor, per channel: the
 // exact Fresnel of a non-absorbing interface whose reflectance at normal

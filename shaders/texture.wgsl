@@ -11,6 +11,7 @@
 //#include "hit.wgsl"
 //#include "transform.wgsl"
 //#include "rng.wgsl"
+//#include "reflectance.wgsl"
 
 const TEXTURE_SRGB: u32 = 1u;
 const WRAP_REPEAT: u32 = 0u;
@@ -344,12 +345,11 @@ fn layer_textured(material: Material, uv: vec2f, second_uv: vec2f) -> Material {
         // material's own at 1. The dielectric layer's F0 keeps its IOR Level's scale of the
         // new index's F0 (before the level's own texture below).
         let t = layer_texel(m, m.ior_texture, UV1_IOR, uv, second_uv);
-        let f0 = index_f0(m.ior);
+        let f0 = fresnel_dielectric_f0(m.ior);
         m.ior = mix(m.ior_minimum, m.ior, t.r);
         if m.coating_eta > 0.0 && f0 > 0.0 {
-            m.coating_f0 = min(m.coating_f0 / f0 * index_f0(m.ior), 0.9999);
-            let r = sqrt(m.coating_f0);
-            m.coating_eta = (1.0 + r) / (1.0 - r);
+            m.coating_f0 = min(m.coating_f0 / f0 * fresnel_dielectric_f0(m.ior), 0.9999);
+            m.coating_eta = ior_from_f0(m.coating_f0);
         }
         m.coat_ior = mix(m.coat_ior_minimum, m.coat_ior, t.g);
         m.thin_film_ior = mix(m.thin_film_ior_minimum, m.thin_film_ior, t.b);
@@ -359,16 +359,9 @@ fn layer_textured(material: Material, uv: vec2f, second_uv: vec2f) -> Material {
         // layer's index is the one of that F0.
         let level = layer_texel(m, m.specular_level_texture, UV1_SPECULAR_LEVEL, uv, second_uv).a;
         m.coating_f0 = min(m.coating_f0 * level, 0.9999);
-        let r = sqrt(m.coating_f0);
-        m.coating_eta = (1.0 + r) / (1.0 - r);
+        m.coating_eta = ior_from_f0(m.coating_f0);
     }
     return m;
-}
-
-// Reflectance at normal incidence of an interface of relative index `ior`.
-fn index_f0(ior: f32) -> f32 {
-    let r = (ior - 1.0) / (ior + 1.0);
-    return r * r;
 }
 
 // `layer_textured` at barycentrics (b1, b2) of a triangle: for a light sample (the coat and

@@ -70,6 +70,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("microfacet_tables.wgsl"),
     shader!("principled.wgsl"),
     shader!("ray.wgsl"),
+    shader!("reflectance.wgsl"),
     shader!("rng.wgsl"),
     shader!("sample_lanes.wgsl"),
     shader!("sampling.wgsl"),

@@ -23,13 +23,30 @@ fn check(name: &str) {
 
 /// Scene file `toml` of the export of `name` against Cycles' render of `name`.
 fn check_scene(name: &str, toml: &str) {
+    compared(name, toml).check(&format!("texture_{name} ({toml})"), "Cycles");
+}
+
+/// [`check`] for a scene whose content rt reconstructs within `fraction` rather than
+/// exactly (see `Comparison::check_within`).
+fn check_within(name: &str, fraction: f64) {
+    compared(name, "scene.toml").check_within(&format!("texture_{name}"), "Cycles", fraction);
+}
+
+fn compared(name: &str, toml: &str) -> reference::Comparison {
     let dir = repo().join(format!("tests/cycles/scenes/texture_{name}"));
     let scene = rt::scene::load(&dir.join(toml)).unwrap_or_else(|e| panic!("{e}"));
     let (w, h) = (scene.render.width, scene.render.height);
     let ours = render(scene, w, h, SPP, MAX_BOUNCES);
     let file = repo().join(format!("tests/cycles/texture_{name}.exr"));
     reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4))
-        .check(&format!("texture_{name} ({toml})"), "Cycles");
+}
+
+/// The first material of the exported sphere of `name`, as the exporter wrote it.
+fn exported_sphere_material(name: &str) -> serde_json::Value {
+    let file = repo().join(format!("tests/cycles/scenes/texture_{name}/assets/Sphere/Sphere.gltf"));
+    let text = std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+    let json: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    json["materials"][0].clone()
 }
 
 #[test]
@@ -62,16 +79,7 @@ fn alpha_masked_leaf_and_its_shadow_match_cycles() {
 // both: measured, 0.11% on the worst block (10.7 σ). Blocks may be 0.5% off.
 #[test]
 fn emission_strength_map_matches_cycles() {
-    let dir = repo().join("tests/cycles/scenes/texture_emission_strength_map");
-    let scene = rt::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
-    let (w, h) = (scene.render.width, scene.render.height);
-    let ours = render(scene, w, h, SPP, MAX_BOUNCES);
-    let file = repo().join("tests/cycles/texture_emission_strength_map.exr");
-    reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4)).check_within(
-        "texture_emission_strength_map",
-        "Cycles",
-        0.005,
-    );
+    check_within("emission_strength_map", 0.005);
 }
 
 #[test]
@@ -118,16 +126,7 @@ fn blenders_gltf_export_of_a_mapping_node_per_texture_matches_cycles() {
 // not the bake's resolution). Blocks may be 0.5% off, the mean 0.1%.
 #[test]
 fn a_baked_procedural_texture_matches_cycles_procedural_original() {
-    let dir = repo().join("tests/cycles/scenes/texture_baked_noise");
-    let scene = rt::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
-    let (w, h) = (scene.render.width, scene.render.height);
-    let ours = render(scene, w, h, SPP, MAX_BOUNCES);
-    let file = repo().join("tests/cycles/texture_baked_noise.exr");
-    reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4)).check_within(
-        "texture_baked_noise",
-        "Cycles",
-        0.005,
-    );
+    check_within("baked_noise", 0.005);
 }
 
 // One image through Separate Color: R the coat's weight (stripes of 1 and 0), G its
@@ -143,10 +142,7 @@ fn coat_weight_and_roughness_maps_match_cycles() {
 #[test]
 fn diffuse_roughness_and_film_thickness_maps_match_cycles() {
     check("film_roughness_map");
-    let file = repo().join("tests/cycles/scenes/texture_film_roughness_map/assets/Sphere/Sphere.gltf");
-    let text = std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
-    let json: serde_json::Value = serde_json::from_str(&text).expect("JSON");
-    let m = &json["materials"][0];
+    let m = &exported_sphere_material("film_roughness_map");
     let film = &m["extensions"]["KHR_materials_iridescence"];
     assert_eq!(
         (film["iridescenceThicknessMinimum"].as_f64(), film["iridescenceThicknessMaximum"].as_f64()),
@@ -164,10 +160,7 @@ fn diffuse_roughness_and_film_thickness_maps_match_cycles() {
 #[test]
 fn transmission_and_ior_level_maps_match_cycles() {
     check("transmission_level_map");
-    let file = repo().join("tests/cycles/scenes/texture_transmission_level_map/assets/Sphere/Sphere.gltf");
-    let text = std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
-    let json: serde_json::Value = serde_json::from_str(&text).expect("JSON");
-    let m = &json["materials"][0];
+    let m = &exported_sphere_material("transmission_level_map");
     let transmission = &m["extensions"]["KHR_materials_transmission"];
     assert_eq!(transmission["transmissionFactor"].as_f64(), Some(1.0), "{m}");
     assert!(transmission["transmissionTexture"]["index"].is_u64(), "{m}");
@@ -189,10 +182,7 @@ fn a_gltf_anisotropy_texture_renders_as_blender_imports_it() {
 #[test]
 fn ior_and_coat_ior_maps_match_cycles() {
     check("ior_map");
-    let file = repo().join("tests/cycles/scenes/texture_ior_map/assets/Sphere/Sphere.gltf");
-    let text = std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
-    let json: serde_json::Value = serde_json::from_str(&text).expect("JSON");
-    let m = &json["materials"][0];
+    let m = &exported_sphere_material("ior_map");
     assert!(m["extras"]["rt_ior_texture"]["index"].is_u64(), "{m}");
     let close = |v: &serde_json::Value, x: f64| v.as_f64().is_some_and(|v| (v - x).abs() < 1e-6);
     assert!(
@@ -208,16 +198,7 @@ fn ior_and_coat_ior_maps_match_cycles() {
 // the 0.1% to which rt's sheen table reproduces Cycles' (measured: 0.06%).
 #[test]
 fn sheen_weight_and_tint_maps_match_cycles() {
-    let dir = repo().join("tests/cycles/scenes/texture_sheen_map");
-    let scene = rt::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
-    let (w, h) = (scene.render.width, scene.render.height);
-    let ours = render(scene, w, h, SPP, MAX_BOUNCES);
-    let file = repo().join("tests/cycles/texture_sheen_map.exr");
-    reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4)).check_within(
-        "texture_sheen_map",
-        "Cycles",
-        0.001,
-    );
+    check_within("sheen_map", 0.001);
 }
 
 // One image through Separate Color: R the anisotropy (bands of 1 and 0.3), G its
@@ -294,16 +275,7 @@ fn exporter_writes_layer_textures_with_unit_factors() {
 // normal map, against Cycles' render of the procedural bump itself; bounds as above.
 #[test]
 fn a_baked_procedural_bump_matches_cycles_procedural_original() {
-    let dir = repo().join("tests/cycles/scenes/texture_baked_bump");
-    let scene = rt::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
-    let (w, h) = (scene.render.width, scene.render.height);
-    let ours = render(scene, w, h, SPP, MAX_BOUNCES);
-    let file = repo().join("tests/cycles/texture_baked_bump.exr");
-    reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4)).check_within(
-        "texture_baked_bump",
-        "Cycles",
-        0.005,
-    );
+    check_within("baked_bump", 0.005);
 }
 
 #[test]

@@ -183,35 +183,29 @@ mod tests {
     use super::*;
     use crate::scene::{Sampling, SkyFeature};
 
-    /// A scene without a thin film is timed with it forced on too; one with a film is not.
+    /// A scene without the effect (`all` with it turned off) is timed with it forced on too,
+    /// as variant `name` (the whole set again); one with it is not.
+    fn forced_once(name: &str, off: impl Fn(FeatureSet) -> FeatureSet) {
+        let all = FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx);
+        let forced: Vec<_> =
+            variants(off(all), RoughTransmission::Ggx).into_iter().filter(|(n, _)| n == name).collect();
+        assert!(matches!(&forced[..], [(_, f)] if *f == all), "{name}: {forced:?}");
+        assert!(variants(all, RoughTransmission::Ggx).iter().all(|(n, _)| n != name), "{name}");
+    }
+
     #[test]
     fn thin_film_is_among_the_forced_effects() {
-        let all = FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx);
-        let without = FeatureSet { thin_film: false, ..all };
-        let forced: Vec<_> =
-            variants(without, RoughTransmission::Ggx).into_iter().filter(|(n, _)| n == "+thin film").collect();
-        assert!(matches!(&forced[..], [(_, f)] if f.thin_film && *f == all), "{forced:?}");
-        assert!(variants(all, RoughTransmission::Ggx).iter().all(|(n, _)| n != "+thin film"));
+        forced_once("+thin film", |f| FeatureSet { thin_film: false, ..f });
     }
 
     /// Likewise the rough (Oren-Nayar) diffuse.
     #[test]
     fn rough_diffuse_is_among_the_forced_effects() {
-        let all = FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx);
-        let without = FeatureSet { rough_diffuse: false, ..all };
-        let forced: Vec<_> =
-            variants(without, RoughTransmission::Ggx).into_iter().filter(|(n, _)| n == "+rough diffuse").collect();
-        assert!(matches!(&forced[..], [(_, f)] if f.rough_diffuse && *f == all), "{forced:?}");
-        assert!(variants(all, RoughTransmission::Ggx).iter().all(|(n, _)| n != "+rough diffuse"));
+        forced_once("+rough diffuse", |f| FeatureSet { rough_diffuse: false, ..f });
     }
 
     #[test]
     fn coat_normal_is_among_the_forced_effects() {
-        let all = FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx);
-        let without = FeatureSet { coat_normal: false, ..all };
-        let forced: Vec<_> =
-            variants(without, RoughTransmission::Ggx).into_iter().filter(|(n, _)| n == "+coat normal").collect();
-        assert!(matches!(&forced[..], [(_, f)] if f.coat_normal && *f == all), "{forced:?}");
-        assert!(variants(all, RoughTransmission::Ggx).iter().all(|(n, _)| n != "+coat normal"));
+        forced_once("+coat normal", |f| FeatureSet { coat_normal: false, ..f });
     }
 }

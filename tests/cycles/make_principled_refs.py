@@ -62,28 +62,34 @@ GLOSSY_TERMINATOR = [
     {"Roughness": 0.5, "Coat Weight": 1.0, "Coat Roughness": 0.05},
 ]
 
+# Inputs that a row under the white world and its row under a sun share.
+DIELECTRIC = {"Base Color": (0.8, 0.3, 0.2)}
+METAL = {"Base Color": (0.95, 0.65, 0.3), "Metallic": 1.0}
+IOR_ROW = ({"Base Color": (0.2, 0.4, 0.8), "Roughness": 0.3}, [{"IOR": i} for i in (1.05, 1.3, 1.5, 2.0, 3.0)])
+SPECULAR_TINT_ROW = ({"Base Color": (0.1, 0.1, 0.1), "Roughness": 0.3}, [{"Specular Tint": t} for t in TINTS])
+METAL_TINT_ROW = ({"Base Color": (0.9, 0.85, 0.8), "Metallic": 1.0, "Roughness": 0.3},
+                  [{"Specular Tint": t} for t in TINTS])
+COATED = {"Base Color": (0.1, 0.3, 0.8), "Roughness": 0.6, "Coat Weight": 1.0, "Coat Tint": (0.9, 0.7, 0.5)}
+
 # Per row: the inputs every sphere shares, and per sphere the inputs that change.
 ROWS = {
-    "dielectric_roughness": ({"Base Color": (0.8, 0.3, 0.2)}, [{"Roughness": r} for r in STEPS]),
-    "metal_roughness": ({"Base Color": (0.95, 0.65, 0.3), "Metallic": 1.0}, [{"Roughness": r} for r in STEPS]),
+    "dielectric_roughness": (DIELECTRIC, [{"Roughness": r} for r in STEPS]),
+    "metal_roughness": (METAL, [{"Roughness": r} for r in STEPS]),
     "glass_roughness": (
         {"Base Color": (0.9, 0.95, 1.0), "Transmission Weight": 1.0, "IOR": 1.45},
         [{"Roughness": r} for r in STEPS],
     ),
-    "ior": ({"Base Color": (0.2, 0.4, 0.8), "Roughness": 0.3}, [{"IOR": i} for i in (1.05, 1.3, 1.5, 2.0, 3.0)]),
+    "ior": IOR_ROW,
     "ior_level": (
         {"Base Color": (0.2, 0.6, 0.3), "Roughness": 0.2},
         [{"Specular IOR Level": level} for level in STEPS],
     ),
-    "specular_tint": ({"Base Color": (0.1, 0.1, 0.1), "Roughness": 0.3}, [{"Specular Tint": t} for t in TINTS]),
+    "specular_tint": SPECULAR_TINT_ROW,
     "coat_weight": (
         {"Base Color": (0.8, 0.2, 0.1), "Roughness": 0.6, "Coat Roughness": 0.1},
         [{"Coat Weight": w} for w in STEPS],
     ),
-    "coat_roughness": (
-        {"Base Color": (0.1, 0.3, 0.8), "Roughness": 0.6, "Coat Weight": 1.0, "Coat Tint": (0.9, 0.7, 0.5)},
-        [{"Coat Roughness": r} for r in STEPS],
-    ),
+    "coat_roughness": (COATED, [{"Coat Roughness": r} for r in STEPS]),
     # Emission under the coat, which dims it by its reflectance and its tint (Cycles' svm/closure.h).
     "emission_coat": (
         {"Base Color": (0.05, 0.05, 0.05), "Roughness": 0.5, "Emission Color": (1.0, 0.6, 0.3),
@@ -101,32 +107,22 @@ ROWS = {
         {"Base Color": (0.8, 0.4, 0.3), "Roughness": 0.5, "Subsurface Weight": 1.0},
         [{"Subsurface Scale": r} for r in (0.001, 0.003, 0.01, 0.03, 0.1)],
     ),
-    "metal_tint": (
-        {"Base Color": (0.9, 0.85, 0.8), "Metallic": 1.0, "Roughness": 0.3},
-        [{"Specular Tint": t} for t in TINTS],
-    ),
+    "metal_tint": METAL_TINT_ROW,
     # The rows above, under a sun.
-    "dielectric_roughness_sun": ({"Base Color": (0.8, 0.3, 0.2)}, [{"Roughness": r} for r in SUN_STEPS]),
-    "metal_roughness_sun": ({"Base Color": (0.95, 0.65, 0.3), "Metallic": 1.0},
-                            [{"Roughness": r} for r in SUN_STEPS]),
-    "ior_sun": ({"Base Color": (0.2, 0.4, 0.8), "Roughness": 0.3}, [{"IOR": i} for i in (1.05, 1.3, 1.5, 2.0, 3.0)]),
+    "dielectric_roughness_sun": (DIELECTRIC, [{"Roughness": r} for r in SUN_STEPS]),
+    "metal_roughness_sun": (METAL, [{"Roughness": r} for r in SUN_STEPS]),
+    "ior_sun": IOR_ROW,
     "ior_level_sun": (
         {"Base Color": (0.2, 0.6, 0.3), "Roughness": 0.35},
         [{"Specular IOR Level": level} for level in STEPS],
     ),
-    "specular_tint_sun": ({"Base Color": (0.1, 0.1, 0.1), "Roughness": 0.3}, [{"Specular Tint": t} for t in TINTS]),
-    "metal_tint_sun": (
-        {"Base Color": (0.9, 0.85, 0.8), "Metallic": 1.0, "Roughness": 0.3},
-        [{"Specular Tint": t} for t in TINTS],
-    ),
+    "specular_tint_sun": SPECULAR_TINT_ROW,
+    "metal_tint_sun": METAL_TINT_ROW,
     "coat_weight_sun": (
         {"Base Color": (0.8, 0.2, 0.1), "Roughness": 0.6, "Coat Roughness": 0.3},
         [{"Coat Weight": w} for w in STEPS],
     ),
-    "coat_roughness_sun": (
-        {"Base Color": (0.1, 0.3, 0.8), "Roughness": 0.6, "Coat Weight": 1.0, "Coat Tint": (0.9, 0.7, 0.5)},
-        [{"Coat Roughness": r} for r in SUN_STEPS],
-    ),
+    "coat_roughness_sun": (COATED, [{"Coat Roughness": r} for r in SUN_STEPS]),
     "sheen_weight": (SHEEN_BASE, [{"Sheen Weight": w} for w in STEPS]),
     "sheen_roughness": (SHEEN_ROUGHNESS_BASE, [{"Sheen Roughness": r} for r in STEPS]),
     "sheen_weight_sun": (SHEEN_BASE, [{"Sheen Weight": w} for w in STEPS]),

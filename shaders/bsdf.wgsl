@@ -258,7 +258,7 @@ fn shading_context(m: Material, n_shading: vec3f, n_geometric: vec3f, wo_world: 
     //#endif
     //#if sheen
     if m.sheen > 0.0 {
-        let sheen_albedo = sheen_setup(&ctx);
+        let sheen_albedo = sheen_setup(&ctx, m.coat);
         let rest = below * ctx.under_sheen;
         ctx.sheen_probability = select(0.0, sheen_albedo / (sheen_albedo + rest), sheen_albedo > 0.0);
     }
@@ -402,18 +402,22 @@ fn set_unmapped_normal(n: vec3f, mapped: bool, diffuse: vec3f) {
     diffuse_normal = diffuse;
 }
 
-// Cycles' shadowing of a diffuse lobe whose normal a normal map tilted (Conty Estevez,
-// Lecocq & Stein, "A Microfacet-Based Shadowing Function to Solve the Bump Terminator
-// Problem", Ray Tracing Gems ch. 12): the mapped normal is read as one facet of a GGX
-// surface whose roughness grows with its tilt from the unmapped normal, and light is
-// shadowed as by that surface's masking; light on the far side of the unmapped
-// surface from the mapped normal is cut. Blender renders normal maps with it.
-fn bump_shadowing(ctx: ShadingContext, wi: vec3f) -> f32 {
-    let n = ctx.basis * diffuse_axis(ctx);
+// Cycles' shadowing of a diffuse closure (the diffuse lobe, the sheen) whose normal `axis`
+// (shading frame) a normal map tilted (Conty Estevez, Lecocq & Stein, "A Microfacet-Based
+// Shadowing Function to Solve the Bump Terminator Problem", Ray Tracing Gems ch. 12): the
+// closure's normal is read as one facet of a GGX surface whose roughness grows with its tilt
+// from the unmapped normal, and light is shadowed as by that surface's masking; light on the
+// far side of the unmapped surface from the closure's normal is cut. Blender renders normal
+// maps with it (`bump_shadowing_term`), the softening only with Bump Map Correction on.
+fn bump_shadowing(ctx: ShadingContext, axis: vec3f, wi: vec3f) -> f32 {
+    let n = ctx.basis * axis;
     let cos_d = dot(unmapped_normal, n);
     let cos_i = dot(unmapped_normal, ctx.basis * wi);
-    if cos_i * cos_d * dot(diffuse_axis(ctx), wi) < 0.0 {
+    if cos_i * cos_d * dot(axis, wi) < 0.0 {
         return 0.0;
+    }
+    if ctx.m.bump_map_correction == 0u {
+        return 1.0;
     }
     let cd = abs(cos_d);
     let ci = abs(cos_i);
@@ -450,17 +454,3 @@ fn interpolated_normal() -> vec3f {
     return smooth_normal;
 }
 //#endif
-
-// Emission under the sheen and the coat, leaving at cosine `mu` to the shading normal:
-// Cycles sets up a Principled's emission with the weight that those layers leave the ones
-// below them (`svm/closure.h`: the sheen's layering weight, then the coat's and its tint).
-fn layered_emission(m: Material, emission: vec3f, mu: f32) -> vec3f {
-    var e = emission;
-    //#if coat
-    e = coated_emission(m, e, mu);
-    //#endif
-    //#if sheen
-    e = sheened_emission(m, e, mu);
-    //#endif
-    return e;
-}

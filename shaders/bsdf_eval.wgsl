@@ -30,7 +30,7 @@ fn reflection_lobe_eval(ctx: ShadingContext, lobe: u32, wi: vec3f) -> vec3f {
         f = ctx.m.base_color * (ctx.m.diffuse * ctx.diffuse_kept * cos_i) * shape;
         //#endif
         //#if normal_maps
-        f *= bump_shadowing(ctx, wi);
+        f *= bump_shadowing(ctx, diffuse_axis(ctx), wi);
         //#endif
         return f;
     }

@@ -9,9 +9,11 @@
 //#include "directions.wgsl"
 
 // Set by the integrator at each surface (`set_coat_normal`), on the viewer's side, world
-// space: the coat's normal and the interpolated normal.
+// space: the coat's normal, the interpolated normal, and the coat's normal before Bump Map
+// Correction bent it (which the sheen's normal leans towards, see sheen.wgsl).
 var<private> coat_normal_world: vec3f;
 var<private> coat_interpolated_world: vec3f;
+var<private> coat_unbent_world: vec3f;
 // Set by `coat_frame_setup` with the shading frame: shading frame → coat frame, the viewer
 // in the coat's frame (z clamped above 0, as the shading context's), the interpolated
 // normal in the shading frame, and whether the coat's frame is not the shading frame.
@@ -20,9 +22,23 @@ var<private> coat_wo: vec3f;
 var<private> coat_interpolated: vec3f;
 var<private> coat_own_frame: bool;
 
-fn set_coat_normal(n: vec3f, interpolated: vec3f) {
+fn set_coat_normal(n: vec3f, interpolated: vec3f, unbent: vec3f) {
     coat_normal_world = n;
     coat_interpolated_world = interpolated;
+    coat_unbent_world = unbent;
+}
+
+fn coat_unbent_normal() -> vec3f {
+    return coat_unbent_world;
+}
+
+// The sheen's normal over a coat of weight `coat` (Cycles', `svm/closure.h`): the base's
+// normal `base` leaned towards the coat's unbent normal `coat_normal` by that weight.
+fn sheen_normal_towards_coat(base: vec3f, coat_normal: vec3f, coat: f32) -> vec3f {
+    if coat <= 0.0 {
+        return base;
+    }
+    return normalize(mix(base, coat_normal, saturate(coat)));
 }
 
 // The coat's frame beside the shading frame `basis`; `wo_world` towards the viewer,

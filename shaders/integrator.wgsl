@@ -38,6 +38,9 @@
 //#if smooth_normals
 //#include "smooth_shading.wgsl"
 //#endif
+//#if emission
+//#include "layered_emission.wgsl"
+//#endif
 //#if aovs
 //#include "aovs.wgsl"
 //#endif
@@ -94,7 +97,8 @@ fn all_finite(v: vec3f) -> bool {
 //#if emission
 // Emission of the surface hit, MIS-weighted against light sampling when the
 // bounce that found it could also have been found by next-event estimation.
-fn emission_seen(m: Material, hit: Hit, surface: Surface, origin: vec3f, direction: vec3f, bsdf_pdf: f32) -> vec3f {
+// `layers`: the normals of the layers over the emission (see layered_emission.wgsl).
+fn emission_seen(m: Material, hit: Hit, surface: Surface, layers: LayerNormals, origin: vec3f, direction: vec3f, bsdf_pdf: f32) -> vec3f {
     var weight = 1.0;
     //#if nee
     if bsdf_pdf > 0.0 {
@@ -109,7 +113,7 @@ fn emission_seen(m: Material, hit: Hit, surface: Surface, origin: vec3f, directi
         weight = power_heuristic(bsdf_pdf, light_pdf);
     }
     //#endif
-    return layered_emission(m, m.emission, abs(dot(surface.shading_normal, direction))) * weight;
+    return layered_emission(m, m.emission, layers, -direction) * weight;
 }
 //#endif
 
@@ -342,7 +346,13 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         m = textured_material(m, texture_at, log2(cone_width / cos_hit));
         //#endif
         //#if emission
-        gather(&radiance, throughput * emission_seen(m, hit, surface, origin, direction, bsdf_pdf), EVENT_EMISSION);
+        var coat_layer_normal = surface.shading_normal;
+        //#if coat_normal
+        coat_layer_normal = coat_normal;
+        //#endif
+        let layer_side = select(-1.0, 1.0, dot(surface.geometric_normal, direction) < 0.0);
+        let layers = mapped_layer_normals(m, surface.shading_normal, coat_layer_normal, layer_side);
+        gather(&radiance, throughput * emission_seen(m, hit, surface, layers, origin, direction, bsdf_pdf), EVENT_EMISSION);
         //#endif
         if bounce >= frame.max_bounces {
             sample_finished = true;
@@ -360,7 +370,7 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         set_unmapped_normal(side * n_unmapped, mapped, side * diffuse_mapped_normal());
         //#endif
         //#if coat_normal
-        set_coat_normal(side * coat_normal, side * n_unmapped);
+        set_coat_normal(side * coat_normal, side * n_unmapped, side * coat_normal_before_bending());
         //#endif
         //#if smooth_normals
         n_shading = set_smooth_shading(m, hit, n_shading, n_geometric, -direction, mapped);

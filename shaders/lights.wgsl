@@ -11,6 +11,7 @@
 //#include "hit.wgsl"
 //#include "bsdf.wgsl"
 //#include "bsdf_eval.wgsl"
+//#include "layered_emission.wgsl"
 //#if lamps
 //#include "lamps.wgsl"
 //#endif
@@ -191,7 +192,10 @@ fn sample_emitter_at(e: Emitter, tree_selection: f32, p: vec3f, rng: ptr<functio
         }
         let m = materials[s.material];
         let selection = emitter_selection_per_area(m.emission_luminance, tree_selection, 4.0 * PI * s.radius * s.radius);
-        let emission = layered_emission(m, m.emission, abs(dot(normalize(p + t * d - s.center), d)));
+        // The radial normal on the viewer's side: a sphere seen from inside emits too.
+        let radial = normalize(p + t * d - s.center);
+        let towards = select(radial, -radial, dot(radial, d) > 0.0);
+        let emission = light_sampled_emission(m, m.emission, LayerNormals(towards, towards), -d);
         return LightSample(d, t, emission, sphere_emitter_pdf(p, s, selection), false);
         //#endif
     }
@@ -221,16 +225,30 @@ fn sample_emitter_at(e: Emitter, tree_selection: f32, p: vec3f, rng: ptr<functio
     //#if textures
     emission = textured_emission(m, e.primitive, su * (1.0 - u.y), su * u.y);
     //#endif
-    //#if coat_or_sheen
+    //#if coat
     //#if layer_textures
     m = layer_textured_at(m, e.primitive, su * (1.0 - u.y), su * u.y);
     //#endif
-    if m.coat > 0.0 || m.sheen > 0.0 {
-        // The layers are seen along the shading normal, as at a hit (`emission_seen`).
+    if m.coat > 0.0 {
+        // The coat's tint is seen along its normal as at a hit on this point (`emission_seen`).
         let sh = shading[e.primitive];
         let n_object = (1.0 - su) * sh.n0 + su * (1.0 - u.y) * sh.n1 + su * u.y * sh.n2;
         let n_shading = normalize(transform_normal_to_world(inst.world_to_object, n_object));
-        emission = layered_emission(m, emission, abs(dot(n_shading, d)));
+        var mapped = n_shading;
+        var coat = n_shading;
+        // The true normal, on the interpolated one's side (a mirroring instance flips the winding's).
+        let n_true = select(-n, n, dot(n, n_shading) >= 0.0);
+        //#if normal_maps
+        let b1 = su * (1.0 - u.y);
+        let b2 = su * u.y;
+        let at = Hit(t, HIT_TRIANGLE, e.primitive, e.instance, b1, b2);
+        mapped = normal_mapped(m, at, n_shading, n_true, -d, triangle_uv(e.primitive, uv_set_of(m, UV1_NORMAL), b1, b2));
+        //#if coat_normal
+        coat = coat_normal_mapped(m, at, n_shading, n_true, -d, triangle_uv(e.primitive, uv_set_of(m, UV1_COAT_NORMAL), b1, b2));
+        //#endif
+        //#endif
+        let side = select(-1.0, 1.0, dot(n_true, d) < 0.0);
+        emission = light_sampled_emission(m, emission, mapped_layer_normals(m, mapped, coat, side), -d);
     }
     //#endif
     let selection = emitter_selection_per_area(m.emission_luminance, tree_selection, 0.5 * length(normal));

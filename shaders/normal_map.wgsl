@@ -71,6 +71,14 @@ fn map_normal(texture: u32, scale: f32, hit: Hit, uv: vec2f) -> vec3f {
 }
 
 //#if coat_normal
+// The coat's normal of the last `coat_normal_mapped` call before Bump Map Correction bent it
+// (outward, world space).
+var<private> unbent_coat_normal: vec3f;
+
+fn coat_normal_before_bending() -> vec3f {
+    return unbent_coat_normal;
+}
+
 // The coat's normal (outward, world space; see coat_normal.wgsl): its own map's, read at
 // `uv`, or the interpolated `shading_normal` (never the base's map), bent by Bump Map
 // Correction as Cycles bends it (`maybe_ensure_valid_specular_reflection`, which leaves a
@@ -85,6 +93,7 @@ fn coat_normal_mapped(m: Material, hit: Hit, shading_normal: vec3f, geometric_no
         bent = true;
         //#endif
     }
+    unbent_coat_normal = n;
     if !bent || m.bump_map_correction == 0u {
         return n;
     }

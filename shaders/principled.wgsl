@@ -102,9 +102,15 @@ fn coat_layer(m: Material, mu: f32) -> CoatLayer {
         darkening = energy.x * ggx_albedo(m.coat_alpha, mu);
     }
     //#endif
-    let cos_t = sqrt(max(1e-6, 1.0 - (1.0 - mu * mu) / (m.coat_ior * m.coat_ior)));
-    let tint = mix(vec3f(1.0), pow(max(m.coat_tint, vec3f(1e-8)), vec3f(1.0 / cos_t)), m.coat);
+    let tint = coat_tint_seen(m, mu);
     return CoatLayer(energy, saturate(1.0 - m.coat * estimate * darkening) * tint, m.coat * estimate);
+}
+
+// The coat's tint along a path at cosine `mu` to its normal, refracted into it: Beer's law
+// over the coat's thickness, its colour at normal incidence (`svm/closure.h`).
+fn coat_tint_seen(m: Material, mu: f32) -> vec3f {
+    let cos_t = sqrt(max(1e-6, 1.0 - (1.0 - mu * mu) / (m.coat_ior * m.coat_ior)));
+    return mix(vec3f(1.0), pow(max(m.coat_tint, vec3f(1e-8)), vec3f(1.0 / cos_t)), m.coat);
 }
 
 fn coat_setup(ctx: ptr<function, ShadingContext>, mu: f32) -> f32 {
@@ -114,7 +120,7 @@ fn coat_setup(ctx: ptr<function, ShadingContext>, mu: f32) -> f32 {
     return layer.albedo;
 }
 
-// Emission under the coat, leaving at cosine `mu` to the shading normal: Cycles sets up a
+// Emission under the coat, leaving at cosine `mu` to the coat's normal: Cycles sets up a
 // Principled's emission with the weight that its coat leaves the lower layers (`svm/closure.h`).
 fn coated_emission(m: Material, emission: vec3f, mu: f32) -> vec3f {
     if m.coat <= 0.0 {

@@ -5,10 +5,11 @@
 // and whose albedo come from Cycles' fit table, read at (cos θ of the viewer, roughness).
 // As in Cycles' Principled BSDF it is the outermost layer: its colour is
 // sheen × tint × albedo, and everything under it (the coat included) keeps
-// 1 − the largest channel of that (`closure_layering_weight`). Its normal is the surface's
-// before Bump Map Correction (`diffuse_axis`): Cycles gives the sheen the Normal input (mixed
-// with the coat's), never the glossy lobes' normal that is bent to keep reflections above
-// the surface.
+// 1 − the largest channel of that (`closure_layering_weight`). Its normal is Cycles': the
+// Normal input mixed towards the Coat Normal by the coat's weight, both before Bump Map
+// Correction (`sheen_axis`), never the glossy lobes' normal that is bent to keep reflections
+// above the surface. Cycles counts the sheen among its diffuse closures, so where its normal is
+// not the interpolated one it is shadowed as the diffuse lobe is (`bump_shadowing`).
 
 //#include "constants.wgsl"
 //#include "directions.wgsl"
@@ -19,12 +20,28 @@
 const TABLE_SHEEN_LTC: u32 = 13856u;
 const SHEEN_PLANE: u32 = 1024u;
 
+// The sheen's normal in the shading frame, set by `sheen_setup`.
+var<private> sheen_normal: vec3f;
+
+// Cycles' sheen normal (`svm/closure.h`): the base's unbent normal (`diffuse_axis`) mixed
+// towards the coat's unbent normal by the coat's weight `coat` (the material's, before the
+// shading context turns a coat that cannot shade off).
+fn sheen_axis(ctx: ShadingContext, coat: f32) -> vec3f {
+    var n = diffuse_axis(ctx);
+    //#if coat_normal
+    n = sheen_normal_towards_coat(n, transpose(ctx.basis) * coat_unbent_normal(), coat);
+    //#endif
+    return n;
+}
+
+
 // Reads the layer's transform and albedo for the viewer, at cos θ to the sheen's normal;
 // returns the luminance of its albedo (for sampling). A fit without a lobe there (a tiny a
-// at the smoothest roughness) reflects nothing.
-fn sheen_setup(ctx: ptr<function, ShadingContext>) -> f32 {
+// at the smoothest roughness) reflects nothing. `coat` is the material's coat weight.
+fn sheen_setup(ctx: ptr<function, ShadingContext>, coat: f32) -> f32 {
     let m = (*ctx).m;
-    let n = diffuse_axis(*ctx);
+    let n = sheen_axis(*ctx, coat);
+    sheen_normal = n;
     let wo = (*ctx).wo;
     let mu = clamp(dot(n, wo), 1e-6, 1.0);
     let a = table_2d(TABLE_SHEEN_LTC, 32u, 32u, mu, m.sheen_roughness);
@@ -51,7 +68,7 @@ fn sheen_table_albedo(m: Material, mu: f32, a: f32) -> f32 {
     return select(albedo, 0.0, a < 1e-4 || albedo <= 0.0);
 }
 
-// Emission under the sheen, leaving at cosine `mu` to the shading normal: Cycles sets up a
+// Emission under the sheen, leaving at cosine `mu` to the sheen's normal: Cycles sets up a
 // Principled's emission with the weight that its sheen leaves the lower layers
 // (`svm/closure.h`), 1 − the largest channel of the sheen's colour there.
 fn sheened_emission(m: Material, emission: vec3f, mu: f32) -> vec3f {
@@ -69,7 +86,7 @@ fn has_sheen(ctx: ShadingContext) -> bool {
 
 // The lobe's density at wi (local to the shading frame), which is also its f·cos θi / colour.
 fn sheen_lobe(ctx: ShadingContext, wi: vec3f) -> f32 {
-    let n = diffuse_axis(ctx);
+    let n = sheen_normal;
     let z = dot(n, wi);
     if z <= 0.0 {
         return 0.0;
@@ -91,13 +108,23 @@ fn sheen_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
         return vec3f(0.0);
     }
     let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
-    return ctx.sheen_color * (sheen_lobe(ctx, wi) + f32(folds_below_surface()) * sheen_lobe(ctx, mirrored));
+    var f = ctx.sheen_color * (sheen_lobe(ctx, wi) + f32(folds_below_surface()) * sheen_lobe(ctx, mirrored));
+    //#if normal_maps
+    f *= bump_shadowing(ctx, sheen_normal, wi);
+    //#endif
+    return f;
 }
 
 fn sheen_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
     if !has_sheen(ctx) || !reaches_reflection_lobes(ctx, wi) {
         return 0.0;
     }
+    //#if normal_maps
+    // Cycles' `bsdf_eval` gives no density where the shadowing cuts the direction.
+    if bump_shadowing(ctx, sheen_normal, wi) == 0.0 {
+        return 0.0;
+    }
+    //#endif
     let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
     return sheen_lobe(ctx, wi) + f32(folds_below_surface()) * sheen_lobe(ctx, mirrored);
 }
@@ -108,7 +135,7 @@ fn sheen_sample_direction(ctx: ShadingContext, u: vec2f) -> vec3f {
     let a = ctx.sheen_transform.x;
     let b = ctx.sheen_transform.y;
     let l = normalize(vec3f((c.x - c.z * b) / a, c.y / a, c.z));
-    let n = diffuse_axis(ctx);
+    let n = sheen_normal;
     let t = ctx.sheen_side;
     let wi = l.x * t + l.y * cross(n, t) + l.z * n;
     if dot(n, wi) <= 0.0 || !sample_clears_surface(ctx, wi, false) {

@@ -64,6 +64,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("hit.wgsl"),
     shader!("integrator.wgsl"),
     shader!("lamps.wgsl"),
+    shader!("layered_emission.wgsl"),
     shader!("light_tree.wgsl"),
     shader!("lights.wgsl"),
     shader!("microfacet.wgsl"),

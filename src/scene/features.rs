@@ -289,8 +289,6 @@ impl FeatureSet {
             "uv_tangents" => self.uv_tangents,
             // Normal maps and uv tangents read the triangles' tangents.
             "tangent_frames" => self.normal_maps || self.uv_tangents,
-            // Layers over the other lobes, which dim the emission under them.
-            "coat_or_sheen" => self.coat || self.sheen,
             "rough_diffuse" => self.rough_diffuse,
             "smooth_normals" => self.smooth_normals,
             "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen || self.thin_film,

@@ -509,6 +509,55 @@ def scene_coat_over_normal_map_sphere(scene):
     tree.links.new(node.outputs["Normal"], bsdf.inputs["Normal"])
 
 
+def scene_sheen_over_coat_normal(scene):
+    """A sheen over a coat of weight 0.6 on a smooth sphere with a normal map of 8 × 4 bumps
+    on Normal, Coat Normal unlinked, in sunlight: Cycles leans the sheen's normal from the
+    bumps towards the coat's (the interpolated one) by the coat's weight, and shadows the
+    sheen as a diffuse closure where its normal is not the interpolated one."""
+    uniform_world(scene, (0.2, 0.2, 0.2))
+    sun(scene, (math.radians(35), 0.0, math.radians(25)))
+    tree, bsdf = layered_sphere(scene, "sheen_over_coat_normal",
+                                {"Base Color": (0.06, 0.05, 0.1), "Roughness": 0.6, "Coat Weight": 0.6,
+                                 "Coat Roughness": 0.3, "Sheen Weight": 1.0, "Sheen Roughness": 0.4,
+                                 "Sheen Tint": (0.9, 0.75, 0.5)}, segments=96)
+    from make_normal_map_refs import bump_normals
+
+    tex = image_node(tree, image("sheen_bumps", bump_normals(128, 8, 4, 0.06), srgb=False))
+    node = tree.nodes.new("ShaderNodeNormalMap")
+    node.space = "TANGENT"
+    tree.links.new(tex.outputs["Color"], node.inputs["Color"])
+    tree.links.new(node.outputs["Normal"], bsdf.inputs["Normal"])
+
+
+def layered_light(scene, name):
+    """`scene_emissive`'s panel lighting a floor, of one warm emission under a sheen and a
+    blue-tinted coat. Cycles dims the emission by both layers where a ray finds the panel, but
+    not the light that its next-event estimation samples on it (only the coat's tint dims
+    that), which carries most of the light on the floor. Returns the material's node tree and BSDF."""
+    uniform_world(scene, (0.0, 0.0, 0.0))
+    m, tree, bsdf = principled(name)
+    for key, value in {"Base Color": (0.0, 0.0, 0.0, 1.0), "Emission Color": (1.0, 0.8, 0.6, 1.0),
+                       "Emission Strength": 4.0, "Coat Weight": 1.0, "Coat Roughness": 0.2,
+                       "Coat Tint": (0.35, 0.6, 1.0, 1.0), "Sheen Weight": 0.8, "Sheen Roughness": 0.3}.items():
+        bsdf.inputs[key].default_value = value
+    add_object(scene, "screen", bpy.ops.mesh.primitive_plane_add, m, size=1.2, location=(0, 0.6, 0.7),
+               rotation=(math.radians(80), 0, 0))
+    floor(scene, (0.8, 0.8, 0.8), 6.0)
+    camera(scene, (0.0, -2.8, 1.6), (0.0, 0.2, 0.4), 45.0)
+    return tree, bsdf
+
+
+def scene_emission_under_layers(scene):
+    layered_light(scene, "layered_light")
+
+
+def scene_emission_under_coat_normal(scene):
+    """`layered_light` with a normal map of 3 × 3 bumps on Coat Normal: the layers are seen
+    along the bumps' normals (the sheen's leaned towards them)."""
+    tree, bsdf = layered_light(scene, "coated_light")
+    tree.links.new(normal_map_node(tree, "light_bumps", 3).outputs["Normal"], bsdf.inputs["Coat Normal"])
+
+
 def mapped_range(tree, source, low, high):
     """A Map Range node taking `source` (0-1) to `low`-`high`."""
     node = tree.nodes.new("ShaderNodeMapRange")
@@ -569,6 +618,9 @@ SCENES = {
     "coat_over_normal_map": scene_coat_over_normal_map,
     "coat_normal_map": scene_coat_normal_map,
     "coat_over_normal_map_sphere": scene_coat_over_normal_map_sphere,
+    "sheen_over_coat_normal": scene_sheen_over_coat_normal,
+    "emission_under_layers": scene_emission_under_layers,
+    "emission_under_coat_normal": scene_emission_under_coat_normal,
 }
 # Scenes exported with --bake, and the size of their baked images.
 BAKE_SIZES = {"baked_noise": 512, "baked_bump": 512}

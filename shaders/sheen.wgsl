@@ -13,6 +13,9 @@
 //#include "constants.wgsl"
 //#include "directions.wgsl"
 //#include "microfacet_tables.wgsl"
+//#if terminator_offset
+//#include "terminator_offset.wgsl"
+//#endif
 
 // Cycles' `table_sheen_ltc` (src/gpu/sheen_ltc.bin), after the microfacet tables:
 // [3 planes: a, b, albedo][32 roughness][32 mu].
@@ -91,7 +94,13 @@ fn sheen_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
         return vec3f(0.0);
     }
     let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
-    return ctx.sheen_color * (sheen_lobe(ctx, wi) + f32(folds_below_surface()) * sheen_lobe(ctx, mirrored));
+    var f = sheen_lobe(ctx, wi);
+    var f_mirrored = sheen_lobe(ctx, mirrored);
+    //#if terminator_offset
+    f *= terminator_shift(dot(diffuse_axis(ctx), wi));
+    f_mirrored *= terminator_shift(dot(diffuse_axis(ctx), mirrored));
+    //#endif
+    return ctx.sheen_color * (f + f32(folds_below_surface()) * f_mirrored);
 }
 
 fn sheen_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {

@@ -1230,6 +1230,13 @@ class Export:
         self.images = {}  # folder name -> {image file name: PNG bytes}
         self.bake_size = 0  # > 0: bake what rt cannot follow into images of this size
 
+    def instance_counts(self):
+        """{folder name: how many instances place it}, whatever their Shadow Terminator settings."""
+        counts = {}
+        for (folder, _), placed in self.instances.items():
+            counts[folder] = counts.get(folder, 0) + len(placed)
+        return counts
+
     def add(self, obj, depsgraph):
         base = sanitize(obj.data.name)
         if plain_instance(obj):

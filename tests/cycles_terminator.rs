@@ -70,6 +70,21 @@ fn shading_offsets_shift_each_lobe_as_in_cycles() {
     check_row("principled_terminator_shading_offset_sun");
 }
 
+/// Perfect mirrors and interfaces with a Shading Offset of 0.6 in a white world: Cycles shifts
+/// a singular lobe's reflection too (a metal, a dielectric's specular layer, glass, a coat),
+/// by the cosine of the reflected direction; refraction is left alone.
+#[test]
+fn shading_offsets_shift_perfect_reflections_as_in_cycles() {
+    check_row("principled_terminator_shading_offset_mirrors");
+}
+
+/// Sheens of roughness 0.3 and 1, rough glass of 0.3 and 0.6 and a coat of 0.3, with a Shading
+/// Offset of 1, in a white world: the sheen by its own normal, glass's reflection only.
+#[test]
+fn shading_offsets_shift_sheens_glass_and_coats_as_in_cycles() {
+    check_row("principled_terminator_shading_offset_layers");
+}
+
 /// Lambertian spheres with Shading Offsets 0.3, 0.6 and 1, then Geometry Offsets 0 (no shadow
 /// ray starts from the smooth surface: the faces turned from the sun whose normals face it go
 /// dark) and 1 (every shadow ray does).

@@ -8,8 +8,9 @@
 //! `terminator_glass_sun`, `terminator_sheen_sun`, `coarse_no_correction`) and compared as the
 //! other Principled rows are (`cycles_principled::check_row`), the glass row as the rare
 //! paths' (`cycles_rare_paths::check_batched`). Rows of objects with Shadow Terminator
-//! settings of their own (`terminator_shading_offset_sun`, `terminator_offsets_sun`) check
-//! that rt applies each object's, which the exporter writes into the scene file.
+//! settings of their own (`terminator_shading_offset_sun`, `terminator_offsets_sun`,
+//! `terminator_shading_offset_mirrors`, `terminator_shading_offset_layers`) check that rt
+//! applies each object's, which the exporter writes into the scene file.
 
 use crate::common;
 use crate::cycles_principled::check_row;

@@ -2,7 +2,8 @@
 evaluated geometry, `NAME/NAME.gltf` with its materials) and, optionally, a scene TOML
 that places them with the camera, the lamps and the sky. Instances that the depsgraph
 generates (collections, geometry nodes, particles) go into one `.rtinst` instance file
-per distinct mesh, beside the scene TOML in `SCENE_instances/`.
+per distinct mesh (and Shadow Terminator settings of the objects showing it), beside the
+scene TOML in `SCENE_instances/`.
 
 Three ways to run it:
 
@@ -1225,9 +1226,16 @@ class Export:
         self.content = {}  # folder name -> (rtmesh bytes, gltf text)
         self.written = []  # files actually rewritten
         self.triangles = {}
-        self.instances = {}  # folder name -> Placements of its instances
+        self.instances = {}  # (folder name, Shadow Terminator settings) -> Placements of its instances
         self.images = {}  # folder name -> {image file name: PNG bytes}
         self.bake_size = 0  # > 0: bake what rt cannot follow into images of this size
+
+    def instance_counts(self):
+        """{folder name: how many instances place it}, whatever their Shadow Terminator settings."""
+        counts = {}
+        for (folder, _), placed in self.instances.items():
+            counts[folder] = counts.get(folder, 0) + len(placed)
+        return counts
 
     def add(self, obj, depsgraph):
         base = sanitize(obj.data.name)
@@ -1322,6 +1330,7 @@ class InstancedMesh:
         self.matrices = []  # Blender matrix of each instance
         self.rows = None  # their rt matrix rows, an (n, 12) array, once invertible ones are kept
         self.codes = []  # each instance's .rtinst material
+        self.terminators = []  # each instance's shadow_terminator(object)
 
     def material(self, m):
         key = m.name if m else ""
@@ -1448,6 +1457,7 @@ def add_instances(export, depsgraph):
         # A copy: the depsgraph reuses the instance's matrix for the next one.
         entry.matrices.append(inst.matrix_world.copy())
         entry.codes.append(code)
+        entry.terminators.append(shadow_terminator(obj))
     for entry in meshes.values():
         if entry is None or not entry.matrices:
             continue
@@ -1456,11 +1466,15 @@ def add_instances(export, depsgraph):
             log(f"{(~invertible).sum()} instances of {entry.base} are scaled to nothing or not finite; left out of the scene")
         entry.rows = rows[invertible]
         entry.codes = [c for c, keep in zip(entry.codes, invertible) if keep]
+        entry.terminators = [t for t, keep in zip(entry.terminators, invertible) if keep]
         if not entry.codes:
             continue
         folder = export.store(entry.base, entry.rtmesh, entry.gltf(), entry.textures.images, entry.triangles)
-        placed = export.instances.setdefault(folder, Placements(entry.slots))
-        placed.add(entry)
+        # An instance file's entry carries one object's Shadow Terminator settings: instances of
+        # objects with other settings go into a file of their own.
+        for terminator in sorted(set(entry.terminators)):
+            placed = export.instances.setdefault((folder, terminator), Placements(entry.slots))
+            placed.add(entry, np.array([t == terminator for t in entry.terminators]))
 
 
 class Placements:
@@ -1475,15 +1489,16 @@ class Placements:
     def __len__(self):
         return len(self.codes)
 
-    def add(self, entry):
-        """`entry`'s instances, its sets renumbered into this folder's (a folder with the
-        same bytes has the same materials, in the same order)."""
+    def add(self, entry, keep):
+        """`entry`'s instances where `keep` (a boolean array) is true, its sets renumbered into
+        this folder's (a folder with the same bytes has the same materials, in the same order)."""
         for s in entry.sets:
             if s not in self.sets:
                 self.sets.append(s)
         renumber = [RTINST_MATERIAL_SET | self.sets.index(s) for s in entry.sets]
-        self.rows.append(entry.rows)
-        self.codes += [c if c == RTINST_OWN_MATERIALS else renumber[c & ~RTINST_MATERIAL_SET] for c in entry.codes]
+        self.rows.append(entry.rows[keep])
+        codes = [c for c, k in zip(entry.codes, keep) if k]
+        self.codes += [c if c == RTINST_OWN_MATERIALS else renumber[c & ~RTINST_MATERIAL_SET] for c in codes]
 
 
 def rtinst_bytes(placements):
@@ -1499,23 +1514,43 @@ def rtinst_bytes(placements):
 
 
 def instances_toml(export, scene_path):
-    """One [[instances]] per folder with instances, writing its instance file into
-    SCENE_instances/ beside the scene file."""
+    """One [[instances]] per folder with instances (and per Shadow Terminator settings of
+    their objects), writing its instance file into SCENE_instances/ beside the scene file."""
     scene_dir = os.path.dirname(os.path.abspath(scene_path))
     stem = os.path.splitext(os.path.basename(scene_path))[0]
     text = []
-    for folder in sorted(export.instances):
-        path = os.path.join(scene_dir, f"{stem}_instances", folder + ".rtinst")
-        if write_if_changed(path, rtinst_bytes(export.instances[folder])):
+    for folder, terminator in sorted(export.instances):
+        placed = export.instances[(folder, terminator)]
+        name = folder if terminator == SHADOW_TERMINATOR_DEFAULTS else f"{folder}_terminator_{fmt(terminator[0])}_{fmt(terminator[1])}"
+        path = os.path.join(scene_dir, f"{stem}_instances", name + ".rtinst")
+        if write_if_changed(path, rtinst_bytes(placed)):
             export.written.append(path)
         asset = os.path.relpath(os.path.join(export.out_dir, folder), scene_dir).replace(os.sep, "/")
         file = os.path.relpath(path, scene_dir).replace(os.sep, "/")
-        count = len(export.instances[folder])
-        text.append(f"# {count} instances\n[[instances]]\nasset = {json.dumps(asset)}\nfile = {json.dumps(file)}\n\n")
+        text.append(f"# {len(placed)} instances\n[[instances]]\nasset = {json.dumps(asset)}\nfile = {json.dumps(file)}\n"
+                    f"{shadow_terminator_toml(terminator)}\n")
     return "".join(text)
 
 
 # --- scene TOML -------------------------------------------------------------------
+
+
+# Blender's defaults of an object's Shadow Terminator settings (Object > Shading): (Geometry
+# Offset, Shading Offset), which are also the scene file's defaults.
+SHADOW_TERMINATOR_DEFAULTS = (0.1, 0.0)
+
+
+def shadow_terminator(obj):
+    """(Geometry Offset, Shading Offset) of `obj`, the object's own properties that Cycles
+    reads (not the legacy `obj.cycles` ones), to six decimals (Blender keeps them in float)."""
+    return (round(float(obj.shadow_terminator_geometry_offset), 6), round(float(obj.shadow_terminator_shading_offset), 6))
+
+
+def shadow_terminator_toml(terminator):
+    """The scene-file keys of Shadow Terminator settings other than the defaults."""
+    keys = ("shadow_terminator_geometry_offset", "shadow_terminator_shading_offset")
+    return "".join(f"{key} = {fmt(value)}\n" for key, value, default in zip(keys, terminator, SHADOW_TERMINATOR_DEFAULTS)
+                   if value != default)
 
 
 def fmt(x):
@@ -1898,27 +1933,13 @@ def scene_toml(scene, export, scene_path, objects):
         asset = os.path.relpath(os.path.join(export.out_dir, folder), scene_dir).replace(os.sep, "/")
         rows = [m[r][c] for r in range(4) for c in range(4)]
         rows[12:16] = [0.0, 0.0, 0.0, 1.0]
-        text.append(f"# {obj.name}\n[[mesh]]\nasset = {json.dumps(asset)}\nmatrix = {vec(rows)}\n\n")
+        terminator = shadow_terminator_toml(shadow_terminator(obj))
+        text.append(f"# {obj.name}\n[[mesh]]\nasset = {json.dumps(asset)}\nmatrix = {vec(rows)}\n{terminator}\n")
     text.append(instances_toml(export, scene_path))
     return "".join(text).rstrip("\n") + "\n"
 
 
 # --- the export -------------------------------------------------------------------
-
-
-# Blender's defaults of an object's Shadow Terminator settings (Object > Shading), the ones rt
-# renders every object with.
-SHADOW_TERMINATOR_DEFAULTS = (("shadow_terminator_geometry_offset", "Geometry Offset", 0.1),
-                              ("shadow_terminator_offset", "Shading Offset", 0.0))
-
-
-def warn_shadow_terminator(obj):
-    """Warns, naming the object, of Shadow Terminator settings other than Blender's defaults:
-    rt has no per-object setting and renders every object with the defaults."""
-    for attribute, label, default in SHADOW_TERMINATOR_DEFAULTS:
-        value = getattr(obj.cycles, attribute, default)
-        if abs(value - default) > 1e-6:
-            log(f"object {obj.name}: Shadow Terminator {label} {value:g} is not supported; rendered with {default:g}")
 
 
 def export_scene(scene, out_dir, scene_path=None, only=None, previous=None, bake_size=0):
@@ -1939,7 +1960,6 @@ def export_scene(scene, out_dir, scene_path=None, only=None, previous=None, bake
             export.content.setdefault(folder, previous.content[folder])
             export.images.setdefault(folder, previous.images.get(folder, {}))
             continue
-        warn_shadow_terminator(obj)
         export.add(obj, depsgraph)
     add_instances(export, depsgraph)
     if scene_path:

@@ -15,6 +15,9 @@
 //#if rough_diffuse
 //#include "oren_nayar.wgsl"
 //#endif
+//#if terminator_offset
+//#include "terminator_offset.wgsl"
+//#endif
 
 
 // f·|cos θi| of one reflection lobe, before folding.
@@ -32,6 +35,9 @@ fn reflection_lobe_eval(ctx: ShadingContext, lobe: u32, wi: vec3f) -> vec3f {
         //#if normal_maps
         f *= bump_shadowing(ctx, diffuse_axis(ctx), wi);
         //#endif
+        //#if terminator_offset
+        f *= terminator_shift(cos_i);
+        //#endif
         return f;
     }
     if wi.z <= 0.0 || !glossy_sees(ctx, wi) {
@@ -40,7 +46,10 @@ fn reflection_lobe_eval(ctx: ShadingContext, lobe: u32, wi: vec3f) -> vec3f {
     //#if glossy
     let m = normalize(ctx.wo + wi);
     let a = ctx.alpha;
-    let microfacet = ggx_d(m, a) * ggx_g2(ctx.wo, wi, a) / (4.0 * ctx.wo.z);
+    var microfacet = ggx_d(m, a) * ggx_g2(ctx.wo, wi, a) / (4.0 * ctx.wo.z);
+    //#if terminator_offset
+    microfacet *= terminator_shift(wi.z);
+    //#endif
     if lobe == LOBE_SPECULAR {
         return ctx.m.specular * microfacet * specular_fresnel(ctx, dot(ctx.wo, m)) * ctx.energy_specular;
     }
@@ -79,7 +88,12 @@ fn bsdf_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
     }
     //#if rough_glass_ggx
     if ctx.smooth_lobe.w > 0.0 && ctx.lobe_probability.w > 0.0 {
-        f += ctx.m.transmission * rough_dielectric_eval(ctx, wi) * ctx.energy_transmission;
+        var glass = ctx.m.transmission * rough_dielectric_eval(ctx, wi) * ctx.energy_transmission;
+        //#if terminator_offset
+        // Its reflection only: refracted light arrives below the normal.
+        glass *= terminator_shift(wi.z);
+        //#endif
+        f += glass;
     }
     //#endif
     //#if coat
@@ -158,7 +172,11 @@ fn coat_lobe_eval(ctx: ShadingContext, wi_shading: vec3f) -> f32 {
     }
     let m = normalize(wo + wi);
     let a = vec2f(ctx.m.coat_alpha);
-    return ggx_d(m, a) * ggx_g2(wo, wi, a) / (4.0 * wo.z) * fresnel_dielectric(dot(wo, m), ctx.m.coat_ior);
+    var f = ggx_d(m, a) * ggx_g2(wo, wi, a) / (4.0 * wo.z) * fresnel_dielectric(dot(wo, m), ctx.m.coat_ior);
+    //#if terminator_offset
+    f *= terminator_shift(wi.z);
+    //#endif
+    return f;
 }
 
 fn coat_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {

@@ -124,6 +124,13 @@ struct Instance {
     material_override: u32,
 }
 
+// An instance's Shadow Terminator settings (see GpuTerminator): read by smooth shading and
+// the terminator shift only, so that traversal's records stay small.
+struct Terminator {
+    geometry_offset: f32,
+    frequency_multiplier: f32,
+}
+
 struct Sphere {
     center: vec3f,
     radius: f32,
@@ -313,4 +320,7 @@ const STAT_STACK_OVERFLOW: u32 = 0u;
 //#endif
 //#if uv_sets
 @group(0) @binding(19) var<storage, read> second_uvs: array<TriangleUvs>;
+//#endif
+//#if terminators
+@group(0) @binding(20) var<storage, read> terminators: array<Terminator>;
 //#endif

@@ -41,6 +41,9 @@
 //#if emission
 //#include "layered_emission.wgsl"
 //#endif
+//#if terminator_offset
+//#include "terminator_offset.wgsl"
+//#endif
 //#if aovs
 //#include "aovs.wgsl"
 //#endif
@@ -375,6 +378,9 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         //#if smooth_normals
         n_shading = set_smooth_shading(m, hit, n_shading, n_geometric, -direction, mapped);
         //#endif
+        //#if terminator_offset
+        set_terminator_shift(hit);
+        //#endif
         //#if anisotropy
         set_surface_tangent(hit, surface.position, m.tangent);
         //#endif
@@ -384,7 +390,13 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         shadow.contribution *= throughput;
         shadow_pending = any(shadow.contribution != vec3f(0.0));
         //#endif
-        let s = bsdf_sample(ctx, &rng);
+        var s = bsdf_sample(ctx, &rng);
+        //#if terminator_offset
+        // Delta reflections (the other lobes' samples are weighed by `bsdf_eval`).
+        if s.pdf == 0.0 && !s.transmitted {
+            s.weight *= terminator_shift(dot(s.direction, n_shading));
+        }
+        //#endif
         //#if aovs
         aov_surface(s, n_shading);
         //#endif

@@ -14,6 +14,9 @@
 //#include "constants.wgsl"
 //#include "directions.wgsl"
 //#include "microfacet_tables.wgsl"
+//#if terminator_offset
+//#include "terminator_offset.wgsl"
+//#endif
 
 // Cycles' `table_sheen_ltc` (src/gpu/sheen_ltc.bin), after the microfacet tables:
 // [3 planes: a, b, albedo][32 roughness][32 mu].
@@ -108,11 +111,17 @@ fn sheen_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
         return vec3f(0.0);
     }
     let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
-    var f = ctx.sheen_color * (sheen_lobe(ctx, wi) + f32(folds_below_surface()) * sheen_lobe(ctx, mirrored));
-    //#if normal_maps
-    f *= bump_shadowing(ctx, sheen_normal, wi);
+    var f = sheen_lobe(ctx, wi);
+    var f_mirrored = sheen_lobe(ctx, mirrored);
+    //#if terminator_offset
+    f *= terminator_shift(dot(sheen_normal, wi));
+    f_mirrored *= terminator_shift(dot(sheen_normal, mirrored));
     //#endif
-    return f;
+    var color = ctx.sheen_color * (f + f32(folds_below_surface()) * f_mirrored);
+    //#if normal_maps
+    color *= bump_shadowing(ctx, sheen_normal, wi);
+    //#endif
+    return color;
 }
 
 fn sheen_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {

@@ -15,10 +15,6 @@
 //#include "transform.wgsl"
 //#include "valid_reflection.wgsl"
 
-// Blender's default Shadow Terminator Geometry Offset of an object: shadow rays within
-// about this cosine of the terminator start from the smooth surface.
-const SHADOW_TERMINATOR_OFFSET: f32 = 0.1;
-
 // The triangle hit being shaded, for `shadow_ray_origin`.
 var<private> smooth_hit: Hit;
 
@@ -46,7 +42,12 @@ fn shadow_ray_lift(p: vec3f, n_geometric: vec3f, l: vec3f) -> vec3f {
     let ng = select(n_geometric, -n_geometric, nl < 0.0);
     nl = abs(nl);
     let ngl = dot(ng, l);
-    let cutoff = SHADOW_TERMINATOR_OFFSET;
+    // The object's Shadow Terminator Geometry Offset: shadow rays within about this cosine
+    // of the terminator start from the smooth surface (0: none do).
+    let cutoff = terminators[smooth_hit.instance].geometry_offset;
+    if cutoff <= 0.0 {
+        return p;
+    }
     let amount = select(saturate(1.0 - ngl / cutoff), saturate(2.0 - (ngl + nl) / cutoff), nl < cutoff);
     if amount <= 0.0 {
         return p;

@@ -146,6 +146,29 @@ pub struct GpuInstance {
     pub material_override: u32,
 }
 
+/// An instance's Shadow Terminator settings, beside [`GpuInstance`] rather than in it:
+/// only smooth shading and the terminator shift read them, not traversal.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuTerminator {
+    /// Blender's Geometry Offset: the cosine below which shadow rays start from the smooth surface.
+    pub geometry_offset: f32,
+    /// 1 / (1 - Shading Offset / 2): 1 leaves the lobes' cosines alone.
+    pub frequency_multiplier: f32,
+}
+
+impl Default for GpuTerminator {
+    fn default() -> Self {
+        Self::from(crate::scene::ShadowTerminator::default())
+    }
+}
+
+impl From<crate::scene::ShadowTerminator> for GpuTerminator {
+    fn from(t: crate::scene::ShadowTerminator) -> Self {
+        Self { geometry_offset: t.geometry_offset, frequency_multiplier: t.frequency_multiplier() }
+    }
+}
+
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuSphere {

@@ -7,12 +7,15 @@
 //! are made by `tests/cycles/make_principled_refs.py` (`terminator_sun`, `terminator_coat_sun`,
 //! `terminator_glass_sun`, `terminator_sheen_sun`, `coarse_no_correction`) and compared as the
 //! other Principled rows are (`cycles_principled::check_row`), the glass row as the rare
-//! paths' (`cycles_rare_paths::check_batched`). What the exporter cannot carry, the objects'
-//! own Shadow Terminator offsets, is a warning naming the object.
+//! paths' (`cycles_rare_paths::check_batched`). Rows of objects with Shadow Terminator
+//! settings of their own (`terminator_shading_offset_sun`, `terminator_offsets_sun`,
+//! `terminator_shading_offset_mirrors`, `terminator_shading_offset_layers`) check that rt
+//! applies each object's, which the exporter writes into the scene file.
 
 use crate::common;
 use crate::cycles_principled::check_row;
 use crate::cycles_rare_paths::check_batched;
+use rt::scene::ShadowTerminator;
 
 /// Lambertian, Oren-Nayar, the default dielectric, a rough metal and a coated base.
 #[test]
@@ -59,18 +62,61 @@ fn coarse_spheres_without_bump_map_correction_match_cycles() {
     check_row("principled_coarse_no_correction");
 }
 
-/// rt renders every object with Blender's default Shadow Terminator offsets (Geometry 0.1,
-/// Shading 0): the exporter warns of other settings, naming the object.
+/// Each lobe of `terminator_sun` on objects with a Shadow Terminator Shading Offset of 0.6:
+/// Cycles multiplies every lobe's value by cos(kθ) / cos θ (k = 1 / (1 - 0.6 / 2)), θ to the
+/// lobe's own normal, which darkens the spheres towards the terminator and ends their light
+/// at 63° from the normal rather than at 90°.
 #[test]
-fn shadow_terminator_settings_other_than_the_defaults_are_warned_about() {
-    let out = common::empty_temp_dir("shadow-terminator-warnings");
-    let stderr = common::run_bpy_script("shadow_terminator_warnings.py", &out);
-    for needle in [
-        "object lifted: Shadow Terminator Geometry Offset 0.3 is not supported; rendered with 0.1",
-        "object shifted: Shadow Terminator Shading Offset 0.5 is not supported; rendered with 0",
-    ] {
-        assert!(stderr.contains(needle), "{needle:?} missing from:\n{stderr}");
-    }
-    assert!(!stderr.contains("object plain"), "the defaults are warned about:\n{stderr}");
-    assert_eq!(stderr.matches("Shadow Terminator").count(), 2, "{stderr}");
+fn shading_offsets_shift_each_lobe_as_in_cycles() {
+    check_row("principled_terminator_shading_offset_sun");
+}
+
+/// Perfect mirrors and interfaces with a Shading Offset of 0.6 in a white world: Cycles shifts
+/// a singular lobe's reflection too (a metal, a dielectric's specular layer, glass, a coat),
+/// by the cosine of the reflected direction; refraction is left alone.
+#[test]
+fn shading_offsets_shift_perfect_reflections_as_in_cycles() {
+    check_row("principled_terminator_shading_offset_mirrors");
+}
+
+/// Sheens of roughness 0.3 and 1, rough glass of 0.3 and 0.6 and a coat of 0.3, with a Shading
+/// Offset of 1, in a white world: the sheen by its own normal, glass's reflection only.
+#[test]
+fn shading_offsets_shift_sheens_glass_and_coats_as_in_cycles() {
+    check_row("principled_terminator_shading_offset_layers");
+}
+
+/// Lambertian spheres with Shading Offsets 0.3, 0.6 and 1, then Geometry Offsets 0 (no shadow
+/// ray starts from the smooth surface: the faces turned from the sun whose normals face it go
+/// dark) and 1 (every shadow ray does).
+#[test]
+fn shading_and_geometry_offsets_match_cycles() {
+    check_row("principled_terminator_offsets_sun");
+}
+
+/// Each object's Shadow Terminator settings travel with it: into its [[mesh]] entry, and for
+/// instances into the [[instances]] entry of an instance file of their own (a collection of
+/// two objects sharing a mesh, one with offsets of its own, instanced twice); no warning.
+#[test]
+fn shadow_terminator_settings_are_exported_per_object_and_per_instance() {
+    let out = common::empty_temp_dir("shadow-terminator-export");
+    let stderr = common::run_bpy_script("shadow_terminator_export.py", &out);
+    assert!(!stderr.contains("Shadow Terminator"), "a setting is warned about:\n{stderr}");
+    let scene = rt::scene::load(&out.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let offsets = |t: &ShadowTerminator| (t.geometry_offset, t.shading_offset);
+    // The [[mesh]] entries in the order of their objects' names: lifted, plain, shifted.
+    let meshes: Vec<_> = scene.meshes.iter().map(|m| offsets(&m.shadow_terminator)).collect();
+    assert_eq!(meshes, [(0.3, 0.0), (0.1, 0.0), (0.1, 0.5)]);
+    let mut sets: Vec<_> = scene
+        .instance_sets
+        .iter()
+        .map(|s| {
+            let count = rt::asset::rtinst::read(&s.file).unwrap_or_else(|e| panic!("{e}")).records.len();
+            (offsets(&s.shadow_terminator), count, s.asset.clone())
+        })
+        .collect();
+    sets.sort_by(|a, b| a.0.partial_cmp(&b.0).expect("finite"));
+    assert_eq!(sets.iter().map(|s| (s.0, s.1)).collect::<Vec<_>>(), [((0.0, 0.6), 2), ((0.1, 0.0), 2)]);
+    assert_eq!(sets[0].2, sets[1].2, "the instances of both objects share one asset");
+    assert_ne!(scene.instance_sets[0].file, scene.instance_sets[1].file);
 }

@@ -1,6 +1,7 @@
 //! Instance files (`.rtinst`) on lavapipe: they place exactly what `[[mesh]]` entries
 //! with the same matrices place, bad files are errors that name them, and a million
-//! instances of a 10⁴-triangle mesh pack and render.
+//! instances of a 10⁴-triangle mesh pack and render; an entry's Shadow Terminator settings
+//! reach every instance of its file.
 
 use crate::common;
 
@@ -79,6 +80,40 @@ fn an_instance_file_places_what_mesh_entries_with_its_matrices_place() {
     assert_eq!(differing, 0, "the instance file and the [[mesh]] entries render differently");
     // The overrides reached the image: red spheres are seen under a bluish sky.
     assert!(lit > 20, "only {lit} red-dominant pixels: the material override was lost");
+}
+
+/// An `[[instances]]` entry's Shadow Terminator settings are each of its instances', as a
+/// `[[mesh]]` entry's are its one: the same image (and the settings change it: the Shading
+/// Offset shifts every lobe, the pipeline runs the `terminator-offset` code).
+#[test]
+fn an_instance_files_shadow_terminator_settings_reach_every_instance() {
+    let dir = temp_dir("instances-terminator");
+    let asset = sphere_asset(&dir);
+    let placed = placements();
+    let settings = "shadow_terminator_shading_offset = 0.6\nshadow_terminator_geometry_offset = 0.5\n";
+    let meshes = |with: &str| {
+        let entries =
+            placed.iter().map(|(m, _)| format!("[[mesh]]\nasset = {asset:?}\nmatrix = {}\n{with}", matrix_toml(m)));
+        format!("{HEADER}{}", entries.collect::<String>())
+    };
+    let records: Vec<InstanceRecord> = placed.iter().map(|(m, _)| InstanceRecord::new(m, OWN_MATERIALS)).collect();
+    let file = dir.join("spheres.rtinst");
+    rtinst::write(&file, &records, &MaterialSets::default()).expect("write .rtinst");
+    let instanced =
+        format!("{HEADER}[[instances]]\nasset = {asset:?}\nfile = {:?}\n{settings}", file.display().to_string());
+
+    let shot = |text: &str| {
+        common::render_request(common::scene_from(text), |r| (r.width, r.height, r.spp, r.max_bounces) = (48, 48, 4, 4))
+    };
+    let (a, features) = shot(&meshes(settings));
+    let (b, _) = shot(&instanced);
+    let (plain, plain_features) = shot(&meshes(""));
+    let differing = a.pixels.iter().zip(&b.pixels).filter(|(p, q)| p != q).count();
+    let shifted = a.pixels.iter().zip(&plain.pixels).filter(|(p, q)| p != q).count();
+    println!("48x48 at 4 spp: {differing} pixels differ between the entries, {shifted} from the defaults'");
+    assert_eq!(differing, 0, "the instance file's settings and the [[mesh]] entries' render differently");
+    assert!(shifted > 48 * 48 / 4, "the settings changed {shifted} pixels");
+    assert!(features.terminator_offset && !plain_features.terminator_offset, "{features} / {plain_features}");
 }
 
 fn geometry_error(dir: &Path, asset: &str, bytes: &[u8], materials: &str) -> String {

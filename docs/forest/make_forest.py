@@ -124,7 +124,7 @@ def main():
     c.max_bounces = c.diffuse_bounces = 8
     bpy.context.view_layer.update()
     export = rt_export.export_scene(scene, os.path.join(args.out, "assets"), os.path.join(args.out, "scene.toml"))
-    print("instances:", {f: len(m) for f, m in export.instances.items()}, flush=True)
+    print("instances:", export.instance_counts(), flush=True)
     scene.render.filepath = os.path.join(REPO, "docs", "images", "forest_cycles.png")
     bpy.ops.render.render(write_still=True)
     print("wrote", scene.render.filepath, flush=True)

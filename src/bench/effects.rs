@@ -100,6 +100,8 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
     force("rough diffuse", own.rough_diffuse, FeatureSet { rough_diffuse: true, ..own });
     // Smooth shading reads triangles' vertices and normals: forcing it on forces triangles too.
     force("smooth normals", own.smooth_normals, FeatureSet { smooth_normals: true, triangles: true, ..own });
+    // The terminator shift reads the shaded instance's settings: triangles come with it.
+    force("terminator offset", own.terminator_offset, FeatureSet { terminator_offset: true, triangles: true, ..own });
     // Texture lookups alone, so that the normal maps' own share of their price shows.
     force("textures", own.textures, FeatureSet { textures: true, ..own });
     // Normal maps are texture lookups: forcing them on forces the texture code too.
@@ -207,5 +209,10 @@ mod tests {
     #[test]
     fn coat_normal_is_among_the_forced_effects() {
         forced_once("+coat normal", |f| FeatureSet { coat_normal: false, ..f });
+    }
+
+    #[test]
+    fn terminator_offset_is_among_the_forced_effects() {
+        forced_once("+terminator offset", |f| FeatureSet { terminator_offset: false, ..f });
     }
 }

@@ -21,7 +21,7 @@ pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     use Binding::*;
     let bindings = [
         Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadWrite, ReadOnly, ReadOnly,
-        Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly,
+        Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly,
     ];
     sequential_layout(device, "scene", wgpu::ShaderStages::COMPUTE, &bindings)
 }
@@ -66,11 +66,13 @@ struct SceneData {
     microfacet_tables: wgpu::Buffer,
     /// Per-triangle second uv set, for textures that read it.
     second_uvs: wgpu::Buffer,
+    /// Per-instance Shadow Terminator settings, for smooth shading and the terminator shift.
+    terminators: wgpu::Buffer,
 }
 
 impl SceneData {
     /// The buffers in binding order (see [`scene_bind_group_layout`]).
-    fn bindings(&self) -> [&wgpu::Buffer; 20] {
+    fn bindings(&self) -> [&wgpu::Buffer; 21] {
         [
             &self.frame,
             &self.nodes,
@@ -92,6 +94,7 @@ impl SceneData {
             &self.tangents,
             &self.microfacet_tables,
             &self.second_uvs,
+            &self.terminators,
         ]
     }
 }
@@ -116,8 +119,9 @@ fn storage<T: Pod + Default>(ctx: &GpuContext, label: &str, data: &[T], extra: w
 }
 
 /// The geometry's buffers: (top-level nodes, triangles, shading, instances, top-level primitives,
-/// spheres, bottom-level nodes, tangents, second uvs).
+/// spheres, bottom-level nodes, tangents, second uvs, terminators).
 type GeometryBuffers = (
+    wgpu::Buffer,
     wgpu::Buffer,
     wgpu::Buffer,
     wgpu::Buffer,
@@ -142,6 +146,7 @@ fn geometry_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<Geomet
         storage(ctx, "wide nodes", &geometry.wide_nodes, none),
         storage(ctx, "tangents", &geometry.tangents, none),
         storage(ctx, "second uvs", &geometry.second_uvs, none),
+        storage(ctx, "terminators", &geometry.terminators, none),
     ))
 }
 
@@ -176,7 +181,7 @@ fn material_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer
 
 impl SceneBuffers {
     pub fn new(ctx: &GpuContext, geometry: &SceneGeometry, layout: &wgpu::BindGroupLayout) -> Result<Self> {
-        let (nodes, triangles, shading, instances, tlas, spheres, wide_nodes, tangents, second_uvs) =
+        let (nodes, triangles, shading, instances, tlas, spheres, wide_nodes, tangents, second_uvs, terminators) =
             geometry_buffers(ctx, geometry)?;
         let (materials, emitters) = material_buffers(ctx, geometry);
         let frame = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -210,6 +215,7 @@ impl SceneBuffers {
             tangents,
             microfacet_tables: storage(ctx, "microfacet tables", &microfacet_tables(), wgpu::BufferUsages::empty()),
             second_uvs,
+            terminators,
         };
         let bind_group = bind_group(ctx, "scene", layout, &data.bindings());
         Ok(Self { data, bind_group, sky_bind_group: None })
@@ -224,8 +230,18 @@ impl SceneBuffers {
         layout: &wgpu::BindGroupLayout,
     ) -> Result<()> {
         let d = &mut self.data;
-        (d.nodes, d.triangles, d.shading, d.instances, d.tlas, d.spheres, d.wide_nodes, d.tangents, d.second_uvs) =
-            geometry_buffers(ctx, geometry)?;
+        (
+            d.nodes,
+            d.triangles,
+            d.shading,
+            d.instances,
+            d.tlas,
+            d.spheres,
+            d.wide_nodes,
+            d.tangents,
+            d.second_uvs,
+            d.terminators,
+        ) = geometry_buffers(ctx, geometry)?;
         (d.materials, d.emitters) = material_buffers(ctx, geometry);
         (d.lamps, d.lamp_info) = lamp_buffers(ctx, geometry);
         (d.textures, d.texels) = texture_buffers(ctx, geometry);
@@ -277,6 +293,7 @@ fn check_sizes(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<()> {
         ("triangle tangents", std::mem::size_of_val(geometry.tangents.as_slice())),
         ("second uvs", std::mem::size_of_val(geometry.second_uvs.as_slice())),
         ("instances", std::mem::size_of_val(geometry.instances.as_slice())),
+        ("instance terminators", std::mem::size_of_val(geometry.terminators.as_slice())),
         ("emitters", std::mem::size_of_val(geometry.emitters.as_slice())),
         ("light tree nodes", std::mem::size_of_val(geometry.light_tree.nodes.as_slice())),
     ];

@@ -99,6 +99,7 @@ fn host_structs_match_wgsl_layouts() {
             GpuInstance,
             [world_to_object, node_offset, triangle_offset, material_base, material_override]
         ),
+        host_layout!("Terminator", GpuTerminator, [geometry_offset, frequency_multiplier]),
         host_layout!("Sphere", GpuSphere, [center, radius, material, k]),
         host_layout!(
             "Material",

@@ -88,6 +88,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("oren_nayar.wgsl"),
     shader!("panorama.wgsl"),
     shader!("surface.wgsl"),
+    shader!("terminator_offset.wgsl"),
     shader!("trace_kernel.wgsl"),
     shader!("transform.wgsl"),
     shader!("traverse.wgsl"),

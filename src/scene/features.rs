@@ -118,6 +118,9 @@ pub struct FeatureSet {
     /// material model, `microfacet = "multiscatter"`): the shadow terminator offset,
     /// directions judged by the geometry rather than folded, and Bump Map Correction.
     pub smooth_normals: bool,
+    /// Some object has a Shadow Terminator Shading Offset: its lobes' cosines are shifted
+    /// towards the light (Cycles' `shift_cos_in`).
+    pub terminator_offset: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -131,6 +134,8 @@ pub struct GeometrySummary {
     pub spheres: bool,
     /// Some triangle's vertex normals differ from its face's (a smooth-shaded mesh).
     pub smooth_normals: bool,
+    /// Some placed instance has a Shadow Terminator Shading Offset.
+    pub shading_offsets: bool,
     /// Every material some triangle or sphere uses (an asset's own materials may
     /// emit or refract).
     pub materials_in_use: Vec<Material>,
@@ -204,6 +209,7 @@ impl FeatureSet {
             rough_diffuse: materials_in_use.iter().any(|m| m.has_rough_diffuse()),
             // Mitsuba's material model (`single`) folds leaking directions above the surface.
             smooth_normals: geometry.smooth_normals && settings.microfacet == Microfacet::Multiscatter,
+            terminator_offset: geometry.shading_offsets,
         }
     }
 
@@ -241,6 +247,7 @@ impl FeatureSet {
             uv_tangents: true,
             rough_diffuse: true,
             smooth_normals: true,
+            terminator_offset: true,
         }
     }
 
@@ -291,6 +298,9 @@ impl FeatureSet {
             "tangent_frames" => self.normal_maps || self.uv_tangents,
             "rough_diffuse" => self.rough_diffuse,
             "smooth_normals" => self.smooth_normals,
+            "terminator_offset" => self.terminator_offset,
+            // Each instance's Shadow Terminator settings, read by both.
+            "terminators" => self.smooth_normals || self.terminator_offset,
             "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen || self.thin_film,
             _ => return None,
         })
@@ -328,6 +338,7 @@ impl fmt::Display for FeatureSet {
             (self.uv_tangents, "uv-tangents"),
             (self.rough_diffuse, "rough-diffuse"),
             (self.smooth_normals, "smooth-normals"),
+            (self.terminator_offset, "terminator-offset"),
         ] {
             if on {
                 parts.push(name.to_string());

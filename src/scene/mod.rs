@@ -12,6 +12,7 @@ mod material_textures;
 mod panorama;
 mod parse;
 mod schema;
+mod shadow_terminator;
 #[cfg(test)]
 mod tests;
 mod validate;
@@ -26,6 +27,7 @@ pub use material::{Material, Tangent, luminance};
 pub use material_textures::{LAYER_COUNT, LayerTextures, MaterialTextures, UvSet, slots};
 pub use panorama::Panorama;
 pub use parse::{SceneError, hint as did_you_mean, load, parse};
+pub use shadow_terminator::ShadowTerminator;
 pub use validate::MAX_IMAGE_SIDE;
 
 use glam::{Mat4, Vec3};
@@ -158,6 +160,7 @@ pub struct MeshInstance {
     /// `matrix` (row-major in the file), or `T * Rz * Ry * Rx * S`: scale, then rotate
     /// about X, Y, Z by `rotate_deg` (degrees, right-handed), then translate.
     pub object_to_world: Mat4,
+    pub shadow_terminator: ShadowTerminator,
 }
 
 /// One `[[instances]]`: an asset placed once per record of an instance file.
@@ -170,6 +173,8 @@ pub struct InstanceSet {
     /// Scene materials by name: a record's material index `i` overrides the asset's
     /// own materials with `materials[i]`.
     pub materials: Vec<String>,
+    /// The Shadow Terminator settings of every instance of the file.
+    pub shadow_terminator: ShadowTerminator,
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -182,6 +182,8 @@ pub(super) struct Mesh {
     pub scale: Option<Scale>,
     /// Row-major; excludes `rotate_deg`, `translate` and `scale`.
     pub matrix: Option<[f32; 16]>,
+    pub shadow_terminator_geometry_offset: Option<f32>,
+    pub shadow_terminator_shading_offset: Option<f32>,
 }
 
 /// One asset placed by an instance file (`.rtinst`).
@@ -193,6 +195,9 @@ pub(super) struct Instances {
     /// Scene materials that the file's material indices name, in order.
     #[serde(default)]
     pub materials: Vec<String>,
+    /// For every instance of the file.
+    pub shadow_terminator_geometry_offset: Option<f32>,
+    pub shadow_terminator_shading_offset: Option<f32>,
 }
 
 #[derive(Clone, Copy, Deserialize)]

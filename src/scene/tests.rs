@@ -386,3 +386,29 @@ fn a_thin_film_keeps_the_specular_layer_at_level_zero() {
     let none = Material { thin_film_thickness: 0.1, ..plain };
     assert_eq!(none.dielectric_coating(), None);
 }
+
+/// An object's Shadow Terminator settings: Blender's defaults (Geometry Offset 0.1, Shading
+/// Offset 0) where left out, on meshes and on instance files alike, each within [0, 1].
+#[test]
+fn shadow_terminator_settings_default_to_blenders_and_are_checked() {
+    let s = parse_ok(
+        "[[mesh]]\nasset = \"a\"\nshadow_terminator_shading_offset = 0.6\n[[mesh]]\nasset = \"b\"\n\
+         [[instances]]\nasset = \"a\"\nfile = \"b.rtinst\"\nshadow_terminator_geometry_offset = 0\n",
+    );
+    let shifted = ShadowTerminator { geometry_offset: 0.1, shading_offset: 0.6 };
+    assert_eq!(s.meshes[0].shadow_terminator, shifted);
+    assert_eq!(s.meshes[1].shadow_terminator, ShadowTerminator::default());
+    assert_eq!(s.instance_sets[0].shadow_terminator, ShadowTerminator { geometry_offset: 0.0, shading_offset: 0.0 });
+    // Cycles' frequency multiplier: 1 / (1 - 0.6 / 2), and 1 (no shift) by default.
+    assert!((shifted.frequency_multiplier() - 1.0 / 0.7).abs() < 1e-6);
+    assert_eq!(ShadowTerminator::default().frequency_multiplier(), 1.0);
+    assert_errors(
+        r#"
+        [[mesh]] | asset = "a" | shadow_terminator_shading_offset = 1.5 => 3:36: mesh 1: shadow_terminator_shading_offset must be in [0, 1], got 1.5
+        [[mesh]] | asset = "a" | shadow_terminator_geometry_offset = -0.1 => 3:37: mesh 1: shadow_terminator_geometry_offset must be in [0, 1], got -0.1
+        [[instances]] | asset = "a" | file = "b" | shadow_terminator_shading_offset = nan => 4:36: instances 1: shadow_terminator_shading_offset must be finite, got NaN
+        [[mesh]] | asset = "a" | shadow_terminator_offset = 0.5 => 3:1: unknown key `shadow_terminator_offset` in mesh 1; did you mean `shadow_terminator_shading_offset`?
+        [[instances]] | asset = "a" | file = "b" | shadow_terminator_shading_ofset = 0.5 => 4:1: unknown key `shadow_terminator_shading_ofset` in instances 1; did you mean `shadow_terminator_shading_offset`?
+    "#,
+    );
+}

@@ -5,7 +5,7 @@ use super::environment;
 use super::light;
 use super::parse::{SceneError, Seg, Seg::*, Source, hint};
 use super::schema::{self, File, Scale, SkyKind};
-use super::{InstanceSet, Material, MeshInstance, RenderSettings, Scene, Sky, Sphere, Sun};
+use super::{InstanceSet, Material, MeshInstance, RenderSettings, Scene, ShadowTerminator, Sky, Sphere, Sun};
 use glam::{Mat3, Mat4, Vec3};
 use std::path::Path;
 
@@ -44,6 +44,12 @@ pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, 
             object_to_world: transform(src, &p, &m)?,
             asset: base_dir.join(&m.asset),
             material: material_ref(&p, m.material)?,
+            shadow_terminator: ShadowTerminator::validate(
+                src,
+                &p,
+                m.shadow_terminator_geometry_offset,
+                m.shadow_terminator_shading_offset,
+            )?,
         });
     }
     let mut spheres = Vec::new();
@@ -76,7 +82,14 @@ pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, 
                 return Err(src.error(&p, "materials", message));
             }
         }
+        let shadow_terminator = ShadowTerminator::validate(
+            src,
+            &p,
+            set.shadow_terminator_geometry_offset,
+            set.shadow_terminator_shading_offset,
+        )?;
         instance_sets.push(InstanceSet {
+            shadow_terminator,
             asset: base_dir.join(&set.asset),
             file: base_dir.join(&set.file),
             materials: set.materials,

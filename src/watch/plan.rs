@@ -299,6 +299,9 @@ mod tests {
         assert_eq!(reload.changes, [Change::Placement]);
         assert_eq!(kind_after(|s| s.spheres[0].radius = 0.7).changes, [Change::Placement]);
         assert_eq!(kind_after(|s| s.meshes[0].material = None).changes, [Change::Placement]);
+        // An object's Shadow Terminator settings are its instance's; the features follow the geometry.
+        let shifted = kind_after(|s| s.meshes[0].shadow_terminator.shading_offset = 0.5);
+        assert_eq!(shifted.changes, [Change::Placement]);
     }
 
     #[test]
@@ -337,6 +340,7 @@ mod tests {
             asset: PathBuf::from("/s/other.obj"),
             material: None,
             object_to_world: glam::Mat4::IDENTITY,
+            shadow_terminator: Default::default(),
         });
         let mut new_prints = prints(1);
         new_prints.insert(PathBuf::from("/s/other.obj"), Ok([7; 32]));
@@ -364,6 +368,7 @@ mod tests {
             asset: PathBuf::from("/s/box.obj"),
             file: PathBuf::from("/s/boxes.rtinst"),
             materials: vec![],
+            shadow_terminator: Default::default(),
         });
         let with_file = |hash: u8| {
             let mut p = prints(1);

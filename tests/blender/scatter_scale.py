@@ -97,7 +97,7 @@ def main():
     evaluated = time.perf_counter()
     export = rt_export.export_scene(scene, os.path.join(out, "assets"), os.path.join(out, "scene.toml"))
     done = time.perf_counter()
-    counts = {folder: len(p) for folder, p in export.instances.items()}
+    counts = export.instance_counts()
     peak_mib = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
     report = {"instances": counts, "evaluate_s": evaluated - start, "export_s": done - evaluated, "peak_mib": peak_mib}
     print(json.dumps(report), flush=True)

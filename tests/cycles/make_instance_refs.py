@@ -219,7 +219,7 @@ def main():
         cycles.uniform_world(scene, (0.875, 0.9375, 1.0))
         cycles.set_up(scene, SIZE)
         export = cycles.export(scene, f"instances_{name}")
-        print(f"instances_{name}: instances {({f: len(m) for f, m in export.instances.items()})}", flush=True)
+        print(f"instances_{name}: instances {export.instance_counts()}", flush=True)
         cycles.render(scene, f"instances_{name}", args)
 
 

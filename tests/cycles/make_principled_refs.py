@@ -47,6 +47,16 @@ TERMINATOR = [
     {"Roughness": 0.5, "Coat Weight": 1.0, "Coat Roughness": 0.1},
 ]
 
+# Delta lobes: a mirror metal, a smooth dielectric, smooth glass, a smooth coat over a
+# rough base, and a Lambertian base for comparison.
+MIRRORS = [
+    {"Metallic": 1.0, "Roughness": 0.0},
+    {"Roughness": 0.0},
+    {"Transmission Weight": 1.0, "Roughness": 0.0, "IOR": 1.45},
+    {"Roughness": 0.5, "Coat Weight": 1.0, "Coat Roughness": 0.0},
+    {"Specular IOR Level": 0.0, "Roughness": 1.0},
+]
+
 # Roughness under a sun from 0.2: a sharp highlight of a 0.53° sun lights the neighbouring
 # spheres by rare bright paths (a sphere's glint seen in the next one), whose noise the
 # standard errors underestimate; from 0.1 (and a coat of 0.1), blocks facing a neighbour
@@ -175,6 +185,22 @@ ROWS = {
         {**SHEEN_BASE, "Sheen Weight": 1.0, "Sheen Tint": (1.0, 0.8, 0.6)},
         [{"Sheen Roughness": r} for r in (0.1, 0.3, 0.5, 0.7, 1.0)],
     ),
+    # The objects' own Shadow Terminator settings (see OBJECT_SETTINGS): Shading Offsets on
+    # each lobe of `terminator_sun`, and from none to full with two Geometry Offsets on a
+    # Lambertian base.
+    "terminator_shading_offset_sun": ({"Base Color": (0.8, 0.5, 0.3)}, TERMINATOR),
+    "terminator_offsets_sun": ({"Base Color": (0.8, 0.5, 0.3), **TERMINATOR[0]}, [{}] * 5),
+    # Perfect mirrors and interfaces (a metal, a dielectric, glass, a coat) beside a
+    # Lambertian sphere, with a Shading Offset of 0.6, in the white world they reflect.
+    "terminator_shading_offset_mirrors": ({"Base Color": (0.8, 0.5, 0.3)}, MIRRORS),
+    # The sheen, rough glass and a rough coat, with a Shading Offset of 1, in the white world.
+    "terminator_shading_offset_layers": ({"Base Color": (0.8, 0.5, 0.3)}, [
+        {**SHEEN_BASE, "Sheen Weight": 1.0, "Sheen Roughness": 0.3},
+        {**SHEEN_BASE, "Sheen Weight": 1.0, "Sheen Roughness": 1.0},
+        {"Transmission Weight": 1.0, "Roughness": 0.3, "IOR": 1.45},
+        {"Transmission Weight": 1.0, "Roughness": 0.6, "IOR": 1.45},
+        {"Roughness": 0.5, "Coat Weight": 1.0, "Coat Roughness": 0.3},
+    ]),
     # Glossy lobes on coarse spheres with the material's Bump Map Correction off (see
     # NO_BUMP_MAP_CORRECTION), under the white world that their silhouettes mirror.
     "coarse_no_correction": ({"Base Color": (0.8, 0.5, 0.3)}, GLOSSY_TERMINATOR),
@@ -207,6 +233,8 @@ SUNLIT = {
     "terminator_coat_sun": SIDE_SUN,
     "terminator_glass_sun": SIDE_SUN,
     "terminator_sheen_sun": SHEEN_SUN,
+    "terminator_shading_offset_sun": SIDE_SUN,
+    "terminator_offsets_sun": SIDE_SUN,
     "sheen_weight_sun": SHEEN_SUN,
     "sheen_roughness_sun": SHEEN_SUN,
     "anisotropy_sun": FRONT_SUN,
@@ -222,7 +250,24 @@ SUNLIT = {
 
 # Rows of coarse spheres: segments around (and half as many rings), instead of 48.
 COARSE = {name: 12 for name in ("terminator_sun", "terminator_coat_sun", "terminator_glass_sun", "terminator_sheen_sun",
+                                 "terminator_shading_offset_sun", "terminator_offsets_sun",
+                                 "terminator_shading_offset_mirrors", "terminator_shading_offset_layers",
                                  "coarse_no_correction")}
+
+# Rows whose spheres have Shadow Terminator settings (Object > Shading) of their own, one
+# dict of object properties per sphere (Blender's defaults: Geometry Offset 0.1, Shading 0).
+OBJECT_SETTINGS = {
+    "terminator_shading_offset_sun": [{"shadow_terminator_shading_offset": 0.6}] * 5,
+    "terminator_shading_offset_mirrors": [{"shadow_terminator_shading_offset": 0.6}] * 5,
+    "terminator_shading_offset_layers": [{"shadow_terminator_shading_offset": 1.0}] * 5,
+    "terminator_offsets_sun": [
+        {"shadow_terminator_shading_offset": 0.3},
+        {"shadow_terminator_shading_offset": 0.6},
+        {"shadow_terminator_shading_offset": 1.0},
+        {"shadow_terminator_geometry_offset": 0.0},
+        {"shadow_terminator_geometry_offset": 1.0},
+    ],
+}
 
 # Rows whose materials have Bump Map Correction off (Blender's Material > Settings).
 NO_BUMP_MAP_CORRECTION = {"coarse_no_correction"}
@@ -272,13 +317,17 @@ def build(scene, name):
     else:
         cycles.uniform_world(scene, (1.0, 1.0, 1.0))
     materials = [principled(f"{name}_{i}", {**shared, **own}) for i, own in enumerate(spheres)]
-    for material, sphere in zip(materials, sphere_row(scene, materials, COARSE.get(name, 48))):
+    objects = sphere_row(scene, materials, COARSE.get(name, 48))
+    for material, sphere in zip(materials, objects):
         if name in TANGENT_NODES:
             link_tangent(material.node_tree, material.node_tree.nodes["Principled BSDF"], TANGENT_NODES[name])
         if name in UV_SWAPPED:
             swap_uv(sphere.data)
         if name in NO_BUMP_MAP_CORRECTION:
             material.cycles.use_bump_map_correction = False
+    for sphere, settings in zip(objects, OBJECT_SETTINGS.get(name, [])):
+        for key, value in settings.items():
+            setattr(sphere, key, value)
 
 
 def principled(name, inputs):

@@ -59,6 +59,7 @@ fn feature_sets() -> Vec<FeatureSet> {
             uv_tangents: on(2) != on(6) && on(1),
             rough_diffuse: on(3) != on(5),
             smooth_normals: on(1) != on(3),
+            terminator_offset: on(4) != on(5),
         });
     }
     sets
@@ -101,6 +102,7 @@ fn plain() -> FeatureSet {
         uv_tangents: false,
         rough_diffuse: false,
         smooth_normals: false,
+        terminator_offset: false,
     }
 }
 

@@ -376,7 +376,11 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         set_coat_normal(side * coat_normal, side * n_unmapped, side * coat_normal_before_bending());
         //#endif
         //#if smooth_normals
-        n_shading = set_smooth_shading(m, hit, n_shading, n_geometric, -direction, mapped);
+        var n_interpolated = n_shading;
+        //#if normal_maps
+        n_interpolated = side * n_unmapped;
+        //#endif
+        n_shading = set_smooth_shading(m, hit, n_interpolated, n_shading, n_geometric, -direction, mapped);
         //#endif
         //#if terminator_offset
         set_terminator_shift(hit);

@@ -18,14 +18,16 @@
 // The triangle hit being shaded, for `shadow_ray_origin`.
 var<private> smooth_hit: Hit;
 
-// Marks the surface about to be shaded (see `set_smooth_normal` in bsdf.wgsl) and returns the
-// shading normal its lobes take: `n_shading` and `n_geometric` on the viewer's side, `wo`
-// towards the viewer. Normal-mapped surfaces keep their own handling (normal_map.wgsl).
-fn set_smooth_shading(m: Material, hit: Hit, n_shading: vec3f, n_geometric: vec3f, wo: vec3f, normal_mapped: bool) -> vec3f {
+// Marks the surface about to be shaded (see `set_smooth_normal` in lobe_hemispheres.wgsl)
+// and returns the shading normal its lobes take: `n_interpolated` (before any normal map),
+// `n_shading` and `n_geometric` on the viewer's side, `wo` towards the viewer. A normal-mapped
+// triangle counts as smooth where its interpolated normal is (its shadow rays start from the
+// smooth surface as Cycles' do); normal_map.wgsl has already bent its shading normal.
+fn set_smooth_shading(m: Material, hit: Hit, n_interpolated: vec3f, n_shading: vec3f, n_geometric: vec3f, wo: vec3f, normal_mapped: bool) -> vec3f {
     smooth_hit = hit;
-    let smoothed = hit.kind == HIT_TRIANGLE && !normal_mapped && dot(n_shading, n_geometric) < 1.0 - 1e-6;
-    set_smooth_normal(smoothed, n_shading);
-    if smoothed && m.bump_map_correction != 0u {
+    let smoothed = hit.kind == HIT_TRIANGLE && dot(n_interpolated, n_geometric) < 1.0 - 1e-6;
+    set_smooth_normal(smoothed, n_interpolated);
+    if smoothed && !normal_mapped && m.bump_map_correction != 0u {
         return valid_for_reflection(n_shading, n_geometric, wo);
     }
     return n_shading;

@@ -17,6 +17,15 @@ const SPP: u32 = 256;
 const MAX_BOUNCES: u32 = 12;
 
 fn check(name: &str, sampling: Sampling) {
+    compared(name, sampling).check(&format!("texture_{name} ({sampling:?})"), "Cycles");
+}
+
+/// As `check`, allowing `fraction` of the reference's value besides the noise.
+fn check_within(name: &str, sampling: Sampling, fraction: f64) {
+    compared(name, sampling).check_within(&format!("texture_{name} ({sampling:?})"), "Cycles", fraction);
+}
+
+fn compared(name: &str, sampling: Sampling) -> reference::Comparison {
     let dir = repo().join(format!("tests/cycles/scenes/texture_{name}"));
     let mut scene = rt::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
     scene.render.sampling = sampling;
@@ -24,7 +33,6 @@ fn check(name: &str, sampling: Sampling) {
     let ours = render(scene, w, h, SPP, MAX_BOUNCES);
     let file = repo().join(format!("tests/cycles/texture_{name}.exr"));
     reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4))
-        .check(&format!("texture_{name} ({sampling:?})"), "Cycles");
 }
 
 // rt shades normal maps as Cycles does: the map at its finest level, Cycles' bump
@@ -58,6 +66,16 @@ fn normal_map_on_the_second_uv_map_matches_cycles() {
 #[test]
 fn normal_map_behind_a_mapping_node_matches_cycles() {
     check("normal_mapping", Sampling::Nee);
+}
+
+// The same map on a sphere of 12 × 6 faces: a normal-mapped triangle is smooth-shaded in
+// Cycles' model too, its shadow rays starting from the smooth surface near the terminator
+// and its lobes judged against the interpolated normal. Shaded as a flat face's, a block
+// by the terminator was 6% darker than Cycles'. Two lit blocks are 0.5% (7 σ) brighter than
+// Cycles' with either rule, unexplained: a 1% allowance.
+#[test]
+fn normal_mapped_coarse_sphere_is_lit_past_its_faces_terminator_as_in_cycles() {
+    check_within("normal_coarse_sphere", Sampling::Nee, 0.01);
 }
 
 #[test]

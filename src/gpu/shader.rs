@@ -66,6 +66,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("lamps.wgsl"),
     shader!("layered_emission.wgsl"),
     shader!("light_tree.wgsl"),
+    shader!("lobe_hemispheres.wgsl"),
     shader!("lights.wgsl"),
     shader!("microfacet.wgsl"),
     shader!("microfacet_tables.wgsl"),

@@ -150,12 +150,27 @@ def scene_alpha_blend(scene):
     refs.camera(scene, (0.0, -2.6, 3.2), (0.0, 0.0, 0.2), 45.0)
 
 
+def scene_normal_coarse_sphere(scene):
+    """`scene_normal_sphere` on a sphere of 12 × 6 faces: Cycles starts its shadow rays from
+    the smooth surface that the interpolated normals describe, normal map or not, so faces
+    turned from the sun whose normals still face it are lit."""
+    cycles.uniform_world(scene, (0.2, 0.2, 0.2))
+    refs.sun(scene, (math.radians(55), 0.0, math.radians(-40)))
+    m = normal_mapped("bumpy", bump_normals(128, 8, 4, 0.01), (0.8, 0.8, 0.8), 1.0)
+    refs.add_object(scene, "sphere", bpy.ops.mesh.primitive_uv_sphere_add, m, radius=1.0, segments=12,
+                    ring_count=6)
+    bpy.ops.object.shade_smooth()
+    refs.floor(scene, (0.5, 0.5, 0.5), 8.0, -1.0)
+    refs.camera(scene, (0.0, -3.6, 0.8), (0.0, 0.0, -0.1), 45.0)
+
+
 SCENES = {
     "normal_sphere": scene_normal_sphere,
     "normal_cube": scene_normal_cube,
     "normal_second_uv": scene_normal_second_uv,
     "normal_mapping": scene_normal_mapping,
     "alpha_blend": scene_alpha_blend,
+    "normal_coarse_sphere": scene_normal_coarse_sphere,
 }
 
 

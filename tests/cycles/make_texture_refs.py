@@ -535,6 +535,21 @@ def scene_ior_map(scene):
     tree.links.new(mapped_range(tree, sep.outputs["Green"], 1.2, 2.2), bsdf.inputs["Coat IOR"])
 
 
+def scene_film_ior_map(scene):
+    """An image drives the Thin Film IOR (through Separate Color and a Map Range node): R
+    stripes across u of film index 1.2 and 2.0 (eight around the sphere), on a film of 350
+    nm over a sunlit near-black sphere with the default specular layer. At that thickness the
+    film's optical path (and so its colour) and its reflectance both move with its index:
+    the stripes show in the highlight and in the world's reflection alike."""
+    uniform_world(scene, (0.3, 0.3, 0.3))
+    sun(scene, (math.radians(35), 0.0, math.radians(25)))
+    tree, bsdf = layered_sphere(scene, "film_ior_map", {"Base Color": (0.03, 0.03, 0.035), "Roughness": 0.2,
+                                                        "Specular IOR Level": 0.5, "Thin Film Thickness": 350.0})
+    sep = separated(tree, image_node(tree, image("film_index", stripes(32, 4, (1.0, 0.0, 0.0), (0.0, 0.0, 0.0)),
+                                                 srgb=False)))
+    tree.links.new(mapped_range(tree, sep.outputs["Red"], 1.2, 2.0), bsdf.inputs["Thin Film IOR"])
+
+
 def blender_gltf(scene, out):
     """The same scene through Blender's own glTF exporter (a .glb with its textures
     embedded), placed by a copy of the exported scene file: for the tests that rt reads
@@ -566,6 +581,7 @@ SCENES = {
     "transmission_level_map": scene_transmission_level_map,
     "emission_strength_map": scene_emission_strength_map,
     "ior_map": scene_ior_map,
+    "film_ior_map": scene_film_ior_map,
     "coat_over_normal_map": scene_coat_over_normal_map,
     "coat_normal_map": scene_coat_normal_map,
     "coat_over_normal_map_sphere": scene_coat_over_normal_map_sphere,

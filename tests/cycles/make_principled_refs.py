@@ -282,6 +282,13 @@ WIDE_SUNS = {"glass_tint_sun": 20.0, "terminator_glass_sun": 20.0}
 SPP_FACTOR = {"glass_tint_sun": 8, "terminator_glass_sun": 4}
 
 
+# References of a row's exported scene under other bounce limits (only the image is
+# written): NAME -> (the row, Cycles' Max Bounces). Cycles' Max Bounces N shades N + 1
+# surfaces along a path (0 is direct light), rt's `max_bounces` N shades N: the tests
+# render rt with one more.
+BOUNCE_REFERENCES = {"glass_tint_sun_one_bounce": ("glass_tint_sun", 1)}
+
+
 def set_input(bsdf, name, value):
     socket = bsdf.inputs[name]
     socket.default_value = (*value, 1.0) if isinstance(value, tuple) and len(socket.default_value) == 4 else value
@@ -359,12 +366,18 @@ def sphere_row(scene, materials, segments=48):
 
 
 def main():
-    args = cycles.arguments(__doc__, 1024, list(ROWS))
+    args = cycles.arguments(__doc__, 1024, list(ROWS) + list(BOUNCE_REFERENCES))
     for name in args.names:
         scene = row_scene()
-        build(scene, name)
-        cycles.export(scene, f"principled_{name}")
-        cycles.render(scene, f"principled_{name}", argparse.Namespace(**{**vars(args), "spp": args.spp * SPP_FACTOR.get(name, 1)}))
+        row, bounces = BOUNCE_REFERENCES.get(name, (name, None))
+        build(scene, row)
+        if bounces is None:
+            cycles.export(scene, f"principled_{name}")
+        else:
+            c = scene.cycles
+            c.max_bounces = c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = bounces
+        spp = args.spp * SPP_FACTOR.get(row, 1)
+        cycles.render(scene, f"principled_{name}", argparse.Namespace(**{**vars(args), "spp": spp}))
 
 
 if __name__ == "__main__":

@@ -214,6 +214,20 @@ def scene_emission_strength_map(scene):
     camera(scene, (0.0, -2.8, 1.6), (0.0, 0.2, 0.4), 45.0)
 
 
+def add_second_uv_map(mesh):
+    """A second uv map "second" of `mesh`, its first one turned a quarter, scaled 1.5 and
+    moved; the first stays the one Cycles reads by default."""
+    second = mesh.uv_layers.new(name="second")
+    first = mesh.uv_layers[0]
+    uvs = np.empty(len(mesh.loops) * 2, np.float32)
+    first.uv.foreach_get("vector", uvs)
+    u, v = uvs[0::2].copy(), uvs[1::2].copy()
+    uvs[0::2], uvs[1::2] = 1.5 * (1.0 - v) + 0.1, 1.5 * u + 0.2
+    second.uv.foreach_set("vector", uvs)
+    first.active_render = True
+    mesh.uv_layers.active = first
+
+
 def scene_uv_sets(scene):
     """A sunlit plane with two uv maps: its base colour (a checker) reads the second map
     through a UV Map node, laid out unlike the first (turned a quarter, scaled, moved),
@@ -232,16 +246,7 @@ def scene_uv_sets(scene):
     tree.links.new(rough.outputs["Color"], bsdf.inputs["Roughness"])
     plane = add_object(scene, "plane", bpy.ops.mesh.primitive_plane_add, m, size=2.0,
                        rotation=(math.radians(60), 0, 0))
-    mesh = plane.data
-    second = mesh.uv_layers.new(name="second")
-    first = mesh.uv_layers[0]
-    uvs = np.empty(len(mesh.loops) * 2, np.float32)
-    first.uv.foreach_get("vector", uvs)
-    u, v = uvs[0::2].copy(), uvs[1::2].copy()
-    uvs[0::2], uvs[1::2] = 1.5 * (1.0 - v) + 0.1, 1.5 * u + 0.2
-    second.uv.foreach_set("vector", uvs)
-    first.active_render = True
-    mesh.uv_layers.active = first
+    add_second_uv_map(plane.data)
     # The sun near the mirror direction of the view at the plane's centre.
     sun(scene, (math.radians(48.0), 0.0, math.radians(8.0)))
     camera(scene, (0.0, -3.0, 1.2), (0.0, 0.0, 0.0), 40.0)
@@ -584,6 +589,41 @@ def scene_ior_map(scene):
     tree.links.new(mapped_range(tree, sep.outputs["Green"], 1.2, 2.2), bsdf.inputs["Coat IOR"])
 
 
+def scene_film_ior_map(scene):
+    """An image drives the Thin Film IOR (through Separate Color and a Map Range node): R
+    stripes across u of film index 1.2 and 2.0 (eight around the sphere), on a film of 350
+    nm over a sunlit near-black sphere with the default specular layer. At that thickness the
+    film's optical path (and so its colour) and its reflectance both move with its index:
+    the stripes show in the highlight and in the world's reflection alike."""
+    uniform_world(scene, (0.3, 0.3, 0.3))
+    sun(scene, (math.radians(35), 0.0, math.radians(25)))
+    tree, bsdf = layered_sphere(scene, "film_ior_map", {"Base Color": (0.03, 0.03, 0.035), "Roughness": 0.2,
+                                                        "Specular IOR Level": 0.5, "Thin Film Thickness": 350.0})
+    sep = separated(tree, image_node(tree, image("film_index", stripes(32, 4, (1.0, 0.0, 0.0), (0.0, 0.0, 0.0)),
+                                                 srgb=False)))
+    tree.links.new(mapped_range(tree, sep.outputs["Red"], 1.2, 2.0), bsdf.inputs["Thin Film IOR"])
+
+
+def scene_coat_map_second_uv(scene):
+    """`coated_plane` with a checker of base colour on the default uv map and the coat's
+    weight (R, stripes of 1 and 0.2 across u) and roughness (G, a ramp from 0.1 to 0.5 along
+    v) read through a UV Map node naming the plane's second map (the first turned a quarter,
+    scaled and moved): the coat's stripes run across the checker's rows, not along them."""
+    tree, bsdf = coated_plane(scene, "coat_map_second_uv")
+    add_second_uv_map(bpy.data.objects["plane"].data)
+    colour = image_node(tree, image("checker", checker(4, (0.7, 0.15, 0.1), (0.2, 0.45, 0.6))))
+    tree.links.new(colour.outputs["Color"], bsdf.inputs["Base Color"])
+    pixels = stripes(32, 8, (1.0, 0.0, 0.0), (0.2, 0.0, 0.0))
+    pixels[:, :, 1] = np.linspace(0.5, 0.1, 32)[:, None]
+    coat = image_node(tree, image("coat", pixels, srgb=False))
+    uv_node = tree.nodes.new("ShaderNodeUVMap")
+    uv_node.uv_map = "second"
+    tree.links.new(uv_node.outputs["UV"], coat.inputs["Vector"])
+    sep = separated(tree, coat)
+    tree.links.new(sep.outputs["Red"], bsdf.inputs["Coat Weight"])
+    tree.links.new(sep.outputs["Green"], bsdf.inputs["Coat Roughness"])
+
+
 def blender_gltf(scene, out):
     """The same scene through Blender's own glTF exporter (a .glb with its textures
     embedded), placed by a copy of the exported scene file: for the tests that rt reads
@@ -615,8 +655,10 @@ SCENES = {
     "transmission_level_map": scene_transmission_level_map,
     "emission_strength_map": scene_emission_strength_map,
     "ior_map": scene_ior_map,
+    "film_ior_map": scene_film_ior_map,
     "coat_over_normal_map": scene_coat_over_normal_map,
     "coat_normal_map": scene_coat_normal_map,
+    "coat_map_second_uv": scene_coat_map_second_uv,
     "coat_over_normal_map_sphere": scene_coat_over_normal_map_sphere,
     "sheen_over_coat_normal": scene_sheen_over_coat_normal,
     "emission_under_layers": scene_emission_under_layers,

@@ -123,3 +123,9 @@ fn specular_tint_on_glass_matches_cycles() {
 fn cycles_max_bounces_is_one_less_than_rts() {
     check_batched_against("principled_glass_tint_sun", "principled_glass_tint_sun_one_bounce", REFERENCE_SPP, 1);
 }
+
+/// Glass of roughness 0.2 to 1 under a wide sun: what it lets through and its highlights.
+#[test]
+fn glass_roughness_under_a_sun_matches_cycles() {
+    check_batched("principled_glass_roughness_sun", REFERENCE_SPP);
+}

@@ -79,16 +79,14 @@ IOR_ROW = ({"Base Color": (0.2, 0.4, 0.8), "Roughness": 0.3}, [{"IOR": i} for i 
 SPECULAR_TINT_ROW = ({"Base Color": (0.1, 0.1, 0.1), "Roughness": 0.3}, [{"Specular Tint": t} for t in TINTS])
 METAL_TINT_ROW = ({"Base Color": (0.9, 0.85, 0.8), "Metallic": 1.0, "Roughness": 0.3},
                   [{"Specular Tint": t} for t in TINTS])
+GLASS = {"Base Color": (0.9, 0.95, 1.0), "Transmission Weight": 1.0, "IOR": 1.45}
 COATED = {"Base Color": (0.1, 0.3, 0.8), "Roughness": 0.6, "Coat Weight": 1.0, "Coat Tint": (0.9, 0.7, 0.5)}
 
 # Per row: the inputs every sphere shares, and per sphere the inputs that change.
 ROWS = {
     "dielectric_roughness": (DIELECTRIC, [{"Roughness": r} for r in STEPS]),
     "metal_roughness": (METAL, [{"Roughness": r} for r in STEPS]),
-    "glass_roughness": (
-        {"Base Color": (0.9, 0.95, 1.0), "Transmission Weight": 1.0, "IOR": 1.45},
-        [{"Roughness": r} for r in STEPS],
-    ),
+    "glass_roughness": (GLASS, [{"Roughness": r} for r in STEPS]),
     "ior": IOR_ROW,
     "ior_level": (
         {"Base Color": (0.2, 0.6, 0.3), "Roughness": 0.2},
@@ -159,6 +157,8 @@ ROWS = {
     "diffuse_roughness_sun": (ROUGH_DIFFUSE, [{"Diffuse Roughness": r} for r in STEPS]),
     # Specular Tint on glass: Cycles tints its reflection's F0 and keeps the real Fresnel's
     # rise to 1 at grazing angles (lit by a sun, whose highlight shows the tint).
+    # Rough glass under a sun, seen through (the sun wide, see WIDE_SUNS) and in its highlights.
+    "glass_roughness_sun": (GLASS, [{"Roughness": r} for r in SUN_STEPS]),
     "glass_tint_sun": (
         {"Base Color": (1.0, 1.0, 1.0), "Transmission Weight": 1.0, "IOR": 1.5, "Roughness": 0.2},
         [{"Specular Tint": t} for t in TINTS],
@@ -246,6 +246,7 @@ SUNLIT = {
     "thin_film_metal_sun": FRONT_SUN,
     "diffuse_roughness_sun": FRONT_SUN,
     "glass_tint_sun": FRONT_SUN,
+    "glass_roughness_sun": FRONT_SUN,
 }
 
 # Rows of coarse spheres: segments around (and half as many rings), instead of 48.
@@ -275,11 +276,11 @@ NO_BUMP_MAP_CORRECTION = {"coarse_no_correction"}
 # Rows whose sun is wider than the default 0.53°: seen only through glass, which no light
 # sampling reaches, a small sun is found by rare samples whose noise the standard errors
 # underestimate.
-WIDE_SUNS = {"glass_tint_sun": 20.0, "terminator_glass_sun": 20.0}
+WIDE_SUNS = {"glass_tint_sun": 20.0, "glass_roughness_sun": 20.0, "terminator_glass_sun": 20.0}
 
 # Rows rendered with more samples than the others, by this factor: light through rare paths
 # (the sun through rough glass) leaves a 2048-spp reference's 8x8 blocks 2-3% from converged.
-SPP_FACTOR = {"glass_tint_sun": 8, "terminator_glass_sun": 4}
+SPP_FACTOR = {"glass_tint_sun": 8, "glass_roughness_sun": 8, "terminator_glass_sun": 4}
 
 
 # References of a row's exported scene under other bounce limits (only the image is

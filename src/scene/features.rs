@@ -299,6 +299,8 @@ impl FeatureSet {
             "rough_diffuse" => self.rough_diffuse,
             "smooth_normals" => self.smooth_normals,
             "terminator_offset" => self.terminator_offset,
+            // Surfaces whose lobes follow Cycles' rules (lobe_hemispheres.wgsl) exist.
+            "cycles_lobe_rules" => self.normal_maps || self.smooth_normals,
             // Each instance's Shadow Terminator settings, read by both.
             "terminators" => self.smooth_normals || self.terminator_offset,
             "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen || self.thin_film,

@@ -20,11 +20,12 @@ pub struct GpuContext {
     errors: Arc<Mutex<Vec<String>>>,
 }
 
-/// Storage buffers the integrator binds in one stage: 18 in the scene group (see
-/// `shaders/common.wgsl`; the microfacet tables' in `shaders/microfacet_tables.wgsl`), 6 of
-/// the accumulation (with AOVs, adaptive sampling's counts and the lanes' chunk counters)
-/// and the atmosphere's tables.
-const STORAGE_BUFFERS_NEEDED: u32 = 25;
+/// Storage buffers the integrator binds in one stage: 19 in the scene group (see
+/// `shaders/common.wgsl`, the instances' Shadow Terminator settings among them; the
+/// microfacet tables' in `shaders/microfacet_tables.wgsl`), 6 of the accumulation (with
+/// AOVs, adaptive sampling's counts and the lanes' chunk counters) and the atmosphere's
+/// tables. lavapipe offers 32, the NVIDIA driver far more.
+const STORAGE_BUFFERS_NEEDED: u32 = 26;
 
 const NO_ADAPTER_HELP: &str = "no GPU adapter found. rt needs Vulkan; on a machine without a GPU, \
 install Mesa's CPU driver (lavapipe): `sudo apt-get install mesa-vulkan-drivers`";
@@ -76,6 +77,10 @@ impl GpuContext {
         }
         let limits = wgpu::Limits {
             max_storage_buffers_per_shader_stage: STORAGE_BUFFERS_NEEDED,
+            // The storage buffers above and the uniform ones together (wgpu's default, 28, is
+            // one short with an environment's or an atmosphere's tables bound).
+            max_buffers_and_acceleration_structures_per_shader_stage: available
+                .max_buffers_and_acceleration_structures_per_shader_stage,
             max_storage_buffer_binding_size: available.max_storage_buffer_binding_size,
             max_buffer_size: available.max_buffer_size,
             ..wgpu::Limits::default()

@@ -30,41 +30,31 @@ struct LayerNormals {
     sheen: vec3f,
 }
 
-// From the normals at a point (world space, on the viewer's side): `shading`, the base's normal as the
-// glossy lobes take it (mapped and bent); `base`, the same before bending (the diffuse
-// lobe's); `coat` and `coat_unbent`, the coat's own, bent and not (only read where coats
-// have normals of their own).
-fn layer_normals(m: Material, shading: vec3f, base: vec3f, coat: vec3f, coat_unbent: vec3f) -> LayerNormals {
-    var normals = LayerNormals(shading, base);
-    //#if coat_normal
-    normals.coat = coat;
-    normals.sheen = sheen_normal_towards_coat(base, coat_unbent, m.coat);
-    //#endif
-    return normals;
-}
-
 // The layers' normals at the point that `normal_mapped` and `coat_normal_mapped` were last
 // called for, turned to the viewer's side by `side` (±1; they return outward normals):
-// `shading` is what the first returned (the interpolated normal without normal maps),
-// `coat` what the second returned (read only where coats have normals of their own).
+// `shading` is what the first returned (the base's normal as the glossy lobes take it, the
+// interpolated normal without normal maps), `coat` what the second returned (read only where
+// coats have normals of their own). The sheen leans from the base's unbent normal (the
+// diffuse lobe's) towards the coat's unbent one.
 fn mapped_layer_normals(m: Material, shading: vec3f, coat: vec3f, side: f32) -> LayerNormals {
     var base = shading;
     //#if normal_maps
     base = diffuse_mapped_normal();
     //#endif
-    var coat_unbent = coat;
+    var normals = LayerNormals(side * shading, side * base);
     //#if coat_normal
-    coat_unbent = coat_normal_before_bending();
+    normals.coat = side * coat;
+    normals.sheen = sheen_normal_towards_coat(side * base, side * coat_normal_before_bending(), m.coat);
     //#endif
-    return layer_normals(m, side * shading, side * base, side * coat, side * coat_unbent);
+    return normals;
 }
 
 // The emission of material `m` that a light sample towards `wo` finds: `emission` under the
-// coat's tint alone (see above).
-fn light_sampled_emission(m: Material, emission: vec3f, normals: LayerNormals, wo: vec3f) -> vec3f {
+// coat's tint alone (see above), seen along the coat's normal `coat_normal` (on the side of `wo`).
+fn light_sampled_emission(m: Material, emission: vec3f, coat_normal: vec3f, wo: vec3f) -> vec3f {
     //#if coat
     if m.coat > 0.0 {
-        return emission * coat_tint_seen(m, clamp(dot(normals.coat, wo), 1e-6, 1.0));
+        return emission * coat_tint_seen(m, clamp(dot(coat_normal, wo), 1e-6, 1.0));
     }
     //#endif
     return emission;

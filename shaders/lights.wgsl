@@ -195,7 +195,7 @@ fn sample_emitter_at(e: Emitter, tree_selection: f32, p: vec3f, rng: ptr<functio
         // The radial normal on the viewer's side: a sphere seen from inside emits too.
         let radial = normalize(p + t * d - s.center);
         let towards = select(radial, -radial, dot(radial, d) > 0.0);
-        let emission = light_sampled_emission(m, m.emission, LayerNormals(towards, towards), -d);
+        let emission = light_sampled_emission(m, m.emission, towards, -d);
         return LightSample(d, t, emission, sphere_emitter_pdf(p, s, selection), false);
         //#endif
     }
@@ -234,7 +234,7 @@ fn sample_emitter_at(e: Emitter, tree_selection: f32, p: vec3f, rng: ptr<functio
         let sh = shading[e.primitive];
         let n_object = (1.0 - su) * sh.n0 + su * (1.0 - u.y) * sh.n1 + su * u.y * sh.n2;
         let n_shading = normalize(transform_normal_to_world(inst.world_to_object, n_object));
-        var mapped = n_shading;
+        // The coat's normal: its own map's, or where it shares the base's, that map's.
         var coat = n_shading;
         // The true normal, on the interpolated one's side (a mirroring instance flips the winding's).
         let n_true = select(-n, n, dot(n, n_shading) >= 0.0);
@@ -242,13 +242,15 @@ fn sample_emitter_at(e: Emitter, tree_selection: f32, p: vec3f, rng: ptr<functio
         let b1 = su * (1.0 - u.y);
         let b2 = su * u.y;
         let at = Hit(t, HIT_TRIANGLE, e.primitive, e.instance, b1, b2);
-        mapped = normal_mapped(m, at, n_shading, n_true, -d, triangle_uv(e.primitive, uv_set_of(m, UV1_NORMAL), b1, b2));
         //#if coat_normal
         coat = coat_normal_mapped(m, at, n_shading, n_true, -d, triangle_uv(e.primitive, uv_set_of(m, UV1_COAT_NORMAL), b1, b2));
+        //#else
+        coat = normal_mapped(m, at, n_shading, n_true, -d, triangle_uv(e.primitive, uv_set_of(m, UV1_NORMAL), b1, b2));
         //#endif
         //#endif
+        // Turned to the side of the point lit, as the true normal is (see layered_emission.wgsl).
         let side = select(-1.0, 1.0, dot(n_true, d) < 0.0);
-        emission = light_sampled_emission(m, emission, mapped_layer_normals(m, mapped, coat, side), -d);
+        emission = light_sampled_emission(m, emission, side * coat, -d);
     }
     //#endif
     let selection = emitter_selection_per_area(m.emission_luminance, tree_selection, 0.5 * length(normal));

@@ -41,6 +41,11 @@ fn compared(name: &str, toml: &str) -> reference::Comparison {
     reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4))
 }
 
+/// Whether the JSON number `v` is `x`, to within rounding.
+fn is_close(v: &serde_json::Value, x: f64) -> bool {
+    v.as_f64().is_some_and(|v| (v - x).abs() < 1e-6)
+}
+
 /// The first material of the exported sphere of `name`, as the exporter wrote it.
 fn exported_sphere_material(name: &str) -> serde_json::Value {
     exported_material(name, "Sphere")
@@ -189,12 +194,11 @@ fn ior_and_coat_ior_maps_match_cycles() {
     check("ior_map");
     let m = &exported_sphere_material("ior_map");
     assert!(m["extras"]["rt_ior_texture"]["index"].is_u64(), "{m}");
-    let close = |v: &serde_json::Value, x: f64| v.as_f64().is_some_and(|v| (v - x).abs() < 1e-6);
     assert!(
-        close(&m["extensions"]["KHR_materials_ior"]["ior"], 2.5) && close(&m["extras"]["rt_ior_minimum"], 1.1),
+        is_close(&m["extensions"]["KHR_materials_ior"]["ior"], 2.5) && is_close(&m["extras"]["rt_ior_minimum"], 1.1),
         "{m}"
     );
-    assert!(close(&m["extras"]["rt_coat_ior"], 2.2) && close(&m["extras"]["rt_coat_ior_minimum"], 1.2), "{m}");
+    assert!(is_close(&m["extras"]["rt_coat_ior"], 2.2) && is_close(&m["extras"]["rt_coat_ior_minimum"], 1.2), "{m}");
 }
 
 // One image's R through Separate Color and a Map Range node into the Thin Film IOR (stripes
@@ -206,9 +210,8 @@ fn a_thin_film_ior_map_matches_cycles() {
     check("film_ior_map");
     let m = &exported_sphere_material("film_ior_map");
     assert!(m["extras"]["rt_ior_texture"]["index"].is_u64(), "{m}");
-    let close = |v: &serde_json::Value, x: f64| v.as_f64().is_some_and(|v| (v - x).abs() < 1e-6);
     let film = &m["extensions"]["KHR_materials_iridescence"];
-    assert!(close(&film["iridescenceIor"], 2.0) && close(&m["extras"]["rt_thin_film_ior_minimum"], 1.2), "{m}");
+    assert!(is_close(&film["iridescenceIor"], 2.0) && is_close(&m["extras"]["rt_thin_film_ior_minimum"], 1.2), "{m}");
     assert!(m["extras"].get("rt_ior_minimum").is_none(), "the IOR itself is not textured: {m}");
 }
 

@@ -49,16 +49,22 @@ def normal_mapped(name, pixels, base_color, roughness):
     return m
 
 
-def scene_normal_sphere(scene):
-    """A smooth diffuse sphere with a normal map of 8 × 4 bumps, lit by a low sun."""
+def bumpy_sphere(scene, segments, rings):
+    """A smooth diffuse sphere of `segments` × `rings` faces with a normal map of 8 × 4
+    bumps, lit by a low sun, over a floor."""
     cycles.uniform_world(scene, (0.2, 0.2, 0.2))
     refs.sun(scene, (math.radians(55), 0.0, math.radians(-40)))
     m = normal_mapped("bumpy", bump_normals(128, 8, 4, 0.01), (0.8, 0.8, 0.8), 1.0)
-    refs.add_object(scene, "sphere", bpy.ops.mesh.primitive_uv_sphere_add, m, radius=1.0, segments=48,
-                    ring_count=24)
+    refs.add_object(scene, "sphere", bpy.ops.mesh.primitive_uv_sphere_add, m, radius=1.0, segments=segments,
+                    ring_count=rings)
     bpy.ops.object.shade_smooth()
     refs.floor(scene, (0.5, 0.5, 0.5), 8.0, -1.0)
     refs.camera(scene, (0.0, -3.6, 0.8), (0.0, 0.0, -0.1), 45.0)
+
+
+def scene_normal_sphere(scene):
+    """`bumpy_sphere` of 48 × 24 faces."""
+    bumpy_sphere(scene, 48, 24)
 
 
 def scene_normal_cube(scene):
@@ -151,17 +157,10 @@ def scene_alpha_blend(scene):
 
 
 def scene_normal_coarse_sphere(scene):
-    """`scene_normal_sphere` on a sphere of 12 × 6 faces: Cycles starts its shadow rays from
-    the smooth surface that the interpolated normals describe, normal map or not, so faces
-    turned from the sun whose normals still face it are lit."""
-    cycles.uniform_world(scene, (0.2, 0.2, 0.2))
-    refs.sun(scene, (math.radians(55), 0.0, math.radians(-40)))
-    m = normal_mapped("bumpy", bump_normals(128, 8, 4, 0.01), (0.8, 0.8, 0.8), 1.0)
-    refs.add_object(scene, "sphere", bpy.ops.mesh.primitive_uv_sphere_add, m, radius=1.0, segments=12,
-                    ring_count=6)
-    bpy.ops.object.shade_smooth()
-    refs.floor(scene, (0.5, 0.5, 0.5), 8.0, -1.0)
-    refs.camera(scene, (0.0, -3.6, 0.8), (0.0, 0.0, -0.1), 45.0)
+    """`bumpy_sphere` of 12 × 6 faces: Cycles starts its shadow rays from the smooth surface
+    that the interpolated normals describe, normal map or not, so faces turned from the sun
+    whose normals still face it are lit."""
+    bumpy_sphere(scene, 12, 6)
 
 
 SCENES = {

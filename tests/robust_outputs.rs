@@ -1,8 +1,8 @@
 //! Outputs are never lost or mixed: an unrelated `X.partial` survives a render of
 //! `X.png`, renders of `X.png` and `X.exr` at once both land whole, a folder that does
 //! not exist or cannot be written is an error before any rendering, a full disk is a
-//! plain message with nothing left behind, SIGTERM exits cleanly, and the temporaries
-//! of a killed `rt pack` are removed by the next run once their process is gone.
+//! plain message with nothing left behind, SIGTERM exits cleanly, and files that look
+//! like rt's leftovers are left alone.
 
 use crate::common;
 
@@ -129,19 +129,72 @@ fn sigterm_and_sigint_exit_cleanly_with_nothing_left_behind() {
     std::fs::remove_dir_all(&dir).expect("clean up");
 }
 
+/// Files that look like rt's leftovers, even one named exactly as rt names a temporary,
+/// are a user's unless rt marked them: a render and a pack leave every one of them byte
+/// for byte (rt's own marked leftovers are removed: `files::output`'s unit tests).
 #[test]
-fn temporaries_of_a_killed_pack_are_removed_once_their_process_is_gone() {
-    let dir = fresh_dir("stale");
+fn files_that_look_like_leftovers_are_left_alone() {
+    let dir = fresh_dir("look-alikes");
     std::fs::write(dir.join("m.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").expect("write");
     rt(&dir, &["pack", "m.obj"], DEADLINE).expect("first pack", 0);
-    // PIDs on Linux stop below 2^22: 999999999 and 999999998 are gone; this test is not.
-    let alive = format!(".m.rtbvh.{}.0123.tmp", std::process::id());
-    for name in [".m.rtbvh.999999999.00ab.tmp", ".m.rtbvh.999999998-2.tmp", &alive] {
-        std::fs::write(dir.join(name), "half a cache").expect("write");
+    // PIDs on Linux stop below 2^22: 999999999 is gone.
+    let users = [
+        ".o.png.20240105.tmp",
+        ".o.png.99999-backup.tmp",
+        ".o.png.999999999.00ab.tmp",
+        ".o.png.rt-999999999-00ab.tmp",
+        ".o.png.rt-999999999-00000000000000AB.tmp",
+        ".m.rtbvh.999999999.00ab.tmp",
+        ".m.rtbvh.999999998-2.tmp",
+        ".m.rtbvh.12345.tmp",
+    ];
+    // Named as rt names its temporary of m.rtbvh, but not made by rt (no mark): kept.
+    let users = [users.as_slice(), &[".m.rtbvh.rt-999999999-00000000000000ab.tmp"]].concat();
+    for name in &users {
+        std::fs::write(dir.join(name), format!("someone's {name}")).expect("write");
     }
+    rt(&dir, &args(&render("o.png")), DEADLINE).expect("render", 0);
     let outcome = rt(&dir, &["pack", "m.obj"], DEADLINE);
     outcome.expect("up-to-date pack", 0);
     assert!(outcome.stdout.contains("m.obj: up to date"), "{}", outcome.stdout);
-    assert_eq!(names(&dir), [alive.as_str(), "m.obj", "m.rtbvh"]);
+    for name in &users {
+        let kept = std::fs::read_to_string(dir.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(kept, format!("someone's {name}"));
+    }
+    let mut expected: Vec<&str> = users.clone();
+    expected.extend(["m.obj", "m.rtbvh", "o.png"]);
+    expected.sort();
+    assert_eq!(names(&dir), expected);
+    std::fs::remove_dir_all(&dir).expect("clean up");
+}
+
+/// Whatever files an output folder holds (random names, many shaped like rt's
+/// temporaries, random bytes), renders of a PNG and an EXR there and a pack leave every
+/// file they did not write byte for byte as it was.
+#[test]
+fn any_files_in_an_output_folder_survive_renders_byte_for_byte() {
+    let dir = fresh_dir("any-files");
+    let mut rng = common::TestRng(0x5eed);
+    let mut pick = |n: usize| (rng.next_f64() * n as f64) as usize % n;
+    let shapes =
+        [".o.png.{n}.tmp", ".o.png.{n}-x.tmp", ".o.exr.rt-{n}-{h}.tmp", ".o.png.rt-{n}-{h}", "o.png.{n}", "{h}"];
+    let mut files = std::collections::BTreeMap::new();
+    for i in 0..200 {
+        let n = [1, 42, 999_999_999, 4_194_304, 123_456_789][pick(5)];
+        let h = format!("{:016x}", (i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15) >> pick(8));
+        let name = shapes[pick(shapes.len())].replace("{n}", &n.to_string()).replace("{h}", &h);
+        let bytes: Vec<u8> = (0..pick(64)).map(|_| pick(256) as u8).collect();
+        std::fs::write(dir.join(&name), &bytes).expect("write");
+        files.insert(name, bytes);
+    }
+    std::fs::write(dir.join("m.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").expect("write");
+    rt(&dir, &args(&render("o.png")), DEADLINE).expect("o.png", 0);
+    rt(&dir, &args(&render("o.exr")), DEADLINE).expect("o.exr", 0);
+    rt(&dir, &["pack", "m.obj"], DEADLINE).expect("pack", 0);
+    for (name, bytes) in &files {
+        let now = std::fs::read(dir.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert!(&now == bytes, "{name} changed");
+    }
+    assert_eq!(names(&dir).len(), files.len() + 4, "only o.png, o.exr, m.obj and m.rtbvh besides");
     std::fs::remove_dir_all(&dir).expect("clean up");
 }

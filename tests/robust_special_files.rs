@@ -127,3 +127,38 @@ fn special_files_in_a_packed_folder_are_skipped() {
     assert_eq!(names(&dir.join("assets")), ["good.obj", "good.rtbvh", "pipe.obj", "zero.glb"]);
     std::fs::remove_dir_all(&dir).expect("clean up");
 }
+
+/// Images go through the same opener: a FIFO or a device as the world's environment
+/// image or as a texture is refused by name (it once hung rt for ever).
+#[test]
+fn a_fifo_or_device_as_an_environment_or_texture_image_is_refused() {
+    let dir = fresh_dir("images");
+    mkfifo(&dir.join("sky.hdr"));
+    std::os::unix::fs::symlink("/dev/zero", dir.join("zero.exr")).expect("link");
+    let scene = |image: &str| {
+        format!(
+            "[camera]\nposition = [0.0, 0.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\n\n[sky]\nkind = \"environment\"\n\
+             image = \"{image}\"\n\n[[sphere]]\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\n"
+        )
+    };
+    write(&dir, "fifo.toml", &scene("sky.hdr"));
+    write(&dir, "zero.toml", &scene("zero.exr"));
+    for (file, says) in
+        [("fifo.toml", "sky.hdr: is a FIFO, not a file"), ("zero.toml", "zero.exr: is a character device")]
+    {
+        rt(&dir, &["render", file, "-o", "out.png", "--size", "8x8", "--spp", "1"], DEADLINE)
+            .expect(file, 1)
+            .says(file, &[says])
+            .peak_below(file, MEMORY_MIB);
+    }
+    let material = r#"{ "name": "leaf", "pbrMetallicRoughness": { "baseColorTexture": { "index": 0 } } }"#;
+    let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+    write(&dir, "leaf.gltf", &common::quad_gltf::textured_quad(corners, material, "leaf.png", None));
+    mkfifo(&dir.join("leaf.png"));
+    rt(&dir, &["pack", "leaf.gltf"], DEADLINE)
+        .expect("FIFO texture", 1)
+        .says("FIFO texture", &["leaf.png: is a FIFO, not a file"])
+        .peak_below("FIFO texture", MEMORY_MIB);
+    assert_eq!(names(&dir), ["fifo.toml", "leaf.gltf", "leaf.png", "sky.hdr", "zero.exr", "zero.toml"]);
+    std::fs::remove_dir_all(&dir).expect("clean up");
+}

@@ -174,7 +174,7 @@ fn import_error(dir: &Path, image_uri: &str) -> String {
 }
 
 #[test]
-fn a_missing_or_truncated_image_is_an_error_naming_the_material_and_the_file() {
+fn a_missing_or_truncated_image_is_an_error_naming_the_material_and_the_file_png_or_jpeg() {
     let dir = temp_dir("texture-bad-images");
     let message = import_error(&dir, "missing.png");
     assert!(message.contains("leaf.gltf") && message.contains("material `leaf`"), "{message}");
@@ -183,7 +183,18 @@ fn a_missing_or_truncated_image_is_an_error_naming_the_material_and_the_file() {
     let full = png(|_, _| [1, 2, 3, 255]);
     std::fs::write(dir.join("cut.png"), &full[..full.len() / 2]).expect("png");
     let message = import_error(&dir, "cut.png");
-    assert!(message.contains("material `leaf`") && message.contains("cut.png: cannot decode image"), "{message}");
+    assert!(message.contains("material `leaf`") && message.contains("cut.png: a broken PNG file"), "{message}");
+
+    // A JPEG cut inside its image data once decoded without a word, its missing rows grey.
+    let rgb = image::RgbImage::from_fn(64, 64, |x, y| image::Rgb([(x * 4) as u8, (y * 4) as u8, 90]));
+    let mut jpeg = Vec::new();
+    image::DynamicImage::ImageRgb8(rgb)
+        .write_to(&mut std::io::Cursor::new(&mut jpeg), image::ImageFormat::Jpeg)
+        .expect("jpeg");
+    std::fs::write(dir.join("cut.jpg"), &jpeg[..jpeg.len() * 2 / 3]).expect("jpg");
+    let message = import_error(&dir, "cut.jpg");
+    assert!(message.contains("material `leaf`") && message.contains("cut.jpg: a broken JPEG file"), "{message}");
+    assert!(message.contains("truncated"), "{message}");
 }
 
 #[test]

@@ -83,7 +83,8 @@ impl AssetFiles {
             AssetKind::RtMesh { materials } => {
                 files.push(materials.clone());
                 // A glTF that cannot be read has no images to list; the import reports it.
-                if let Ok(gltf) = gltf::Gltf::open(materials) {
+                let bytes = crate::files::read(materials).ok();
+                if let Some(gltf) = bytes.and_then(|b| gltf::Gltf::from_slice(&b).ok()) {
                     files.extend(gltf_textures::image_files(&gltf.document).map(|name| dir.join(name)));
                 }
             }

@@ -186,27 +186,18 @@ impl TextureImage {
 /// Decodes PNG or JPEG bytes into RGBA8 (a grey or RGB image gets alpha 1).
 /// `what` names the image in the error: its file or the glTF image it is.
 pub fn decode(bytes: &[u8], what: &str) -> Result<(u32, u32, Vec<u8>), String> {
-    let reader = || {
-        image::ImageReader::new(std::io::Cursor::new(bytes))
-            .with_guessed_format()
-            .map_err(|e| format!("{what}: cannot read: {e}"))
-    };
     // Checked on the header, before anything is decoded: a 16k × 16k image would take
-    // 1 GiB to decode and more for its mips, where the GPU binds far less anyway.
-    let (width, height) = reader()?.into_dimensions().map_err(|e| format!("{what}: cannot decode image: {e}"))?;
-    if width > MAX_TEXTURE_SIDE || height > MAX_TEXTURE_SIDE {
-        return Err(format!(
-            "{what}: the image is {width}×{height}; rt reads textures of at most \
-             {MAX_TEXTURE_SIDE}×{MAX_TEXTURE_SIDE} (scale it down)"
-        ));
-    }
-    let mut reader = reader()?;
-    // The decoder's default limit (512 MiB) refuses 8k × 8k images outright; the
-    // texture store downscales what the GPU cannot hold instead (see `gpu::textures`).
-    let mut limits = image::Limits::default();
-    limits.max_alloc = Some(4 << 30);
-    reader.limits(limits);
-    let image = reader.decode().map_err(|e| format!("{what}: cannot decode image: {e}"))?;
+    // 1 GiB to decode and more for its mips, where the GPU binds far less anyway. The
+    // texture store downscales what the GPU cannot hold (see `gpu::textures`).
+    let image = crate::files::image::decode_checked(bytes, what, |width, height| {
+        if width > MAX_TEXTURE_SIDE || height > MAX_TEXTURE_SIDE {
+            return Err(format!(
+                "{what}: the image is {width}×{height}; rt reads textures of at most \
+                 {MAX_TEXTURE_SIDE}×{MAX_TEXTURE_SIDE} (scale it down)"
+            ));
+        }
+        Ok(())
+    })?;
     // Float images (EXR) become 8-bit texels, where a NaN would turn silently into a
     // texel of 0: refused instead, with where it is.
     let floats = match &image {
@@ -288,6 +279,6 @@ mod tests {
     #[test]
     fn truncated_image_is_an_error_naming_it() {
         let message = decode(b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR", "leaf.png").expect_err("truncated");
-        assert!(message.starts_with("leaf.png: cannot decode image"), "{message}");
+        assert!(message.starts_with("leaf.png: cannot read the image's header"), "{message}");
     }
 }

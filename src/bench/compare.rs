@@ -103,25 +103,15 @@ fn cases(options: &CompareOptions) -> Result<Vec<Case>> {
         .collect())
 }
 
-/// A folder removed when the comparison ends, however it ends.
-struct Scratch(PathBuf);
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
 fn mitsuba_figures(options: &CompareOptions, cases: &[Case]) -> Result<MitsubaOutcome> {
-    let scratch = Scratch(std::env::temp_dir().join(format!("rt-compare-{}", std::process::id())));
-    std::fs::create_dir_all(&scratch.0)?;
+    let scratch = crate::files::ScratchDir::new("compare")?;
     let mut jobs = Vec::new();
     for c in cases {
         let case =
             MitsubaCase { name: &c.name, scene: &c.scene, size: c.size, spp: c.spp, runs: options.runs, rays: c.rays };
-        jobs.push(mitsuba::translate(&case, &scratch.0)?);
+        jobs.push(mitsuba::translate(&case, scratch.path())?);
     }
-    mitsuba::run(&options.python, options.variant.as_deref(), jobs, &scratch.0)
+    mitsuba::run(&options.python, options.variant.as_deref(), jobs, scratch.path())
 }
 
 fn ratio(rt: f64, other: Option<f64>) -> String {

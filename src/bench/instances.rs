@@ -150,13 +150,14 @@ pub fn instances(options: &InstanceScaleOptions, adapter: Option<&str>) -> Resul
         options.spp,
         options.runs.max(1)
     );
-    let dir = std::env::temp_dir().join(format!("rt-bench-instances-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
+    // The field's files can be large (64 bytes per instance): never left behind.
+    let scratch = crate::files::ScratchDir::new("bench-instances").context("cannot make a scratch folder")?;
+    let dir = scratch.path();
     let bar = ProgressBar::new(options.counts.len() as u64 * 2 * (options.runs.max(1) as u64 + 1));
     let mut rows = Vec::new();
     let mut outcome = Ok(());
     for &count in &options.counts {
-        match row(&ctx, &dir, count, options, &bar) {
+        match row(&ctx, dir, count, options, &bar) {
             Ok(r) => rows.push(r),
             Err(e) => {
                 outcome = Err(e.context(format!("{count} instances")));
@@ -165,8 +166,7 @@ pub fn instances(options: &InstanceScaleOptions, adapter: Option<&str>) -> Resul
         }
     }
     bar.finish_and_clear();
-    // The field's files can be large (64 bytes per instance): never left behind.
-    let _ = std::fs::remove_dir_all(&dir);
+    drop(scratch);
     println!(
         "\n| instances | top-level build ms | GPU MiB (meshes + instances and top level) | bytes/instance | camera rays/s | diffuse rays/s | paths/s |"
     );

@@ -140,7 +140,7 @@ fn read_halves(paths: &[PathBuf; 2], width: u32, height: u32) -> Option<Vec<Vec<
         if !path.is_file() {
             return None;
         }
-        let image = match image::open(path) {
+        let image = match crate::files::image::read(path, "cached reference") {
             Ok(image) => image.into_rgb32f(),
             Err(e) => {
                 log::warn!("{}: unreadable cached reference ({e}); rendering it again", path.display());

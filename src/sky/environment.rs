@@ -8,6 +8,30 @@ use crate::scene::luminance;
 use anyhow::{Context, Result, bail};
 use std::path::Path;
 
+/// The image's texels as linear RGB, in the decoder's own buffer where it can be (an
+/// RGB float image is the texels already; RGBA is packed down in place), so that a large
+/// environment is held once, not twice, while it is read.
+fn rgb_texels(image: image::DynamicImage) -> Vec<[f32; 3]> {
+    let mut floats = match image {
+        image::DynamicImage::ImageRgb32F(rgb) => rgb.into_raw(),
+        image::DynamicImage::ImageRgba32F(rgba) => {
+            let mut floats = rgba.into_raw();
+            let pixels = floats.len() / 4;
+            for p in 0..pixels {
+                floats.copy_within(4 * p..4 * p + 3, 3 * p);
+            }
+            floats.truncate(3 * pixels);
+            floats
+        }
+        other => other.into_rgb32f().into_raw(),
+    };
+    floats.shrink_to_fit();
+    match bytemuck::allocation::try_cast_vec::<f32, [f32; 3]>(floats) {
+        Ok(texels) => texels,
+        Err((_, floats)) => floats.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
+    }
+}
+
 /// An equirectangular image: `width` × `height` linear RGB texels, rows from the top
 /// (Blender's +Z) down, columns as Cycles' `direction_to_equirectangular` reads them.
 #[derive(Clone, Debug, PartialEq)]
@@ -21,15 +45,16 @@ impl EnvironmentImage {
     /// Reads an OpenEXR (any compression the `exr` crate knows, DWAB included) or a
     /// Radiance `.hdr` file; every error names the file.
     pub fn read(path: &Path) -> Result<Self> {
-        let what = || format!("environment image {}", path.display());
-        let reader = image::ImageReader::open(path).with_context(|| format!("cannot open the {}", what()))?;
-        let reader = reader.with_guessed_format().with_context(|| format!("cannot read the {}", what()))?;
-        let decoded =
-            reader.decode().with_context(|| format!("cannot decode the {} (an .exr or .hdr file)", what()))?;
-        let rgb = decoded.into_rgb32f();
-        let (width, height) = rgb.dimensions();
-        let texels = rgb.into_raw().chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
-        Self::new(width, height, texels).with_context(what)
+        let what = format!("environment image {}", path.display());
+        let bytes = crate::files::read(path).map_err(|e| anyhow::anyhow!("{what}: {}", e.message()))?;
+        Self::decode(&bytes, &what)
+    }
+
+    /// The image in `bytes` (an .exr or .hdr file's); errors name `what`.
+    pub fn decode(bytes: &[u8], what: &str) -> Result<Self> {
+        let decoded = crate::files::image::decode(bytes, what).map_err(anyhow::Error::msg)?;
+        let (width, height) = (decoded.width(), decoded.height());
+        Self::new(width, height, rgb_texels(decoded)).with_context(|| what.to_owned())
     }
 
     /// Checks the texels: a non-finite one is an error; negative components (lossy

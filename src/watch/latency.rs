@@ -57,8 +57,8 @@ pub fn watch_latency(asset: &Path, (width, height): (u32, u32), runs: u32, adapt
         .and_then(|n| n.to_str())
         .ok_or_else(|| anyhow!("{}: not an asset folder", asset.display()))?;
     let mesh_name = format!("{name}.rtmesh");
-    let dir = std::env::temp_dir().join(format!("rt-watch-latency-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+    let scratch = crate::files::ScratchDir::new("watch-latency").context("cannot make a scratch folder")?;
+    let dir = scratch.path();
     let copy = dir.join(name);
     std::fs::create_dir_all(&copy).with_context(|| format!("cannot create {}", copy.display()))?;
     for file in [mesh_name.clone(), format!("{name}.gltf")] {
@@ -97,7 +97,6 @@ pub fn watch_latency(asset: &Path, (width, height): (u32, u32), runs: u32, adapt
     for (what, times) in ["camera move", "material change", &format!("{name} re-export")].iter().zip(latencies) {
         println!("{what:<20} {:>8.1} ms", median(times).as_secs_f64() * 1000.0);
     }
-    let _ = std::fs::remove_dir_all(&dir);
     Ok(())
 }
 

@@ -37,6 +37,8 @@ impl ReloadLog {
             Some(dir) => {
                 crate::files::check_folder(dir).context("--frames-dir")?;
                 let path = dir.join(LOG_FILE);
+                // A FIFO or device there would block the open or take the log: not rt's.
+                crate::files::output::refuse_special(&path)?;
                 if path.exists() {
                     let previous = dir.join(format!("{LOG_FILE}.1"));
                     std::fs::rename(&path, &previous)

@@ -105,22 +105,19 @@ pub fn stream_latency(
     runs: u32,
     adapter: Option<&str>,
 ) -> Result<()> {
-    let dir = std::env::temp_dir().join(format!("rt-stream-latency-{}", std::process::id()));
+    let scratch = crate::files::ScratchDir::new("stream-latency").context("cannot make a scratch folder")?;
     let scene = match scene {
         Some(scene) => scene.to_path_buf(),
         None => {
             let asset = std::path::absolute(asset).with_context(|| format!("{}", asset.display()))?;
             let asset = asset.to_str().ok_or_else(|| anyhow!("{}: not UTF-8", asset.display()))?;
-            std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
-            let path = dir.join("scene.toml");
+            let path = scratch.path().join("scene.toml");
             let text = super::super::latency::scene_text(&asset.replace('\\', "/"), 0.0, 0.8);
             crate::files::write_atomically(&path, text.as_bytes())?;
             path
         }
     };
-    let result = time_camera_commands(&scene, size, runs, adapter);
-    let _ = std::fs::remove_dir_all(&dir);
-    result
+    time_camera_commands(&scene, size, runs, adapter)
 }
 
 fn time_camera_commands(scene: &Path, size: (u32, u32), runs: u32, adapter: Option<&str>) -> Result<()> {

@@ -166,9 +166,10 @@ pub fn params_hash(quality: BuildQuality) -> [u8; 32] {
         size_of::<GpuTriangleUvs>(),
     ];
     let params = format!(
-        "rtbvh {FORMAT_VERSION} {NODE_LAYOUT} {quality:?} {sizes:?} {} {}",
+        "rtbvh {FORMAT_VERSION} {NODE_LAYOUT} {quality:?} {sizes:?} {} {} {}",
         size_of::<CachedMaterial>(),
-        size_of::<CachedTexture>()
+        size_of::<CachedTexture>(),
+        super::binned_build::BUILDER
     );
     *blake3::hash(params.as_bytes()).as_bytes()
 }

@@ -6,11 +6,7 @@ use crate::asset::MeshData;
 use crate::layout::{GpuTriangle, GpuTriangleShading, GpuTriangleTangents, GpuTriangleUvs, GpuWideNode};
 use crate::scene::UvSet;
 use glam::{Vec3, Vec3A};
-use obvhs::{
-    BvhBuildParams,
-    cwbvh::{CwBvh, builder::build_cwbvh_from_tris},
-    triangle::Triangle,
-};
+use obvhs::{BvhBuildParams, cwbvh::CwBvh, triangle::Triangle};
 use std::time::{Duration, Instant};
 
 /// obvhs's build presets, from fastest build to fastest traversal.
@@ -79,11 +75,8 @@ impl MeshBvh {
                 Triangle { v0: p(t[0]), v1: p(t[1]), v2: p(t[2]) }
             })
             .collect();
-        let bvh = if tris.is_empty() {
-            CwBvh::default()
-        } else {
-            build_cwbvh_from_tris(&tris, quality.params(), &mut Duration::default())
-        };
+        let bvh =
+            if tris.is_empty() { CwBvh::default() } else { super::binned_build::mesh_cwbvh(&tris, quality.params()) };
         // With spatial splits a triangle may appear in several leaves; each gets its copy.
         let order: Vec<u32> = bvh.primitive_indices.iter().map(|&i| kept[i as usize]).collect();
         let triangles: Vec<GpuTriangle> = order

@@ -2,6 +2,7 @@
 //! GPU node layout and cached in `.rtbvh` files, and a binary top level over instances
 //! and spheres.
 
+mod binned_build;
 pub mod cache;
 mod cache_check;
 mod cached_material;

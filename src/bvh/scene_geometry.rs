@@ -12,7 +12,7 @@ use crate::layout::*;
 use crate::scene::{GeometrySummary, LightSampler, Material, Sampling, Scene};
 use anyhow::{Result, bail};
 use glam::{Vec3, Vec3A};
-use obvhs::{BvhBuildParams, aabb::Aabb, bvh2::builder::build_bvh2};
+use obvhs::{BvhBuildParams, aabb::Aabb};
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -239,7 +239,7 @@ impl SceneGeometry {
         let (nodes, tlas_primitives) = if boxes.is_empty() {
             (convert_bvh2(&obvhs::bvh2::Bvh2::default()), Vec::new())
         } else {
-            let bvh = build_bvh2(&boxes, BvhBuildParams::medium_build(), &mut Duration::default());
+            let bvh = super::binned_build::build_optimised(&boxes, &BvhBuildParams::medium_build());
             let prims = bvh.primitive_indices.iter().map(|&i| entries[i as usize]).collect();
             (convert_bvh2(&bvh), prims)
         };

@@ -396,3 +396,144 @@ fn a_camera_with_an_aperture_blurs_what_lies_off_its_focus() {
     client.send("quit");
     assert!(wait_exit(&mut rt, &stderr).success());
 }
+
+/// The peak resident memory of process `pid`, in MiB (Linux's VmHWM).
+fn peak_mib(pid: u32) -> f64 {
+    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).expect("/proc status");
+    let kib: f64 = status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmHWM:"))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
+        .expect("VmHWM");
+    kib / 1024.0
+}
+
+/// A client that writes camera lines as fast as it can (reading frames all the while)
+/// must not grow rt's memory: each newer camera replaces the one still waiting. Then a
+/// bad line is answered at once, and rt exits soon after its input closes.
+#[test]
+fn a_client_flooding_camera_lines_keeps_rt_small_and_answering() {
+    use std::sync::Arc;
+    use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+    let dir = temp_dir("stream-flood");
+    let scene = scene(&dir, 0.1);
+    let stderr = dir.join("rt.stderr");
+    let mut rt = rt_stream(&scene, 100_000, &[], &stderr);
+    let pid = rt.id();
+    let mut input = rt.stdin.take().expect("stdin");
+    let mut output = BufReader::new(rt.stdout.take().expect("stdout"));
+    let (stop, sent) = (Arc::new(AtomicBool::new(false)), Arc::new(AtomicU64::new(0)));
+    let writer = {
+        let (stop, sent) = (stop.clone(), sent.clone());
+        std::thread::spawn(move || {
+            let lines: Vec<String> = (0..64)
+                .map(|i| format!("camera view=1,0,0,{},0,1,0,0,0,0,1,-5,0,0,0,1 fov=30\n", i as f32 * 1e-3))
+                .collect();
+            let batch = lines.concat();
+            while !stop.load(Ordering::Relaxed) {
+                if input.write_all(batch.as_bytes()).is_err() {
+                    break;
+                }
+                sent.fetch_add(lines.len() as u64, Ordering::Relaxed);
+            }
+            input
+        })
+    };
+    // Frames are read (and dropped) while the flood goes on.
+    let mut frames = 0u32;
+    let flood_end = Instant::now() + Duration::from_secs(10);
+    let mut header = String::new();
+    while Instant::now() < flood_end {
+        header.clear();
+        assert!(output.read_line(&mut header).expect("rt's output") > 0, "rt closed its output");
+        if let Some(bytes) = header.split(' ').find_map(|f| f.trim().strip_prefix("bytes=")) {
+            let mut data = vec![0u8; bytes.parse().expect("bytes")];
+            output.read_exact(&mut data).expect("frame bytes");
+            frames += 1;
+        }
+    }
+    stop.store(true, Ordering::Relaxed);
+    let mut input = writer.join().expect("writer");
+    let sent = sent.load(Ordering::Relaxed);
+    let peak = peak_mib(pid);
+    eprintln!("{sent} camera lines in 10 s, {frames} frames, rt's peak {peak:.0} MiB");
+    assert!(frames >= 3, "{frames} frames while flooded");
+    // Several hundred thousand lines were sent; before, each took ~140 bytes queued.
+    assert!(peak < 400.0, "rt's peak memory {peak:.0} MiB after {sent} camera lines");
+
+    // A line after the flood is answered within seconds, not after the flood's backlog.
+    let asked = Instant::now();
+    writeln!(input, "camra").and_then(|()| input.flush()).expect("rt reads");
+    let answer = loop {
+        header.clear();
+        assert!(output.read_line(&mut header).expect("rt's output") > 0, "rt closed its output");
+        if let Some(bytes) = header.split(' ').find_map(|f| f.trim().strip_prefix("bytes=")) {
+            let mut data = vec![0u8; bytes.parse().expect("bytes")];
+            output.read_exact(&mut data).expect("frame bytes");
+        } else if header.starts_with("error") {
+            break header.clone();
+        }
+        assert!(asked.elapsed() < Duration::from_secs(20), "no answer to a bad line in 20 s");
+    };
+    assert!(answer.contains("did you mean `camera`"), "{answer}");
+    let answered = asked.elapsed();
+    drop(input);
+    let closed = Instant::now();
+    let reader = std::thread::spawn(move || std::io::copy(&mut output, &mut std::io::sink()));
+    assert!(wait_exit(&mut rt, &stderr).success());
+    let _ = reader.join();
+    eprintln!("answered in {answered:?}, exited {:?} after its input closed", closed.elapsed());
+    assert!(closed.elapsed() < Duration::from_secs(20), "rt took {:?} to exit", closed.elapsed());
+}
+
+/// `--socket PATH` where another rt serves is refused, naming the path, and that server
+/// stays reachable; a socket nobody listens on (left by a killed server) is replaced; a
+/// file there is not rt's to remove.
+#[cfg(unix)]
+#[test]
+fn a_socket_in_use_is_refused_and_its_server_keeps_it() {
+    use std::os::unix::net::{UnixListener, UnixStream};
+    let dir = temp_dir("stream-socket-in-use");
+    let scene = scene(&dir, 0.1);
+    let socket = dir.join("rt.sock");
+    let _ = std::fs::remove_file(&socket);
+    let path = socket.to_str().expect("UTF-8 path");
+    let mut first = rt_stream(&scene, 100_000, &["--socket", path], &dir.join("first.stderr"));
+    let deadline = Instant::now() + Duration::from_secs(120);
+    let connect = || loop {
+        match UnixStream::connect(&socket) {
+            Ok(stream) => return Client::new(Box::new(stream.try_clone().expect("clone")), Box::new(stream)),
+            Err(_) if Instant::now() < deadline => std::thread::sleep(Duration::from_millis(50)),
+            Err(e) => panic!("{}: {e}", socket.display()),
+        }
+    };
+    drop(connect());
+
+    let second_err = dir.join("second.stderr");
+    let mut second = rt_stream(&scene, 4, &["--socket", path], &second_err);
+    assert_eq!(wait_exit(&mut second, &second_err).code(), Some(1));
+    let message = std::fs::read_to_string(&second_err).expect("stderr");
+    assert!(message.contains(&format!("{path}: another server is listening on this socket")), "{message}");
+    let mut client = connect();
+    client.frame();
+    client.send("quit");
+    assert_eq!(client.message("bye"), "bye");
+    assert!(wait_exit(&mut first, &dir.join("first.stderr")).success());
+
+    // A socket left behind with nobody listening is replaced.
+    drop(UnixListener::bind(&socket).expect("a socket nobody will listen on"));
+    let mut third = rt_stream(&scene, 4, &["--socket", path], &dir.join("third.stderr"));
+    let mut client = connect();
+    client.send("quit");
+    assert_eq!(client.message("bye"), "bye");
+    assert!(wait_exit(&mut third, &dir.join("third.stderr")).success());
+
+    // A file at the path is refused and kept.
+    std::fs::write(&socket, "notes").expect("a file");
+    let fourth_err = dir.join("fourth.stderr");
+    let mut fourth = rt_stream(&scene, 4, &["--socket", path], &fourth_err);
+    assert_eq!(wait_exit(&mut fourth, &fourth_err).code(), Some(1));
+    let message = std::fs::read_to_string(&fourth_err).expect("stderr");
+    assert!(message.contains("is a file, not a socket"), "{message}");
+    assert_eq!(std::fs::read_to_string(&socket).expect("kept"), "notes");
+}

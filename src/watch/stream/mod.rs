@@ -38,13 +38,20 @@ mod view;
 
 pub use command::Command;
 
+/// The commands in `input` as rt reads a client's lines (long lines refused, blank ones
+/// and comments skipped): for the fuzzing harness.
+pub fn read_commands(input: &[u8]) -> Vec<Result<Command, String>> {
+    let mut reader = std::io::BufReader::new(input);
+    std::iter::from_fn(|| connection::read_command(&mut reader)).flatten().collect()
+}
+
 use super::WatchOptions;
 use super::live::LiveScene;
 use super::sources::names;
 use crate::gpu::{GpuContext, ms};
 use crate::render::{Image, Pacing};
 use anyhow::{Context, Result};
-use connection::{Connection, Gone, Incoming};
+use connection::{Connection, Gone};
 use std::path::Path;
 use std::time::Duration;
 
@@ -70,10 +77,10 @@ pub fn run(ctx: &GpuContext, options: &WatchOptions, socket: Option<&Path>) -> R
         serve(&mut live, Connection::new(std::io::stdin(), std::io::stdout()))?;
         return Ok(());
     };
-    let listener = bind(path)?;
+    let listening = bind(path)?;
     eprintln!("rt watch --stream: listening on {}", path.display());
-    let result = loop {
-        let stream = match listener.accept() {
+    loop {
+        let stream = match listening.listener.accept() {
             Ok((stream, _)) => stream,
             Err(e) => break Err(e).with_context(|| format!("{}: cannot accept a client", path.display())),
         };
@@ -86,24 +93,62 @@ pub fn run(ctx: &GpuContext, options: &WatchOptions, socket: Option<&Path>) -> R
             Ok(Ended::Gone) => eprintln!("rt watch --stream: the client left; waiting for the next"),
             Err(e) => break Err(e),
         }
-    };
-    let _ = std::fs::remove_file(path);
-    result
-}
-
-#[cfg(unix)]
-fn bind(path: &Path) -> Result<std::os::unix::net::UnixListener> {
-    use std::os::unix::fs::FileTypeExt;
-    // A socket left by a killed rt would make the bind fail; anything else is not ours to remove.
-    if std::fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_socket()) {
-        let _ = std::fs::remove_file(path);
     }
-    std::os::unix::net::UnixListener::bind(path).with_context(|| format!("{}: cannot listen there", path.display()))
 }
 
-#[cfg(not(unix))]
-fn bind(path: &Path) -> Result<std::net::TcpListener> {
-    anyhow::bail!("{}: --socket needs a Unix system; use the standard streams", path.display())
+/// The socket rt listens on, removed when rt stops if it is still the one rt made.
+struct Listening {
+    listener: std::os::unix::net::UnixListener,
+    path: std::path::PathBuf,
+    identity: Option<(u64, u64)>,
+}
+
+impl Drop for Listening {
+    fn drop(&mut self) {
+        if self.identity.is_some() && identity(&self.path) == self.identity {
+            let _ = std::fs::remove_file(&self.path);
+        }
+    }
+}
+
+/// The device and inode of what is at `path`, if anything.
+fn identity(path: &Path) -> Option<(u64, u64)> {
+    use std::os::unix::fs::MetadataExt;
+    std::fs::symlink_metadata(path).ok().map(|m| (m.dev(), m.ino()))
+}
+
+/// Listens at `path`. A socket there that a server answers is in use and refused; one
+/// that nothing answers was left by a killed server and is replaced; anything else
+/// there is not rt's to remove.
+fn bind(path: &Path) -> Result<Listening> {
+    use std::os::unix::fs::FileTypeExt;
+    use std::os::unix::net::{UnixListener, UnixStream};
+    match std::fs::symlink_metadata(path) {
+        Ok(m) if m.file_type().is_socket() => match UnixStream::connect(path) {
+            Ok(_) => anyhow::bail!(
+                "{}: another server is listening on this socket; stop it or give rt another --socket path",
+                path.display()
+            ),
+            Err(e) if e.kind() == std::io::ErrorKind::ConnectionRefused => {
+                log::info!("{}: replacing a socket that no server listens on", path.display());
+                std::fs::remove_file(path)
+                    .with_context(|| format!("{}: cannot remove the dead socket", path.display()))?;
+            }
+            Err(e) => anyhow::bail!(
+                "{}: cannot tell whether a server listens on this socket ({e}); remove it if none does",
+                path.display()
+            ),
+        },
+        Ok(m) => anyhow::bail!(
+            "{}: is {}, not a socket; rt will not replace it (give another --socket path)",
+            path.display(),
+            crate::files::input::describe(m.file_type())
+        ),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+        Err(e) => return Err(e).with_context(|| format!("{}: cannot look at this path", path.display())),
+    }
+    let listener = UnixListener::bind(path).with_context(|| format!("{}: cannot listen there", path.display()))?;
+    Ok(Listening { listener, path: path.to_path_buf(), identity: identity(path) })
 }
 
 /// One client's session: its commands applied as they come, frames sent after each dispatch.
@@ -147,24 +192,19 @@ fn serve_client(live: &mut LiveScene, client: &mut Connection) -> Result<Ended, 
     let mut shown_line = 0;
     loop {
         // Waits for a command only when there is nothing to refine or send.
-        let mut next = if live.session.converged() && !frame_due {
-            Some(client.incoming.recv().unwrap_or(Incoming::Closed))
-        } else {
-            client.incoming.try_recv().ok()
-        };
-        while let Some(incoming) = next.take() {
-            match incoming {
-                Incoming::Closed => return Ok(Ended::Gone),
-                Incoming::Command { line, command: Err(message) } => {
+        let batch = client.incoming.take(live.session.converged() && !frame_due);
+        for (line, command) in batch.lines {
+            match command {
+                Err(message) => {
                     client.line(&error_line(Some(line), &message))?;
                     shown_line = line;
                 }
-                Incoming::Command { line, command: Ok(Command::Quit) } => {
+                Ok(Command::Quit) => {
                     log::info!("stream: quit at line {line}");
                     client.line("bye")?;
                     return Ok(Ended::Quit);
                 }
-                Incoming::Command { line, command: Ok(command) } => {
+                Ok(command) => {
                     if let Err(e) = apply(live, client, line, command)? {
                         client.line(&error_line(Some(line), &format!("{e:#}")))?;
                     }
@@ -172,7 +212,9 @@ fn serve_client(live: &mut LiveScene, client: &mut Connection) -> Result<Ended, 
                     frame_due = true;
                 }
             }
-            next = client.incoming.try_recv().ok();
+        }
+        if batch.closed {
+            return Ok(Ended::Gone);
         }
         if !live.session.converged() {
             live.session.step(None)?;

@@ -11,6 +11,7 @@ pub mod bench;
 pub mod bvh;
 pub mod denoise;
 pub mod files;
+pub mod fuzz;
 pub mod gpu;
 pub mod info;
 pub mod layout;

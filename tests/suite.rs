@@ -39,7 +39,6 @@ mod cycles_textures;
 mod denoise;
 mod environment;
 mod furnace;
-mod fuzz_inputs;
 mod geometry_precision;
 mod instances;
 mod lamps;

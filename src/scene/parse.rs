@@ -61,8 +61,8 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
 pub fn parse(text: &str, origin: &str, base_dir: &Path) -> Result<Scene, SceneError> {
     let syntax = |e: toml::de::Error| located(origin, text, e.span(), e.message().to_owned());
     let root = DeTable::parse(text).map_err(syntax)?;
-    let file = File::deserialize(Deserializer::from(root.clone()));
-    let src = Source { origin, text, root: DeValue::Table(root.into_inner()) };
+    let file = File::deserialize(Deserializer::from(root));
+    let src = Source { origin, text, root: std::cell::OnceCell::new() };
     let file = file.map_err(|e| src.serde_error(&e))?;
     validate::scene(file, &src, base_dir)
 }
@@ -74,14 +74,24 @@ pub(super) enum Seg<'a> {
     Index(usize),
 }
 
-/// The text and its spanned tree, to place errors found after deserializing.
+/// The text and its spanned tree, to place errors found after deserializing. The tree is
+/// parsed again only when an error needs it: a scene of 100,000 spheres holds one tree
+/// at a time, not two.
 pub(super) struct Source<'t> {
     pub origin: &'t str,
     text: &'t str,
-    root: DeValue<'t>,
+    root: std::cell::OnceCell<DeValue<'t>>,
 }
 
-impl Source<'_> {
+impl<'t> Source<'t> {
+    fn root(&self) -> &DeValue<'t> {
+        self.root.get_or_init(|| match DeTable::parse(self.text) {
+            Ok(root) => DeValue::Table(root.into_inner()),
+            // The text parsed once already; an empty tree places the error at the top.
+            Err(_) => DeValue::Table(Default::default()),
+        })
+    }
+
     /// An error about `field` of the item at `base`, placed at the deepest part of that
     /// path present in the file (the field may have been left to its default).
     pub fn error(&self, base: &[Seg], field: &str, message: impl fmt::Display) -> SceneError {
@@ -114,7 +124,7 @@ impl Source<'_> {
 
     /// Where the item at `path` starts in the text, or its nearest present ancestor.
     pub fn locate(&self, path: &[Seg]) -> Option<Range<usize>> {
-        let (mut node, mut span) = (&self.root, None);
+        let (mut node, mut span) = (self.root(), None);
         for seg in path {
             let Some(next) = (match *seg {
                 Seg::Key(key) => node.get(key),
@@ -135,7 +145,7 @@ impl Source<'_> {
     fn serde_error(&self, e: &toml::de::Error) -> SceneError {
         let mut path = Vec::new();
         if let Some(span) = e.span() {
-            find(&self.root, &span, &mut path);
+            find(self.root(), &span, &mut path);
         }
         let (item, field) = describe(&path);
         let msg = e.message();

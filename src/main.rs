@@ -130,6 +130,30 @@ struct RenderArgs {
     /// luminance is below this, e.g. 0.01 (0: off) [default: the scene's].
     #[arg(long)]
     noise_threshold: Option<f32>,
+    /// Stop after this many seconds with the samples taken so far, as Cycles' Time Limit
+    /// [default: none].
+    #[arg(long, value_parser = parse_seconds)]
+    time_limit: Option<f64>,
+    /// While rendering, write the image so far (linear, as an OpenEXR) to this path every
+    /// --snapshot-every seconds; with --progress json, a `snapshot` event says so.
+    #[arg(long)]
+    snapshot: Option<PathBuf>,
+    /// Seconds between snapshots.
+    #[arg(long, value_parser = parse_seconds, default_value_t = 1.0, requires = "snapshot")]
+    snapshot_every: f64,
+    /// Also write each AOV as an OpenEXR of its own in this folder (albedo.exr, normal.exr,
+    /// depth.exr, error.exr, samples.exr; one-value AOVs in all three channels), for
+    /// programs that read plain images (the Blender engine's passes).
+    #[arg(long)]
+    aov_files: Option<PathBuf>,
+}
+
+/// A positive, finite number of seconds.
+fn parse_seconds(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err(format!("expected a positive number of seconds, not {s:?}")),
+    }
 }
 
 impl RenderArgs {
@@ -149,7 +173,7 @@ impl RenderArgs {
             samples_per_dispatch: self.samples_per_dispatch,
             sample_lanes: self.sample_lanes,
             noise_threshold: self.noise_threshold,
-            aovs: self.aovs || self.denoise,
+            aovs: self.aovs || self.denoise || self.aov_files.is_some(),
         }
     }
 }
@@ -458,7 +482,14 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
     if let Some(tables) = session.atmosphere() {
         say(format!("atmosphere tables built in {:.1} ms", tables.build_time.as_secs_f64() * 1e3));
     }
-    let (image, report) = session.render(&request, None)?;
+    if let Some(snapshot) = &args.snapshot
+        && image_format(snapshot)? != ImageFormat::Exr
+    {
+        bail!("--snapshot: snapshots are linear OpenEXR images; give an .exr path");
+    }
+    let time_limit = args.time_limit.map(std::time::Duration::from_secs_f64);
+    let mut snapshots = Snapshots::new(args.snapshot.as_deref(), args.snapshot_every, json);
+    let (image, report) = session.render_with(&request, None, time_limit, |s| snapshots.after_step(s))?;
     let aovs = if request.aovs { Some(session.aovs()?) } else { None };
     let denoised = match (&mut denoiser, &aovs) {
         (Some(denoiser), Some(aovs)) => {
@@ -470,6 +501,9 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
         }
         _ => None,
     };
+    if let (Some(dir), Some(aovs)) = (&args.aov_files, &aovs) {
+        write_aov_files(dir, &image, aovs)?;
+    }
     match (&aovs, denoised) {
         (Some(aovs), denoised) if args.aovs => {
             let channels = aov_channels(&image, aovs, denoised.as_deref());
@@ -499,10 +533,60 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
         }
     }
     if json {
-        let fields = serde_json::json!({ "file": args.output, "seconds": report.elapsed.as_secs_f64() });
+        let fields = serde_json::json!({
+            "file": args.output,
+            "seconds": report.elapsed.as_secs_f64(),
+            "spp": report.samples_per_pixel,
+        });
         eprintln!("{}", json_event("done", fields));
     }
     Ok(())
+}
+
+/// `--aov-files DIR`: each AOV as a plain OpenEXR of its own.
+fn write_aov_files(dir: &Path, image: &Image, aovs: &rt::render::Aovs) -> Result<()> {
+    rt::files::check_folder(dir).context("--aov-files")?;
+    let grey = |values: Vec<f32>| values.into_iter().map(|v| [v; 3]).collect::<Vec<_>>();
+    let files = [
+        ("albedo", aovs.albedo.clone()),
+        ("normal", aovs.normal.clone()),
+        ("depth", grey(aovs.depth.clone())),
+        ("error", grey(image.std_error.clone())),
+        ("samples", grey(image.sample_counts.iter().map(|&n| n as f32).collect())),
+    ];
+    for (name, pixels) in files {
+        write_image(&Image { pixels, ..image.clone() }, &dir.join(format!("{name}.exr")), 0.0)?;
+    }
+    Ok(())
+}
+
+/// `--snapshot`: the image so far, written every so often while rendering.
+struct Snapshots<'a> {
+    path: Option<&'a Path>,
+    every: std::time::Duration,
+    json: bool,
+    last: std::time::Instant,
+}
+
+impl<'a> Snapshots<'a> {
+    fn new(path: Option<&'a Path>, every: f64, json: bool) -> Self {
+        let every = std::time::Duration::from_secs_f64(every);
+        Self { path, every, json, last: std::time::Instant::now() }
+    }
+
+    fn after_step(&mut self, session: &Session) -> Result<()> {
+        let Some(path) = self.path.filter(|_| self.last.elapsed() >= self.every && !session.converged()) else {
+            return Ok(());
+        };
+        let image = session.image()?;
+        write_image(&image, path, 0.0)?;
+        if self.json {
+            let fields = serde_json::json!({ "file": path, "spp": image.samples });
+            eprintln!("{}", json_event("snapshot", fields));
+        }
+        self.last = std::time::Instant::now();
+        Ok(())
+    }
 }
 
 fn watch(args: WatchArgs, adapter: Option<&str>) -> Result<()> {

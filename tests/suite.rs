@@ -18,6 +18,7 @@ mod bench_accuracy;
 mod bench_compare;
 mod blender_coat_normal;
 mod blender_engine;
+mod blender_engine_ui;
 mod blender_environment;
 mod blender_gltf_extensions;
 mod blender_live;

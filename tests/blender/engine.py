@@ -28,9 +28,10 @@ REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 
 def engine_module():
     sys.path.insert(0, os.path.join(REPO, "blender"))
-    import rt_engine
+    import rt_blender
+    from rt_blender import rt_engine
 
-    rt_engine.register()
+    rt_blender.register()
     return rt_engine
 
 
@@ -68,7 +69,7 @@ def f12(out):
         "result": sorted(result),
         "cache": rt_engine.cache_dir(),
         "spp": settings.spp,
-        "max_bounces": settings.max_bounces,
+        "max_bounces": settings.max_bounces + 1,  # rt counts the surfaces a path shades: one more
         "sampling": settings.sampling,
         "seed": settings.seed,
         "f12_s": total,

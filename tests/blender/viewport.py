@@ -31,8 +31,9 @@ import numpy as np
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(REPO, "blender"))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import rt_engine  # noqa: E402
-import rt_viewport  # noqa: E402
+import rt_blender  # noqa: E402
+from rt_blender import rt_engine  # noqa: E402
+from rt_blender import rt_viewport  # noqa: E402
 from live_edits import build  # noqa: E402
 from live_watch import edits  # noqa: E402
 
@@ -81,7 +82,7 @@ def main(out):
     scene, cube, paint = build()
     dof = scene.camera.data.dof
     dof.use_dof, dof.aperture_fstop, dof.focus_distance = True, 0.025, 20.0
-    rt_engine.register()
+    rt_blender.register()
     scene.rt_render.viewport_spp = SPP
     viewport = rt_viewport.Viewport(os.environ["RT_BINARY"], os.path.join(out, "viewport"))
     depsgraph = bpy.context.evaluated_depsgraph_get()
@@ -142,7 +143,7 @@ def main(out):
     report["rt_exit"] = client.process.returncode
     with open(os.path.join(out, "viewport.json"), "w") as f:
         json.dump(report, f, indent=1)
-    rt_engine.unregister()
+    rt_blender.unregister()
 
 
 if __name__ == "__main__":

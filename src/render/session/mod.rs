@@ -309,6 +309,19 @@ impl<'a> Session<'a> {
 
     /// Renders `request` from no samples to its spp, showing its progress as it asks.
     pub fn render(&mut self, request: &RenderRequest, timer: Option<&GpuTimer>) -> Result<(Image, RenderReport)> {
+        self.render_with(request, timer, None, |_| Ok(()))
+    }
+
+    /// [`Self::render`], stopping at `time_limit` (after at least one sample) with the
+    /// samples taken so far, and calling `after_step` after each dispatch (to show or
+    /// save the image so far).
+    pub fn render_with(
+        &mut self,
+        request: &RenderRequest,
+        timer: Option<&GpuTimer>,
+        time_limit: Option<Duration>,
+        mut after_step: impl FnMut(&Self) -> Result<()>,
+    ) -> Result<(Image, RenderReport)> {
         self.set_request(request)?;
         self.reset();
         self.buffers.take_stats(self.ctx)?;
@@ -323,6 +336,10 @@ impl<'a> Session<'a> {
             max_lanes = max_lanes.max(step.lanes);
             let rate = self.acc.samples as f64 * pixels / start.elapsed().as_secs_f64();
             progress.update(self.acc.samples, start.elapsed(), rate);
+            after_step(self)?;
+            if time_limit.is_some_and(|limit| start.elapsed() >= limit) {
+                break;
+            }
         }
         progress.finish();
         let elapsed = start.elapsed();

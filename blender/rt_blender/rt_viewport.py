@@ -27,10 +27,7 @@ import time
 import bpy
 import numpy as np
 
-try:
-    from . import rt_export
-except ImportError:  # run from the blender/ folder, outside the packaged extension
-    import rt_export
+from . import rt_export
 
 # A field of a message line: key=value or key="a quoted value".
 FIELD = re.compile(r'(\w+)=("([^"]*)"|\S+)')
@@ -219,7 +216,7 @@ class Viewport:
         if self.export is None:
             self.started = began
             os.makedirs(self.folder, exist_ok=True)
-            self.export = rt_export.export_scene(scene, self.assets, self.scene_path)
+            self.export = rt_export.export_scene(scene, self.assets, self.scene_path, depsgraph=depsgraph)
             self.client = StreamClient(stream_command(self.binary, self.scene_path, scene.rt_render))
             self.sent["spp"] = scene.rt_render.viewport_spp
             LOG.debug("exported the scene and started rt in %.0f ms", 1e3 * (time.perf_counter() - began))
@@ -231,7 +228,7 @@ class Viewport:
         tracked = {"objects": set(), "meshes": set(), "materials": set()}
         rt_export.add_changes(tracked, changes)
         only = rt_export.changed_objects(scene, tracked)
-        self.export = rt_export.export_scene(scene, self.assets, self.scene_path, only, self.export)
+        self.export = rt_export.export_scene(scene, self.assets, self.scene_path, only, self.export, depsgraph=depsgraph)
         written = [os.path.relpath(path, self.folder).replace(os.sep, "/") for path in self.export.written]
         if written:
             line = self.client.send("reload " + " ".join(written))

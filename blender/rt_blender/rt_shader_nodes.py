@@ -146,8 +146,14 @@ class Surface:
         return True
 
 
+# What the last export of each material (by name) rendered differently from Cycles: the
+# warnings below, for the UI (rt's material panel) as well as the log.
+NOTES = {}
+
+
 def warn(material, node, what):
     log(f"{material.name}: {node.name!r} ({node.bl_idname}): {what}")
+    NOTES.setdefault(material.name, []).append(f"{node.name}: {what}")
 
 
 def distribution_note(material, node):

@@ -10,6 +10,7 @@ pub mod asset;
 pub mod bench;
 pub mod bvh;
 pub mod denoise;
+pub mod doctor;
 pub mod files;
 pub mod fuzz;
 pub mod gpu;

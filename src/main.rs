@@ -15,11 +15,14 @@ use rt::scene::{self, LightSampler, MAX_IMAGE_SIDE, Microfacet, RoughTransmissio
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+/// The version and the commit rt was built from.
+const VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), " (commit ", env!("RT_COMMIT"), ")");
+
 /// The exit status of a render that `--strict` rejects.
 const EXIT_STRICT: u8 = 3;
 
 #[derive(Parser)]
-#[command(name = "rt", version, about = "A physically based GPU path tracer for scenes made in Blender")]
+#[command(name = "rt", version = VERSION, about = "A physically based GPU path tracer for scenes made in Blender")]
 struct Cli {
     /// GPU adapter to use: part of its name, as printed by `rt info`.
     #[arg(long, global = true, env = "RT_ADAPTER")]
@@ -55,6 +58,9 @@ enum Command {
     /// Measure performance.
     #[command(subcommand)]
     Bench(BenchCommand),
+    /// Check this machine: GPUs and Vulkan drivers, Open Image Denoise, Blender's Python
+    /// module, Blender and rt's extension; says what to do about what is missing.
+    Doctor,
 }
 
 #[derive(Args)]
@@ -116,7 +122,7 @@ struct RenderArgs {
     #[arg(long, value_enum, default_value_t)]
     progress: Progress,
     /// Also write the albedo, normal, depth, standard error and sample count per pixel:
-    /// the output is then one multi-layer OpenEXR (README: AOVs).
+    /// the output is then one multi-layer OpenEXR (docs/denoising.md).
     #[arg(long)]
     aovs: bool,
     /// Denoise the image with Open Image Denoise, guided by albedo and normals (with
@@ -187,7 +193,7 @@ struct WatchArgs {
     #[arg(long, requires = "frames_dir")]
     headless: bool,
     /// No window: take commands on standard input and send frames on standard output
-    /// (the protocol: README.md, "Streaming to a client"); with --socket, on a Unix socket.
+    /// (the protocol: docs/live-preview.md, "Streaming to a client"); with --socket, on a Unix socket.
     #[arg(long, conflicts_with = "headless")]
     stream: bool,
     /// With --stream: serve clients one after another on the Unix socket at this path.
@@ -365,9 +371,9 @@ enum BenchCommand {
         /// Samples per pixel of the references [default: by adapter].
         #[arg(long)]
         reference_spp: Option<u32>,
-        /// Rewrite README.md's headline section with the tables.
-        #[arg(long)]
-        readme: bool,
+        /// Rewrite the headline section of docs/benchmarks.md with the tables.
+        #[arg(long, alias = "readme")]
+        docs: bool,
     },
 }
 
@@ -694,6 +700,10 @@ fn main() -> ExitCode {
         Command::Info { scene, quality } => {
             load_scene(scene.as_deref()).and_then(|s| rt::info::print_info(s, quality, adapter))
         }
+        Command::Doctor => {
+            rt::doctor::findings(VERSION, adapter).iter().for_each(|f| println!("{f}"));
+            Ok(())
+        }
         Command::Bench(BenchCommand::Throughput { scene, size, runs, spp, sample_lanes }) => {
             let options = rt::bench::ThroughputOptions { size, runs, spp, lanes: sample_lanes, rays: true };
             load_scene(scene.as_deref()).and_then(|s| rt::bench::throughput(s, &options, adapter))
@@ -727,9 +737,9 @@ fn main() -> ExitCode {
                 rt::bench::FireflyOptions { size: (0, 0), samples: a.samples, seeds: a.seeds, clamp: a.clamp };
             rt::bench::commands::fireflies(&s, options, a.size, a.out.as_deref(), adapter)
         }),
-        Command::Bench(BenchCommand::Headline { out, size, spp, reference_spp, readme }) => {
+        Command::Bench(BenchCommand::Headline { out, size, spp, reference_spp, docs }) => {
             let accuracy = rt::bench::AccuracyOptions { out, size, levels: spp, reference_spp, ..Default::default() };
-            rt::bench::commands::headline(accuracy, readme.then(|| PathBuf::from("README.md")), adapter)
+            rt::bench::commands::headline(accuracy, docs.then(|| PathBuf::from("docs/benchmarks.md")), adapter)
         }
     };
     match result {

@@ -4,11 +4,11 @@
         blender --factory-startup --enable-event-simulate -p 0 0 1600 900 \\
         --python docs/blender/screenshots.py -- --rt target/release/rt --out docs/images
 
-(any Blender from 3.4 on, with a display or under Xvfb as above; `rt` built first;
+(Blender 4.2 or later, which rt supports, with a display or under Xvfb as above; `rt` built first;
 --enable-event-simulate lets the script press Esc on the first-start splash and drag an
 object with the simulated pointer, and makes Blender ignore the real one). It installs
-rt's add-on from blender/ as a legacy add-on (the blender/rt_blender package, with its
-four modules beside it, in a temporary folder), builds the Cornell box of
+rt's add-on from blender/ as a legacy add-on (the blender/rt_blender package, in a
+temporary folder), builds the Cornell box of
 docs/blender/cornell.py with rt as the render engine, and steps through the UI with a
 timer: Render Properties with rt's panel, F12 into Blender's render view (the main
 window's Maximized Area), the 3D viewport in Rendered shading (rt's view_draw) while its
@@ -58,12 +58,10 @@ def arguments():
 
 
 def install_addon(folder, rt_binary):
-    """blender/rt_blender with its modules beside it, as Blender installs a legacy add-on."""
+    """blender/rt_blender, the whole package, as Blender installs a legacy add-on."""
     package = os.path.join(folder, ADDON)
-    os.makedirs(package)
-    shutil.copy(os.path.join(REPO, "blender", "rt_blender", "__init__.py"), package)
-    for name in ("rt_export.py", "rt_shader_nodes.py", "rt_engine.py", "rt_viewport.py"):
-        shutil.copy(os.path.join(REPO, "blender", name), package)
+    shutil.copytree(os.path.join(REPO, "blender", "rt_blender"), package,
+                    ignore=shutil.ignore_patterns("__pycache__"))
     sys.path.insert(0, folder)
     if addon_utils.enable(ADDON, default_set=True, handle_error=None) is None:
         raise RuntimeError(f"the add-on {ADDON} did not enable")

@@ -2,7 +2,7 @@
 //! interior with glass, the dragon among mirror spheres, and the sunlit pillars as
 //! the outdoor scene until the atmosphere renders a sunset): the fastest setting to
 //! reach 1 % RMSE, the speed-up of the specialised pipeline over the all-features
-//! one, and the fireflies of each sampling strategy. Optionally spliced into README.
+//! one, and the fireflies of each sampling strategy. Optionally spliced into docs/benchmarks.md.
 
 use super::accuracy::{AccuracyOptions, accuracy};
 use super::effects::{EffectsReport, effects};

@@ -3,7 +3,7 @@
 //! asked for: `auto` takes a CUDA GPU where Open Image Denoise has one, else the CPU.
 //!
 //! Open Image Denoise is a shared library that rt loads at run time when built with the
-//! `denoise` feature (`scripts/fetch_oidn` installs it, see README); without the feature,
+//! `denoise` feature (`scripts/fetch_oidn` installs it, see docs/denoising.md); without the feature,
 //! without the library, or when it cannot make a device, asking to denoise is an error
 //! that says how to get it, and everything else works.
 
@@ -17,7 +17,7 @@ use anyhow::{Result, bail};
 
 /// How to get a denoising rt, for error messages.
 pub const HOW_TO_GET_OIDN: &str = "run scripts/fetch_oidn (it unpacks Open Image Denoise 2.5.1 into .oidn/), \
-     then build with `cargo build --release --features denoise` (README: Denoising)";
+     then build with `cargo build --release --features denoise` (docs/denoising.md)";
 
 /// Which Open Image Denoise device denoises (`--denoise-device`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]

@@ -109,7 +109,7 @@ fn library_path() -> PathBuf {
 fn load() -> Result<Api, String> {
     let path = library_path();
     let how = "run scripts/fetch_oidn (it installs Open Image Denoise 2.5.1 into .oidn/lib) and set OIDN_DIR to \
-               that .oidn folder (README: Denoising)";
+               that .oidn folder (docs/denoising.md)";
     // SAFETY: loading runs the library's initialisers: Open Image Denoise's are sound to run.
     let library = unsafe { libloading::Library::new(&path) }.map_err(|e| {
         format!("Open Image Denoise is missing: cannot load {} ({e}); {}; {how}", path.display(), search_order())

@@ -30,6 +30,22 @@ const STORAGE_BUFFERS_NEEDED: u32 = 26;
 const NO_ADAPTER_HELP: &str = "no GPU adapter found. rt needs Vulkan; on a machine without a GPU, \
 install Mesa's CPU driver (lavapipe): `sudo apt-get install mesa-vulkan-drivers`";
 
+/// Every Vulkan adapter wgpu finds, described as `rt info` prints the one it uses.
+pub fn adapter_names() -> Vec<String> {
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
+        backends: wgpu::Backends::VULKAN,
+        ..wgpu::InstanceDescriptor::new_without_display_handle_from_env()
+    });
+    let adapters = pollster::block_on(instance.enumerate_adapters(wgpu::Backends::VULKAN));
+    adapters
+        .iter()
+        .map(|a| {
+            let info = a.get_info();
+            format!("{} ({:?}, {})", info.name, info.device_type, info.driver)
+        })
+        .collect()
+}
+
 impl GpuContext {
     /// Picks an adapter: the one whose name contains `wanted` (case-insensitive)
     /// if given, else a discrete GPU, else an integrated one, else any (lavapipe).

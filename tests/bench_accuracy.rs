@@ -16,7 +16,7 @@ use rt::scene::{FeatureSet, luminance};
 use std::path::Path;
 
 #[test]
-fn rmse_falls_as_one_over_root_spp_on_a_diffuse_scene() {
+fn rmse_falls_at_least_as_one_over_root_spp_on_a_diffuse_scene() {
     let scene = rt::scene::default_scene().unwrap_or_else(|e| panic!("{e}"));
     let levels = vec![4, 16, 64];
     let options = SweepOptions {
@@ -37,8 +37,10 @@ fn rmse_falls_as_one_over_root_spp_on_a_diffuse_scene() {
     // Each level's MSE is a mean over 1,024 pixels and 2 seeds: with the Cornell box's
     // tails, within ~10 % (1σ), so ln RMSE within ~0.05. Least squares over five levels
     // ln 2 apart (Σ(x − x̄)² = 10 ln² 2 ≈ 4.8) puts the slope within 0.05 / √4.8 ≈ 0.023
-    // (1σ; nested levels share samples, which only narrows it): ±0.1 is over 4σ.
-    assert!((slope + 0.5).abs() < 0.1, "log-log slope {slope:.3}, expected -0.5 ± 0.1: {points:?}");
+    // (1σ). Independent samples give -0.5; rt's scrambled Sobol points converge faster
+    // where the integrand is smooth in their dimensions (at best -0.75 for Owen-scrambled
+    // nets), and never slower: measured -0.64 here (-0.50 with independent samples).
+    assert!((-0.85..=-0.45).contains(&slope), "log-log slope {slope:.3}, expected -0.45 to -0.85: {points:?}");
     let fit = sweep.knobs[0].settings[0].fit.expect("fit");
     assert_eq!(fit.bias2, 0.0, "an unbiased setting needs no error floor: {fit:?}");
 }

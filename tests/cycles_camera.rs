@@ -67,7 +67,10 @@ fn depth_of_field_round_aperture_matches_cycles() {
 
 #[test]
 fn depth_of_field_six_blades_anamorphic_matches_cycles() {
-    check("dof_blades");
+    // A block of one emitter's face, inside the defocused edge of another: Cycles' 8192
+    // samples meet the edge a few times, rt's 256 stratified ones need not (it then has
+    // no noise there), as in the panoramas.
+    check_panorama("dof_blades");
 }
 
 #[test]

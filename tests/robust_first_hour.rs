@@ -57,7 +57,13 @@ fn every_render_option_has_help_text() {
 #[test]
 fn the_readme_says_how_to_install_and_what_the_first_run_costs() {
     let readme = std::fs::read_to_string(common::repo().join("README.md")).expect("README");
-    for needle in ["cargo install --path .", "target/release/rt", "about 15", "~1 GB"] {
+    for needle in
+        ["cargo install --path .", "rustup", "mesa-vulkan-drivers", "about 15 minutes", "~400 MB", "rt doctor"]
+    {
         assert!(readme.contains(needle), "README lacks {needle:?}");
+    }
+    let install = std::fs::read_to_string(common::repo().join("docs/install.md")).expect("docs/install.md");
+    for needle in ["target/release/rt", "uv", "python3.11", "npm", "scripts/test"] {
+        assert!(install.contains(needle), "docs/install.md lacks {needle:?}");
     }
 }

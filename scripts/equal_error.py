@@ -1,0 +1,269 @@
+#!/usr/bin/env python3
+"""Time to a clean image: how long rt and Mitsuba 3 each take to reach a relative RMSE of
+2 %, 1 % and 0.5 % (and SSIM 0.99) on the same scene, rendered alike.
+
+    python3 scripts/equal_error.py --rt rt=target/release/rt [--rt old=OLD_RT] \\
+        [--variant cuda_ad_rgb] [--size 128] [--max-spp 4096] SCENE.toml...
+
+Each SCENE is an rt validation scene (tests/refs/scenes/*.toml); Mitsuba sees it through
+tests/refs/make_refs.py's translation, with the same path length (`max_depth` = rt's
+bounces + 1), Russian roulette from the same vertex (rr_depth 5: rt's bounce > 3), the
+same box pixel filter. rt's emitting meshes emit from both faces; Mitsuba's area emitters
+from one, so make_refs.py gives each a flipped copy: two emitters that Mitsuba's light
+sampling picks alike, where rt's picks a point and sees whichever face looks at it.
+`--one-sided-emitters` keeps only the face that faces the scene's centre (the images
+then differ by what the other face lights).
+
+For each renderer (each rt binary given, and Mitsuba with each of its samplers) the scene
+is rendered at 1, 2, 4, ... samples per pixel, twice with other seeds, after a warm-up;
+the error of each image is its relative RMSE (RMSE over the mean) against that renderer's
+own converged image, and the time is what the render took (rt: its render loop, as
+`--progress json` reports it; Mitsuba: `mi.render` and a sync, warm). The time to each
+error is interpolated in log-log between the sample counts around it. Before any ratio is
+printed, rt's converged image and Mitsuba's are compared per colour channel, 8×8 block by
+block, against their noise: a scene whose images disagree is reported as disagreeing.
+
+Writes a markdown table on stdout and the raw points as JSON (--json).
+"""
+
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "tests", "refs"))
+
+import drjit as dr  # noqa: E402
+import mitsuba as mi  # noqa: E402
+
+SAMPLERS = ("independent", "stratified", "multijitter", "orthogonal", "ldsampler")
+TARGETS = (0.02, 0.01, 0.005)
+BLOCK = 8
+
+
+def read_exr(path):
+    return np.array(mi.Bitmap(path).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32), dtype=np.float64)
+
+
+def rmse(image, reference):
+    return math.sqrt(float(np.mean((image - reference) ** 2))) / float(np.mean(reference))
+
+
+def ssim(a, b):
+    """Mean SSIM of luminance over 8x8 windows (display-independent, on linear values
+    normalised by the reference's mean)."""
+    la, lb = (x @ np.array([0.2126, 0.7152, 0.0722]) for x in (a, b))
+    scale = float(np.mean(lb)) or 1.0
+    la, lb = la / scale, lb / scale
+    c1, c2 = 0.01**2, 0.03**2
+    h, w = la.shape
+    values = []
+    for y in range(0, h - BLOCK + 1, BLOCK // 2):
+        for x in range(0, w - BLOCK + 1, BLOCK // 2):
+            pa, pb = la[y : y + BLOCK, x : x + BLOCK], lb[y : y + BLOCK, x : x + BLOCK]
+            ma, mb = pa.mean(), pb.mean()
+            va, vb, cov = pa.var(), pb.var(), ((pa - ma) * (pb - mb)).mean()
+            values.append(((2 * ma * mb + c1) * (2 * cov + c2)) / ((ma * ma + mb * mb + c1) * (va + vb + c2)))
+    return float(np.mean(values))
+
+
+def spp_series(max_spp):
+    spp, out = 1, []
+    while spp <= max_spp:
+        out.append(spp)
+        spp *= 2
+    return out
+
+
+class Rt:
+    def __init__(self, label, binary, scene, size, folder):
+        self.label, self.binary, self.scene, self.size, self.folder = label, binary, scene, size, folder
+
+    def render(self, spp, seed):
+        out = os.path.join(self.folder, f"{self.label}-{spp}-{seed}.exr")
+        command = [self.binary, "render", self.scene, "-o", out, "--spp", str(spp), "--seed", str(seed),
+                   "--size", f"{self.size}x{self.size}", "--progress", "json"]
+        result = subprocess.run(command, capture_output=True, text=True)
+        if result.returncode != 0:
+            raise SystemExit(f"{self.label}: {result.stderr[-2000:]}")
+        done = [json.loads(l) for l in result.stderr.splitlines() if '"done"' in l][-1]
+        return read_exr(out), done["seconds"]
+
+
+class Mitsuba:
+    def __init__(self, sampler, scene_dict):
+        self.label = f"mitsuba/{sampler}"
+        self.sampler = sampler
+        self.scene_dict = scene_dict
+        self.loaded = {}
+
+    def scene(self, spp):
+        if spp not in self.loaded:
+            d = dict(self.scene_dict)
+            sensor = dict(d["sensor"])
+            sampler = {"type": self.sampler, "sample_count": spp}
+            if self.sampler in ("stratified", "multijitter", "orthogonal"):
+                sampler["jitter"] = True
+            sensor["sampler"] = sampler
+            d["sensor"] = sensor
+            self.loaded[spp] = mi.load_dict(d)
+        return self.loaded[spp]
+
+    def render(self, spp, seed):
+        scene = self.scene(spp)
+        dr.eval(mi.render(scene, spp=spp, seed=1000 + seed))  # warm: kernels compiled for this size
+        dr.sync_thread()
+        start = time.perf_counter()
+        image = mi.render(scene, spp=spp, seed=seed)
+        dr.eval(image)
+        dr.sync_thread()
+        return np.array(image, dtype=np.float64)[:, :, :3], time.perf_counter() - start
+
+
+def obj_vertices(path):
+    with open(path) as f:
+        return np.array([[float(x) for x in l.split()[1:4]] for l in f if l.startswith("v ")])
+
+
+def facing_inwards(shape, centre):
+    """Whether a planar OBJ shape's first triangle faces `centre`."""
+    v = obj_vertices(shape["filename"])
+    with open(shape["filename"]) as f:
+        face = next([int(x) - 1 for x in l.split()[1:4]] for l in f if l.startswith("f "))
+    a, b, c = v[face[0]], v[face[1]], v[face[2]]
+    return float(np.dot(np.cross(b - a, c - a), centre - (a + b + c) / 3)) > 0
+
+
+def mitsuba_scene(scene_path, size, one_sided):
+    """make_refs.py's translation; with `one_sided`, each emitting mesh emits from the face
+    that faces the scene's centre only (its image then lacks what the other face lights)."""
+    import make_refs
+
+    d = make_refs.translate(scene_path, 1)
+    meshes = [v for v in d.values() if isinstance(v, dict) and v.get("type") == "obj"]
+    centre = np.concatenate([obj_vertices(m["filename"]) for m in meshes]).mean(axis=0)
+    for key in [k for k in d if k.endswith("_back") and one_sided]:
+        front = key[: -len("_back")]
+        drop = front if facing_inwards(d[key], centre) else key
+        del d[drop]
+    d["integrator"] = dict(d["integrator"], rr_depth=5)
+    film = dict(d["sensor"]["film"], width=size, height=size)
+    d["sensor"] = dict(d["sensor"], film=film)
+    return d
+
+
+def agreement(a, b, noise_a, noise_b):
+    """The worst |block mean difference| / its standard error, per channel, over 8x8 blocks."""
+    h, w, _ = a.shape
+    worst = 0.0
+    for y in range(0, h - BLOCK + 1, BLOCK):
+        for x in range(0, w - BLOCK + 1, BLOCK):
+            sl = (slice(y, y + BLOCK), slice(x, x + BLOCK))
+            diff = a[sl].mean(axis=(0, 1)) - b[sl].mean(axis=(0, 1))
+            sigma = np.sqrt((noise_a[sl] ** 2).mean(axis=(0, 1)) + (noise_b[sl] ** 2).mean(axis=(0, 1))) / BLOCK
+            worst = max(worst, float(np.max(np.abs(diff) / np.maximum(sigma, 1e-9))))
+    return worst
+
+
+def curve(renderer, reference, series, seeds):
+    points = []
+    for spp in series:
+        for seed in seeds:
+            image, seconds = renderer.render(spp, seed)
+            points.append({"spp": spp, "seconds": seconds, "rmse": rmse(image, reference), "ssim": ssim(image, reference)})
+    return points
+
+
+def time_to(points, target, key="rmse", better=lambda v, t: v <= t):
+    """Seconds to reach `target`, interpolated in log-log between the mean points around it."""
+    by_spp = {}
+    for p in points:
+        by_spp.setdefault(p["spp"], []).append(p)
+    means = [(np.mean([p["seconds"] for p in ps]), np.mean([p[key] for p in ps])) for _, ps in sorted(by_spp.items())]
+    for (t0, e0), (t1, e1) in zip(means, means[1:]):
+        if not better(e0, target) and better(e1, target):
+            if key == "ssim":
+                f = (target - e0) / (e1 - e0)
+            else:
+                f = (math.log(e0) - math.log(target)) / (math.log(e0) - math.log(e1))
+            return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0)))
+    return 0.0 if means and better(means[0][1], target) else None
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("scenes", nargs="+")
+    ap.add_argument("--rt", action="append", default=[], help="LABEL=BINARY, repeatable")
+    ap.add_argument("--variant", default="cuda_ad_rgb")
+    ap.add_argument("--samplers", default=",".join(SAMPLERS))
+    ap.add_argument("--size", type=int, default=128)
+    ap.add_argument("--max-spp", type=int, default=4096)
+    ap.add_argument("--reference-spp", type=int, default=65536)
+    ap.add_argument("--one-sided-emitters", action="store_true")
+    ap.add_argument("--json")
+    args = ap.parse_args()
+    mi.set_variant(args.variant)
+    folder = tempfile.mkdtemp(prefix="rt-equal-error-")
+    results = []
+    for scene_path in args.scenes:
+        name = os.path.splitext(os.path.basename(scene_path))[0]
+        rts = [Rt(*spec.split("=", 1), scene_path, args.size, folder) for spec in args.rt]
+        md = mitsuba_scene(scene_path, args.size, args.one_sided_emitters)
+        refs = {}
+        # rt's reference: its first binary, two halves for its noise.
+        halves = [rts[0].render(args.reference_spp // 2, 900 + s)[0] for s in (1, 2)]
+        refs["rt"] = (halves[0] + halves[1]) / 2
+        rt_noise = np.abs(halves[0] - halves[1]) / 2
+        mref = Mitsuba("independent", md)
+        mhalves = [mref.render(args.reference_spp // 2, 900 + s)[0] for s in (1, 2)]
+        refs["mitsuba"] = (mhalves[0] + mhalves[1]) / 2
+        mi_noise = np.abs(mhalves[0] - mhalves[1]) / 2
+        z = agreement(refs["rt"], refs["mitsuba"], rt_noise, mi_noise)
+        ratio = refs["rt"].mean(axis=(0, 1)) / refs["mitsuba"].mean(axis=(0, 1))
+        agree = z < 5.0
+        print(f"{name}: converged images {'agree' if agree else 'DISAGREE'} (worst block {z:.1f} sigma; "
+              f"rt/Mitsuba mean per channel {ratio.round(4).tolist()})", file=sys.stderr, flush=True)
+        series = spp_series(args.max_spp)
+        entry = {"scene": name, "agree": agree, "worst_block_sigma": z, "renderers": {}}
+        for r in rts:
+            entry["renderers"][r.label] = curve(r, refs["rt"], series, (1, 2))
+        for sampler in args.samplers.split(","):
+            entry["renderers"][f"mitsuba/{sampler}"] = curve(Mitsuba(sampler, md), refs["mitsuba"], series, (1, 2))
+        results.append(entry)
+    report(results)
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(results, f, indent=1)
+
+
+def report(results):
+    for entry in results:
+        verdict = "images agree" if entry["agree"] else "IMAGES DISAGREE: no ratio"
+        print(f"\n### {entry['scene']} ({verdict}, worst block {entry['worst_block_sigma']:.1f} σ)\n")
+        print("| renderer | to 2 % | to 1 % | to 0.5 % | to SSIM 0.99 | s per spp |")
+        print("|---|---:|---:|---:|---:|---:|")
+        fmt = lambda t: "—" if t is None else f"{t * 1e3:.1f} ms"
+        for label, points in entry["renderers"].items():
+            row = [time_to(points, t) for t in TARGETS]
+            s = time_to(points, 0.99, key="ssim", better=lambda v, t: v >= t)
+            per = np.mean([p["seconds"] / p["spp"] for p in points if p["spp"] >= 64] or [0.0])
+            print(f"| {label} | {' | '.join(fmt(t) for t in row)} | {fmt(s)} | {per * 1e3:.3f} ms |")
+        if entry["agree"]:
+            rts = {k: v for k, v in entry["renderers"].items() if not k.startswith("mitsuba/")}
+            mits = {k: v for k, v in entry["renderers"].items() if k.startswith("mitsuba/")}
+            for label, points in rts.items():
+                ours = time_to(points, 0.01)
+                best = min((t for t in (time_to(p, 0.01) for p in mits.values()) if t), default=None)
+                if ours and best:
+                    print(f"\n{label}: 1 % relative RMSE {best / ours:.2f}x sooner than Mitsuba's best sampler")
+
+
+if __name__ == "__main__":
+    main()

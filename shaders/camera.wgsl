@@ -28,7 +28,7 @@ fn no_camera_ray(ray: CameraRay) -> bool {
 //#endif
 
 fn camera_ray(pixel: vec2u, rng: ptr<function, Rng>) -> CameraRay {
-    let jitter = vec2f(rng_next(rng), rng_next(rng));
+    let jitter = rng_next2(rng);
     let ndc = (vec2f(pixel) + jitter) / vec2f(f32(frame.width), f32(frame.height)) * 2.0 - 1.0;
     let plane = vec2f(ndc.x, -ndc.y) * frame.view_half_extent + frame.view_shift;
     //#if panorama
@@ -48,7 +48,7 @@ fn camera_ray(pixel: vec2u, rng: ptr<function, Rng>) -> CameraRay {
         direction = vec3f(0.0, 0.0, 1.0);
     }
     //#if depth_of_field
-    let lens = sample_aperture(vec2f(rng_next(rng), rng_next(rng))) * frame.aperture_radius;
+    let lens = sample_aperture(rng_next2(rng)) * frame.aperture_radius;
     // direction.z is 1: the plane in focus is reached at t = focus_distance.
     let focus = origin + direction * frame.focus_distance;
     origin += vec3f(lens, 0.0);
@@ -77,7 +77,7 @@ fn panorama_ray(uv: vec2f, rng: ptr<function, Rng>) -> CameraRay {
     var origin = vec3f(0.0);
     //#if depth_of_field
     // In Cycles' panoramic camera space, where x is the view.
-    let lens = sample_aperture(vec2f(rng_next(rng), rng_next(rng))) * frame.aperture_radius;
+    let lens = sample_aperture(rng_next2(rng)) * frame.aperture_radius;
     if frame.aperture_radius > 0.0 {
         let toward = normalize(direction);
         // Cycles' axes across the ray: u towards the view, v = toward × u (any pair

@@ -85,9 +85,10 @@ fn smooth_dielectric_sample(ctx: ShadingContext, u: f32, rng: ptr<function, Rng>
 fn jitter_in_cone(w: vec3f, ctx: ShadingContext, rng: ptr<function, Rng>) -> vec3f {
     let half_angle = sqrt(ctx.m.alpha) * 0.5 * PI;
     let cos_max = cos(half_angle);
-    let cos_t = 1.0 - rng_next(rng) * (1.0 - cos_max);
+    let u = rng_next2(rng);
+    let cos_t = 1.0 - u.x * (1.0 - cos_max);
     let sin_t = sqrt(max(0.0, 1.0 - cos_t * cos_t));
-    let phi = 2.0 * PI * rng_next(rng);
+    let phi = 2.0 * PI * u.y;
     let jittered = tangent_frame(w) * vec3f(sin_t * cos(phi), sin_t * sin(phi), cos_t);
     return select(jittered, vec3f(jittered.xy, -jittered.z), jittered.z * w.z < 0.0);
 }

@@ -151,7 +151,7 @@ struct EnvironmentSample {
 }
 
 fn sample_environment(rng: ptr<function, Rng>) -> EnvironmentSample {
-    let u = vec2f(rng_next(rng), rng_next(rng));
+    let u = rng_next2(rng);
     var d: vec3f;
     if environment.importance == 0u {
         let z = 1.0 - 2.0 * u.x;

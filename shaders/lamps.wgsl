@@ -337,7 +337,7 @@ fn sample_lamp_shape(l: Lamp, p: vec3f, u: vec2f) -> LightSample {
 // includes the selection.
 fn sample_lamp(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
     let i = find_lamp(rng_next(rng));
-    let u = vec2f(rng_next(rng), rng_next(rng));
+    let u = rng_next2(rng);
     var s = sample_lamp_shape(lamps[i], p, u);
     s.pdf *= lamp_selection(i);
     return s;

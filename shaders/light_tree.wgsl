@@ -173,7 +173,7 @@ fn light_tree_probability(trail_index: u32) -> f32 {
         return 0.0;
     }
     // Never read: the walk follows the trail.
-    var unused = Rng(0u, 0u, 0u, 0u, vec4u(0u));
+    var unused = Rng(0u, 0u, 0u, 0u);
     return light_tree_walk(true, trail, &unused).probability;
 }
 

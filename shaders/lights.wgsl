@@ -173,7 +173,7 @@ fn sample_emitter(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
 // light tree (unused without it).
 fn sample_emitter_at(e: Emitter, tree_selection: f32, p: vec3f, rng: ptr<function, Rng>) -> LightSample {
     let none = LightSample(vec3f(0.0, 1.0, 0.0), 0.0, vec3f(0.0), 0.0, false);
-    let u = vec2f(rng_next(rng), rng_next(rng));
+    let u = rng_next2(rng);
     if (e.primitive & SPHERE_BIT) != 0u {
         //#if spheres
         let s = spheres[e.primitive & ~SPHERE_BIT];
@@ -286,7 +286,7 @@ fn sample_light(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
     //#endif
     //#if sun
     if sun_picked {
-        let d = sample_sun_direction(vec2f(rng_next(rng), rng_next(rng)));
+        let d = sample_sun_direction(rng_next2(rng));
         return LightSample(d, INFINITY, sun_radiance_at(p, d), sun_share() / sun_solid_angle(), false);
     }
     //#endif
@@ -312,7 +312,7 @@ fn sample_light_tree(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
     //#if lamps
     if (pick.light & LIGHT_TREE_LAMP) != 0u {
         let i = pick.light & ~LIGHT_TREE_LAMP;
-        var s = sample_lamp_shape(lamps[i], p, vec2f(rng_next(rng), rng_next(rng)));
+        var s = sample_lamp_shape(lamps[i], p, rng_next2(rng));
         // The lamps' own table may pick it too.
         s.pdf *= selection + lamp_probability(i);
         return s;

@@ -29,7 +29,7 @@
 // A direction from one lobe that has a density (before the mixture weighs it).
 // Returns a zero vector when the lobe produced nothing.
 fn sample_smooth_lobe_direction(ctx: ShadingContext, lobe: u32, rng: ptr<function, Rng>) -> vec3f {
-    let u = vec2f(rng_next(rng), rng_next(rng));
+    let u = rng_next2(rng);
     //#if rough_glass_ggx
     if lobe == LOBE_TRANSMISSION {
         return rough_dielectric_sample(ctx, vec3f(u, rng_next(rng)));
@@ -225,7 +225,7 @@ fn resample_smooth_part(ctx: ShadingContext, lobe: u32, rng: ptr<function, Rng>)
         var x: vec3f;
         if rng_next(rng) < sun_share {
             //#if sun
-            x = transpose(ctx.basis) * sample_sun_direction(vec2f(rng_next(rng), rng_next(rng)));
+            x = transpose(ctx.basis) * sample_sun_direction(rng_next2(rng));
             //#endif
         } else {
             var u = rng_next(rng);

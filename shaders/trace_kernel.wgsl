@@ -92,7 +92,7 @@ fn spawn_ray(i: u32, side: f32) {
     let facing = select(surface.geometric_normal, -surface.geometric_normal, dot(surface.geometric_normal, r.direction) > 0.0);
     let n = side * facing;
     var rng = rng_for_sample(i, frame.sample_base + 1u, frame.seed);
-    let d = tangent_frame(n) * sample_cosine_hemisphere(vec2f(rng_next(&rng), rng_next(&rng)));
+    let d = tangent_frame(n) * sample_cosine_hemisphere(rng_next2(&rng));
     trace_rays[i] = TraceRay(offset_ray_origin(surface.position, surface.position_error, n), INFINITY, d, 0u);
 }
 

@@ -33,14 +33,14 @@ fn chunk(out: &mut Vec<u8>, kind: &[u8; 4], data: &[u8]) {
     out.extend(crc.finalize().to_be_bytes());
 }
 
-/// A valid black 1-bit greyscale PNG of `side` × `side`: a 16384² one is 33 KB, without
-/// any 16k image in memory.
-fn black_png(side: u32) -> Vec<u8> {
-    let row_bytes = 1 + side.div_ceil(8) as usize;
-    let raw = vec![0u8; row_bytes * side as usize];
+/// A valid black 1-bit greyscale PNG of `width` × `height`: a 16384² one is 33 KB,
+/// without any 16k image in memory.
+fn black_png(width: u32, height: u32) -> Vec<u8> {
+    let row_bytes = 1 + width.div_ceil(8) as usize;
+    let raw = vec![0u8; row_bytes * height as usize];
     let mut ihdr = Vec::new();
-    ihdr.extend(side.to_be_bytes());
-    ihdr.extend(side.to_be_bytes());
+    ihdr.extend(width.to_be_bytes());
+    ihdr.extend(height.to_be_bytes());
     ihdr.extend([1, 0, 0, 0, 0]);
     let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
     chunk(&mut png, b"IHDR", &ihdr);
@@ -49,23 +49,33 @@ fn black_png(side: u32) -> Vec<u8> {
     png
 }
 
+/// Two limits, both read from the header before anything is decoded: the pixels rt
+/// decodes at all (a 16k² image would take 3 GB), then the side a texture may have.
 #[test]
 fn a_16k_texture_is_refused_with_the_limit_before_it_is_decoded() {
     let dir = temp_dir("texture-16k");
-    let png = black_png(16384);
+    let png = black_png(16384, 16384);
     println!("16384² PNG: {} bytes", png.len());
     std::fs::write(dir.join("vast.png"), &png).expect("png");
     let message = import_error(&dir, "vast", "vast.png");
     println!("{message}");
     assert!(message.contains("quad.gltf") && message.contains("material `vast`"), "{message}");
     assert!(message.contains("vast.png") && message.contains("16384×16384"), "{message}");
-    assert!(message.contains(&format!("at most {0}×{0}", rt::asset::texture::MAX_TEXTURE_SIDE)), "{message}");
+    assert!(message.contains("more than rt decodes") && message.contains("RT_MAX_IMAGE_MEGAPIXELS="), "{message}");
+
+    // Few pixels but a side over the texture limit: refused by the side.
+    let side = rt::asset::texture::MAX_TEXTURE_SIDE;
+    std::fs::write(dir.join("vast.png"), black_png(side + 1, 4)).expect("png");
+    let message = import_error(&dir, "vast", "vast.png");
+    println!("{message}");
+    assert!(message.contains(&format!("{}×4", side + 1)), "{message}");
+    assert!(message.contains(&format!("at most {side}×{side}")), "{message}");
 
     // At the limit the same file format is read.
-    std::fs::write(dir.join("vast.png"), black_png(64)).expect("png");
+    std::fs::write(dir.join("vast.png"), black_png(side, 4)).expect("png");
     write(&dir.join("quad.gltf"), &quad_gltf("vast", "vast.png"));
     let mesh = load_mesh(&dir.join("quad.gltf")).unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!((mesh.textures[0].width, mesh.textures[0].height), (64, 64));
+    assert_eq!((mesh.textures[0].width, mesh.textures[0].height), (side, 4));
     let _ = std::fs::remove_dir_all(&dir);
 }
 

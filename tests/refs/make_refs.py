@@ -18,7 +18,7 @@ refused rather than guessed):
 | pixel sampling (uniform in a pixel)  | `hdrfilm` with a `box` reconstruction filter            |
 | `max_bounces = B`                    | `max_depth = B + 1` (depth 1 = emitters seen directly)  |
 | diffuse (two-sided in rt)            | `twosided` + `diffuse`, reflectance = base_color·weight |
-| `emission` on a planar mesh (rt emits from both faces) | two `area` emitters: the mesh, and a copy with flipped normals moved 0.1 mm along them, so that each side shows an emitting front |
+| `emission` on a planar mesh (rt emits from both faces) | two `area` emitters: the mesh, and a copy with flipped normals moved 0.01 mm along them, so that each side shows an emitting front (a copy moved further shows as a sliver at the light's silhouette) |
 | `emission` on a sphere               | `area` emitter on the sphere                            |
 | `reflection`, roughness 0            | `conductor`, η = (1+√F0)/(1−√F0) per channel, k = 0     |
 | `reflection`, roughness r            | `roughconductor`, GGX, α = r², same η and k             |
@@ -135,7 +135,7 @@ def obj_groups(path):
     return out
 
 
-def flipped_copy(file, offset=1e-4):
+def flipped_copy(file, offset=1e-5):
     """A planar OBJ's mirror image: reversed winding, moved `offset` along the new normal."""
     verts, faces = [], []
     with open(file) as f:

@@ -122,3 +122,16 @@ fn panorama_depth_of_field_matches_cycles() {
 fn panorama_clip_spheres_match_cycles() {
     check_panorama("pano_equirect_clipped");
 }
+
+/// Blender's pixel aspect: 2:1 pixels turn a portrait image into a landscape picture, so
+/// the automatic fit spans the width (exported as `pixel_aspect`; square pixels, as rt
+/// had before, fit the height and see a different view).
+#[test]
+fn pixel_aspect_matches_cycles() {
+    check("pixel_aspect");
+}
+
+#[test]
+fn pixel_aspect_shapes_the_equisolid_fisheyes_sensor_as_in_cycles() {
+    check_panorama("pano_fisheye_equisolid_pixel_aspect");
+}

@@ -1659,8 +1659,6 @@ def camera_toml(scene):
         log(f"camera {cam.name}: the {data.panorama_type} panorama is exported as a perspective camera")
     elif data.type not in {"PERSP", "ORTHO", "PANO"}:
         log(f"camera {cam.name}: {data.type} is exported as a perspective camera")
-    if scene.render.pixel_aspect_x != scene.render.pixel_aspect_y:
-        log(f"camera {cam.name}: rt has square pixels; the pixel aspect is ignored")
     m = TO_RT @ world_matrix(cam)
     position = m.translation
     forward = -(m.to_3x3() @ Vector((0, 0, 1))).normalized()
@@ -1682,6 +1680,9 @@ def camera_toml(scene):
         f"shift_y = {fmt(data.shift_y)}",
         f"clip_start = {fmt(data.clip_start)}",
     ]
+    aspect = (scene.render.pixel_aspect_x, scene.render.pixel_aspect_y)
+    if aspect[0] != aspect[1]:
+        lines.append(f"pixel_aspect = {vec(aspect)}")
     if data.clip_end > data.clip_start:
         lines.append(f"clip_end = {fmt(data.clip_end)}")
     else:

@@ -61,6 +61,9 @@ pub struct Camera {
     pub sensor_mm: Vec2,
     /// Lens shift (x right, y up) in units of the view's extent along the fit.
     pub shift: Vec2,
+    /// Blender's pixel aspect (x, y): a pixel's width and height in the picture, so that
+    /// a `width`×`height` image shows a picture of `width·x` by `height·y`.
+    pub pixel_aspect: Vec2,
     pub depth_of_field: Option<DepthOfField>,
     /// Cycles' clip_start and clip_end: camera rays see only what lies between these
     /// planes along the view (metres); `clip_end` may be infinite.
@@ -78,6 +81,7 @@ impl Default for Camera {
             sensor_fit: SensorFit::Auto,
             sensor_mm: Vec2::new(36.0, 24.0),
             shift: Vec2::ZERO,
+            pixel_aspect: Vec2::ONE,
             depth_of_field: None,
             clip_start: 0.0,
             clip_end: f32::INFINITY,
@@ -94,10 +98,17 @@ pub struct ViewPlane {
 }
 
 impl Camera {
+    /// The picture's width and height in pixels of the image's height: the image's size
+    /// times the pixel aspect (Cycles' `xratio`, `yratio`), which every fit and extent uses.
+    fn picture(&self, width: u32, height: u32) -> (f32, f32) {
+        (width.max(1) as f32 * self.pixel_aspect.x, height.max(1) as f32 * self.pixel_aspect.y)
+    }
+
     /// Whether the sensor spans the image's width (else its height), as Blender decides.
     fn fits_horizontally(&self, width: u32, height: u32) -> bool {
+        let (w, h) = self.picture(width, height);
         match self.sensor_fit {
-            SensorFit::Auto => width > height,
+            SensorFit::Auto => w > h,
             SensorFit::Horizontal => true,
             SensorFit::Vertical => false,
         }
@@ -119,7 +130,7 @@ impl Camera {
     /// a half extent of 0.5, and the shift as it is.
     pub fn view_plane(&self, width: u32, height: u32) -> ViewPlane {
         let horizontal = self.fits_horizontally(width, height);
-        let (w, h) = (width.max(1) as f32, height.max(1) as f32);
+        let (w, h) = self.picture(width, height);
         let half_fit = match self.projection {
             Projection::FovY { degrees } => {
                 let half_y = (degrees.to_radians() * 0.5).tan();
@@ -150,7 +161,7 @@ impl Camera {
     /// (Cycles' panorama sensor): the side along the fit spans the sensor, the other
     /// follows the image's aspect.
     pub fn fisheye_sensor_mm(&self, width: u32, height: u32) -> Vec2 {
-        let (w, h) = (width.max(1) as f32, height.max(1) as f32);
+        let (w, h) = self.picture(width, height);
         let size = self.sensor_along_fit();
         if self.fits_horizontally(width, height) {
             Vec2::new(size, size * h / w)
@@ -268,6 +279,7 @@ pub(super) fn validate(src: &Source, c: schema::Camera) -> Result<Camera, SceneE
     src.check(&p, "sensor_height_mm", &[c.sensor_height_mm], "positive", |s| s > 0.0)?;
     src.finite(&p, "shift_x", &[c.shift_x])?;
     src.finite(&p, "shift_y", &[c.shift_y])?;
+    src.check(&p, "pixel_aspect", &c.pixel_aspect, "positive", |a| a > 0.0)?;
     let depth_of_field = match c.fstop {
         None => {
             let with_fstop = "with fstop (depth of field)";
@@ -307,6 +319,7 @@ pub(super) fn validate(src: &Source, c: schema::Camera) -> Result<Camera, SceneE
         sensor_fit: c.sensor_fit,
         sensor_mm: Vec2::new(c.sensor_width_mm, c.sensor_height_mm),
         shift: Vec2::new(c.shift_x, c.shift_y),
+        pixel_aspect: Vec2::from(c.pixel_aspect),
         depth_of_field,
         clip_start: c.clip_start,
         clip_end,

@@ -49,12 +49,29 @@ fn parse_camera(text: &str) -> Result<Camera, String> {
     crate::scene::parse(&text, "scene.toml", std::path::Path::new("/")).map(|s| s.camera).map_err(|e| e.to_string())
 }
 
+/// Cycles' `xratio`/`yratio`: a 100×100 image of pixels twice as wide as high shows the
+/// picture of a 200×100 image of square pixels, fit and all.
+#[test]
+fn pixel_aspect_widens_the_picture_as_in_cycles() {
+    for projection in [Projection::FocalLength { mm: 35.0 }, Projection::FovY { degrees: 50.0 }] {
+        for fit in [SensorFit::Auto, SensorFit::Horizontal, SensorFit::Vertical] {
+            let square = Camera { projection, sensor_fit: fit, shift: Vec2::new(0.1, 0.2), ..Camera::default() };
+            let wide = Camera { pixel_aspect: Vec2::new(2.0, 1.0), ..square.clone() };
+            assert_eq!(wide.view_plane(100, 100), square.view_plane(200, 100), "{fit:?}");
+            let tall = Camera { pixel_aspect: Vec2::new(1.0, 3.0), ..square.clone() };
+            assert_eq!(tall.view_plane(90, 30), square.view_plane(90, 90), "{fit:?}");
+        }
+    }
+    let message = parse_camera("pixel_aspect = [1, 0]").expect_err("a zero aspect");
+    assert!(message.contains("pixel_aspect") && message.contains("positive"), "{message}");
+}
+
 #[test]
 fn every_key_parses() {
     let text = "position = [1, 2, 3] | look_at = [1, 2, 0] | up = [1, 1, 0] | focal_length_mm = 35 | \
                 sensor_fit = \"vertical\" | sensor_width_mm = 30 | sensor_height_mm = 20 | shift_x = 0.1 | \
                 shift_y = -0.25 | fstop = 2.8 | focus_distance = 4 | blades = 6 | blade_rotation_deg = 15 | \
-                aperture_ratio = 1.5 | clip_start = 0.25 | clip_end = 80";
+                aperture_ratio = 1.5 | clip_start = 0.25 | clip_end = 80 | pixel_aspect = [2, 1]";
     let expected = Camera {
         position: Vec3::new(1.0, 2.0, 3.0),
         look_at: Vec3::new(1.0, 2.0, 0.0),
@@ -63,6 +80,7 @@ fn every_key_parses() {
         sensor_fit: SensorFit::Vertical,
         sensor_mm: Vec2::new(30.0, 20.0),
         shift: Vec2::new(0.1, -0.25),
+        pixel_aspect: Vec2::new(2.0, 1.0),
         depth_of_field: Some(DepthOfField {
             fstop: 2.8,
             focus_distance: 4.0,

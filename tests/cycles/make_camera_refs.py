@@ -162,6 +162,20 @@ CAMERAS = {
         64,
         {**PANO_VIEW, "panorama": "EQUIRECTANGULAR", "fstop": 0.04, "focus_distance": 1.2, "blades": 6},
     ),
+    # Pixels twice as wide as high make a portrait image a landscape picture: the automatic
+    # fit turns to the width, and the shift follows it.
+    "pixel_aspect": (
+        40,
+        64,
+        {"location": (0.8, -6.0, 0.6), "target": (0.0, 0.0, 0.0), "lens": 35.0, "shift_x": 0.1, "pixel_aspect": (2.0, 1.0)},
+    ),
+    # Tall pixels on the equisolid fisheye, whose sensor follows the picture's aspect.
+    "pano_fisheye_equisolid_pixel_aspect": (
+        96,
+        48,
+        {**PANO_VIEW, "panorama": "FISHEYE_EQUISOLID", "fisheye_fov_deg": 190.0, "fisheye_lens": 7.0,
+         "pixel_aspect": (1.0, 1.5)},
+    ),
     # Clipped at spheres about the camera: clip_start cuts into the corner boxes, clip_end
     # into the axis boxes and hides the floor's far parts.
     "pano_equirect_clipped": (
@@ -268,6 +282,7 @@ def main():
         (build_surroundings if name.startswith("pano_") else build_objects)(scene)
         add_camera(scene, settings)
         cycles.set_up(scene, width, height)
+        scene.render.pixel_aspect_x, scene.render.pixel_aspect_y = settings.get("pixel_aspect", (1.0, 1.0))
         cycles.export(scene, f"camera_{name}")
         cycles.render(scene, f"camera_{name}", args)
 

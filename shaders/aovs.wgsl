@@ -28,6 +28,12 @@ fn aov_first_hit(t: f32) {
     aov.depth = t;
 }
 
+// The camera ray left the scene after all (through surfaces that let it by): the sample
+// met nothing, for the depth and for a transparent film's alpha.
+fn aov_no_hit() {
+    aov.depth = -1.0;
+}
+
 // A BSDF sample taken at a surface of shading normal `normal` (facing the viewer):
 // a delta lobe's is followed; any other's weight is an estimate of the surface's albedo.
 fn aov_surface(s: BsdfSample, normal: vec3f) {

@@ -312,6 +312,18 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         }
         //#endif
         if hit.kind == HIT_NONE {
+            //#if transparent_film
+            // Film › Transparent: the background the camera sees adds nothing, and the
+            // sample counts as one that met nothing (the pixel's alpha is the share that met
+            // the scene), also when it passed through stochastically transparent surfaces.
+            if bounce == 0u {
+                //#if aovs
+                aov_no_hit();
+                //#endif
+                sample_finished = true;
+                continue;
+            }
+            //#endif
             //#if sky_environment
             gather(&radiance, throughput * environment_seen(direction, bsdf_pdf), EVENT_SKY);
             //#else

@@ -85,6 +85,10 @@ struct RenderArgs {
     /// Exposure in EV for PNG output [default: the scene's].
     #[arg(long, allow_hyphen_values = true)]
     exposure: Option<f32>,
+    /// A transparent film, as Blender's: the background seen by the camera is left out and
+    /// the image gets an alpha channel (the share of each pixel the scene covers) [default: the scene's].
+    #[arg(long)]
+    transparent: bool,
     /// BVH build quality.
     #[arg(long, value_enum, default_value_t)]
     quality: BuildQuality,
@@ -169,6 +173,7 @@ impl RenderArgs {
             spp: self.spp,
             max_bounces: self.max_bounces,
             exposure: self.exposure,
+            transparent: self.transparent,
             sampling: self.sampling,
             ris_candidates: self.ris_candidates,
             rough_transmission: self.rough_transmission,
@@ -561,7 +566,7 @@ fn write_aov_files(dir: &Path, image: &Image, aovs: &rt::render::Aovs) -> Result
         ("samples", grey(image.sample_counts.iter().map(|&n| n as f32).collect())),
     ];
     for (name, pixels) in files {
-        write_image(&Image { pixels, ..image.clone() }, &dir.join(format!("{name}.exr")), 0.0)?;
+        write_image(&Image { pixels, alpha: None, ..image.clone() }, &dir.join(format!("{name}.exr")), 0.0)?;
     }
     Ok(())
 }

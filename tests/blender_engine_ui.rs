@@ -148,6 +148,7 @@ fn f12_renders_the_renders_depsgraph_as_cycles_does() {
         pixels: (0..w * h).map(|i| [r[i], g[i], b[i]]).collect(),
         std_error: noise.to_vec(),
         sample_counts: counts.iter().map(|&c| c as u32).collect(),
+        alpha: None,
     };
     assert!(image.sample_counts.iter().all(|&c| c == SPP), "every pixel took {SPP} samples");
     println!("F12 through rt in {:.2} s", report["seconds"].as_f64().unwrap_or(0.0));
@@ -207,6 +208,24 @@ fn f12_fills_the_passes_blender_asks_for() {
     let counts = channel(&all, "Debug Sample Count.X");
     assert!(counts.iter().all(|&c| c as u64 == report["spp"].as_u64().unwrap_or(0)), "{counts:?}");
     assert!(channel(&all, "Noise.X").iter().all(|e| e.is_finite() && *e >= 0.0));
+}
+
+/// Film › Transparent: the sky behind a small plane is left out of Combined, whose alpha
+/// is 0 there and 1 on the plane; the plane itself is lit by the sky as before.
+#[test]
+fn a_transparent_film_gives_combined_its_alpha() {
+    let out = out_dir("transparent");
+    let report = engine_ui(&out, "transparent", &[]);
+    assert!(report["scene"].as_str().unwrap_or("").contains("transparent = true"), "{report}");
+    let (w, h, all) = channels(&out.join("transparent.exr"));
+    let (r, a) = (channel(&all, "Combined.R"), channel(&all, "Combined.A"));
+    let (corner, centre) = (0, (h / 2) * w + w / 2);
+    println!("alpha: corner {}, centre {}; red: corner {}, centre {}", a[corner], a[centre], r[corner], r[centre]);
+    assert_eq!((a[corner], r[corner]), (0.0, 0.0), "the sky is transparent and adds nothing");
+    assert_eq!(a[centre], 1.0, "the plane covers its pixels");
+    assert!(r[centre] > 0.1, "the plane is lit by the sky: {}", r[centre]);
+    let partial = a.iter().filter(|&&v| v > 0.0 && v < 1.0).count();
+    assert!(partial > 0 && partial < w * h / 4, "{partial} pixels on the plane's edges are partly covered");
 }
 
 #[test]

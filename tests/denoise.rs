@@ -207,6 +207,7 @@ fn noisy_frame(width: u32, height: u32, seed: u32) -> (rt::render::Image, rt::re
         pixels: pixels_rgb,
         std_error: vec![0.1; pixels],
         sample_counts: vec![4; pixels],
+        alpha: None,
     };
     let aovs = rt::render::Aovs {
         width,

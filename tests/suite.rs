@@ -63,6 +63,7 @@ mod sentinel;
 mod texture_inputs;
 mod textures;
 mod trace_reference;
+mod transparent_film;
 mod watch;
 mod watch_denoise;
 mod watch_stream;

@@ -1942,7 +1942,7 @@ def scene_toml(scene, export, scene_path, objects):
     scene_dir = os.path.dirname(os.path.abspath(scene_path))
     text = [
         f"# Exported from Blender by blender/rt_export.py (scene {scene.name!r}).\n\n",
-        f"[render]\nwidth = {width}\nheight = {height}\n\n",
+        f"[render]\nwidth = {width}\nheight = {height}\n" + ("transparent = true\n" if scene.render.film_transparent else "") + "\n",
         camera_toml(scene),
         sky_toml(scene, export, scene_dir),
         sun_toml(scene),

@@ -159,6 +159,7 @@ class RT_RENDER_PT_film(RtPanel, bpy.types.Panel):
         layout = self.layout
         layout.use_property_split = True
         layout.prop(context.scene.rt_render, "film_exposure")
+        layout.prop(context.scene.render, "film_transparent", text="Transparent")
         layout.label(text="Pixel filter: box, one pixel wide", icon="INFO")
 
 

@@ -123,6 +123,7 @@ pub fn obtain(
         samples,
         std_error: vec![0.0; pixels.len()],
         sample_counts: vec![samples; pixels.len()],
+        alpha: None,
         pixels,
     };
     let noise_mse = half_difference / values / 4.0;

@@ -280,7 +280,8 @@ impl Accumulation {
             std_error.push((variance / n).sqrt() as f32);
             sample_counts.push(finite);
         }
-        Ok(Image { width: self.width, height: self.height, samples: self.samples, pixels, std_error, sample_counts })
+        let (width, height, samples) = (self.width, self.height, self.samples);
+        Ok(Image { width, height, samples, pixels, std_error, sample_counts, alpha: None })
     }
 
     /// The AOVs' means per pixel, two vec4 each (see `shaders/aovs.wgsl`); call only

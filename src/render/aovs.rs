@@ -30,4 +30,11 @@ impl Aovs {
         }
         aovs
     }
+
+    /// Per pixel, the share of its samples whose camera ray met the scene: the count of
+    /// those (see `shaders/aovs.wgsl`) over the samples the pixel took.
+    pub fn coverage(means: &[[f32; 4]], samples: &[u32]) -> Vec<f32> {
+        let hits = means.chunks_exact(2).map(|pair| pair[1][3]);
+        hits.zip(samples).map(|(hits, &n)| (hits / n.max(1) as f32).clamp(0.0, 1.0)).collect()
+    }
 }

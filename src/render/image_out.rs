@@ -54,31 +54,60 @@ pub fn check_output(path: &Path) -> Result<()> {
     Ok(())
 }
 
+/// Writes `image`: an EXR holds the linear pixels (premultiplied, with an `A` channel, for
+/// a transparent film), a PNG their display colours (straight alpha, as PNG keeps it).
 pub fn write_image(image: &Image, path: &Path, exposure_ev: f32) -> Result<()> {
     let (width, height) = (image.width, image.height);
     match image_format(path)? {
         ImageFormat::Png => {
-            let rgb: Vec<u8> = image.pixels.iter().flat_map(|p| display_pixel(*p, exposure_ev)).collect();
-            let buf = image::RgbImage::from_raw(width, height, rgb).context("image size mismatch")?;
-            // Encoded in memory first: encoders reword the I/O errors they meet, and a full
-            // disk must be reported as one (the bytes are no larger than the pixels held).
-            let mut bytes = Cursor::new(Vec::new());
-            buf.write_to(&mut bytes, image::ImageFormat::Png)
+            let bytes = encode_png(image, exposure_ev)
                 .with_context(|| format!("{}: cannot encode the image", path.display()))?;
-            Ok(output::write_atomically(path, bytes.get_ref())?)
+            Ok(output::write_atomically(path, &bytes)?)
         }
         ImageFormat::Exr => {
             // Written by the AOVs' writer, whose scan lines go in increasing order: the
             // `image` crate's encoder writes tiles in the order its threads finish them, so
             // the same pixels made different files from run to run.
-            let channels = ["R", "G", "B"]
+            let mut channels: Vec<(String, Vec<f32>)> = ["R", "G", "B"]
                 .iter()
                 .enumerate()
                 .map(|(c, name)| (name.to_string(), image.pixels.iter().map(|p| p[c]).collect()))
                 .collect();
+            if let Some(alpha) = &image.alpha {
+                channels.push(("A".into(), alpha.clone()));
+            }
             super::write_layered_exr(path, width, height, channels)
         }
     }
+}
+
+/// The PNG's bytes, encoded in memory first: encoders reword the I/O errors they meet, and
+/// a full disk must be reported as one (the bytes are no larger than the pixels held).
+fn encode_png(image: &Image, exposure_ev: f32) -> Result<Vec<u8>> {
+    let (width, height) = (image.width, image.height);
+    let mut bytes = Cursor::new(Vec::new());
+    match &image.alpha {
+        None => {
+            let rgb: Vec<u8> = image.pixels.iter().flat_map(|p| display_pixel(*p, exposure_ev)).collect();
+            let buf = image::RgbImage::from_raw(width, height, rgb).context("image size mismatch")?;
+            buf.write_to(&mut bytes, image::ImageFormat::Png)?;
+        }
+        Some(alpha) => {
+            let rgba: Vec<u8> =
+                image.pixels.iter().zip(alpha).flat_map(|(p, &a)| straight_rgba(*p, a, exposure_ev)).collect();
+            let buf = image::RgbaImage::from_raw(width, height, rgba).context("image size mismatch")?;
+            buf.write_to(&mut bytes, image::ImageFormat::Png)?;
+        }
+    }
+    Ok(bytes.into_inner())
+}
+
+/// A premultiplied pixel's display colour and alpha: the colour is tone-mapped divided by
+/// alpha (where nothing covers the pixel, black).
+fn straight_rgba(pixel: [f32; 3], alpha: f32, exposure_ev: f32) -> [u8; 4] {
+    let colour = if alpha > 0.0 { pixel.map(|v| v / alpha) } else { [0.0; 3] };
+    let [r, g, b] = display_pixel(colour, exposure_ev);
+    [r, g, b, (alpha.clamp(0.0, 1.0) * 255.0 + 0.5) as u8]
 }
 
 /// An 8-bit sRGB image (a screenshot, a plot) as a PNG, written atomically.
@@ -101,7 +130,15 @@ mod tests {
             .map(|i| [(i % 7) as f32 * 0.3, (i % 13) as f32 * 1e3, ((i * 7919) % 101) as f32])
             .collect();
         let n = pixels.len();
-        let image = Image { width, height, samples: 1, pixels, std_error: vec![0.0; n], sample_counts: vec![1; n] };
+        let image = Image {
+            width,
+            height,
+            samples: 1,
+            pixels,
+            std_error: vec![0.0; n],
+            sample_counts: vec![1; n],
+            alpha: None,
+        };
         let dir = std::env::temp_dir().join(format!("rt-exr-order-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let files: Vec<Vec<u8>> = (0..4)

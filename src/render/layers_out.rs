@@ -34,6 +34,9 @@ pub fn aov_channels(image: &Image, aovs: &Aovs, denoised: Option<&[[f32; 3]]>) -
     channels.push(("depth.Z".into(), aovs.depth.clone()));
     channels.push(("error.Y".into(), image.std_error.clone()));
     channels.push(("samples.Y".into(), image.sample_counts.iter().map(|&n| n as f32).collect()));
+    if let Some(alpha) = &image.alpha {
+        channels.insert(3, ("A".into(), alpha.clone()));
+    }
     channels
 }
 

@@ -39,6 +39,9 @@ pub struct Image {
     pub std_error: Vec<f32>,
     /// Finite samples each pixel's mean is over (they differ with adaptive sampling).
     pub sample_counts: Vec<u32>,
+    /// With a transparent film: each pixel's alpha, the share of its camera rays that met
+    /// the scene; `pixels` are then premultiplied by it (the background added nothing).
+    pub alpha: Option<Vec<f32>>,
 }
 
 /// 12.3 M, 4.56 G: rates at a glance.

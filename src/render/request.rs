@@ -58,7 +58,8 @@ impl RenderRequest {
             samples_per_dispatch: None,
             sample_lanes: None,
             progress: Progress::Hidden,
-            aovs: false,
+            // A transparent film's alpha is counted with the AOVs.
+            aovs: r.transparent,
             noise_threshold: r.noise_threshold,
             adaptive_min_samples: r.adaptive_min_samples,
         }
@@ -90,6 +91,8 @@ pub struct RenderFlags {
     pub spp: Option<u32>,
     pub max_bounces: Option<u32>,
     pub exposure: Option<f32>,
+    /// `--transparent`: a transparent film whatever the scene says.
+    pub transparent: bool,
     pub sampling: Option<Sampling>,
     pub ris_candidates: Option<u32>,
     pub rough_transmission: Option<RoughTransmission>,
@@ -117,6 +120,7 @@ impl RenderFlags {
         set(self.max_bounces, &mut r.max_bounces);
         set(self.ris_candidates, &mut r.ris_candidates);
         r.exposure = self.exposure.unwrap_or(r.exposure);
+        r.transparent |= self.transparent;
         r.sampling = self.sampling.unwrap_or(r.sampling);
         r.rough_transmission = self.rough_transmission.unwrap_or(r.rough_transmission);
         r.light_sampler = self.light_sampler.unwrap_or(r.light_sampler);
@@ -145,7 +149,7 @@ impl RenderFlags {
             clamp: self.clamp,
             samples_per_dispatch: self.samples_per_dispatch,
             sample_lanes: self.sample_lanes,
-            aovs: self.aovs,
+            aovs: self.aovs || scene.render.transparent,
             ..RenderRequest::from_scene(scene)
         })
     }

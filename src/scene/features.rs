@@ -92,6 +92,9 @@ pub struct FeatureSet {
     pub aovs: bool,
     /// Pixels stop taking samples once their noise is below a threshold (asked for by a render).
     pub adaptive: bool,
+    /// Film › Transparent: camera rays that leave the scene add nothing and count as
+    /// uncovered (`[render] transparent`).
+    pub transparent_film: bool,
     /// Cycles' multiscatter GGX (`[render] microfacet`) for the scene's rough lobes, metals
     /// and glass.
     pub multiscatter: bool,
@@ -190,6 +193,7 @@ impl FeatureSet {
                 && (materials_in_use.iter().any(|m| m.is_emissive()) || scene.lights.iter().any(|l| !l.is_sun())),
             aovs: false,
             adaptive: false,
+            transparent_film: settings.transparent,
             multiscatter: settings.microfacet == Microfacet::Multiscatter
                 && materials_in_use.iter().any(|m| {
                     m.reflection > 0.0
@@ -236,6 +240,7 @@ impl FeatureSet {
             light_tree: sampling == Sampling::Nee,
             aovs: false,
             adaptive: false,
+            transparent_film: false,
             multiscatter: true,
             coating: true,
             coat: true,
@@ -285,6 +290,7 @@ impl FeatureSet {
             "light_tree" => self.light_tree,
             "aovs" => self.aovs,
             "adaptive" => self.adaptive,
+            "transparent_film" => self.transparent_film,
             "multiscatter" => self.multiscatter,
             "coating" => self.coating,
             "coat" => self.coat,
@@ -329,6 +335,7 @@ impl fmt::Display for FeatureSet {
             (self.uv_sets, "uv-sets"),
             (self.aovs, "aovs"),
             (self.adaptive, "adaptive"),
+            (self.transparent_film, "transparent-film"),
             (self.multiscatter, "multiscatter"),
             (self.coating, "coating"),
             (self.coat, "coat"),

@@ -55,6 +55,9 @@ pub struct RenderSettings {
     pub noise_threshold: f32,
     pub adaptive_min_samples: u32,
     pub microfacet: Microfacet,
+    /// Blender's Film › Transparent: the background seen by camera rays is left out of the
+    /// image and each pixel's alpha is the share of its camera rays that met the scene.
+    pub transparent: bool,
 }
 
 impl Default for RenderSettings {
@@ -72,6 +75,7 @@ impl Default for RenderSettings {
             noise_threshold: 0.0,
             adaptive_min_samples: 16,
             microfacet: Microfacet::Multiscatter,
+            transparent: false,
         }
     }
 }

@@ -160,6 +160,7 @@ mod tests {
             pixels: vec![[value; 3]; n],
             std_error: vec![0.0; n],
             sample_counts: vec![samples; n],
+            alpha: None,
         };
         let aovs = Aovs {
             width: 2,

@@ -14,6 +14,8 @@ engine's cache folder is under OUT). Each mode writes OUT/MODE.json.
                                     without crop: OUT/size_*.exr
     engine_ui.py progressive OUT    a time-limited F12 that refines: how often the image
                                     was updated, the samples it reached
+    engine_ui.py transparent OUT    F12 with Film › Transparent of a plane filling part of the
+                                    view: OUT/transparent.exr (multilayer), the exported scene
 """
 
 import json
@@ -175,6 +177,15 @@ def size(out):
     save(out, "size", {"sizes": sizes})
 
 
+def transparent(out):
+    scene = facing_plane_scene()
+    bpy.data.objects["Plane"].scale = (0.2, 0.2, 0.2)
+    scene.render.film_transparent = True
+    f12_multilayer(scene, os.path.join(out, "transparent.exr"))
+    text = open(os.path.join(rt_run.cache_dir(), "scene.toml")).read()
+    save(out, "transparent", {"scene": text})
+
+
 def progressive(out):
     scene = facing_plane_scene()
     scene.rt_render.spp = 1_000_000
@@ -200,6 +211,6 @@ def progressive(out):
 
 if __name__ == "__main__":
     mode, args = sys.argv[1], sys.argv[2:]
-    {"ui": ui, "preview": preview, "levels": levels, "passes": passes, "size": size, "progressive": progressive}[mode](
-        *args
-    )
+    modes = {"ui": ui, "preview": preview, "levels": levels, "passes": passes, "size": size, "progressive": progressive}
+    modes["transparent"] = transparent
+    modes[mode](*args)

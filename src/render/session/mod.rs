@@ -212,10 +212,15 @@ impl<'a> Session<'a> {
     }
 
     /// The feature set the pipeline runs: the scene's (or the request's) with the
-    /// outputs and sampling strategy the request asks for.
+    /// outputs and sampling strategy the request asks for, and the scene's film.
     pub fn pipeline_features(&self) -> FeatureSet {
         let features = self.request.features.unwrap_or(self.features);
-        FeatureSet { aovs: self.request.aovs, adaptive: self.request.adaptive(), ..features }
+        FeatureSet {
+            aovs: self.request.aovs,
+            adaptive: self.request.adaptive(),
+            transparent_film: self.scene.render.transparent,
+            ..features
+        }
     }
 
     fn integrator(&mut self) -> Result<Rc<Pipelines>> {
@@ -355,9 +360,15 @@ impl<'a> Session<'a> {
         Ok((self.image()?, report))
     }
 
-    /// The mean radiance per pixel so far, with each pixel's standard error.
+    /// The mean radiance per pixel so far, with each pixel's standard error, and with a
+    /// transparent film (and AOVs, which count the camera rays that hit) its alpha.
     pub fn image(&self) -> Result<Image> {
-        self.acc.image(self.ctx, &self.readback, self.request.adaptive())
+        let mut image = self.acc.image(self.ctx, &self.readback, self.request.adaptive())?;
+        if self.scene.render.transparent && self.request.aovs {
+            let means = self.acc.aov_means(self.ctx, &self.readback)?;
+            image.alpha = Some(Aovs::coverage(&means, &image.sample_counts));
+        }
+        Ok(image)
     }
 
     /// The AOVs so far; an error unless the request asked for them.

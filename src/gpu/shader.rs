@@ -20,6 +20,8 @@
 //! The same resolver reads the copies compiled into the binary or a folder on disk
 //! (`rt watch --dev`), see [`ShaderFiles`].
 
+#[cfg(test)]
+mod covering;
 mod resolve;
 #[cfg(test)]
 mod tests;

@@ -141,6 +141,23 @@ fn every_feature_set_assembles_to_valid_wgsl() {
     }
 }
 
+/// Every two flag values a scene can ask for together, compiled side by side: the 256
+/// sets above leave pairs out (panorama and sheen share a bit there).
+#[test]
+fn every_pair_of_effects_assembles_to_valid_wgsl() {
+    let (sets, pairs) = super::covering::pairwise(plain());
+    let missing = super::covering::uncovered(&sets, plain());
+    assert!(missing.is_empty(), "pairs no set holds: {missing:?}");
+    // The check finds what a short list leaves out.
+    assert!(!super::covering::uncovered(&[plain(), all_on()], plain()).is_empty());
+    println!("{} feature sets hold all {pairs} possible pairs of flag values", sets.len());
+    for features in &sets {
+        for program in [Program::Integrator, Program::Trace] {
+            validate(&assemble(program, features), &format!("[{features}] {program:?}"));
+        }
+    }
+}
+
 #[test]
 fn atmosphere_tables_program_is_valid_wgsl() {
     validate(&atmosphere_tables_source(), "atmosphere tables");

@@ -135,13 +135,10 @@ pub fn translate(case: &MitsubaCase, dir: &Path) -> Result<Value> {
                 Some(name) => (name.as_str(), scene_material(name)?),
                 None => (own_name.as_str(), own),
             };
+            let reflectance = reflectance(name, material)?;
             let ply = dir.join(format!("mesh{i}_{m}.ply"));
             write_ply(&ply, &positions, &triangles)?;
-            shapes.push(json!({
-                "ply": ply,
-                "reflectance": reflectance(name, material)?,
-                "emission": material.emission,
-            }));
+            shapes.push(json!({ "ply": ply, "reflectance": reflectance, "emission": material.emission }));
         }
     }
     let mut spheres = Vec::new();
@@ -257,13 +254,17 @@ mod tests {
     fn what_mitsuba_would_render_differently_is_refused_by_name() {
         let mut scene = scene("tests/refs/scenes/cornell_diffuse.toml");
         scene.materials[0].1.reflection = 1.0;
-        let dir = std::env::temp_dir();
+        // A folder of its own: another user's files in the shared temporary folder cannot
+        // be overwritten (nor should they be).
+        let dir = std::env::temp_dir().join(format!("rt-mitsuba-refused-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
         let e = translate(&case(&scene), &dir).unwrap_err().to_string();
         assert!(e.contains(&scene.materials[0].0) && e.contains("only diffuse"), "{e}");
         let sunny =
             crate::scene::parse("[sun]\nelevation_deg = 30.0\nazimuth_deg = 0.0\n", "sunny.toml", Path::new("."))
                 .unwrap();
         let e = translate(&case(&sunny), &dir).unwrap_err().to_string();
+        let _ = std::fs::remove_dir_all(&dir);
         assert!(e.contains("sunny.toml") && e.contains("a sun"), "{e}");
     }
 }

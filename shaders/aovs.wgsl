@@ -1,9 +1,12 @@
 // Auxiliary images for a denoiser, as Open Image Denoise expects them: the albedo and
 // the shading normal of the first surface that is not a perfect mirror or interface
 // (those are followed, their tint carried along), and the distance along the camera
-// ray to the first surface. Averaged over the pixel's samples like the radiance.
+// ray to the first surface. Beside them, Cycles' Position and Emission passes: where
+// the camera ray met the scene (world space; nothing where it met nothing) and the light
+// it saw emitted there. Averaged over the pixel's samples like the radiance.
 
-// Two per pixel: (albedo, mean depth over the samples that hit), (normal, samples that hit).
+// Four per pixel: (albedo, mean depth over the samples that hit), (normal, samples that
+// hit), (position, unused), (emission, unused).
 @group(1) @binding(3) var<storage, read_write> aov_means: array<vec4f>;
 
 struct AovSample {
@@ -11,6 +14,8 @@ struct AovSample {
     normal: vec3f,
     // < 0: the camera ray left the scene.
     depth: f32,
+    position: vec3f,
+    emission: vec3f,
     // The first non-delta surface is still to be found.
     open: bool,
     // The tint of the perfect mirrors and interfaces followed so far.
@@ -20,18 +25,25 @@ struct AovSample {
 var<private> aov: AovSample;
 
 fn aov_begin() {
-    aov = AovSample(vec3f(0.0), vec3f(0.0), -1.0, true, vec3f(1.0));
+    aov = AovSample(vec3f(0.0), vec3f(0.0), -1.0, vec3f(0.0), vec3f(0.0), true, vec3f(1.0));
 }
 
-// The camera ray met a surface at distance `t`.
-fn aov_first_hit(t: f32) {
+// The camera ray met a surface at distance `t`, at `position`.
+fn aov_first_hit(t: f32, position: vec3f) {
     aov.depth = t;
+    aov.position = position;
+}
+
+// Light the camera ray saw emitted (a surface's emission, a lamp seen directly).
+fn aov_emission_seen(light: vec3f) {
+    aov.emission += light;
 }
 
 // The camera ray left the scene after all (through surfaces that let it by): the sample
 // met nothing, for the depth and for a transparent film's alpha.
 fn aov_no_hit() {
     aov.depth = -1.0;
+    aov.position = vec3f(0.0);
 }
 
 // A BSDF sample taken at a surface of shading normal `normal` (facing the viewer):
@@ -52,15 +64,21 @@ fn aov_surface(s: BsdfSample, normal: vec3f) {
 struct AovMeans {
     a: vec4f,
     b: vec4f,
+    position: vec4f,
+    emission: vec4f,
 }
 
 fn aov_load(pixel_index: u32) -> AovMeans {
-    return AovMeans(aov_means[2u * pixel_index], aov_means[2u * pixel_index + 1u]);
+    let at = 4u * pixel_index;
+    return AovMeans(aov_means[at], aov_means[at + 1u], aov_means[at + 2u], aov_means[at + 3u]);
 }
 
 fn aov_store(pixel_index: u32, m: AovMeans) {
-    aov_means[2u * pixel_index] = m.a;
-    aov_means[2u * pixel_index + 1u] = m.b;
+    let at = 4u * pixel_index;
+    aov_means[at] = m.a;
+    aov_means[at + 1u] = m.b;
+    aov_means[at + 2u] = m.position;
+    aov_means[at + 3u] = m.emission;
 }
 
 // Adds the sample just traced, the pixel's sample `sample_index` (from 0).
@@ -68,27 +86,31 @@ fn aov_add(m: ptr<function, AovMeans>, sample_index: u32) {
     let n = f32(sample_index + 1u);
     let albedo = (*m).a.rgb + (aov.albedo - (*m).a.rgb) / n;
     let normal = (*m).b.xyz + (aov.normal - (*m).b.xyz) / n;
+    let position = (*m).position.xyz + (aov.position - (*m).position.xyz) / n;
+    let emission = (*m).emission.xyz + (aov.emission - (*m).emission.xyz) / n;
     var depth = (*m).a.w;
     var hits = (*m).b.w;
     if aov.depth >= 0.0 {
         hits += 1.0;
         depth += (aov.depth - depth) / hits;
     }
-    *m = AovMeans(vec4f(albedo, depth), vec4f(normal, hits));
+    *m = AovMeans(vec4f(albedo, depth), vec4f(normal, hits), vec4f(position, 0.0), vec4f(emission, 0.0));
 }
 
 // Under lanes (`render_lanes`), a finished sample's AOVs wait in the lanes' scratch for
-// `reduce_lanes`, two vec4 per sample after the dispatch's radiance samples: (albedo,
-// depth), (normal, unused). Stored and reloaded as they are, so that the means are the
+// `reduce_lanes`, four vec4 per sample after the dispatch's radiance samples: (albedo,
+// depth), (normal, unused), (position, unused), (emission, unused). Stored and reloaded as they are, so that the means are the
 // same bit for bit as when `render` adds them at once.
 fn aov_lane_index(slot: u32) -> u32 {
-    return frame.samples_per_dispatch * frame.width * frame.height + 2u * slot;
+    return frame.samples_per_dispatch * frame.width * frame.height + 4u * slot;
 }
 
 fn aov_lane_store(slot: u32) {
     let at = aov_lane_index(slot);
     lane_samples[at] = vec4f(aov.albedo, aov.depth);
     lane_samples[at + 1u] = vec4f(aov.normal, 0.0);
+    lane_samples[at + 2u] = vec4f(aov.position, 0.0);
+    lane_samples[at + 3u] = vec4f(aov.emission, 0.0);
 }
 
 // Makes the sample in `slot` the one `aov_add` adds.
@@ -96,5 +118,7 @@ fn aov_lane_load(slot: u32) {
     let at = aov_lane_index(slot);
     let a = lane_samples[at];
     let b = lane_samples[at + 1u];
-    aov = AovSample(a.xyz, b.xyz, a.w, false, vec3f(1.0));
+    let position = lane_samples[at + 2u].xyz;
+    let emission = lane_samples[at + 3u].xyz;
+    aov = AovSample(a.xyz, b.xyz, a.w, position, emission, false, vec3f(1.0));
 }

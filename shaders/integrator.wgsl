@@ -300,6 +300,11 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         // (Seen through a medium, they skip its absorption.)
         let lamp_light = lamps_seen(origin, direction, min(hit.t, ray_t_max), hit.kind == HIT_NONE, bsdf_pdf, bounce == 0u);
         gather(&radiance, throughput * lamp_light, EVENT_EMISSION);
+        //#if aovs
+        if bounce == 0u {
+            aov_emission_seen(lamp_light);
+        }
+        //#endif
         //#endif
         //#if media
         let segment = integrate_segment(medium_absorption, medium_emission, hit.t);
@@ -308,7 +313,7 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         //#endif
         //#if aovs
         if bounce == 0u && hit.kind != HIT_NONE {
-            aov_first_hit(hit.t);
+            aov_first_hit(hit.t, origin + direction * hit.t);
         }
         //#endif
         if hit.kind == HIT_NONE {
@@ -367,7 +372,13 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         //#endif
         let layer_side = select(-1.0, 1.0, dot(surface.geometric_normal, direction) < 0.0);
         let layers = mapped_layer_normals(m, surface.shading_normal, coat_layer_normal, layer_side);
-        gather(&radiance, throughput * emission_seen(m, hit, surface, layers, origin, direction, bsdf_pdf), EVENT_EMISSION);
+        let emitted = throughput * emission_seen(m, hit, surface, layers, origin, direction, bsdf_pdf);
+        gather(&radiance, emitted, EVENT_EMISSION);
+        //#if aovs
+        if bounce == 0u {
+            aov_emission_seen(emitted);
+        }
+        //#endif
         //#endif
         if bounce >= frame.max_bounces {
             sample_finished = true;

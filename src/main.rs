@@ -125,7 +125,7 @@ struct RenderArgs {
     /// that drives rt (progress, warning, done, error events).
     #[arg(long, value_enum, default_value_t)]
     progress: Progress,
-    /// Also write the albedo, normal, depth, standard error and sample count per pixel:
+    /// Also write the albedo, normal, depth, position, emission, standard error and sample count per pixel:
     /// the output is then one multi-layer OpenEXR (docs/denoising.md).
     #[arg(long)]
     aovs: bool,
@@ -562,6 +562,8 @@ fn write_aov_files(dir: &Path, image: &Image, aovs: &rt::render::Aovs) -> Result
         ("albedo", aovs.albedo.clone()),
         ("normal", aovs.normal.clone()),
         ("depth", grey(aovs.depth.clone())),
+        ("position", aovs.position.clone()),
+        ("emission", aovs.emission.clone()),
         ("error", grey(image.std_error.clone())),
         ("samples", grey(image.sample_counts.iter().map(|&n| n as f32).collect())),
     ];

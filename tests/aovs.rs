@@ -56,6 +56,36 @@ fn a_white_diffuse_plane_has_albedo_one_and_its_normal() {
     assert!(image.sample_counts.iter().all(|&n| n == 4), "sample counts {:?}", &image.sample_counts[..4]);
 }
 
+/// Cycles' Position and Emission passes: where each camera ray met the scene, and the
+/// light it saw emitted there, averaged over the pixel's samples.
+#[test]
+fn position_and_emission_are_where_the_camera_met_the_scene_and_what_it_saw_emitted() {
+    let dir = temp_dir("aov-position");
+    std::fs::write(dir.join("plane.obj"), quad(0.0, false)).expect("write");
+    let text = format!(
+        "{CAMERA_DOWN}[materials.glow]\nbase_color = [0.0, 0.0, 0.0]\nemission = [2.0, 1.0, 0.5]\n\
+         [[mesh]]\nasset = {:?}\nmaterial = \"glow\"\n",
+        dir.join("plane.obj").display().to_string()
+    );
+    let (image, aovs) = render_with_aovs(&text, 4);
+    let reach = 20f32.to_radians().tan();
+    for (i, (position, emission)) in aovs.position.iter().zip(&aovs.emission).enumerate() {
+        let (x, y) = (i % 32, i / 32);
+        assert!(position[1].abs() < 1e-5, "pixel {i}: the plane is at y = 0, not {position:?}");
+        // The view is 2·tan(20°) across at 1 m: each pixel's mean lies inside its footprint.
+        let expected_x = (2.0 * (x as f32 + 0.5) / 32.0 - 1.0) * reach;
+        let expected_z = (2.0 * (y as f32 + 0.5) / 32.0 - 1.0) * reach;
+        let footprint = reach / 32.0;
+        assert!((position[0] - expected_x).abs() <= footprint, "pixel {i}: x {} vs {expected_x}", position[0]);
+        assert!((position[2] - expected_z).abs() <= footprint, "pixel {i}: z {} vs {expected_z}", position[2]);
+        for (c, want) in [2.0f32, 1.0, 0.5].into_iter().enumerate() {
+            assert!((emission[c] - want).abs() < 1e-5 * want, "pixel {i}: emission {emission:?}");
+            // The camera sees nothing but the emission: the image is the Emission pass.
+            assert!((image.pixels[i][c] - want).abs() < 1e-5 * want, "pixel {i}: radiance {:?}", image.pixels[i]);
+        }
+    }
+}
+
 #[test]
 fn albedo_seen_through_a_mirror_is_the_reflected_surface_s() {
     let dir = temp_dir("aov-mirror");
@@ -123,6 +153,12 @@ fn rt_render_aovs_writes_one_multilayer_exr_with_named_channels() {
         "normal.Y",
         "normal.Z",
         "depth.Z",
+        "position.X",
+        "position.Y",
+        "position.Z",
+        "emission.R",
+        "emission.G",
+        "emission.B",
         "error.Y",
         "samples.Y",
     ] {

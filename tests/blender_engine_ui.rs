@@ -180,6 +180,16 @@ fn f12_fills_the_passes_blender_asks_for() {
         (0..w * h).map(|i| [x[i], y[i], z[i]]).collect()
     };
     assert!(normal.iter().all(|n| (n[0].abs() + (n[1] + 1.0).abs() + n[2].abs()) < 1e-4), "normal (0, -1, 0)");
+    // Position in Blender's axes: the plane is y = 0, the view 9 m × 6 m across at 5 m
+    // (a 20 mm lens on a 36 mm sensor), its left column at x < 0 and top row at z > 0.
+    let (px, py, pz) = (channel(&all, "Position.X"), channel(&all, "Position.Y"), channel(&all, "Position.Z"));
+    assert!(py.iter().all(|y| y.abs() < 1e-4), "Position.Y is the plane's 0");
+    assert!(px.iter().chain(pz).all(|v| v.abs() < 4.5), "positions inside the view");
+    let (left, right) = (px[(h / 2) * w], px[(h / 2) * w + w - 1]);
+    let (top, bottom) = (pz[w / 2], pz[(h - 1) * w + w / 2]);
+    println!("Position pass: x from {left:.3} to {right:.3}, z from {top:.3} to {bottom:.3}");
+    assert!(left < -4.0 && right > 4.0 && top > 2.5 && bottom < -2.5, "the view's extent in Blender's axes");
+    assert!(channel(&all, "Emission.R").iter().all(|&e| e == 0.0), "the plane emits nothing");
     // The denoising passes against rt's own AOVs of the exported scene.
     let cache = PathBuf::from(report["cache"].as_str().expect("cache"));
     let aovs = out.join("aovs.exr");

@@ -215,6 +215,7 @@ fn noisy_frame(width: u32, height: u32, seed: u32) -> (rt::render::Image, rt::re
         albedo: vec![[0.8, 0.7, 0.6]; pixels],
         normal: vec![[0.0, 0.0, 1.0]; pixels],
         depth: vec![1.0; pixels],
+        ..Default::default()
     };
     (image, aovs)
 }

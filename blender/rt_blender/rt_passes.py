@@ -1,8 +1,8 @@
 """The render passes rt makes, named and laid out as Cycles names them, so that the
 compositor, the image editor and multilayer EXR output see them as they would see
-Cycles' own: Depth (Z), Normal, Denoising Normal and Albedo, Debug Sample Count, and
-rt's Noise. rt writes each as a plain OpenEXR (`rt render --aov-files DIR`); here they are
-read, turned into Blender's conventions (Z-up world normals, depth along the view axis
+Cycles' own: Depth (Z), Normal, Position, Emission, Denoising Normal and Albedo, Debug
+Sample Count, and rt's Noise. rt writes each as a plain OpenEXR (`rt render --aov-files DIR`); here they are
+read, turned into Blender's conventions (Z-up world normals and positions, depth along the view axis
 as Cycles' camera_z_depth, 1e10 where nothing was hit), and put in the Render Result.
 """
 
@@ -26,6 +26,8 @@ class Pass:
 PASSES = (
     Pass("Depth", "Z", "VALUE", "depth", lambda layer: layer.use_pass_z),
     Pass("Normal", "XYZ", "VECTOR", "normal", lambda layer: layer.use_pass_normal),
+    Pass("Position", "XYZ", "VECTOR", "position", lambda layer: layer.use_pass_position),
+    Pass("Emission", "RGB", "COLOR", "emission", lambda layer: layer.use_pass_emit),
     Pass("Denoising Normal", "XYZ", "VECTOR", "normal", lambda layer: layer.rt.denoising_data),
     Pass("Denoising Albedo", "RGB", "COLOR", "albedo", lambda layer: layer.rt.denoising_data),
     Pass("Debug Sample Count", "X", "VALUE", "samples", lambda layer: layer.rt.sample_count),
@@ -45,7 +47,7 @@ def register_passes(engine, scene, view_layer):
         engine.register_pass(scene, view_layer, p.name, p.channels, p.chan_id, p.kind)
 
 
-def blender_normals(rgb):
+def blender_vectors(rgb):
     """rt's world is Y up, Blender's Z up: rt's (x, y, z) is Blender's (x, -z, y)."""
     return np.stack([rgb[:, 0], -rgb[:, 2], rgb[:, 1]], axis=1)
 
@@ -80,8 +82,8 @@ def pass_pixels(p, rgb, depth_scale, depth_offset):
         distance = rgb[:, 0]
         z = np.where(np.isfinite(distance), distance * depth_scale + depth_offset, NO_HIT_DEPTH)
         return z.reshape(-1, 1)
-    if p.aov == "normal":
-        return blender_normals(rgb)
+    if p.aov in ("normal", "position"):
+        return blender_vectors(rgb)
     if p.channels == 1:
         return rgb[:, :1]
     return rgb

@@ -12,10 +12,12 @@ use anyhow::{Result, bail};
 const MEAN_BYTES: u64 = 16;
 /// Bytes of one sample in the lanes' scratch (radiance, and the event of a non-finite one).
 const SAMPLE_BYTES: u64 = 16;
-/// Bytes per pixel of the AOVs' means (albedo and depth, normal and hit count).
-const AOV_BYTES: u64 = 32;
-/// Bytes of one sample's AOVs in the lanes' scratch (albedo and depth, normal).
-const LANE_AOV_BYTES: u64 = 32;
+/// Bytes per pixel of the AOVs' means (albedo and depth, normal and hit count, position,
+/// emission).
+const AOV_BYTES: u64 = 64;
+/// Bytes of one sample's AOVs in the lanes' scratch (albedo and depth, normal, position,
+/// emission).
+const LANE_AOV_BYTES: u64 = 64;
 /// The lanes' scratch at most: it holds pixels × samples per dispatch (a 128×128 image
 /// takes its 1024 samples per dispatch in 256 MiB).
 const LANE_SCRATCH_BYTES: u64 = 256 << 20;

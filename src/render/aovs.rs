@@ -4,8 +4,10 @@
 /// Per pixel, rows from the top: the albedo and the shading normal (facing the camera,
 /// world space) of the first surface that is not a perfect mirror or interface, as Open
 /// Image Denoise expects them, and the distance along the camera ray to the first
-/// surface. Each is the mean over the pixel's samples; depth is over the samples that
-/// hit something (infinite where none did).
+/// surface; Cycles' Position and Emission passes: the world position where the camera
+/// ray met the scene (nothing where it did not) and the light seen emitted there (by a
+/// surface, or a lamp seen directly). Each is the mean over the pixel's samples; depth is
+/// over the samples that hit something (infinite where none did).
 #[derive(Clone, Debug, Default)]
 pub struct Aovs {
     pub width: u32,
@@ -13,16 +15,24 @@ pub struct Aovs {
     pub albedo: Vec<[f32; 3]>,
     pub normal: Vec<[f32; 3]>,
     pub depth: Vec<f32>,
+    pub position: Vec<[f32; 3]>,
+    pub emission: Vec<[f32; 3]>,
 }
 
+/// vec4 per pixel in the GPU's AOV means (see `shaders/aovs.wgsl`).
+const MEANS_PER_PIXEL: usize = 4;
+
 impl Aovs {
-    /// From the GPU's running means: two vec4 per pixel (albedo and depth, normal and
-    /// the count of samples that hit), see `shaders/aovs.wgsl`.
+    /// From the GPU's running means: four vec4 per pixel (albedo and depth, normal and
+    /// the count of samples that hit, position, emission), see `shaders/aovs.wgsl`.
     pub fn from_means(width: u32, height: u32, means: &[[f32; 4]]) -> Self {
         let pixels = width as usize * height as usize;
         let mut aovs = Self { width, height, ..Default::default() };
-        for pair in means.chunks_exact(2).take(pixels) {
-            let [a, b] = [pair[0], pair[1]];
+        let xyz = |v: [f32; 4]| [v[0], v[1], v[2]];
+        for pixel in means.chunks_exact(MEANS_PER_PIXEL).take(pixels) {
+            let [a, b, position, emission] = [pixel[0], pixel[1], pixel[2], pixel[3]];
+            aovs.position.push(xyz(position));
+            aovs.emission.push(xyz(emission));
             // Per sample, albedo estimates may exceed 1; their mean does not, but for rounding.
             aovs.albedo.push([a[0], a[1], a[2]].map(|v| v.clamp(0.0, 1.0)));
             aovs.normal.push([b[0], b[1], b[2]]);
@@ -34,7 +44,7 @@ impl Aovs {
     /// Per pixel, the share of its samples whose camera ray met the scene: the count of
     /// those (see `shaders/aovs.wgsl`) over the samples the pixel took.
     pub fn coverage(means: &[[f32; 4]], samples: &[u32]) -> Vec<f32> {
-        let hits = means.chunks_exact(2).map(|pair| pair[1][3]);
+        let hits = means.chunks_exact(MEANS_PER_PIXEL).map(|pixel| pixel[1][3]);
         hits.zip(samples).map(|(hits, &n)| (hits / n.max(1) as f32).clamp(0.0, 1.0)).collect()
     }
 }

@@ -31,6 +31,8 @@ pub fn aov_channels(image: &Image, aovs: &Aovs, denoised: Option<&[[f32; 3]]>) -
     }
     rgb("albedo", RGB, &aovs.albedo);
     rgb("normal", ["X", "Y", "Z"], &aovs.normal);
+    rgb("position", ["X", "Y", "Z"], &aovs.position);
+    rgb("emission", RGB, &aovs.emission);
     channels.push(("depth.Z".into(), aovs.depth.clone()));
     channels.push(("error.Y".into(), image.std_error.clone()));
     channels.push(("samples.Y".into(), image.sample_counts.iter().map(|&n| n as f32).collect()));

@@ -168,6 +168,7 @@ mod tests {
             albedo: vec![[0.5; 3]; n],
             normal: vec![[0.0, 0.0, 1.0]; n],
             depth: vec![1.0; n],
+            ..Default::default()
         };
         (image, aovs)
     }

@@ -283,6 +283,19 @@ impl SceneBuffers {
     }
 }
 
+/// Refuses data of `bytes` that one storage binding of at most `max` bytes cannot hold,
+/// saying what it is (`what`: "the scene's instances") and both sizes.
+pub fn check_binding(what: &str, bytes: u64, max: u64) -> Result<()> {
+    if bytes > max {
+        return Err(anyhow!(
+            "{what} take {:.1} MiB ({bytes} bytes); this GPU binds at most {:.1} MiB ({max} bytes) per buffer",
+            bytes as f64 / 1048576.0,
+            max as f64 / 1048576.0
+        ));
+    }
+    Ok(())
+}
+
 fn check_sizes(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<()> {
     let max = ctx.device.limits().max_storage_buffer_binding_size;
     let sizes = [
@@ -298,12 +311,7 @@ fn check_sizes(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<()> {
         ("light tree nodes", std::mem::size_of_val(geometry.light_tree.nodes.as_slice())),
     ];
     for (what, bytes) in sizes {
-        if bytes as u64 > max {
-            return Err(anyhow!(
-                "the scene's {what} take {:.1} MiB ({bytes} bytes); this GPU binds at most {max} bytes per buffer",
-                bytes as f64 / 1048576.0
-            ));
-        }
+        check_binding(&format!("the scene's {what}"), bytes as u64, max)?;
     }
     Ok(())
 }

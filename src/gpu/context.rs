@@ -50,10 +50,16 @@ impl GpuContext {
     /// Picks an adapter: the one whose name contains `wanted` (case-insensitive)
     /// if given, else a discrete GPU, else an integrated one, else any (lavapipe).
     pub fn new(wanted: Option<&str>) -> Result<Self> {
-        pollster::block_on(Self::new_async(wanted))
+        pollster::block_on(Self::new_async(wanted, None))
     }
 
-    async fn new_async(wanted: Option<&str>) -> Result<Self> {
+    /// [`Self::new`], with a device that binds at most `bytes` per storage buffer: what a
+    /// smaller GPU allows, to see a scene refused as it would be there.
+    pub fn with_binding_limit(wanted: Option<&str>, bytes: u64) -> Result<Self> {
+        pollster::block_on(Self::new_async(wanted, Some(bytes)))
+    }
+
+    async fn new_async(wanted: Option<&str>, binding_limit: Option<u64>) -> Result<Self> {
         let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
             backends: wgpu::Backends::VULKAN,
             ..wgpu::InstanceDescriptor::new_without_display_handle_from_env()
@@ -97,7 +103,9 @@ impl GpuContext {
             // one short with an environment's or an atmosphere's tables bound).
             max_buffers_and_acceleration_structures_per_shader_stage: available
                 .max_buffers_and_acceleration_structures_per_shader_stage,
-            max_storage_buffer_binding_size: available.max_storage_buffer_binding_size,
+            max_storage_buffer_binding_size: binding_limit.map_or(available.max_storage_buffer_binding_size, |b| {
+                b.min(available.max_storage_buffer_binding_size)
+            }),
             max_buffer_size: available.max_buffer_size,
             ..wgpu::Limits::default()
         };

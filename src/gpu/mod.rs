@@ -15,7 +15,7 @@ mod textures;
 mod timer;
 
 pub use bind::{Binding, bind_group, sequential_layout};
-pub use buffers::{STAT_STACK_OVERFLOW, SceneBuffers, sky_bind_group_layout};
+pub use buffers::{STAT_STACK_OVERFLOW, SceneBuffers, check_binding, sky_bind_group_layout};
 pub use build::{compute_pipelines, validated};
 pub use context::{GpuContext, adapter_names, ensure_runtime_dir};
 pub use pipelines::{PipelineCache, Pipelines};

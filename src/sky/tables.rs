@@ -100,13 +100,7 @@ impl AtmosphereTables {
     ) -> Result<(wgpu::Buffer, wgpu::Buffer, wgpu::BindGroup)> {
         let bytes = TableLayout::of(params).entries as u64 * 16;
         let max = ctx.device.limits().max_storage_buffer_binding_size;
-        if bytes > max {
-            return Err(anyhow!(
-                "the atmosphere's tables take {} MiB; this GPU binds at most {} MiB per buffer",
-                bytes >> 20,
-                max >> 20
-            ));
-        }
+        crate::gpu::check_binding("the atmosphere's tables", bytes, max)?;
         let uniform = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("atmosphere"),
             contents: bytemuck::bytes_of(&gpu_atmosphere(params)),

@@ -99,8 +99,9 @@ fn aov_add(m: ptr<function, AovMeans>, sample_index: u32) {
 
 // Under lanes (`render_lanes`), a finished sample's AOVs wait in the lanes' scratch for
 // `reduce_lanes`, four vec4 per sample after the dispatch's radiance samples: (albedo,
-// depth), (normal, unused), (position, unused), (emission, unused). Stored and reloaded as they are, so that the means are the
-// same bit for bit as when `render` adds them at once.
+// depth), (normal, unused), (position, unused), (emission, unused). Stored and reloaded
+// as they are, so that the means are the same bit for bit as when `render` adds them at
+// once.
 fn aov_lane_index(slot: u32) -> u32 {
     return frame.samples_per_dispatch * frame.width * frame.height + 4u * slot;
 }

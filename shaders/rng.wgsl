@@ -78,11 +78,17 @@ fn sobol_coordinate(reversed: u32, seed: u32) -> f32 {
     return to_unit(reverseBits(laine_karras_permutation(reversed, seed)) ^ pcg_hash(seed ^ 0x5bd1e995u));
 }
 
+// The stream's next number: the hash of its state (which steps the state as the
+// stream does and permutes the result), then the step.
 fn pcg_next(rng: ptr<function, Rng>) -> f32 {
+    let bits = pcg_hash((*rng).state);
     (*rng).state = (*rng).state * 747796405u + 2891336453u;
-    let s = (*rng).state;
-    let word = ((s >> ((s >> 28u) + 4u)) ^ s) * 277803737u;
-    return to_unit((word >> 22u) ^ word);
+    return to_unit(bits);
+}
+
+// The seed of draw `d`'s coordinates (of the first; the second's is derived from it).
+fn sobol_coordinate_seed(rng: ptr<function, Rng>, d: u32) -> u32 {
+    return pcg_hash((*rng).scramble + d * 0x02e5be93u);
 }
 
 // One number: for the first draws a scrambled van der Corput point (1D-stratified).
@@ -90,8 +96,7 @@ fn rng_next(rng: ptr<function, Rng>) -> f32 {
     let d = (*rng).dimension;
     (*rng).dimension = d + 1u;
     if d < SOBOL_DIMENSIONS {
-        let index = sobol_draw_index(rng, d);
-        return sobol_coordinate(index, pcg_hash((*rng).scramble + d * 0x02e5be93u));
+        return sobol_coordinate(sobol_draw_index(rng, d), sobol_coordinate_seed(rng, d));
     }
     return pcg_next(rng);
 }
@@ -103,7 +108,7 @@ fn rng_next2(rng: ptr<function, Rng>) -> vec2f {
     (*rng).dimension = d + 1u;
     if d < SOBOL_DIMENSIONS {
         let index = sobol_draw_index(rng, d);
-        let seed = pcg_hash((*rng).scramble + d * 0x02e5be93u);
+        let seed = sobol_coordinate_seed(rng, d);
         return vec2f(sobol_coordinate(index, seed), sobol_coordinate(sobol_pascal_reversed(index), pcg_hash(seed ^ 1u)));
     }
     let x = pcg_next(rng);

@@ -286,7 +286,7 @@ impl Accumulation {
         Ok(Image { width, height, samples, pixels, std_error, sample_counts, alpha: None })
     }
 
-    /// The AOVs' means per pixel, two vec4 each (see `shaders/aovs.wgsl`); call only
+    /// The AOVs' means per pixel, four vec4 each (see `shaders/aovs.wgsl`); call only
     /// after [`Self::prepare_outputs`] asked for them.
     pub fn aov_means(&self, ctx: &GpuContext, readback: &Readback) -> Result<Vec<[f32; 4]>> {
         readback.read(ctx, &self.aovs)

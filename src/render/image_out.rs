@@ -68,14 +68,7 @@ pub fn write_image(image: &Image, path: &Path, exposure_ev: f32) -> Result<()> {
             // Written by the AOVs' writer, whose scan lines go in increasing order: the
             // `image` crate's encoder writes tiles in the order its threads finish them, so
             // the same pixels made different files from run to run.
-            let mut channels: Vec<(String, Vec<f32>)> = ["R", "G", "B"]
-                .iter()
-                .enumerate()
-                .map(|(c, name)| (name.to_string(), image.pixels.iter().map(|p| p[c]).collect()))
-                .collect();
-            if let Some(alpha) = &image.alpha {
-                channels.push(("A".into(), alpha.clone()));
-            }
+            let channels = super::beauty_channels(&image.pixels, image.alpha.as_deref());
             super::write_layered_exr(path, width, height, channels)
         }
     }

@@ -1,5 +1,5 @@
-//! A render with its AOVs as one multi-layer OpenEXR: the beauty as R, G, B and each
-//! AOV as a layer of conventionally named channels (`albedo.R`, `normal.X`, `depth.Z`,
+//! A render with its AOVs as one multi-layer OpenEXR: the beauty as R, G, B (and A with
+//! a transparent film) and each AOV as a layer of conventionally named channels (`albedo.R`, `normal.X`, `depth.Z`,
 //! ...), linear 32-bit floats, written atomically like every output.
 
 use super::{Aovs, Image};
@@ -11,34 +11,43 @@ use exr::prelude::{
 use std::io::Cursor;
 use std::path::Path;
 
+type Channels = Vec<(String, Vec<f32>)>;
+
+const RGB: [&str; 3] = ["R", "G", "B"];
+const XYZ: [&str; 3] = ["X", "Y", "Z"];
+
+/// Adds `pixels` as three channels of `layer` named `names` (the beauty: no layer).
+fn push_layer(channels: &mut Channels, layer: &str, names: [&str; 3], pixels: &[[f32; 3]]) {
+    for (c, name) in names.iter().enumerate() {
+        let full = if layer.is_empty() { name.to_string() } else { format!("{layer}.{name}") };
+        channels.push((full, pixels.iter().map(|p| p[c]).collect()));
+    }
+}
+
+/// The beauty's channels: R, G, B and, with a transparent film, its alpha as A.
+pub fn beauty_channels(pixels: &[[f32; 3]], alpha: Option<&[f32]>) -> Channels {
+    let mut channels = Vec::new();
+    push_layer(&mut channels, "", RGB, pixels);
+    if let Some(alpha) = alpha {
+        channels.push(("A".into(), alpha.to_vec()));
+    }
+    channels
+}
+
 /// The channels of a render with AOVs, by name, rows from the top. With `denoised`,
 /// the beauty is the denoised image and the raw one is kept as `noisy.R/G/B`.
-pub fn aov_channels(image: &Image, aovs: &Aovs, denoised: Option<&[[f32; 3]]>) -> Vec<(String, Vec<f32>)> {
-    let mut channels = Vec::new();
-    let mut rgb = |layer: &str, names: [&str; 3], pixels: &[[f32; 3]]| {
-        for (c, name) in names.iter().enumerate() {
-            let full = if layer.is_empty() { name.to_string() } else { format!("{layer}.{name}") };
-            channels.push((full, pixels.iter().map(|p| p[c]).collect()));
-        }
-    };
-    const RGB: [&str; 3] = ["R", "G", "B"];
-    match denoised {
-        Some(clean) => {
-            rgb("", RGB, clean);
-            rgb("noisy", RGB, &image.pixels);
-        }
-        None => rgb("", RGB, &image.pixels),
+pub fn aov_channels(image: &Image, aovs: &Aovs, denoised: Option<&[[f32; 3]]>) -> Channels {
+    let mut channels = beauty_channels(denoised.unwrap_or(&image.pixels), image.alpha.as_deref());
+    if denoised.is_some() {
+        push_layer(&mut channels, "noisy", RGB, &image.pixels);
     }
-    rgb("albedo", RGB, &aovs.albedo);
-    rgb("normal", ["X", "Y", "Z"], &aovs.normal);
-    rgb("position", ["X", "Y", "Z"], &aovs.position);
-    rgb("emission", RGB, &aovs.emission);
+    push_layer(&mut channels, "albedo", RGB, &aovs.albedo);
+    push_layer(&mut channels, "normal", XYZ, &aovs.normal);
+    push_layer(&mut channels, "position", XYZ, &aovs.position);
+    push_layer(&mut channels, "emission", RGB, &aovs.emission);
     channels.push(("depth.Z".into(), aovs.depth.clone()));
     channels.push(("error.Y".into(), image.std_error.clone()));
     channels.push(("samples.Y".into(), image.sample_counts.iter().map(|&n| n as f32).collect()));
-    if let Some(alpha) = &image.alpha {
-        channels.insert(3, ("A".into(), alpha.clone()));
-    }
     channels
 }
 

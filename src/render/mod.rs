@@ -20,7 +20,7 @@ pub use aovs::Aovs;
 pub use camera::set_camera;
 pub use dropped::{DroppedSamples, NonFiniteCause};
 pub use image_out::{ImageFormat, check_output, image_format, write_image, write_png};
-pub use layers_out::{aov_channels, write_layered_exr};
+pub use layers_out::{aov_channels, beauty_channels, write_layered_exr};
 pub use pacing::Pacing;
 pub use progress::{Progress, json_event};
 pub use request::{MAX_SAMPLES_PER_DISPATCH, RenderFlags, RenderRequest};

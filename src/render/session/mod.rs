@@ -218,7 +218,7 @@ impl<'a> Session<'a> {
         FeatureSet {
             aovs: self.request.aovs,
             adaptive: self.request.adaptive(),
-            transparent_film: self.scene.render.transparent,
+            transparent_film: self.features.transparent_film,
             ..features
         }
     }
@@ -364,7 +364,7 @@ impl<'a> Session<'a> {
     /// transparent film (and AOVs, which count the camera rays that hit) its alpha.
     pub fn image(&self) -> Result<Image> {
         let mut image = self.acc.image(self.ctx, &self.readback, self.request.adaptive())?;
-        if self.scene.render.transparent && self.request.aovs {
+        if self.features.transparent_film && self.request.aovs {
             let means = self.acc.aov_means(self.ctx, &self.readback)?;
             image.alpha = Some(Aovs::coverage(&means, &image.sample_counts));
         }

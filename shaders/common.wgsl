@@ -224,7 +224,9 @@ struct Material {
     diffuse_roughness_texture: u32,
     thin_film_texture: u32,
     thin_film_minimum: f32,
-    _pad8: u32,
+    // Where the material's node program starts in `node_programs`, or NO_PROGRAM
+    // (node_program.wgsl).
+    node_program: u32,
     // The transmission texture: R × transmission_factor of the diffuse and its coating
     // turns to glass (the weights above are those of the part that does not transmit);
     // the specular IOR level's: A scales the coating's F0.
@@ -294,6 +296,7 @@ const NO_MATERIAL: u32 = 0xffffffffu;
 // Top-level leaves hold instances and spheres; the top bit says which.
 const SPHERE_BIT: u32 = 0x80000000u;
 const NO_TEXTURE: u32 = 0xffffffffu;
+const NO_PROGRAM: u32 = 0xffffffffu;
 const ALPHA_BLEND: f32 = -1.0;
 
 // Counters in the statistics buffer.

@@ -32,6 +32,9 @@
 //#if textures
 //#include "texture.wgsl"
 //#endif
+//#if node_graphs
+//#include "node_program.wgsl"
+//#endif
 //#if normal_maps
 //#include "normal_map.wgsl"
 //#endif
@@ -356,6 +359,10 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         if has_textures(m) {
             texture_at = texture_point(hit);
         }
+        //#if node_graphs
+        // A graph reads the interpolated normal, as Cycles' nodes read N, not a normal map's.
+        let node_normal = surface.shading_normal;
+        //#endif
         //#if normal_maps
         let n_unmapped = surface.shading_normal;
         surface.shading_normal = normal_mapped(m, hit, n_unmapped, surface.geometric_normal, -direction, slot_uv(m, UV1_NORMAL, texture_at));
@@ -364,6 +371,11 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         let coat_normal = coat_normal_mapped(m, hit, n_unmapped, surface.geometric_normal, -direction, slot_uv(m, UV1_COAT_NORMAL, texture_at));
         //#endif
         m = textured_material(m, texture_at, log2(cone_width / cos_hit));
+        //#if node_graphs
+        if m.node_program != NO_PROGRAM {
+            m = node_graph_material(m, node_point_at(hit, surface, node_normal, -direction));
+        }
+        //#endif
         //#endif
         //#if emission
         var coat_layer_normal = surface.shading_normal;

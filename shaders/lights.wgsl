@@ -26,6 +26,9 @@
 //#if textures
 //#include "texture.wgsl"
 //#endif
+//#if node_graphs
+//#include "node_program.wgsl"
+//#endif
 //#endif
 //#if media
 //#include "segment.wgsl"
@@ -224,6 +227,18 @@ fn sample_emitter_at(e: Emitter, tree_selection: f32, p: vec3f, rng: ptr<functio
     var emission = m.emission;
     //#if textures
     emission = textured_emission(m, e.primitive, su * (1.0 - u.y), su * u.y);
+    //#endif
+    //#if node_graphs
+    if m.node_program != NO_PROGRAM {
+        let sh = shading[e.primitive];
+        let b1 = su * (1.0 - u.y);
+        let b2 = su * u.y;
+        let n_object = (1.0 - b1 - b2) * sh.n0 + b1 * sh.n1 + b2 * sh.n2;
+        let n_shading = normalize(transform_normal_to_world(inst.world_to_object, n_object));
+        var lit = m;
+        lit.emission = emission;
+        emission = node_graph_material(lit, node_point_on_triangle(inst, e.primitive, b1, b2, q, n_shading, -d)).emission;
+    }
     //#endif
     //#if coat
     //#if layer_textures

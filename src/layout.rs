@@ -260,7 +260,9 @@ pub struct GpuMaterial {
     pub diffuse_roughness_texture: u32,
     pub thin_film_texture: u32,
     pub thin_film_minimum: f32,
-    pub _pad8: u32,
+    /// Where the material's node program starts in the scene's program table, or
+    /// `NO_PROGRAM` (see `asset::node_graph`).
+    pub node_program: u32,
     /// The transmission texture (R × `transmission_factor` of the diffuse and its coating
     /// turns to glass) and the specular IOR level's (A scales the coating's F0).
     pub transmission_texture: u32,
@@ -498,6 +500,8 @@ pub const EMPTY_LINK: u32 = u32::MAX;
 pub const NO_MATERIAL: u32 = u32::MAX;
 pub const SPHERE_BIT: u32 = 0x8000_0000;
 pub const NO_TEXTURE: u32 = u32::MAX;
+/// A material without a node program.
+pub const NO_PROGRAM: u32 = u32::MAX;
 /// `GpuMaterial::alpha_cutoff` of glTF's `BLEND`: stochastic transparency.
 pub const ALPHA_BLEND: f32 = -1.0;
 
@@ -566,7 +570,7 @@ impl From<&crate::scene::Material> for GpuMaterial {
             diffuse_roughness_texture: slot(l.diffuse_roughness),
             thin_film_texture: slot(l.thin_film_thickness),
             thin_film_minimum: m.textures.thin_film_minimum,
-            _pad8: 0,
+            node_program: NO_PROGRAM,
             transmission_texture: slot(l.transmission),
             transmission_factor: m.textures.transmission,
             specular_level_texture: slot(l.specular_level),

@@ -31,6 +31,7 @@ mod cycles_camera;
 mod cycles_environment;
 mod cycles_instances;
 mod cycles_lamps;
+mod cycles_node_graphs;
 mod cycles_normal_maps;
 mod cycles_principled;
 mod cycles_rare_paths;

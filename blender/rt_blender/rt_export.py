@@ -37,7 +37,7 @@ import numpy as np
 from bpy.app.handlers import persistent
 from mathutils import Matrix, Vector
 
-from . import rt_shader_nodes
+from . import rt_node_graph, rt_shader_nodes
 TEXTURE_SOCKETS = rt_shader_nodes.TEXTURE_SOCKETS
 linked_node, rgb, socket_value = rt_shader_nodes.linked_node, rt_shader_nodes.rgb, rt_shader_nodes.socket_value
 owner_name = rt_shader_nodes.owner_name
@@ -488,7 +488,9 @@ def principled_surface(material):
 
 def needs_bake(socket):
     """Whether `texture_channel` cannot follow what feeds `socket` (through Separate Color
-    too, or for Normal a Normal Map node)."""
+    too, or for Normal a Normal Map node), and no node graph rt evaluates drives it."""
+    if rt_node_graph.drives(socket.node, socket.name):
+        return False
     source = linked_node(socket)
     if source is not None and source.type == "NORMAL_MAP" and socket.name == "Normal":
         source = linked_node(source.inputs["Color"])
@@ -796,9 +798,14 @@ def gltf_material(material, thickness, textures=None):
         # Cycles' Glossy BSDF: GGX without Fresnel, tinted by its colour; glTF has no such lobe
         # (its factors above describe a metal of that colour for other readers).
         out["extras"]["rt_glossy_color"] = [max(c, 0.0) for c in s.glossy]
+    graph = rt_node_graph.material_graph(linked_node(output.inputs["Surface"])) if material and output else None
+    if graph is not None:
+        out["extras"]["rt_node_graph"] = graph
     found, film_range, ior_ranges = {}, None, {}
     if textures is not None and surface is not None:
-        found = {name: texture_channel(material, surface, name, textures.baker)
+        # A socket a node graph drives is not followed into a texture (nor baked).
+        found = {name: None if rt_node_graph.drives(surface, name) else texture_channel(material, surface, name,
+                                                                                           textures.baker)
                  for name in TEXTURE_SOCKETS if name != FILM_SOCKET and name not in IOR_SOCKETS}
         # The coat's own normal map (not baked: a Bump node there is warned about), unless it is
         # the Normal input's (see `coat_normal_texture`). Only a coat reads it.
@@ -1228,6 +1235,9 @@ def export_mesh(mesh, materials, textures):
     first: the uv maps their textures read choose the second uv set."""
     thickness = mesh_thickness(mesh)
     gltf_materials = [gltf_material(m, thickness, textures) for m in materials]
+    for m in gltf_materials:
+        if "rt_node_graph" in m.get("extras", {}):
+            rt_node_graph.with_texture_space(m["extras"]["rt_node_graph"], mesh)
     uv_maps = uv_maps_of(mesh)
     second = second_uv_map(uv_maps, gltf_materials)
     arrays = mesh_arrays(mesh, len(materials), second)

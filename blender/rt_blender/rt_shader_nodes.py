@@ -32,6 +32,8 @@ import sys
 
 import numpy as np
 
+from . import rt_node_graph
+
 # Inputs of a Principled BSDF that rt_export.py follows into textures: the base ones and
 # the layered lobes' (LAYER_SOCKETS).
 LAYER_SOCKETS = ("Coat Weight", "Coat Roughness", "Coat Tint", "Sheen Weight", "Sheen Roughness", "Sheen Tint",
@@ -87,6 +89,9 @@ def socket_value(node, name, default):
     socket = node.inputs.get(name)
     if socket is None:
         return default
+    if socket.is_linked and rt_node_graph.drives(node, name):
+        # rt evaluates the graph per shading point; the factor is what the graph scales.
+        return rt_node_graph.NEUTRAL.get(name, socket.default_value)
     source = linked_node(socket)
     if source is not None:
         if source.type in {"RGB", "VALUE"}:

@@ -458,6 +458,10 @@ fn map_material_with(m: &gltf::Material, metallic: f32, transmission: f32) -> Re
         emission: m.emissive_factor().map(|e| e * strength),
         absorption: m.volume().map_or([0.0; 3], |v| absorption(v.attenuation_color(), v.attenuation_distance())),
         volume_emission: volume_emission(m.extras())?,
+        node_program: match extra::<serde_json::Value>(m.extras(), "rt_node_graph")? {
+            Some(graph) => super::node_graph::compile_json(&graph)?,
+            None => Vec::new(),
+        },
         ..Material::default()
     };
     Ok(match extra::<[f32; 3]>(m.extras(), "rt_glossy_color")? {
@@ -652,6 +656,7 @@ mod tests {
                 absorption: [ln2 / 2.0, 2.0 * ln2 / 2.0, 0.0],
                 volume_emission: [0.1, 0.2, 0.3],
                 textures: Default::default(),
+                node_program: Vec::new(),
             }
         );
     }

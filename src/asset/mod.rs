@@ -9,6 +9,8 @@ pub mod gltf_import;
 mod gltf_layer_textures;
 mod gltf_texture_transform;
 mod gltf_textures;
+pub mod node_graph;
+pub mod node_kinds;
 pub mod obj_import;
 pub mod rtinst;
 pub mod rtmesh;

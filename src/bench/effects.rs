@@ -108,6 +108,8 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
     force("normal maps", own.normal_maps, FeatureSet { normal_maps: true, textures: true, ..own });
     force("second uv sets", own.uv_sets, FeatureSet { uv_sets: true, textures: true, ..own });
     force("layer textures", own.layer_textures, FeatureSet { layer_textures: true, textures: true, ..own });
+    // The node programs' interpreter, present (its price where no material runs it).
+    force("node graphs", own.node_graphs, FeatureSet { node_graphs: true, textures: true, glossy: true, ..own });
     // The coat's own normal map: the coat and the normal-map code come with it.
     force(
         "coat normal",

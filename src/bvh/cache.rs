@@ -26,6 +26,8 @@
 //!                 material's normal map reads (version 7 on; before, always of the first)
 //!     second uvs  GpuTriangleUvs × m, or none: only a mesh with a second uv set that
 //!                 some material's texture reads keeps it (version 6 on)
+//!     programs    per material, u32 length then that many u32s: its compiled shader node
+//!                 graph (`asset::node_graph`), length 0 for none (version 12 on)
 //! ```
 //!
 //! Textures are decoded and their mips built at pack time, so a render never decodes
@@ -57,7 +59,7 @@ use std::path::Path;
 use std::time::Duration;
 
 pub const MAGIC: [u8; 8] = *b"RTBVH\0\0\0";
-pub const FORMAT_VERSION: u32 = 11;
+pub const FORMAT_VERSION: u32 = 12;
 const ALIGN: u64 = 16;
 
 #[repr(C)]
@@ -76,7 +78,8 @@ const TEXTURES: usize = 5;
 const TEXELS: usize = 6;
 const TANGENTS: usize = 7;
 const SECOND_UVS: usize = 8;
-const SECTION_COUNT: usize = 9;
+const PROGRAMS: usize = 9;
+const SECTION_COUNT: usize = 10;
 
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
@@ -165,11 +168,13 @@ pub fn params_hash(quality: BuildQuality) -> [u8; 32] {
         size_of::<GpuTriangleTangents>(),
         size_of::<GpuTriangleUvs>(),
     ];
+    // The node programs the cache holds are compiled by these tables.
     let params = format!(
-        "rtbvh {FORMAT_VERSION} {NODE_LAYOUT} {quality:?} {sizes:?} {} {} {}",
+        "rtbvh {FORMAT_VERSION} {NODE_LAYOUT} {quality:?} {sizes:?} {} {} {} {}",
         size_of::<CachedMaterial>(),
         size_of::<CachedTexture>(),
-        super::binned_build::BUILDER
+        super::binned_build::BUILDER,
+        crate::asset::node_kinds::compiler_signature()
     );
     *blake3::hash(params.as_bytes()).as_bytes()
 }
@@ -185,6 +190,34 @@ fn encode_names(materials: &[(String, Material)]) -> Vec<u8> {
         out.extend_from_slice(name.as_bytes());
     }
     out
+}
+
+fn encode_programs(materials: &[(String, Material)]) -> Vec<u32> {
+    let mut out = Vec::new();
+    for (_, m) in materials {
+        out.push(m.node_program.len() as u32);
+        out.extend_from_slice(&m.node_program);
+    }
+    out
+}
+
+/// `count` programs, each checked as the shader will walk it.
+fn decode_programs(mut words: &[u32], count: usize) -> Result<Vec<Vec<u32>>, String> {
+    let mut programs = Vec::with_capacity(count);
+    for i in 0..count {
+        let (&len, rest) = words.split_first().ok_or(format!("node programs: material {i} has none"))?;
+        let (program, rest) = rest.split_at_checked(len as usize).ok_or("node programs: one runs past its section")?;
+        if !program.is_empty() {
+            crate::asset::node_graph::check_program(program)
+                .map_err(|e| format!("node program of material {i}: {e}"))?;
+        }
+        programs.push(program.to_vec());
+        words = rest;
+    }
+    if !words.is_empty() {
+        return Err(format!("node programs: {} words after the last material's", words.len()));
+    }
+    Ok(programs)
 }
 
 fn decode_names(mut bytes: &[u8]) -> Result<Vec<String>, String> {
@@ -204,6 +237,7 @@ pub fn encode(mesh: &PackedMesh, source_hash: [u8; 32], params_hash: [u8; 32]) -
     let materials: Vec<CachedMaterial> = mesh.materials.iter().map(|(_, m)| CachedMaterial::from(m)).collect();
     let names = encode_names(&mesh.materials);
     let (texture_table, texels) = cached_texture::encode(&mesh.textures);
+    let programs = encode_programs(&mesh.materials);
     let payloads: [&[u8]; SECTION_COUNT] = [
         bytemuck::cast_slice(&mesh.bvh.nodes),
         bytemuck::cast_slice(&mesh.bvh.triangles),
@@ -214,6 +248,7 @@ pub fn encode(mesh: &PackedMesh, source_hash: [u8; 32], params_hash: [u8; 32]) -
         bytemuck::cast_slice(&texels),
         bytemuck::cast_slice(&mesh.bvh.tangents),
         bytemuck::cast_slice(&mesh.bvh.second_uvs),
+        bytemuck::cast_slice(&programs),
     ];
     let mut sections = [Section::default(); SECTION_COUNT];
     let mut offset = align(HEADER_BYTES);
@@ -354,7 +389,13 @@ pub fn read(path: &Path, source_hash: [u8; 32], params_hash: [u8; 32]) -> Result
         stats,
         build_time: Duration::ZERO,
     };
-    let materials = names.into_iter().zip(materials.iter().map(Material::from)).collect();
+    let programs = decode_programs(section(PROGRAMS), materials.len()).map_err(invalid)?;
+    let materials = names
+        .into_iter()
+        .zip(materials.iter().map(Material::from))
+        .zip(programs)
+        .map(|((name, material), node_program)| (name, Material { node_program, ..material }))
+        .collect();
     Ok(PackedMesh {
         bvh,
         materials,
@@ -391,6 +432,7 @@ fn check_header(header: &Header, len: u64) -> Result<(), CacheProblem> {
         4,
         size_of::<GpuTriangleTangents>(),
         size_of::<GpuTriangleUvs>(),
+        4,
     ];
     let mut end = align(HEADER_BYTES);
     for (i, (s, size)) in header.sections.iter().zip(element_sizes).enumerate() {

@@ -134,6 +134,27 @@ mod tests {
         assert_eq!((back.vertex_count, back.triangle_count), (1839, 3674));
     }
 
+    /// A material's compiled node graph is kept as written; one the shader could not walk
+    /// (an operand past the registers, a program running past its end) is refused.
+    #[test]
+    fn node_programs_round_trip_and_bad_ones_are_refused() {
+        let graph = serde_json::json!({ "version": 1, "nodes": [
+            { "name": "Noise", "type": "TEX_NOISE", "settings": { "noise_dimensions": "3D", "noise_type": "FBM" } } ],
+            "outputs": { "base_color": { "link": [0, "Color"], "from": "RGBA", "to": "RGBA" } } });
+        let program = crate::asset::node_graph::compile_json(&graph).expect("compiles");
+        let mut mesh = packed();
+        mesh.materials[0].1.node_program = program.clone();
+        let back = read_back("programs", &mesh).expect("valid");
+        assert_eq!(back.materials[0].1.node_program, program);
+
+        let mut bad = program.clone();
+        bad[4] = crate::asset::node_graph::REGISTERS + 3;
+        mesh.materials[0].1.node_program = bad;
+        assert!(invalid("operand", &mesh).contains("node program of material 0"), "{}", invalid("operand", &mesh));
+        mesh.materials[0].1.node_program = program[..program.len() / 2].to_vec();
+        assert!(invalid("short", &mesh).contains("node program of material 0"));
+    }
+
     #[test]
     fn stale_hashes_are_reported_as_stale() {
         let path = std::env::temp_dir().join(format!("rt-cache-{}-stale.rtbvh", std::process::id()));

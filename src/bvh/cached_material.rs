@@ -181,6 +181,7 @@ impl From<&CachedMaterial> for Material {
                 transmission: m.transmission_factor,
                 anisotropy_directions: m.anisotropy_directions != 0,
             },
+            node_program: Vec::new(),
         }
     }
 }

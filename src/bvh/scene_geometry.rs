@@ -39,6 +39,8 @@ pub struct SceneGeometry {
     pub spheres: Vec<GpuSphere>,
     /// The default material first, then the scene's, then each mesh's own.
     pub materials: Vec<GpuMaterial>,
+    /// The materials' node programs, one after another (`GpuMaterial::node_program`).
+    pub node_programs: Vec<u32>,
     /// Emissive triangles and spheres with their cumulative selection probabilities.
     pub emitters: Vec<GpuEmitter>,
     /// Sum of the emitters' powers (area × luminance of emission).
@@ -62,6 +64,21 @@ pub struct SceneGeometry {
     pub smooth_normals: bool,
     pub bounds_min: Vec3,
     pub bounds_max: Vec3,
+}
+
+/// The materials as the GPU reads them, each with where its node program starts.
+fn gpu_materials(materials: &[Material]) -> Vec<GpuMaterial> {
+    let mut start = 0u32;
+    let mut out = Vec::with_capacity(materials.len());
+    for m in materials {
+        let mut gpu = GpuMaterial::from(m);
+        if !m.node_program.is_empty() {
+            gpu.node_program = start;
+            start += m.node_program.len() as u32;
+        }
+        out.push(gpu);
+    }
+    out
 }
 
 impl SceneGeometry {
@@ -295,7 +312,8 @@ impl SceneGeometry {
             shading_offsets,
             tlas_primitives,
             spheres,
-            materials: materials.iter().map(GpuMaterial::from).collect(),
+            node_programs: materials.iter().flat_map(|m| m.node_program.iter().copied()).collect(),
+            materials: gpu_materials(&materials),
             emitters,
             emitter_total_power,
             lamps,

@@ -21,7 +21,7 @@ pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     use Binding::*;
     let bindings = [
         Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadWrite, ReadOnly, ReadOnly,
-        Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly,
+        Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly,
     ];
     sequential_layout(device, "scene", wgpu::ShaderStages::COMPUTE, &bindings)
 }
@@ -68,11 +68,13 @@ struct SceneData {
     second_uvs: wgpu::Buffer,
     /// Per-instance Shadow Terminator settings, for smooth shading and the terminator shift.
     terminators: wgpu::Buffer,
+    /// The materials' node programs (`crate::asset::node_graph`).
+    node_programs: wgpu::Buffer,
 }
 
 impl SceneData {
     /// The buffers in binding order (see [`scene_bind_group_layout`]).
-    fn bindings(&self) -> [&wgpu::Buffer; 21] {
+    fn bindings(&self) -> [&wgpu::Buffer; 22] {
         [
             &self.frame,
             &self.nodes,
@@ -95,6 +97,7 @@ impl SceneData {
             &self.microfacet_tables,
             &self.second_uvs,
             &self.terminators,
+            &self.node_programs,
         ]
     }
 }
@@ -174,16 +177,20 @@ fn texture_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer,
     (storage(ctx, "textures", &store.table, none), storage(ctx, "texels", &store.texels, none))
 }
 
-fn material_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer, wgpu::Buffer) {
+fn material_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer, wgpu::Buffer, wgpu::Buffer) {
     let writable = wgpu::BufferUsages::COPY_DST;
-    (storage(ctx, "materials", &geometry.materials, writable), storage(ctx, "emitters", &geometry.emitters, writable))
+    (
+        storage(ctx, "materials", &geometry.materials, writable),
+        storage(ctx, "emitters", &geometry.emitters, writable),
+        storage(ctx, "node programs", &geometry.node_programs, writable),
+    )
 }
 
 impl SceneBuffers {
     pub fn new(ctx: &GpuContext, geometry: &SceneGeometry, layout: &wgpu::BindGroupLayout) -> Result<Self> {
         let (nodes, triangles, shading, instances, tlas, spheres, wide_nodes, tangents, second_uvs, terminators) =
             geometry_buffers(ctx, geometry)?;
-        let (materials, emitters) = material_buffers(ctx, geometry);
+        let (materials, emitters, node_programs) = material_buffers(ctx, geometry);
         let frame = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("frame"),
             contents: bytemuck::bytes_of(&GpuFrame::default()),
@@ -216,6 +223,7 @@ impl SceneBuffers {
             microfacet_tables: storage(ctx, "microfacet tables", &microfacet_tables(), wgpu::BufferUsages::empty()),
             second_uvs,
             terminators,
+            node_programs,
         };
         let bind_group = bind_group(ctx, "scene", layout, &data.bindings());
         Ok(Self { data, bind_group, sky_bind_group: None })
@@ -242,7 +250,7 @@ impl SceneBuffers {
             d.second_uvs,
             d.terminators,
         ) = geometry_buffers(ctx, geometry)?;
-        (d.materials, d.emitters) = material_buffers(ctx, geometry);
+        (d.materials, d.emitters, d.node_programs) = material_buffers(ctx, geometry);
         (d.lamps, d.lamp_info) = lamp_buffers(ctx, geometry);
         (d.textures, d.texels) = texture_buffers(ctx, geometry);
         (d.light_tree_nodes, d.light_tree_trails) = light_tree_buffers(ctx, geometry);
@@ -254,15 +262,18 @@ impl SceneBuffers {
     /// triangles are lights), in place when their sizes are unchanged.
     pub fn replace_materials(&mut self, ctx: &GpuContext, geometry: &SceneGeometry, layout: &wgpu::BindGroupLayout) {
         let d = &mut self.data;
+        // A value edited in a node graph changes a program's constants, not its size.
         let same_size = d.materials.size() == size_of_nonempty(&geometry.materials)
-            && d.emitters.size() == size_of_nonempty(&geometry.emitters);
+            && d.emitters.size() == size_of_nonempty(&geometry.emitters)
+            && d.node_programs.size() == size_of_nonempty(&geometry.node_programs);
         // Whether there are emitters changes the lamps' share of light samples.
         ctx.queue.write_buffer(&d.lamp_info, 0, bytemuck::bytes_of(&geometry.lamp_info));
         if same_size {
             write_nonempty(ctx, &d.materials, &geometry.materials);
             write_nonempty(ctx, &d.emitters, &geometry.emitters);
+            write_nonempty(ctx, &d.node_programs, &geometry.node_programs);
         } else {
-            (d.materials, d.emitters) = material_buffers(ctx, geometry);
+            (d.materials, d.emitters, d.node_programs) = material_buffers(ctx, geometry);
         }
         // Emission decides which triangles the light tree holds, and their power.
         (d.light_tree_nodes, d.light_tree_trails) = light_tree_buffers(ctx, geometry);
@@ -308,6 +319,7 @@ fn check_sizes(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<()> {
         ("instances", std::mem::size_of_val(geometry.instances.as_slice())),
         ("instance terminators", std::mem::size_of_val(geometry.terminators.as_slice())),
         ("emitters", std::mem::size_of_val(geometry.emitters.as_slice())),
+        ("node programs", std::mem::size_of_val(geometry.node_programs.as_slice())),
         ("light tree nodes", std::mem::size_of_val(geometry.light_tree.nodes.as_slice())),
     ];
     for (what, bytes) in sizes {

@@ -71,8 +71,10 @@ pub struct FeatureSet {
     pub media: bool,
     /// `[[light]]` lamps, by kind.
     pub lamps: LampKinds,
-    /// Image textures on some material.
+    /// Image textures on some material (or a node graph, which reads the uvs they read).
     pub textures: bool,
+    /// Shader node graphs drive some material's inputs (`asset::node_graph`).
+    pub node_graphs: bool,
     /// Cut-outs: some material's alpha can remove parts of its surface, for every ray.
     pub alpha_mask: bool,
     /// Stochastic transparency: some material's opacity is a probability (glTF BLEND).
@@ -173,6 +175,7 @@ impl FeatureSet {
             glossy: materials_in_use.iter().any(|m| {
                 ((m.specular > 0.0 || m.reflection > 0.0 || m.dielectric_coating().is_some()) && rough(&m))
                     || m.textures.metallic_roughness.is_some()
+                    || !m.node_program.is_empty()
                     || m.coat_roughness * m.coat_roughness >= ALPHA_DELTA && m.coat > 0.0
             }),
             transmission,
@@ -180,7 +183,9 @@ impl FeatureSet {
             lamps: LampKinds::of(&scene.lights),
             // Alpha from a factor alone (a Mix Shader with Transparent) still reads the
             // texture code that tests opacity.
-            textures: materials_in_use.iter().any(|m| m.textures.any() || m.textures.has_alpha()),
+            textures: materials_in_use.iter().any(|m| m.textures.any() || m.textures.has_alpha())
+                || materials_in_use.iter().any(|m| !m.node_program.is_empty()),
+            node_graphs: materials_in_use.iter().any(|m| !m.node_program.is_empty()),
             alpha_mask: materials_in_use.iter().any(|m| m.textures.has_alpha()),
             alpha_blend: materials_in_use.iter().any(|m| m.textures.alpha_blend),
             normal_maps: materials_in_use.iter().any(|m| m.textures.has_normal_map()),
@@ -199,6 +204,7 @@ impl FeatureSet {
                     m.reflection > 0.0
                         || m.may_transmit()
                         || m.textures.metallic_roughness.is_some()
+                        || !m.node_program.is_empty()
                         || (rough(&m) && (m.specular > 0.0 || m.dielectric_coating().is_some()))
                         || m.coat > 0.0
                 }),
@@ -230,6 +236,7 @@ impl FeatureSet {
             media: true,
             lamps: LampKinds::ALL,
             textures: true,
+            node_graphs: true,
             alpha_mask: true,
             alpha_blend: true,
             normal_maps: true,
@@ -280,6 +287,7 @@ impl FeatureSet {
             "lamp_area" => self.lamps.area,
             "lamp_sun" => self.lamps.sun,
             "textures" => self.textures,
+            "node_graphs" => self.node_graphs,
             "alpha_mask" => self.alpha_mask,
             "alpha_blend" => self.alpha_blend,
             "normal_maps" => self.normal_maps,
@@ -328,6 +336,7 @@ impl fmt::Display for FeatureSet {
             (self.depth_of_field, "depth-of-field"),
             (self.panorama, "panorama"),
             (self.textures, "textures"),
+            (self.node_graphs, "node-graphs"),
             (self.alpha_mask, "alpha-mask"),
             (self.light_tree, "light-tree"),
             (self.alpha_blend, "alpha-blend"),

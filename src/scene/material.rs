@@ -67,6 +67,10 @@ pub struct Material {
     /// Image textures, from the asset importers (scene files give none).
     #[serde(skip)]
     pub textures: MaterialTextures,
+    /// The compiled shader node graph that drives some of the inputs above at each
+    /// shading point (`asset::node_graph`); empty: none.
+    #[serde(skip)]
+    pub node_program: Vec<u32>,
 }
 
 /// Which tangent the anisotropic lobes follow, in Blender's axes (rt's Y is Blender's Z).
@@ -115,6 +119,7 @@ impl Default for Material {
             absorption: [0.0; 3],
             volume_emission: [0.0; 3],
             textures: MaterialTextures::default(),
+            node_program: Vec::new(),
         }
     }
 }

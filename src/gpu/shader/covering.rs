@@ -60,6 +60,7 @@ fn factors() -> Vec<Factor> {
         flag!(lamps.area),
         flag!(lamps.sun),
         flag!(textures),
+        flag!(node_graphs),
         flag!(alpha_mask),
         flag!(alpha_blend),
         flag!(normal_maps),
@@ -96,6 +97,7 @@ fn possible(f: &FeatureSet) -> bool {
         && implies(f.normal_maps, f.textures)
         && implies(f.uv_sets, f.textures)
         && implies(f.layer_textures, f.textures)
+        && implies(f.node_graphs, f.textures && f.glossy)
         && implies(f.coat_normal, f.coat && f.normal_maps)
         && implies(f.uv_tangents, f.anisotropy)
         && implies(f.light_tree, f.sampling == Sampling::Nee)
@@ -106,7 +108,8 @@ fn complete(f: &mut FeatureSet) {
     f.alpha_mask |= f.alpha_blend;
     f.coat |= f.coat_normal;
     f.normal_maps |= f.coat_normal;
-    f.textures |= f.alpha_mask || f.normal_maps || f.uv_sets || f.layer_textures;
+    f.textures |= f.alpha_mask || f.normal_maps || f.uv_sets || f.layer_textures || f.node_graphs;
+    f.glossy |= f.node_graphs;
     f.anisotropy |= f.uv_tangents;
     if f.media && f.transmission == Transmission::None {
         f.transmission = Transmission::Smooth;

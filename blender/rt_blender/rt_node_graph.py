@@ -1,0 +1,248 @@
+"""A material's shader node graph for rt, for rt_export.py: the nodes that drive a
+shader's inputs (through node groups, reroutes and muted nodes, as Blender evaluates
+them) written as `extras.rt_node_graph` of the glTF material, format version 1
+(docs/shader-nodes.md). rt compiles it to a node program its GPU interpreter runs at
+every shading point, as Cycles' SVM does.
+
+A socket is driven by a graph when everything that feeds it is a node rt evaluates
+(EVALUATED, with the settings of EVALUATED_SETTINGS) and no image: image textures keep
+rt_export's own path (followed into texture slots, or baked). Anything else stays on
+that path too, which warns and names the node.
+"""
+
+FORMAT_VERSION = 1
+
+# Node types rt evaluates, and their outputs in rt's register order (src/asset/node_kinds.rs
+# declares the same; a test checks both).
+EVALUATED = {
+    "VALUE": ("Value",),
+    "RGB": ("Color",),
+    "TEX_COORD": ("Generated", "Normal", "UV", "Object"),
+    "NEW_GEOMETRY": ("Position", "Normal", "True Normal", "Incoming", "Backfacing"),
+    "MATH": ("Value",),
+    "VECT_MATH": ("Vector", "Value"),
+    "MIX": ("Result",),
+    "MIX_RGB": ("Color",),
+    "MAP_RANGE": ("Result",),
+    "CLAMP": ("Result",),
+    "INVERT": ("Color",),
+    "VALTORGB": ("Color", "Alpha"),
+    "RGBTOBW": ("Val",),
+    "SEPXYZ": ("X", "Y", "Z"),
+    "SEPARATE_COLOR": ("Red", "Green", "Blue"),
+    "COMBXYZ": ("Vector",),
+    "COMBINE_COLOR": ("Color",),
+    "MAPPING": ("Vector",),
+    "TEX_NOISE": ("Fac", "Color"),
+    "TEX_CHECKER": ("Color", "Fac"),
+    "TEX_GRADIENT": ("Color", "Fac"),
+    "LAYER_WEIGHT": ("Fresnel", "Facing"),
+    "FRESNEL": ("Fac",),
+}
+
+BLEND_TYPES = {"MIX", "DARKEN", "MULTIPLY", "BURN", "LIGHTEN", "SCREEN", "DODGE", "ADD", "OVERLAY", "SOFT_LIGHT",
+               "LINEAR_LIGHT", "DIFFERENCE", "EXCLUSION", "SUBTRACT", "DIVIDE"}
+VECTOR_MATH_OPERATIONS = {"ADD", "SUBTRACT", "MULTIPLY", "DIVIDE", "MULTIPLY_ADD", "CROSS_PRODUCT", "PROJECT",
+                          "REFLECT", "REFRACT", "FACEFORWARD", "DOT_PRODUCT", "DISTANCE", "LENGTH", "SCALE",
+                          "NORMALIZE", "ABSOLUTE", "MINIMUM", "MAXIMUM", "FLOOR", "CEIL", "FRACTION", "MODULO",
+                          "WRAP", "SNAP", "SINE", "COSINE", "TANGENT"}
+# The settings each node type writes, and the values of them rt evaluates (None: any).
+EVALUATED_SETTINGS = {
+    "MATH": {"operation": None, "use_clamp": None},
+    "VECT_MATH": {"operation": VECTOR_MATH_OPERATIONS},
+    "MIX": {"data_type": {"FLOAT", "VECTOR", "RGBA"}, "blend_type": None, "clamp_factor": None,
+            "clamp_result": None, "factor_mode": None},
+    "MIX_RGB": {"blend_type": BLEND_TYPES, "use_clamp": None},
+    "MAP_RANGE": {"data_type": {"FLOAT"}, "interpolation_type": None, "clamp": None},
+    "CLAMP": {"clamp_type": None},
+    "VALTORGB": {},
+    "SEPARATE_COLOR": {"mode": {"RGB"}},
+    "COMBINE_COLOR": {"mode": {"RGB"}},
+    "MAPPING": {"vector_type": None},
+    "TEX_NOISE": {"noise_dimensions": {"3D"}, "noise_type": None, "normalize": None},
+    "TEX_GRADIENT": {"gradient_type": None},
+}
+# Texture nodes whose unlinked Vector is the Generated coordinates, as in Cycles.
+GENERATED_BY_DEFAULT = {"TEX_NOISE", "TEX_CHECKER", "TEX_GRADIENT"}
+# Shader inputs a graph can drive: rt's material input, the socket's type there.
+TARGETS = {
+    "BSDF_PRINCIPLED": {"Base Color": "base_color", "Roughness": "roughness", "Metallic": "metallic",
+                        "Emission Color": "emission"},
+    "BSDF_DIFFUSE": {"Color": "base_color", "Roughness": None},
+    "EMISSION": {"Color": "emission"},
+}
+TARGET_TYPES = {"base_color": "RGBA", "roughness": "VALUE", "metallic": "VALUE", "emission": "RGBA"}
+# What a driven socket's own value becomes in the glTF factors: the part the graph scales.
+NEUTRAL = {"Metallic": 0.0, "Emission Color": (1.0, 1.0, 1.0, 1.0), "Color": (1.0, 1.0, 1.0, 1.0)}
+# Entries of a ramp's table, at 0, 1/256, ..., 1, as Cycles bakes it.
+RAMP_TABLE_SIZE = 257
+
+
+class Unevaluated(Exception):
+    """A node, or a setting of one, that rt does not evaluate."""
+
+
+def socket_type(socket):
+    return socket.type if socket.type in {"VECTOR", "RGBA"} else "VALUE"
+
+
+def socket_key(socket):
+    """The name rt knows a socket by: its identifier, stable across Blender's versions (whose
+    names change: Fac became Factor), the Mix node's without the data type's suffix."""
+    key = socket.identifier
+    if socket.node.type == "MIX":
+        for suffix in ("_Float", "_Vector", "_Color"):
+            key = key.removesuffix(suffix)
+    return key
+
+
+def numbers(value):
+    try:
+        return [float(v) for v in value]
+    except TypeError:
+        return float(value)
+
+
+def settings_of(node):
+    wanted = EVALUATED_SETTINGS.get(node.type, {})
+    out = {}
+    for key, allowed in wanted.items():
+        if not hasattr(node, key):
+            continue
+        value = getattr(node, key)
+        if allowed is not None and value not in allowed:
+            raise Unevaluated(f"{node.name} ({node.type}) with {key} {value}")
+        out[key] = value if isinstance(value, (bool, str)) else float(value)
+    if node.type in {"VALUE", "RGB"}:
+        out["value"] = numbers(node.outputs[0].default_value)
+    if node.type == "VALTORGB":
+        ramp = node.color_ramp
+        out["interpolation"] = ramp.interpolation
+        out["table"] = [list(ramp.evaluate(i / (RAMP_TABLE_SIZE - 1))) for i in range(RAMP_TABLE_SIZE)]
+    return out
+
+
+class GraphWriter:
+    """The graph feeding some sockets, as rt reads it; raises Unevaluated."""
+
+    def __init__(self):
+        self.nodes = []
+        self.index = {}
+
+    def add(self, node, groups):
+        key = (tuple(g.name for g in groups), node.name)
+        if key in self.index:
+            return self.index[key]
+        if node.type not in EVALUATED:
+            raise Unevaluated(f"{node.name} ({node.type})")
+        entry = {"name": node.name, "type": node.type, "settings": settings_of(node), "inputs": {}}
+        self.index[key] = len(self.nodes)
+        self.nodes.append(entry)
+        for socket in node.inputs:
+            if not socket.enabled:
+                continue
+            value = self.input(socket, groups)
+            if value is None and node.type in GENERATED_BY_DEFAULT and socket.name == "Vector":
+                value = {"link": [self.generated(), "Generated"], "from": "VECTOR", "to": "VECTOR"}
+            if value is not None:
+                entry["inputs"][socket_key(socket)] = value
+        return self.index[key]
+
+    def generated(self):
+        key = ((), "rt: default coordinates")
+        if key not in self.index:
+            self.index[key] = len(self.nodes)
+            self.nodes.append({"name": key[1], "type": "TEX_COORD", "settings": {}, "inputs": {}})
+        return self.index[key]
+
+    def input(self, socket, groups, to_type=None):
+        """What feeds input `socket`: its value, a link, or None (an unlinked hidden vector)."""
+        to_type = to_type or socket_type(socket)
+        links = [link for link in socket.links if not link.is_muted]
+        if not links:
+            if socket.hide_value or not hasattr(socket, "default_value"):
+                return None
+            return {"value": numbers(socket.default_value)}
+        return self.output(links[0].from_socket, groups, to_type)
+
+    def output(self, socket, groups, to_type):
+        node = socket.node
+        if node.type == "REROUTE":
+            return self.input(node.inputs[0], groups, to_type)
+        if node.mute:
+            for link in node.internal_links:
+                if link.to_socket == socket:
+                    return self.input(link.from_socket, groups, to_type)
+            return {"value": 0.0}
+        if node.type == "GROUP":
+            inner = next((n for n in node.node_tree.nodes if n.type == "GROUP_OUTPUT" and n.is_active_output), None)
+            if inner is None:
+                return {"value": 0.0}
+            index = list(node.outputs).index(socket)
+            return self.input(inner.inputs[index], groups + (node,), to_type)
+        if node.type == "GROUP_INPUT":
+            # The group node's input of the same place, in the tree around the group.
+            if not groups:
+                raise Unevaluated(f"{node.name} (GROUP_INPUT) outside a group")
+            index = list(node.outputs).index(socket)
+            return self.input(groups[-1].inputs[index], groups[:-1], to_type)
+        index = self.add(node, groups)
+        return {"link": [index, socket_key(socket)], "from": socket_type(socket), "to": to_type}
+
+
+IMAGE_NODES = {"TEX_IMAGE", "TEX_ENVIRONMENT", "NORMAL_MAP", "BUMP"}
+
+
+def tree_has_image(tree):
+    return any(n.type in IMAGE_NODES or (n.type == "GROUP" and n.node_tree and tree_has_image(n.node_tree))
+               for n in tree.nodes)
+
+
+def contains_image(socket, seen=None):
+    """Whether an Image or Environment Texture feeds `socket` (rt_export follows those)."""
+    seen = set() if seen is None else seen
+    for link in socket.links:
+        node = link.from_node
+        if node.name in seen:
+            continue
+        seen.add(node.name)
+        if node.type in IMAGE_NODES or (node.type == "GROUP" and node.node_tree and tree_has_image(node.node_tree)):
+            return True
+        if any(contains_image(s, seen) for s in node.inputs):
+            return True
+    return False
+
+
+def drives(node, name):
+    """Whether a graph rt evaluates drives input `name` of shader `node`."""
+    socket = node.inputs.get(name)
+    if socket is None or not socket.is_linked or name not in TARGETS.get(node.type, {}):
+        return False
+    if TARGETS[node.type][name] is None or contains_image(socket):
+        return False
+    try:
+        GraphWriter().input(socket, ())
+    except Unevaluated:
+        return False
+    return True
+
+
+def material_graph(shader):
+    """`extras.rt_node_graph` for the shader linked to a material's output, or None."""
+    if shader is None or shader.type not in TARGETS:
+        return None
+    writer = GraphWriter()
+    outputs = {}
+    for name, target in TARGETS[shader.type].items():
+        if target is not None and drives(shader, name):
+            outputs[target] = writer.input(shader.inputs[name], (), TARGET_TYPES[target])
+    if not outputs:
+        return None
+    return {"version": FORMAT_VERSION, "nodes": writer.nodes, "outputs": outputs}
+
+
+def with_texture_space(graph, mesh):
+    """The graph with the mesh's texture space, which Generated coordinates are relative to."""
+    graph["texture_space"] = {"location": [float(v) for v in mesh.texspace_location],
+                              "size": [float(v) for v in mesh.texspace_size]}
+    return graph

@@ -1,0 +1,241 @@
+// Blender's Noise Texture, bit for bit the pattern Cycles makes: Bob Jenkins' lookup3
+// hash of the lattice point (Cycles' util/hash.h), Perlin's improved gradient noise with
+// the gradients and scale Cycles takes from Open Shading Language (kernel/svm/noise.h),
+// the fractal sums of kernel/svm/fractal_noise.h and the distortion and colour offsets of
+// kernel/svm/noisetex.h (all Apache-2.0 or BSD-3-Clause, Blender Foundation and Sony
+// Pictures Imageworks).
+
+fn hash_rotate(x: u32, k: u32) -> u32 {
+    return (x << k) | (x >> (32u - k));
+}
+
+// lookup3's `final` mix of (a, b, c); returns c.
+fn hash_final(a_in: u32, b_in: u32, c_in: u32) -> u32 {
+    var a = a_in;
+    var b = b_in;
+    var c = c_in;
+    c ^= b;
+    c -= hash_rotate(b, 14u);
+    a ^= c;
+    a -= hash_rotate(c, 11u);
+    b ^= a;
+    b -= hash_rotate(a, 25u);
+    c ^= b;
+    c -= hash_rotate(b, 16u);
+    a ^= c;
+    a -= hash_rotate(c, 4u);
+    b ^= a;
+    b -= hash_rotate(a, 14u);
+    c ^= b;
+    c -= hash_rotate(b, 24u);
+    return c;
+}
+
+fn hash_uint2(kx: u32, ky: u32) -> u32 {
+    let seed = 0xdeadbeefu + (2u << 2u) + 13u;
+    return hash_final(seed + kx, seed + ky, seed);
+}
+
+fn hash_uint3(kx: u32, ky: u32, kz: u32) -> u32 {
+    let seed = 0xdeadbeefu + (3u << 2u) + 13u;
+    return hash_final(seed + kx, seed + ky, seed + kz);
+}
+
+// Cycles' hash_float2_to_float: [0, 1].
+fn hash_float2_to_float(k: vec2f) -> f32 {
+    return f32(hash_uint2(bitcast<u32>(k.x), bitcast<u32>(k.y))) * (1.0 / 4294967296.0);
+}
+
+// The offset in [100, 200] that seeds the noise of component `seed` (noisetex.h).
+fn noise_offset3(seed: f32) -> vec3f {
+    return 100.0 + 100.0 * vec3f(
+        hash_float2_to_float(vec2f(seed, 0.0)),
+        hash_float2_to_float(vec2f(seed, 1.0)),
+        hash_float2_to_float(vec2f(seed, 2.0)),
+    );
+}
+
+fn noise_fade(t: f32) -> f32 {
+    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+}
+
+fn negate_if(v: f32, condition: u32) -> f32 {
+    return select(v, -v, condition != 0u);
+}
+
+fn noise_grad3(hash: u32, x: f32, y: f32, z: f32) -> f32 {
+    let h = hash & 15u;
+    let u = select(y, x, h < 8u);
+    let vt = select(z, x, h == 12u || h == 14u);
+    let v = select(vt, y, h < 4u);
+    return negate_if(u, h & 1u) + negate_if(v, h & 2u);
+}
+
+fn noise_corner(i: vec3i, f: vec3f, corner: vec3i) -> f32 {
+    let c = bitcast<vec3u>(i + corner);
+    let d = f - vec3f(corner);
+    return noise_grad3(hash_uint3(c.x, c.y, c.z), d.x, d.y, d.z);
+}
+
+fn perlin_3d(p: vec3f) -> f32 {
+    let fl = floor(p);
+    let i = vec3i(fl);
+    let f = p - fl;
+    let u = noise_fade(f.x);
+    let v = noise_fade(f.y);
+    let w = noise_fade(f.z);
+    let x1 = 1.0 - u;
+    let y1 = 1.0 - v;
+    let z1 = 1.0 - w;
+    let v0 = noise_corner(i, f, vec3i(0, 0, 0));
+    let v1 = noise_corner(i, f, vec3i(1, 0, 0));
+    let v2 = noise_corner(i, f, vec3i(0, 1, 0));
+    let v3 = noise_corner(i, f, vec3i(1, 1, 0));
+    let v4 = noise_corner(i, f, vec3i(0, 0, 1));
+    let v5 = noise_corner(i, f, vec3i(1, 0, 1));
+    let v6 = noise_corner(i, f, vec3i(0, 1, 1));
+    let v7 = noise_corner(i, f, vec3i(1, 1, 1));
+    return z1 * (y1 * (v0 * x1 + v1 * u) + v * (v2 * x1 + v3 * u)) + w * (y1 * (v4 * x1 + v5 * u) + v * (v6 * x1 + v7 * u));
+}
+
+// Signed noise in about [-1, 1], repeating every 100000 so that floats keep their precision.
+fn snoise_3d(p: vec3f) -> f32 {
+    return 0.9820 * perlin_3d(p % vec3f(100000.0));
+}
+
+fn noise_fbm(p: vec3f, detail: f32, roughness: f32, lacunarity: f32, normalize: bool) -> f32 {
+    var fscale = 1.0;
+    var amp = 1.0;
+    var maxamp = 0.0;
+    var sum = 0.0;
+    for (var i = 0; i <= i32(detail); i++) {
+        sum += snoise_3d(fscale * p) * amp;
+        maxamp += amp;
+        amp *= roughness;
+        fscale *= lacunarity;
+    }
+    let rmd = detail - floor(detail);
+    if rmd != 0.0 {
+        let sum2 = sum + snoise_3d(fscale * p) * amp;
+        if normalize {
+            return mix(0.5 * sum / maxamp + 0.5, 0.5 * sum2 / (maxamp + amp) + 0.5, rmd);
+        }
+        return mix(sum, sum2, rmd);
+    }
+    return select(sum, 0.5 * sum / maxamp + 0.5, normalize);
+}
+
+fn noise_multi_fractal(p_in: vec3f, detail: f32, roughness: f32, lacunarity: f32) -> f32 {
+    var p = p_in;
+    var value = 1.0;
+    var pwr = 1.0;
+    for (var i = 0; i <= i32(detail); i++) {
+        value *= pwr * snoise_3d(p) + 1.0;
+        pwr *= roughness;
+        p *= lacunarity;
+    }
+    let rmd = detail - floor(detail);
+    if rmd != 0.0 {
+        value *= rmd * pwr * snoise_3d(p) + 1.0;
+    }
+    return value;
+}
+
+fn noise_hetero_terrain(p_in: vec3f, detail: f32, roughness: f32, lacunarity: f32, offset: f32) -> f32 {
+    var p = p_in;
+    var pwr = roughness;
+    var value = offset + snoise_3d(p);
+    p *= lacunarity;
+    for (var i = 1; i <= i32(detail); i++) {
+        value += (snoise_3d(p) + offset) * pwr * value;
+        pwr *= roughness;
+        p *= lacunarity;
+    }
+    let rmd = detail - floor(detail);
+    if rmd != 0.0 {
+        value += rmd * (snoise_3d(p) + offset) * pwr * value;
+    }
+    return value;
+}
+
+fn noise_hybrid_multi_fractal(p_in: vec3f, detail: f32, roughness: f32, lacunarity: f32, offset: f32, gain: f32) -> f32 {
+    var p = p_in;
+    var pwr = 1.0;
+    var value = 0.0;
+    var weight = 1.0;
+    for (var i = 0; weight > 0.001 && i <= i32(detail); i++) {
+        weight = min(weight, 1.0);
+        let signal = (snoise_3d(p) + offset) * pwr;
+        pwr *= roughness;
+        value += weight * signal;
+        weight *= gain * signal;
+        p *= lacunarity;
+    }
+    let rmd = detail - floor(detail);
+    if rmd != 0.0 && weight > 0.001 {
+        value += rmd * min(weight, 1.0) * (snoise_3d(p) + offset) * pwr;
+    }
+    return value;
+}
+
+fn noise_ridged_multi_fractal(p_in: vec3f, detail: f32, roughness: f32, lacunarity: f32, offset: f32, gain: f32) -> f32 {
+    var p = p_in;
+    var pwr = roughness;
+    var signal = offset - abs(snoise_3d(p));
+    signal *= signal;
+    var value = signal;
+    for (var i = 1; i <= i32(detail); i++) {
+        p *= lacunarity;
+        let weight = clamp(signal * gain, 0.0, 1.0);
+        signal = offset - abs(snoise_3d(p));
+        signal *= signal * weight;
+        value += signal * pwr;
+        pwr *= roughness;
+    }
+    return value;
+}
+
+struct NoiseSettings {
+    detail: f32,
+    roughness: f32,
+    lacunarity: f32,
+    offset: f32,
+    gain: f32,
+    // NOISE_TYPES' index in src/asset/node_kinds.rs.
+    kind: u32,
+    normalize: bool,
+}
+
+fn noise_select(p: vec3f, s: NoiseSettings) -> f32 {
+    switch s.kind {
+        case 1u: {
+            return noise_multi_fractal(p, s.detail, s.roughness, s.lacunarity);
+        }
+        case 2u: {
+            return noise_hybrid_multi_fractal(p, s.detail, s.roughness, s.lacunarity, s.offset, s.gain);
+        }
+        case 3u: {
+            return noise_ridged_multi_fractal(p, s.detail, s.roughness, s.lacunarity, s.offset, s.gain);
+        }
+        case 4u: {
+            return noise_hetero_terrain(p, s.detail, s.roughness, s.lacunarity, s.offset);
+        }
+        default: {
+            return noise_fbm(p, s.detail, s.roughness, s.lacunarity, s.normalize);
+        }
+    }
+}
+
+// The Noise Texture's Fac (w) and Color (xyz) at `co`, already scaled.
+fn noise_texture_3d(co: vec3f, distortion: f32, s: NoiseSettings) -> vec4f {
+    var p = co;
+    if distortion != 0.0 {
+        p += distortion * vec3f(
+            snoise_3d(p + noise_offset3(0.0)),
+            snoise_3d(p + noise_offset3(1.0)),
+            snoise_3d(p + noise_offset3(2.0)),
+        );
+    }
+    let value = noise_select(p, s);
+    return vec4f(value, noise_select(p + noise_offset3(3.0), s), noise_select(p + noise_offset3(4.0), s), value);
+}

@@ -1,0 +1,352 @@
+//! The shader nodes rt evaluates on the GPU: for each of Blender's node types, the
+//! program operation it becomes, its inputs in operand order and its outputs in register
+//! order, and how its settings become the operation's mode and flags. The operations are
+//! `shaders/node_program.wgsl`'s `NODE_OP_*`; a unit test checks that both agree, and
+//! another that `blender/rt_blender/rt_node_graph.py` exports exactly these nodes.
+
+use serde_json::{Map, Value};
+
+pub const OP_END: u32 = 0;
+pub const OP_OUTPUT: u32 = 1;
+pub const OP_CONVERT: u32 = 2;
+pub const OP_COORDINATE: u32 = 3;
+pub const OP_MATH: u32 = 4;
+pub const OP_VECTOR_MATH: u32 = 5;
+pub const OP_MIX: u32 = 6;
+pub const OP_MAP_RANGE: u32 = 7;
+pub const OP_CLAMP: u32 = 8;
+pub const OP_INVERT: u32 = 9;
+pub const OP_RAMP: u32 = 10;
+pub const OP_SEPARATE: u32 = 11;
+pub const OP_COMBINE: u32 = 12;
+pub const OP_MAPPING: u32 = 13;
+pub const OP_NOISE: u32 = 14;
+pub const OP_CHECKER: u32 = 15;
+pub const OP_GRADIENT: u32 = 16;
+pub const OP_LAYER_WEIGHT: u32 = 17;
+pub const OP_FRESNEL: u32 = 18;
+
+/// Every operation by its WGSL name, for the check against the shader.
+pub const OPERATIONS: [(&str, u32); 19] = [
+    ("END", OP_END),
+    ("OUTPUT", OP_OUTPUT),
+    ("CONVERT", OP_CONVERT),
+    ("COORDINATE", OP_COORDINATE),
+    ("MATH", OP_MATH),
+    ("VECTOR_MATH", OP_VECTOR_MATH),
+    ("MIX", OP_MIX),
+    ("MAP_RANGE", OP_MAP_RANGE),
+    ("CLAMP", OP_CLAMP),
+    ("INVERT", OP_INVERT),
+    ("RAMP", OP_RAMP),
+    ("SEPARATE", OP_SEPARATE),
+    ("COMBINE", OP_COMBINE),
+    ("MAPPING", OP_MAPPING),
+    ("NOISE", OP_NOISE),
+    ("CHECKER", OP_CHECKER),
+    ("GRADIENT", OP_GRADIENT),
+    ("LAYER_WEIGHT", OP_LAYER_WEIGHT),
+    ("FRESNEL", OP_FRESNEL),
+];
+
+/// `OP_CONVERT` modes: a colour to a value (its luminance), a vector to one (the mean).
+pub const CONVERT_COLOR_TO_VALUE: u32 = 0;
+pub const CONVERT_VECTOR_TO_VALUE: u32 = 1;
+
+/// The material inputs a graph can drive (`OP_OUTPUT` modes).
+pub const TARGETS: [&str; 4] = ["base_color", "roughness", "metallic", "emission"];
+
+/// Math's operations, Blender's identifiers in the order of `node_math` in the shader.
+pub const MATH_OPERATIONS: [&str; 41] = [
+    "ADD",
+    "SUBTRACT",
+    "MULTIPLY",
+    "DIVIDE",
+    "MULTIPLY_ADD",
+    "POWER",
+    "LOGARITHM",
+    "SQRT",
+    "INVERSE_SQRT",
+    "ABSOLUTE",
+    "EXPONENT",
+    "MINIMUM",
+    "MAXIMUM",
+    "LESS_THAN",
+    "GREATER_THAN",
+    "SIGN",
+    "COMPARE",
+    "SMOOTH_MIN",
+    "SMOOTH_MAX",
+    "ROUND",
+    "FLOOR",
+    "CEIL",
+    "TRUNC",
+    "FRACT",
+    "MODULO",
+    "FLOORED_MODULO",
+    "WRAP",
+    "SNAP",
+    "PINGPONG",
+    "SINE",
+    "COSINE",
+    "TANGENT",
+    "ARCSINE",
+    "ARCCOSINE",
+    "ARCTANGENT",
+    "ARCTAN2",
+    "SINH",
+    "COSH",
+    "TANH",
+    "RADIANS",
+    "DEGREES",
+];
+
+/// Vector Math's, in the order of `node_vector_math` in the shader.
+pub const VECTOR_MATH_OPERATIONS: [&str; 27] = [
+    "ADD",
+    "SUBTRACT",
+    "MULTIPLY",
+    "DIVIDE",
+    "MULTIPLY_ADD",
+    "CROSS_PRODUCT",
+    "PROJECT",
+    "REFLECT",
+    "REFRACT",
+    "FACEFORWARD",
+    "DOT_PRODUCT",
+    "DISTANCE",
+    "LENGTH",
+    "SCALE",
+    "NORMALIZE",
+    "ABSOLUTE",
+    "MINIMUM",
+    "MAXIMUM",
+    "FLOOR",
+    "CEIL",
+    "FRACTION",
+    "MODULO",
+    "WRAP",
+    "SNAP",
+    "SINE",
+    "COSINE",
+    "TANGENT",
+];
+
+pub const BLEND_TYPES: [&str; 15] = [
+    "MIX",
+    "DARKEN",
+    "MULTIPLY",
+    "BURN",
+    "LIGHTEN",
+    "SCREEN",
+    "DODGE",
+    "ADD",
+    "OVERLAY",
+    "SOFT_LIGHT",
+    "LINEAR_LIGHT",
+    "DIFFERENCE",
+    "EXCLUSION",
+    "SUBTRACT",
+    "DIVIDE",
+];
+
+const MIX_DATA_TYPES: [&str; 3] = ["FLOAT", "VECTOR", "RGBA"];
+const MAP_RANGE_INTERPOLATIONS: [&str; 4] = ["LINEAR", "STEPPED", "SMOOTHSTEP", "SMOOTHERSTEP"];
+const CLAMP_TYPES: [&str; 2] = ["MINMAX", "RANGE"];
+const MAPPING_TYPES: [&str; 4] = ["POINT", "TEXTURE", "VECTOR", "NORMAL"];
+const NOISE_TYPES: [&str; 5] = ["FBM", "MULTIFRACTAL", "HYBRID_MULTIFRACTAL", "RIDGED_MULTIFRACTAL", "HETERO_TERRAIN"];
+const GRADIENT_TYPES: [&str; 7] =
+    ["LINEAR", "QUADRATIC", "EASING", "DIAGONAL", "SPHERICAL", "QUADRATIC_SPHERE", "RADIAL"];
+
+/// Entries of a colour ramp's table, as Cycles bakes it: at 0, 1/256, …, 1.
+pub const RAMP_TABLE_SIZE: usize = 257;
+
+/// How a node becomes code.
+pub enum Emit {
+    /// One operation writing its outputs to consecutive registers.
+    Operation(u32),
+    /// Each output used is its own `OP_COORDINATE` of mode `first + its index`.
+    Coordinates(u32),
+    /// A constant: the node's own value (`settings.value`).
+    Constant,
+}
+
+pub struct Kind {
+    /// Blender's node type (`bpy.types.Node.type`).
+    pub name: &'static str,
+    pub emit: Emit,
+    /// Input keys in operand order: Blender's socket identifiers (the Mix node's without
+    /// their data type's suffix), as the exporter writes them.
+    pub inputs: &'static [&'static str],
+    pub outputs: &'static [&'static str],
+}
+
+const fn op(name: &'static str, op: u32, inputs: &'static [&'static str], outputs: &'static [&'static str]) -> Kind {
+    Kind { name, emit: Emit::Operation(op), inputs, outputs }
+}
+
+pub const KINDS: [Kind; 23] = [
+    Kind { name: "VALUE", emit: Emit::Constant, inputs: &[], outputs: &["Value"] },
+    Kind { name: "RGB", emit: Emit::Constant, inputs: &[], outputs: &["Color"] },
+    Kind {
+        name: "TEX_COORD",
+        emit: Emit::Coordinates(0),
+        inputs: &[],
+        outputs: &["Generated", "Normal", "UV", "Object"],
+    },
+    Kind {
+        name: "NEW_GEOMETRY",
+        emit: Emit::Coordinates(4),
+        inputs: &[],
+        outputs: &["Position", "Normal", "True Normal", "Incoming", "Backfacing"],
+    },
+    op("MATH", OP_MATH, &["Value", "Value_001", "Value_002"], &["Value"]),
+    op("VECT_MATH", OP_VECTOR_MATH, &["Vector", "Vector_001", "Vector_002", "Scale"], &["Vector", "Value"]),
+    op("MIX", OP_MIX, &["Factor", "A", "B"], &["Result"]),
+    op("MIX_RGB", OP_MIX, &["Fac", "Color1", "Color2"], &["Color"]),
+    op("MAP_RANGE", OP_MAP_RANGE, &["Value", "From Min", "From Max", "To Min", "To Max", "Steps"], &["Result"]),
+    op("CLAMP", OP_CLAMP, &["Value", "Min", "Max"], &["Result"]),
+    op("INVERT", OP_INVERT, &["Fac", "Color"], &["Color"]),
+    op("VALTORGB", OP_RAMP, &["Fac"], &["Color", "Alpha"]),
+    op("RGBTOBW", OP_CONVERT, &["Color"], &["Val"]),
+    op("SEPXYZ", OP_SEPARATE, &["Vector"], &["X", "Y", "Z"]),
+    op("SEPARATE_COLOR", OP_SEPARATE, &["Color"], &["Red", "Green", "Blue"]),
+    op("COMBXYZ", OP_COMBINE, &["X", "Y", "Z"], &["Vector"]),
+    op("COMBINE_COLOR", OP_COMBINE, &["Red", "Green", "Blue"], &["Color"]),
+    op("MAPPING", OP_MAPPING, &["Vector", "Location", "Rotation", "Scale"], &["Vector"]),
+    op(
+        "TEX_NOISE",
+        OP_NOISE,
+        &["Vector", "W", "Scale", "Detail", "Roughness", "Lacunarity", "Offset", "Gain", "Distortion"],
+        &["Fac", "Color"],
+    ),
+    op("TEX_CHECKER", OP_CHECKER, &["Vector", "Color1", "Color2", "Scale"], &["Color", "Fac"]),
+    op("TEX_GRADIENT", OP_GRADIENT, &["Vector"], &["Color", "Fac"]),
+    op("LAYER_WEIGHT", OP_LAYER_WEIGHT, &["Blend", "Normal"], &["Fresnel", "Facing"]),
+    op("FRESNEL", OP_FRESNEL, &["IOR", "Normal"], &["Fac"]),
+];
+
+/// What a compiled program depends on besides its graph: the operations, their modes and
+/// the program layout's version; caches of programs compiled otherwise are stale.
+pub fn compiler_signature() -> String {
+    let kinds: Vec<_> = KINDS.iter().map(|k| (k.name, k.inputs, k.outputs)).collect();
+    format!(
+        "node programs {} {OPERATIONS:?} {MATH_OPERATIONS:?} {VECTOR_MATH_OPERATIONS:?} {BLEND_TYPES:?} {RAMP_TABLE_SIZE} {kinds:?}",
+        super::node_graph::FORMAT_VERSION
+    )
+}
+
+pub fn kind(name: &str) -> Option<&'static Kind> {
+    KINDS.iter().find(|k| k.name == name)
+}
+
+/// An operation's mode and flags from the node's settings.
+pub struct Mode {
+    pub mode: u32,
+    pub flags: u32,
+}
+
+fn text<'a>(settings: &'a Map<String, Value>, key: &str) -> Result<&'a str, String> {
+    settings.get(key).and_then(Value::as_str).ok_or_else(|| format!("setting `{key}` is missing or not text"))
+}
+
+fn flag(settings: &Map<String, Value>, key: &str) -> bool {
+    settings.get(key).and_then(Value::as_bool).unwrap_or(false)
+}
+
+fn choice(settings: &Map<String, Value>, key: &str, options: &[&str]) -> Result<u32, String> {
+    let value = text(settings, key)?;
+    options
+        .iter()
+        .position(|o| *o == value)
+        .map(|i| i as u32)
+        .ok_or_else(|| format!("{key} `{value}` is not one rt evaluates (it evaluates {})", options.join(", ")))
+}
+
+/// The mode of node type `name` with `settings`, or what rt cannot evaluate.
+pub fn mode(name: &str, settings: &Map<String, Value>) -> Result<Mode, String> {
+    let plain = |mode| Ok(Mode { mode, flags: 0 });
+    match name {
+        "MATH" => Ok(Mode {
+            mode: choice(settings, "operation", &MATH_OPERATIONS)?,
+            flags: flag(settings, "use_clamp") as u32,
+        }),
+        "VECT_MATH" => plain(choice(settings, "operation", &VECTOR_MATH_OPERATIONS)?),
+        "MIX" => mix_mode(settings),
+        "MIX_RGB" => Ok(Mode {
+            mode: choice(settings, "blend_type", &BLEND_TYPES)?,
+            // The legacy node clamps its factor always; its Clamp is the result's.
+            flags: 1 | (flag(settings, "use_clamp") as u32) << 1 | 2 << 2,
+        }),
+        "MAP_RANGE" => {
+            if text(settings, "data_type")? != "FLOAT" {
+                return Err("a Map Range of vectors is not evaluated yet".into());
+            }
+            Ok(Mode {
+                mode: choice(settings, "interpolation_type", &MAP_RANGE_INTERPOLATIONS)?,
+                flags: flag(settings, "clamp") as u32,
+            })
+        }
+        "CLAMP" => plain(choice(settings, "clamp_type", &CLAMP_TYPES)?),
+        "VALTORGB" => Ok(Mode { mode: 0, flags: (text(settings, "interpolation")? != "CONSTANT") as u32 }),
+        "RGBTOBW" => plain(CONVERT_COLOR_TO_VALUE),
+        "SEPARATE_COLOR" | "COMBINE_COLOR" => {
+            if text(settings, "mode")? != "RGB" {
+                return Err("only the RGB mode of Separate/Combine Color is evaluated yet".into());
+            }
+            plain(0)
+        }
+        "MAPPING" => plain(choice(settings, "vector_type", &MAPPING_TYPES)?),
+        "TEX_NOISE" => {
+            if text(settings, "noise_dimensions")? != "3D" {
+                return Err("only 3D noise is evaluated yet".into());
+            }
+            Ok(Mode { mode: choice(settings, "noise_type", &NOISE_TYPES)?, flags: flag(settings, "normalize") as u32 })
+        }
+        "TEX_GRADIENT" => plain(choice(settings, "gradient_type", &GRADIENT_TYPES)?),
+        _ => plain(0),
+    }
+}
+
+fn mix_mode(settings: &Map<String, Value>) -> Result<Mode, String> {
+    let data_type = choice(settings, "data_type", &MIX_DATA_TYPES)?;
+    // Floats and vectors only mix; colours blend by the blend type.
+    let blend = if data_type == 2 { choice(settings, "blend_type", &BLEND_TYPES)? } else { 0 };
+    let non_uniform = data_type == 1 && text(settings, "factor_mode").is_ok_and(|m| m == "NON_UNIFORM");
+    let flags = flag(settings, "clamp_factor") as u32
+        | (flag(settings, "clamp_result") as u32) << 1
+        | data_type << 2
+        | (non_uniform as u32) << 4;
+    Ok(Mode { mode: blend, flags })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The shader's `NODE_OP_*` constants are these operations.
+    #[test]
+    fn operations_agree_with_the_shader() {
+        let wgsl = include_str!("../../shaders/node_program.wgsl");
+        for (name, value) in OPERATIONS {
+            let line = format!("const NODE_OP_{name}: u32 = {value}u;");
+            assert!(wgsl.contains(&line), "node_program.wgsl lacks `{line}`");
+        }
+        assert_eq!(wgsl.matches("const NODE_OP_").count(), OPERATIONS.len());
+    }
+
+    /// The exporter follows exactly the node types rt evaluates, with the same outputs.
+    #[test]
+    fn the_exporter_declares_the_same_nodes() {
+        let python = include_str!("../../blender/rt_blender/rt_node_graph.py");
+        for k in &KINDS {
+            let outputs: Vec<String> = k.outputs.iter().map(|o| format!("\"{o}\"")).collect();
+            let line =
+                format!("\"{}\": ({}{}),", k.name, outputs.join(", "), if outputs.len() == 1 { "," } else { "" });
+            assert!(python.contains(&line), "rt_node_graph.py's EVALUATED lacks `{line}`");
+        }
+        let declared = python.lines().skip_while(|l| !l.starts_with("EVALUATED = {")).skip(1);
+        let count = declared.take_while(|l| !l.starts_with('}')).count();
+        assert_eq!(count, KINDS.len());
+    }
+}

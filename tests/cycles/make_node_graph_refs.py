@@ -1,0 +1,391 @@
+"""Cycles references for the shader node graphs rt evaluates (tests/cycles_node_graphs.rs
+compares rt against them).
+
+    /work/main/.venv-bpy/bin/python tests/cycles/make_node_graph_refs.py [--spp 1024] [NAME...]
+
+The per-node scenes (`graph_noise`, `graph_math`, `graph_color`, `graph_vector`,
+`graph_convert`, `graph_shading`) are a 4 x 4 grid of tiles seen from above by an orthographic camera, under
+a black world; each tile only emits, its Emission colour the output of a small node graph
+(its own material), so a pixel is the graph's mean value over the pixel: the comparison
+tests the nodes and nothing else. `graph_shading`'s tiles are smooth spheres, for the nodes
+that read the normal and the view. `graph_material` is a whole procedural material, a
+sphere and a floor whose Principled inputs come from noise, ramps, checkers and maths, lit
+by a uniform world. Every scene is exported with blender/rt_export.py into
+tests/cycles/scenes/NAME/ and rendered into tests/cycles/NAME.exr. CI does not run Cycles:
+commit both.
+"""
+
+import math
+
+import bpy
+
+import cycles_reference as cycles
+
+SIZE = 128
+GRID = 4
+PITCH = 2.2
+
+
+def new(tree, kind, inputs=None, **props):
+    node = tree.nodes.new(kind)
+    for key, value in props.items():
+        setattr(node, key, value)
+    for key, value in (inputs or {}).items():
+        socket = input_socket(node, key)
+        if isinstance(value, bpy.types.NodeSocket):
+            tree.links.new(value, socket)
+        else:
+            socket.default_value = value
+    return node
+
+
+def input_socket(node, key):
+    """An enabled input by name, or any input by identifier."""
+    found = [s for s in node.inputs if s.enabled and s.name == key]
+    return found[0] if found else next(s for s in node.inputs if s.identifier == key)
+
+
+def output(node, key):
+    found = [s for s in node.outputs if s.enabled and s.name == key]
+    return found[0] if found else next(s for s in node.outputs if s.identifier == key)
+
+
+def coords(tree, which="Object"):
+    return new(tree, "ShaderNodeTexCoord").outputs[which]
+
+
+def math_node(tree, operation, a, b=0.5, c=0.5, clamp=False):
+    node = new(tree, "ShaderNodeMath", operation=operation, use_clamp=clamp)
+    for socket, value in zip(node.inputs, (a, b, c)):
+        if isinstance(value, bpy.types.NodeSocket):
+            tree.links.new(value, socket)
+        else:
+            socket.default_value = value
+    return node.outputs[0]
+
+
+def shown(tree, value, scale=0.1, offset=0.2):
+    """|scale × value + offset|: a value of any sign made a visible emission."""
+    return math_node(tree, "ABSOLUTE", math_node(tree, "MULTIPLY_ADD", value, scale, offset))
+
+
+def rgb(tree, r, g, b):
+    return new(tree, "ShaderNodeCombineXYZ", {"X": r, "Y": g, "Z": b}).outputs[0]
+
+
+def xyz(tree, source, scale=3.0):
+    separate = new(tree, "ShaderNodeSeparateXYZ", {"Vector": source})
+    return [math_node(tree, "MULTIPLY", separate.outputs[i], scale) for i in range(3)]
+
+
+def emission_material(name, build):
+    material = bpy.data.materials.new(name)
+    tree = material.node_tree
+    tree.nodes.clear()
+    out = tree.nodes.new("ShaderNodeOutputMaterial")
+    emission = new(tree, "ShaderNodeEmission", {"Strength": 1.0})
+    tree.links.new(build(tree), emission.inputs["Color"])
+    tree.links.new(emission.outputs[0], out.inputs["Surface"])
+    return material
+
+
+def grid_scene(name, builders, shape="plane"):
+    scene = cycles.new_scene()
+    cycles.set_up(scene, SIZE, bounces=1)
+    cycles.uniform_world(scene, (0.0, 0.0, 0.0))
+    for i, build in enumerate(builders):
+        x = (i % GRID - (GRID - 1) / 2) * PITCH
+        y = ((GRID - 1) / 2 - i // GRID) * PITCH
+        if shape == "plane":
+            bpy.ops.mesh.primitive_plane_add(size=2.0, location=(x, y, 0.0))
+        else:
+            bpy.ops.mesh.primitive_uv_sphere_add(radius=1.0, segments=32, ring_count=16, location=(x, y, 0.0))
+            bpy.ops.object.shade_smooth()
+        obj = bpy.context.active_object
+        obj.name = f"tile_{i}"
+        obj.data.materials.append(emission_material(f"{name}_{i}", build))
+    camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
+    camera.data.type = "ORTHO"
+    camera.data.ortho_scale = GRID * PITCH
+    camera.location = (0.0, 0.0, 10.0)
+    scene.collection.objects.link(camera)
+    scene.camera = camera
+    return scene
+
+
+def noise(tree, vector=None, noise_type="FBM", normalize=True, **inputs):
+    node = new(tree, "ShaderNodeTexNoise", inputs, noise_dimensions="3D", noise_type=noise_type, normalize=normalize)
+    if vector is not None:
+        tree.links.new(vector, node.inputs["Vector"])
+    return node
+
+
+def ramp(tree, fac, interpolation, stops):
+    node = new(tree, "ShaderNodeValToRGB")
+    tree.links.new(fac, node.inputs["Fac"])
+    elements = node.color_ramp.elements
+    elements[0].position, elements[0].color = stops[0]
+    elements[1].position, elements[1].color = stops[-1]
+    for position, colour in stops[1:-1]:
+        elements.new(position).color = colour
+    node.color_ramp.interpolation = interpolation
+    return node.outputs["Color"]
+
+
+STOPS = [(0.2, (0.9, 0.1, 0.1, 1.0)), (0.45, (0.1, 0.8, 0.2, 1.0)), (0.7, (0.1, 0.2, 0.9, 1.0))]
+
+
+def fractal(noise_type, **inputs):
+    return lambda t: shown(t, noise(t, coords(t), noise_type, Scale=2.0, Detail=3.5, **inputs).outputs["Fac"], 0.3, 0.0)
+
+
+NOISE = [
+    lambda t: noise(t, Scale=5.0, Detail=2.0).outputs["Fac"],
+    lambda t: noise(t, coords(t), Scale=3.0, Detail=4.5, Roughness=0.6).outputs["Color"],
+    lambda t: shown(t, noise(t, coords(t), normalize=False, Scale=2.5, Detail=3.0).outputs["Fac"], 0.5, 0.5),
+    lambda t: noise(t, coords(t), Scale=2.0, Detail=1.0, Distortion=2.0).outputs["Color"],
+    fractal("MULTIFRACTAL"),
+    fractal("RIDGED_MULTIFRACTAL", Offset=1.0, Gain=2.0),
+    fractal("HYBRID_MULTIFRACTAL", Offset=0.5, Gain=1.5),
+    fractal("HETERO_TERRAIN", Offset=0.8),
+    lambda t: noise(t, coords(t), Scale=1.5, Detail=6.0, Roughness=0.35, Lacunarity=3.1).outputs["Color"],
+    lambda t: noise(t, new(t, "ShaderNodeMapping", {"Vector": coords(t, "Generated"), "Location": (0.3, -0.2, 0.1),
+                                                    "Rotation": (0.4, -0.7, 1.1), "Scale": (1.5, 0.5, 2.0)},
+                           vector_type="TEXTURE").outputs[0], Scale=4.0).outputs["Color"],
+    lambda t: noise(t, new(t, "ShaderNodeNewGeometry").outputs["Position"], Scale=1.2, Detail=2.0).outputs["Fac"],
+    lambda t: ramp(t, noise(t, coords(t), Scale=3.0).outputs["Fac"], "LINEAR", STOPS),
+    lambda t: ramp(t, noise(t, coords(t), Scale=3.0).outputs["Fac"], "CONSTANT", STOPS),
+    lambda t: ramp(t, noise(t, coords(t), Scale=3.0).outputs["Fac"], "B_SPLINE", STOPS),
+    lambda t: new(t, "ShaderNodeTexChecker", {"Vector": coords(t, "UV"), "Color1": (0.9, 0.6, 0.1, 1.0),
+                                               "Color2": (0.1, 0.3, 0.8, 1.0), "Scale": 4.0}).outputs["Color"],
+    lambda t: new(t, "ShaderNodeTexChecker", {"Scale": 3.5}).outputs["Fac"],
+]
+
+MATH_OPERATIONS = [
+    "ADD", "SUBTRACT", "MULTIPLY", "DIVIDE", "MULTIPLY_ADD", "POWER", "LOGARITHM", "SQRT", "INVERSE_SQRT",
+    "ABSOLUTE", "EXPONENT", "MINIMUM", "MAXIMUM", "LESS_THAN", "GREATER_THAN", "SIGN", "COMPARE", "SMOOTH_MIN",
+    "SMOOTH_MAX", "ROUND", "FLOOR", "CEIL", "TRUNC", "FRACT", "MODULO", "FLOORED_MODULO", "WRAP", "SNAP",
+    "PINGPONG", "SINE", "COSINE", "ARCSINE", "ARCCOSINE", "ARCTANGENT", "ARCTAN2", "SINH", "COSH", "TANH",
+    "RADIANS", "DEGREES",
+]
+# The cases Cycles defines for itself, as (operation, b, c) on a = x × 3 (−3…3): division and
+# modulo by zero, a log to base −1, ping-pong to 0, a power of a negative base to a
+# fractional exponent.
+EDGES = [
+    [("DIVIDE", 0.0, 0.0), ("MODULO", 0.0, 0.0), ("FLOORED_MODULO", 0.0, 0.0)],
+    [("LOGARITHM", -1.0, 0.0), ("POWER", 0.5, 0.0), ("PINGPONG", 0.0, 0.0)],
+]
+
+
+def math_tile(operations, clamp):
+    """Three operations, on a = x × 3 (−3…3) and b = y × 0.8 + 2 (1.2…2.8, clear of the
+    poles of division, logarithms and powers, whose pixel means are not defined), c = 0.7."""
+    def build(t):
+        a, b, _ = xyz(t, coords(t))
+        b = math_node(t, "MULTIPLY_ADD", b, 0.8 / 3.0, 2.0)
+        channels = [shown(t, math_node(t, op, a, b, 0.7, clamp)) for op in operations]
+        return rgb(t, *channels)
+    return build
+
+
+def edge_tile(cases):
+    def build(t):
+        a, _, _ = xyz(t, coords(t))
+        return rgb(t, *[shown(t, math_node(t, op, a, b, c)) for op, b, c in cases])
+    return build
+
+
+# Three operations per tile, 40 in 14 tiles (the last with Clamp on), then the edge cases.
+MATH = ([math_tile(MATH_OPERATIONS[3 * i:3 * i + 3], False) for i in range(13)]
+        + [math_tile(["DEGREES", "COMPARE", "SINH"], True)] + [edge_tile(e) for e in EDGES])
+
+BLENDS = ["MIX", "DARKEN", "MULTIPLY", "BURN", "LIGHTEN", "SCREEN", "DODGE", "ADD", "OVERLAY", "SOFT_LIGHT",
+          "LINEAR_LIGHT", "DIFFERENCE", "EXCLUSION", "SUBTRACT", "DIVIDE"]
+
+
+def gradient(t, kind, vector=None):
+    node = new(t, "ShaderNodeTexGradient", gradient_type=kind)
+    if vector is not None:
+        t.links.new(vector, node.inputs["Vector"])
+    return node
+
+
+def blend_tile(blend):
+    def build(t):
+        a = noise(t, coords(t), Scale=2.0).outputs["Color"]
+        # Clear of 0, where Divide's pixel means are not defined.
+        b = ramp(t, gradient(t, "LINEAR", coords(t, "Generated")).outputs["Fac"], "LINEAR",
+                 [(0.0, (0.3, 0.35, 0.4, 1.0)), (1.0, (0.95, 0.9, 0.8, 1.0))])
+        factor = math_node(t, "MULTIPLY_ADD", output(new(t, "ShaderNodeSeparateXYZ", {"Vector": coords(t)}), "Y"), 0.6, 0.5)
+        mix = new(t, "ShaderNodeMix", {"Factor_Float": factor, "A_Color": a, "B_Color": b}, data_type="RGBA",
+                  blend_type=blend, clamp_factor=True, clamp_result=blend in {"ADD", "DODGE"})
+        return output(mix, "Result_Color")
+    return build
+
+
+def float_mix(t):
+    a, b, _ = xyz(t, coords(t), 1.0)
+    mix = new(t, "ShaderNodeMix", {"Factor_Float": 1.3, "A_Float": a, "B_Float": b}, data_type="FLOAT",
+              clamp_factor=False)
+    return shown(t, output(mix, "Result_Float"), 0.5, 0.5)
+
+
+COLOR = [blend_tile(b) for b in BLENDS] + [float_mix]
+
+GRADIENTS = ["LINEAR", "QUADRATIC", "EASING", "DIAGONAL", "SPHERICAL", "QUADRATIC_SPHERE", "RADIAL"]
+VECTOR_OPERATIONS = ["ADD", "SUBTRACT", "MULTIPLY", "DIVIDE", "MULTIPLY_ADD", "CROSS_PRODUCT", "PROJECT", "REFLECT",
+                     "REFRACT", "FACEFORWARD", "SCALE", "NORMALIZE", "ABSOLUTE", "MINIMUM", "MAXIMUM", "FLOOR", "CEIL",
+                     "FRACTION", "MODULO", "WRAP", "SNAP", "SINE", "COSINE", "DOT_PRODUCT", "DISTANCE", "LENGTH"]
+
+
+def vector_tile(operations):
+    """Up to three operations, each on (object coordinates × 2, a constant, generated), shown."""
+    def build(t):
+        channels = []
+        for op in operations:
+            node = new(t, "ShaderNodeVectorMath", operation=op)
+            scaled = new(t, "ShaderNodeVectorMath", {"Vector": coords(t), "Scale": 2.0}, operation="SCALE")
+            t.links.new(scaled.outputs["Vector"], node.inputs[0])
+            node.inputs[1].default_value = (0.3, -0.5, 0.8)
+            t.links.new(coords(t, "Generated"), node.inputs[2])
+            input_socket(node, "Scale").default_value = 0.7
+            value = node.outputs["Value"] if op in {"DOT_PRODUCT", "DISTANCE", "LENGTH"} else node.outputs["Vector"]
+            channels.append(shown(t, value, 0.2, 0.3))
+        return rgb(t, *(channels + channels)[:3])
+    return build
+
+
+def map_range(t, interpolation, clamp, reverse=False):
+    value = output(new(t, "ShaderNodeSeparateXYZ", {"Vector": coords(t)}), "X")
+    lo, hi = (0.6, -0.4) if reverse else (-0.4, 0.6)
+    node = new(t, "ShaderNodeMapRange", {"Value": value, "From Min": lo, "From Max": hi, "To Min": 0.1,
+                                          "To Max": 0.9, "Steps": 4.0},
+               data_type="FLOAT", interpolation_type=interpolation, clamp=clamp)
+    return output(node, "Result")
+
+
+def converters(t):
+    c = noise(t, coords(t), Scale=2.5).outputs["Color"]
+    inverted = new(t, "ShaderNodeInvert", {"Fac": 0.7, "Color": c}).outputs[0]
+    separate = new(t, "ShaderNodeSeparateColor", {"Color": inverted}, mode="RGB")
+    bw = new(t, "ShaderNodeRGBToBW", {"Color": c}).outputs[0]
+    clamp = new(t, "ShaderNodeClamp", {"Value": separate.outputs["Red"], "Min": 0.6, "Max": 0.3},
+                clamp_type="RANGE").outputs[0]
+    return new(t, "ShaderNodeCombineColor", {"Red": clamp, "Green": bw, "Blue": separate.outputs["Blue"]},
+               mode="RGB").outputs[0]
+
+
+def vector_mix(t):
+    mix = new(t, "ShaderNodeMix", {"Factor_Vector": (0.2, 0.9, 1.4), "A_Vector": coords(t, "Generated"),
+                                    "B_Vector": (0.9, 0.1, 0.5)}, data_type="VECTOR", factor_mode="NON_UNIFORM")
+    return output(mix, "Result_Vector")
+
+
+def clamp_minmax(t):
+    x, y, z = xyz(t, coords(t), 1.0)
+    return rgb(t, *[new(t, "ShaderNodeClamp", {"Value": v, "Min": 0.1, "Max": 0.7}).outputs[0] for v in (x, y, z)])
+
+
+VECTOR = ([lambda t, k=k: gradient(t, k).outputs["Color"] for k in GRADIENTS]
+          + [vector_tile(VECTOR_OPERATIONS[i:i + 3]) for i in range(0, len(VECTOR_OPERATIONS), 3)])
+CONVERT = [
+    lambda t: rgb(t, map_range(t, "LINEAR", True), map_range(t, "STEPPED", False), map_range(t, "SMOOTHSTEP", False)),
+    lambda t: rgb(t, map_range(t, "SMOOTHERSTEP", False, True), map_range(t, "LINEAR", False, True),
+                  map_range(t, "SMOOTHSTEP", False, True)),
+    converters,
+    vector_mix,
+    clamp_minmax,
+]
+
+
+def layer_weight(t, blend, which):
+    return new(t, "ShaderNodeLayerWeight", {"Blend": blend}).outputs[which]
+
+
+SHADING = [
+    lambda t: layer_weight(t, 0.5, "Fresnel"),
+    lambda t: layer_weight(t, 0.2, "Facing"),
+    lambda t: layer_weight(t, 0.8, "Facing"),
+    lambda t: layer_weight(t, 0.5, "Facing"),
+    lambda t: new(t, "ShaderNodeFresnel", {"IOR": 1.45}).outputs[0],
+    lambda t: new(t, "ShaderNodeFresnel", {"IOR": 3.0}).outputs[0],
+    lambda t: shown(t, output(new(t, "ShaderNodeSeparateXYZ", {"Vector": new(t, "ShaderNodeNewGeometry").outputs["Normal"]}), "X"), 0.5, 0.5),
+    lambda t: new(t, "ShaderNodeVectorMath", {"Vector": new(t, "ShaderNodeNewGeometry").outputs["Incoming"]}, operation="ABSOLUTE").outputs[0],
+    lambda t: new(t, "ShaderNodeVectorMath", {"Vector": coords(t, "Normal")}, operation="ABSOLUTE").outputs[0],
+    lambda t: coords(t, "Generated"),
+    lambda t: new(t, "ShaderNodeVectorMath", {"Vector": new(t, "ShaderNodeNewGeometry").outputs["True Normal"]}, operation="ABSOLUTE").outputs[0],
+    lambda t: noise(t, Scale=4.0, Detail=3.0).outputs["Color"],
+    lambda t: new(t, "ShaderNodeTexChecker", {"Scale": 5.0}).outputs["Color"],
+    lambda t: gradient(t, "SPHERICAL", coords(t)).outputs["Color"],
+    lambda t: ramp(t, layer_weight(t, 0.3, "Facing"), "EASE", STOPS),
+    lambda t: new(t, "ShaderNodeMix", {"Factor_Float": layer_weight(t, 0.4, "Fresnel"), "A_Color": (0.8, 0.2, 0.1, 1.0),
+                                        "B_Color": (0.1, 0.4, 0.9, 1.0)}, data_type="RGBA").outputs[2],
+]
+
+
+def procedural_material(name, build):
+    material = bpy.data.materials.new(name)
+    tree = material.node_tree
+    bsdf = tree.nodes["Principled BSDF"]
+    bsdf.distribution = "MULTI_GGX"
+    build(tree, bsdf)
+    return material
+
+
+def sphere_inputs(t, bsdf):
+    fac = noise(t, coords(t), Scale=3.0, Detail=4.0).outputs["Fac"]
+    t.links.new(ramp(t, fac, "LINEAR", STOPS), bsdf.inputs["Base Color"])
+    rough = new(t, "ShaderNodeMapRange", {"Value": fac, "From Min": 0.3, "From Max": 0.7, "To Min": 0.15, "To Max": 0.6},
+                data_type="FLOAT", clamp=True)
+    t.links.new(output(rough, "Result"), bsdf.inputs["Roughness"])
+    metal = new(t, "ShaderNodeTexChecker", {"Scale": 3.0})
+    t.links.new(metal.outputs["Fac"], bsdf.inputs["Metallic"])
+
+
+def floor_inputs(t, bsdf):
+    bsdf.inputs["Specular IOR Level"].default_value = 0.0
+    bsdf.inputs["Roughness"].default_value = 1.0
+    mix = new(t, "ShaderNodeMix", {"Factor_Float": gradient(t, "LINEAR", coords(t, "Generated")).outputs["Fac"],
+                                    "A_Color": (0.7, 0.65, 0.5, 1.0), "B_Color": (0.2, 0.3, 0.5, 1.0)},
+              data_type="RGBA", blend_type="MULTIPLY")
+    t.links.new(output(mix, "Result_Color"), bsdf.inputs["Base Color"])
+
+
+def material_scene():
+    scene = cycles.new_scene()
+    cycles.set_up(scene, 64, bounces=8)
+    cycles.uniform_world(scene, (0.8, 0.85, 1.0))
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=1.0, segments=64, ring_count=32, location=(0.0, 0.0, 1.0))
+    bpy.ops.object.shade_smooth()
+    bpy.context.active_object.data.materials.append(procedural_material("speckled", sphere_inputs))
+    bpy.ops.mesh.primitive_plane_add(size=8.0)
+    bpy.context.active_object.data.materials.append(procedural_material("graded floor", floor_inputs))
+    camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
+    camera.location = (0.0, -5.5, 2.6)
+    camera.rotation_euler = (math.radians(72.0), 0.0, 0.0)
+    scene.collection.objects.link(camera)
+    scene.camera = camera
+    return scene
+
+
+SCENES = {
+    "graph_noise": lambda: grid_scene("noise", NOISE),
+    "graph_math": lambda: grid_scene("math", MATH),
+    "graph_color": lambda: grid_scene("color", COLOR),
+    "graph_vector": lambda: grid_scene("vector", VECTOR),
+    "graph_convert": lambda: grid_scene("convert", CONVERT),
+    "graph_shading": lambda: grid_scene("shading", SHADING, shape="sphere"),
+    "graph_material": material_scene,
+}
+
+
+def main():
+    args = cycles.arguments(__doc__, 1024, SCENES)
+    for name in args.names:
+        scene = SCENES[name]()
+        cycles.export(scene, name)
+        cycles.render(scene, name, args)
+
+
+if __name__ == "__main__":
+    main()

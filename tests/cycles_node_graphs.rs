@@ -1,0 +1,113 @@
+//! Shader node graphs evaluated on the GPU against Cycles (`tests/cycles/make_node_graph_refs.py`
+//! renders the references and exports the scenes with `blender/rt_export.py`). The per-node
+//! scenes are grids of tiles that only emit, each tile's colour the output of a small graph:
+//! noise of every fractal type, distortion and colour, ramps, checkers; every Math operation
+//! over −3…3 (division by zero, logs and roots of negatives, powers of negative bases
+//! included); the Mix node's colour blends; gradients and Vector Math; Map Range, Clamp,
+//! Invert, RGB to BW, Separate/Combine; and on smooth spheres the nodes that read the
+//! normal and the view (Layer Weight, Fresnel, Geometry, Texture Coordinate). A pixel is the
+//! graph's mean over the pixel, so rt and Cycles agree within the noise of sampling the
+//! pixel's area — per colour channel and 8×8 block. `graph_material` is a whole procedural
+//! Principled material lit by a uniform world.
+
+use crate::common;
+
+use common::reference::Noiseless;
+use common::{reference, render, repo};
+
+/// Samples per pixel of the committed references (`make_node_graph_refs.py --spp`).
+const REFERENCE_SPP: f64 = 1024.0;
+const SPP: u32 = 64;
+const BLOCK: usize = 8;
+
+fn load(name: &str) -> (rt::render::Image, Vec<[f32; 3]>) {
+    let dir = repo().join(format!("tests/cycles/scenes/{name}"));
+    let scene = rt::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let (w, h) = (scene.render.width, scene.render.height);
+    // The tiles only emit: one bounce finds nothing more.
+    let ours = render(scene, w, h, SPP, 1);
+    let file = repo().join(format!("tests/cycles/{name}.exr"));
+    let reference = image::open(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display())).into_rgb32f();
+    (ours, reference.pixels().map(|p| p.0).collect())
+}
+
+/// Every 8×8 block's mean of every channel within 5 σ of Cycles' (σ from rt's per-pixel
+/// standard error of luminance, scaled to the channel by its share of the block's
+/// luminance and by both renders' sample counts), with `floor` for blocks without noise.
+fn check_channels(name: &str, floor: f32) {
+    let (ours, reference) = load(name);
+    let (w, h) = (ours.width as usize, ours.height as usize);
+    let noise_scale = (1.0 + SPP as f64 / REFERENCE_SPP).sqrt();
+    let mut worst = (0.0f64, String::new());
+    for by in 0..h / BLOCK {
+        for bx in 0..w / BLOCK {
+            let pixels =
+                (by * BLOCK..(by + 1) * BLOCK).flat_map(|y| (bx * BLOCK..(bx + 1) * BLOCK).map(move |x| y * w + x));
+            let (mut a, mut b, mut var) = ([0.0f64; 3], [0.0f64; 3], 0.0f64);
+            for i in pixels {
+                for c in 0..3 {
+                    a[c] += ours.pixels[i][c] as f64;
+                    b[c] += reference[i][c] as f64;
+                }
+                var += (ours.std_error[i] as f64).powi(2);
+            }
+            let n = (BLOCK * BLOCK) as f64;
+            let lum = |v: [f64; 3]| 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2];
+            let sigma_lum = var.sqrt() / n * noise_scale;
+            for c in 0..3 {
+                let share = (b[c] / lum(b).max(1e-6)).max(1.0);
+                let bound = 5.0 * sigma_lum * share + floor as f64 * (1.0 + (b[c] / n).abs());
+                let ratio = (a[c] - b[c]).abs() / n / bound;
+                if ratio > worst.0 {
+                    worst =
+                        (ratio, format!("block ({bx}, {by}) channel {c}: {:.5} vs Cycles {:.5}", a[c] / n, b[c] / n));
+                }
+            }
+        }
+    }
+    println!("{name:16} worst block at {:.2} of its bound: {}", worst.0, worst.1);
+    assert!(worst.0 <= 1.0, "{name}: {} is {:.2} times its bound from Cycles'", worst.1, worst.0);
+}
+
+#[test]
+fn noise_of_every_kind_ramps_and_checkers_match_cycles() {
+    check_channels("graph_noise", 1e-3);
+}
+
+#[test]
+fn every_math_operation_matches_cycles() {
+    check_channels("graph_math", 1e-3);
+}
+
+#[test]
+fn the_mix_nodes_colour_blends_match_cycles() {
+    check_channels("graph_color", 1e-3);
+}
+
+#[test]
+fn gradients_and_vector_math_match_cycles() {
+    check_channels("graph_vector", 1e-3);
+}
+
+#[test]
+fn map_range_clamp_and_converters_match_cycles() {
+    check_channels("graph_convert", 1e-3);
+}
+
+#[test]
+fn nodes_that_read_the_normal_and_the_view_match_cycles() {
+    check_channels("graph_shading", 1e-3);
+}
+
+#[test]
+fn a_procedural_principled_material_matches_cycles() {
+    let scene = rt::scene::load(&repo().join("tests/cycles/scenes/graph_material/scene.toml")).unwrap();
+    let ours = render(scene, 64, 64, 256, 8);
+    reference::compare_with(
+        &ours,
+        &repo().join("tests/cycles/graph_material.exr"),
+        REFERENCE_SPP,
+        Noiseless::Absolute(1e-4),
+    )
+    .check("graph_material", "Cycles");
+}

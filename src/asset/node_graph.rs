@@ -18,6 +18,8 @@ use serde_json::{Map, Value};
 use std::collections::{BTreeMap, HashMap};
 
 pub const FORMAT_VERSION: u32 = 1;
+/// The compiler's own version: caches of programs an earlier compiler wrote are rebuilt.
+pub const COMPILER_VERSION: u32 = 2;
 /// An operand that reads a constant, not a register.
 pub const CONSTANT: u32 = 0x8000_0000;
 /// Registers of the interpreter (`NODE_REGISTERS` in the shader).
@@ -104,8 +106,16 @@ pub fn compile_json(json: &Value) -> Result<Vec<u32>, String> {
 }
 
 pub fn compile(graph: &NodeGraph) -> Result<Vec<u32>, String> {
-    let mut c =
-        Compiler { graph, code: vec![0], constants: Vec::new(), registers: 0, done: HashMap::new(), open: Vec::new() };
+    let mut c = Compiler {
+        graph,
+        code: vec![0],
+        constants: Vec::new(),
+        busy: [false; REGISTERS as usize],
+        remaining: HashMap::new(),
+        uses: uses(graph),
+        done: HashMap::new(),
+        open: Vec::new(),
+    };
     for (target, input) in &graph.outputs {
         let Some(mode) = node_kinds::TARGETS.iter().position(|t| t == target) else {
             return Err(format!(
@@ -126,7 +136,12 @@ struct Compiler<'g> {
     graph: &'g NodeGraph,
     code: Vec<u32>,
     constants: Vec<f32>,
-    registers: u32,
+    /// Registers holding a value some instruction still reads.
+    busy: [bool; REGISTERS as usize],
+    /// Reads left of each busy register: it is free again after its last.
+    remaining: HashMap<u32, u32>,
+    /// How many links read each (node, output), over the nodes the outputs reach.
+    uses: HashMap<(usize, String), u32>,
     /// The operand of each (node, output) already compiled.
     done: HashMap<(usize, String), u32>,
     /// The nodes being compiled, to find cycles.
@@ -140,6 +155,8 @@ impl Compiler<'_> {
         CONSTANT | index
     }
 
+    /// Emits an instruction; the registers it reads for the last time are free after it
+    /// (never before: its outputs, allocated already, do not overwrite its operands).
     fn instruction(&mut self, op: u32, mode: u32, flags: u32, out: u32, operands: &[u32], extra: &[u32]) {
         self.code.push(op | mode << 8 | flags << 24);
         self.code.push(out);
@@ -147,15 +164,30 @@ impl Compiler<'_> {
         self.code.extend_from_slice(operands);
         self.code.push(extra.len() as u32);
         self.code.extend_from_slice(extra);
+        for &register in operands.iter().filter(|&&o| o & CONSTANT == 0) {
+            if let Some(left) = self.remaining.get_mut(&register) {
+                *left = left.saturating_sub(1);
+                if *left == 0 {
+                    self.busy[register as usize] = false;
+                }
+            }
+        }
     }
 
+    /// `count` consecutive free registers.
     fn allocate(&mut self, count: u32) -> Result<u32, String> {
-        let first = self.registers;
-        self.registers += count;
-        if self.registers > REGISTERS {
-            return Err(format!("the graph needs more than the {REGISTERS} registers rt evaluates it with"));
-        }
-        Ok(first)
+        let count = count as usize;
+        let first = (0..=self.busy.len().saturating_sub(count))
+            .find(|&f| self.busy[f..f + count].iter().all(|b| !b))
+            .ok_or(format!("the graph needs more than the {REGISTERS} registers rt evaluates it with"))?;
+        self.busy[first..first + count].fill(true);
+        Ok(first as u32)
+    }
+
+    /// `register` holds a value read `reads` times from now on (none: free at once).
+    fn hold(&mut self, register: u32, reads: u32) {
+        self.remaining.insert(register, reads);
+        self.busy[register as usize] = reads > 0;
     }
 
     fn operand(&mut self, input: &Input) -> Result<u32, String> {
@@ -170,6 +202,7 @@ impl Compiler<'_> {
                 };
                 let out = self.allocate(1)?;
                 self.instruction(node_kinds::OP_CONVERT, convert, 0, out, &[source], &[]);
+                self.hold(out, 1);
                 Ok(out)
             }
         }
@@ -208,6 +241,8 @@ impl Compiler<'_> {
                 let out = self.allocate(1)?;
                 let extra = if first + output as u32 == 0 { self.texture_space() } else { Vec::new() };
                 self.instruction(node_kinds::OP_COORDINATE, first + output as u32, 0, out, &[], &extra);
+                let reads = self.reads(index, kind.outputs[output]);
+                self.hold(out, reads);
                 Ok(out)
             }
             Emit::Operation(op) => {
@@ -229,10 +264,16 @@ impl Compiler<'_> {
                 self.instruction(op, mode.mode, mode.flags, out, &operands, &extra);
                 for (i, name) in kind.outputs.iter().enumerate() {
                     self.done.insert((index, (*name).to_owned()), out + i as u32);
+                    let reads = self.reads(index, name);
+                    self.hold(out + i as u32, reads);
                 }
                 Ok(out + output as u32)
             }
         }
+    }
+
+    fn reads(&self, node: usize, output: &str) -> u32 {
+        self.uses.get(&(node, output.to_owned())).copied().unwrap_or(0)
     }
 
     /// Generated = (P − location) / (2 size) + ½ per axis, as Cycles maps a mesh's texture space.
@@ -245,6 +286,23 @@ impl Compiler<'_> {
         let offset = [0, 1, 2].map(|i| 0.5 - location[i] * scale[i]);
         scale.iter().chain(offset.iter()).map(|v| v.to_bits()).collect()
     }
+}
+
+/// How many links read each (node, output), counting only the nodes that the graph's
+/// outputs reach (a node nothing reads is never compiled, so its reads never come).
+fn uses(graph: &NodeGraph) -> HashMap<(usize, String), u32> {
+    let mut uses: HashMap<(usize, String), u32> = HashMap::new();
+    let mut seen = vec![false; graph.nodes.len()];
+    let mut stack: Vec<&Input> = graph.outputs.values().collect();
+    while let Some(input) = stack.pop() {
+        let Input::Link { link: (node, output), .. } = input else { continue };
+        *uses.entry((*node, output.clone())).or_default() += 1;
+        if let Some(n) = graph.nodes.get(*node).filter(|_| !seen[*node]) {
+            seen[*node] = true;
+            stack.extend(n.inputs.values());
+        }
+    }
+    uses
 }
 
 /// Checks that `program` is one the shader can walk: instructions that end before the
@@ -372,17 +430,28 @@ mod tests {
         assert!(compile_json(&missing).unwrap_err().contains("node 3"));
     }
 
+    /// Registers are reused: a value's register is free once its last reader has run, so a
+    /// chain of 200 maths fits; 40 values that all stay to be read again do not.
     #[test]
-    fn a_graph_too_big_for_the_registers_is_refused() {
-        let mut nodes = vec![json!({ "name": "M0", "type": "MATH", "settings": { "operation": "ADD" } })];
-        for i in 1..40 {
-            nodes.push(json!({ "name": format!("M{i}"), "type": "MATH", "settings": { "operation": "ADD" },
-                "inputs": { "Value": { "link": [i - 1, "Value"], "from": "VALUE", "to": "VALUE" } } }));
-        }
-        let g = graph(
-            Value::Array(nodes),
-            json!({ "roughness": { "link": [39, "Value"], "from": "VALUE", "to": "VALUE" } }),
-        );
-        assert!(compile_json(&g).unwrap_err().contains("registers"));
+    fn registers_are_reused_and_a_graph_too_wide_for_them_is_refused() {
+        let math = |i: usize, inputs: Value| json!({ "name": format!("M{i}"), "type": "MATH", "settings": { "operation": "ADD" }, "inputs": inputs });
+        let link = |i: usize| json!({ "link": [i, "Value"], "from": "VALUE", "to": "VALUE" });
+        let mut chain = vec![math(0, json!({}))];
+        chain.extend((1..200).map(|i| math(i, json!({ "Value": link(i - 1) }))));
+        let program = compile_json(&graph(Value::Array(chain), json!({ "roughness": link(199) }))).unwrap();
+        check_program(&program).unwrap();
+        assert_eq!(instructions(&program).len(), 201);
+
+        // 40 leaves summed by one chain: each leaf is free once added.
+        let mut wide: Vec<Value> = (0..40).map(|i| math(i, json!({ "Value": { "value": i as f32 } }))).collect();
+        wide.push(math(40, json!({ "Value": link(0), "Value_001": link(1) })));
+        wide.extend((41..79).map(|i| math(i, json!({ "Value": link(i - 1), "Value_001": link(i - 39) }))));
+        check_program(&compile_json(&graph(Value::Array(wide.clone()), json!({ "roughness": link(78) }))).unwrap())
+            .unwrap();
+        // Summed again by a second chain after the first: all 40 are live at once.
+        wide.push(math(79, json!({ "Value": link(78), "Value_001": link(0) })));
+        wide.extend((80..119).map(|i| math(i, json!({ "Value": link(i - 1), "Value_001": link(i - 79) }))));
+        let e = compile_json(&graph(Value::Array(wide), json!({ "roughness": link(118) }))).unwrap_err();
+        assert!(e.contains("registers"), "{e}");
     }
 }

@@ -231,8 +231,9 @@ pub const KINDS: [Kind; 23] = [
 pub fn compiler_signature() -> String {
     let kinds: Vec<_> = KINDS.iter().map(|k| (k.name, k.inputs, k.outputs)).collect();
     format!(
-        "node programs {} {OPERATIONS:?} {MATH_OPERATIONS:?} {VECTOR_MATH_OPERATIONS:?} {BLEND_TYPES:?} {RAMP_TABLE_SIZE} {kinds:?}",
-        super::node_graph::FORMAT_VERSION
+        "node programs {} {} {OPERATIONS:?} {MATH_OPERATIONS:?} {VECTOR_MATH_OPERATIONS:?} {BLEND_TYPES:?} {RAMP_TABLE_SIZE} {kinds:?}",
+        super::node_graph::FORMAT_VERSION,
+        super::node_graph::COMPILER_VERSION
     )
 }
 

@@ -239,7 +239,9 @@ struct Material {
     // coat_normal_scale, or NO_TEXTURE: the coat takes the interpolated normal (coat_normal.wgsl).
     coat_normal_texture: u32,
     coat_normal_scale: f32,
-    _pad9: u32,
+    // A Mix Shader's second material, which the node program's mix factor selects at each
+    // shading point (node_program.wgsl), or NO_MATERIAL.
+    mix_material: u32,
     _pad10: u32,
     // The indices' texture (R the IOR, G the coat's, B the film's), each from its minimum
     // here at 0 to the material's own at 1.

@@ -234,19 +234,15 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
     let cone_spread = select(2.0 * frame.view_half_extent.y / f32(frame.height), 0.0, frame.orthographic != 0u);
     var cone_width: f32;
     //#endif
-    //#if alpha_blend
     // The sample's identity (its random stream's start: pixel, sample and seed) for the
-    // coins of blended surfaces.
+    // coins of blended surfaces and of Mix Shaders.
     var path_key: u32;
-    //#endif
     loop {
         if starting {
             starting = false;
             rng = rng_for_sample(pixel_index, sample_base + k, frame.seed);
             first_bad_event = EVENT_NONE;
-            //#if alpha_blend
             path_key = rng.state;
-            //#endif
             let camera = camera_ray(pixel, &rng);
             origin = camera.origin;
             direction = camera.direction;
@@ -373,7 +369,15 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         m = textured_material(m, texture_at, log2(cone_width / cos_hit));
         //#if node_graphs
         if m.node_program != NO_PROGRAM {
-            m = node_graph_material(m, node_point_at(hit, surface, node_normal, -direction));
+            let point = node_point_at(hit, surface, node_normal, -direction);
+            let graph = run_node_program(m.node_program, point);
+            m = node_graph_applied(m, graph);
+            if node_mix_second(m, graph, path_key, bounce) {
+                m = textured_material(materials[m.mix_material], texture_at, log2(cone_width / cos_hit));
+                if m.node_program != NO_PROGRAM {
+                    m = node_graph_material(m, point);
+                }
+            }
         }
         //#endif
         //#endif

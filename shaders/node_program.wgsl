@@ -62,6 +62,7 @@ struct NodeOutputs {
     roughness: f32,
     emission: vec3f,
     metallic: f32,
+    mix_factor: f32,
     driven: u32,
 }
 
@@ -304,7 +305,7 @@ fn node_instruction(start: u32, at: u32, extra: u32, p: NodePoint) {
 
 // Runs the program that starts at word `start` at point `p`.
 fn run_node_program(start: u32, p: NodePoint) -> NodeOutputs {
-    var outputs = NodeOutputs(vec3f(0.0), 0.0, vec3f(0.0), 0.0, 0u);
+    var outputs = NodeOutputs(vec3f(0.0), 0.0, vec3f(0.0), 0.0, 0.0, 0u);
     var at = start + 1u;
     for (var n = 0u; n < NODE_MAX_INSTRUCTIONS; n++) {
         let op = node_programs[at] & 0xffu;
@@ -321,7 +322,8 @@ fn run_node_program(start: u32, p: NodePoint) -> NodeOutputs {
                 case 0u: { outputs.base_color = v.xyz; }
                 case 1u: { outputs.roughness = v.x; }
                 case 2u: { outputs.metallic = v.x; }
-                default: { outputs.emission = v.xyz; }
+                case 3u: { outputs.emission = v.xyz; }
+                default: { outputs.mix_factor = v.x; }
             }
         } else {
             node_instruction(start, at, extra, p);
@@ -335,8 +337,12 @@ fn run_node_program(start: u32, p: NodePoint) -> NodeOutputs {
 // metal (the host's lobe weights are the non-metal part's, as with a metallic texture),
 // the emission's colour (times the host's emission, the strength).
 fn node_graph_material(material: Material, p: NodePoint) -> Material {
+    return node_graph_applied(material, run_node_program(material.node_program, p));
+}
+
+// `material` with the outputs `out` of its program.
+fn node_graph_applied(material: Material, out: NodeOutputs) -> Material {
     var m = material;
-    let out = run_node_program(m.node_program, p);
     if (out.driven & 1u) != 0u {
         m.base_color = max(out.base_color, vec3f(0.0));
     }
@@ -358,6 +364,18 @@ fn node_graph_material(material: Material, p: NodePoint) -> Material {
         m.emission *= out.emission;
     }
     return m;
+}
+
+// Whether a Mix Shader's shading point is its second material (`mix_material`), with the
+// probability its factor gives (Cycles weighs both closures; one picked by its weight is the
+// same in expectation). The coin is a hash of the path and the bounce: no draw of the
+// sampler's is spent.
+fn node_mix_second(m: Material, out: NodeOutputs, path_key: u32, bounce: u32) -> bool {
+    if m.mix_material == NO_MATERIAL || (out.driven & 16u) == 0u {
+        return false;
+    }
+    let coin = f32(pcg_hash(path_key ^ pcg_hash(0x3c6ef372u + bounce)) >> 8u) * (1.0 / 16777216.0);
+    return coin < clamp(out.mix_factor, 0.0, 1.0);
 }
 
 // The point on triangle `triangle` of instance `inst` at barycentrics (b1, b2), world

@@ -109,6 +109,10 @@ fn has_textures(m: Material) -> bool {
     //#if coat_normal
     any = any || m.coat_normal_texture != NO_TEXTURE;
     //#endif
+    //#if node_graphs
+    // A Mix Shader's second material may read textures the first does not.
+    any = any || m.mix_material != NO_MATERIAL;
+    //#endif
     return any;
 }
 

@@ -275,7 +275,9 @@ pub struct GpuMaterial {
     /// takes the interpolated normal, whatever `normal_texture` does to the other lobes.
     pub coat_normal_texture: u32,
     pub coat_normal_scale: f32,
-    pub _pad9: u32,
+    /// A Mix Shader's second material (the scene's table), which the node program's
+    /// mix factor selects at each shading point, or `NO_MATERIAL`.
+    pub mix_material: u32,
     pub _pad10: u32,
     /// The indices' texture: R the IOR, G the coat's, B the film's, each from its minimum
     /// at 0 to the material's own at 1.
@@ -577,7 +579,7 @@ impl From<&crate::scene::Material> for GpuMaterial {
             anisotropy_directions: u32::from(m.textures.anisotropy_directions),
             coat_normal_texture: m.textures.coat_normal.unwrap_or(NO_TEXTURE),
             coat_normal_scale: m.textures.coat_normal_scale,
-            _pad9: 0,
+            mix_material: m.mix_material.unwrap_or(NO_MATERIAL),
             _pad10: 0,
             ior_texture: slot(l.ior),
             ior_minimum: m.textures.ior_minimum[0],

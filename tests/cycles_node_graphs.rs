@@ -99,6 +99,21 @@ fn nodes_that_read_the_normal_and_the_view_match_cycles() {
     check_channels("graph_shading", 1e-3);
 }
 
+/// A Mix Shader whose factor is a graph (Layer Weight on a sphere, noise on the floor):
+/// each shading point is one of its two shaders, picked by the factor.
+#[test]
+fn mix_shaders_by_a_graph_match_cycles() {
+    let scene = rt::scene::load(&repo().join("tests/cycles/scenes/graph_mix/scene.toml")).unwrap();
+    let ours = render(scene, 64, 64, 256, 8);
+    reference::compare_with(
+        &ours,
+        &repo().join("tests/cycles/graph_mix.exr"),
+        REFERENCE_SPP,
+        Noiseless::Absolute(1e-4),
+    )
+    .check("graph_mix", "Cycles");
+}
+
 #[test]
 fn a_procedural_principled_material_matches_cycles() {
     let scene = rt::scene::load(&repo().join("tests/cycles/scenes/graph_material/scene.toml")).unwrap();

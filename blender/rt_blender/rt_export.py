@@ -749,18 +749,24 @@ def gltf_texture_transform(transform, material_name, what):
     return ext
 
 
-def gltf_material(material, thickness, textures=None):
+def gltf_material(material, thickness, textures=None, shader=None):
     """One glTF material (with KHR extensions) from a Blender material; every factor is written, since rt's importer
     applies glTF's defaults to absent ones. Its textures go into `textures`. The surface
     shader is mapped onto rt's model by rt_shader_nodes (which warns about what it cannot
-    map)."""
+    map). A Mix Shader whose factor a node graph drives is its first shader, with the second
+    as another material (`_rt_mix`, see rt_node_graph.finish_materials); `shader` is the
+    shader to read instead of the output's."""
     name = material.name if material else "default"
     output = active_output(material.node_tree, "OUTPUT_MATERIAL") if material and material.node_tree else None
+    top = linked_node(output.inputs["Surface"]) if output else None
+    parts = rt_node_graph.mix_parts(top) if shader is None else None
+    shader = shader or (parts[0] if parts else top)
     if material is None:
         s = rt_shader_nodes.Surface()
     else:
-        rt_shader_nodes.NOTES[material.name] = []
-        s = rt_shader_nodes.surface(material, linked_node(output.inputs["Surface"]) if output else None)
+        if top is shader or parts:
+            rt_shader_nodes.NOTES[material.name] = []
+        s = rt_shader_nodes.surface(material, shader)
     base, metallic, roughness, ior, transmission = s.base, s.metallic, s.roughness, s.ior, s.transmission
     specular_level, specular_tint, alpha = s.specular_level, s.specular_tint, s.alpha
     surface = s.principled
@@ -798,9 +804,12 @@ def gltf_material(material, thickness, textures=None):
         # Cycles' Glossy BSDF: GGX without Fresnel, tinted by its colour; glTF has no such lobe
         # (its factors above describe a metal of that colour for other readers).
         out["extras"]["rt_glossy_color"] = [max(c, 0.0) for c in s.glossy]
-    graph = rt_node_graph.material_graph(linked_node(output.inputs["Surface"])) if material and output else None
+    graph = rt_node_graph.material_graph(shader, top.inputs["Fac"] if parts else None) if material else None
     if graph is not None:
         out["extras"]["rt_node_graph"] = graph
+    if parts:
+        out["_rt_mix"] = gltf_material(material, thickness, textures, shader=parts[1])
+        out["_rt_mix"]["name"] = f"{name} (mixed)"
     found, film_range, ior_ranges = {}, None, {}
     if textures is not None and surface is not None:
         # A socket a node graph drives is not followed into a texture (nor baked).
@@ -1234,10 +1243,8 @@ def export_mesh(mesh, materials, textures):
     mesh shown with `materials`, its images collected by `textures`. The materials come
     first: the uv maps their textures read choose the second uv set."""
     thickness = mesh_thickness(mesh)
-    gltf_materials = [gltf_material(m, thickness, textures) for m in materials]
-    for m in gltf_materials:
-        if "rt_node_graph" in m.get("extras", {}):
-            rt_node_graph.with_texture_space(m["extras"]["rt_node_graph"], mesh)
+    gltf_materials = rt_node_graph.finish_materials([gltf_material(m, thickness, textures) for m in materials],
+                                                    rt_node_graph.texture_space(mesh))
     uv_maps = uv_maps_of(mesh)
     second = second_uv_map(uv_maps, gltf_materials)
     arrays = mesh_arrays(mesh, len(materials), second)
@@ -1349,6 +1356,7 @@ class InstancedMesh:
         self.base = base
         self.textures = Textures(base, baker)
         self.thickness = mesh_thickness(mesh)
+        self.texture_space = rt_node_graph.texture_space(mesh)
         self.index = {}  # material name -> index in the asset's materials
         self.exported = []  # glTF materials, the asset's own first
         own = [self.material(m) for m in materials]
@@ -1385,7 +1393,8 @@ class InstancedMesh:
         return RTINST_MATERIAL_SET | self.sets.index(indices)
 
     def gltf(self):
-        materials = assign_uv_sets(self.uv_maps, self.exported, self.second_uv_map)
+        materials = rt_node_graph.finish_materials(self.exported, self.texture_space)
+        materials = assign_uv_sets(self.uv_maps, materials, self.second_uv_map)
         return gltf_text(materials, self.thickness, self.textures)
 
 

@@ -71,7 +71,10 @@ TARGETS = {
     "BSDF_DIFFUSE": {"Color": "base_color", "Roughness": None},
     "EMISSION": {"Color": "emission"},
 }
-TARGET_TYPES = {"base_color": "RGBA", "roughness": "VALUE", "metallic": "VALUE", "emission": "RGBA"}
+TARGET_TYPES = {"base_color": "RGBA", "roughness": "VALUE", "metallic": "VALUE", "emission": "RGBA",
+                "mix_factor": "VALUE"}
+# Shaders a Mix Shader with a graph-driven factor may mix: each becomes a material of its own.
+MIXABLE = {"BSDF_PRINCIPLED", "BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS"}
 # What a driven socket's own value becomes in the glTF factors: the part the graph scales.
 NEUTRAL = {"Metallic": 0.0, "Emission Color": (1.0, 1.0, 1.0, 1.0), "Color": (1.0, 1.0, 1.0, 1.0)}
 # Entries of a ramp's table, at 0, 1/256, ..., 1, as Cycles bakes it.
@@ -218,7 +221,12 @@ def drives(node, name):
     socket = node.inputs.get(name)
     if socket is None or not socket.is_linked or name not in TARGETS.get(node.type, {}):
         return False
-    if TARGETS[node.type][name] is None or contains_image(socket):
+    return TARGETS[node.type][name] is not None and evaluated(socket)
+
+
+def evaluated(socket):
+    """Whether a graph rt evaluates feeds `socket` (linked, no image, every node evaluated)."""
+    if not socket.is_linked or contains_image(socket):
         return False
     try:
         GraphWriter().input(socket, ())
@@ -227,22 +235,64 @@ def drives(node, name):
     return True
 
 
-def material_graph(shader):
-    """`extras.rt_node_graph` for the shader linked to a material's output, or None."""
-    if shader is None or shader.type not in TARGETS:
+def shader_of(socket):
+    """The shader node linked to a shader socket, through reroutes."""
+    node = socket.links[0].from_node if socket.is_linked else None
+    while node is not None and node.type == "REROUTE":
+        node = node.inputs[0].links[0].from_node if node.inputs[0].is_linked else None
+    return node
+
+
+def mix_parts(shader):
+    """(first, second) shader of a Mix Shader whose Fac a graph drives and whose shaders rt
+    renders one by one (none emitting, none with a Normal input linked), or None."""
+    if shader is None or shader.type != "MIX_SHADER" or not evaluated(shader.inputs["Fac"]):
+        return None
+    parts = (shader_of(shader.inputs[1]), shader_of(shader.inputs[2]))
+    for part in parts:
+        if part is None or part.type not in MIXABLE or part.mute:
+            return None
+        normal = part.inputs.get("Normal")
+        strength = part.inputs.get("Emission Strength")
+        if (normal is not None and normal.is_linked) or (strength is not None and (
+                strength.is_linked or strength.default_value > 0.0)):
+            return None
+    return parts
+
+
+def material_graph(shader, mix_factor=None):
+    """`extras.rt_node_graph` for the shader linked to a material's output (or one of a Mix
+    Shader's, whose factor socket `mix_factor` drives the choice between them), or None."""
+    if shader is None or (shader.type not in TARGETS and mix_factor is None):
         return None
     writer = GraphWriter()
     outputs = {}
-    for name, target in TARGETS[shader.type].items():
+    for name, target in TARGETS.get(shader.type, {}).items():
         if target is not None and drives(shader, name):
             outputs[target] = writer.input(shader.inputs[name], (), TARGET_TYPES[target])
+    if mix_factor is not None:
+        outputs["mix_factor"] = writer.input(mix_factor, (), "VALUE")
     if not outputs:
         return None
     return {"version": FORMAT_VERSION, "nodes": writer.nodes, "outputs": outputs}
 
 
-def with_texture_space(graph, mesh):
-    """The graph with the mesh's texture space, which Generated coordinates are relative to."""
-    graph["texture_space"] = {"location": [float(v) for v in mesh.texspace_location],
-                              "size": [float(v) for v in mesh.texspace_size]}
-    return graph
+def texture_space(mesh):
+    """A mesh's texture space, which Generated coordinates are relative to."""
+    return {"location": [float(v) for v in mesh.texspace_location], "size": [float(v) for v in mesh.texspace_size]}
+
+
+def finish_materials(materials, space):
+    """The glTF materials of one mesh, made final: each Mix Shader's second material
+    (`_rt_mix`) appended and named by the first's `rt_mix_material`, and every graph given
+    the mesh's texture space `space`."""
+    for m in list(materials):
+        second = m.pop("_rt_mix", None)
+        if second is not None:
+            m["extras"]["rt_mix_material"] = len(materials)
+            materials.append(second)
+    for m in materials:
+        graph = m.get("extras", {}).get("rt_node_graph")
+        if graph is not None:
+            graph["texture_space"] = space
+    return materials

@@ -118,6 +118,14 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
         }
         mesh.materials.push((name, material));
     }
+    let count = mesh.materials.len();
+    if let Some((name, mix)) =
+        mesh.materials.iter().find_map(|(n, m)| m.mix_material.filter(|&i| i as usize >= count).map(|i| (n, i)))
+    {
+        return Err(err(format!(
+            "material `{name}`: rt_mix_material {mix} is not one of the file's {count} materials"
+        )));
+    }
     mesh.textures = loader.textures;
 
     let roots: Vec<gltf::Node> = match document.default_scene().or_else(|| document.scenes().next()) {
@@ -462,6 +470,7 @@ fn map_material_with(m: &gltf::Material, metallic: f32, transmission: f32) -> Re
             Some(graph) => super::node_graph::compile_json(&graph)?,
             None => Vec::new(),
         },
+        mix_material: extra::<u32>(m.extras(), "rt_mix_material")?,
         ..Material::default()
     };
     Ok(match extra::<[f32; 3]>(m.extras(), "rt_glossy_color")? {
@@ -657,6 +666,7 @@ mod tests {
                 volume_emission: [0.1, 0.2, 0.3],
                 textures: Default::default(),
                 node_program: Vec::new(),
+                mix_material: None,
             }
         );
     }

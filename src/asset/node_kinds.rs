@@ -53,8 +53,9 @@ pub const OPERATIONS: [(&str, u32); 19] = [
 pub const CONVERT_COLOR_TO_VALUE: u32 = 0;
 pub const CONVERT_VECTOR_TO_VALUE: u32 = 1;
 
-/// The material inputs a graph can drive (`OP_OUTPUT` modes).
-pub const TARGETS: [&str; 4] = ["base_color", "roughness", "metallic", "emission"];
+/// The material inputs a graph can drive (`OP_OUTPUT` modes); `mix_factor` is a Mix
+/// Shader's factor, the probability of the material's `mix_material` at a point.
+pub const TARGETS: [&str; 5] = ["base_color", "roughness", "metallic", "emission", "mix_factor"];
 
 /// Math's operations, Blender's identifiers in the order of `node_math` in the shader.
 pub const MATH_OPERATIONS: [&str; 41] = [

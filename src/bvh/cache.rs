@@ -43,7 +43,7 @@
 //! sources and parameters give the same bytes.
 
 use super::cache_check::check_contents;
-use super::cached_material::CachedMaterial;
+use super::cached_material::{CachedMaterial, NO_TEXTURE};
 use super::cached_texture::{self, CachedTexture};
 use super::mesh_bvh::{BuildQuality, MeshBvh};
 use super::node::BvhStats;
@@ -367,6 +367,15 @@ pub fn read(path: &Path, source_hash: [u8; 32], params_hash: [u8; 32]) -> Result
         .find_map(|(i, m)| m.textures().find(|&t| t as usize >= textures.len()).map(|t| (i, t)))
     {
         return Err(invalid(format!("material {i} uses texture {t} of {}", textures.len())));
+    }
+    if let Some(i) =
+        materials.iter().position(|m| m.mix_material != NO_TEXTURE && m.mix_material as usize >= materials.len())
+    {
+        return Err(invalid(format!(
+            "material {i} mixes with material {} of {}",
+            materials[i].mix_material,
+            materials.len()
+        )));
     }
     if let Some(i) = materials.iter().position(|m| !m.tangent_known()) {
         return Err(invalid(format!("material {i} has an unknown tangent kind")));

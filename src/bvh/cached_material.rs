@@ -75,6 +75,8 @@ pub struct CachedMaterial {
     pub coat_normal_scale: f32,
     /// `MaterialTextures::ior_minimum`.
     pub ior_minimum: [f32; 3],
+    /// `Material::mix_material`, or [`NO_TEXTURE`] (version 12 on).
+    pub mix_material: u32,
 }
 
 const TANGENTS: [Tangent; 4] = [Tangent::RadialZ, Tangent::RadialX, Tangent::RadialY, Tangent::Uv];
@@ -127,6 +129,7 @@ impl From<&Material> for CachedMaterial {
             coat_normal_texture: slot(m.textures.coat_normal),
             coat_normal_scale: m.textures.coat_normal_scale,
             ior_minimum: m.textures.ior_minimum,
+            mix_material: slot(m.mix_material),
         }
     }
 }
@@ -182,6 +185,7 @@ impl From<&CachedMaterial> for Material {
                 anisotropy_directions: m.anisotropy_directions != 0,
             },
             node_program: Vec::new(),
+            mix_material: unslot(m.mix_material),
         }
     }
 }

@@ -24,10 +24,16 @@ pub(super) struct MeshSlot {
 }
 
 /// `material` with its texture indices moved past the textures of the meshes before its own.
-pub(super) fn with_texture_base(material: &Material, texture_base: u32) -> Material {
+/// `material` of a mesh whose textures start at `texture_base` in the scene's texture table
+/// and whose own materials at `material_base` in its material table: its indices made the
+/// scene's (a Mix Shader's second material is among the mesh's own).
+pub(super) fn with_bases(material: &Material, texture_base: u32, material_base: u32) -> Material {
     let mut m = material.clone();
     for index in m.textures.indices_mut().into_iter().flatten() {
         *index += texture_base;
+    }
+    if let Some(mix) = &mut m.mix_material {
+        *mix += material_base;
     }
     m
 }
@@ -184,7 +190,7 @@ impl<'m> Placement<'m> {
             );
             bail!(AssetError::new(file, message));
         }
-        let texture_base = self.slots[mesh_index].texture_base;
+        let (texture_base, material_base) = (self.slots[mesh_index].texture_base, self.slots[mesh_index].material_base);
         let mut bases = Vec::with_capacity(sets.len());
         for k in 0..sets.len() as u32 {
             let indices = sets.get(k).unwrap_or_default();
@@ -198,7 +204,7 @@ impl<'m> Placement<'m> {
             }
             bases.push((self.material_count + self.set_materials.len()) as u32);
             let shown = (0..own.len()).map(|j| indices.get(j).map_or(j, |&m| m as usize));
-            self.set_materials.extend(shown.map(|m| with_texture_base(&own[m].1, texture_base)));
+            self.set_materials.extend(shown.map(|m| with_bases(&own[m].1, texture_base, material_base)));
         }
         Ok(bases)
     }

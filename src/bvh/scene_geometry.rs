@@ -7,7 +7,7 @@ use super::lights::{LampTable, lamp_table, scene_radius};
 use super::mesh_bvh::BuildQuality;
 use super::node::{BvhStats, convert_bvh2, stats};
 use super::pack::{LoadedMesh, build_all_in_memory, load_or_pack_all};
-use super::placement::{MeshSlot, Placement, with_texture_base};
+use super::placement::{MeshSlot, Placement, with_bases};
 use crate::layout::*;
 use crate::scene::{GeometrySummary, LightSampler, Material, Sampling, Scene};
 use anyhow::{Result, bail};
@@ -193,7 +193,8 @@ impl SceneGeometry {
                     false => second_uvs.extend_from_slice(&mesh.bvh.second_uvs),
                 }
             }
-            materials.extend(mesh.materials.iter().map(|(_, m)| with_texture_base(m, texture_base)));
+            let material_base = materials.len() as u32;
+            materials.extend(mesh.materials.iter().map(|(_, m)| with_bases(m, texture_base, material_base)));
             texture_base += mesh.textures.len() as u32;
         }
 
@@ -242,6 +243,12 @@ impl SceneGeometry {
         }
 
         let smooth_normals = !instances.is_empty() && meshes.iter().any(|m| m.bvh.has_interpolated_normals());
+        // A Mix Shader's second material is shown wherever its first is.
+        for (i, m) in materials.iter().enumerate() {
+            if let Some(mix) = m.mix_material.filter(|_| in_use[i]) {
+                in_use[mix as usize] = true;
+            }
+        }
         let materials_in_use = materials.iter().zip(&in_use).filter(|(_, u)| **u).map(|(m, _)| m.clone()).collect();
         let mesh_triangles: Vec<_> = slots
             .iter()

@@ -71,6 +71,11 @@ pub struct Material {
     /// shading point (`asset::node_graph`); empty: none.
     #[serde(skip)]
     pub node_program: Vec<u32>,
+    /// A Mix Shader whose factor a node graph drives (`node_program`'s `mix_factor`): the
+    /// index of the material its factor selects, among the asset's own (the scene's table
+    /// once placed). Each shading point is this material or that one, by the factor.
+    #[serde(skip)]
+    pub mix_material: Option<u32>,
 }
 
 /// Which tangent the anisotropic lobes follow, in Blender's axes (rt's Y is Blender's Z).
@@ -120,6 +125,7 @@ impl Default for Material {
             volume_emission: [0.0; 3],
             textures: MaterialTextures::default(),
             node_program: Vec::new(),
+            mix_material: None,
         }
     }
 }

@@ -351,6 +351,49 @@ def floor_inputs(t, bsdf):
     t.links.new(output(mix, "Result_Color"), bsdf.inputs["Base Color"])
 
 
+def mix_material(name, fac, first, second):
+    """A Mix Shader of `first` and `second` (functions of the tree giving a shader node), its
+    factor from `fac` (a function of the tree giving a socket)."""
+    material = bpy.data.materials.new(name)
+    tree = material.node_tree
+    tree.nodes.clear()
+    out = tree.nodes.new("ShaderNodeOutputMaterial")
+    mix = tree.nodes.new("ShaderNodeMixShader")
+    tree.links.new(fac(tree), mix.inputs["Fac"])
+    tree.links.new(first(tree).outputs[0], mix.inputs[1])
+    tree.links.new(second(tree).outputs[0], mix.inputs[2])
+    tree.links.new(mix.outputs[0], out.inputs["Surface"])
+    return material
+
+
+def mix_scene():
+    """The classic: a Mix Shader of a diffuse and a glossy by Layer Weight's Facing on a
+    sphere, and a floor of two diffuse colours mixed by noise."""
+    scene = cycles.new_scene()
+    cycles.set_up(scene, 64, bounces=8)
+    cycles.uniform_world(scene, (0.8, 0.85, 1.0))
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=1.0, segments=64, ring_count=32, location=(0.0, 0.0, 1.0))
+    bpy.ops.object.shade_smooth()
+    sphere = mix_material(
+        "layered", lambda t: layer_weight(t, 0.35, "Facing"),
+        lambda t: new(t, "ShaderNodeBsdfDiffuse", {"Color": (0.7, 0.15, 0.1, 1.0)}),
+        lambda t: new(t, "ShaderNodeBsdfGlossy", {"Color": (0.9, 0.9, 0.9, 1.0), "Roughness": 0.2},
+                      distribution="MULTI_GGX"))
+    bpy.context.active_object.data.materials.append(sphere)
+    bpy.ops.mesh.primitive_plane_add(size=8.0)
+    floor = mix_material(
+        "patchy", lambda t: noise(t, Scale=3.0, Detail=2.0).outputs["Fac"],
+        lambda t: new(t, "ShaderNodeBsdfDiffuse", {"Color": (0.8, 0.8, 0.75, 1.0)}),
+        lambda t: new(t, "ShaderNodeBsdfDiffuse", {"Color": (0.1, 0.2, 0.5, 1.0)}))
+    bpy.context.active_object.data.materials.append(floor)
+    camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
+    camera.location = (0.0, -5.5, 2.6)
+    camera.rotation_euler = (math.radians(72.0), 0.0, 0.0)
+    scene.collection.objects.link(camera)
+    scene.camera = camera
+    return scene
+
+
 def material_scene():
     scene = cycles.new_scene()
     cycles.set_up(scene, 64, bounces=8)
@@ -376,6 +419,7 @@ SCENES = {
     "graph_convert": lambda: grid_scene("convert", CONVERT),
     "graph_shading": lambda: grid_scene("shading", SHADING, shape="sphere"),
     "graph_material": material_scene,
+    "graph_mix": mix_scene,
 }
 
 

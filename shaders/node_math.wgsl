@@ -148,6 +148,86 @@ fn node_vector_math(operation: u32, a: vec3f, b: vec3f, c: vec3f, scale: f32) ->
     }
 }
 
+// Cycles' rgb_to_hsv and hsv_to_rgb (util/color.h).
+fn rgb_to_hsv(rgb: vec3f) -> vec3f {
+    let cmax = max(rgb.x, max(rgb.y, rgb.z));
+    let cmin = min(rgb.x, min(rgb.y, rgb.z));
+    let cdelta = cmax - cmin;
+    let s = select(0.0, cdelta / cmax, cmax != 0.0);
+    if s == 0.0 {
+        return vec3f(0.0, s, cmax);
+    }
+    let c = (vec3f(cmax) - rgb) / cdelta;
+    var h: f32;
+    if rgb.x == cmax {
+        h = c.z - c.y;
+    } else if rgb.y == cmax {
+        h = 2.0 + c.x - c.z;
+    } else {
+        h = 4.0 + c.y - c.x;
+    }
+    h /= 6.0;
+    return vec3f(select(h, h + 1.0, h < 0.0), s, cmax);
+}
+
+fn hsv_to_rgb(hsv: vec3f) -> vec3f {
+    let s = hsv.y;
+    let v = hsv.z;
+    if s == 0.0 {
+        return vec3f(v);
+    }
+    let h = select(hsv.x, 0.0, hsv.x == 1.0) * 6.0;
+    let i = floor(h);
+    let f = h - i;
+    let p = v * (1.0 - s);
+    let q = v * (1.0 - s * f);
+    let t = v * (1.0 - s * (1.0 - f));
+    switch i32(i) {
+        case 0: { return vec3f(v, t, p); }
+        case 1: { return vec3f(q, v, p); }
+        case 2: { return vec3f(p, v, t); }
+        case 3: { return vec3f(p, q, v); }
+        case 4: { return vec3f(t, p, v); }
+        default: { return vec3f(v, p, q); }
+    }
+}
+
+// Hue, Saturation, Value and Color blends (svm_mix_hue, _sat, _val, _color).
+fn node_blend_hsv(blend: u32, t: f32, a: vec3f, b: vec3f) -> vec3f {
+    let hsv = rgb_to_hsv(a);
+    let hsv2 = rgb_to_hsv(b);
+    switch blend {
+        case 15u: {
+            return select(a, mix(a, hsv_to_rgb(vec3f(hsv2.x, hsv.y, hsv.z)), t), hsv2.y != 0.0);
+        }
+        case 16u: {
+            return select(a, hsv_to_rgb(vec3f(hsv.x, mix(hsv.y, hsv2.y, t), hsv.z)), hsv.y != 0.0);
+        }
+        case 17u: {
+            return hsv_to_rgb(vec3f(hsv.x, hsv.y, mix(hsv.z, hsv2.z, t)));
+        }
+        default: {
+            return select(a, mix(a, hsv_to_rgb(vec3f(hsv2.x, hsv2.y, hsv.z)), t), hsv2.y != 0.0);
+        }
+    }
+}
+
+// Hue/Saturation/Value node: its colour turned in hue, scaled in saturation and value,
+// mixed with the input by `fac`, kept non-negative.
+fn node_hue_saturation(hue: f32, saturation: f32, value: f32, fac: f32, color: vec3f) -> vec3f {
+    var hsv = rgb_to_hsv(color);
+    let h = hsv.x + hue + 0.5;
+    hsv = vec3f(h - floor(h), clamp(hsv.y * saturation, 0.0, 1.0), hsv.z * value);
+    return max(mix(color, hsv_to_rgb(hsv), fac), vec3f(0.0));
+}
+
+fn node_gamma(color: vec3f, gamma: f32) -> vec3f {
+    if gamma == 0.0 {
+        return vec3f(1.0);
+    }
+    return select(color, pow(color, vec3f(gamma)), color > vec3f(0.0));
+}
+
 // A colour blend of Cycles' svm_mix, with the factor t already clamped or not.
 fn node_blend(blend: u32, t: f32, a: vec3f, b: vec3f) -> vec3f {
     let tm = 1.0 - t;
@@ -182,6 +262,7 @@ fn node_blend(blend: u32, t: f32, a: vec3f, b: vec3f) -> vec3f {
         case 14u: {
             return select(a, a * tm + t * a / b, b != vec3f(0.0));
         }
+        case 15u, 16u, 17u, 18u: { return node_blend_hsv(blend, t, a, b); }
         default: { return mix(a, b, t); }
     }
 }

@@ -41,6 +41,57 @@ fn hash_uint3(kx: u32, ky: u32, kz: u32) -> u32 {
     return hash_final(seed + kx, seed + ky, seed + kz);
 }
 
+// lookup3's `mix` of (a, b, c).
+fn hash_mix(a_in: u32, b_in: u32, c_in: u32) -> vec3u {
+    var a = a_in;
+    var b = b_in;
+    var c = c_in;
+    a -= c;
+    a ^= hash_rotate(c, 4u);
+    c += b;
+    b -= a;
+    b ^= hash_rotate(a, 6u);
+    a += c;
+    c -= b;
+    c ^= hash_rotate(b, 8u);
+    b += a;
+    a -= c;
+    a ^= hash_rotate(c, 16u);
+    c += b;
+    b -= a;
+    b ^= hash_rotate(a, 19u);
+    a += c;
+    c -= b;
+    c ^= hash_rotate(b, 4u);
+    b += a;
+    return vec3u(a, b, c);
+}
+
+fn hash_uint4(kx: u32, ky: u32, kz: u32, kw: u32) -> u32 {
+    let seed = 0xdeadbeefu + (4u << 2u) + 13u;
+    let m = hash_mix(seed + kx, seed + ky, seed + kz);
+    return hash_final(m.x + kw, m.y, m.z);
+}
+
+fn hash_to_unit(h: u32) -> f32 {
+    return f32(h) * (1.0 / 4294967296.0);
+}
+
+// Cycles' hash_float3_to_float and hash_float3_to_float3: the White Noise Texture.
+fn hash_float3_to_float(k: vec3f) -> f32 {
+    let b = bitcast<vec3u>(k);
+    return hash_to_unit(hash_uint3(b.x, b.y, b.z));
+}
+
+fn hash_float3_to_float3(k: vec3f) -> vec3f {
+    let b = bitcast<vec3u>(k);
+    return vec3f(
+        hash_to_unit(hash_uint3(b.x, b.y, b.z)),
+        hash_to_unit(hash_uint4(b.x, b.y, b.z, bitcast<u32>(1.0))),
+        hash_to_unit(hash_uint4(b.x, b.y, b.z, bitcast<u32>(2.0))),
+    );
+}
+
 // Cycles' hash_float2_to_float: [0, 1].
 fn hash_float2_to_float(k: vec2f) -> f32 {
     return f32(hash_uint2(bitcast<u32>(k.x), bitcast<u32>(k.y))) * (1.0 / 4294967296.0);

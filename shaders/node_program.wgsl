@@ -32,6 +32,10 @@ const NODE_OP_CHECKER: u32 = 15u;
 const NODE_OP_GRADIENT: u32 = 16u;
 const NODE_OP_LAYER_WEIGHT: u32 = 17u;
 const NODE_OP_FRESNEL: u32 = 18u;
+const NODE_OP_HUE_SATURATION: u32 = 19u;
+const NODE_OP_BRIGHT_CONTRAST: u32 = 20u;
+const NODE_OP_GAMMA: u32 = 21u;
+const NODE_OP_WHITE_NOISE: u32 = 22u;
 
 const NODE_REGISTERS: u32 = 32u;
 const NODE_CONSTANT: u32 = 0x80000000u;
@@ -265,11 +269,31 @@ fn node_instruction(start: u32, at: u32, extra: u32, p: NodePoint) {
             node_store(out + 1u, vec4f(c.w));
         }
         case NODE_OP_SEPARATE: {
-            node_store(out, vec4f(a.x));
-            node_store(out + 1u, vec4f(a.y));
-            node_store(out + 2u, vec4f(a.z));
+            // Mode 1: Separate Color in HSV.
+            let c = select(a.xyz, rgb_to_hsv(a.xyz), mode == 1u);
+            node_store(out, vec4f(c.x));
+            node_store(out + 1u, vec4f(c.y));
+            node_store(out + 2u, vec4f(c.z));
         }
-        case NODE_OP_COMBINE: { node_store(out, vec4f(a.x, node_in(start, at, 1u).x, node_in(start, at, 2u).x, 1.0)); }
+        case NODE_OP_COMBINE: {
+            let c = vec3f(a.x, node_in(start, at, 1u).x, node_in(start, at, 2u).x);
+            node_store(out, vec4f(select(c, hsv_to_rgb(c), mode == 1u), 1.0));
+        }
+        case NODE_OP_HUE_SATURATION: {
+            let c = node_in(start, at, 4u);
+            let h = node_hue_saturation(a.x, node_in(start, at, 1u).x, node_in(start, at, 2u).x, node_in(start, at, 3u).x, c.xyz);
+            node_store(out, vec4f(h, c.w));
+        }
+        case NODE_OP_BRIGHT_CONTRAST: {
+            let contrast = node_in(start, at, 2u).x;
+            let c = max((1.0 + contrast) * a.xyz + node_in(start, at, 1u).x - 0.5 * contrast, vec3f(0.0));
+            node_store(out, vec4f(c, a.w));
+        }
+        case NODE_OP_GAMMA: { node_store(out, vec4f(node_gamma(a.xyz, node_in(start, at, 1u).x), a.w)); }
+        case NODE_OP_WHITE_NOISE: {
+            node_store(out, vec4f(hash_float3_to_float(a.xyz)));
+            node_store(out + 1u, vec4f(hash_float3_to_float3(a.xyz), 1.0));
+        }
         case NODE_OP_MAPPING: {
             let v = node_mapping(mode, a.xyz, node_in(start, at, 1u).xyz, node_in(start, at, 2u).xyz, node_in(start, at, 3u).xyz);
             node_store(out, vec4f(v, 0.0));

@@ -38,10 +38,14 @@ EVALUATED = {
     "TEX_GRADIENT": ("Color", "Fac"),
     "LAYER_WEIGHT": ("Fresnel", "Facing"),
     "FRESNEL": ("Fac",),
+    "HUE_SAT": ("Color",),
+    "BRIGHTCONTRAST": ("Color",),
+    "GAMMA": ("Color",),
+    "TEX_WHITE_NOISE": ("Value", "Color"),
 }
 
 BLEND_TYPES = {"MIX", "DARKEN", "MULTIPLY", "BURN", "LIGHTEN", "SCREEN", "DODGE", "ADD", "OVERLAY", "SOFT_LIGHT",
-               "LINEAR_LIGHT", "DIFFERENCE", "EXCLUSION", "SUBTRACT", "DIVIDE"}
+               "LINEAR_LIGHT", "DIFFERENCE", "EXCLUSION", "SUBTRACT", "DIVIDE", "HUE", "SATURATION", "VALUE", "COLOR"}
 VECTOR_MATH_OPERATIONS = {"ADD", "SUBTRACT", "MULTIPLY", "DIVIDE", "MULTIPLY_ADD", "CROSS_PRODUCT", "PROJECT",
                           "REFLECT", "REFRACT", "FACEFORWARD", "DOT_PRODUCT", "DISTANCE", "LENGTH", "SCALE",
                           "NORMALIZE", "ABSOLUTE", "MINIMUM", "MAXIMUM", "FLOOR", "CEIL", "FRACTION", "MODULO",
@@ -56,14 +60,16 @@ EVALUATED_SETTINGS = {
     "MAP_RANGE": {"data_type": {"FLOAT"}, "interpolation_type": None, "clamp": None},
     "CLAMP": {"clamp_type": None},
     "VALTORGB": {},
-    "SEPARATE_COLOR": {"mode": {"RGB"}},
-    "COMBINE_COLOR": {"mode": {"RGB"}},
+    "SEPARATE_COLOR": {"mode": {"RGB", "HSV"}},
+    "COMBINE_COLOR": {"mode": {"RGB", "HSV"}},
+    "TEX_WHITE_NOISE": {"noise_dimensions": {"3D"}},
     "MAPPING": {"vector_type": None},
     "TEX_NOISE": {"noise_dimensions": {"3D"}, "noise_type": None, "normalize": None},
     "TEX_GRADIENT": {"gradient_type": None},
 }
-# Texture nodes whose unlinked Vector is the Generated coordinates, as in Cycles.
-GENERATED_BY_DEFAULT = {"TEX_NOISE", "TEX_CHECKER", "TEX_GRADIENT"}
+# Texture nodes' unlinked Vector, as in Cycles: the Generated coordinates (White Noise's is 0).
+DEFAULT_VECTOR = {"TEX_NOISE": ("TEX_COORD", "Generated"), "TEX_CHECKER": ("TEX_COORD", "Generated"),
+                  "TEX_GRADIENT": ("TEX_COORD", "Generated")}
 # Shader inputs a graph can drive: rt's material input, the socket's type there.
 TARGETS = {
     "BSDF_PRINCIPLED": {"Base Color": "base_color", "Roughness": "roughness", "Metallic": "metallic",
@@ -145,17 +151,18 @@ class GraphWriter:
             if not socket.enabled:
                 continue
             value = self.input(socket, groups)
-            if value is None and node.type in GENERATED_BY_DEFAULT and socket.name == "Vector":
-                value = {"link": [self.generated(), "Generated"], "from": "VECTOR", "to": "VECTOR"}
+            if value is None and node.type in DEFAULT_VECTOR and socket.identifier == "Vector":
+                kind, output = DEFAULT_VECTOR[node.type]
+                value = {"link": [self.default_vector(kind), output], "from": "VECTOR", "to": "VECTOR"}
             if value is not None:
                 entry["inputs"][socket_key(socket)] = value
         return self.index[key]
 
-    def generated(self):
-        key = ((), "rt: default coordinates")
+    def default_vector(self, kind):
+        key = ((), f"rt: default {kind}")
         if key not in self.index:
             self.index[key] = len(self.nodes)
-            self.nodes.append({"name": key[1], "type": "TEX_COORD", "settings": {}, "inputs": {}})
+            self.nodes.append({"name": key[1], "type": kind, "settings": {}, "inputs": {}})
         return self.index[key]
 
     def input(self, socket, groups, to_type=None):

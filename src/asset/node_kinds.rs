@@ -25,9 +25,13 @@ pub const OP_CHECKER: u32 = 15;
 pub const OP_GRADIENT: u32 = 16;
 pub const OP_LAYER_WEIGHT: u32 = 17;
 pub const OP_FRESNEL: u32 = 18;
+pub const OP_HUE_SATURATION: u32 = 19;
+pub const OP_BRIGHT_CONTRAST: u32 = 20;
+pub const OP_GAMMA: u32 = 21;
+pub const OP_WHITE_NOISE: u32 = 22;
 
 /// Every operation by its WGSL name, for the check against the shader.
-pub const OPERATIONS: [(&str, u32); 19] = [
+pub const OPERATIONS: [(&str, u32); 23] = [
     ("END", OP_END),
     ("OUTPUT", OP_OUTPUT),
     ("CONVERT", OP_CONVERT),
@@ -47,6 +51,10 @@ pub const OPERATIONS: [(&str, u32); 19] = [
     ("GRADIENT", OP_GRADIENT),
     ("LAYER_WEIGHT", OP_LAYER_WEIGHT),
     ("FRESNEL", OP_FRESNEL),
+    ("HUE_SATURATION", OP_HUE_SATURATION),
+    ("BRIGHT_CONTRAST", OP_BRIGHT_CONTRAST),
+    ("GAMMA", OP_GAMMA),
+    ("WHITE_NOISE", OP_WHITE_NOISE),
 ];
 
 /// `OP_CONVERT` modes: a colour to a value (its luminance), a vector to one (the mean).
@@ -133,7 +141,7 @@ pub const VECTOR_MATH_OPERATIONS: [&str; 27] = [
     "TANGENT",
 ];
 
-pub const BLEND_TYPES: [&str; 15] = [
+pub const BLEND_TYPES: [&str; 19] = [
     "MIX",
     "DARKEN",
     "MULTIPLY",
@@ -149,7 +157,12 @@ pub const BLEND_TYPES: [&str; 15] = [
     "EXCLUSION",
     "SUBTRACT",
     "DIVIDE",
+    "HUE",
+    "SATURATION",
+    "VALUE",
+    "COLOR",
 ];
+const COLOR_MODES: [&str; 2] = ["RGB", "HSV"];
 
 const MIX_DATA_TYPES: [&str; 3] = ["FLOAT", "VECTOR", "RGBA"];
 const MAP_RANGE_INTERPOLATIONS: [&str; 4] = ["LINEAR", "STEPPED", "SMOOTHSTEP", "SMOOTHERSTEP"];
@@ -186,7 +199,7 @@ const fn op(name: &'static str, op: u32, inputs: &'static [&'static str], output
     Kind { name, emit: Emit::Operation(op), inputs, outputs }
 }
 
-pub const KINDS: [Kind; 23] = [
+pub const KINDS: [Kind; 27] = [
     Kind { name: "VALUE", emit: Emit::Constant, inputs: &[], outputs: &["Value"] },
     Kind { name: "RGB", emit: Emit::Constant, inputs: &[], outputs: &["Color"] },
     Kind {
@@ -225,6 +238,10 @@ pub const KINDS: [Kind; 23] = [
     op("TEX_GRADIENT", OP_GRADIENT, &["Vector"], &["Color", "Fac"]),
     op("LAYER_WEIGHT", OP_LAYER_WEIGHT, &["Blend", "Normal"], &["Fresnel", "Facing"]),
     op("FRESNEL", OP_FRESNEL, &["IOR", "Normal"], &["Fac"]),
+    op("HUE_SAT", OP_HUE_SATURATION, &["Hue", "Saturation", "Value", "Fac", "Color"], &["Color"]),
+    op("BRIGHTCONTRAST", OP_BRIGHT_CONTRAST, &["Color", "Bright", "Contrast"], &["Color"]),
+    op("GAMMA", OP_GAMMA, &["Color", "Gamma"], &["Color"]),
+    op("TEX_WHITE_NOISE", OP_WHITE_NOISE, &["Vector", "W"], &["Value", "Color"]),
 ];
 
 /// What a compiled program depends on besides its graph: the operations, their modes and
@@ -292,9 +309,10 @@ pub fn mode(name: &str, settings: &Map<String, Value>) -> Result<Mode, String> {
         "CLAMP" => plain(choice(settings, "clamp_type", &CLAMP_TYPES)?),
         "VALTORGB" => Ok(Mode { mode: 0, flags: (text(settings, "interpolation")? != "CONSTANT") as u32 }),
         "RGBTOBW" => plain(CONVERT_COLOR_TO_VALUE),
-        "SEPARATE_COLOR" | "COMBINE_COLOR" => {
-            if text(settings, "mode")? != "RGB" {
-                return Err("only the RGB mode of Separate/Combine Color is evaluated yet".into());
+        "SEPARATE_COLOR" | "COMBINE_COLOR" => plain(choice(settings, "mode", &COLOR_MODES)?),
+        "TEX_WHITE_NOISE" => {
+            if text(settings, "noise_dimensions")? != "3D" {
+                return Err("only 3D white noise is evaluated yet".into());
             }
             plain(0)
         }

@@ -288,6 +288,34 @@ def clamp_minmax(t):
 
 VECTOR = ([lambda t, k=k: gradient(t, k).outputs["Color"] for k in GRADIENTS]
           + [vector_tile(VECTOR_OPERATIONS[i:i + 3]) for i in range(0, len(VECTOR_OPERATIONS), 3)])
+def hsv_blend_tile(blend):
+    def build(t):
+        a = noise(t, coords(t), Scale=2.0).outputs["Color"]
+        b = new(t, "ShaderNodeCombineColor", {"Red": output(new(t, "ShaderNodeSeparateXYZ", {"Vector": coords(t, "Generated")}), "X"),
+                                               "Green": 0.8, "Blue": 0.7}, mode="HSV").outputs[0]
+        mix = new(t, "ShaderNodeMix", {"Factor_Float": 0.7, "A_Color": a, "B_Color": b}, data_type="RGBA", blend_type=blend)
+        return output(mix, "Result_Color")
+    return build
+
+
+def cells(t, scale=4.0):
+    """The object coordinates floored to cells of 1/scale: white noise is then constant per cell."""
+    scaled = new(t, "ShaderNodeVectorMath", {"Vector": coords(t), "Scale": scale}, operation="SCALE")
+    return new(t, "ShaderNodeVectorMath", {"Vector": scaled.outputs["Vector"]}, operation="FLOOR").outputs["Vector"]
+
+
+def colour_nodes(t):
+    c = noise(t, coords(t), Scale=2.5).outputs["Color"]
+    hue = new(t, "ShaderNodeHueSaturation", {"Hue": 0.3, "Saturation": 1.6, "Value": 0.9, "Fac": 0.8, "Color": c})
+    bright = new(t, "ShaderNodeBrightContrast", {"Color": hue.outputs[0], "Bright": 0.1, "Contrast": 0.4})
+    return new(t, "ShaderNodeGamma", {"Color": bright.outputs[0], "Gamma": 1.8}).outputs[0]
+
+
+def hsv_round_trip(t):
+    separate = new(t, "ShaderNodeSeparateColor", {"Color": noise(t, coords(t), Scale=3.0).outputs["Color"]}, mode="HSV")
+    return rgb(t, separate.outputs[0], separate.outputs[1], separate.outputs[2])
+
+
 CONVERT = [
     lambda t: rgb(t, map_range(t, "LINEAR", True), map_range(t, "STEPPED", False), map_range(t, "SMOOTHSTEP", False)),
     lambda t: rgb(t, map_range(t, "SMOOTHERSTEP", False, True), map_range(t, "LINEAR", False, True),
@@ -295,7 +323,14 @@ CONVERT = [
     converters,
     vector_mix,
     clamp_minmax,
-]
+    colour_nodes,
+    hsv_round_trip,
+    lambda t: new(t, "ShaderNodeTexWhiteNoise", {"Vector": cells(t)}, noise_dimensions="3D").outputs["Color"],
+    lambda t: new(t, "ShaderNodeTexWhiteNoise", {"Vector": cells(t, 7.0)}, noise_dimensions="3D").outputs["Value"],
+    lambda t: new(t, "ShaderNodeTexWhiteNoise", noise_dimensions="3D").outputs["Color"],
+    lambda t: new(t, "ShaderNodeHueSaturation", {"Hue": 0.8, "Saturation": 0.3, "Value": 1.4, "Fac": 1.0,
+                                                  "Color": coords(t, "Generated")}).outputs[0],
+] + [hsv_blend_tile(b) for b in ("HUE", "SATURATION", "VALUE", "COLOR")]
 
 
 def layer_weight(t, blend, which):

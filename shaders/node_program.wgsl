@@ -10,6 +10,7 @@
 //#include "texture.wgsl"
 //#include "node_noise.wgsl"
 //#include "node_math.wgsl"
+//#include "node_voronoi.wgsl"
 
 @group(0) @binding(21) var<storage, read> node_programs: array<u32>;
 
@@ -36,6 +37,7 @@ const NODE_OP_HUE_SATURATION: u32 = 19u;
 const NODE_OP_BRIGHT_CONTRAST: u32 = 20u;
 const NODE_OP_GAMMA: u32 = 21u;
 const NODE_OP_WHITE_NOISE: u32 = 22u;
+const NODE_OP_VORONOI: u32 = 23u;
 
 const NODE_REGISTERS: u32 = 32u;
 const NODE_CONSTANT: u32 = 0x80000000u;
@@ -223,6 +225,24 @@ fn node_noise(start: u32, at: u32, kind: u32, normalize: bool) -> vec4f {
     return noise_texture_3d(node_in(start, at, 0u).xyz * scale, node_in(start, at, 8u).x, s);
 }
 
+// Voronoi Texture: mode = feature | metric << 4 (node_kinds' VORONOI_FEATURES, _METRICS).
+fn node_voronoi(start: u32, at: u32, mode: u32, normalize: bool) -> VoronoiResult {
+    let p = VoronoiParams(
+        node_in(start, at, 2u).x,
+        node_in(start, at, 3u).x,
+        node_in(start, at, 4u).x,
+        node_in(start, at, 5u).x,
+        node_in(start, at, 6u).x,
+        node_in(start, at, 7u).x,
+        node_in(start, at, 8u).x,
+        0.0,
+        normalize,
+        mode & 15u,
+        mode >> 4u,
+    );
+    return voronoi_texture(node_in(start, at, 0u).xyz, p);
+}
+
 // Runs one instruction (not END or OUTPUT) at `at`, whose extra words start at `extra`.
 fn node_instruction(start: u32, at: u32, extra: u32, p: NodePoint) {
     let word = node_programs[at];
@@ -290,6 +310,14 @@ fn node_instruction(start: u32, at: u32, extra: u32, p: NodePoint) {
             node_store(out, vec4f(c, a.w));
         }
         case NODE_OP_GAMMA: { node_store(out, vec4f(node_gamma(a.xyz, node_in(start, at, 1u).x), a.w)); }
+        case NODE_OP_VORONOI: {
+            let v = node_voronoi(start, at, mode, flags != 0u);
+            node_store(out, vec4f(v.distance));
+            node_store(out + 1u, vec4f(v.color, 1.0));
+            node_store(out + 2u, vec4f(v.position, 0.0));
+            node_store(out + 3u, vec4f(0.0));
+            node_store(out + 4u, vec4f(v.radius));
+        }
         case NODE_OP_WHITE_NOISE: {
             node_store(out, vec4f(hash_float3_to_float(a.xyz)));
             node_store(out + 1u, vec4f(hash_float3_to_float3(a.xyz), 1.0));

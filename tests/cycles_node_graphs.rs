@@ -90,6 +90,11 @@ fn gradients_and_vector_math_match_cycles() {
 }
 
 #[test]
+fn voronoi_of_every_feature_and_metric_matches_cycles() {
+    check_channels("graph_voronoi", 1e-3);
+}
+
+#[test]
 fn map_range_clamp_and_converters_match_cycles() {
     check_channels("graph_convert", 1e-3);
 }

@@ -29,9 +29,10 @@ pub const OP_HUE_SATURATION: u32 = 19;
 pub const OP_BRIGHT_CONTRAST: u32 = 20;
 pub const OP_GAMMA: u32 = 21;
 pub const OP_WHITE_NOISE: u32 = 22;
+pub const OP_VORONOI: u32 = 23;
 
 /// Every operation by its WGSL name, for the check against the shader.
-pub const OPERATIONS: [(&str, u32); 23] = [
+pub const OPERATIONS: [(&str, u32); 24] = [
     ("END", OP_END),
     ("OUTPUT", OP_OUTPUT),
     ("CONVERT", OP_CONVERT),
@@ -55,6 +56,7 @@ pub const OPERATIONS: [(&str, u32); 23] = [
     ("BRIGHT_CONTRAST", OP_BRIGHT_CONTRAST),
     ("GAMMA", OP_GAMMA),
     ("WHITE_NOISE", OP_WHITE_NOISE),
+    ("VORONOI", OP_VORONOI),
 ];
 
 /// `OP_CONVERT` modes: a colour to a value (its luminance), a vector to one (the mean).
@@ -163,6 +165,8 @@ pub const BLEND_TYPES: [&str; 19] = [
     "COLOR",
 ];
 const COLOR_MODES: [&str; 2] = ["RGB", "HSV"];
+const VORONOI_FEATURES: [&str; 5] = ["F1", "F2", "SMOOTH_F1", "DISTANCE_TO_EDGE", "N_SPHERE_RADIUS"];
+const VORONOI_METRICS: [&str; 4] = ["EUCLIDEAN", "MANHATTAN", "CHEBYCHEV", "MINKOWSKI"];
 
 const MIX_DATA_TYPES: [&str; 3] = ["FLOAT", "VECTOR", "RGBA"];
 const MAP_RANGE_INTERPOLATIONS: [&str; 4] = ["LINEAR", "STEPPED", "SMOOTHSTEP", "SMOOTHERSTEP"];
@@ -199,7 +203,7 @@ const fn op(name: &'static str, op: u32, inputs: &'static [&'static str], output
     Kind { name, emit: Emit::Operation(op), inputs, outputs }
 }
 
-pub const KINDS: [Kind; 27] = [
+pub const KINDS: [Kind; 28] = [
     Kind { name: "VALUE", emit: Emit::Constant, inputs: &[], outputs: &["Value"] },
     Kind { name: "RGB", emit: Emit::Constant, inputs: &[], outputs: &["Color"] },
     Kind {
@@ -242,6 +246,12 @@ pub const KINDS: [Kind; 27] = [
     op("BRIGHTCONTRAST", OP_BRIGHT_CONTRAST, &["Color", "Bright", "Contrast"], &["Color"]),
     op("GAMMA", OP_GAMMA, &["Color", "Gamma"], &["Color"]),
     op("TEX_WHITE_NOISE", OP_WHITE_NOISE, &["Vector", "W"], &["Value", "Color"]),
+    op(
+        "TEX_VORONOI",
+        OP_VORONOI,
+        &["Vector", "W", "Scale", "Detail", "Roughness", "Lacunarity", "Smoothness", "Exponent", "Randomness"],
+        &["Distance", "Color", "Position", "W", "Radius"],
+    ),
 ];
 
 /// What a compiled program depends on besides its graph: the operations, their modes and
@@ -249,7 +259,7 @@ pub const KINDS: [Kind; 27] = [
 pub fn compiler_signature() -> String {
     let kinds: Vec<_> = KINDS.iter().map(|k| (k.name, k.inputs, k.outputs)).collect();
     format!(
-        "node programs {} {} {OPERATIONS:?} {MATH_OPERATIONS:?} {VECTOR_MATH_OPERATIONS:?} {BLEND_TYPES:?} {RAMP_TABLE_SIZE} {kinds:?}",
+        "node programs {} {} {OPERATIONS:?} {MATH_OPERATIONS:?} {VECTOR_MATH_OPERATIONS:?} {BLEND_TYPES:?} {RAMP_TABLE_SIZE} {kinds:?} {VORONOI_FEATURES:?} {VORONOI_METRICS:?}",
         super::node_graph::FORMAT_VERSION,
         super::node_graph::COMPILER_VERSION
     )
@@ -324,6 +334,16 @@ pub fn mode(name: &str, settings: &Map<String, Value>) -> Result<Mode, String> {
             Ok(Mode { mode: choice(settings, "noise_type", &NOISE_TYPES)?, flags: flag(settings, "normalize") as u32 })
         }
         "TEX_GRADIENT" => plain(choice(settings, "gradient_type", &GRADIENT_TYPES)?),
+        "TEX_VORONOI" => {
+            if text(settings, "voronoi_dimensions")? != "3D" {
+                return Err("only 3D Voronoi is evaluated yet".into());
+            }
+            let feature = choice(settings, "feature", &VORONOI_FEATURES)?;
+            Ok(Mode {
+                mode: feature | choice(settings, "distance", &VORONOI_METRICS)? << 4,
+                flags: flag(settings, "normalize") as u32,
+            })
+        }
         _ => plain(0),
     }
 }

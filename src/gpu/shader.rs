@@ -90,6 +90,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("node_math.wgsl"),
     shader!("node_noise.wgsl"),
     shader!("node_program.wgsl"),
+    shader!("node_voronoi.wgsl"),
     shader!("normal_map.wgsl"),
     shader!("oren_nayar.wgsl"),
     shader!("panorama.wgsl"),

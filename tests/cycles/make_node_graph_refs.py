@@ -358,6 +358,34 @@ SHADING = [
 ]
 
 
+def voronoi(t, which, vector=True, feature="F1", distance="EUCLIDEAN", normalize=False, **inputs):
+    node = new(t, "ShaderNodeTexVoronoi", {"Scale": 4.0, **inputs}, voronoi_dimensions="3D", feature=feature,
+               distance=distance, normalize=normalize)
+    if vector:
+        t.links.new(coords(t), node.inputs["Vector"])
+    return output(node, which)
+
+
+VORONOI = [
+    lambda t: voronoi(t, "Distance", vector=False),
+    lambda t: voronoi(t, "Color"),
+    lambda t: new(t, "ShaderNodeVectorMath", {"Vector": voronoi(t, "Position")}, operation="FRACTION").outputs[0],
+    lambda t: shown(t, voronoi(t, "Distance", feature="F2"), 0.6, 0.0),
+    lambda t: voronoi(t, "Distance", feature="SMOOTH_F1", Smoothness=1.0),
+    lambda t: voronoi(t, "Color", feature="SMOOTH_F1", Smoothness=0.4),
+    lambda t: shown(t, voronoi(t, "Distance", feature="DISTANCE_TO_EDGE"), 2.0, 0.0),
+    lambda t: shown(t, voronoi(t, "Radius", feature="N_SPHERE_RADIUS"), 1.5, 0.0),
+    lambda t: shown(t, voronoi(t, "Distance", distance="MANHATTAN"), 0.5, 0.0),
+    lambda t: voronoi(t, "Distance", distance="CHEBYCHEV"),
+    lambda t: shown(t, voronoi(t, "Distance", distance="MINKOWSKI", Exponent=0.7), 0.3, 0.0),
+    lambda t: voronoi(t, "Color", Randomness=0.4),
+    lambda t: voronoi(t, "Distance", normalize=True, Detail=2.5, Roughness=0.6),
+    lambda t: voronoi(t, "Color", Detail=1.5, Roughness=0.5, Lacunarity=2.5),
+    lambda t: shown(t, voronoi(t, "Distance", feature="DISTANCE_TO_EDGE", normalize=True, Detail=1.5), 1.0, 0.0),
+    lambda t: voronoi(t, "Distance", feature="SMOOTH_F1", Smoothness=0.6, Detail=2.0, Roughness=0.5),
+]
+
+
 def procedural_material(name, build):
     material = bpy.data.materials.new(name)
     tree = material.node_tree
@@ -452,6 +480,7 @@ SCENES = {
     "graph_color": lambda: grid_scene("color", COLOR),
     "graph_vector": lambda: grid_scene("vector", VECTOR),
     "graph_convert": lambda: grid_scene("convert", CONVERT),
+    "graph_voronoi": lambda: grid_scene("voronoi", VORONOI),
     "graph_shading": lambda: grid_scene("shading", SHADING, shape="sphere"),
     "graph_material": material_scene,
     "graph_mix": mix_scene,

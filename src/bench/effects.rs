@@ -64,20 +64,25 @@ impl EffectsReport {
         }
         let _ = writeln!(
             md,
-            "\nSpecialised over all-features: **{:.2}×** faster. Every pipeline renders the same \
-             picture: their mean luminances should differ by noise only.",
+            "\nSpecialised over all-features: **{:.2}×** faster. Every pipeline but one without an \
+             effect (−) renders the same picture: their mean luminances should differ by noise only.",
             self.speedup()
         );
         md
     }
 }
 
-/// The pipelines to time: the scene's, all features, and the scene's plus each absent effect.
+/// The pipelines to time: the scene's, all features, the scene's plus each absent effect,
+/// and, for a scene with node graphs, the scene's without them (each material's constants:
+/// the graphs' price against the same materials without them; another picture).
 pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, FeatureSet)> {
     let mut v = vec![
         ("specialised".to_string(), own),
         ("all features".to_string(), FeatureSet::all(own.sky, own.sampling, rough)),
     ];
+    if own.node_graphs {
+        v.push(("−node graphs (constants)".to_string(), FeatureSet { node_graphs: false, ..own }));
+    }
     let mut force = |name: &str, on: bool, f: FeatureSet| {
         if !on {
             v.push((format!("+{name}"), f));

@@ -13,8 +13,9 @@
 //! bye
 //! ```
 //!
-//! A frame is the mean radiance so far, linear, as little-endian f32 RGBA (alpha 1), rows
-//! from the top; `line=L` says it shows every command up to the client's line L (a bad
+//! A frame is the mean radiance so far, linear, as little-endian f32 RGBA, rows from the
+//! top; alpha is 1, or with a transparent film the share of the pixel the scene covers (the
+//! colour premultiplied by it, as Blender draws it); `line=L` says it shows every command up to the client's line L (a bad
 //! one is answered by its error line, and changes nothing). Frames
 //! follow each dispatch until the state reaches its spp. client → rt, one command a line:
 //!
@@ -269,13 +270,41 @@ fn error_line(line: Option<u64>, message: &str) -> String {
     }
 }
 
-/// The image as the protocol's frame bytes: little-endian f32 RGBA, rows from the top.
+/// The image as the protocol's frame bytes: little-endian f32 RGBA, rows from the top; the
+/// alpha of a transparent film's image, else 1.
 fn rgba32f(image: &Image) -> Vec<u8> {
     let mut bytes = Vec::with_capacity(image.pixels.len() * 16);
-    for p in &image.pixels {
-        for c in [p[0], p[1], p[2], 1.0] {
+    for (i, p) in image.pixels.iter().enumerate() {
+        let alpha = image.alpha.as_ref().and_then(|a| a.get(i)).copied().unwrap_or(1.0);
+        for c in [p[0], p[1], p[2], alpha] {
             bytes.extend_from_slice(&c.to_le_bytes());
         }
     }
     bytes
+}
+
+#[cfg(test)]
+mod frame_tests {
+    use super::*;
+
+    /// A transparent film's frame carries its coverage as alpha; an opaque one's is 1.
+    #[test]
+    fn frames_carry_the_films_alpha() {
+        let mut image = Image {
+            width: 2,
+            height: 1,
+            samples: 4,
+            pixels: vec![[0.5, 0.25, 0.125], [0.0; 3]],
+            std_error: vec![0.0; 2],
+            sample_counts: vec![4; 2],
+            alpha: None,
+        };
+        let alphas = |bytes: Vec<u8>| -> Vec<f32> {
+            bytes.chunks(16).map(|p| f32::from_le_bytes([p[12], p[13], p[14], p[15]])).collect()
+        };
+        assert_eq!(alphas(rgba32f(&image)), [1.0, 1.0]);
+        image.alpha = Some(vec![0.75, 0.0]);
+        assert_eq!(alphas(rgba32f(&image)), [0.75, 0.0]);
+        assert_eq!(f32::from_le_bytes(rgba32f(&image)[0..4].try_into().unwrap()), 0.5);
+    }
 }

@@ -237,12 +237,21 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
     // The sample's identity (its random stream's start: pixel, sample and seed) for the
     // coins of blended surfaces and of Mix Shaders.
     var path_key: u32;
+    //#if node_graphs
+    // What the path's last ray came from, for the Light Path node (NODE_RAY_*).
+    var ray_from: u32;
+    var ray_singular: bool;
+    //#endif
     loop {
         if starting {
             starting = false;
             rng = rng_for_sample(pixel_index, sample_base + k, frame.seed);
             first_bad_event = EVENT_NONE;
             path_key = rng.state;
+            //#if node_graphs
+            ray_from = NODE_RAY_CAMERA;
+            ray_singular = false;
+            //#endif
             let camera = camera_ray(pixel, &rng);
             origin = camera.origin;
             direction = camera.direction;
@@ -369,7 +378,11 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         m = textured_material(m, texture_at, log2(cone_width / cos_hit));
         //#if node_graphs
         if m.node_program != NO_PROGRAM {
-            let point = node_point_at(hit, surface, node_normal, -direction);
+            var point = node_point_at(hit, surface, node_normal, -direction);
+            point.ray_from = ray_from;
+            point.singular = ray_singular;
+            point.ray_length = hit.t;
+            point.ray_depth = f32(bounce);
             let graph = run_node_program(m.node_program, point);
             m = node_graph_applied(m, graph);
             if node_mix_second(m, graph, path_key, bounce) {
@@ -448,6 +461,10 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         } else {
             attenuate(&throughput, s.weight, EVENT_LOBE + s.lobe);
             bsdf_pdf = s.pdf;
+            //#if node_graphs
+            ray_from = s.lobe + 1u;
+            ray_singular = s.pdf == 0.0;
+            //#endif
             //#if media
             // Crossing into a material adds its medium, leaving subtracts it: nested media add up.
             if s.transmitted {

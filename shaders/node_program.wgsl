@@ -60,7 +60,18 @@ struct NodePoint {
     incoming: vec3f,
     uv: vec2f,
     backfacing: bool,
+    // The ray that found the point (Light Path): NODE_RAY_* and whether its bounce was
+    // singular (a mirror or clear glass), its length and the bounces before it.
+    ray_from: u32,
+    singular: bool,
+    ray_length: f32,
+    ray_depth: f32,
 }
+
+// What a ray found the point by: from the camera, after a lobe (LOBE_* + 1), or none of
+// these (a light sample's point: every Light Path flag off, as Cycles evaluates emission).
+const NODE_RAY_CAMERA: u32 = 0u;
+const NODE_RAY_NONE: u32 = 255u;
 
 // What a program sets: `driven` bit i for target i (node_kinds::TARGETS).
 struct NodeOutputs {
@@ -116,8 +127,33 @@ fn node_coordinate(mode: u32, p: NodePoint, extra: u32) -> vec4f {
         case 5u: { return vec4f(p.normal, 0.0); }
         case 6u: { return vec4f(p.true_normal, 0.0); }
         case 7u: { return vec4f(p.incoming, 0.0); }
-        default: { return vec4f(select(0.0, 1.0, p.backfacing)); }
+        case 8u: { return vec4f(select(0.0, 1.0, p.backfacing)); }
+        default: { return vec4f(node_light_path(mode - 9u, p)); }
     }
+}
+
+// Light Path's outputs in node_kinds' order: Is Camera, Shadow, Diffuse, Glossy, Singular,
+// Reflection, Transmission, Volume Scatter Ray, Ray Length, Ray Depth. A lobe's bounce is
+// diffuse (diffuse, sheen) or glossy (the others, singular ones too, as in Cycles),
+// transmission for the glass lobe.
+fn node_light_path(output: u32, p: NodePoint) -> f32 {
+    let bounced = p.ray_from != NODE_RAY_CAMERA && p.ray_from != NODE_RAY_NONE;
+    let lobe = p.ray_from - 1u;
+    let diffuse = bounced && (lobe == 0u || lobe == 5u);
+    let transmission = bounced && lobe == 3u;
+    var on = false;
+    switch output {
+        case 0u: { on = p.ray_from == NODE_RAY_CAMERA; }
+        case 2u: { on = diffuse; }
+        case 3u: { on = bounced && !diffuse; }
+        case 4u: { on = bounced && p.singular; }
+        case 5u: { on = bounced && !transmission; }
+        case 6u: { on = transmission; }
+        case 8u: { return p.ray_length; }
+        case 9u: { return p.ray_depth; }
+        default: {}
+    }
+    return select(0.0, 1.0, on);
 }
 
 // Cycles' ramp lookup in a table of RAMP_TABLE_SIZE RGBA entries at `table`.
@@ -449,6 +485,7 @@ fn node_point_on_triangle(inst: Instance, triangle: u32, b1: f32, b2: f32, posit
     p.incoming = blender_axes(incoming);
     p.uv = triangle_uv(triangle, 0u, b1, b2);
     p.backfacing = backfacing;
+    p.ray_from = NODE_RAY_NONE;
     return p;
 }
 
@@ -467,5 +504,6 @@ fn node_point_at(hit: Hit, surface: Surface, normal: vec3f, incoming: vec3f) -> 
     p.true_normal = blender_axes(side * surface.geometric_normal);
     p.incoming = blender_axes(incoming);
     p.backfacing = backfacing;
+    p.ray_from = NODE_RAY_NONE;
     return p;
 }

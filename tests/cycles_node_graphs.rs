@@ -119,6 +119,17 @@ fn mix_shaders_by_a_graph_match_cycles() {
     .check("graph_mix", "Cycles");
 }
 
+/// Light Path tricks: an emitter red to the camera and green to everything else (light
+/// samples and bounces alike), a floor coloured by Is Diffuse Ray, a metal by Ray Length.
+#[test]
+fn light_path_tricks_match_cycles() {
+    let scene = rt::scene::load(&repo().join("tests/cycles/scenes/graph_light_path/scene.toml")).unwrap();
+    let ours = render(scene, 64, 64, 256, 6);
+    let reference = repo().join("tests/cycles/graph_light_path.exr");
+    reference::compare_with(&ours, &reference, REFERENCE_SPP, Noiseless::Absolute(1e-4))
+        .check("graph_light_path", "Cycles");
+}
+
 #[test]
 fn a_procedural_principled_material_matches_cycles() {
     let scene = rt::scene::load(&repo().join("tests/cycles/scenes/graph_material/scene.toml")).unwrap();

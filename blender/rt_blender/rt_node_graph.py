@@ -19,6 +19,7 @@ EVALUATED = {
     "RGB": ("Color",),
     "TEX_COORD": ("Generated", "Normal", "UV", "Object"),
     "NEW_GEOMETRY": ("Position", "Normal", "True Normal", "Incoming", "Backfacing"),
+    "LIGHT_PATH": ("Is Camera Ray", "Is Shadow Ray", "Is Diffuse Ray", "Is Glossy Ray", "Is Singular Ray", "Is Reflection Ray", "Is Transmission Ray", "Is Volume Scatter Ray", "Ray Length", "Ray Depth"),  # noqa: E501
     "MATH": ("Value",),
     "VECT_MATH": ("Vector", "Value"),
     "MIX": ("Result",),
@@ -198,6 +199,8 @@ class GraphWriter:
                 raise Unevaluated(f"{node.name} (GROUP_INPUT) outside a group")
             index = list(node.outputs).index(socket)
             return self.input(groups[-1].inputs[index], groups[:-1], to_type)
+        if node.type in EVALUATED and socket_key(socket) not in EVALUATED[node.type]:
+            raise Unevaluated(f"{node.name} ({node.type}) output {socket.name}")
         index = self.add(node, groups)
         return {"link": [index, socket_key(socket)], "from": socket_type(socket), "to": to_type}
 

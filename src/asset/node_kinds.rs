@@ -203,7 +203,7 @@ const fn op(name: &'static str, op: u32, inputs: &'static [&'static str], output
     Kind { name, emit: Emit::Operation(op), inputs, outputs }
 }
 
-pub const KINDS: [Kind; 28] = [
+pub const KINDS: [Kind; 29] = [
     Kind { name: "VALUE", emit: Emit::Constant, inputs: &[], outputs: &["Value"] },
     Kind { name: "RGB", emit: Emit::Constant, inputs: &[], outputs: &["Color"] },
     Kind {
@@ -217,6 +217,23 @@ pub const KINDS: [Kind; 28] = [
         emit: Emit::Coordinates(4),
         inputs: &[],
         outputs: &["Position", "Normal", "True Normal", "Incoming", "Backfacing"],
+    },
+    Kind {
+        name: "LIGHT_PATH",
+        emit: Emit::Coordinates(9),
+        inputs: &[],
+        outputs: &[
+            "Is Camera Ray",
+            "Is Shadow Ray",
+            "Is Diffuse Ray",
+            "Is Glossy Ray",
+            "Is Singular Ray",
+            "Is Reflection Ray",
+            "Is Transmission Ray",
+            "Is Volume Scatter Ray",
+            "Ray Length",
+            "Ray Depth",
+        ],
     },
     op("MATH", OP_MATH, &["Value", "Value_001", "Value_002"], &["Value"]),
     op("VECT_MATH", OP_VECTOR_MATH, &["Vector", "Vector_001", "Vector_002", "Scale"], &["Vector", "Value"]),

@@ -457,6 +457,44 @@ def mix_scene():
     return scene
 
 
+def light_path_scene():
+    """Light Path tricks: a lamp sphere that shows red to the camera but lights the world
+    green (Is Camera Ray into a Mix), above a floor whose colour is bright only where a
+    diffuse bounce sees it (Is Diffuse Ray) and a glossy ball that darkens with Ray Length."""
+    scene = cycles.new_scene()
+    cycles.set_up(scene, 64, bounces=6)
+    cycles.uniform_world(scene, (0.05, 0.05, 0.05))
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=0.6, segments=48, ring_count=24, location=(-0.8, 0.3, 1.6))
+    bpy.ops.object.shade_smooth()
+    lamp = bpy.data.materials.new("trick lamp")
+    tree = lamp.node_tree
+    tree.nodes.clear()
+    out = tree.nodes.new("ShaderNodeOutputMaterial")
+    camera_ray = new(tree, "ShaderNodeLightPath").outputs["Is Camera Ray"]
+    colour = new(tree, "ShaderNodeMix", {"Factor_Float": camera_ray, "A_Color": (0.2, 1.0, 0.3, 1.0),
+                                         "B_Color": (1.0, 0.1, 0.1, 1.0)}, data_type="RGBA")
+    emission = new(tree, "ShaderNodeEmission", {"Color": output(colour, "Result_Color"), "Strength": 6.0})
+    tree.links.new(emission.outputs[0], out.inputs["Surface"])
+    bpy.context.active_object.data.materials.append(lamp)
+    bpy.ops.mesh.primitive_plane_add(size=8.0)
+    floor = procedural_material("diffuse seen", lambda t, b: t.links.new(
+        output(new(t, "ShaderNodeMix", {"Factor_Float": new(t, "ShaderNodeLightPath").outputs["Is Diffuse Ray"],
+                                        "A_Color": (0.3, 0.3, 0.3, 1.0), "B_Color": (0.9, 0.8, 0.2, 1.0)},
+                   data_type="RGBA"), "Result_Color"), b.inputs["Base Color"]))
+    bpy.context.active_object.data.materials.append(floor)
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=0.7, segments=48, ring_count=24, location=(0.9, -0.2, 0.7))
+    bpy.ops.object.shade_smooth()
+    ball = procedural_material("far is dark", lambda t, b: t.links.new(
+        math_node(t, "DIVIDE", 1.5, new(t, "ShaderNodeLightPath").outputs["Ray Length"]), b.inputs["Metallic"]))
+    bpy.context.active_object.data.materials.append(ball)
+    camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
+    camera.location = (0.0, -5.5, 2.6)
+    camera.rotation_euler = (math.radians(72.0), 0.0, 0.0)
+    scene.collection.objects.link(camera)
+    scene.camera = camera
+    return scene
+
+
 def material_scene():
     scene = cycles.new_scene()
     cycles.set_up(scene, 64, bounces=8)
@@ -484,6 +522,7 @@ SCENES = {
     "graph_shading": lambda: grid_scene("shading", SHADING, shape="sphere"),
     "graph_material": material_scene,
     "graph_mix": mix_scene,
+    "graph_light_path": light_path_scene,
 }
 
 

@@ -246,6 +246,43 @@ fn noise_ridged_multi_fractal(p_in: vec3f, detail: f32, roughness: f32, lacunari
     return value;
 }
 
+// Blender's Wave Texture (Cycles' svm_wave): `mode` = type (0 bands, 1 rings) | direction
+// << 1 | profile (0 sine, 1 saw, 2 triangle) << 4; `co` already scaled.
+fn node_wave(mode: u32, co: vec3f, distortion: f32, detail: f32, detail_scale: f32, detail_roughness: f32, phase: f32) -> f32 {
+    let p = (co + 0.000001) * 0.999999;
+    let direction = (mode >> 1u) & 7u;
+    var n: f32;
+    if (mode & 1u) == 0u {
+        switch direction {
+            case 0u: { n = p.x * 20.0; }
+            case 1u: { n = p.y * 20.0; }
+            case 2u: { n = p.z * 20.0; }
+            default: { n = (p.x + p.y + p.z) * 10.0; }
+        }
+    } else {
+        var keep = vec3f(1.0);
+        if direction < 3u {
+            keep[direction] = 0.0;
+        }
+        n = length(p * keep) * 20.0;
+    }
+    n += phase;
+    if distortion != 0.0 {
+        n += distortion * (noise_fbm(p * detail_scale, detail, detail_roughness, 2.0, true) * 2.0 - 1.0);
+    }
+    switch mode >> 4u {
+        case 1u: {
+            let t = n / (2.0 * PI);
+            return t - floor(t);
+        }
+        case 2u: {
+            let t = n / (2.0 * PI);
+            return abs(t - floor(t + 0.5)) * 2.0;
+        }
+        default: { return 0.5 + 0.5 * sin(n - 0.5 * PI); }
+    }
+}
+
 struct NoiseSettings {
     detail: f32,
     roughness: f32,

@@ -38,6 +38,7 @@ const NODE_OP_BRIGHT_CONTRAST: u32 = 20u;
 const NODE_OP_GAMMA: u32 = 21u;
 const NODE_OP_WHITE_NOISE: u32 = 22u;
 const NODE_OP_VORONOI: u32 = 23u;
+const NODE_OP_WAVE: u32 = 24u;
 
 const NODE_REGISTERS: u32 = 32u;
 const NODE_CONSTANT: u32 = 0x80000000u;
@@ -353,6 +354,12 @@ fn node_instruction(start: u32, at: u32, extra: u32, p: NodePoint) {
             node_store(out + 2u, vec4f(v.position, 0.0));
             node_store(out + 3u, vec4f(0.0));
             node_store(out + 4u, vec4f(v.radius));
+        }
+        case NODE_OP_WAVE: {
+            let f = node_wave(mode, a.xyz * node_in(start, at, 1u).x, node_in(start, at, 2u).x, node_in(start, at, 3u).x,
+                node_in(start, at, 4u).x, node_in(start, at, 5u).x, node_in(start, at, 6u).x);
+            node_store(out, vec4f(f, f, f, 1.0));
+            node_store(out + 1u, vec4f(f));
         }
         case NODE_OP_WHITE_NOISE: {
             node_store(out, vec4f(hash_float3_to_float(a.xyz)));

@@ -95,6 +95,11 @@ fn voronoi_of_every_feature_and_metric_matches_cycles() {
 }
 
 #[test]
+fn waves_of_every_kind_match_cycles() {
+    check_channels("graph_wave", 1e-3);
+}
+
+#[test]
 fn map_range_clamp_and_converters_match_cycles() {
     check_channels("graph_convert", 1e-3);
 }

@@ -30,9 +30,10 @@ pub const OP_BRIGHT_CONTRAST: u32 = 20;
 pub const OP_GAMMA: u32 = 21;
 pub const OP_WHITE_NOISE: u32 = 22;
 pub const OP_VORONOI: u32 = 23;
+pub const OP_WAVE: u32 = 24;
 
 /// Every operation by its WGSL name, for the check against the shader.
-pub const OPERATIONS: [(&str, u32); 24] = [
+pub const OPERATIONS: [(&str, u32); 25] = [
     ("END", OP_END),
     ("OUTPUT", OP_OUTPUT),
     ("CONVERT", OP_CONVERT),
@@ -57,6 +58,7 @@ pub const OPERATIONS: [(&str, u32); 24] = [
     ("GAMMA", OP_GAMMA),
     ("WHITE_NOISE", OP_WHITE_NOISE),
     ("VORONOI", OP_VORONOI),
+    ("WAVE", OP_WAVE),
 ];
 
 /// `OP_CONVERT` modes: a colour to a value (its luminance), a vector to one (the mean).
@@ -165,6 +167,10 @@ pub const BLEND_TYPES: [&str; 19] = [
     "COLOR",
 ];
 const COLOR_MODES: [&str; 2] = ["RGB", "HSV"];
+const WAVE_TYPES: [&str; 2] = ["BANDS", "RINGS"];
+const WAVE_BANDS: [&str; 4] = ["X", "Y", "Z", "DIAGONAL"];
+const WAVE_RINGS: [&str; 4] = ["X", "Y", "Z", "SPHERICAL"];
+const WAVE_PROFILES: [&str; 3] = ["SIN", "SAW", "TRI"];
 const VORONOI_FEATURES: [&str; 5] = ["F1", "F2", "SMOOTH_F1", "DISTANCE_TO_EDGE", "N_SPHERE_RADIUS"];
 const VORONOI_METRICS: [&str; 4] = ["EUCLIDEAN", "MANHATTAN", "CHEBYCHEV", "MINKOWSKI"];
 
@@ -203,7 +209,7 @@ const fn op(name: &'static str, op: u32, inputs: &'static [&'static str], output
     Kind { name, emit: Emit::Operation(op), inputs, outputs }
 }
 
-pub const KINDS: [Kind; 29] = [
+pub const KINDS: [Kind; 30] = [
     Kind { name: "VALUE", emit: Emit::Constant, inputs: &[], outputs: &["Value"] },
     Kind { name: "RGB", emit: Emit::Constant, inputs: &[], outputs: &["Color"] },
     Kind {
@@ -264,6 +270,12 @@ pub const KINDS: [Kind; 29] = [
     op("GAMMA", OP_GAMMA, &["Color", "Gamma"], &["Color"]),
     op("TEX_WHITE_NOISE", OP_WHITE_NOISE, &["Vector", "W"], &["Value", "Color"]),
     op(
+        "TEX_WAVE",
+        OP_WAVE,
+        &["Vector", "Scale", "Distortion", "Detail", "Detail Scale", "Detail Roughness", "Phase Offset"],
+        &["Color", "Fac"],
+    ),
+    op(
         "TEX_VORONOI",
         OP_VORONOI,
         &["Vector", "W", "Scale", "Detail", "Roughness", "Lacunarity", "Smoothness", "Exponent", "Randomness"],
@@ -276,7 +288,7 @@ pub const KINDS: [Kind; 29] = [
 pub fn compiler_signature() -> String {
     let kinds: Vec<_> = KINDS.iter().map(|k| (k.name, k.inputs, k.outputs)).collect();
     format!(
-        "node programs {} {} {OPERATIONS:?} {MATH_OPERATIONS:?} {VECTOR_MATH_OPERATIONS:?} {BLEND_TYPES:?} {RAMP_TABLE_SIZE} {kinds:?} {VORONOI_FEATURES:?} {VORONOI_METRICS:?}",
+        "node programs {} {} {OPERATIONS:?} {MATH_OPERATIONS:?} {VECTOR_MATH_OPERATIONS:?} {BLEND_TYPES:?} {RAMP_TABLE_SIZE} {kinds:?} {VORONOI_FEATURES:?} {VORONOI_METRICS:?} {WAVE_TYPES:?} {WAVE_BANDS:?} {WAVE_RINGS:?} {WAVE_PROFILES:?}",
         super::node_graph::FORMAT_VERSION,
         super::node_graph::COMPILER_VERSION
     )
@@ -351,6 +363,14 @@ pub fn mode(name: &str, settings: &Map<String, Value>) -> Result<Mode, String> {
             Ok(Mode { mode: choice(settings, "noise_type", &NOISE_TYPES)?, flags: flag(settings, "normalize") as u32 })
         }
         "TEX_GRADIENT" => plain(choice(settings, "gradient_type", &GRADIENT_TYPES)?),
+        "TEX_WAVE" => {
+            let kind = choice(settings, "wave_type", &WAVE_TYPES)?;
+            let direction = match kind {
+                0 => choice(settings, "bands_direction", &WAVE_BANDS)?,
+                _ => choice(settings, "rings_direction", &WAVE_RINGS)?,
+            };
+            plain(kind | direction << 1 | choice(settings, "wave_profile", &WAVE_PROFILES)? << 4)
+        }
         "TEX_VORONOI" => {
             if text(settings, "voronoi_dimensions")? != "3D" {
                 return Err("only 3D Voronoi is evaluated yet".into());

@@ -386,6 +386,29 @@ VORONOI = [
 ]
 
 
+def wave(t, which="Fac", vector=True, **props):
+    inputs = {k: props.pop(k) for k in list(props) if k[0].isupper()}
+    node = new(t, "ShaderNodeTexWave", {"Scale": 1.5, **inputs}, **props)
+    if vector:
+        t.links.new(coords(t), node.inputs["Vector"])
+    return node.outputs[which]
+
+
+WAVE = [
+    lambda t: wave(t, vector=False),
+    lambda t: wave(t, "Color", bands_direction="Y", wave_profile="SAW"),
+    lambda t: wave(t, bands_direction="DIAGONAL", wave_profile="TRI", **{"Phase Offset": 1.3}),
+    lambda t: wave(t, bands_direction="Z"),
+    lambda t: wave(t, wave_type="RINGS", rings_direction="X"),
+    lambda t: wave(t, wave_type="RINGS", rings_direction="Y", wave_profile="SAW"),
+    lambda t: wave(t, wave_type="RINGS", rings_direction="Z", wave_profile="TRI"),
+    lambda t: wave(t, wave_type="RINGS", rings_direction="SPHERICAL"),
+    lambda t: wave(t, Distortion=4.0, Detail=2.5, **{"Detail Scale": 1.5, "Detail Roughness": 0.6}),
+    lambda t: wave(t, wave_type="RINGS", Distortion=2.0, Detail=1.0),
+    lambda t: ramp(t, wave(t, bands_direction="X", Distortion=6.0, Detail=3.0), "LINEAR", STOPS),
+]
+
+
 def procedural_material(name, build):
     material = bpy.data.materials.new(name)
     tree = material.node_tree
@@ -519,6 +542,7 @@ SCENES = {
     "graph_vector": lambda: grid_scene("vector", VECTOR),
     "graph_convert": lambda: grid_scene("convert", CONVERT),
     "graph_voronoi": lambda: grid_scene("voronoi", VORONOI),
+    "graph_wave": lambda: grid_scene("wave", WAVE),
     "graph_shading": lambda: grid_scene("shading", SHADING, shape="sphere"),
     "graph_material": material_scene,
     "graph_mix": mix_scene,

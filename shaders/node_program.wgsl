@@ -39,6 +39,7 @@ const NODE_OP_GAMMA: u32 = 21u;
 const NODE_OP_WHITE_NOISE: u32 = 22u;
 const NODE_OP_VORONOI: u32 = 23u;
 const NODE_OP_WAVE: u32 = 24u;
+const NODE_OP_CURVES: u32 = 25u;
 
 const NODE_REGISTERS: u32 = 32u;
 const NODE_CONSTANT: u32 = 0x80000000u;
@@ -167,6 +168,37 @@ fn node_ramp(table: u32, fac: f32, interpolate: bool) -> vec4f {
         return (1.0 - t) * a + t * node_vec4(table + 4u * (i + 1u));
     }
     return a;
+}
+
+// Cycles' ramp lookup with extrapolation: beyond [0, 1] the table's end slope continues.
+fn node_ramp_extended(table: u32, fac: f32, extrapolate: bool) -> vec4f {
+    let last = RAMP_TABLE_SIZE - 1u;
+    if extrapolate && fac < 0.0 {
+        let t0 = node_vec4(table);
+        return t0 + (t0 - node_vec4(table + 4u)) * -fac * f32(last);
+    }
+    if extrapolate && fac > 1.0 {
+        let t0 = node_vec4(table + 4u * last);
+        return t0 + (t0 - node_vec4(table + 4u * (last - 1u))) * (fac - 1.0) * f32(last);
+    }
+    return node_ramp(table, fac, true);
+}
+
+// RGB and Vector Curves (mode 0: each channel through its curve) and Float Curve (mode 1),
+// mixed with the input by `fac`; `extra` holds the curves' range, then their table.
+fn node_curves(mode: u32, extrapolate: bool, extra: u32, fac: f32, v: vec3f) -> vec3f {
+    let lo = node_word_f(extra);
+    let relative = (v - lo) / (node_word_f(extra + 1u) - lo);
+    let table = extra + 2u;
+    var curved = vec3f(
+        node_ramp_extended(table, relative.x, extrapolate).x,
+        node_ramp_extended(table, relative.y, extrapolate).y,
+        node_ramp_extended(table, relative.z, extrapolate).z,
+    );
+    if mode == 1u {
+        curved = vec3f(node_ramp_extended(table, relative.x, extrapolate).x);
+    }
+    return mix(v, curved, fac);
 }
 
 // Blender's XYZ Euler rotation (Cycles' euler_to_transform), as rows.
@@ -354,6 +386,11 @@ fn node_instruction(start: u32, at: u32, extra: u32, p: NodePoint) {
             node_store(out + 2u, vec4f(v.position, 0.0));
             node_store(out + 3u, vec4f(0.0));
             node_store(out + 4u, vec4f(v.radius));
+        }
+        case NODE_OP_CURVES: {
+            let v = node_in(start, at, 1u);
+            let c = node_curves(mode, flags != 0u, extra, a.x, v.xyz);
+            node_store(out, select(vec4f(c, v.w), vec4f(c.x), mode == 1u));
         }
         case NODE_OP_WAVE: {
             let f = node_wave(mode, a.xyz * node_in(start, at, 1u).x, node_in(start, at, 2u).x, node_in(start, at, 3u).x,

@@ -28,6 +28,9 @@ EVALUATED = {
     "CLAMP": ("Result",),
     "INVERT": ("Color",),
     "VALTORGB": ("Color", "Alpha"),
+    "CURVE_RGB": ("Color",),
+    "CURVE_VEC": ("Vector",),
+    "CURVE_FLOAT": ("Value",),
     "RGBTOBW": ("Val",),
     "SEPXYZ": ("X", "Y", "Z"),
     "SEPARATE_COLOR": ("Red", "Green", "Blue"),
@@ -63,6 +66,9 @@ EVALUATED_SETTINGS = {
     "MAP_RANGE": {"data_type": {"FLOAT"}, "interpolation_type": None, "clamp": None},
     "CLAMP": {"clamp_type": None},
     "VALTORGB": {},
+    "CURVE_RGB": {},
+    "CURVE_VEC": {},
+    "CURVE_FLOAT": {},
     "SEPARATE_COLOR": {"mode": {"RGB", "HSV"}},
     "COMBINE_COLOR": {"mode": {"RGB", "HSV"}},
     "TEX_WHITE_NOISE": {"noise_dimensions": {"3D"}},
@@ -130,11 +136,36 @@ def settings_of(node):
         out[key] = value if isinstance(value, (bool, str)) else float(value)
     if node.type in {"VALUE", "RGB"}:
         out["value"] = numbers(node.outputs[0].default_value)
+    if node.type in {"CURVE_RGB", "CURVE_VEC", "CURVE_FLOAT"}:
+        out.update(curve_settings(node))
     if node.type == "VALTORGB":
         ramp = node.color_ramp
         out["interpolation"] = ramp.interpolation
         out["table"] = [list(ramp.evaluate(i / (RAMP_TABLE_SIZE - 1))) for i in range(RAMP_TABLE_SIZE)]
     return out
+
+
+def curve_settings(node):
+    """A curves node's range and table, as Cycles bakes them: RAMP_TABLE_SIZE entries across
+    the lowest to the highest x of its curves' points, each channel through its curve (an RGB
+    Curves' through the combined curve C first)."""
+    mapping = node.mapping
+    mapping.initialize()
+    mapping.update()
+    curves = list(mapping.curves)
+    used = curves[:1] if node.type == "CURVE_FLOAT" else curves[:4 if node.type == "CURVE_RGB" else 3]
+    lo = min(c.points[0].location[0] for c in used)
+    hi = max(c.points[-1].location[0] for c in used)
+    table = []
+    for i in range(RAMP_TABLE_SIZE):
+        t = lo + i / (RAMP_TABLE_SIZE - 1) * (hi - lo)
+        if node.type == "CURVE_FLOAT":
+            v = mapping.evaluate(curves[0], t)
+            table.append([v, v, v, 1.0])
+            continue
+        x = mapping.evaluate(curves[3], t) if node.type == "CURVE_RGB" else t
+        table.append([mapping.evaluate(curves[c], x if node.type == "CURVE_RGB" else t) for c in range(3)] + [1.0])
+    return {"extend": mapping.extend, "range": [lo, hi], "table": table}
 
 
 class GraphWriter:

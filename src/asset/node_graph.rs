@@ -259,7 +259,11 @@ impl Compiler<'_> {
                     });
                 }
                 let mode = node_kinds::mode(&node.kind, &node.settings)?;
-                let extra = if op == node_kinds::OP_RAMP { ramp_table(&node.settings)? } else { Vec::new() };
+                let extra = match op {
+                    node_kinds::OP_RAMP => ramp_table(&node.settings)?,
+                    node_kinds::OP_CURVES => curve_table(&node.settings)?,
+                    _ => Vec::new(),
+                };
                 let out = self.allocate(kind.outputs.len() as u32)?;
                 self.instruction(op, mode.mode, mode.flags, out, &operands, &extra);
                 for (i, name) in kind.outputs.iter().enumerate() {
@@ -339,6 +343,19 @@ pub fn check_program(program: &[u32]) -> Result<(), String> {
         }
         at += 4 + operands + extra;
     }
+}
+
+/// A curve's range (`range`: the lowest and highest x of its points) and table of
+/// `RAMP_TABLE_SIZE` RGB(A) entries across it, as Cycles bakes RGB, vector and float curves.
+fn curve_table(settings: &Map<String, Value>) -> Result<Vec<u32>, String> {
+    let range: [f32; 2] = settings
+        .get("range")
+        .map(|r| serde_json::from_value(r.clone()).map_err(|e| format!("its range: {e}")))
+        .transpose()?
+        .ok_or("its range is missing")?;
+    let mut words = vec![range[0].to_bits(), range[1].to_bits()];
+    words.extend(ramp_table(settings)?);
+    Ok(words)
 }
 
 /// A colour ramp's table: `RAMP_TABLE_SIZE` RGBA entries, as the exporter evaluates Blender's ramp.

@@ -31,9 +31,10 @@ pub const OP_GAMMA: u32 = 21;
 pub const OP_WHITE_NOISE: u32 = 22;
 pub const OP_VORONOI: u32 = 23;
 pub const OP_WAVE: u32 = 24;
+pub const OP_CURVES: u32 = 25;
 
 /// Every operation by its WGSL name, for the check against the shader.
-pub const OPERATIONS: [(&str, u32); 25] = [
+pub const OPERATIONS: [(&str, u32); 26] = [
     ("END", OP_END),
     ("OUTPUT", OP_OUTPUT),
     ("CONVERT", OP_CONVERT),
@@ -59,6 +60,7 @@ pub const OPERATIONS: [(&str, u32); 25] = [
     ("WHITE_NOISE", OP_WHITE_NOISE),
     ("VORONOI", OP_VORONOI),
     ("WAVE", OP_WAVE),
+    ("CURVES", OP_CURVES),
 ];
 
 /// `OP_CONVERT` modes: a colour to a value (its luminance), a vector to one (the mean).
@@ -209,7 +211,7 @@ const fn op(name: &'static str, op: u32, inputs: &'static [&'static str], output
     Kind { name, emit: Emit::Operation(op), inputs, outputs }
 }
 
-pub const KINDS: [Kind; 30] = [
+pub const KINDS: [Kind; 33] = [
     Kind { name: "VALUE", emit: Emit::Constant, inputs: &[], outputs: &["Value"] },
     Kind { name: "RGB", emit: Emit::Constant, inputs: &[], outputs: &["Color"] },
     Kind {
@@ -249,6 +251,9 @@ pub const KINDS: [Kind; 30] = [
     op("CLAMP", OP_CLAMP, &["Value", "Min", "Max"], &["Result"]),
     op("INVERT", OP_INVERT, &["Fac", "Color"], &["Color"]),
     op("VALTORGB", OP_RAMP, &["Fac"], &["Color", "Alpha"]),
+    op("CURVE_RGB", OP_CURVES, &["Fac", "Color"], &["Color"]),
+    op("CURVE_VEC", OP_CURVES, &["Fac", "Vector"], &["Vector"]),
+    op("CURVE_FLOAT", OP_CURVES, &["Factor", "Value"], &["Value"]),
     op("RGBTOBW", OP_CONVERT, &["Color"], &["Val"]),
     op("SEPXYZ", OP_SEPARATE, &["Vector"], &["X", "Y", "Z"]),
     op("SEPARATE_COLOR", OP_SEPARATE, &["Color"], &["Red", "Green", "Blue"]),
@@ -347,6 +352,11 @@ pub fn mode(name: &str, settings: &Map<String, Value>) -> Result<Mode, String> {
         }
         "CLAMP" => plain(choice(settings, "clamp_type", &CLAMP_TYPES)?),
         "VALTORGB" => Ok(Mode { mode: 0, flags: (text(settings, "interpolation")? != "CONSTANT") as u32 }),
+        // Mode 1: a float curve; flags: extrapolated beyond the curves' range.
+        "CURVE_RGB" | "CURVE_VEC" | "CURVE_FLOAT" => Ok(Mode {
+            mode: (name == "CURVE_FLOAT") as u32,
+            flags: (text(settings, "extend")? == "EXTRAPOLATED") as u32,
+        }),
         "RGBTOBW" => plain(CONVERT_COLOR_TO_VALUE),
         "SEPARATE_COLOR" | "COMBINE_COLOR" => plain(choice(settings, "mode", &COLOR_MODES)?),
         "TEX_WHITE_NOISE" => {

@@ -316,6 +316,31 @@ def hsv_round_trip(t):
     return rgb(t, separate.outputs[0], separate.outputs[1], separate.outputs[2])
 
 
+def bend(curve, points):
+    """Moves a curve's two points and adds more, (x, y) each."""
+    curve.points[0].location, curve.points[1].location = points[0], points[-1]
+    for x, y in points[1:-1]:
+        curve.points.new(x, y)
+
+
+def curves(t):
+    """R: a Float Curve of the noise; G and B: RGB Curves (through the combined curve) and
+    Vector Curves, extrapolated past their points, over the object coordinates."""
+    fac = noise(t, coords(t), Scale=2.5).outputs["Fac"]
+    float_curve = new(t, "ShaderNodeFloatCurve", {"Value": fac, "Factor": 0.9})
+    bend(float_curve.mapping.curves[0], [(0.2, 0.1), (0.5, 0.8), (0.8, 0.3)])
+    rgb_curves = new(t, "ShaderNodeRGBCurve", {"Color": coords(t, "Generated")})
+    bend(rgb_curves.mapping.curves[3], [(0.0, 0.1), (0.6, 0.7), (1.0, 0.9)])
+    bend(rgb_curves.mapping.curves[1], [(0.0, 0.0), (0.3, 0.6), (1.0, 1.0)])
+    vector_curves = new(t, "ShaderNodeVectorCurve", {"Vector": coords(t)})
+    bend(vector_curves.mapping.curves[2], [(-1.0, 0.5), (0.2, -0.3), (1.0, 1.0)])
+    for node in (float_curve, rgb_curves, vector_curves):
+        node.mapping.update()
+    green = output(new(t, "ShaderNodeSeparateXYZ", {"Vector": rgb_curves.outputs[0]}), "Y")
+    blue = shown(t, output(new(t, "ShaderNodeSeparateXYZ", {"Vector": vector_curves.outputs[0]}), "Z"), 0.5, 0.2)
+    return rgb(t, float_curve.outputs[0], green, blue)
+
+
 CONVERT = [
     lambda t: rgb(t, map_range(t, "LINEAR", True), map_range(t, "STEPPED", False), map_range(t, "SMOOTHSTEP", False)),
     lambda t: rgb(t, map_range(t, "SMOOTHERSTEP", False, True), map_range(t, "LINEAR", False, True),
@@ -330,7 +355,7 @@ CONVERT = [
     lambda t: new(t, "ShaderNodeTexWhiteNoise", noise_dimensions="3D").outputs["Color"],
     lambda t: new(t, "ShaderNodeHueSaturation", {"Hue": 0.8, "Saturation": 0.3, "Value": 1.4, "Fac": 1.0,
                                                   "Color": coords(t, "Generated")}).outputs[0],
-] + [hsv_blend_tile(b) for b in ("HUE", "SATURATION", "VALUE", "COLOR")]
+] + [hsv_blend_tile(b) for b in ("HUE", "SATURATION", "VALUE", "COLOR")] + [curves]
 
 
 def layer_weight(t, blend, which):

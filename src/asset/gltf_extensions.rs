@@ -193,6 +193,23 @@ mod tests {
         assert_eq!((ours.coat, ours.coat_roughness), (0.9, 0.1));
     }
 
+    /// A material's node graph is compiled at import; one rt cannot compile (here a node
+    /// type it does not evaluate) leaves the material its constants, and the asset loads.
+    /// Its second material, the Mix Shader's, is kept by index.
+    #[test]
+    fn node_graphs_compile_at_import_and_a_bad_one_leaves_the_constants() {
+        let good = r#"{ "name": "noise", "extras": { "rt_mix_material": 2, "rt_node_graph": { "version": 1,
+            "nodes": [{ "name": "N", "type": "TEX_NOISE", "settings": { "noise_dimensions": "3D", "noise_type": "FBM" } }],
+            "outputs": { "base_color": { "link": [0, "Color"], "from": "RGBA", "to": "RGBA" } } } } }"#;
+        let bad = r#"{ "name": "sky", "extras": { "rt_node_graph": { "version": 1,
+            "nodes": [{ "name": "S", "type": "TEX_SKY" }],
+            "outputs": { "base_color": { "link": [0, "Color"], "from": "RGBA", "to": "RGBA" } } } } }"#;
+        let materials = import("gltf_node_graphs", &format!("{good}, {bad}, {{}}"));
+        assert!(!materials[0].node_program.is_empty());
+        assert_eq!(materials[0].mix_material, Some(2));
+        assert!(materials[1].node_program.is_empty());
+    }
+
     fn import(name: &str, materials: &str) -> Vec<Material> {
         let dir = crate::asset::fixture::TempDir::new(name);
         let json = format!(r#"{{ "asset": {{ "version": "2.0" }}, "materials": [{materials}] }}"#);

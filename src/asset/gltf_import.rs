@@ -467,7 +467,7 @@ fn map_material_with(m: &gltf::Material, metallic: f32, transmission: f32) -> Re
         absorption: m.volume().map_or([0.0; 3], |v| absorption(v.attenuation_color(), v.attenuation_distance())),
         volume_emission: volume_emission(m.extras())?,
         node_program: match extra::<serde_json::Value>(m.extras(), "rt_node_graph")? {
-            Some(graph) => super::node_graph::compile_json(&graph)?,
+            Some(graph) => node_program_or_constants(m, &graph),
             None => Vec::new(),
         },
         mix_material: extra::<u32>(m.extras(), "rt_mix_material")?,
@@ -476,6 +476,16 @@ fn map_material_with(m: &gltf::Material, metallic: f32, transmission: f32) -> Re
     Ok(match extra::<[f32; 3]>(m.extras(), "rt_glossy_color")? {
         Some(color) => glossy(material, color),
         None => material,
+    })
+}
+
+/// The compiled node graph of `m`; a graph rt cannot compile (a node it does not evaluate,
+/// more registers than it has, a newer format) leaves the material its constant inputs, with
+/// a warning that names the material and what stopped the graph: a render never fails on it.
+fn node_program_or_constants(m: &gltf::Material, graph: &serde_json::Value) -> Vec<u32> {
+    super::node_graph::compile_json(graph).unwrap_or_else(|e| {
+        log::warn!("material `{}`: {e}; it renders with its inputs' own values", m.name().unwrap_or("unnamed"));
+        Vec::new()
     })
 }
 

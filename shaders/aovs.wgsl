@@ -6,7 +6,9 @@
 // it saw emitted there. Averaged over the pixel's samples like the radiance.
 
 // Four per pixel: (albedo, mean depth over the samples that hit), (normal, samples that
-// hit), (position, unused), (emission, unused).
+// hit), (position, the sum of the samples' coverage), (emission, unused). A sample covers
+// its pixel unless a transparent film let it leave the scene or a holdout took it (in
+// part: a share of a Holdout shader); the pixel's alpha is that sum over its samples.
 @group(1) @binding(3) var<storage, read_write> aov_means: array<vec4f>;
 
 struct AovSample {
@@ -16,6 +18,8 @@ struct AovSample {
     depth: f32,
     position: vec3f,
     emission: vec3f,
+    // How much of the pixel the sample covers, in [0, 1].
+    coverage: f32,
     // The first non-delta surface is still to be found.
     open: bool,
     // The tint of the perfect mirrors and interfaces followed so far.
@@ -25,7 +29,7 @@ struct AovSample {
 var<private> aov: AovSample;
 
 fn aov_begin() {
-    aov = AovSample(vec3f(0.0), vec3f(0.0), -1.0, vec3f(0.0), vec3f(0.0), true, vec3f(1.0));
+    aov = AovSample(vec3f(0.0), vec3f(0.0), -1.0, vec3f(0.0), vec3f(0.0), 1.0, true, vec3f(1.0));
 }
 
 // The camera ray met a surface at distance `t`, at `position`.
@@ -44,6 +48,12 @@ fn aov_emission_seen(light: vec3f) {
 fn aov_no_hit() {
     aov.depth = -1.0;
     aov.position = vec3f(0.0);
+    aov.coverage = 0.0;
+}
+
+// The camera's path met a holdout: `share` of what it still covers is left uncovered.
+fn aov_held_out(share: f32) {
+    aov.coverage *= 1.0 - share;
 }
 
 // A BSDF sample taken at a surface of shading normal `normal` (facing the viewer):
@@ -94,12 +104,13 @@ fn aov_add(m: ptr<function, AovMeans>, sample_index: u32) {
         hits += 1.0;
         depth += (aov.depth - depth) / hits;
     }
-    *m = AovMeans(vec4f(albedo, depth), vec4f(normal, hits), vec4f(position, 0.0), vec4f(emission, 0.0));
+    let coverage = (*m).position.w + aov.coverage;
+    *m = AovMeans(vec4f(albedo, depth), vec4f(normal, hits), vec4f(position, coverage), vec4f(emission, 0.0));
 }
 
 // Under lanes (`render_lanes`), a finished sample's AOVs wait in the lanes' scratch for
 // `reduce_lanes`, four vec4 per sample after the dispatch's radiance samples: (albedo,
-// depth), (normal, unused), (position, unused), (emission, unused). Stored and reloaded
+// depth), (normal, unused), (position, coverage), (emission, unused). Stored and reloaded
 // as they are, so that the means are the same bit for bit as when `render` adds them at
 // once.
 fn aov_lane_index(slot: u32) -> u32 {
@@ -110,7 +121,7 @@ fn aov_lane_store(slot: u32) {
     let at = aov_lane_index(slot);
     lane_samples[at] = vec4f(aov.albedo, aov.depth);
     lane_samples[at + 1u] = vec4f(aov.normal, 0.0);
-    lane_samples[at + 2u] = vec4f(aov.position, 0.0);
+    lane_samples[at + 2u] = vec4f(aov.position, aov.coverage);
     lane_samples[at + 3u] = vec4f(aov.emission, 0.0);
 }
 
@@ -119,7 +130,7 @@ fn aov_lane_load(slot: u32) {
     let at = aov_lane_index(slot);
     let a = lane_samples[at];
     let b = lane_samples[at + 1u];
-    let position = lane_samples[at + 2u].xyz;
+    let position = lane_samples[at + 2u];
     let emission = lane_samples[at + 3u].xyz;
-    aov = AovSample(a.xyz, b.xyz, a.w, position, emission, false, vec3f(1.0));
+    aov = AovSample(a.xyz, b.xyz, a.w, position.xyz, emission, position.w, false, vec3f(1.0));
 }

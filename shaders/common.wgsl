@@ -124,11 +124,14 @@ struct Instance {
     material_override: u32,
 }
 
-// An instance's Shadow Terminator settings (see GpuTerminator): read by smooth shading and
-// the terminator shift only, so that traversal's records stay small.
-struct Terminator {
+// An instance's settings that shading reads (see GpuObjectSettings): its Shadow Terminator
+// offsets for smooth shading and the terminator shift, and whether the object is a holdout;
+// beside the instances, so that traversal's records stay small.
+struct ObjectSettings {
     geometry_offset: f32,
     frequency_multiplier: f32,
+    holdout: u32,
+    _pad0: u32,
 }
 
 struct Sphere {
@@ -242,7 +245,8 @@ struct Material {
     // A Mix Shader's second material, which the node program's mix factor selects at each
     // shading point (node_program.wgsl), or NO_MATERIAL.
     mix_material: u32,
-    _pad10: u32,
+    // The share of the surface that is a Holdout shader (holdout.wgsl).
+    holdout: f32,
     // The indices' texture (R the IOR, G the coat's, B the film's), each from its minimum
     // here at 0 to the material's own at 1.
     ior_texture: u32,
@@ -326,6 +330,6 @@ const STAT_STACK_OVERFLOW: u32 = 0u;
 //#if uv_sets
 @group(0) @binding(19) var<storage, read> second_uvs: array<TriangleUvs>;
 //#endif
-//#if terminators
-@group(0) @binding(20) var<storage, read> terminators: array<Terminator>;
+//#if object_settings
+@group(0) @binding(20) var<storage, read> object_settings: array<ObjectSettings>;
 //#endif

@@ -50,6 +50,9 @@
 //#if aovs
 //#include "aovs.wgsl"
 //#endif
+//#if holdout
+//#include "holdout.wgsl"
+//#endif
 //#if adaptive
 //#include "adaptive.wgsl"
 //#endif
@@ -393,6 +396,21 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
             }
         }
         //#endif
+        //#endif
+        //#if holdout
+        let held_out = held_out_share(m, hit, bounce);
+        if held_out > 0.0 {
+            //#if aovs
+            if bounce == 0u {
+                aov_held_out(held_out);
+            }
+            //#endif
+            throughput *= 1.0 - held_out;
+            if held_out >= 1.0 {
+                sample_finished = true;
+                continue;
+            }
+        }
         //#endif
         //#if emission
         var coat_layer_normal = surface.shading_normal;

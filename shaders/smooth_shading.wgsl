@@ -46,7 +46,7 @@ fn shadow_ray_lift(p: vec3f, n_geometric: vec3f, l: vec3f) -> vec3f {
     let ngl = dot(ng, l);
     // The object's Shadow Terminator Geometry Offset: shadow rays within about this cosine
     // of the terminator start from the smooth surface (0: none do).
-    let cutoff = terminators[smooth_hit.instance].geometry_offset;
+    let cutoff = object_settings[smooth_hit.instance].geometry_offset;
     if cutoff <= 0.0 {
         return p;
     }

@@ -16,7 +16,7 @@ var<private> terminator_frequency: f32 = 1.0;
 fn set_terminator_shift(hit: Hit) {
     terminator_frequency = 1.0;
     if hit.kind == HIT_TRIANGLE {
-        terminator_frequency = terminators[hit.instance].frequency_multiplier;
+        terminator_frequency = object_settings[hit.instance].frequency_multiplier;
     }
 }
 

@@ -146,26 +146,35 @@ pub struct GpuInstance {
     pub material_override: u32,
 }
 
-/// An instance's Shadow Terminator settings, beside [`GpuInstance`] rather than in it:
-/// only smooth shading and the terminator shift read them, not traversal.
+/// An object's settings that shading reads (its Shadow Terminator offsets, whether it is
+/// a holdout), beside [`GpuInstance`] rather than in it: traversal does not read them.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct GpuTerminator {
+pub struct GpuObjectSettings {
     /// Blender's Geometry Offset: the cosine below which shadow rays start from the smooth surface.
     pub geometry_offset: f32,
     /// 1 / (1 - Shading Offset / 2): 1 leaves the lobes' cosines alone.
     pub frequency_multiplier: f32,
+    /// 1: Blender's Holdout (the object's or its collection's): the camera sees through
+    /// it to nothing, and the pixel's alpha loses what it covers; other rays see it as it is.
+    pub holdout: u32,
+    pub _pad0: u32,
 }
 
-impl Default for GpuTerminator {
+impl Default for GpuObjectSettings {
     fn default() -> Self {
-        Self::from(crate::scene::ShadowTerminator::default())
+        Self::new(crate::scene::ShadowTerminator::default(), false)
     }
 }
 
-impl From<crate::scene::ShadowTerminator> for GpuTerminator {
-    fn from(t: crate::scene::ShadowTerminator) -> Self {
-        Self { geometry_offset: t.geometry_offset, frequency_multiplier: t.frequency_multiplier() }
+impl GpuObjectSettings {
+    pub fn new(t: crate::scene::ShadowTerminator, holdout: bool) -> Self {
+        Self {
+            geometry_offset: t.geometry_offset,
+            frequency_multiplier: t.frequency_multiplier(),
+            holdout: u32::from(holdout),
+            _pad0: 0,
+        }
     }
 }
 
@@ -278,7 +287,9 @@ pub struct GpuMaterial {
     /// A Mix Shader's second material (the scene's table), which the node program's
     /// mix factor selects at each shading point, or `NO_MATERIAL`.
     pub mix_material: u32,
-    pub _pad10: u32,
+    /// The share of the surface that is a Holdout shader: the camera's paths lose it from
+    /// the pixel's alpha, and every path loses it from its throughput.
+    pub holdout: f32,
     /// The indices' texture: R the IOR, G the coat's, B the film's, each from its minimum
     /// at 0 to the material's own at 1.
     pub ior_texture: u32,
@@ -580,7 +591,7 @@ impl From<&crate::scene::Material> for GpuMaterial {
             coat_normal_texture: m.textures.coat_normal.unwrap_or(NO_TEXTURE),
             coat_normal_scale: m.textures.coat_normal_scale,
             mix_material: m.mix_material.unwrap_or(NO_MATERIAL),
-            _pad10: 0,
+            holdout: m.holdout,
             ior_texture: slot(l.ior),
             ior_minimum: m.textures.ior_minimum[0],
             coat_ior_minimum: m.textures.ior_minimum[1],

@@ -238,6 +238,22 @@ fn a_transparent_film_gives_combined_its_alpha() {
     assert!(partial > 0 && partial < w * h / 4, "{partial} pixels on the plane's edges are partly covered");
 }
 
+/// A collection's Holdout, the film opaque: Combined is black with alpha 0 where the
+/// camera sees the held-out plane, and the sky around it stays, alpha 1.
+#[test]
+fn a_held_out_collection_cuts_a_hole_in_combined() {
+    let out = out_dir("holdout");
+    let report = engine_ui(&out, "holdout", &[]);
+    assert!(report["scene"].as_str().unwrap_or("").contains("holdout = true"), "{report}");
+    let (w, h, all) = channels(&out.join("holdout.exr"));
+    let (r, a) = (channel(&all, "Combined.R"), channel(&all, "Combined.A"));
+    let (corner, centre) = (0, (h / 2) * w + w / 2);
+    println!("alpha: corner {}, centre {}; red: corner {}, centre {}", a[corner], a[centre], r[corner], r[centre]);
+    assert_eq!((a[centre], r[centre]), (0.0, 0.0), "the held-out plane is a hole");
+    assert_eq!(a[corner], 1.0, "the sky covers its pixels");
+    assert!(r[corner] > 0.1, "the sky shows: {}", r[corner]);
+}
+
 #[test]
 fn blenders_size_rules_hold() {
     let out = out_dir("size");

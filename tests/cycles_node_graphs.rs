@@ -147,3 +147,41 @@ fn a_procedural_principled_material_matches_cycles() {
     )
     .check("graph_material", "Cycles");
 }
+
+/// Holdouts with an opaque film (`make_node_graph_refs.py holdouts`): the Holdout shader,
+/// a constant Mix Shader share of it, holes picked by noise, a held-out object and a
+/// held-out collection, in front of a mirror that shows the objects' own materials. The
+/// colour within noise of Cycles', and every 8×8 block's alpha within 5 σ of Cycles' (σ of
+/// a sample's coverage at most √(α(1 − α)), at both renders' sample counts).
+#[test]
+fn holdouts_cut_cycles_holes_in_colour_and_alpha() {
+    const HOLDOUT_SPP: u32 = 128;
+    let scene = rt::scene::load(&repo().join("tests/cycles/scenes/holdouts/scene.toml")).unwrap();
+    let ours = render(scene, 96, 64, HOLDOUT_SPP, 8);
+    let file = repo().join("tests/cycles/holdouts.exr");
+    reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4)).check("holdouts", "Cycles");
+    let alpha = ours.alpha.as_ref().expect("holdouts give the image an alpha");
+    let cycles = image::open(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display())).into_rgba32f();
+    let cycles: Vec<f32> = cycles.pixels().map(|p| p.0[3]).collect();
+    let w = ours.width as usize;
+    let per_sample = 1.0 / HOLDOUT_SPP as f64 + 1.0 / REFERENCE_SPP;
+    let mut worst = (0.0f64, String::new());
+    for by in 0..ours.height as usize / BLOCK {
+        for bx in 0..w / BLOCK {
+            let block: Vec<usize> = (by * BLOCK..(by + 1) * BLOCK)
+                .flat_map(|y| (bx * BLOCK..(bx + 1) * BLOCK).map(move |x| y * w + x))
+                .collect();
+            let n = block.len() as f64;
+            let ours_mean = block.iter().map(|&i| alpha[i] as f64).sum::<f64>() / n;
+            let theirs = block.iter().map(|&i| cycles[i] as f64).sum::<f64>() / n;
+            let variance = block.iter().map(|&i| (cycles[i] * (1.0 - cycles[i])).max(0.0) as f64).sum::<f64>() / n;
+            let bound = 5.0 * (variance / n * per_sample).sqrt() + 2e-3;
+            let ratio = (ours_mean - theirs).abs() / bound;
+            if ratio > worst.0 {
+                worst = (ratio, format!("block ({bx}, {by}): alpha {ours_mean:.4} vs Cycles {theirs:.4}"));
+            }
+        }
+    }
+    println!("holdouts alpha worst block at {:.2} of its bound: {}", worst.0, worst.1);
+    assert!(worst.0 <= 1.0, "{} is {:.2} times its bound", worst.1, worst.0);
+}

@@ -800,6 +800,9 @@ def gltf_material(material, thickness, textures=None, shader=None):
     if material is not None and not material.cycles.use_bump_map_correction:
         # Cycles' Bump Map Correction (on by default) of glossy normals on smooth surfaces.
         out["extras"]["rt_bump_map_correction"] = False
+    if s.holdout > 0.0:
+        # Blender's Holdout shader, or a Mix Shader's share of one.
+        out["extras"]["rt_holdout"] = min(s.holdout, 1.0)
     if s.glossy is not None:
         # Cycles' Glossy BSDF: GGX without Fresnel, tinted by its colour; glTF has no such lobe
         # (its factors above describe a metal of that colour for other readers).
@@ -1266,7 +1269,8 @@ class Export:
         self.content = {}  # folder name -> (rtmesh bytes, gltf text)
         self.written = []  # files actually rewritten
         self.triangles = {}
-        self.instances = {}  # (folder name, Shadow Terminator settings) -> Placements of its instances
+        self.instances = {}  # (folder name, object settings) -> Placements of its instances
+        self.view_layer = None  # the view layer whose holdouts the export follows
         self.images = {}  # folder name -> {image file name: PNG bytes}
         self.bake_size = 0  # > 0: bake what rt cannot follow into images of this size
 
@@ -1499,7 +1503,8 @@ def add_instances(export, depsgraph):
         # A copy: the depsgraph reuses the instance's matrix for the next one.
         entry.matrices.append(inst.matrix_world.copy())
         entry.codes.append(code)
-        entry.terminators.append(shadow_terminator(obj))
+        # Cycles takes an instance's holdout from what instances it.
+        entry.terminators.append(object_settings(inst.parent or obj, depsgraph.view_layer, obj))
     for entry in meshes.values():
         if entry is None or not entry.matrices:
             continue
@@ -1512,8 +1517,8 @@ def add_instances(export, depsgraph):
         if not entry.codes:
             continue
         folder = export.store(entry.base, entry.rtmesh, entry.gltf(), entry.textures.images, entry.triangles)
-        # An instance file's entry carries one object's Shadow Terminator settings: instances of
-        # objects with other settings go into a file of their own.
+        # An instance file's entry carries one object's Shadow Terminator and holdout settings:
+        # instances of objects with other settings go into a file of their own.
         for terminator in sorted(set(entry.terminators)):
             placed = export.instances.setdefault((folder, terminator), Placements(entry.slots))
             placed.add(entry, np.array([t == terminator for t in entry.terminators]))
@@ -1563,14 +1568,15 @@ def instances_toml(export, scene_path):
     text = []
     for folder, terminator in sorted(export.instances):
         placed = export.instances[(folder, terminator)]
-        name = folder if terminator == SHADOW_TERMINATOR_DEFAULTS else f"{folder}_terminator_{fmt(terminator[0])}_{fmt(terminator[1])}"
+        name = folder if terminator[:2] == SHADOW_TERMINATOR_DEFAULTS else f"{folder}_terminator_{fmt(terminator[0])}_{fmt(terminator[1])}"
+        name += "_holdout" if terminator[2] else ""
         path = os.path.join(scene_dir, f"{stem}_instances", name + ".rtinst")
         if write_if_changed(path, rtinst_bytes(placed)):
             export.written.append(path)
         asset = os.path.relpath(os.path.join(export.out_dir, folder), scene_dir).replace(os.sep, "/")
         file = os.path.relpath(path, scene_dir).replace(os.sep, "/")
         text.append(f"# {len(placed)} instances\n[[instances]]\nasset = {json.dumps(asset)}\nfile = {json.dumps(file)}\n"
-                    f"{shadow_terminator_toml(terminator)}\n")
+                    f"{object_settings_toml(terminator)}\n")
     return "".join(text)
 
 
@@ -1586,6 +1592,18 @@ def shadow_terminator(obj):
     """(Geometry Offset, Shading Offset) of `obj`, the object's own properties that Cycles
     reads (not the legacy `obj.cycles` ones), to six decimals (Blender keeps them in float)."""
     return (round(float(obj.shadow_terminator_geometry_offset), 6), round(float(obj.shadow_terminator_shading_offset), 6))
+
+
+def object_settings(obj, view_layer, shading=None):
+    """(Geometry Offset, Shading Offset, holdout) of an object: its Shadow Terminator
+    settings (those of `shading` if given: an instance's own) and whether it is held out in
+    `view_layer` (its own Holdout or its collection's)."""
+    return shadow_terminator(shading or obj) + (bool(obj.original.holdout_get(view_layer=view_layer)),)
+
+
+def object_settings_toml(settings):
+    """The scene-file keys of an object's settings other than the defaults."""
+    return shadow_terminator_toml(settings[:2]) + ("holdout = true\n" if settings[2] else "")
 
 
 def shadow_terminator_toml(terminator):
@@ -1978,7 +1996,7 @@ def scene_toml(scene, export, scene_path, objects):
         asset = os.path.relpath(os.path.join(export.out_dir, folder), scene_dir).replace(os.sep, "/")
         rows = [m[r][c] for r in range(4) for c in range(4)]
         rows[12:16] = [0.0, 0.0, 0.0, 1.0]
-        terminator = shadow_terminator_toml(shadow_terminator(obj))
+        terminator = object_settings_toml(object_settings(obj, export.view_layer))
         text.append(f"# {obj.name}\n[[mesh]]\nasset = {json.dumps(asset)}\nmatrix = {vec(rows)}\n{terminator}\n")
     text.append(instances_toml(export, scene_path))
     return "".join(text).rstrip("\n") + "\n"
@@ -2011,6 +2029,7 @@ def _export_scene(scene, out_dir, scene_path, only, previous, bake_size, depsgra
     _linear_pixels.clear()
     export = Export(out_dir)
     export.bake_size = bake_size
+    export.view_layer = depsgraph.view_layer
     objects = exported_objects(scene)
     for obj in objects:
         if only is not None and previous is not None and obj.name not in only and obj.name in previous.folder_of:

@@ -136,6 +136,8 @@ class Surface:
         self.principled = None
         # The Principled's own Emission Strength times what mixing scaled it by (for its texture).
         self.emission_strength = 0.0
+        # The share of the surface that is a Holdout shader.
+        self.holdout = 0.0
         self.kind = "principled"
         for key, value in fields.items():
             setattr(self, key, value)
@@ -245,6 +247,10 @@ def translucent(material, node):
                    specular_level=0.0)
 
 
+def holdout(material, node):
+    return Surface(kind="holdout", base=[0.0, 0.0, 0.0], roughness=1.0, specular_level=0.0, holdout=1.0)
+
+
 def shader_inputs(node):
     return [s for s in node.inputs if s.type == "SHADER"]
 
@@ -276,6 +282,11 @@ def mixed(material, node, a, wa, b, wb):
     """a x wa + b x wb, in parameters where that is exact."""
     if wb == 0.0 or wa == 0.0:
         return a if wb == 0.0 else b
+    if b.kind == "holdout" or a.kind == "holdout":
+        # Cycles weighs the other's closures by its share and holds out the holdout's.
+        held, hw, other, ow = (b, wb, a, wa) if b.kind == "holdout" else (a, wa, b, wb)
+        other.holdout = other.holdout * ow + held.holdout * hw
+        return other
     if b.kind == "transparent":
         return with_transparency(a, wa)
     if a.kind == "transparent":
@@ -325,6 +336,7 @@ MAPPINGS = {
     "EMISSION": emission,
     "BSDF_TRANSPARENT": transparent,
     "BSDF_TRANSLUCENT": translucent,
+    "HOLDOUT": holdout,
     "MIX_SHADER": mix,
     "ADD_SHADER": add,
 }

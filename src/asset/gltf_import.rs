@@ -471,6 +471,7 @@ fn map_material_with(m: &gltf::Material, metallic: f32, transmission: f32) -> Re
             None => Vec::new(),
         },
         mix_material: extra::<u32>(m.extras(), "rt_mix_material")?,
+        holdout: extra::<f32>(m.extras(), "rt_holdout")?.unwrap_or(0.0).clamp(0.0, 1.0),
         ..Material::default()
     };
     Ok(match extra::<[f32; 3]>(m.extras(), "rt_glossy_color")? {
@@ -674,6 +675,7 @@ mod tests {
                 emission: [4.0, 2.0, 0.0],
                 absorption: [ln2 / 2.0, 2.0 * ln2 / 2.0, 0.0],
                 volume_emission: [0.1, 0.2, 0.3],
+                holdout: 0.0,
                 textures: Default::default(),
                 node_program: Vec::new(),
                 mix_material: None,

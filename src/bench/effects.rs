@@ -107,6 +107,8 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
     force("smooth normals", own.smooth_normals, FeatureSet { smooth_normals: true, triangles: true, ..own });
     // The terminator shift reads the shaded instance's settings: triangles come with it.
     force("terminator offset", own.terminator_offset, FeatureSet { terminator_offset: true, triangles: true, ..own });
+    // The holdout test of each shaded surface reads the instance's settings: triangles come with it.
+    force("holdout", own.holdout, FeatureSet { holdout: true, triangles: true, ..own });
     // Texture lookups alone, so that the normal maps' own share of their price shows.
     force("textures", own.textures, FeatureSet { textures: true, ..own });
     // Normal maps are texture lookups: forcing them on forces the texture code too.
@@ -221,5 +223,10 @@ mod tests {
     #[test]
     fn terminator_offset_is_among_the_forced_effects() {
         forced_once("+terminator offset", |f| FeatureSet { terminator_offset: false, ..f });
+    }
+
+    #[test]
+    fn holdout_is_among_the_forced_effects() {
+        forced_once("+holdout", |f| FeatureSet { holdout: false, ..f });
     }
 }

@@ -15,7 +15,8 @@
 //!                 the bump map correction and two more layer slots from version 9 on,
 //!                 the coat's normal map and its scale, transmission and specular-level
 //!                 slots, the indices' slot and its minimums, the transmission factor
-//!                 and the anisotropy texture's kind from version 11 on)
+//!                 and the anisotropy texture's kind from version 11 on, the Mix Shader's
+//!                 second material from version 12 on, the holdout share from 13 on)
 //!     names       k × (u32 byte length, UTF-8 bytes): the materials' names
 //!     textures    CachedTexture × j      (size, wrap modes, colour space, texel range; its
 //!                 uv transform from version 10 on, references to one image sharing a range)
@@ -59,7 +60,7 @@ use std::path::Path;
 use std::time::Duration;
 
 pub const MAGIC: [u8; 8] = *b"RTBVH\0\0\0";
-pub const FORMAT_VERSION: u32 = 12;
+pub const FORMAT_VERSION: u32 = 13;
 const ALIGN: u64 = 16;
 
 #[repr(C)]

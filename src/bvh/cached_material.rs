@@ -77,6 +77,8 @@ pub struct CachedMaterial {
     pub ior_minimum: [f32; 3],
     /// `Material::mix_material`, or [`NO_TEXTURE`] (version 12 on).
     pub mix_material: u32,
+    /// `Material::holdout` (version 13 on).
+    pub holdout: f32,
 }
 
 const TANGENTS: [Tangent; 4] = [Tangent::RadialZ, Tangent::RadialX, Tangent::RadialY, Tangent::Uv];
@@ -130,6 +132,7 @@ impl From<&Material> for CachedMaterial {
             coat_normal_scale: m.textures.coat_normal_scale,
             ior_minimum: m.textures.ior_minimum,
             mix_material: slot(m.mix_material),
+            holdout: m.holdout,
         }
     }
 }
@@ -186,6 +189,7 @@ impl From<&CachedMaterial> for Material {
             },
             node_program: Vec::new(),
             mix_material: unslot(m.mix_material),
+            holdout: m.holdout,
         }
     }
 }

@@ -6,8 +6,8 @@
 use super::pack::LoadedMesh;
 use crate::asset::AssetError;
 use crate::asset::rtinst::{self, MaterialSets};
-use crate::layout::{GpuInstance, GpuTerminator, NO_MATERIAL};
-use crate::scene::{InstanceSet, Material, Scene, ShadowTerminator};
+use crate::layout::{GpuInstance, GpuObjectSettings, NO_MATERIAL};
+use crate::scene::{InstanceSet, Material, Scene};
 use anyhow::{Result, bail};
 use glam::{DMat4, Mat4, Vec3, Vec3A};
 use obvhs::aabb::Aabb;
@@ -42,10 +42,12 @@ pub(super) struct Placement<'m> {
     meshes: &'m [LoadedMesh],
     slots: &'m [MeshSlot],
     pub instances: Vec<GpuInstance>,
-    /// Each instance's Shadow Terminator settings.
-    pub terminators: Vec<GpuTerminator>,
+    /// Each instance's Shadow Terminator settings and holdout.
+    pub object_settings: Vec<GpuObjectSettings>,
     /// Some instance has a Shading Offset (the terminator shift's code is needed).
     pub shading_offsets: bool,
+    /// Some instance is a holdout.
+    pub held_out: bool,
     /// Which mesh each instance places.
     pub instance_mesh: Vec<u32>,
     /// World box of each instance, for the top level.
@@ -66,8 +68,9 @@ impl<'m> Placement<'m> {
             meshes,
             slots,
             instances: Vec::new(),
-            terminators: Vec::new(),
+            object_settings: Vec::new(),
             shading_offsets: false,
+            held_out: false,
             instance_mesh: Vec::new(),
             boxes: Vec::new(),
             own_materials_shown: vec![false; meshes.len()],
@@ -78,17 +81,17 @@ impl<'m> Placement<'m> {
     }
 
     /// Places mesh `mesh_index` at `object_to_world` (invertible), with the material
-    /// table index `material_override` or `NO_MATERIAL`, with its Shadow Terminator settings.
+    /// table index `material_override` or `NO_MATERIAL`, with its object's settings.
     /// Empty meshes place nothing.
     pub fn place(
         &mut self,
         mesh_index: usize,
         object_to_world: &Mat4,
         material_override: u32,
-        terminator: ShadowTerminator,
+        settings: GpuObjectSettings,
     ) {
         let base = self.slots[mesh_index].material_base;
-        self.place_with_base(mesh_index, object_to_world, material_override, base, terminator.into());
+        self.place_with_base(mesh_index, object_to_world, material_override, base, settings);
     }
 
     /// As [`Self::place`], the mesh's triangles indexing materials from `material_base`
@@ -99,7 +102,7 @@ impl<'m> Placement<'m> {
         object_to_world: &Mat4,
         material_override: u32,
         material_base: u32,
-        terminator: GpuTerminator,
+        settings: GpuObjectSettings,
     ) {
         let mesh = &self.meshes[mesh_index];
         if mesh.triangle_count == 0 {
@@ -120,8 +123,9 @@ impl<'m> Placement<'m> {
             material_base,
             material_override,
         });
-        self.terminators.push(terminator);
-        self.shading_offsets |= terminator.frequency_multiplier > 1.0;
+        self.object_settings.push(settings);
+        self.shading_offsets |= settings.frequency_multiplier > 1.0;
+        self.held_out |= settings.holdout != 0;
     }
 
     /// Places every record of `set`'s instance file; `scene_material` maps a scene
@@ -139,8 +143,8 @@ impl<'m> Placement<'m> {
         let own_base = self.slots[mesh_index].material_base;
         let records = file.records;
         self.instances.reserve(records.len());
-        self.terminators.reserve(records.len());
-        let terminator = GpuTerminator::from(set.shadow_terminator);
+        self.object_settings.reserve(records.len());
+        let settings = GpuObjectSettings::new(set.shadow_terminator, set.holdout);
         self.boxes.reserve(records.len());
         self.instance_mesh.reserve(records.len());
         for (index, r) in records.iter().enumerate() {
@@ -170,7 +174,7 @@ impl<'m> Placement<'m> {
                     }
                 },
             };
-            self.place_with_base(mesh_index, &r.object_to_world(), material, base, terminator);
+            self.place_with_base(mesh_index, &r.object_to_world(), material, base, settings);
         }
         Ok(())
     }

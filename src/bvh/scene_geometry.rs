@@ -31,10 +31,12 @@ pub struct SceneGeometry {
     /// triangles of meshes that have none.
     pub second_uvs: Vec<GpuTriangleUvs>,
     pub instances: Vec<GpuInstance>,
-    /// Each instance's Shadow Terminator settings, in the instances' order.
-    pub terminators: Vec<GpuTerminator>,
+    /// Each instance's Shadow Terminator settings and holdout, in the instances' order.
+    pub object_settings: Vec<GpuObjectSettings>,
     /// Some instance has a Shadow Terminator Shading Offset.
     pub shading_offsets: bool,
+    /// Some instance is a holdout.
+    pub held_out: bool,
     pub tlas_primitives: Vec<u32>,
     pub spheres: Vec<GpuSphere>,
     /// The default material first, then the scene's, then each mesh's own.
@@ -94,6 +96,7 @@ impl SceneGeometry {
             spheres: !self.spheres.is_empty(),
             smooth_normals: self.smooth_normals,
             shading_offsets: self.shading_offsets,
+            held_out: self.held_out,
             materials_in_use: self.materials_in_use.clone(),
         }
     }
@@ -114,7 +117,7 @@ impl SceneGeometry {
     pub fn top_level_bytes(&self) -> usize {
         let top_nodes = self.nodes.len() - self.tlas_root as usize;
         self.instances.len() * size_of::<GpuInstance>()
-            + self.terminators.len() * size_of::<GpuTerminator>()
+            + self.object_settings.len() * size_of::<GpuObjectSettings>()
             + self.spheres.len() * size_of::<GpuSphere>()
             + top_nodes * size_of::<GpuBvhNode>()
             + self.tlas_primitives.len() * size_of::<u32>()
@@ -204,7 +207,8 @@ impl SceneGeometry {
                 Some(_) => scene_material(&m.material)?,
                 None => NO_MATERIAL,
             };
-            placement.place(mesh_of_path[&m.asset], &m.object_to_world, material_override, m.shadow_terminator);
+            let settings = GpuObjectSettings::new(m.shadow_terminator, m.holdout);
+            placement.place(mesh_of_path[&m.asset], &m.object_to_world, material_override, settings);
         }
         for set in &scene.instance_sets {
             let named = |n: &str| scene_material(&Some(n.to_owned()));
@@ -219,8 +223,16 @@ impl SceneGeometry {
         }
         // Material sets' blocks follow the meshes' own materials; only used sets have one.
         in_use.resize(in_use.len() + placement.set_materials.len(), true);
-        let Placement { instances, terminators, shading_offsets, instance_mesh, mut boxes, set_materials, .. } =
-            placement;
+        let Placement {
+            instances,
+            object_settings,
+            shading_offsets,
+            held_out,
+            instance_mesh,
+            mut boxes,
+            set_materials,
+            ..
+        } = placement;
         materials.extend(set_materials);
         // Top-level primitive of each box: instance index, or sphere index | SPHERE_BIT.
         let mut entries: Vec<u32> = (0..instances.len() as u32).collect();
@@ -315,8 +327,9 @@ impl SceneGeometry {
             tangents,
             second_uvs,
             instances,
-            terminators,
+            object_settings,
             shading_offsets,
+            held_out,
             tlas_primitives,
             spheres,
             node_programs: materials.iter().flat_map(|m| m.node_program.iter().copied()).collect(),

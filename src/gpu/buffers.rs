@@ -67,7 +67,7 @@ struct SceneData {
     /// Per-triangle second uv set, for textures that read it.
     second_uvs: wgpu::Buffer,
     /// Per-instance Shadow Terminator settings, for smooth shading and the terminator shift.
-    terminators: wgpu::Buffer,
+    object_settings: wgpu::Buffer,
     /// The materials' node programs (`crate::asset::node_graph`).
     node_programs: wgpu::Buffer,
 }
@@ -96,7 +96,7 @@ impl SceneData {
             &self.tangents,
             &self.microfacet_tables,
             &self.second_uvs,
-            &self.terminators,
+            &self.object_settings,
             &self.node_programs,
         ]
     }
@@ -122,7 +122,7 @@ fn storage<T: Pod + Default>(ctx: &GpuContext, label: &str, data: &[T], extra: w
 }
 
 /// The geometry's buffers: (top-level nodes, triangles, shading, instances, top-level primitives,
-/// spheres, bottom-level nodes, tangents, second uvs, terminators).
+/// spheres, bottom-level nodes, tangents, second uvs, object_settings).
 type GeometryBuffers = (
     wgpu::Buffer,
     wgpu::Buffer,
@@ -149,7 +149,7 @@ fn geometry_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<Geomet
         storage(ctx, "wide nodes", &geometry.wide_nodes, none),
         storage(ctx, "tangents", &geometry.tangents, none),
         storage(ctx, "second uvs", &geometry.second_uvs, none),
-        storage(ctx, "terminators", &geometry.terminators, none),
+        storage(ctx, "object_settings", &geometry.object_settings, none),
     ))
 }
 
@@ -188,7 +188,7 @@ fn material_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer
 
 impl SceneBuffers {
     pub fn new(ctx: &GpuContext, geometry: &SceneGeometry, layout: &wgpu::BindGroupLayout) -> Result<Self> {
-        let (nodes, triangles, shading, instances, tlas, spheres, wide_nodes, tangents, second_uvs, terminators) =
+        let (nodes, triangles, shading, instances, tlas, spheres, wide_nodes, tangents, second_uvs, object_settings) =
             geometry_buffers(ctx, geometry)?;
         let (materials, emitters, node_programs) = material_buffers(ctx, geometry);
         let frame = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -222,7 +222,7 @@ impl SceneBuffers {
             tangents,
             microfacet_tables: storage(ctx, "microfacet tables", &microfacet_tables(), wgpu::BufferUsages::empty()),
             second_uvs,
-            terminators,
+            object_settings,
             node_programs,
         };
         let bind_group = bind_group(ctx, "scene", layout, &data.bindings());
@@ -248,7 +248,7 @@ impl SceneBuffers {
             d.wide_nodes,
             d.tangents,
             d.second_uvs,
-            d.terminators,
+            d.object_settings,
         ) = geometry_buffers(ctx, geometry)?;
         (d.materials, d.emitters, d.node_programs) = material_buffers(ctx, geometry);
         (d.lamps, d.lamp_info) = lamp_buffers(ctx, geometry);
@@ -317,7 +317,7 @@ fn check_sizes(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<()> {
         ("triangle tangents", std::mem::size_of_val(geometry.tangents.as_slice())),
         ("second uvs", std::mem::size_of_val(geometry.second_uvs.as_slice())),
         ("instances", std::mem::size_of_val(geometry.instances.as_slice())),
-        ("instance terminators", std::mem::size_of_val(geometry.terminators.as_slice())),
+        ("instance settings", std::mem::size_of_val(geometry.object_settings.as_slice())),
         ("emitters", std::mem::size_of_val(geometry.emitters.as_slice())),
         ("node programs", std::mem::size_of_val(geometry.node_programs.as_slice())),
         ("light tree nodes", std::mem::size_of_val(geometry.light_tree.nodes.as_slice())),

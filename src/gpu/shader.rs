@@ -96,6 +96,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("panorama.wgsl"),
     shader!("surface.wgsl"),
     shader!("terminator_offset.wgsl"),
+    shader!("holdout.wgsl"),
     shader!("trace_kernel.wgsl"),
     shader!("transform.wgsl"),
     shader!("traverse.wgsl"),

@@ -24,7 +24,8 @@ const MEANS_PER_PIXEL: usize = 4;
 
 impl Aovs {
     /// From the GPU's running means: four vec4 per pixel (albedo and depth, normal and
-    /// the count of samples that hit, position, emission), see `shaders/aovs.wgsl`.
+    /// the count of samples that hit, position and the coverage's sum, emission), see
+    /// `shaders/aovs.wgsl`.
     pub fn from_means(width: u32, height: u32, means: &[[f32; 4]]) -> Self {
         let pixels = width as usize * height as usize;
         let mut aovs = Self { width, height, ..Default::default() };
@@ -41,10 +42,12 @@ impl Aovs {
         aovs
     }
 
-    /// Per pixel, the share of its samples whose camera ray met the scene: the count of
-    /// those (see `shaders/aovs.wgsl`) over the samples the pixel took.
+    /// Per pixel, its alpha: the share of it its samples cover (a sample whose camera ray
+    /// left the scene through a transparent film covers none, one held out covers none or
+    /// what its holdout shader leaves), their sum (see `shaders/aovs.wgsl`) over the
+    /// samples the pixel took.
     pub fn coverage(means: &[[f32; 4]], samples: &[u32]) -> Vec<f32> {
-        let hits = means.chunks_exact(MEANS_PER_PIXEL).map(|pixel| pixel[1][3]);
-        hits.zip(samples).map(|(hits, &n)| (hits / n.max(1) as f32).clamp(0.0, 1.0)).collect()
+        let covered = means.chunks_exact(MEANS_PER_PIXEL).map(|pixel| pixel[2][3]);
+        covered.zip(samples).map(|(sum, &n)| (sum / n.max(1) as f32).clamp(0.0, 1.0)).collect()
     }
 }

@@ -126,6 +126,9 @@ pub struct FeatureSet {
     /// Some object has a Shadow Terminator Shading Offset: its lobes' cosines are shifted
     /// towards the light (Cycles' `shift_cos_in`).
     pub terminator_offset: bool,
+    /// Some material is (partly) a Holdout shader, or some object a holdout: the pixels'
+    /// alpha is counted, and held-out surfaces take from it.
+    pub holdout: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -141,6 +144,8 @@ pub struct GeometrySummary {
     pub smooth_normals: bool,
     /// Some placed instance has a Shadow Terminator Shading Offset.
     pub shading_offsets: bool,
+    /// Some placed instance is a holdout.
+    pub held_out: bool,
     /// Every material some triangle or sphere uses (an asset's own materials may
     /// emit or refract).
     pub materials_in_use: Vec<Material>,
@@ -220,6 +225,7 @@ impl FeatureSet {
             // Mitsuba's material model (`single`) folds leaking directions above the surface.
             smooth_normals: geometry.smooth_normals && settings.microfacet == Microfacet::Multiscatter,
             terminator_offset: geometry.shading_offsets,
+            holdout: geometry.held_out || materials_in_use.iter().any(|m| m.holdout > 0.0),
         }
     }
 
@@ -260,7 +266,14 @@ impl FeatureSet {
             rough_diffuse: true,
             smooth_normals: true,
             terminator_offset: true,
+            holdout: true,
         }
+    }
+
+    /// Whether the image has an alpha channel: a transparent film's, or one that holdouts
+    /// take from (counted with the AOVs).
+    pub fn has_alpha(&self) -> bool {
+        self.transparent_film || self.holdout
     }
 
     /// Whether the preprocessor flag `name` (as in `//#if name` in `shaders/`) is on.
@@ -315,8 +328,9 @@ impl FeatureSet {
             "terminator_offset" => self.terminator_offset,
             // Surfaces whose lobes follow Cycles' rules (lobe_hemispheres.wgsl) exist.
             "cycles_lobe_rules" => self.normal_maps || self.smooth_normals,
-            // Each instance's Shadow Terminator settings, read by both.
-            "terminators" => self.smooth_normals || self.terminator_offset,
+            "holdout" => self.holdout,
+            // Each instance's Shadow Terminator settings, read by both, and its holdout.
+            "object_settings" => self.smooth_normals || self.terminator_offset || self.holdout,
             "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen || self.thin_film,
             _ => return None,
         })
@@ -357,6 +371,7 @@ impl fmt::Display for FeatureSet {
             (self.rough_diffuse, "rough-diffuse"),
             (self.smooth_normals, "smooth-normals"),
             (self.terminator_offset, "terminator-offset"),
+            (self.holdout, "holdout"),
         ] {
             if on {
                 parts.push(name.to_string());

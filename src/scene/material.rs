@@ -64,6 +64,11 @@ pub struct Material {
     pub emission: [f32; 3],
     pub absorption: [f32; 3],
     pub volume_emission: [f32; 3],
+    /// The share of the surface that is Blender's Holdout shader (a Mix Shader's weight of
+    /// it; 1: all of it): the camera sees nothing there, and the pixel's alpha loses that
+    /// share; any other ray loses it as absorbed. The rest of the material is scaled by
+    /// what remains.
+    pub holdout: f32,
     /// Image textures, from the asset importers (scene files give none).
     #[serde(skip)]
     pub textures: MaterialTextures,
@@ -123,6 +128,7 @@ impl Default for Material {
             emission: [0.0; 3],
             absorption: [0.0; 3],
             volume_emission: [0.0; 3],
+            holdout: 0.0,
             textures: MaterialTextures::default(),
             node_program: Vec::new(),
             mix_material: None,

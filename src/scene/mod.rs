@@ -165,6 +165,10 @@ pub struct MeshInstance {
     /// about X, Y, Z by `rotate_deg` (degrees, right-handed), then translate.
     pub object_to_world: Mat4,
     pub shadow_terminator: ShadowTerminator,
+    /// Blender's Holdout (the object's or its collection's): the camera sees nothing
+    /// where it sees this object, and the pixel's alpha loses it; reflections, shadows and
+    /// light bounced from it stay.
+    pub holdout: bool,
 }
 
 /// One `[[instances]]`: an asset placed once per record of an instance file.
@@ -179,6 +183,8 @@ pub struct InstanceSet {
     pub materials: Vec<String>,
     /// The Shadow Terminator settings of every instance of the file.
     pub shadow_terminator: ShadowTerminator,
+    /// Every instance of the file is a holdout (see [`MeshInstance::holdout`]).
+    pub holdout: bool,
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -186,6 +186,8 @@ pub(super) struct Mesh {
     pub matrix: Option<[f32; 16]>,
     pub shadow_terminator_geometry_offset: Option<f32>,
     pub shadow_terminator_shading_offset: Option<f32>,
+    #[serde(default)]
+    pub holdout: bool,
 }
 
 /// One asset placed by an instance file (`.rtinst`).
@@ -200,6 +202,8 @@ pub(super) struct Instances {
     /// For every instance of the file.
     pub shadow_terminator_geometry_offset: Option<f32>,
     pub shadow_terminator_shading_offset: Option<f32>,
+    #[serde(default)]
+    pub holdout: bool,
 }
 
 #[derive(Clone, Copy, Deserialize)]

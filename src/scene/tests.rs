@@ -232,6 +232,8 @@ fn out_of_range_values_are_located() {
         [materials.m] | specular_ior_level = 1.5 => 2:22: [materials.m]: specular_ior_level must be in [0, 1], got 1.5
         [materials.m] | specular_tint = [1, 2, 1] => 2:17: [materials.m]: specular_tint must be in [0, 1], got 2
         [materials.m] | coat = 1.5 => 2:8: [materials.m]: coat must be in [0, 1], got 1.5
+        [materials.m] | holdout = 1.5 => 2:11: [materials.m]: holdout must be in [0, 1], got 1.5
+        [[mesh]] | asset = "a" | holdout = 1 => 3:11: mesh 1: holdout: invalid type: integer `1`, expected a boolean
         [materials.m] | coat_ior = 0.5 => 2:12: [materials.m]: coat_ior must be at least 1, got 0.5
         [materials.m] | sheen = -0.5 => 2:9: [materials.m]: sheen must be in [0, 1], got -0.5
         [materials.m] | sheen_roughness = 2 => 2:19: [materials.m]: sheen_roughness must be in [0, 1], got 2

@@ -50,6 +50,7 @@ pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, 
                 m.shadow_terminator_geometry_offset,
                 m.shadow_terminator_shading_offset,
             )?,
+            holdout: m.holdout,
         });
     }
     let mut spheres = Vec::new();
@@ -93,6 +94,7 @@ pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, 
             asset: base_dir.join(&set.asset),
             file: base_dir.join(&set.file),
             materials: set.materials,
+            holdout: set.holdout,
         });
     }
 
@@ -191,6 +193,7 @@ fn material(src: &Source, p: &[Seg], m: &Material) -> Result<(), SceneError> {
     })?;
     src.check(p, "thin_film_ior", &[m.thin_film_ior], "at least 1", |ior| ior >= 1.0)?;
     src.check(p, "thin_film_weight", &[m.thin_film_weight], "in [0, 1]", |w| (0.0..=1.0).contains(&w))?;
+    src.check(p, "holdout", &[m.holdout], "in [0, 1]", |h| (0.0..=1.0).contains(&h))?;
     if m.specular_ior_level > 0.0 && m.specular > 0.0 {
         return Err(src.error(
             p,

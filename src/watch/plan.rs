@@ -302,6 +302,7 @@ mod tests {
         // An object's Shadow Terminator settings are its instance's; the features follow the geometry.
         let shifted = kind_after(|s| s.meshes[0].shadow_terminator.shading_offset = 0.5);
         assert_eq!(shifted.changes, [Change::Placement]);
+        assert_eq!(kind_after(|s| s.meshes[0].holdout = true).changes, [Change::Placement]);
     }
 
     #[test]
@@ -341,6 +342,7 @@ mod tests {
             material: None,
             object_to_world: glam::Mat4::IDENTITY,
             shadow_terminator: Default::default(),
+            holdout: false,
         });
         let mut new_prints = prints(1);
         new_prints.insert(PathBuf::from("/s/other.obj"), Ok([7; 32]));
@@ -369,6 +371,7 @@ mod tests {
             file: PathBuf::from("/s/boxes.rtinst"),
             materials: vec![],
             shadow_terminator: Default::default(),
+            holdout: false,
         });
         let with_file = |hash: u8| {
             let mut p = prints(1);

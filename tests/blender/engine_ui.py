@@ -16,6 +16,8 @@ engine's cache folder is under OUT). Each mode writes OUT/MODE.json.
                                     was updated, the samples it reached
     engine_ui.py transparent OUT    F12 with Film › Transparent of a plane filling part of the
                                     view: OUT/transparent.exr (multilayer), the exported scene
+    engine_ui.py holdout OUT        F12 of that plane in a held-out collection, the film
+                                    opaque: OUT/holdout.exr (multilayer), the exported scene
 """
 
 import json
@@ -187,6 +189,22 @@ def transparent(out):
     save(out, "transparent", {"scene": text})
 
 
+def holdout(out):
+    """A small plane in a held-out collection, the film opaque."""
+    scene = facing_plane_scene()
+    plane = bpy.data.objects["Plane"]
+    plane.scale = (0.2, 0.2, 0.2)
+    held = bpy.data.collections.new("held out")
+    scene.collection.children.link(held)
+    for collection in plane.users_collection:
+        collection.objects.unlink(plane)
+    held.objects.link(plane)
+    bpy.context.view_layer.layer_collection.children["held out"].holdout = True
+    f12_multilayer(scene, os.path.join(out, "holdout.exr"))
+    text = open(os.path.join(rt_run.cache_dir(), "scene.toml")).read()
+    save(out, "holdout", {"scene": text})
+
+
 def progressive(out):
     scene = facing_plane_scene()
     scene.rt_render.spp = 1_000_000
@@ -213,5 +231,5 @@ def progressive(out):
 if __name__ == "__main__":
     mode, args = sys.argv[1], sys.argv[2:]
     modes = {"ui": ui, "preview": preview, "levels": levels, "passes": passes, "size": size, "progressive": progressive}
-    modes["transparent"] = transparent
+    modes["transparent"], modes["holdout"] = transparent, holdout
     modes[mode](*args)

@@ -84,6 +84,7 @@ fn factors() -> Vec<Factor> {
         flag!(rough_diffuse),
         flag!(smooth_normals),
         flag!(terminator_offset),
+        flag!(holdout),
     ]
 }
 

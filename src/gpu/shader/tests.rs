@@ -62,6 +62,7 @@ fn feature_sets() -> Vec<FeatureSet> {
             rough_diffuse: on(3) != on(5),
             smooth_normals: on(1) != on(3),
             terminator_offset: on(4) != on(5),
+            holdout: on(5) != on(6),
         });
     }
     sets
@@ -107,6 +108,7 @@ fn plain() -> FeatureSet {
         rough_diffuse: false,
         smooth_normals: false,
         terminator_offset: false,
+        holdout: false,
     }
 }
 

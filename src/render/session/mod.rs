@@ -78,7 +78,8 @@ impl<'a> Session<'a> {
 
     /// A session for `scene` placed as `geometry` (which must have been built from it).
     pub fn with_geometry(ctx: &'a GpuContext, scene: Scene, geometry: SceneGeometry) -> Result<Self> {
-        let request = RenderRequest::from_scene(&scene);
+        let features = FeatureSet::analyse(&scene, &geometry.summary());
+        let request = with_alpha_counted(RenderRequest::from_scene(&scene), features);
         let pipelines = PipelineCache::new(ctx);
         let mut acc = Accumulation::new(ctx, &pipelines.accumulation_layout, request.width, request.height)?;
         acc.prepare_outputs(ctx, &pipelines.accumulation_layout, request.aovs, request.adaptive());
@@ -86,7 +87,6 @@ impl<'a> Session<'a> {
         if matches!(scene.sky, Sky::Atmosphere(_)) && scene.sun.is_none() {
             log::warn!("{}: the atmosphere has no [sun] to light it: only its extinction shows", scene.origin);
         }
-        let features = FeatureSet::analyse(&scene, &geometry.summary());
         let sky = scene.sky.clone();
         let mut session = Self {
             ctx,
@@ -182,6 +182,7 @@ impl<'a> Session<'a> {
     /// dropped (anything but the spp and the dispatch sizes changed). An image larger
     /// than the GPU can hold is refused and nothing changes.
     pub fn set_request(&mut self, request: &RenderRequest) -> Result<bool> {
+        let request = &with_alpha_counted(request.clone(), self.features);
         let resized = (request.width, request.height) != (self.acc.width, self.acc.height);
         if resized {
             self.acc = Accumulation::new(self.ctx, &self.pipelines.accumulation_layout, request.width, request.height)?;
@@ -219,6 +220,7 @@ impl<'a> Session<'a> {
             aovs: self.request.aovs,
             adaptive: self.request.adaptive(),
             transparent_film: self.features.transparent_film,
+            holdout: features.holdout || self.features.holdout,
             ..features
         }
     }
@@ -361,10 +363,10 @@ impl<'a> Session<'a> {
     }
 
     /// The mean radiance per pixel so far, with each pixel's standard error, and with a
-    /// transparent film (and AOVs, which count the camera rays that hit) its alpha.
+    /// transparent film or holdouts (and AOVs, which count what the samples cover) its alpha.
     pub fn image(&self) -> Result<Image> {
         let mut image = self.acc.image(self.ctx, &self.readback, self.request.adaptive())?;
-        if self.features.transparent_film && self.request.aovs {
+        if self.features.has_alpha() && self.request.aovs {
             let means = self.acc.aov_means(self.ctx, &self.readback)?;
             image.alpha = Some(Aovs::coverage(&means, &image.sample_counts));
         }
@@ -386,4 +388,10 @@ impl<'a> Session<'a> {
         let per_pixel = self.acc.non_finite(self.ctx, &self.readback)?;
         Ok(DroppedSamples::from_pixels(&per_pixel, stats[STAT_STACK_OVERFLOW]))
     }
+}
+
+/// `request`, counting the AOVs where the scene's image has an alpha (a transparent film,
+/// holdouts): they count what each sample covers.
+fn with_alpha_counted(request: RenderRequest, features: FeatureSet) -> RenderRequest {
+    RenderRequest { aovs: request.aovs || features.has_alpha(), ..request }
 }

@@ -1,0 +1,18 @@
+// Blender's holdouts, as Cycles renders them (`integrate_surface_holdout`): a camera path
+// that meets a held-out surface before it scatters leaves that share of the pixel
+// uncovered (its alpha) and black. An object's or collection's Holdout holds out the whole
+// object for those paths only: reflections, shadows and light bounced from it stay. A
+// Holdout shader (or a Mix Shader's share of one) holds out its share for every path: any
+// other ray finds that share absorbed, as Cycles' closure does.
+
+//#include "common.wgsl"
+//#include "hit.wgsl"
+
+// The share of the light arriving at `hit` (a surface of material `m`) that is held out,
+// for a path of `bounce` scatterings so far.
+fn held_out_share(m: Material, hit: Hit, bounce: u32) -> f32 {
+    if bounce == 0u && hit.kind == HIT_TRIANGLE && object_settings[hit.instance].holdout != 0u {
+        return 1.0;
+    }
+    return m.holdout;
+}

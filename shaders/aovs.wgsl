@@ -43,17 +43,21 @@ fn aov_emission_seen(light: vec3f) {
     aov.emission += light;
 }
 
-// The camera ray left the scene after all (through surfaces that let it by): the sample
-// met nothing, for the depth and for a transparent film's alpha.
-fn aov_no_hit() {
-    aov.depth = -1.0;
-    aov.position = vec3f(0.0);
-    aov.coverage = 0.0;
+// A transparent film's background, seen by the camera's path with `weight` (its
+// throughput's average) through what lets it by: that much of the pixel is uncovered.
+// Seen by the camera ray itself, the sample also met nothing for the depth.
+fn aov_background_seen(weight: f32, camera_ray: bool) {
+    aov.coverage -= weight;
+    if camera_ray {
+        aov.depth = -1.0;
+        aov.position = vec3f(0.0);
+    }
 }
 
-// The camera's path met a holdout: `share` of what it still covers is left uncovered.
-fn aov_held_out(share: f32) {
-    aov.coverage *= 1.0 - share;
+// The camera's path met a holdout: `amount` of the pixel (the held-out share times the
+// path's throughput) is left uncovered.
+fn aov_held_out(amount: f32) {
+    aov.coverage -= amount;
 }
 
 // A BSDF sample taken at a surface of shading normal `normal` (facing the viewer):

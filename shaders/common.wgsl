@@ -55,6 +55,9 @@ struct Frame {
     fisheye_fov: f32,
     fisheye_lens: f32,
     panorama: u32,
+    // Film › Transparent Glass: the GGX α up to which glass lets the camera's path keep
+    // the background transparent; negative: off (integrator.wgsl).
+    transparent_glass: f32,
 }
 
 // A BVH2 node holding both children's boxes, so that one fetch decides where to go.

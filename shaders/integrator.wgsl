@@ -57,6 +57,19 @@
 //#include "adaptive.wgsl"
 //#endif
 
+// The mean of a colour's channels: how much of the pixel a path of this throughput
+// stands for (Cycles' `average`, as it counts transparency).
+fn channel_mean(c: vec3f) -> f32 {
+    return (c.x + c.y + c.z) / 3.0;
+}
+
+// Film › Transparent Glass: glass whose GGX α is at most the frame's threshold (the
+// square of Cycles' Roughness Threshold) lets the camera's path keep the background
+// transparent.
+fn is_clear_glass(m: Material) -> bool {
+    return frame.transparent_glass >= 0.0 && m.alpha <= frame.transparent_glass;
+}
+
 // rgb: the running mean of radiance; w: the running sum of squared deviations
 // of luminance (Welford), for the standard error. Means rather than sums: a sum
 // of finite samples can overflow.
@@ -217,6 +230,10 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
     var medium_absorption: vec3f;
     var medium_emission: vec3f;
     var bounce: u32;
+    // The camera's path has only passed through what lets the background through (alpha
+    // and, with Film › Transparent Glass, clear glass): what it meets may still be a hole
+    // (Cycles' PATH_RAY_TRANSPARENT_BACKGROUND).
+    var transparent_background: bool;
     // A light sample waiting for its shadow ray, weighted by the throughput it was taken with.
     //#if nee
     var shadow: ShadowRay;
@@ -265,6 +282,7 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
             medium_absorption = vec3f(0.0);
             medium_emission = vec3f(0.0);
             bounce = 0u;
+            transparent_background = true;
             shadow_pending = false;
             path_ended = false;
             //#if textures
@@ -332,9 +350,9 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
             // Film › Transparent: the background the camera sees adds nothing, and the
             // sample counts as one that met nothing (the pixel's alpha is the share that met
             // the scene), also when it passed through stochastically transparent surfaces.
-            if bounce == 0u {
+            if transparent_background {
                 //#if aovs
-                aov_no_hit();
+                aov_background_seen(channel_mean(throughput), bounce == 0u);
                 //#endif
                 sample_finished = true;
                 continue;
@@ -398,11 +416,11 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         //#endif
         //#endif
         //#if holdout
-        let held_out = held_out_share(m, hit, bounce);
+        let held_out = held_out_share(m, hit, transparent_background);
         if held_out > 0.0 {
             //#if aovs
-            if bounce == 0u {
-                aov_held_out(held_out);
+            if transparent_background {
+                aov_held_out(held_out * channel_mean(throughput));
             }
             //#endif
             throughput *= 1.0 - held_out;
@@ -478,6 +496,7 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
             path_ended = true;
         } else {
             attenuate(&throughput, s.weight, EVENT_LOBE + s.lobe);
+            transparent_background = transparent_background && s.transmitted && is_clear_glass(m);
             bsdf_pdf = s.pdf;
             //#if node_graphs
             ray_from = s.lobe + 1u;

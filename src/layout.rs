@@ -59,7 +59,10 @@ pub struct GpuFrame {
     /// Millimetres.
     pub fisheye_lens: f32,
     pub panorama: u32,
-    pub _pad: [u32; 3],
+    /// Film › Transparent Glass: the GGX α up to which glass lets the camera's path keep
+    /// the background transparent (the square of Cycles' Roughness Threshold); negative: off.
+    pub transparent_glass: f32,
+    pub _pad: [u32; 2],
 }
 
 /// `GpuFrame::panorama`: which panorama maps the image to directions (`shaders/panorama.wgsl`).

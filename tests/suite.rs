@@ -29,6 +29,7 @@ mod camera_lens;
 mod camera_panorama;
 mod cycles_camera;
 mod cycles_environment;
+mod cycles_film;
 mod cycles_instances;
 mod cycles_lamps;
 mod cycles_node_graphs;

@@ -1974,12 +1974,24 @@ def sky_toml(scene, export=None, scene_dir=None):
     return f'[sky]\nkind = "uniform"\ncolor = {vec(max(c, 0.0) for c in color)}\n\n'
 
 
+def film_toml(scene):
+    """The `[render]` keys of Blender's Film › Transparent and Cycles' Transparent Glass."""
+    if not scene.render.film_transparent:
+        return ""
+    text = "transparent = true\n"
+    cycles = getattr(scene, "cycles", None)
+    if cycles is not None and cycles.film_transparent_glass:
+        roughness = min(max(float(cycles.film_transparent_roughness), 0.0), 1.0)
+        text += f"transparent_glass = true\ntransparent_glass_roughness = {fmt(roughness)}\n"
+    return text
+
+
 def scene_toml(scene, export, scene_path, objects):
     width, height = render_size(scene)
     scene_dir = os.path.dirname(os.path.abspath(scene_path))
     text = [
         f"# Exported from Blender by blender/rt_export.py (scene {scene.name!r}).\n\n",
-        f"[render]\nwidth = {width}\nheight = {height}\n" + ("transparent = true\n" if scene.render.film_transparent else "") + "\n",
+        f"[render]\nwidth = {width}\nheight = {height}\n{film_toml(scene)}\n",
         camera_toml(scene),
         sky_toml(scene, export, scene_dir),
         sun_toml(scene),

@@ -160,6 +160,15 @@ class RT_RENDER_PT_film(RtPanel, bpy.types.Panel):
         layout.use_property_split = True
         layout.prop(context.scene.rt_render, "film_exposure")
         layout.prop(context.scene.render, "film_transparent", text="Transparent")
+        cycles = getattr(context.scene, "cycles", None)
+        if cycles is not None:
+            # Cycles' own settings, which rt follows as Cycles does.
+            column = layout.column()
+            column.active = context.scene.render.film_transparent
+            column.prop(cycles, "film_transparent_glass", text="Transparent Glass")
+            sub = column.column()
+            sub.active = context.scene.render.film_transparent and cycles.film_transparent_glass
+            sub.prop(cycles, "film_transparent_roughness", text="Roughness Threshold")
         layout.label(text="Pixel filter: box, one pixel wide", icon="INFO")
 
 

@@ -70,7 +70,8 @@ fn host_structs_match_wgsl_layouts() {
                 fisheye_sensor,
                 fisheye_fov,
                 fisheye_lens,
-                panorama
+                panorama,
+                transparent_glass
             ]
         ),
         host_layout!("BvhNode", GpuBvhNode, [a_min, a_link, a_max, a_count, b_min, b_link, b_max, b_count]),

@@ -58,6 +58,11 @@ pub struct RenderSettings {
     /// Blender's Film › Transparent: the background seen by camera rays is left out of the
     /// image and each pixel's alpha is the share of its camera rays that met the scene.
     pub transparent: bool,
+    /// Film › Transparent Glass: with a transparent film, the background seen through
+    /// glass whose roughness is at most `transparent_glass_roughness` (Cycles' Roughness
+    /// Threshold) is left out too, as Cycles leaves it out.
+    pub transparent_glass: bool,
+    pub transparent_glass_roughness: f32,
 }
 
 impl Default for RenderSettings {
@@ -76,7 +81,19 @@ impl Default for RenderSettings {
             adaptive_min_samples: 16,
             microfacet: Microfacet::Multiscatter,
             transparent: false,
+            transparent_glass: false,
+            transparent_glass_roughness: 0.1,
         }
+    }
+}
+
+impl RenderSettings {
+    /// The GGX α (roughness²) up to which glass lets the camera see a transparent
+    /// background: Cycles keeps glass whose roughness is at most the Roughness Threshold;
+    /// negative where the film or its glass is not transparent.
+    pub fn transparent_glass_alpha(&self) -> f32 {
+        let threshold = self.transparent_glass_roughness;
+        if self.transparent && self.transparent_glass { threshold * threshold } else { -1.0 }
     }
 }
 

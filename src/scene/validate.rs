@@ -254,6 +254,10 @@ impl RenderSettings {
         if !(self.noise_threshold.is_finite() && (0.0..1.0).contains(&self.noise_threshold)) {
             return Err(("noise_threshold", format!("must be in [0, 1) (0: off), got {}", self.noise_threshold)));
         }
+        if !(0.0..=1.0).contains(&self.transparent_glass_roughness) {
+            let r = self.transparent_glass_roughness;
+            return Err(("transparent_glass_roughness", format!("must be in [0, 1], got {r}")));
+        }
         if self.adaptive_min_samples < 2 {
             return Err(("adaptive_min_samples", format!("must be at least 2, got {}", self.adaptive_min_samples)));
         }

@@ -250,6 +250,7 @@ impl<'a> Session<'a> {
         frame.clamp_luminance = request.clamp.unwrap_or(0.0);
         frame.noise_threshold = request.noise_threshold;
         frame.adaptive_min_samples = request.adaptive_min_samples;
+        frame.transparent_glass = self.scene.render.transparent_glass_alpha();
         frame
     }
 

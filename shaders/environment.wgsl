@@ -6,6 +6,7 @@
 //#include "constants.wgsl"
 //#include "common.wgsl"
 //#include "rng.wgsl"
+//#include "srgb.wgsl"
 
 // Mirrored by `GpuEnvironment` in src/layout.rs.
 struct Environment {
@@ -17,8 +18,9 @@ struct Environment {
     strength: f32,
     light_share: f32,
     importance: u32,
+    // 1: the texels are sRGB codes, decoded after the lookup (as Cycles filters them).
+    srgb: u32,
     _pad0: u32,
-    _pad1: u32,
 }
 
 @group(2) @binding(0) var<uniform> environment: Environment;
@@ -66,7 +68,11 @@ fn environment_radiance(d: vec3f) -> vec3f {
     let t01 = environment_texel(x0, y1);
     let top = t00 + (environment_texel(x1, y0) - t00) * f.x;
     let bottom = t01 + (environment_texel(x1, y1) - t01) * f.x;
-    return (top + (bottom - top) * f.y) * environment.strength;
+    var radiance = top + (bottom - top) * f.y;
+    if environment.srgb != 0u {
+        radiance = srgb_to_linear(radiance);
+    }
+    return radiance * environment.strength;
 }
 
 // Cumulative probability of rows 0..=y.

@@ -12,6 +12,7 @@
 //#include "transform.wgsl"
 //#include "rng.wgsl"
 //#include "reflectance.wgsl"
+//#include "srgb.wgsl"
 
 const TEXTURE_SRGB: u32 = 1u;
 const WRAP_REPEAT: u32 = 0u;
@@ -133,10 +134,6 @@ fn slot_lod(m: Material, bit: u32, p: TexturePoint, footprint_lod: f32) -> f32 {
     }
     //#endif
     return p.uv_lod + footprint_lod;
-}
-
-fn srgb_to_linear(c: vec3f) -> vec3f {
-    return select(pow((c + 0.055) / 1.055, vec3f(2.4)), c / 12.92, c <= vec3f(0.04045));
 }
 
 // Brings a coordinate into one period of its wrap mode, so that texel indices stay small.

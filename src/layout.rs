@@ -457,7 +457,9 @@ pub struct GpuEnvironment {
     pub light_share: f32,
     /// 1: light samples follow the distribution; 0: uniform over the sphere.
     pub importance: u32,
-    pub _pad: [u32; 2],
+    /// 1: the texels are sRGB codes, decoded after the bilinear lookup.
+    pub srgb: u32,
+    pub _pad: u32,
 }
 
 /// The atmosphere's parameters (`shaders/atmosphere.wgsl`), group 2 of the

@@ -42,6 +42,14 @@ fn bright_spot_map_matches_cycles() {
     check("environment_spot", Sampling::Nee, 64);
 }
 
+/// Maps whose Color Space is sRGB, float and 8-bit: interpolated as codes and decoded
+/// after, as Cycles does (decoding first lit the floor up to 49% brighter).
+#[test]
+fn srgb_maps_are_filtered_as_codes_as_in_cycles() {
+    check("environment_srgb_spot", Sampling::Nee, 64);
+    check("environment_srgb_stripes", Sampling::Nee, 64);
+}
+
 #[test]
 fn courtyard_hdri_matches_cycles_without_light_sampling() {
     check("environment_courtyard", Sampling::Resampled, 128);

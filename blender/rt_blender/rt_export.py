@@ -1900,20 +1900,30 @@ def exr_bytes(rgb):
 LINEAR_COLORSPACES = {"Linear Rec.709", "Non-Color", "Linear", "Linear CIE-XYZ E", "Linear CIE-XYZ D65"}
 
 
+def srgb_codes(linear):
+    """sRGB codes of linear values, inverting Cycles' decoding beyond 1 as well."""
+    c = np.maximum(linear, 0.0)
+    return np.where(c <= 0.0031308, 12.92 * c, 1.055 * c ** (1.0 / 2.4) - 0.055).astype(np.float32)
+
+
 def environment_image_bytes(image):
-    """(bytes, extension) of an Environment Texture's image: an unmodified linear .exr or
-    .hdr file as it is (packed or on disk), anything else as a float EXR of the linear
-    values Cycles reads."""
+    """(bytes, extension, srgb) of an Environment Texture's image. An image whose Color
+    Space is sRGB (float ones too) keeps its sRGB codes, which rt interpolates and then
+    decodes as Cycles does (`srgb`); other images are the linear values Cycles reads. An
+    unmodified .exr or .hdr file goes as it is (packed or on disk), anything else as a
+    float EXR."""
     ext = os.path.splitext(image.filepath_raw or image.name)[1].lower()
+    srgb = image.colorspace_settings.name == "sRGB" and not image.colorspace_settings.is_data
     linear = image.colorspace_settings.name in LINEAR_COLORSPACES or image.colorspace_settings.is_data
-    if ext in {".exr", ".hdr"} and linear and not image.is_dirty:
+    if ext in {".exr", ".hdr"} and (linear or srgb) and not image.is_dirty:
         if image.packed_file is not None:
-            return bytes(image.packed_file.data), ext
+            return bytes(image.packed_file.data), ext, srgb
         path = bpy.path.abspath(image.filepath_raw, library=image.library)
         if os.path.isfile(path):
             with open(path, "rb") as f:
-                return f.read(), ext
-    return exr_bytes(linear_pixels(image)[:, :, :3]), ".exr"
+                return f.read(), ext, srgb
+    pixels = linear_pixels(image)[:, :, :3]
+    return exr_bytes(srgb_codes(pixels) if srgb else pixels), ".exr", srgb
 
 
 def environment_toml(background, texture, export, scene_dir):
@@ -1923,7 +1933,7 @@ def environment_toml(background, texture, export, scene_dir):
     rotation = environment_rotation(texture)
     if texture.interpolation != "Linear":
         log(f"{owner_name(texture)}: {texture.name}: {texture.interpolation} interpolation; rt interpolates linearly")
-    data, ext = environment_image_bytes(texture.image)
+    data, ext, srgb = environment_image_bytes(texture.image)
     stem = sanitize(os.path.splitext(os.path.basename(texture.image.name))[0])
     path = os.path.join(export.out_dir, "environment", f"{stem}-{blake(data)}{ext}")
     if write_if_changed(path, data):
@@ -1932,6 +1942,8 @@ def environment_toml(background, texture, export, scene_dir):
     text = f'[sky]\nkind = "environment"\nimage = {json.dumps(image)}\nstrength = {fmt(max(strength, 0.0))}\n'
     if any(abs(a) > 1e-9 for a in rotation):
         text += f"rotation_deg = {vec(rotation)}\n"
+    if srgb:
+        text += 'color_space = "srgb"\n'
     return text + "\n"
 
 

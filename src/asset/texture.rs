@@ -78,8 +78,7 @@ pub fn texels_in_levels(width: u32, height: u32, levels: u32) -> u64 {
 }
 
 fn srgb_to_linear(c: u8) -> f32 {
-    let c = c as f32 / 255.0;
-    if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
+    crate::scene::srgb_decode(c as f32 / 255.0)
 }
 
 fn linear_to_srgb(c: f32) -> f32 {

@@ -208,7 +208,7 @@ fn host_structs_match_wgsl_layouts() {
         host_layout!(
             "Environment",
             GpuEnvironment,
-            [to_image_x, width, to_image_y, height, to_image_z, strength, light_share, importance]
+            [to_image_x, width, to_image_y, height, to_image_z, strength, light_share, importance, srgb]
         ),
         host_layout!("TraceRay", GpuTraceRay, [origin, t_max, direction]),
         host_layout!("TraceHit", GpuTraceHit, [t, primitive, instance, overflowed, b1, b2]),

@@ -18,6 +18,9 @@ pub struct Environment {
     pub rotation_deg: Vec3,
     /// Whether light samples follow the image's brightness (else uniform over the sphere).
     pub importance_sampling: bool,
+    /// The texels are sRGB codes (an image whose Color Space in Blender is sRGB, float
+    /// ones included): looked up as they are and decoded after, as Cycles filters them.
+    pub srgb: bool,
 }
 
 /// The keys of `[sky]` that only an environment takes, to refuse them for other kinds.
@@ -27,6 +30,7 @@ pub(super) fn keys_present(s: &schema::Sky) -> Option<&'static str> {
         ("strength", s.strength.is_some()),
         ("rotation_deg", s.rotation_deg.is_some()),
         ("importance_sampling", s.importance_sampling.is_some()),
+        ("color_space", s.color_space.is_some()),
     ];
     present.iter().find(|(_, on)| *on).map(|(key, _)| *key)
 }
@@ -41,7 +45,15 @@ pub(super) fn validate(src: &Source, p: &[Seg], s: &schema::Sky, base_dir: &Path
     src.check(p, "strength", &[strength], "non-negative", |v| v >= 0.0)?;
     let rotation = s.rotation_deg.unwrap_or([0.0; 3]);
     src.finite(p, "rotation_deg", &rotation)?;
+    let srgb = match s.color_space.as_deref() {
+        None | Some("linear") => false,
+        Some("srgb") => true,
+        Some(other) => {
+            return Err(src.error(p, "color_space", format!("must be \"linear\" or \"srgb\", got \"{other}\"")));
+        }
+    };
     Ok(Environment {
+        srgb,
         image,
         strength,
         rotation_deg: rotation.into(),

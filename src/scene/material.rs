@@ -229,6 +229,12 @@ pub fn ior_from_f0(f0: f32) -> f32 {
     (1.0 + r) / (1.0 - r)
 }
 
+/// The sRGB code `c` decoded to linear, as Cycles' `color_srgb_to_linear` decodes it
+/// (codes above 1 follow the same power; below 0, nothing).
+pub fn srgb_decode(c: f32) -> f32 {
+    if c <= 0.04045 { c.max(0.0) / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
+}
+
 /// Luminance of linear Rec. 709 RGB.
 pub fn luminance(c: [f32; 3]) -> f32 {
     0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]

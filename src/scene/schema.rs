@@ -132,6 +132,7 @@ pub(super) struct Sky {
     pub strength: Option<f32>,
     pub rotation_deg: Option<[f32; 3]>,
     pub importance_sampling: Option<bool>,
+    pub color_space: Option<String>,
 }
 
 /// A grey level or an RGB triple.

@@ -4,7 +4,7 @@
 //! one conditional density per row, weighted by sin θ so that the density is over the
 //! sphere). The GPU side is `super::environment_map` and `shaders/environment.wgsl`.
 
-use crate::scene::luminance;
+use crate::scene::{luminance, srgb_decode};
 use anyhow::{Context, Result, bail};
 use std::path::Path;
 
@@ -127,9 +127,10 @@ pub struct Distribution {
 /// texel into its neighbours' cells: weighting by the neighbourhood's maximum keeps
 /// radiance / density bounded there, and a tiny very bright region cannot leave
 /// fireflies in the ring around it.
-fn cell_weights(image: &EnvironmentImage) -> Vec<f64> {
+fn cell_weights(image: &EnvironmentImage, srgb: bool) -> Vec<f64> {
     let (w, h) = (image.width, image.height);
-    let lum: Vec<f64> = image.texels.iter().map(|t| luminance(*t) as f64).collect();
+    let linear = |t: [f32; 3]| if srgb { t.map(srgb_decode) } else { t };
+    let lum: Vec<f64> = image.texels.iter().map(|t| luminance(linear(*t)) as f64).collect();
     // Maximum along each row (wrapping around in u), then along columns (clamped at the poles).
     let mut row_max = vec![0.0f64; lum.len()];
     for y in 0..h {
@@ -171,8 +172,9 @@ fn cumulative(values: &[f64]) -> (Vec<f32>, f64) {
 }
 
 impl Distribution {
-    pub fn new(image: &EnvironmentImage) -> Self {
-        let weights = cell_weights(image);
+    /// The distribution of `image`'s texels, sRGB codes where `srgb` (weighed decoded).
+    pub fn new(image: &EnvironmentImage, srgb: bool) -> Self {
+        let weights = cell_weights(image, srgb);
         let w = image.width as usize;
         let mut conditional = Vec::with_capacity(weights.len());
         let mut row_sums = Vec::with_capacity(image.height as usize);
@@ -225,7 +227,7 @@ mod tests {
     #[test]
     fn probabilities_follow_luminance_times_sin_theta() {
         let img = image(8, 4, |x, _| 1.0 + x as f32);
-        let d = Distribution::new(&img);
+        let d = Distribution::new(&img, false);
         let total: f64 =
             (0..4).flat_map(|y| (0..8).map(move |x| (x, y))).map(|(x, y)| d.cell_probability(8, x, y)).sum();
         assert!((total - 1.0).abs() < 1e-6, "{total}");
@@ -241,7 +243,7 @@ mod tests {
     #[test]
     fn a_bright_spot_and_its_ring_take_the_samples() {
         let img = image(64, 32, |x, y| if (30..32).contains(&x) && (10..12).contains(&y) { 1e4 } else { 1.0 });
-        let d = Distribution::new(&img);
+        let d = Distribution::new(&img, false);
         let spot: f64 =
             (9..13).flat_map(|y| (29..33).map(move |x| (x, y))).map(|(x, y)| d.cell_probability(64, x, y)).sum();
         assert!(spot > 0.95, "{spot}");
@@ -249,7 +251,7 @@ mod tests {
 
     #[test]
     fn black_images_and_bad_texels() {
-        let d = Distribution::new(&image(4, 2, |_, _| 0.0));
+        let d = Distribution::new(&image(4, 2, |_, _| 0.0), false);
         assert_eq!(d.total, 0.0);
         assert!((d.cell_probability(4, 1, 1) - 1.0 / 8.0).abs() < 1e-7);
         assert!(EnvironmentImage::new(0, 4, vec![]).is_err());

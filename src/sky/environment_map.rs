@@ -57,7 +57,7 @@ impl EnvironmentMap {
             );
             image = image.halved();
         }
-        let distribution = Distribution::new(&image);
+        let distribution = Distribution::new(&image, params.srgb);
         log::debug!(
             "{}: {}×{} texels read in {:.1} ms, distribution built in {:.1} ms",
             params.image.display(),
@@ -81,7 +81,8 @@ impl EnvironmentMap {
             strength: params.strength,
             light_share: 0.0,
             importance: u32::from(params.importance_sampling),
-            _pad: [0; 2],
+            srgb: u32::from(params.srgb),
+            _pad: 0,
         };
         let uniform = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("environment constants"),

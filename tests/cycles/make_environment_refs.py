@@ -7,7 +7,8 @@ Environment Texture.
 1024x512, DWAB) behind a Mapping node that rotates it about X and Z, at strength 1.5,
 over a grey floor with a mirror ball, a diffuse ball and a box. `spot`: a synthetic
 128x64 map, dim blue-grey except for a 2x2-texel spot 10^4 times brighter, over the same
-objects. Each is rendered by Cycles at 64x64 into tests/cycles/NAME.exr (linear, 32-bit)
+objects. `srgb_spot` and `srgb_stripes`: maps whose Color Space is sRGB, a float EXR and
+an 8-bit PNG, which Cycles interpolates as codes and decodes after. Each is rendered by Cycles at 64x64 into tests/cycles/NAME.exr (linear, 32-bit)
 and exported with blender/rt_export.py into tests/cycles/scenes/NAME/ (NAME.toml and its
 assets, the image among them). CI does not run Cycles: it compares rt against the
 committed files.
@@ -79,7 +80,43 @@ def spot():
     return scene
 
 
-SCENES = {"courtyard": courtyard, "spot": spot}
+def srgb_spot():
+    """A float EXR whose Color Space is sRGB: Cycles interpolates its codes and decodes
+    after (a dim map with a 2x2 spot of code 8, ~130 decoded)."""
+    scene = objects()
+    w, h = SPOT_MAP
+    pixels = np.full((h, w, 3), 0.25, np.float32)
+    x, y = SPOT_TEXEL
+    pixels[y : y + 2, x : x + 2] = [8.0, 6.0, 4.0]
+    path = os.path.join(bpy.app.tempdir, "srgb_spot.exr")
+    with open(path, "wb") as f:
+        f.write(rt_export.exr_bytes(pixels))
+    image = bpy.data.images.load(path)
+    image.colorspace_settings.name = "sRGB"
+    environment_world(scene, image, 1.0)
+    return scene
+
+
+def srgb_stripes():
+    """An 8-bit PNG of black and white columns (and an orange patch), sRGB: interpolated
+    as codes, a stripe's edge is darker than the linear mean."""
+    scene = objects()
+    w, h = SPOT_MAP
+    pixels = np.zeros((h, w, 4), np.uint8)
+    pixels[:, :, 3] = 255
+    pixels[:, ::2, :3] = 255
+    x, y = SPOT_TEXEL
+    pixels[y : y + 4, x : x + 8, :3] = [255, 90, 0]
+    path = os.path.join(bpy.app.tempdir, "srgb_stripes.png")
+    with open(path, "wb") as f:
+        f.write(rt_export.png_bytes(pixels))
+    image = bpy.data.images.load(path)
+    image.colorspace_settings.name = "sRGB"
+    environment_world(scene, image, 1.0)
+    return scene
+
+
+SCENES = {"courtyard": courtyard, "spot": spot, "srgb_spot": srgb_spot, "srgb_stripes": srgb_stripes}
 
 
 def main():

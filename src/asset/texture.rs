@@ -81,11 +81,6 @@ fn srgb_to_linear(c: u8) -> f32 {
     crate::scene::srgb_decode(c as f32 / 255.0)
 }
 
-fn linear_to_srgb(c: f32) -> f32 {
-    let c = c.clamp(0.0, 1.0);
-    if c <= 0.003_130_8 { 12.92 * c } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 }
-}
-
 /// The byte whose value is nearest `v` (in [0, 1]) on the scale `value` maps bytes to,
 /// with ties going up on one texel of a checkerboard and down on the other.
 ///
@@ -121,7 +116,7 @@ impl TextureImage {
         let value = |c: u8, channel: usize| if is_colour(channel) { linear[c as usize] } else { c as f32 / 255.0 };
         let to_byte = |v: f32, channel: usize, tie_up: bool| {
             let v = v.clamp(0.0, 1.0);
-            let scaled = if is_colour(channel) { linear_to_srgb(v) } else { v } * 255.0;
+            let scaled = if is_colour(channel) { crate::scene::srgb_encode(v) } else { v } * 255.0;
             let below = (scaled.floor() as i32).clamp(0, 255) as u8;
             nearest_byte(v, below, |c| value(c, channel), tie_up)
         };

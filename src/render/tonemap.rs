@@ -20,10 +20,7 @@ pub fn pbr_neutral(c: [f32; 3]) -> [f32; 3] {
     c.map(|v| v + (new_peak - v) * g)
 }
 
-pub fn srgb_encode(linear: f32) -> f32 {
-    let l = linear.clamp(0.0, 1.0);
-    if l <= 0.003_130_8 { 12.92 * l } else { 1.055 * l.powf(1.0 / 2.4) - 0.055 }
-}
+pub use crate::scene::srgb_encode;
 
 /// Linear radiance to an 8-bit sRGB pixel.
 pub fn display_pixel(radiance: [f32; 3], exposure_ev: f32) -> [u8; 3] {

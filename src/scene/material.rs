@@ -235,6 +235,13 @@ pub fn srgb_decode(c: f32) -> f32 {
     if c <= 0.04045 { c.max(0.0) / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
 }
 
+/// Linear `c` (clamped to [0, 1]) encoded as an sRGB code: what a display and an 8-bit
+/// image hold.
+pub fn srgb_encode(c: f32) -> f32 {
+    let c = c.clamp(0.0, 1.0);
+    if c <= 0.003_130_8 { 12.92 * c } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 }
+}
+
 /// Luminance of linear Rec. 709 RGB.
 pub fn luminance(c: [f32; 3]) -> f32 {
     0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]

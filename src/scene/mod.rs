@@ -23,7 +23,7 @@ pub use camera::{Camera, DepthOfField, MAX_BLADES, Projection, SensorFit};
 pub use environment::Environment;
 pub use features::{ALPHA_DELTA, FeatureSet, GeometrySummary, LampKinds, SkyFeature, Transmission};
 pub use light::{AreaShape, Light, LightShape};
-pub use material::{Material, Tangent, luminance, srgb_decode};
+pub use material::{Material, Tangent, luminance, srgb_decode, srgb_encode};
 pub use material_textures::{LAYER_COUNT, LayerTextures, MaterialTextures, UvSet, slots};
 pub use panorama::Panorama;
 pub use parse::{SceneError, hint as did_you_mean, load, parse};

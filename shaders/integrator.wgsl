@@ -477,6 +477,11 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         set_surface_tangent(hit, surface.position, m.tangent);
         //#endif
         let ctx = shading_context(m, n_shading, n_geometric, -direction, entering);
+        //#if aovs
+        if bounce == 1u {
+            aov_diffuse_color_seen(ctx, throughput);
+        }
+        //#endif
         //#if nee
         shadow = direct_light(ctx, surface, n_geometric, medium_absorption, &rng);
         shadow.contribution *= throughput;

@@ -564,6 +564,7 @@ fn write_aov_files(dir: &Path, image: &Image, aovs: &rt::render::Aovs) -> Result
         ("depth", grey(aovs.depth.clone())),
         ("position", aovs.position.clone()),
         ("emission", aovs.emission.clone()),
+        ("diffuse_color", aovs.diffuse_color.clone()),
         ("error", grey(image.std_error.clone())),
         ("samples", grey(image.sample_counts.iter().map(|&n| n as f32).collect())),
     ];

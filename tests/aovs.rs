@@ -159,6 +159,9 @@ fn rt_render_aovs_writes_one_multilayer_exr_with_named_channels() {
         "emission.R",
         "emission.G",
         "emission.B",
+        "diffuse_color.R",
+        "diffuse_color.G",
+        "diffuse_color.B",
         "error.Y",
         "samples.Y",
     ] {

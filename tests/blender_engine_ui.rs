@@ -215,6 +215,9 @@ fn f12_fills_the_passes_blender_asks_for() {
     }
     let (albedo, ours_albedo) = (channel(&all, "Denoising Albedo.R"), channel(&ours, "albedo.R"));
     assert!(albedo.iter().zip(ours_albedo).all(|(a, b)| (a - b).abs() < 1e-6), "Denoising Albedo is rt's albedo");
+    let (diffuse, ours_diffuse) = (channel(&all, "Diffuse Color.G"), channel(&ours, "diffuse_color.G"));
+    assert!(diffuse.iter().zip(ours_diffuse).all(|(a, b)| (a - b).abs() < 1e-6), "Diffuse Color is rt's");
+    assert!(diffuse.iter().all(|&d| d > 0.5 && d < 0.8), "the grey plane's diffuse under its specular layer");
     let counts = channel(&all, "Debug Sample Count.X");
     assert!(counts.iter().all(|&c| c as u64 == report["spp"].as_u64().unwrap_or(0)), "{counts:?}");
     assert!(channel(&all, "Noise.X").iter().all(|e| e.is_finite() && *e >= 0.0));

@@ -34,6 +34,7 @@ mod cycles_instances;
 mod cycles_lamps;
 mod cycles_node_graphs;
 mod cycles_normal_maps;
+mod cycles_passes;
 mod cycles_principled;
 mod cycles_rare_paths;
 mod cycles_shader_nodes;

@@ -1,6 +1,6 @@
 """The render passes rt makes, named and laid out as Cycles names them, so that the
 compositor, the image editor and multilayer EXR output see them as they would see
-Cycles' own: Depth (Z), Normal, Position, Emission, Denoising Normal and Albedo, Debug
+Cycles' own: Depth (Z), Normal, Position, Emission, Diffuse Color, Denoising Normal and Albedo, Debug
 Sample Count, and rt's Noise. rt writes each as a plain OpenEXR (`rt render --aov-files DIR`); here they are
 read, turned into Blender's conventions (Z-up world normals and positions, depth along the view axis
 as Cycles' camera_z_depth, 1e10 where nothing was hit), and put in the Render Result.
@@ -28,6 +28,7 @@ PASSES = (
     Pass("Normal", "XYZ", "VECTOR", "normal", lambda layer: layer.use_pass_normal),
     Pass("Position", "XYZ", "VECTOR", "position", lambda layer: layer.use_pass_position),
     Pass("Emission", "RGB", "COLOR", "emission", lambda layer: layer.use_pass_emit),
+    Pass("Diffuse Color", "RGB", "COLOR", "diffuse_color", lambda layer: layer.use_pass_diffuse_color),
     Pass("Denoising Normal", "XYZ", "VECTOR", "normal", lambda layer: layer.rt.denoising_data),
     Pass("Denoising Albedo", "RGB", "COLOR", "albedo", lambda layer: layer.rt.denoising_data),
     Pass("Debug Sample Count", "X", "VALUE", "samples", lambda layer: layer.rt.sample_count),

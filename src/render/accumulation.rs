@@ -12,12 +12,12 @@ use anyhow::{Result, bail};
 const MEAN_BYTES: u64 = 16;
 /// Bytes of one sample in the lanes' scratch (radiance, and the event of a non-finite one).
 const SAMPLE_BYTES: u64 = 16;
-/// Bytes per pixel of the AOVs' means (albedo and depth, normal and hit count, position,
-/// emission).
-const AOV_BYTES: u64 = 64;
-/// Bytes of one sample's AOVs in the lanes' scratch (albedo and depth, normal, position,
-/// emission).
-const LANE_AOV_BYTES: u64 = 64;
+/// Bytes per pixel of the AOVs' means (albedo and depth, normal and hit count, position
+/// and coverage, emission, diffuse colour).
+const AOV_BYTES: u64 = 80;
+/// Bytes of one sample's AOVs in the lanes' scratch (albedo and depth, normal, position
+/// and coverage, emission, diffuse colour).
+const LANE_AOV_BYTES: u64 = 80;
 /// The lanes' scratch at most: it holds pixels × samples per dispatch (a 128×128 image
 /// takes its 1024 samples per dispatch in 256 MiB).
 const LANE_SCRATCH_BYTES: u64 = 256 << 20;
@@ -286,7 +286,7 @@ impl Accumulation {
         Ok(Image { width, height, samples, pixels, std_error, sample_counts, alpha: None })
     }
 
-    /// The AOVs' means per pixel, four vec4 each (see `shaders/aovs.wgsl`); call only
+    /// The AOVs' means per pixel, five vec4 each (see `shaders/aovs.wgsl`); call only
     /// after [`Self::prepare_outputs`] asked for them.
     pub fn aov_means(&self, ctx: &GpuContext, readback: &Readback) -> Result<Vec<[f32; 4]>> {
         readback.read(ctx, &self.aovs)

@@ -17,23 +17,27 @@ pub struct Aovs {
     pub depth: Vec<f32>,
     pub position: Vec<[f32; 3]>,
     pub emission: Vec<[f32; 3]>,
+    /// Cycles' Diffuse Color: the weight of the diffuse lobe of the first surface the
+    /// camera's ray met (past alpha).
+    pub diffuse_color: Vec<[f32; 3]>,
 }
 
 /// vec4 per pixel in the GPU's AOV means (see `shaders/aovs.wgsl`).
-const MEANS_PER_PIXEL: usize = 4;
+const MEANS_PER_PIXEL: usize = 5;
 
 impl Aovs {
-    /// From the GPU's running means: four vec4 per pixel (albedo and depth, normal and
-    /// the count of samples that hit, position and the coverage's sum, emission), see
-    /// `shaders/aovs.wgsl`.
+    /// From the GPU's running means: five vec4 per pixel (albedo and depth, normal and
+    /// the count of samples that hit, position and the coverage's sum, emission, diffuse
+    /// colour), see `shaders/aovs.wgsl`.
     pub fn from_means(width: u32, height: u32, means: &[[f32; 4]]) -> Self {
         let pixels = width as usize * height as usize;
         let mut aovs = Self { width, height, ..Default::default() };
         let xyz = |v: [f32; 4]| [v[0], v[1], v[2]];
         for pixel in means.chunks_exact(MEANS_PER_PIXEL).take(pixels) {
-            let [a, b, position, emission] = [pixel[0], pixel[1], pixel[2], pixel[3]];
+            let [a, b, position, emission, diffuse] = [pixel[0], pixel[1], pixel[2], pixel[3], pixel[4]];
             aovs.position.push(xyz(position));
             aovs.emission.push(xyz(emission));
+            aovs.diffuse_color.push(xyz(diffuse));
             // Per sample, albedo estimates may exceed 1; their mean does not, but for rounding.
             aovs.albedo.push([a[0], a[1], a[2]].map(|v| v.clamp(0.0, 1.0)));
             aovs.normal.push([b[0], b[1], b[2]]);

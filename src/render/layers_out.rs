@@ -45,6 +45,7 @@ pub fn aov_channels(image: &Image, aovs: &Aovs, denoised: Option<&[[f32; 3]]>) -
     push_layer(&mut channels, "normal", XYZ, &aovs.normal);
     push_layer(&mut channels, "position", XYZ, &aovs.position);
     push_layer(&mut channels, "emission", RGB, &aovs.emission);
+    push_layer(&mut channels, "diffuse_color", RGB, &aovs.diffuse_color);
     channels.push(("depth.Z".into(), aovs.depth.clone()));
     channels.push(("error.Y".into(), image.std_error.clone()));
     channels.push(("samples.Y".into(), image.sample_counts.iter().map(|&n| n as f32).collect()));

@@ -156,7 +156,7 @@ def passes(out):
     scene = facing_plane_scene()
     layer = bpy.context.view_layer
     layer.use_pass_z = layer.use_pass_normal = True
-    layer.use_pass_position = layer.use_pass_emit = True
+    layer.use_pass_position = layer.use_pass_emit = layer.use_pass_diffuse_color = True
     layer.rt.denoising_data = layer.rt.sample_count = layer.rt.noise = True
     f12_multilayer(scene, os.path.join(out, "passes.exr"))
     report = {"cache": rt_run.cache_dir(), "spp": scene.rt_render.spp, "max_bounces": scene.rt_render.max_bounces + 1}

@@ -50,12 +50,12 @@ fn diffuse_color_is_cycles_diffuse_color_pass() {
     let mut worst = (0.0f64, String::new());
     for by in 0..h / BLOCK {
         for bx in 0..w / BLOCK {
-            for c in 0..3 {
+            for (c, cycles_channel) in theirs.iter().enumerate() {
                 let (mut a, mut b) = (0.0f64, 0.0f64);
                 for y in by * BLOCK..(by + 1) * BLOCK {
                     for x in bx * BLOCK..(bx + 1) * BLOCK {
                         a += aovs.diffuse_color[y * w + x][c] as f64;
-                        b += theirs[c][y * w + x] as f64;
+                        b += cycles_channel[y * w + x] as f64;
                     }
                 }
                 let n = (BLOCK * BLOCK) as f64;

@@ -35,6 +35,11 @@ pub fn print_info(scene: Scene, quality: BuildQuality, adapter: Option<&str>) ->
             s.depth,
             s.sah_cost,
         );
+        for (material, notes) in crate::asset::notes::material_notes(&m.path) {
+            for note in notes {
+                println!("  material `{material}`: {note}");
+            }
+        }
     }
     let t = g.tlas_stats;
     println!(

@@ -62,5 +62,18 @@ fn unmappable_nodes_warn_naming_material_and_node() {
     let expected = [0.4, 0.3, 0.2];
     assert!(m.base_color.iter().zip(expected).all(|(a, b)| (a - b).abs() < 1e-6), "{m:?}");
     assert_eq!((m.diffuse, m.specular_ior_level), (1.0, 0.0), "{m:?}");
+    // `rt info` lists what each material renders differently, as the export noted it.
+    let info = std::process::Command::new(env!("CARGO_BIN_EXE_rt"))
+        .arg("info")
+        .arg(out.join("scene.toml"))
+        .output()
+        .expect("rt info runs");
+    let listed = String::from_utf8_lossy(&info.stdout);
+    for needle in [
+        "material `toon_mat`: Cartoon: this shader node is not supported by rt",
+        "material `leaf_mat`: Leaf: rt has no diffuse transmission",
+    ] {
+        assert!(listed.contains(needle), "{needle:?} missing from rt info:\n{listed}");
+    }
     let _ = std::fs::remove_dir_all(&out);
 }

@@ -929,6 +929,10 @@ def gltf_material(material, thickness, textures=None, shader=None):
         layer_textures(out, textures, found)
         ior_texture(out, textures, ior_ranges)
         coat_normal_texture(material, surface, out, textures, found.get("Coat Normal"))
+    notes = rt_shader_nodes.NOTES.get(material.name) if material is not None else None
+    if notes:
+        # What rt renders differently from Cycles, for `rt info` (and the material panel).
+        out["extras"]["rt_notes"] = list(dict.fromkeys(notes))
     return out
 
 

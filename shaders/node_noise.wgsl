@@ -327,3 +327,52 @@ fn noise_texture_3d(co: vec3f, distortion: f32, s: NoiseSettings) -> vec4f {
     let value = noise_select(p, s);
     return vec4f(value, noise_select(p + noise_offset3(3.0), s), noise_select(p + noise_offset3(4.0), s), value);
 }
+
+// Cycles' Magic Texture (svm_magic.h): `depth` rounds of sines and cosines of the point,
+// each scaled by the distortion; the colour is 0.5 minus the last (x, y, z) over twice it.
+fn node_magic(p: vec3f, depth: i32, distortion: f32) -> vec3f {
+    var x = sin((p.x + p.y + p.z) * 5.0);
+    var y = cos((-p.x + p.y - p.z) * 5.0);
+    var z = -cos((-p.x - p.y + p.z) * 5.0);
+    if depth > 0 {
+        x *= distortion;
+        y *= distortion;
+        z *= distortion;
+        y = -cos(x - y + z) * distortion;
+        if depth > 1 {
+            x = cos(x - y - z) * distortion;
+            if depth > 2 {
+                z = sin(-x - y - z) * distortion;
+                if depth > 3 {
+                    x = -cos(-x + y - z) * distortion;
+                    if depth > 4 {
+                        y = -sin(-x + y + z) * distortion;
+                        if depth > 5 {
+                            y = -cos(-x + y + z) * distortion;
+                            if depth > 6 {
+                                x = cos(x + y + z) * distortion;
+                                if depth > 7 {
+                                    z = sin(x + y - z) * distortion;
+                                    if depth > 8 {
+                                        x = -cos(-x - y + z) * distortion;
+                                        if depth > 9 {
+                                            y = -sin(x - y + z) * distortion;
+                                        }
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    if distortion != 0.0 {
+        let d = distortion * 2.0;
+        x /= d;
+        y /= d;
+        z /= d;
+    }
+    return vec3f(0.5 - x, 0.5 - y, 0.5 - z);
+}
+

@@ -40,6 +40,7 @@ const NODE_OP_WHITE_NOISE: u32 = 22u;
 const NODE_OP_VORONOI: u32 = 23u;
 const NODE_OP_WAVE: u32 = 24u;
 const NODE_OP_CURVES: u32 = 25u;
+const NODE_OP_MAGIC: u32 = 26u;
 
 const NODE_REGISTERS: u32 = 32u;
 const NODE_CONSTANT: u32 = 0x80000000u;
@@ -391,6 +392,11 @@ fn node_instruction(start: u32, at: u32, extra: u32, p: NodePoint) {
             let v = node_in(start, at, 1u);
             let c = node_curves(mode, flags != 0u, extra, a.x, v.xyz);
             node_store(out, select(vec4f(c, v.w), vec4f(c.x), mode == 1u));
+        }
+        case NODE_OP_MAGIC: {
+            let c = node_magic(a.xyz * node_in(start, at, 1u).x, i32(mode), node_in(start, at, 2u).x);
+            node_store(out, vec4f(c, 1.0));
+            node_store(out + 1u, vec4f((c.x + c.y + c.z) / 3.0));
         }
         case NODE_OP_WAVE: {
             let f = node_wave(mode, a.xyz * node_in(start, at, 1u).x, node_in(start, at, 2u).x, node_in(start, at, 3u).x,

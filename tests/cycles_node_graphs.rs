@@ -100,6 +100,11 @@ fn waves_of_every_kind_match_cycles() {
 }
 
 #[test]
+fn magic_of_every_depth_matches_cycles() {
+    check_channels("graph_magic", 1e-3);
+}
+
+#[test]
 fn map_range_clamp_and_converters_match_cycles() {
     check_channels("graph_convert", 1e-3);
 }

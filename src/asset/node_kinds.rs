@@ -32,9 +32,10 @@ pub const OP_WHITE_NOISE: u32 = 22;
 pub const OP_VORONOI: u32 = 23;
 pub const OP_WAVE: u32 = 24;
 pub const OP_CURVES: u32 = 25;
+pub const OP_MAGIC: u32 = 26;
 
 /// Every operation by its WGSL name, for the check against the shader.
-pub const OPERATIONS: [(&str, u32); 26] = [
+pub const OPERATIONS: [(&str, u32); 27] = [
     ("END", OP_END),
     ("OUTPUT", OP_OUTPUT),
     ("CONVERT", OP_CONVERT),
@@ -61,6 +62,7 @@ pub const OPERATIONS: [(&str, u32); 26] = [
     ("VORONOI", OP_VORONOI),
     ("WAVE", OP_WAVE),
     ("CURVES", OP_CURVES),
+    ("MAGIC", OP_MAGIC),
 ];
 
 /// `OP_CONVERT` modes: a colour to a value (its luminance), a vector to one (the mean).
@@ -211,7 +213,7 @@ const fn op(name: &'static str, op: u32, inputs: &'static [&'static str], output
     Kind { name, emit: Emit::Operation(op), inputs, outputs }
 }
 
-pub const KINDS: [Kind; 33] = [
+pub const KINDS: [Kind; 34] = [
     Kind { name: "VALUE", emit: Emit::Constant, inputs: &[], outputs: &["Value"] },
     Kind { name: "RGB", emit: Emit::Constant, inputs: &[], outputs: &["Color"] },
     Kind {
@@ -280,6 +282,7 @@ pub const KINDS: [Kind; 33] = [
         &["Vector", "Scale", "Distortion", "Detail", "Detail Scale", "Detail Roughness", "Phase Offset"],
         &["Color", "Fac"],
     ),
+    op("TEX_MAGIC", OP_MAGIC, &["Vector", "Scale", "Distortion"], &["Color", "Fac"]),
     op(
         "TEX_VORONOI",
         OP_VORONOI,
@@ -381,6 +384,11 @@ pub fn mode(name: &str, settings: &Map<String, Value>) -> Result<Mode, String> {
             };
             plain(kind | direction << 1 | choice(settings, "wave_profile", &WAVE_PROFILES)? << 4)
         }
+        // Mode: the depth, 0 to 10 (Blender's range).
+        "TEX_MAGIC" => match settings.get("turbulence_depth").and_then(Value::as_f64) {
+            Some(depth) if (0.0..=10.0).contains(&depth) => plain(depth as u32),
+            _ => Err("turbulence_depth is missing or outside 0..=10".into()),
+        },
         "TEX_VORONOI" => {
             if text(settings, "voronoi_dimensions")? != "3D" {
                 return Err("only 3D Voronoi is evaluated yet".into());

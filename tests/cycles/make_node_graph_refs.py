@@ -434,6 +434,23 @@ WAVE = [
 ]
 
 
+def magic(t, which="Color", vector=True, **props):
+    inputs = {k: props.pop(k) for k in list(props) if k[0].isupper()}
+    node = new(t, "ShaderNodeTexMagic", {"Scale": 0.8, **inputs}, **props)
+    if vector:
+        t.links.new(coords(t), node.inputs["Vector"])
+    return node.outputs[which]
+
+
+# Every depth Blender offers, the Fac output, the default coordinates and no distortion.
+MAGIC = [lambda t, d=d: magic(t, turbulence_depth=d, Distortion=1.0 + 0.4 * d) for d in range(11)] + [
+    lambda t: magic(t, "Fac", turbulence_depth=3, Distortion=2.5),
+    lambda t: magic(t, vector=False, turbulence_depth=2),
+    lambda t: magic(t, turbulence_depth=4, Distortion=0.0),
+    lambda t: ramp(t, magic(t, "Fac", turbulence_depth=5, Distortion=3.0), "LINEAR", STOPS),
+]
+
+
 def procedural_material(name, build):
     material = bpy.data.materials.new(name)
     tree = material.node_tree
@@ -568,6 +585,7 @@ SCENES = {
     "graph_convert": lambda: grid_scene("convert", CONVERT),
     "graph_voronoi": lambda: grid_scene("voronoi", VORONOI),
     "graph_wave": lambda: grid_scene("wave", WAVE),
+    "graph_magic": lambda: grid_scene("magic", MAGIC),
     "graph_shading": lambda: grid_scene("shading", SHADING, shape="sphere"),
     "graph_material": material_scene,
     "graph_mix": mix_scene,

@@ -41,15 +41,18 @@ fn environment_textures_export_with_their_image_strength_and_rotation() {
     let image = EnvironmentImage::read(&env.image).unwrap_or_else(|e| panic!("{e:#}"));
     assert_eq!((image.width, image.height), (1024, 512));
 
-    // An 8-bit sRGB image becomes a float EXR of the linear values Cycles reads.
+    // An 8-bit sRGB image becomes a float EXR of its sRGB codes, which rt interpolates and
+    // decodes after, as Cycles does; decoded, they are the linear values Cycles reads.
     let scene = rt::scene::load(&out.join("ramp.toml")).unwrap_or_else(|e| panic!("{e}"));
-    let image = EnvironmentImage::read(&environment(&scene).image).unwrap_or_else(|e| panic!("{e:#}"));
+    let ramp = environment(&scene);
+    assert!(ramp.srgb, "an sRGB image keeps its codes");
+    let image = EnvironmentImage::read(&ramp.image).unwrap_or_else(|e| panic!("{e:#}"));
     assert_eq!((image.width, image.height), (8, 4));
     let expected = report["ramp_linear"].as_array().expect("ramp");
     for (x, want) in expected.iter().enumerate() {
         let want = want.as_f64().expect("number") as f32;
         for y in 0..4 {
-            let got = image.texels[y * 8 + x];
+            let got = image.texels[y * 8 + x].map(rt::scene::srgb_decode);
             assert!(got.iter().all(|c| (c - want).abs() < 0.01), "texel ({x}, {y}): {got:?} against {want}");
         }
     }

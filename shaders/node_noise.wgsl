@@ -334,38 +334,40 @@ fn node_magic(p: vec3f, depth: i32, distortion: f32) -> vec3f {
     var x = sin((p.x + p.y + p.z) * 5.0);
     var y = cos((-p.x + p.y - p.z) * 5.0);
     var z = -cos((-p.x - p.y + p.z) * 5.0);
+    // Cycles nests each round in the one before; depth > k implies depth > k − 1, so the
+    // rounds run in turn.
     if depth > 0 {
         x *= distortion;
         y *= distortion;
         z *= distortion;
         y = -cos(x - y + z) * distortion;
-        if depth > 1 {
-            x = cos(x - y - z) * distortion;
-            if depth > 2 {
-                z = sin(-x - y - z) * distortion;
-                if depth > 3 {
-                    x = -cos(-x + y - z) * distortion;
-                    if depth > 4 {
-                        y = -sin(-x + y + z) * distortion;
-                        if depth > 5 {
-                            y = -cos(-x + y + z) * distortion;
-                            if depth > 6 {
-                                x = cos(x + y + z) * distortion;
-                                if depth > 7 {
-                                    z = sin(x + y - z) * distortion;
-                                    if depth > 8 {
-                                        x = -cos(-x - y + z) * distortion;
-                                        if depth > 9 {
-                                            y = -sin(x - y + z) * distortion;
-                                        }
-                                    }
-                                }
-                            }
-                        }
-                    }
-                }
-            }
-        }
+    }
+    if depth > 1 {
+        x = cos(x - y - z) * distortion;
+    }
+    if depth > 2 {
+        z = sin(-x - y - z) * distortion;
+    }
+    if depth > 3 {
+        x = -cos(-x + y - z) * distortion;
+    }
+    if depth > 4 {
+        y = -sin(-x + y + z) * distortion;
+    }
+    if depth > 5 {
+        y = -cos(-x + y + z) * distortion;
+    }
+    if depth > 6 {
+        x = cos(x + y + z) * distortion;
+    }
+    if depth > 7 {
+        z = sin(x + y - z) * distortion;
+    }
+    if depth > 8 {
+        x = -cos(-x - y + z) * distortion;
+    }
+    if depth > 9 {
+        y = -sin(x - y + z) * distortion;
     }
     if distortion != 0.0 {
         let d = distortion * 2.0;

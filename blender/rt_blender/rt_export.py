@@ -251,9 +251,15 @@ def srgb_to_linear(c):
     return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
 
 
-def linear_to_srgb(c):
-    c = np.clip(c, 0.0, 1.0)
+def srgb_codes(linear):
+    """sRGB codes of linear values, inverting Cycles' decoding beyond 1 as well."""
+    c = np.maximum(linear, 0.0)
     return np.where(c <= 0.0031308, 12.92 * c, 1.055 * c ** (1.0 / 2.4) - 0.055)
+
+
+def linear_to_srgb(c):
+    """sRGB codes of linear values clamped to [0, 1]: what an 8-bit image holds."""
+    return srgb_codes(np.clip(c, 0.0, 1.0))
 
 
 def png_bytes(rgba):
@@ -1902,12 +1908,6 @@ def exr_bytes(rgb):
 
 
 LINEAR_COLORSPACES = {"Linear Rec.709", "Non-Color", "Linear", "Linear CIE-XYZ E", "Linear CIE-XYZ D65"}
-
-
-def srgb_codes(linear):
-    """sRGB codes of linear values, inverting Cycles' decoding beyond 1 as well."""
-    c = np.maximum(linear, 0.0)
-    return np.where(c <= 0.0031308, 12.92 * c, 1.055 * c ** (1.0 / 2.4) - 0.055).astype(np.float32)
 
 
 def environment_image_bytes(image):

@@ -8,6 +8,7 @@
 
 use crate::common;
 
+use common::layers::{channel, channels};
 use common::{bpy_python, empty_temp_dir, reference, repo};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
@@ -40,31 +41,6 @@ fn engine_ui(out: &Path, mode: &str, args: &[&Path]) -> Value {
     let path = out.join(format!("{mode}.json"));
     let json = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     serde_json::from_str(&json).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-}
-
-/// A multilayer EXR Blender wrote: each channel by its full name, and the size.
-fn channels(path: &Path) -> (usize, usize, std::collections::BTreeMap<String, Vec<f32>>) {
-    let image =
-        exr::prelude::read_all_flat_layers_from_file(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let mut all = std::collections::BTreeMap::new();
-    let mut size = (0, 0);
-    for layer in &image.layer_data {
-        size = (layer.size.0, layer.size.1);
-        let prefix = layer.attributes.layer_name.as_ref().map(|n| format!("{n}.")).unwrap_or_default();
-        for channel in &layer.channel_data.list {
-            let values: Vec<f32> = channel.sample_data.values_as_f32().collect();
-            all.insert(format!("{prefix}{}", channel.name), values);
-        }
-    }
-    (size.0, size.1, all)
-}
-
-/// The channel whose name ends with `suffix` (Blender prefixes the view layer's name).
-fn channel<'a>(all: &'a std::collections::BTreeMap<String, Vec<f32>>, suffix: &str) -> &'a [f32] {
-    let found = all.iter().find(|(name, _)| name.ends_with(suffix));
-    found
-        .map(|(_, v)| v.as_slice())
-        .unwrap_or_else(|| panic!("no channel {suffix} in {:?}", all.keys().collect::<Vec<_>>()))
 }
 
 #[test]

@@ -5,6 +5,7 @@
 
 use crate::common;
 
+use common::layers::blocks;
 use common::reference::Noiseless;
 use common::{reference, render, repo};
 
@@ -21,23 +22,17 @@ fn check(name: &str) {
     let alpha = ours.alpha.as_ref().expect("the image has an alpha");
     let cycles = image::open(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display())).into_rgba32f();
     let cycles: Vec<f32> = cycles.pixels().map(|p| p.0[3]).collect();
-    let w = w as usize;
     let per_sample = 1.0 / SPP as f64 + 1.0 / REFERENCE_SPP;
     let mut worst = (0.0f64, String::new());
-    for by in 0..h as usize / BLOCK {
-        for bx in 0..w / BLOCK {
-            let block: Vec<usize> = (by * BLOCK..(by + 1) * BLOCK)
-                .flat_map(|y| (bx * BLOCK..(bx + 1) * BLOCK).map(move |x| y * w + x))
-                .collect();
-            let n = block.len() as f64;
-            let ours_mean = block.iter().map(|&i| alpha[i] as f64).sum::<f64>() / n;
-            let theirs = block.iter().map(|&i| cycles[i] as f64).sum::<f64>() / n;
-            let variance = block.iter().map(|&i| (cycles[i] * (1.0 - cycles[i])).max(0.0) as f64).sum::<f64>() / n;
-            let bound = 5.0 * (variance / n * per_sample).sqrt() + 2e-3;
-            let ratio = (ours_mean - theirs).abs() / bound;
-            if ratio > worst.0 {
-                worst = (ratio, format!("block ({bx}, {by}): alpha {ours_mean:.4} vs Cycles {theirs:.4}"));
-            }
+    for ((bx, by), block) in blocks(w as usize, h as usize, BLOCK) {
+        let n = block.len() as f64;
+        let ours_mean = block.iter().map(|&i| alpha[i] as f64).sum::<f64>() / n;
+        let theirs = block.iter().map(|&i| cycles[i] as f64).sum::<f64>() / n;
+        let variance = block.iter().map(|&i| (cycles[i] * (1.0 - cycles[i])).max(0.0) as f64).sum::<f64>() / n;
+        let bound = 5.0 * (variance / n * per_sample).sqrt() + 2e-3;
+        let ratio = (ours_mean - theirs).abs() / bound;
+        if ratio > worst.0 {
+            worst = (ratio, format!("block ({bx}, {by}): alpha {ours_mean:.4} vs Cycles {theirs:.4}"));
         }
     }
     println!("{name} alpha: worst block at {:.2} of its bound: {}", worst.0, worst.1);

@@ -12,6 +12,7 @@
 
 use crate::common;
 
+use common::layers::blocks;
 use common::reference::Noiseless;
 use common::{reference, render, repo};
 
@@ -39,29 +40,24 @@ fn check_channels(name: &str, floor: f32) {
     let (w, h) = (ours.width as usize, ours.height as usize);
     let noise_scale = (1.0 + SPP as f64 / REFERENCE_SPP).sqrt();
     let mut worst = (0.0f64, String::new());
-    for by in 0..h / BLOCK {
-        for bx in 0..w / BLOCK {
-            let pixels =
-                (by * BLOCK..(by + 1) * BLOCK).flat_map(|y| (bx * BLOCK..(bx + 1) * BLOCK).map(move |x| y * w + x));
-            let (mut a, mut b, mut var) = ([0.0f64; 3], [0.0f64; 3], 0.0f64);
-            for i in pixels {
-                for c in 0..3 {
-                    a[c] += ours.pixels[i][c] as f64;
-                    b[c] += reference[i][c] as f64;
-                }
-                var += (ours.std_error[i] as f64).powi(2);
-            }
-            let n = (BLOCK * BLOCK) as f64;
-            let lum = |v: [f64; 3]| 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2];
-            let sigma_lum = var.sqrt() / n * noise_scale;
+    for ((bx, by), pixels) in blocks(w, h, BLOCK) {
+        let (mut a, mut b, mut var) = ([0.0f64; 3], [0.0f64; 3], 0.0f64);
+        for &i in &pixels {
             for c in 0..3 {
-                let share = (b[c] / lum(b).max(1e-6)).max(1.0);
-                let bound = 5.0 * sigma_lum * share + floor as f64 * (1.0 + (b[c] / n).abs());
-                let ratio = (a[c] - b[c]).abs() / n / bound;
-                if ratio > worst.0 {
-                    worst =
-                        (ratio, format!("block ({bx}, {by}) channel {c}: {:.5} vs Cycles {:.5}", a[c] / n, b[c] / n));
-                }
+                a[c] += ours.pixels[i][c] as f64;
+                b[c] += reference[i][c] as f64;
+            }
+            var += (ours.std_error[i] as f64).powi(2);
+        }
+        let n = (BLOCK * BLOCK) as f64;
+        let lum = |v: [f64; 3]| 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2];
+        let sigma_lum = var.sqrt() / n * noise_scale;
+        for c in 0..3 {
+            let share = (b[c] / lum(b).max(1e-6)).max(1.0);
+            let bound = 5.0 * sigma_lum * share + floor as f64 * (1.0 + (b[c] / n).abs());
+            let ratio = (a[c] - b[c]).abs() / n / bound;
+            if ratio > worst.0 {
+                worst = (ratio, format!("block ({bx}, {by}) channel {c}: {:.5} vs Cycles {:.5}", a[c] / n, b[c] / n));
             }
         }
     }

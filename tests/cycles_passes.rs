@@ -4,27 +4,11 @@
 
 use crate::common;
 
+use common::layers::{blocks, channel, channels};
 use common::repo;
-use std::collections::BTreeMap;
 
 const SPP: u32 = 64;
 const BLOCK: usize = 8;
-
-/// A multilayer EXR's channels by full name (`ViewLayer.DiffCol.R`, …).
-fn channels(path: &std::path::Path) -> (usize, BTreeMap<String, Vec<f32>>) {
-    let image =
-        exr::prelude::read_all_flat_layers_from_file(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let mut all = BTreeMap::new();
-    let mut width = 0;
-    for layer in &image.layer_data {
-        width = layer.size.0;
-        let prefix = layer.attributes.layer_name.as_ref().map(|n| format!("{n}.")).unwrap_or_default();
-        for channel in &layer.channel_data.list {
-            all.insert(format!("{prefix}{}", channel.name), channel.sample_data.values_as_f32().collect());
-        }
-    }
-    (width, all)
-}
 
 /// Principled spheres of every layer that takes from the diffuse (dielectric specular, half
 /// metal, coat, sheen, some transmission) and a Diffuse BSDF: every 8×8 block's mean
@@ -40,29 +24,18 @@ fn diffuse_color_is_cycles_diffuse_color_pass() {
     (request.spp, request.max_bounces, request.aovs) = (SPP, 5, true);
     session.render(&request, None).unwrap_or_else(|e| panic!("{e:#}"));
     let aovs = session.aovs().unwrap();
-    let (width, cycles) = channels(&repo().join("tests/cycles/pass_diffuse_color.exr"));
+    let (width, _, cycles) = channels(&repo().join("tests/cycles/pass_diffuse_color.exr"));
     assert_eq!(width, w);
-    let pass = |c: &str| {
-        let found = cycles.iter().find(|(k, _)| k.ends_with(&format!("Diffuse Color.{c}")));
-        found.unwrap_or_else(|| panic!("no Diffuse Color.{c} among {:?}", cycles.keys().collect::<Vec<_>>())).1
-    };
-    let theirs = [pass("R"), pass("G"), pass("B")];
+    let theirs = ["R", "G", "B"].map(|c| channel(&cycles, &format!("Diffuse Color.{c}")));
     let mut worst = (0.0f64, String::new());
-    for by in 0..h / BLOCK {
-        for bx in 0..w / BLOCK {
-            for (c, cycles_channel) in theirs.iter().enumerate() {
-                let (mut a, mut b) = (0.0f64, 0.0f64);
-                for y in by * BLOCK..(by + 1) * BLOCK {
-                    for x in bx * BLOCK..(bx + 1) * BLOCK {
-                        a += aovs.diffuse_color[y * w + x][c] as f64;
-                        b += cycles_channel[y * w + x] as f64;
-                    }
-                }
-                let n = (BLOCK * BLOCK) as f64;
-                let ratio = (a - b).abs() / n / (0.004 + 0.01 * (b / n));
-                if ratio > worst.0 {
-                    worst = (ratio, format!("block ({bx}, {by}) channel {c}: {:.4} vs Cycles {:.4}", a / n, b / n));
-                }
+    for ((bx, by), pixels) in blocks(w, h, BLOCK) {
+        let n = pixels.len() as f64;
+        for (c, cycles_channel) in theirs.iter().enumerate() {
+            let a = pixels.iter().map(|&i| aovs.diffuse_color[i][c] as f64).sum::<f64>() / n;
+            let b = pixels.iter().map(|&i| cycles_channel[i] as f64).sum::<f64>() / n;
+            let ratio = (a - b).abs() / (0.004 + 0.01 * b);
+            if ratio > worst.0 {
+                worst = (ratio, format!("block ({bx}, {by}) channel {c}: {a:.4} vs Cycles {b:.4}"));
             }
         }
     }

@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod bounded;
+pub mod layers;
 pub mod quad_gltf;
 pub mod reference;
 

@@ -95,6 +95,36 @@ def render(scene, name, args):
     print(f"{name}: {size} at {args.spp} spp -> {scene.render.filepath}", flush=True)
 
 
+def make(description, default_spp, scenes):
+    """The main of a script whose `scenes` (name: function building the scene) are each
+    exported and rendered under their own name."""
+    args = arguments(description, default_spp, scenes)
+    for name in args.names:
+        scene = scenes[name]()
+        export(scene, name)
+        render(scene, name, args)
+
+
+def camera(scene, location, tilt_deg):
+    """The scene's camera at `location`, turned `tilt_deg` about X (90: level, looking along +Y)."""
+    obj = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
+    obj.location = location
+    obj.rotation_euler = (math.radians(tilt_deg), 0.0, 0.0)
+    scene.collection.objects.link(obj)
+    scene.camera = obj
+    return obj
+
+
+def principled(name, colour, **inputs):
+    """A Principled BSDF of Base Color `colour`, its other inputs by name."""
+    material = bpy.data.materials.new(name)
+    node = material.node_tree.nodes["Principled BSDF"]
+    node.inputs["Base Color"].default_value = (*colour, 1.0)
+    for key, value in inputs.items():
+        node.inputs[key].default_value = value
+    return material
+
+
 def uniform_world(scene, colour, name="world"):
     """A World of one colour at strength 1."""
     world = bpy.data.worlds.new(name)

@@ -80,6 +80,16 @@ def spot():
     return scene
 
 
+def srgb_world(scene, name, data):
+    """A World of the image file `data` (written as `name`), its Color Space sRGB."""
+    path = os.path.join(bpy.app.tempdir, name)
+    with open(path, "wb") as f:
+        f.write(data)
+    image = bpy.data.images.load(path)
+    image.colorspace_settings.name = "sRGB"
+    environment_world(scene, image, 1.0)
+
+
 def srgb_spot():
     """A float EXR whose Color Space is sRGB: Cycles interpolates its codes and decodes
     after (a dim map with a 2x2 spot of code 8, ~130 decoded)."""
@@ -88,12 +98,7 @@ def srgb_spot():
     pixels = np.full((h, w, 3), 0.25, np.float32)
     x, y = SPOT_TEXEL
     pixels[y : y + 2, x : x + 2] = [8.0, 6.0, 4.0]
-    path = os.path.join(bpy.app.tempdir, "srgb_spot.exr")
-    with open(path, "wb") as f:
-        f.write(rt_export.exr_bytes(pixels))
-    image = bpy.data.images.load(path)
-    image.colorspace_settings.name = "sRGB"
-    environment_world(scene, image, 1.0)
+    srgb_world(scene, "srgb_spot.exr", rt_export.exr_bytes(pixels))
     return scene
 
 
@@ -107,12 +112,7 @@ def srgb_stripes():
     pixels[:, ::2, :3] = 255
     x, y = SPOT_TEXEL
     pixels[y : y + 4, x : x + 8, :3] = [255, 90, 0]
-    path = os.path.join(bpy.app.tempdir, "srgb_stripes.png")
-    with open(path, "wb") as f:
-        f.write(rt_export.png_bytes(pixels))
-    image = bpy.data.images.load(path)
-    image.colorspace_settings.name = "sRGB"
-    environment_world(scene, image, 1.0)
+    srgb_world(scene, "srgb_stripes.png", rt_export.png_bytes(pixels))
     return scene
 
 

@@ -72,22 +72,12 @@ def holdout_scene():
         collection.objects.unlink(cube)
     held.objects.link(cube)
     bpy.context.view_layer.layer_collection.children["held out"].holdout = True
-    camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
-    camera.location = (0.0, -9.0, 2.4)
-    camera.rotation_euler = (math.radians(82.0), 0.0, 0.0)
-    scene.collection.objects.link(camera)
-    scene.camera = camera
+    cycles.camera(scene, (0.0, -9.0, 2.4), 82.0)
     return scene
 
 
 def glass(name, roughness):
-    material = bpy.data.materials.new(name)
-    principled = material.node_tree.nodes["Principled BSDF"]
-    principled.inputs["Base Color"].default_value = (1.0, 1.0, 1.0, 1.0)
-    principled.inputs["Transmission Weight"].default_value = 1.0
-    principled.inputs["Roughness"].default_value = roughness
-    principled.inputs["IOR"].default_value = 1.45
-    return material
+    return cycles.principled(name, (1.0, 1.0, 1.0), Roughness=roughness, IOR=1.45, **{"Transmission Weight": 1.0})
 
 
 def transparent_glass_scene():
@@ -115,11 +105,7 @@ def transparent_glass_scene():
     cube = bpy.context.active_object
     cube.data.materials.append(cycles.diffuse("orange", (0.9, 0.5, 0.1)))
     cube.is_holdout = True
-    camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
-    camera.location = (0.0, -7.0, 1.6)
-    camera.rotation_euler = (math.radians(84.0), 0.0, 0.0)
-    scene.collection.objects.link(camera)
-    scene.camera = camera
+    cycles.camera(scene, (0.0, -7.0, 1.6), 84.0)
     return scene
 
 
@@ -129,13 +115,5 @@ SCENES = {
 }
 
 
-def main():
-    args = cycles.arguments(__doc__, 1024, SCENES)
-    for name in args.names:
-        scene = SCENES[name]()
-        cycles.export(scene, name)
-        cycles.render(scene, name, args)
-
-
 if __name__ == "__main__":
-    main()
+    cycles.make(__doc__, 1024, SCENES)

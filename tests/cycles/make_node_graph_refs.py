@@ -411,12 +411,18 @@ VORONOI = [
 ]
 
 
-def wave(t, which="Fac", vector=True, **props):
+def texture(t, kind, which, vector, scale, props):
+    """A texture node of type `kind` at Scale `scale`: capitalised `props` are its inputs,
+    the rest its settings; `vector`: on Object coordinates, else its default ones."""
     inputs = {k: props.pop(k) for k in list(props) if k[0].isupper()}
-    node = new(t, "ShaderNodeTexWave", {"Scale": 1.5, **inputs}, **props)
+    node = new(t, kind, {"Scale": scale, **inputs}, **props)
     if vector:
         t.links.new(coords(t), node.inputs["Vector"])
     return node.outputs[which]
+
+
+def wave(t, which="Fac", vector=True, **props):
+    return texture(t, "ShaderNodeTexWave", which, vector, 1.5, props)
 
 
 WAVE = [
@@ -435,11 +441,7 @@ WAVE = [
 
 
 def magic(t, which="Color", vector=True, **props):
-    inputs = {k: props.pop(k) for k in list(props) if k[0].isupper()}
-    node = new(t, "ShaderNodeTexMagic", {"Scale": 0.8, **inputs}, **props)
-    if vector:
-        t.links.new(coords(t), node.inputs["Vector"])
-    return node.outputs[which]
+    return texture(t, "ShaderNodeTexMagic", which, vector, 0.8, props)
 
 
 # Every depth Blender offers, the Fac output, the default coordinates and no distortion.
@@ -514,11 +516,7 @@ def mix_scene():
         lambda t: new(t, "ShaderNodeBsdfDiffuse", {"Color": (0.8, 0.8, 0.75, 1.0)}),
         lambda t: new(t, "ShaderNodeBsdfDiffuse", {"Color": (0.1, 0.2, 0.5, 1.0)}))
     bpy.context.active_object.data.materials.append(floor)
-    camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
-    camera.location = (0.0, -5.5, 2.6)
-    camera.rotation_euler = (math.radians(72.0), 0.0, 0.0)
-    scene.collection.objects.link(camera)
-    scene.camera = camera
+    cycles.camera(scene, (0.0, -5.5, 2.6), 72.0)
     return scene
 
 
@@ -552,11 +550,7 @@ def light_path_scene():
     ball = procedural_material("far is dark", lambda t, b: t.links.new(
         math_node(t, "DIVIDE", 1.5, new(t, "ShaderNodeLightPath").outputs["Ray Length"]), b.inputs["Metallic"]))
     bpy.context.active_object.data.materials.append(ball)
-    camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
-    camera.location = (0.0, -5.5, 2.6)
-    camera.rotation_euler = (math.radians(72.0), 0.0, 0.0)
-    scene.collection.objects.link(camera)
-    scene.camera = camera
+    cycles.camera(scene, (0.0, -5.5, 2.6), 72.0)
     return scene
 
 
@@ -569,11 +563,7 @@ def material_scene():
     bpy.context.active_object.data.materials.append(procedural_material("speckled", sphere_inputs))
     bpy.ops.mesh.primitive_plane_add(size=8.0)
     bpy.context.active_object.data.materials.append(procedural_material("graded floor", floor_inputs))
-    camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
-    camera.location = (0.0, -5.5, 2.6)
-    camera.rotation_euler = (math.radians(72.0), 0.0, 0.0)
-    scene.collection.objects.link(camera)
-    scene.camera = camera
+    cycles.camera(scene, (0.0, -5.5, 2.6), 72.0)
     return scene
 
 
@@ -593,13 +583,5 @@ SCENES = {
 }
 
 
-def main():
-    args = cycles.arguments(__doc__, 1024, SCENES)
-    for name in args.names:
-        scene = SCENES[name]()
-        cycles.export(scene, name)
-        cycles.render(scene, name, args)
-
-
 if __name__ == "__main__":
-    main()
+    cycles.make(__doc__, 1024, SCENES)

@@ -11,20 +11,9 @@ tests/cycles/scenes/NAME/ and rendered into tests/cycles/NAME.exr, a multilayer 
 view layer holds Combined and Diffuse Color. CI does not run Cycles: commit both.
 """
 
-import math
-
 import bpy
 
 import cycles_reference as cycles
-
-
-def principled(name, colour, **inputs):
-    material = bpy.data.materials.new(name)
-    node = material.node_tree.nodes["Principled BSDF"]
-    node.inputs["Base Color"].default_value = (*colour, 1.0)
-    for key, value in inputs.items():
-        node.inputs[key].default_value = value
-    return material
 
 
 def diffuse_bsdf(name, colour):
@@ -46,37 +35,25 @@ def diffuse_color_scene():
     scene.render.image_settings.file_format = "OPEN_EXR_MULTILAYER"
     scene.render.image_settings.color_depth = "32"
     bpy.ops.mesh.primitive_plane_add(size=20.0)
-    bpy.context.active_object.data.materials.append(principled("floor", (0.5, 0.45, 0.4)))
+    bpy.context.active_object.data.materials.append(cycles.principled("floor", (0.5, 0.45, 0.4)))
     spheres = [
-        principled("default", (0.8, 0.8, 0.8)),
-        principled("half metal", (0.9, 0.3, 0.2), Metallic=0.5, Roughness=0.3),
-        principled("coated", (0.2, 0.7, 0.3), **{"Coat Weight": 1.0, "Coat Tint": (0.8, 0.9, 1.0, 1.0)}),
-        principled("sheen", (0.2, 0.3, 0.9), **{"Sheen Weight": 1.0}),
-        principled("part glass", (0.9, 0.8, 0.3), **{"Transmission Weight": 0.3}),
+        cycles.principled("default", (0.8, 0.8, 0.8)),
+        cycles.principled("half metal", (0.9, 0.3, 0.2), Metallic=0.5, Roughness=0.3),
+        cycles.principled("coated", (0.2, 0.7, 0.3), **{"Coat Weight": 1.0, "Coat Tint": (0.8, 0.9, 1.0, 1.0)}),
+        cycles.principled("sheen", (0.2, 0.3, 0.9), **{"Sheen Weight": 1.0}),
+        cycles.principled("part glass", (0.9, 0.8, 0.3), **{"Transmission Weight": 0.3}),
         diffuse_bsdf("diffuse", (0.7, 0.6, 0.1)),
     ]
     for i, material in enumerate(spheres):
         bpy.ops.mesh.primitive_uv_sphere_add(radius=0.6, segments=48, ring_count=24, location=(-3.5 + 1.4 * i, 0.0, 0.6))
         bpy.ops.object.shade_smooth()
         bpy.context.active_object.data.materials.append(material)
-    camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
-    camera.location = (0.0, -9.0, 3.0)
-    camera.rotation_euler = (math.radians(78.0), 0.0, 0.0)
-    scene.collection.objects.link(camera)
-    scene.camera = camera
+    cycles.camera(scene, (0.0, -9.0, 3.0), 78.0)
     return scene
 
 
 SCENES = {"pass_diffuse_color": diffuse_color_scene}
 
 
-def main():
-    args = cycles.arguments(__doc__, 1024, SCENES)
-    for name in args.names:
-        scene = SCENES[name]()
-        cycles.export(scene, name)
-        cycles.render(scene, name, args)
-
-
 if __name__ == "__main__":
-    main()
+    cycles.make(__doc__, 1024, SCENES)

@@ -13,6 +13,9 @@
 //#include "bsdf.wgsl"
 
 @group(1) @binding(3) var<storage, read_write> aov_means: array<vec4f>;
+// vec4 per pixel in aov_means and per sample in the lanes' scratch (`render::aovs`'s
+// MEANS_PER_PIXEL).
+const AOV_VEC4S: u32 = 5u;
 
 struct AovSample {
     albedo: vec3f,
@@ -98,12 +101,12 @@ struct AovMeans {
 }
 
 fn aov_load(pixel_index: u32) -> AovMeans {
-    let at = 5u * pixel_index;
+    let at = AOV_VEC4S * pixel_index;
     return AovMeans(aov_means[at], aov_means[at + 1u], aov_means[at + 2u], aov_means[at + 3u], aov_means[at + 4u]);
 }
 
 fn aov_store(pixel_index: u32, m: AovMeans) {
-    let at = 5u * pixel_index;
+    let at = AOV_VEC4S * pixel_index;
     aov_means[at] = m.a;
     aov_means[at + 1u] = m.b;
     aov_means[at + 2u] = m.position;
@@ -135,7 +138,7 @@ fn aov_add(m: ptr<function, AovMeans>, sample_index: u32) {
 // as they are, so that the means are the same bit for bit as when `render` adds them at
 // once.
 fn aov_lane_index(slot: u32) -> u32 {
-    return frame.samples_per_dispatch * frame.width * frame.height + 5u * slot;
+    return frame.samples_per_dispatch * frame.width * frame.height + AOV_VEC4S * slot;
 }
 
 fn aov_lane_store(slot: u32) {

@@ -13,11 +13,8 @@ const MEAN_BYTES: u64 = 16;
 /// Bytes of one sample in the lanes' scratch (radiance, and the event of a non-finite one).
 const SAMPLE_BYTES: u64 = 16;
 /// Bytes per pixel of the AOVs' means (albedo and depth, normal and hit count, position
-/// and coverage, emission, diffuse colour).
-const AOV_BYTES: u64 = 80;
-/// Bytes of one sample's AOVs in the lanes' scratch (albedo and depth, normal, position
-/// and coverage, emission, diffuse colour).
-const LANE_AOV_BYTES: u64 = 80;
+/// and coverage, emission, diffuse colour), and of one sample's AOVs in the lanes' scratch.
+const AOV_BYTES: u64 = 16 * super::aovs::MEANS_PER_PIXEL as u64;
 /// The lanes' scratch at most: it holds pixels × samples per dispatch (a 128×128 image
 /// takes its 1024 samples per dispatch in 256 MiB).
 const LANE_SCRATCH_BYTES: u64 = 256 << 20;
@@ -211,7 +208,7 @@ impl Accumulation {
         if lanes <= 1 {
             return device;
         }
-        let bytes = if aovs { SAMPLE_BYTES + LANE_AOV_BYTES } else { SAMPLE_BYTES };
+        let bytes = if aovs { SAMPLE_BYTES + AOV_BYTES } else { SAMPLE_BYTES };
         let per_sample = self.width as u64 * self.height as u64 * bytes;
         (self.lane_samples.size() / per_sample).min(device as u64) as u32
     }

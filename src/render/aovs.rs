@@ -22,8 +22,9 @@ pub struct Aovs {
     pub diffuse_color: Vec<[f32; 3]>,
 }
 
-/// vec4 per pixel in the GPU's AOV means (see `shaders/aovs.wgsl`).
-const MEANS_PER_PIXEL: usize = 5;
+/// vec4 per pixel in the GPU's AOV means and per sample in the lanes' scratch
+/// (`AOV_VEC4S` in `shaders/aovs.wgsl`; a test checks both agree).
+pub(crate) const MEANS_PER_PIXEL: usize = 5;
 
 impl Aovs {
     /// From the GPU's running means: five vec4 per pixel (albedo and depth, normal and
@@ -53,5 +54,16 @@ impl Aovs {
     pub fn coverage(means: &[[f32; 4]], samples: &[u32]) -> Vec<f32> {
         let covered = means.chunks_exact(MEANS_PER_PIXEL).map(|pixel| pixel[2][3]);
         covered.zip(samples).map(|(sum, &n)| (sum / n.max(1) as f32).clamp(0.0, 1.0)).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::MEANS_PER_PIXEL;
+
+    #[test]
+    fn the_shader_lays_out_as_many_vec4_per_pixel() {
+        let line = format!("const AOV_VEC4S: u32 = {MEANS_PER_PIXEL}u;");
+        assert!(include_str!("../../shaders/aovs.wgsl").contains(&line), "aovs.wgsl lacks `{line}`");
     }
 }

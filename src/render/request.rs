@@ -58,8 +58,8 @@ impl RenderRequest {
             samples_per_dispatch: None,
             sample_lanes: None,
             progress: Progress::Hidden,
-            // A transparent film's alpha is counted with the AOVs.
-            aovs: r.transparent,
+            // A session counts them anyway where the image has an alpha (`Session`).
+            aovs: false,
             noise_threshold: r.noise_threshold,
             adaptive_min_samples: r.adaptive_min_samples,
         }
@@ -149,7 +149,7 @@ impl RenderFlags {
             clamp: self.clamp,
             samples_per_dispatch: self.samples_per_dispatch,
             sample_lanes: self.sample_lanes,
-            aovs: self.aovs || scene.render.transparent,
+            aovs: self.aovs,
             ..RenderRequest::from_scene(scene)
         })
     }

@@ -5,14 +5,12 @@
     python3 scripts/equal_error.py --rt rt=target/release/rt [--rt old=OLD_RT] \\
         [--variant cuda_ad_rgb] [--size 128] [--max-spp 4096] SCENE.toml...
 
-Each SCENE is an rt validation scene (tests/refs/scenes/*.toml); Mitsuba sees it through
-tests/refs/make_refs.py's translation, with the same path length (`max_depth` = rt's
-bounces + 1), Russian roulette from the same vertex (rr_depth 5: rt's bounce > 3), the
-same box pixel filter. rt's emitting meshes emit from both faces; Mitsuba's area emitters
-from one, so make_refs.py gives each a flipped copy: two emitters that Mitsuba's light
-sampling picks alike, where rt's picks a point and sees whichever face looks at it.
-`--one-sided-emitters` keeps only the face that faces the scene's centre (the images
-then differ by what the other face lights).
+Each SCENE is an rt scene that Mitsuba can render alike (tests/refs/scenes/*.toml, say);
+Mitsuba sees it through rt's own translation (`rt bench mitsuba-scene`, the first --rt
+binary's), the one `rt bench compare` and the tests' references use: the same path length
+(`max_depth` = rt's bounces + 1), Russian roulette from the same vertex and by the same
+rule, the same box pixel filter, emitters that emit from both faces as rt's do (see
+src/bench/mitsuba_scene.rs).
 
 For each renderer (each rt binary given, and Mitsuba with each of its samplers) the scene
 is rendered at 1, 2, 4, ... samples per pixel, twice with other seeds, after a warm-up;
@@ -44,10 +42,11 @@ import time
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "tests", "refs"))
+sys.path.insert(0, os.path.join(HERE, "..", "src", "bench"))
 
 import drjit as dr  # noqa: E402
 import mitsuba as mi  # noqa: E402
+from mitsuba_scene import scene_dict  # noqa: E402
 
 SAMPLERS = ("independent", "stratified", "multijitter", "orthogonal", "ldsampler")
 TARGETS = (0.02, 0.01, 0.005)
@@ -139,36 +138,16 @@ class Mitsuba:
         return np.array(image, dtype=np.float64)[:, :, :3], time.perf_counter() - start
 
 
-def obj_vertices(path):
-    with open(path) as f:
-        return np.array([[float(x) for x in l.split()[1:4]] for l in f if l.startswith("v ")])
-
-
-def facing_inwards(shape, centre):
-    """Whether a planar OBJ shape's first triangle faces `centre`."""
-    v = obj_vertices(shape["filename"])
-    with open(shape["filename"]) as f:
-        face = next([int(x) - 1 for x in l.split()[1:4]] for l in f if l.startswith("f "))
-    a, b, c = v[face[0]], v[face[1]], v[face[2]]
-    return float(np.dot(np.cross(b - a, c - a), centre - (a + b + c) / 3)) > 0
-
-
-def mitsuba_scene(scene_path, size, one_sided):
-    """make_refs.py's translation; with `one_sided`, each emitting mesh emits from the face
-    that faces the scene's centre only (its image then lacks what the other face lights)."""
-    import make_refs
-
-    d = make_refs.translate(scene_path, 1)
-    meshes = [v for v in d.values() if isinstance(v, dict) and v.get("type") == "obj"]
-    centre = np.concatenate([obj_vertices(m["filename"]) for m in meshes]).mean(axis=0)
-    for key in [k for k in d if k.endswith("_back") and one_sided]:
-        front = key[: -len("_back")]
-        drop = front if facing_inwards(d[key], centre) else key
-        del d[drop]
-    d["integrator"] = dict(d["integrator"], rr_depth=5)
-    film = dict(d["sensor"]["film"], width=size, height=size)
-    d["sensor"] = dict(d["sensor"], film=film)
-    return d
+def mitsuba_scene(binary, scene_path, size, folder):
+    """rt's translation of the scene (`rt bench mitsuba-scene`, the one `rt bench compare`
+    and the tests' references render) at `size` × `size`."""
+    out = os.path.join(folder, "mitsuba-" + os.path.splitext(os.path.basename(scene_path))[0])
+    command = [binary, "bench", "mitsuba-scene", scene_path, "-o", out, "--size", f"{size}x{size}"]
+    result = subprocess.run(command, capture_output=True, text=True)
+    if result.returncode != 0:
+        raise SystemExit(f"translating {scene_path}: {result.stderr[-2000:]}")
+    with open(os.path.join(out, "scene.json")) as f:
+        return scene_dict(json.load(f))
 
 
 def bias(a, b, noise_a, noise_b):
@@ -227,7 +206,6 @@ def main():
     ap.add_argument("--size", type=int, default=128)
     ap.add_argument("--max-spp", type=int, default=4096)
     ap.add_argument("--reference-spp", type=int, default=65536)
-    ap.add_argument("--one-sided-emitters", action="store_true")
     ap.add_argument("--json")
     args = ap.parse_args()
     mi.set_variant(args.variant)
@@ -236,7 +214,7 @@ def main():
     for scene_path in args.scenes:
         name = os.path.splitext(os.path.basename(scene_path))[0]
         rts = [Rt(*spec.split("=", 1), scene_path, args.size, folder) for spec in args.rt]
-        md = mitsuba_scene(scene_path, args.size, args.one_sided_emitters)
+        md = mitsuba_scene(rts[0].binary, scene_path, args.size, folder)
         refs = {}
         # rt's reference: its first binary, two halves for its noise.
         halves = [rts[0].render(args.reference_spp // 2, 900 + s)[0] for s in (1, 2)]

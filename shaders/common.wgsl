@@ -58,6 +58,8 @@ struct Frame {
     // Film › Transparent Glass: the GGX α up to which glass lets the camera's path keep
     // the background transparent; negative: off (integrator.wgsl).
     transparent_glass: f32,
+    // The share of light samples that go to a uniform sky sampled as a light (lights.wgsl).
+    sky_light_share: f32,
 }
 
 // A BVH2 node holding both children's boxes, so that one fetch decides where to go.

@@ -155,6 +155,20 @@ fn sun_seen(origin: vec3f, direction: vec3f, bsdf_pdf: f32) -> vec3f {
 }
 //#endif
 
+//#if sky_uniform_light
+// The uniform sky seen by a ray that leaves the scene, MIS-weighted against light
+// sampling after a BSDF sample, as `environment_seen` below.
+fn uniform_sky_seen(bsdf_pdf: f32) -> vec3f {
+    var weight = 1.0;
+    //#if nee
+    if bsdf_pdf > 0.0 {
+        weight = power_heuristic(bsdf_pdf, frame.sky_light_share / (4.0 * PI));
+    }
+    //#endif
+    return frame.sky_color * weight;
+}
+//#endif
+
 //#if sky_environment
 // The environment seen by a ray that leaves the scene, MIS-weighted against light
 // sampling after a BSDF sample (the camera's rays and delta lobes have bsdf_pdf 0).
@@ -360,8 +374,14 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
             //#endif
             //#if sky_environment
             gather(&radiance, throughput * environment_seen(direction, bsdf_pdf), EVENT_SKY);
-            //#else
+            //#endif
+            //#if sky_uniform_light
+            gather(&radiance, throughput * uniform_sky_seen(bsdf_pdf), EVENT_SKY);
+            //#endif
+            //#if !sky_environment
+            //#if !sky_uniform_light
             gather(&radiance, throughput * sky_radiance(origin, direction), EVENT_SKY);
+            //#endif
             //#endif
             //#if sun
             gather(&radiance, throughput * sun_seen(origin, direction, bsdf_pdf), EVENT_SKY);

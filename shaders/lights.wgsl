@@ -60,8 +60,14 @@ fn power_heuristic(a: f32, b: f32) -> f32 {
 fn non_environment_share() -> f32 {
     //#if sky_environment
     return 1.0 - environment.light_share;
-    //#else
+    //#endif
+    //#if sky_uniform_light
+    return 1.0 - frame.sky_light_share;
+    //#endif
+    //#if !sky_environment
+    //#if !sky_uniform_light
     return 1.0;
+    //#endif
     //#endif
 }
 
@@ -281,6 +287,17 @@ fn sample_light(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
     if rng_next(rng) < environment.light_share {
         let e = sample_environment(rng);
         return LightSample(e.direction, INFINITY, e.radiance, e.pdf * environment.light_share, false);
+    }
+    //#endif
+    //#if sky_uniform_light
+    // Uniformly over the sphere: a constant sky has no brighter part to aim for.
+    if rng_next(rng) < frame.sky_light_share {
+        let u = rng_next2(rng);
+        let z = 1.0 - 2.0 * u.x;
+        let r = sqrt(max(0.0, 1.0 - z * z));
+        let phi = 2.0 * PI * u.y;
+        let d = vec3f(r * cos(phi), r * sin(phi), z);
+        return LightSample(d, INFINITY, frame.sky_color, frame.sky_light_share / (4.0 * PI), false);
     }
     //#endif
     // Below, the choice among the other lights (their shares without the environment's part).

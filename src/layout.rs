@@ -62,7 +62,10 @@ pub struct GpuFrame {
     /// Film › Transparent Glass: the GGX α up to which glass lets the camera's path keep
     /// the background transparent (the square of Cycles' Roughness Threshold); negative: off.
     pub transparent_glass: f32,
-    pub _pad: [u32; 2],
+    /// The share of light samples that go to a uniform sky sampled as a light
+    /// (`[sky] sample_as_light`), as an environment map's `light_share`.
+    pub sky_light_share: f32,
+    pub _pad: u32,
 }
 
 /// `GpuFrame::panorama`: which panorama maps the image to directions (`shaders/panorama.wgsl`).

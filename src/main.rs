@@ -272,23 +272,43 @@ enum BenchCommand {
         #[arg(long, default_value_t = 4)]
         spp: u32,
     },
-    /// rt's throughput beside Mitsuba 3's (through its Python API, when importable) on the
-    /// same scenes in one run, with the ratios.
+    /// rt beside Mitsuba 3 (through its Python API, when importable) on the same scenes in
+    /// one run, like for like: one translation, the same estimator settings and warm-up,
+    /// both clocks, and the images compared before any ratio is printed.
     Compare {
         /// Scenes to compare at --size [default: the held-in set: the Cornell box at 9 and
         /// 65 path vertices, at 128x128 and 1024x1024, and the dragon in clay with trace rates].
         scenes: Vec<PathBuf>,
         #[arg(long, value_parser = parse_size, default_value = "1024x720")]
         size: (u32, u32),
-        /// Timed repetitions of each measurement (the median is reported).
+        /// Samples per pixel of each render of the given scenes.
+        #[arg(long, default_value_t = 16)]
+        spp: u32,
+        /// Timed renders of each case (the median is reported; the first two images of each
+        /// renderer are compared).
         #[arg(long, default_value_t = 5)]
         runs: u32,
+        /// Mitsuba's sampler: independent, stratified, multijitter, orthogonal, ldsampler.
+        #[arg(long, default_value = "independent")]
+        sampler: String,
         /// The Python that imports `mitsuba`.
         #[arg(long, env = "RT_MITSUBA_PYTHON", default_value = "python3")]
         python: String,
         /// Mitsuba variant [default: cuda_ad_rgb, else llvm_ad_rgb].
         #[arg(long)]
         variant: Option<String>,
+    },
+    /// Writes the Mitsuba 3 scene that `rt bench compare` renders for SCENE: OUT/scene.json
+    /// (a dictionary for `mi.load_dict`, loaded by `src/bench/mitsuba_scene.py`) and its
+    /// meshes as PLY files. The Mitsuba references of the tests are rendered from it.
+    MitsubaScene {
+        scene: PathBuf,
+        /// The folder to write into (created if missing).
+        #[arg(short, long)]
+        out: PathBuf,
+        /// Image size [default: the scene's].
+        #[arg(long, value_parser = parse_size)]
+        size: Option<(u32, u32)>,
     },
     /// Error and time of the atmosphere's march steps and table sizes, against
     /// far finer settings, on a scene whose sky is an atmosphere.
@@ -719,9 +739,13 @@ fn main() -> ExitCode {
         Command::Bench(BenchCommand::Instances { counts, size, runs, spp }) => {
             rt::bench::instances(&rt::bench::InstanceScaleOptions { counts, size, runs, spp }, adapter)
         }
-        Command::Bench(BenchCommand::Compare { scenes, size, runs, python, variant }) => {
-            let options = rt::bench::CompareOptions { scenes, size, runs, python, variant, root: PathBuf::new() };
+        Command::Bench(BenchCommand::Compare { scenes, size, spp, runs, sampler, python, variant }) => {
+            let root = PathBuf::new();
+            let options = rt::bench::CompareOptions { scenes, size, spp, runs, python, variant, sampler, root };
             rt::bench::compare(&options, adapter)
+        }
+        Command::Bench(BenchCommand::MitsubaScene { scene, out, size }) => {
+            load_scene(Some(&scene)).and_then(|s| rt::bench::mitsuba_scene::write(&s, size, &out))
         }
         Command::Bench(BenchCommand::Sky { scene, size, spp }) => {
             load_scene(Some(&scene)).and_then(|s| rt::bench::sky(s, size, spp, adapter))

@@ -115,7 +115,7 @@ fn blender_scene_exports_packs_and_renders() {
     }
 
     cameras_come_through(&python, &out, &expected, &scene);
-    assert_eq!(scene.sky, rt::scene::Sky::Uniform { color: Vec3::new(0.2, 0.25, 0.3) });
+    assert_eq!(scene.sky, rt::scene::Sky::Uniform { color: Vec3::new(0.2, 0.25, 0.3), sample_as_light: false });
     // Under a plain sky, every lamp is a [[light]] (the sun too), with Blender's units.
     assert!(scene.sun.is_none());
     check_lights(&scene, &expected["lights"]);

@@ -223,3 +223,50 @@ fn live_edits_of_the_environment_match_fresh_sessions() {
         assert_eq!(draw(&mut live), fresh(with(extra)), "after the edit to {extra:?}");
     }
 }
+
+/// `[sky] sample_as_light`: a uniform sky sampled by next-event estimation is still 1 in
+/// the furnace.
+#[test]
+fn a_uniform_sky_sampled_as_a_light_keeps_the_furnace_at_one() {
+    let sky = "[sky]\nkind = \"uniform\"\nsample_as_light = true\n";
+    let scene = scene_from(&format!("{sky}{SPHERE}"));
+    let (image, features) =
+        common::render_request(scene, |r| (r.width, r.height, r.spp, r.max_bounces) = (64, 64, 16, 64));
+    assert!(features.flag("sky_uniform_light") == Some(true), "{features}");
+    // Without light sampling every sample of the white ball is exactly 1.
+    assert!(image.std_error.iter().any(|&e| e > 1e-4), "the sky was not sampled as a light");
+    assert_all_one(&image, "uniform sky as a light");
+}
+
+/// The same sky with and without light sampling, over a ball on a floor with an emitting
+/// ball beside them (shadows, and light shared between the sky and an emitter): the same
+/// image within noise, per 8×8 block.
+#[test]
+fn a_uniform_sky_sampled_as_a_light_gives_the_same_image() {
+    let scene = |sampled: bool| {
+        scene_from(&format!(
+            "[sky]\nkind = \"uniform\"\ncolor = [0.4, 0.5, 0.7]\nsample_as_light = {sampled}\n\
+             [camera]\nposition = [0.0, 2.0, 3.0]\nlook_at = [0.0, 0.3, 0.0]\nfov_y_deg = 45.0\n\
+             [materials.lamp]\nbase_color = [0.0, 0.0, 0.0]\nemission = [4.0, 3.0, 2.0]\n\
+             [[sphere]]\ncenter = [0.0, 0.5, 0.0]\nradius = 0.5\n\
+             [[sphere]]\ncenter = [1.0, 0.3, 0.5]\nradius = 0.15\nmaterial = \"lamp\"\n\
+             [[sphere]]\ncenter = [0.0, -1000.0, 0.0]\nradius = 1000.0\n"
+        ))
+    };
+    let sampled = render(scene(true), 64, 64, 64, 8);
+    let plain = render(scene(false), 64, 64, 64, 8);
+    let lum = |p: [f32; 3]| 0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64;
+    let mut worst: f64 = 0.0;
+    for by in 0..8 {
+        for bx in 0..8 {
+            let (mut diff, mut var) = (0.0, 0.0);
+            for i in (by * 8..by * 8 + 8).flat_map(|y| (bx * 8..bx * 8 + 8).map(move |x| y * 64 + x)) {
+                diff += lum(sampled.pixels[i]) - lum(plain.pixels[i]);
+                var += (sampled.std_error[i] as f64).powi(2) + (plain.std_error[i] as f64).powi(2);
+            }
+            worst = worst.max(diff.abs() / var.sqrt().max(1e-9));
+        }
+    }
+    println!("sky sampled as a light against not: worst 8x8 block {worst:.2} σ");
+    assert!(worst <= 5.0, "a block is {worst:.2} σ apart");
+}

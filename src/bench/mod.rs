@@ -2,8 +2,11 @@
 //! (the price tag of every knob that trades one for the other).
 
 pub mod accuracy;
+mod agreement;
+mod clocks;
 pub mod commands;
 mod compare;
+mod compare_rt;
 pub mod denoise_timing;
 pub mod effects;
 pub mod fireflies;
@@ -12,6 +15,7 @@ mod instances;
 pub mod knobs;
 pub mod metrics;
 mod mitsuba;
+pub mod mitsuba_scene;
 pub mod model;
 mod plot;
 pub mod reference;

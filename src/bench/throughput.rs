@@ -18,7 +18,7 @@ use std::time::{Duration, Instant};
 const WARM_UP: Duration = Duration::from_secs(1);
 const WARM_UP_DISPATCHES: u32 = 500;
 
-fn warm_up(session: &mut Session) -> Result<()> {
+pub(super) fn warm_up(session: &mut Session) -> Result<()> {
     let start = Instant::now();
     for _ in 0..WARM_UP_DISPATCHES {
         session.step(None)?;

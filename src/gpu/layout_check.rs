@@ -71,7 +71,8 @@ fn host_structs_match_wgsl_layouts() {
                 fisheye_fov,
                 fisheye_lens,
                 panorama,
-                transparent_glass
+                transparent_glass,
+                sky_light_share
             ]
         ),
         host_layout!("BvhNode", GpuBvhNode, [a_min, a_link, a_max, a_count, b_min, b_link, b_max, b_count]),

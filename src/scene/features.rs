@@ -9,6 +9,8 @@ use std::fmt;
 pub enum SkyFeature {
     Black,
     Uniform,
+    /// A uniform sky, light-sampled by next-event estimation too (`sample_as_light`).
+    UniformLight,
     Atmosphere,
     /// An equirectangular image, light-sampled by next-event estimation.
     Environment,
@@ -171,7 +173,8 @@ impl FeatureSet {
             emission: materials_in_use.iter().any(|m| m.is_emissive()),
             sky: match scene.sky {
                 Sky::Black => SkyFeature::Black,
-                Sky::Uniform { .. } => SkyFeature::Uniform,
+                Sky::Uniform { sample_as_light: false, .. } => SkyFeature::Uniform,
+                Sky::Uniform { sample_as_light: true, .. } => SkyFeature::UniformLight,
                 Sky::Atmosphere(_) => SkyFeature::Atmosphere,
                 Sky::Environment(_) => SkyFeature::Environment,
             },
@@ -283,7 +286,8 @@ impl FeatureSet {
             "spheres" => self.spheres,
             "emission" => self.emission,
             "sky_black" => self.sky == SkyFeature::Black,
-            "sky_uniform" => self.sky == SkyFeature::Uniform,
+            "sky_uniform" => matches!(self.sky, SkyFeature::Uniform | SkyFeature::UniformLight),
+            "sky_uniform_light" => self.sky == SkyFeature::UniformLight,
             "sky_atmosphere" => self.sky == SkyFeature::Atmosphere,
             "sky_environment" => self.sky == SkyFeature::Environment,
             "sun" => self.sun,

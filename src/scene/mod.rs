@@ -156,6 +156,11 @@ pub enum Sky {
     Black,
     Uniform {
         color: Vec3,
+        /// Next-event estimation samples the sky as a light (uniformly over the sphere, as
+        /// Mitsuba's `constant` emitter and Cycles' world without an importance map are).
+        /// Off by default: a constant sky is found as well by BSDF sampling, and a light
+        /// sample of it costs a shadow ray.
+        sample_as_light: bool,
     },
     Atmosphere(Atmosphere),
     /// An equirectangular image (HDRI) around the scene.

@@ -115,6 +115,9 @@ pub(super) struct Sky {
     pub kind: SkyKind,
     /// Only for `kind = "uniform"`; white when left out.
     pub color: Option<[f32; 3]>,
+    /// Only for `kind = "uniform"`: next-event estimation samples the sky too; off when
+    /// left out.
+    pub sample_as_light: Option<bool>,
     // Only for `kind = "atmosphere"` (see `scene::Atmosphere`); its defaults when left out.
     pub turbidity: Option<f32>,
     pub rayleigh_scale: Option<f32>,

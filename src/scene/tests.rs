@@ -127,7 +127,7 @@ fn empty_file_gives_defaults() {
     let camera = Camera::default();
     assert_eq!(s.camera, camera);
     assert_eq!((s.sky, s.sun), (Sky::Black, None));
-    assert_eq!(parse_ok("[sky]\nkind = \"uniform\"\n").sky, Sky::Uniform { color: Vec3::ONE });
+    assert_eq!(parse_ok("[sky]\nkind = \"uniform\"\n").sky, Sky::Uniform { color: Vec3::ONE, sample_as_light: false });
 }
 
 /// One case a line: the scene with `|` between its lines, ` => `, then the
@@ -168,7 +168,7 @@ fn unknown_keys_suggest_in_every_table() {
         [[mesh]] | asset = "a" | [[mesh]] | asset = "b" | materal = "m" => 5:1: unknown key `materal` in mesh 2; did you mean `material`?
         [[sphere]] | radious = 1 => 2:1: unknown key `radious` in sphere 1; did you mean `radius`?
         | meshes = [] => 2:1: unknown key `meshes` in the top-level table; did you mean `mesh`?
-        [sky] | kind = "uniform" | hue = 1 => 3:1: unknown key `hue` in [sky]; expected one of `kind`, `color`, `turbidity`, `rayleigh_scale`, `mie_g`, `mie_absorption`, `ozone`, `ground_albedo`, `ground_altitude_m`, `multiple_scattering`, `steps`, `transmittance_lut`, `multiple_scattering_lut`, `image`, `strength`, `rotation_deg`, `importance_sampling`, `color_space`
+        [sky] | kind = "uniform" | hue = 1 => 3:1: unknown key `hue` in [sky]; expected one of `kind`, `color`, `sample_as_light`, `turbidity`, `rayleigh_scale`, `mie_g`, `mie_absorption`, `ozone`, `ground_albedo`, `ground_altitude_m`, `multiple_scattering`, `steps`, `transmittance_lut`, `multiple_scattering_lut`, `image`, `strength`, `rotation_deg`, `importance_sampling`, `color_space`
         [sky] | kind = "atmosphere" | turbidty = 2 => 3:1: unknown key `turbidty` in [sky]; did you mean `turbidity`?
         [sky] | kind = "atmosphere" | ground_albeda = 0.2 => 3:1: unknown key `ground_albeda` in [sky]; did you mean `ground_albedo`?
         sky = { kind = "black", colour = [1, 1, 1] } => 1:25: unknown key `colour` in [sky]; did you mean `color`?

@@ -117,8 +117,12 @@ fn sky(src: &Source, sky: Option<schema::Sky>, base_dir: &Path) -> Result<Sky, S
     let Some(sky) = sky else {
         return Ok(Sky::Black);
     };
-    if sky.kind != SkyKind::Uniform && sky.color.is_some() {
-        return Err(src.error(&p, "color", "only applies to kind = \"uniform\""));
+    if sky.kind != SkyKind::Uniform
+        && let Some(key) = [("color", sky.color.is_some()), ("sample_as_light", sky.sample_as_light.is_some())]
+            .iter()
+            .find_map(|&(key, on)| on.then_some(key))
+    {
+        return Err(src.error(&p, key, "only applies to kind = \"uniform\""));
     }
     if sky.kind != SkyKind::Atmosphere
         && let Some(key) = atmosphere::keys_present(&sky)
@@ -137,7 +141,7 @@ fn sky(src: &Source, sky: Option<schema::Sky>, base_dir: &Path) -> Result<Sky, S
         SkyKind::Uniform => {
             let color = sky.color.unwrap_or([1.0; 3]);
             src.check(&p, "color", &color, "non-negative", |c| c >= 0.0)?;
-            Sky::Uniform { color: color.into() }
+            Sky::Uniform { color: color.into(), sample_as_light: sky.sample_as_light.unwrap_or(false) }
         }
     })
 }

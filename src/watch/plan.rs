@@ -268,7 +268,10 @@ mod tests {
 
     #[test]
     fn sky_colour_is_a_constant_and_sky_kind_a_feature() {
-        assert_eq!(kind_after(|s| s.sky = Sky::Uniform { color: Vec3::ONE }).changes, [Change::Sky]);
+        assert_eq!(
+            kind_after(|s| s.sky = Sky::Uniform { color: Vec3::ONE, sample_as_light: false }).changes,
+            [Change::Sky]
+        );
         assert_eq!(kind_after(|s| s.sky = Sky::Black).changes, [Change::Sky, Change::Features]);
     }
 

@@ -49,6 +49,7 @@ fn factors() -> Vec<Factor> {
         flag!(spheres),
         flag!(emission),
         choice!(sky: "black" => SkyFeature::Black, "uniform" => SkyFeature::Uniform,
+            "uniform_light" => SkyFeature::UniformLight,
             "atmosphere" => SkyFeature::Atmosphere, "environment" => SkyFeature::Environment),
         flag!(sun),
         flag!(glossy),

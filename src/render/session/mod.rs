@@ -240,8 +240,11 @@ impl<'a> Session<'a> {
             ..Default::default()
         };
         camera::set_camera(&mut frame, &self.scene.camera, request.width, request.height);
-        if let Sky::Uniform { color } = self.scene.sky {
+        if let Sky::Uniform { color, sample_as_light } = self.scene.sky {
             frame.sky_color = color.to_array();
+            let other_lights =
+                !self.geometry.emitters.is_empty() || self.scene.sun.is_some() || !self.scene.lights.is_empty();
+            frame.sky_light_share = crate::sky::light_share(sample_as_light && color.max_element() > 0.0, other_lights);
         }
         sun::set_sun(&mut frame, self.scene.sun.as_ref(), !self.geometry.emitters.is_empty());
         frame.emitter_count = self.geometry.emitters.len() as u32;

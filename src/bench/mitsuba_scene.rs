@@ -16,7 +16,7 @@
 //! | `specular` beside `diffuse` (weights summing to 1) | `blendbsdf` of `diffuse` and an untinted `roughconductor` |
 //! | `transmission` | `dielectric`/`roughdielectric` of the same IOR |
 //! | `absorption` | interior `homogeneous` medium, albedo 0, with `volpath` |
-//! | emission (from both faces) | `area` on the surface and on a copy with flipped faces, moved 0.01 mm along its normal |
+//! | emission (from both faces) | `area` on the surface turned to face the camera, and on its mirror image 0.01 mm behind it |
 //! | interpolated normals | PLY vertex normals (`face_normals = false`) |
 //! | `[sky] kind = "uniform"`, `sample_as_light` | `constant`, sampled as a light (refused without `sample_as_light`) |
 //!
@@ -159,17 +159,22 @@ fn write_ply(path: &Path, positions: &[Vec3], normals: Option<&[Vec3]>, triangle
     std::fs::write(path, out).with_context(|| format!("writing {}", path.display()))
 }
 
-/// The mirror image of emitting triangles: reversed winding, each moved along its new
-/// normal, so that Mitsuba's one-sided emitters emit from both faces as rt's do.
-fn flipped(positions: &[Vec3], triangles: &[[u32; 3]]) -> (Vec<Vec3>, Vec<[u32; 3]>) {
-    let mut out = Vec::with_capacity(3 * triangles.len());
+/// Emitting triangles as two one-sided sheets, so that Mitsuba's one-sided emitters emit
+/// from both faces as rt's do: each triangle turned to face `eye` (the camera) where rt
+/// has it, so that the light seen directly keeps rt's outline exactly, and its mirror
+/// image moved away from the camera along its own normal.
+fn two_sided(positions: &[Vec3], triangles: &[[u32; 3]], eye: Vec3) -> [(Vec<Vec3>, Vec<[u32; 3]>); 2] {
+    let (mut front, mut back) = (Vec::with_capacity(3 * triangles.len()), Vec::with_capacity(3 * triangles.len()));
     for t in triangles {
         let [a, b, c] = t.map(|i| positions[i as usize]);
-        let shift = -(b - a).cross(c - a).normalize_or_zero() * FLIPPED_EMITTER_OFFSET;
-        out.extend([a + shift, c + shift, b + shift]);
+        let n = (b - a).cross(c - a).normalize_or_zero();
+        let (a, b, c, n) = if n.dot(eye - a) >= 0.0 { (a, b, c, n) } else { (a, c, b, -n) };
+        let shift = -n * FLIPPED_EMITTER_OFFSET;
+        front.extend([a, b, c]);
+        back.extend([a + shift, c + shift, b + shift]);
     }
-    let faces = (0..triangles.len() as u32).map(|i| [3 * i, 3 * i + 1, 3 * i + 2]).collect();
-    (out, faces)
+    let faces: Vec<[u32; 3]> = (0..triangles.len() as u32).map(|i| [3 * i, 3 * i + 1, 3 * i + 2]).collect();
+    [(front, faces.clone()), (back, faces)]
 }
 
 /// The meshes' shapes, one per mesh and material (and a flipped copy of each emitter),
@@ -201,17 +206,19 @@ fn mesh_shapes(scene: &Scene, dir: &Path, shapes: &mut Map<String, Value>) -> Re
                 None => (own_name.as_str(), own),
             };
             let ply = dir.join(format!("mesh{i}_{m}.ply"));
-            write_ply(&ply, &positions, normals.as_deref(), &triangles)?;
-            let plain = json!({ "type": "ply", "filename": ply, "face_normals": normals.is_none() });
-            let front = shape(plain, name, material)?;
-            if front.get("emitter").is_some() {
-                let (copy, faces) = flipped(&positions, &triangles);
-                let back_ply = dir.join(format!("mesh{i}_{m}_flipped.ply"));
-                write_ply(&back_ply, &copy, None, &faces)?;
-                let back = json!({ "type": "ply", "filename": back_ply, "face_normals": true });
-                shapes.insert(format!("mesh{i}_{m}_flipped"), shape(back, name, material)?);
+            if !material.is_emissive() {
+                write_ply(&ply, &positions, normals.as_deref(), &triangles)?;
+                let plain = json!({ "type": "ply", "filename": ply, "face_normals": normals.is_none() });
+                shapes.insert(format!("mesh{i}_{m}"), shape(plain, name, material)?);
+                continue;
             }
-            shapes.insert(format!("mesh{i}_{m}"), front);
+            let [front, back] = two_sided(&positions, &triangles, scene.camera.position);
+            let back_ply = dir.join(format!("mesh{i}_{m}_flipped.ply"));
+            for ((vertices, faces), (key, file)) in [front, back].iter().zip([("", &ply), ("_flipped", &back_ply)]) {
+                write_ply(file, vertices, None, faces)?;
+                let plain = json!({ "type": "ply", "filename": file, "face_normals": true });
+                shapes.insert(format!("mesh{i}_{m}{key}"), shape(plain, name, material)?);
+            }
         }
     }
     Ok(())

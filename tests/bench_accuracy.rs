@@ -101,7 +101,7 @@ fn specialised_and_all_features_pipelines_agree() {
     let scene = rt::scene::load(&repo().join("scenes/cornell_glass.toml")).unwrap_or_else(|e| panic!("{e}"));
     let mut renderer = Session::open(gpu(), scene, BuildQuality::Medium).expect("renderer");
     let own = renderer.features();
-    let all = FeatureSet::all(own.sky, own.sampling, renderer.scene().render.rough_transmission);
+    let all = common::all_features_but_node_graphs(own, renderer.scene());
     assert_ne!(own, all, "the scene must leave some effect out");
     let mut request = RenderRequest::from_scene(renderer.scene());
     (request.width, request.height, request.spp) = (32, 32, 32);
@@ -131,7 +131,7 @@ fn all_features_pipeline_stays_finite_without_emitters() {
     assert!(!own.emission);
     let mut request = RenderRequest::from_scene(renderer.scene());
     (request.width, request.height, request.spp) = (24, 16, 8);
-    request.features = Some(FeatureSet::all(own.sky, own.sampling, renderer.scene().render.rough_transmission));
+    request.features = Some(common::all_features_but_node_graphs(own, renderer.scene()));
     let (_, report) = renderer.render(&request, None).unwrap_or_else(|e| panic!("{e:#}"));
     assert!(report.dropped.is_clean(), "{}", report.dropped);
 }

@@ -22,7 +22,7 @@ fn render(mut scene: Scene, sampler: LightSampler, all_features: bool, size: (u3
     (request.width, request.height, request.spp, request.seed) = (size.0, size.1, spp, seed);
     if all_features {
         let own = session.features();
-        request.features = Some(FeatureSet::all(own.sky, own.sampling, session.scene().render.rough_transmission));
+        request.features = Some(common::all_features_but_node_graphs(own, session.scene()));
     }
     let (image, report) = session.render(&request, None).unwrap_or_else(|e| panic!("{e:#}"));
     assert!(report.dropped.is_clean(), "{}", report.dropped);

@@ -34,6 +34,13 @@ pub fn display_mse(a: &[[f32; 3]], b: &[[f32; 3]]) -> f64 {
     sum / (a.len() * 3) as f64
 }
 
+/// Every effect compiled into one pipeline, as `rt bench` forces them, but the node-graph
+/// interpreter: it is compiled and tested by the node-graph tests, and each pipeline that
+/// holds it takes minutes to compile on lavapipe.
+pub fn all_features_but_node_graphs(own: FeatureSet, scene: &Scene) -> FeatureSet {
+    FeatureSet { node_graphs: false, ..FeatureSet::all(own.sky, own.sampling, scene.render.rough_transmission) }
+}
+
 pub fn gpu() -> &'static GpuContext {
     static GPU: OnceLock<GpuContext> = OnceLock::new();
     GPU.get_or_init(new_gpu)

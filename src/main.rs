@@ -346,6 +346,17 @@ enum BenchCommand {
         #[arg(long, default_value_t = 10)]
         runs: u32,
     },
+    /// How long the first image of a scene takes, each step of a fresh process timed: cold
+    /// (the driver's shader cache empty) and warm (filled by the cold run).
+    FirstPixel {
+        /// Scene file; the built-in Cornell box when omitted.
+        scene: Option<PathBuf>,
+        #[arg(long, value_parser = parse_size, default_value = "1024x720")]
+        size: (u32, u32),
+        /// Run as the measured process (the bench starts itself with this).
+        #[arg(long, hide = true)]
+        child: bool,
+    },
     /// Milliseconds per frame of Open Image Denoise on each device it has (CUDA, CPU): a
     /// rendered frame with albedo and normal AOVs, denoised as `rt render --denoise` does.
     Denoise {
@@ -755,6 +766,12 @@ fn main() -> ExitCode {
         }
         Command::Bench(BenchCommand::StreamLatency { scene, asset, size, runs }) => {
             rt::watch::stream::latency::stream_latency(scene.as_deref(), &asset, size, runs, adapter)
+        }
+        Command::Bench(BenchCommand::FirstPixel { scene, size, child: true }) => {
+            load_scene(scene.as_deref()).and_then(|s| rt::bench::first_pixel::child(s, size, adapter))
+        }
+        Command::Bench(BenchCommand::FirstPixel { scene, size, child: false }) => {
+            rt::bench::first_pixel::first_pixel(scene.as_deref(), size, adapter)
         }
         Command::Bench(BenchCommand::Denoise { scene, size, runs, spp }) => {
             let options = rt::bench::DenoiseBenchOptions { size, runs, spp };

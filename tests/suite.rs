@@ -16,6 +16,7 @@ mod atmosphere_tables;
 mod bad_input;
 mod bench_accuracy;
 mod bench_compare;
+mod bench_first_pixel;
 mod blender_coat_normal;
 mod blender_engine;
 mod blender_engine_ui;

@@ -10,6 +10,7 @@ mod compare_rt;
 pub mod denoise_timing;
 pub mod effects;
 pub mod fireflies;
+pub mod first_pixel;
 pub mod headline;
 mod instances;
 pub mod knobs;

@@ -29,7 +29,7 @@ pub fn child(scene: Scene, size: (u32, u32), adapter: Option<&str>) -> Result<()
     (request.width, request.height, request.spp) = (size.0, size.1, 1);
     let (image, _) = session.render(&request, None)?;
     let first = start.elapsed();
-    let (_, _) = session.render(&RenderRequest { seed: 1, ..request }, None)?;
+    session.render(&RenderRequest { seed: 1, ..request }, None)?;
     let again = start.elapsed() - first;
     let line = json!({
         "device": ctx.describe(), "features": session.features().to_string(), "pixels": image.pixels.len(),

@@ -129,7 +129,7 @@ fn shape(mut shape: Value, name: &str, m: &Material) -> Result<Value> {
     if let Some(medium) = medium(m) {
         shape["interior"] = medium;
     }
-    if m.emission.iter().any(|&c| c > 0.0) {
+    if m.is_emissive() {
         shape["emitter"] = json!({ "type": "area", "radiance": rgb(m.emission) });
     }
     Ok(shape)

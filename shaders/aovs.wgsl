@@ -132,6 +132,19 @@ fn aov_add(m: ptr<function, AovMeans>, sample_index: u32) {
     *m = AovMeans(vec4f(albedo, depth), vec4f(normal, hits), vec4f(position, coverage), vec4f(emission, 0.0), vec4f(diffuse_color, 0.0));
 }
 
+// The sample's values as its exact sums add them (exact_sums.wgsl): albedo, depth where
+// hit, normal, hit count, position, coverage, emission, diffuse colour.
+fn aov_sums() -> array<f32, 18> {
+    let hit = aov.depth >= 0.0;
+    return array<f32, 18>(
+        aov.albedo.x, aov.albedo.y, aov.albedo.z, select(0.0, aov.depth, hit),
+        aov.normal.x, aov.normal.y, aov.normal.z, select(0.0, 1.0, hit),
+        aov.position.x, aov.position.y, aov.position.z, aov.coverage,
+        aov.emission.x, aov.emission.y, aov.emission.z,
+        aov.diffuse_color.x, aov.diffuse_color.y, aov.diffuse_color.z,
+    );
+}
+
 // Under lanes (`render_lanes`), a finished sample's AOVs wait in the lanes' scratch for
 // `reduce_lanes`, five vec4 per sample after the dispatch's radiance samples: (albedo,
 // depth), (normal, unused), (position, coverage), (emission, unused), (diffuse colour, unused). Stored and reloaded

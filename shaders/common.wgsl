@@ -60,6 +60,9 @@ struct Frame {
     transparent_glass: f32,
     // The share of light samples that go to a uniform sky sampled as a light (lights.wgsl).
     sky_light_share: f32,
+    // The index of the render's first sample (`--sample-range`): samples draw their random
+    // numbers by their index in the whole render, whichever part of it takes them.
+    first_sample: u32,
 }
 
 // A BVH2 node holding both children's boxes, so that one fetch decides where to go.

@@ -56,6 +56,9 @@
 //#if adaptive
 //#include "adaptive.wgsl"
 //#endif
+//#if exact_sums
+//#include "exact_sums.wgsl"
+//#endif
 
 // The mean of a colour's channels: how much of the pixel a path of this throughput
 // stands for (Cycles' `average`, as it counts transparency).
@@ -207,13 +210,16 @@ fn sample_done(pixel_index: u32, sample_base: u32, k: u32, radiance: vec3f, lane
     // (WGSL passes function-space pointers only.)
     var acc = pixel_acc;
     var bad = pixel_bad;
-    accumulate(&acc, &bad, radiance, first_bad_event, sample_index);
+    accumulate(&acc, &bad, radiance, first_bad_event, sample_index, pixel_index);
     pixel_acc = acc;
     pixel_bad = bad;
     //#if aovs
     var aovs = pixel_aovs;
     aov_add(&aovs, sample_index);
     pixel_aovs = aovs;
+    //#if exact_sums
+    exact_add_aovs(pixel_index, aov_sums());
+    //#endif
     //#endif
 }
 
@@ -279,7 +285,7 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
     loop {
         if starting {
             starting = false;
-            rng = rng_for_sample(pixel_index, sample_base + k, frame.seed);
+            rng = rng_for_sample(pixel_index, frame.first_sample + sample_base + k, frame.seed);
             first_bad_event = EVENT_NONE;
             path_key = rng.state;
             //#if node_graphs
@@ -564,7 +570,14 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
 // `acc`; a non-finite sample is dropped and counted in `bad` with the event `event`
 // that first made it so. One sample at a time, in sample order, so that the result
 // does not depend on how samples are split into dispatches or lanes.
-fn accumulate(acc: ptr<function, vec4f>, bad: ptr<function, u32>, radiance: vec3f, event: u32, sample_index: u32) {
+fn accumulate(
+    acc: ptr<function, vec4f>,
+    bad: ptr<function, u32>,
+    radiance: vec3f,
+    event: u32,
+    sample_index: u32,
+    pixel_index: u32,
+) {
     // A non-finite sample would poison the pixel for good: drop it, count it, keep its cause.
     if !all_finite(radiance) {
         if (*bad & 0xffffffu) == 0u {
@@ -579,6 +592,9 @@ fn accumulate(acc: ptr<function, vec4f>, bad: ptr<function, u32>, radiance: vec3
         l *= frame.clamp_luminance / y;
         y = frame.clamp_luminance;
     }
+    //#if exact_sums
+    exact_add_radiance(pixel_index, l, y);
+    //#endif
     let n = f32(sample_index + 1u - (*bad & 0xffffffu));
     let y_before = luminance((*acc).rgb);
     let mean = (*acc).rgb + (l - (*acc).rgb) / n;

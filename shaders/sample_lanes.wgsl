@@ -79,12 +79,16 @@ var<private> reduced_aovs: AovMeans;
 // Adds the lanes' sample `index` (`sample`, from `slot`) to the pixel's mean, and its
 // AOVs in the same order and by the same sums as `render` adds them.
 fn reduce_sample(acc: ptr<function, vec4f>, bad: ptr<function, u32>, sample: vec4f, slot: u32, index: u32) {
-    accumulate(acc, bad, sample.xyz, bitcast<u32>(sample.w), index);
+    let pixel_index = slot % (frame.width * frame.height);
+    accumulate(acc, bad, sample.xyz, bitcast<u32>(sample.w), index, pixel_index);
     //#if aovs
     aov_lane_load(slot);
     var aovs = reduced_aovs;
     aov_add(&aovs, index);
     reduced_aovs = aovs;
+    //#if exact_sums
+    exact_add_aovs(pixel_index, aov_sums());
+    //#endif
     //#endif
 }
 

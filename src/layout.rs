@@ -65,7 +65,9 @@ pub struct GpuFrame {
     /// The share of light samples that go to a uniform sky sampled as a light
     /// (`[sky] sample_as_light`), as an environment map's `light_share`.
     pub sky_light_share: f32,
-    pub _pad: u32,
+    /// The index of the render's first sample (`rt render --sample-range`): a sample's
+    /// random numbers follow from its index in the whole render.
+    pub first_sample: u32,
 }
 
 /// `GpuFrame::panorama`: which panorama maps the image to directions (`shaders/panorama.wgsl`).

@@ -7,6 +7,7 @@ use clap::{Args, Parser, Subcommand};
 use rt::bvh::{BuildQuality, PackOutcome, PackReport};
 use rt::denoise::{DenoiseDevice, Denoiser};
 use rt::gpu::GpuContext;
+use rt::render::part::PartRequest;
 use rt::render::{
     DroppedSamples, Image, ImageFormat, Progress, RenderFlags, RenderRequest, Session, aov_channels, check_output,
     human, image_format, json_event, write_image, write_layered_exr,
@@ -46,6 +47,16 @@ enum Command {
     },
     /// Render a scene to a PNG (tone-mapped sRGB) or EXR (linear radiance).
     Render(RenderArgs),
+    /// Merge parts that `rt render --sample-range` wrote into the image one render gives,
+    /// bit for bit; parts that overlap, leave gaps or come from another render are refused.
+    Merge {
+        /// The parts (OpenEXR files), in any order.
+        #[arg(required = true)]
+        parts: Vec<PathBuf>,
+        /// Output image: .png or .exr (with the AOV layers if the parts were rendered with --aovs).
+        #[arg(short, long)]
+        output: PathBuf,
+    },
     /// Show a scene in a window that re-renders as its files change (or, headless, write frames).
     Watch(WatchArgs),
     /// Print what a scene contains: counts, bounds, BVH statistics, feature set, GPU.
@@ -156,6 +167,11 @@ struct RenderArgs {
     /// programs that read plain images (the Blender engine's passes).
     #[arg(long)]
     aov_files: Option<PathBuf>,
+    /// Render only samples FIRST..END of each pixel (e.g. 0..256) into a part, an OpenEXR
+    /// that `rt merge` adds to the other parts: parts that tile 0..N merge into the image
+    /// --spp N gives, bit for bit. Give -o an .exr path.
+    #[arg(long, value_parser = rt::render::part::parse_sample_range)]
+    sample_range: Option<std::ops::Range<u32>>,
 }
 
 /// A positive, finite number of seconds.
@@ -170,7 +186,7 @@ impl RenderArgs {
     fn flags(&self) -> RenderFlags {
         RenderFlags {
             size: self.size,
-            spp: self.spp,
+            spp: self.sample_range.as_ref().map(|r| r.len() as u32).or(self.spp),
             max_bounces: self.max_bounces,
             exposure: self.exposure,
             transparent: self.transparent,
@@ -495,6 +511,7 @@ struct StrictFinding(DroppedSamples);
 
 fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
     check_output(&args.output)?;
+    check_sample_range(&args)?;
     let json = args.progress == Progress::Json;
     // With JSON progress, stderr holds JSON lines only.
     let say = |line: String| {
@@ -514,7 +531,18 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
         say(format!("denoising with Open Image Denoise on {}", denoiser.describe()));
     }
     let mut scene = load_scene(args.scene.as_deref())?;
-    let request = RenderRequest { progress: args.progress, ..args.flags().apply(&mut scene)? };
+    let request = RenderRequest {
+        progress: args.progress,
+        exact_sums: true,
+        first_sample: args.sample_range.as_ref().map_or(0, |r| r.start),
+        ..args.flags().apply(&mut scene)?
+    };
+    if args.sample_range.is_some() && request.adaptive() {
+        bail!(
+            "--sample-range: adaptive sampling stops pixels by all the samples before, so it cannot be split; \
+             add --noise-threshold 0"
+        );
+    }
     let exposure = scene.render.exposure;
     let ctx = GpuContext::new(adapter)?;
     say(format!("GPU: {}", ctx.describe()));
@@ -532,6 +560,12 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
     let time_limit = args.time_limit.map(std::time::Duration::from_secs_f64);
     let mut snapshots = Snapshots::new(args.snapshot.as_deref(), args.snapshot_every, json);
     let (image, report) = session.render_with(&request, None, time_limit, |s| snapshots.after_step(s))?;
+    if let Some(samples) = args.sample_range.clone() {
+        let part = PartRequest { path: &args.output, samples, exposure, aov_layers: args.aovs };
+        rt::render::part::save(&session, &part)?;
+        say(format!("wrote {} (samples {:?} of each pixel)", args.output.display(), part.samples));
+        return Ok(());
+    }
     let aovs = if request.aovs { Some(session.aovs()?) } else { None };
     let denoised = match (&mut denoiser, &aovs) {
         (Some(denoiser), Some(aovs)) => {
@@ -582,6 +616,48 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
         });
         eprintln!("{}", json_event("done", fields));
     }
+    Ok(())
+}
+
+/// Refuses what a part of a render cannot hold: it is the samples' sums, finished by `rt merge`.
+fn check_sample_range(args: &RenderArgs) -> Result<()> {
+    let Some(range) = &args.sample_range else { return Ok(()) };
+    let refused = [
+        (args.spp.is_some(), "--spp (the range says which samples)"),
+        (args.denoise, "--denoise (denoise the merged image)"),
+        (args.time_limit.is_some(), "--time-limit (a part holds all of its samples)"),
+        (args.snapshot.is_some(), "--snapshot"),
+        (args.aov_files.is_some(), "--aov-files"),
+    ];
+    if let Some((_, what)) = refused.iter().find(|(given, _)| *given) {
+        bail!("--sample-range {}..{}: a part cannot take {what}", range.start, range.end);
+    }
+    if image_format(&args.output)? != ImageFormat::Exr {
+        bail!("--sample-range: a part is an OpenEXR that `rt merge` reads; give -o an .exr path");
+    }
+    Ok(())
+}
+
+/// `rt merge`: the parts' sums added, written as `rt render` writes its image.
+fn merge(parts: &[PathBuf], output: &Path) -> Result<()> {
+    check_output(output)?;
+    let merged = rt::render::part::merge(parts)?;
+    for warning in &merged.warnings {
+        log::warn!("{warning}");
+    }
+    let (image, aovs) = merged.image();
+    let header = &merged.header;
+    match aovs {
+        Some(aovs) if header.aov_layers => {
+            write_layered_exr(output, image.width, image.height, aov_channels(&image, &aovs, None))?
+        }
+        _ => write_image(&image, output, header.exposure)?,
+    }
+    let parts = match parts.len() {
+        1 => "1 part".to_string(),
+        n => format!("{n} parts"),
+    };
+    eprintln!("wrote {} ({}x{}, {} spp from {parts})", output.display(), image.width, image.height, merged.spp);
     Ok(())
 }
 
@@ -735,6 +811,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Pack { paths, quality, force } => pack(&paths, quality, force),
         Command::Render(args) => render(args, adapter),
+        Command::Merge { parts, output } => merge(&parts, &output),
         Command::Watch(args) => watch(args, adapter),
         Command::Info { scene, quality } => {
             load_scene(scene.as_deref()).and_then(|s| rt::info::print_info(s, quality, adapter))

@@ -60,6 +60,7 @@ mod robust_outputs;
 mod robust_silent;
 mod robust_watch;
 mod sample_lanes;
+mod sample_range;
 mod scale_export;
 mod scene_reference;
 mod scenes_render;

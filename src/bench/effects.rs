@@ -124,6 +124,8 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
         FeatureSet { coat_normal: true, coat: true, normal_maps: true, textures: true, ..own },
     );
     force("uv tangents", own.uv_tangents, FeatureSet { uv_tangents: true, anisotropy: true, ..own });
+    // `rt render`'s exact sums beside the running means (asked for by the request, see `effects`).
+    force("exact sums", own.exact_sums, FeatureSet { exact_sums: true, ..own });
     v
 }
 
@@ -146,7 +148,8 @@ pub fn effects(
     let variants = variants(session.features(), rough);
     bar.set_length((variants.len() as u64) * (repeats.max(1) as u64 + 1));
     for (_, features) in &variants {
-        warm_up(&mut session, &RenderRequest { features: Some(*features), ..request.clone() }, &timer)?;
+        let exact_sums = features.exact_sums;
+        warm_up(&mut session, &RenderRequest { features: Some(*features), exact_sums, ..request.clone() }, &timer)?;
         bar.inc(1);
     }
     // Interleaved, so that a machine growing busier or cooler does not favour one pipeline.
@@ -155,7 +158,8 @@ pub fn effects(
     let mut dropped = vec![0u64; variants.len()];
     for repeat in 0..repeats.max(1) {
         for (i, (_, features)) in variants.iter().enumerate() {
-            let r = RenderRequest { features: Some(*features), seed: repeat + 1, ..request.clone() };
+            let exact_sums = features.exact_sums;
+            let r = RenderRequest { features: Some(*features), exact_sums, seed: repeat + 1, ..request.clone() };
             let render = render_timed(&mut session, &r, &timer)?;
             times[i].push(render.time);
             dropped[i] += render.dropped;

@@ -22,10 +22,10 @@ pub struct GpuContext {
 
 /// Storage buffers the integrator binds in one stage: 20 in the scene group (see
 /// `shaders/common.wgsl`, the instances' Shadow Terminator settings and the node programs among them; the
-/// microfacet tables' in `shaders/microfacet_tables.wgsl`), 6 of the accumulation (with
-/// AOVs, adaptive sampling's counts and the lanes' chunk counters) and the atmosphere's
-/// tables. lavapipe offers 32, the NVIDIA driver far more.
-const STORAGE_BUFFERS_NEEDED: u32 = 27;
+/// microfacet tables' in `shaders/microfacet_tables.wgsl`), 7 of the accumulation (with
+/// AOVs, adaptive sampling's counts, the lanes' chunk counters and the exact sums) and the
+/// atmosphere's tables. lavapipe offers 32, the NVIDIA driver far more.
+const STORAGE_BUFFERS_NEEDED: u32 = 28;
 
 const NO_ADAPTER_HELP: &str = "no GPU adapter found. rt needs Vulkan; on a machine without a GPU, \
 install Mesa's CPU driver (lavapipe): `sudo apt-get install mesa-vulkan-drivers`";

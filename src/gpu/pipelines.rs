@@ -35,8 +35,9 @@ impl PipelineCache {
     pub fn new(ctx: &GpuContext) -> Self {
         Self {
             scene_layout: scene_bind_group_layout(&ctx.device),
-            // Means, non-finite counts, lane scratch, AOVs, adaptive sampling's counts.
-            accumulation_layout: io_bind_group_layout(&ctx.device, 6),
+            // Means, non-finite counts, lane scratch, AOVs, adaptive sampling's counts, the
+            // lanes' chunk counters, exact sums.
+            accumulation_layout: io_bind_group_layout(&ctx.device, 7),
             trace_layout: io_bind_group_layout(&ctx.device, 2),
             sky_layout: sky_bind_group_layout(&ctx.device, false),
             files: ShaderFiles::BuiltIn,

@@ -63,6 +63,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("dielectric.wgsl"),
     shader!("directions.wgsl"),
     shader!("environment.wgsl"),
+    shader!("exact_sums.wgsl"),
     shader!("srgb.wgsl"),
     shader!("hit.wgsl"),
     shader!("integrator.wgsl"),

@@ -32,6 +32,14 @@ const GPU_INVOCATIONS: u64 = 1 << 18;
 /// samples. A CPU gains nothing from longer dispatches, so it keeps a wide margin.
 const CPU_SAMPLES_PER_INVOCATION: u32 = 64;
 
+/// The outputs beside the means that a render asks the accumulation for.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Outputs {
+    pub aovs: bool,
+    pub adaptive: bool,
+    pub exact_sums: bool,
+}
+
 pub struct Accumulation {
     pub width: u32,
     pub height: u32,
@@ -48,6 +56,8 @@ pub struct Accumulation {
     aovs: wgpu::Buffer,
     /// Samples taken per pixel under adaptive sampling (a token buffer until then).
     pixel_samples: wgpu::Buffer,
+    /// The samples' exact sums (`shaders/exact_sums.wgsl`; a token buffer until a render asks).
+    exact: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     /// Lanes per pixel that keep the GPU busy; 1 on a CPU adapter.
     lanes_wanted: u32,
@@ -95,7 +105,8 @@ impl Accumulation {
         let lane_chunks = buffer("lane chunks", 16);
         let aovs = buffer("aovs", AOV_BYTES);
         let pixel_samples = buffer("pixel samples", 16);
-        let buffers = [&means, &non_finite, &lane_samples, &aovs, &pixel_samples, &lane_chunks];
+        let exact = buffer("exact sums", 16);
+        let buffers = [&means, &non_finite, &lane_samples, &aovs, &pixel_samples, &lane_chunks, &exact];
         let bind_group = crate::gpu::bind_group(ctx, "accumulation", layout, &buffers);
         let mut acc = Self {
             width,
@@ -107,6 +118,7 @@ impl Accumulation {
             lane_chunks,
             aovs,
             pixel_samples,
+            exact,
             bind_group,
             lanes_wanted,
             cpu,
@@ -143,15 +155,22 @@ impl Accumulation {
     }
 
     fn rebind(&mut self, ctx: &GpuContext, layout: &wgpu::BindGroupLayout) {
-        let buffers =
-            [&self.means, &self.non_finite, &self.lane_samples, &self.aovs, &self.pixel_samples, &self.lane_chunks];
+        let buffers = [
+            &self.means,
+            &self.non_finite,
+            &self.lane_samples,
+            &self.aovs,
+            &self.pixel_samples,
+            &self.lane_chunks,
+            &self.exact,
+        ];
         self.bind_group = crate::gpu::bind_group(ctx, "accumulation", layout, &buffers);
     }
 
-    /// Makes room for the AOVs and the per-pixel sample counts of adaptive sampling, as
-    /// asked and if there is none yet. Their contents start at zero: call before the
-    /// first sample (they are kept from then on, like the means).
-    pub fn prepare_outputs(&mut self, ctx: &GpuContext, layout: &wgpu::BindGroupLayout, aovs: bool, adaptive: bool) {
+    /// Makes room for the AOVs, the per-pixel sample counts of adaptive sampling and the
+    /// exact sums, as asked and if there is none yet. Their contents start at zero: call
+    /// before the first sample (they are kept from then on, like the means).
+    pub fn prepare_outputs(&mut self, ctx: &GpuContext, layout: &wgpu::BindGroupLayout, outputs: Outputs) {
         let pixels = self.width as u64 * self.height as u64;
         let mut changed = false;
         let mut grow = |buffer: &mut wgpu::Buffer, label, size| {
@@ -165,11 +184,14 @@ impl Accumulation {
                 changed = true;
             }
         };
-        if aovs {
+        if outputs.aovs {
             grow(&mut self.aovs, "aovs", pixels * AOV_BYTES);
         }
-        if adaptive {
+        if outputs.adaptive {
             grow(&mut self.pixel_samples, "pixel samples", pixels * 8);
+        }
+        if outputs.exact_sums {
+            grow(&mut self.exact, "exact sums", pixels * 4 * super::exact::words_per_pixel(outputs.aovs) as u64);
         }
         if changed {
             self.rebind(ctx, layout);
@@ -188,6 +210,7 @@ impl Accumulation {
         encoder.clear_buffer(&self.non_finite, 0, None);
         encoder.clear_buffer(&self.aovs, 0, None);
         encoder.clear_buffer(&self.pixel_samples, 0, None);
+        encoder.clear_buffer(&self.exact, 0, None);
         self.samples = 0;
     }
 
@@ -262,11 +285,7 @@ impl Accumulation {
     pub fn image(&self, ctx: &GpuContext, readback: &Readback, adaptive: bool) -> Result<Image> {
         let means: Vec<[f32; 4]> = readback.read(ctx, &self.means)?;
         let dropped = self.non_finite(ctx, readback)?;
-        let taken: Vec<u32> = match adaptive {
-            // Per pixel: samples taken, and whether it stopped.
-            true => readback.read::<[u32; 2]>(ctx, &self.pixel_samples)?.iter().map(|p| p[0]).collect(),
-            false => vec![self.samples; means.len()],
-        };
+        let taken = self.taken(ctx, readback, adaptive)?;
         let mut pixels = Vec::with_capacity(means.len());
         let mut std_error = Vec::with_capacity(means.len());
         let mut sample_counts = Vec::with_capacity(means.len());
@@ -281,6 +300,22 @@ impl Accumulation {
         }
         let (width, height, samples) = (self.width, self.height, self.samples);
         Ok(Image { width, height, samples, pixels, std_error, sample_counts, alpha: None })
+    }
+
+    /// Samples each pixel took, finite or not; `adaptive`: counted per pixel.
+    pub fn taken(&self, ctx: &GpuContext, readback: &Readback, adaptive: bool) -> Result<Vec<u32>> {
+        let pixels = self.width as usize * self.height as usize;
+        Ok(match adaptive {
+            // Per pixel: samples taken, and whether it stopped.
+            true => readback.read::<[u32; 2]>(ctx, &self.pixel_samples)?.iter().take(pixels).map(|p| p[0]).collect(),
+            false => vec![self.samples; pixels],
+        })
+    }
+
+    /// The exact sums' words (see [`super::exact`]); call only after
+    /// [`Self::prepare_outputs`] asked for them.
+    pub fn exact_words(&self, ctx: &GpuContext, readback: &Readback) -> Result<Vec<u32>> {
+        readback.read(ctx, &self.exact)
     }
 
     /// The AOVs' means per pixel, five vec4 each (see `shaders/aovs.wgsl`); call only

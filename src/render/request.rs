@@ -41,6 +41,11 @@ pub struct RenderRequest {
     pub noise_threshold: f32,
     /// Samples a pixel takes before adaptive sampling may stop it.
     pub adaptive_min_samples: u32,
+    /// The image from exact sums of the samples (see [`super::exact`]): the same bit for
+    /// bit however the samples are split into parts.
+    pub exact_sums: bool,
+    /// The index of the first sample: the render takes samples `first_sample..first_sample + spp`.
+    pub first_sample: u32,
 }
 
 impl RenderRequest {
@@ -62,6 +67,8 @@ impl RenderRequest {
             aovs: false,
             noise_threshold: r.noise_threshold,
             adaptive_min_samples: r.adaptive_min_samples,
+            exact_sums: false,
+            first_sample: 0,
         }
     }
 

@@ -96,6 +96,9 @@ pub struct FeatureSet {
     pub aovs: bool,
     /// Pixels stop taking samples once their noise is below a threshold (asked for by a render).
     pub adaptive: bool,
+    /// Exact integer sums of the samples beside the running means, so that parts of a
+    /// render merge into the image one render gives (asked for by `rt render`).
+    pub exact_sums: bool,
     /// Film › Transparent: camera rays that leave the scene add nothing and count as
     /// uncovered (`[render] transparent`).
     pub transparent_film: bool,
@@ -206,6 +209,7 @@ impl FeatureSet {
                 && (materials_in_use.iter().any(|m| m.is_emissive()) || scene.lights.iter().any(|l| !l.is_sun())),
             aovs: false,
             adaptive: false,
+            exact_sums: false,
             transparent_film: settings.transparent,
             multiscatter: settings.microfacet == Microfacet::Multiscatter
                 && materials_in_use.iter().any(|m| {
@@ -256,6 +260,7 @@ impl FeatureSet {
             light_tree: sampling == Sampling::Nee,
             aovs: false,
             adaptive: false,
+            exact_sums: false,
             transparent_film: false,
             multiscatter: true,
             coating: true,
@@ -315,6 +320,7 @@ impl FeatureSet {
             "light_tree" => self.light_tree,
             "aovs" => self.aovs,
             "adaptive" => self.adaptive,
+            "exact_sums" => self.exact_sums,
             "transparent_film" => self.transparent_film,
             "multiscatter" => self.multiscatter,
             "coating" => self.coating,
@@ -362,6 +368,7 @@ impl fmt::Display for FeatureSet {
             (self.uv_sets, "uv-sets"),
             (self.aovs, "aovs"),
             (self.adaptive, "adaptive"),
+            (self.exact_sums, "exact-sums"),
             (self.transparent_film, "transparent-film"),
             (self.multiscatter, "multiscatter"),
             (self.coating, "coating"),

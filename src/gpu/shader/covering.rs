@@ -72,6 +72,7 @@ fn factors() -> Vec<Factor> {
         flag!(light_tree),
         flag!(aovs),
         flag!(adaptive),
+        flag!(exact_sums),
         flag!(transparent_film),
         flag!(multiscatter),
         flag!(coating),

@@ -48,6 +48,7 @@ fn feature_sets() -> Vec<FeatureSet> {
             light_tree: on(0) && on(4) != on(7),
             aovs: on(3) != on(7),
             adaptive: on(1) != on(5),
+            exact_sums: on(2) != on(4),
             transparent_film: on(2) != on(7),
             multiscatter: on(7) != on(1),
             coating: on(5) != on(7),
@@ -95,6 +96,7 @@ fn plain() -> FeatureSet {
         light_tree: false,
         aovs: false,
         adaptive: false,
+        exact_sums: false,
         transparent_film: false,
         multiscatter: false,
         coating: false,
@@ -214,8 +216,13 @@ fn every_shader_file_is_built_in_and_used_by_a_program() {
     for sky in [SkyFeature::Uniform, SkyFeature::Atmosphere, SkyFeature::Environment] {
         for sampling in [Sampling::Nee, Sampling::Resampled] {
             for rough in [RoughTransmission::Ggx, RoughTransmission::Cone] {
-                // AOVs and adaptive sampling are asked for by a render, not in the set of effects.
-                let features = FeatureSet { aovs: true, adaptive: true, ..FeatureSet::all(sky, sampling, rough) };
+                // AOVs, adaptive sampling and exact sums are asked for by a render, not in the set of effects.
+                let features = FeatureSet {
+                    aovs: true,
+                    adaptive: true,
+                    exact_sums: true,
+                    ..FeatureSet::all(sky, sampling, rough)
+                };
                 for program in [Program::Integrator, Program::Trace] {
                     used.extend(files_in(&assemble(program, &features)).into_iter().map(str::to_owned));
                 }

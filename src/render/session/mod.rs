@@ -8,8 +8,9 @@ mod update;
 
 pub use update::{GeometryUpdate, SceneUpdate};
 
-use super::accumulation::{Accumulation, check_image_size};
+use super::accumulation::{Accumulation, Outputs, check_image_size};
 use super::dropped::DroppedSamples;
+use super::exact::ExactSums;
 use super::pacing::{DispatchSizer, Pacing};
 use super::progress::ProgressReporter;
 use super::{Aovs, Image, RenderRequest, camera, sun};
@@ -82,7 +83,7 @@ impl<'a> Session<'a> {
         let request = with_alpha_counted(RenderRequest::from_scene(&scene), features);
         let pipelines = PipelineCache::new(ctx);
         let mut acc = Accumulation::new(ctx, &pipelines.accumulation_layout, request.width, request.height)?;
-        acc.prepare_outputs(ctx, &pipelines.accumulation_layout, request.aovs, request.adaptive());
+        acc.prepare_outputs(ctx, &pipelines.accumulation_layout, outputs(&request));
         let buffers = SceneBuffers::new(ctx, &geometry, &pipelines.scene_layout)?;
         if matches!(scene.sky, Sky::Atmosphere(_)) && scene.sun.is_none() {
             log::warn!("{}: the atmosphere has no [sun] to light it: only its extinction shows", scene.origin);
@@ -187,7 +188,7 @@ impl<'a> Session<'a> {
         if resized {
             self.acc = Accumulation::new(self.ctx, &self.pipelines.accumulation_layout, request.width, request.height)?;
         }
-        self.acc.prepare_outputs(self.ctx, &self.pipelines.accumulation_layout, request.aovs, request.adaptive());
+        self.acc.prepare_outputs(self.ctx, &self.pipelines.accumulation_layout, outputs(request));
         let reset = resized || !self.request.same_image(request);
         self.sizer.fix(request.samples_per_dispatch);
         self.request = request.clone();
@@ -219,6 +220,7 @@ impl<'a> Session<'a> {
         FeatureSet {
             aovs: self.request.aovs,
             adaptive: self.request.adaptive(),
+            exact_sums: self.request.exact_sums,
             transparent_film: self.features.transparent_film,
             holdout: features.holdout || self.features.holdout,
             ..features
@@ -254,6 +256,7 @@ impl<'a> Session<'a> {
         frame.noise_threshold = request.noise_threshold;
         frame.adaptive_min_samples = request.adaptive_min_samples;
         frame.transparent_glass = self.scene.render.transparent_glass_alpha();
+        frame.first_sample = request.first_sample;
         frame
     }
 
@@ -369,6 +372,9 @@ impl<'a> Session<'a> {
     /// The mean radiance per pixel so far, with each pixel's standard error, and with a
     /// transparent film or holdouts (and AOVs, which count what the samples cover) its alpha.
     pub fn image(&self) -> Result<Image> {
+        if let Some(sums) = self.exact_sums()? {
+            return Ok(sums.image(self.acc.samples, self.features.has_alpha()));
+        }
         let mut image = self.acc.image(self.ctx, &self.readback, self.request.adaptive())?;
         if self.features.has_alpha() && self.request.aovs {
             let means = self.acc.aov_means(self.ctx, &self.readback)?;
@@ -382,8 +388,23 @@ impl<'a> Session<'a> {
         if !self.request.aovs {
             anyhow::bail!("the render did not ask for AOVs");
         }
+        if let Some(aovs) = self.exact_sums()?.and_then(|sums| sums.aovs()) {
+            return Ok(aovs);
+        }
         let means = self.acc.aov_means(self.ctx, &self.readback)?;
         Ok(Aovs::from_means(self.acc.width, self.acc.height, &means))
+    }
+
+    /// The exact sums of the samples so far, where the request asked for them.
+    pub fn exact_sums(&self) -> Result<Option<ExactSums>> {
+        if !self.request.exact_sums {
+            return Ok(None);
+        }
+        let words = self.acc.exact_words(self.ctx, &self.readback)?;
+        let taken = self.acc.taken(self.ctx, &self.readback, self.request.adaptive())?;
+        let dropped = self.acc.non_finite(self.ctx, &self.readback)?.iter().map(|(n, _)| *n).collect();
+        let (width, height) = (self.acc.width, self.acc.height);
+        Ok(Some(ExactSums::from_words(width, height, self.request.aovs, &words, taken, dropped)))
     }
 
     /// What was dropped since the last reset; the stack-overflow counter starts again.
@@ -392,6 +413,11 @@ impl<'a> Session<'a> {
         let per_pixel = self.acc.non_finite(self.ctx, &self.readback)?;
         Ok(DroppedSamples::from_pixels(&per_pixel, stats[STAT_STACK_OVERFLOW]))
     }
+}
+
+/// The outputs beside the means that `request` needs.
+fn outputs(request: &RenderRequest) -> Outputs {
+    Outputs { aovs: request.aovs, adaptive: request.adaptive(), exact_sums: request.exact_sums }
 }
 
 /// `request`, counting the AOVs where the scene's image has an alpha (a transparent film,

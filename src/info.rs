@@ -1,9 +1,39 @@
 //! `rt info`: what a scene contains and which effects it needs.
 
+use crate::asset::AssetFiles;
 use crate::bvh::{BuildQuality, Provenance, SceneGeometry};
 use crate::gpu::GpuContext;
 use crate::scene::Scene;
 use anyhow::Result;
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+
+/// `rt info --inputs`: every file rendering `scene` reads (the scene, its meshes and
+/// materials, their textures and caches, an environment image), one absolute path a line:
+/// what a farm ships to its workers. Stale or missing caches are packed first.
+pub fn print_inputs(scene: Option<&Path>, quality: BuildQuality) -> Result<()> {
+    crate::files::input::record_inputs();
+    let scene = match scene {
+        Some(path) => crate::scene::load(path)?,
+        None => crate::scene::default_scene()?,
+    };
+    let geometry = SceneGeometry::build(&scene, quality)?;
+    let mut inputs: BTreeSet<PathBuf> = crate::files::input::recorded_inputs().into_iter().collect();
+    let caches = geometry.meshes.iter().filter_map(|m| AssetFiles::resolve(&m.path).ok()?.cache_path());
+    let environment = match &scene.sky {
+        crate::scene::Sky::Environment(e) => Some(e.image.clone()),
+        _ => None,
+    };
+    for path in caches.chain(environment) {
+        if let Ok(path) = std::fs::canonicalize(&path) {
+            inputs.insert(path);
+        }
+    }
+    for path in inputs {
+        println!("{}", path.display());
+    }
+    Ok(())
+}
 
 pub fn print_info(scene: Scene, quality: BuildQuality, adapter: Option<&str>) -> Result<()> {
     let g = SceneGeometry::build(&scene, quality)?;

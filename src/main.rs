@@ -65,6 +65,10 @@ enum Command {
         scene: Option<PathBuf>,
         #[arg(long, value_enum, default_value_t)]
         quality: BuildQuality,
+        /// Print only the files rendering the scene reads (the scene, meshes, materials,
+        /// textures, caches, environment image), one absolute path a line.
+        #[arg(long)]
+        inputs: bool,
     },
     /// Measure performance.
     #[command(subcommand)]
@@ -549,6 +553,10 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
     let origin = scene.origin.clone();
     let mut session = Session::open(&ctx, scene, args.quality)?;
     say(format!("{origin}: features [{}]", session.features()));
+    if args.sample_range.is_some() {
+        let aovs = request.aovs || session.features().has_alpha();
+        rt::render::check_exact_sums(&ctx, request.width, request.height, aovs).context("--sample-range")?;
+    }
     if let Some(tables) = session.atmosphere() {
         say(format!("atmosphere tables built in {:.1} ms", tables.build_time.as_secs_f64() * 1e3));
     }
@@ -813,7 +821,8 @@ fn main() -> ExitCode {
         Command::Render(args) => render(args, adapter),
         Command::Merge { parts, output } => merge(&parts, &output),
         Command::Watch(args) => watch(args, adapter),
-        Command::Info { scene, quality } => {
+        Command::Info { scene, quality, inputs: true } => rt::info::print_inputs(scene.as_deref(), quality),
+        Command::Info { scene, quality, inputs: false } => {
             load_scene(scene.as_deref()).and_then(|s| rt::info::print_info(s, quality, adapter))
         }
         Command::Doctor => {

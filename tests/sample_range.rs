@@ -179,3 +179,27 @@ fn rt_merge_writes_the_files_rt_render_writes_and_refuses_other_renders_parts() 
     let format = rewrite("format.exr", PartHeader { format: 99, ..header.clone() });
     assert!(format.contains("a part of format 99"), "{format}");
 }
+
+#[test]
+fn exact_sums_beyond_one_binding_fall_back_to_the_means_and_refuse_parts() {
+    // 256×256 with AOVs: 17 MiB of exact sums, over this device's 16 MiB per binding.
+    let small = rt::gpu::GpuContext::with_binding_limit(std::env::var("RT_ADAPTER").ok().as_deref(), 16 << 20)
+        .unwrap_or_else(|e| panic!("{e:#}"));
+    let refused = rt::render::check_exact_sums(&small, 256, 256, true).expect_err("over the binding");
+    assert!(refused.to_string().contains("exact sums need 17 MiB"), "{refused}");
+    assert!(rt::render::check_exact_sums(&small, 256, 256, false).is_ok(), "without AOVs they fit");
+    let scene = rt::scene::default_scene().unwrap_or_else(|e| panic!("{e:#}"));
+    let mut session = Session::open(&small, scene, BuildQuality::Medium).unwrap_or_else(|e| panic!("{e:#}"));
+    let request = RenderRequest {
+        width: 256,
+        height: 256,
+        spp: 1,
+        aovs: true,
+        exact_sums: true,
+        noise_threshold: 0.0,
+        ..RenderRequest::from_scene(session.scene())
+    };
+    let (image, _) = session.render(&request, None).unwrap_or_else(|e| panic!("{e:#}"));
+    assert!(session.exact_sums().unwrap_or_else(|e| panic!("{e:#}")).is_none(), "no exact sums kept");
+    assert!(image.pixels.iter().any(|p| p[0] > 0.0), "the image comes from the running means");
+}

@@ -44,6 +44,7 @@ mod cycles_textures;
 mod denoise;
 mod docs;
 mod environment;
+mod farm;
 mod furnace;
 mod geometry_precision;
 mod instances;

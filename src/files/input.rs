@@ -4,10 +4,33 @@
 //! in case a FIFO replaced the file after the check), what was opened is checked
 //! again, and a read stops at the size the file had when it was opened.
 
+use std::collections::BTreeSet;
 use std::fs::{File, FileType, OpenOptions};
 use std::io::{self, Read};
 use std::os::unix::fs::{FileTypeExt, OpenOptionsExt};
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+/// The files opened since [`record_inputs`], when recording (`rt info --inputs`).
+static RECORDED: Mutex<Option<BTreeSet<PathBuf>>> = Mutex::new(None);
+
+/// From now on, remembers every file this process opens for reading.
+pub fn record_inputs() {
+    *RECORDED.lock().unwrap_or_else(|e| e.into_inner()) = Some(BTreeSet::new());
+}
+
+/// The files opened since [`record_inputs`] (absolute, as far as they resolve), in order.
+pub fn recorded_inputs() -> Vec<PathBuf> {
+    let recorded = RECORDED.lock().unwrap_or_else(|e| e.into_inner());
+    recorded.iter().flatten().cloned().collect()
+}
+
+fn remember(path: &Path) {
+    let mut recorded = RECORDED.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(set) = recorded.as_mut() {
+        set.insert(std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf()));
+    }
+}
 
 /// Why an input file could not be read, naming it.
 #[derive(Debug, thiserror::Error)]
@@ -85,6 +108,7 @@ pub fn open(path: &Path) -> Result<(File, u64), InputError> {
     if !metadata.is_file() {
         return Err(fail(InputProblem::NotAFile(describe(metadata.file_type()))));
     }
+    remember(path);
     Ok((file, metadata.len()))
 }
 

@@ -58,6 +58,8 @@ pub struct Accumulation {
     pixel_samples: wgpu::Buffer,
     /// The samples' exact sums (`shaders/exact_sums.wgsl`; a token buffer until a render asks).
     exact: wgpu::Buffer,
+    /// Whether the samples' exact sums are kept: asked for, and within one GPU binding.
+    exact_kept: bool,
     bind_group: wgpu::BindGroup,
     /// Lanes per pixel that keep the GPU busy; 1 on a CPU adapter.
     lanes_wanted: u32,
@@ -77,6 +79,29 @@ pub fn check_image_size(ctx: &GpuContext, width: u32, height: u32) -> Result<()>
             ctx.adapter_info.name,
             max >> 20,
             (max / MEAN_BYTES) as f64 / 1e6
+        );
+    }
+    Ok(())
+}
+
+/// Bytes of the exact sums of a `width`×`height` image, with or without its AOVs'.
+fn exact_sums_bytes(width: u32, height: u32, aovs: bool) -> u64 {
+    width as u64 * height as u64 * 4 * super::exact::words_per_pixel(aovs) as u64
+}
+
+/// Refuses exact sums (what `--sample-range` needs) that do not fit one GPU binding,
+/// naming the limit. Without them `rt render` makes its image from the running means.
+pub fn check_exact_sums(ctx: &GpuContext, width: u32, height: u32, aovs: bool) -> Result<()> {
+    let bytes = exact_sums_bytes(width, height, aovs);
+    let max = ctx.device.limits().max_storage_buffer_binding_size;
+    if bytes > max {
+        let without = if aovs { ", or without AOVs" } else { "" };
+        bail!(
+            "a {width}x{height} image's exact sums need {} MiB; this GPU ({}) binds at most {} MiB per buffer: \
+             split a smaller image{without}",
+            bytes.div_ceil(1 << 20),
+            ctx.adapter_info.name,
+            max >> 20
         );
     }
     Ok(())
@@ -119,6 +144,7 @@ impl Accumulation {
             aovs,
             pixel_samples,
             exact,
+            exact_kept: false,
             bind_group,
             lanes_wanted,
             cpu,
@@ -190,8 +216,9 @@ impl Accumulation {
         if outputs.adaptive {
             grow(&mut self.pixel_samples, "pixel samples", pixels * 8);
         }
-        if outputs.exact_sums {
-            grow(&mut self.exact, "exact sums", pixels * 4 * super::exact::words_per_pixel(outputs.aovs) as u64);
+        self.exact_kept = outputs.exact_sums && check_exact_sums(ctx, self.width, self.height, outputs.aovs).is_ok();
+        if self.exact_kept {
+            grow(&mut self.exact, "exact sums", exact_sums_bytes(self.width, self.height, outputs.aovs));
         }
         if changed {
             self.rebind(ctx, layout);
@@ -310,6 +337,11 @@ impl Accumulation {
             true => readback.read::<[u32; 2]>(ctx, &self.pixel_samples)?.iter().take(pixels).map(|p| p[0]).collect(),
             false => vec![self.samples; pixels],
         })
+    }
+
+    /// Whether the samples' exact sums are kept (asked for, and within one GPU binding).
+    pub fn keeps_exact_sums(&self) -> bool {
+        self.exact_kept
     }
 
     /// The exact sums' words (see [`super::exact`]); call only after

@@ -17,7 +17,7 @@ mod sun;
 pub mod tonemap;
 mod trace;
 
-pub use accumulation::Accumulation;
+pub use accumulation::{Accumulation, check_exact_sums};
 pub use aovs::Aovs;
 pub use camera::set_camera;
 pub use dropped::{DroppedSamples, NonFiniteCause};

@@ -220,7 +220,7 @@ impl<'a> Session<'a> {
         FeatureSet {
             aovs: self.request.aovs,
             adaptive: self.request.adaptive(),
-            exact_sums: self.request.exact_sums,
+            exact_sums: self.acc.keeps_exact_sums(),
             transparent_film: self.features.transparent_film,
             holdout: features.holdout || self.features.holdout,
             ..features
@@ -397,7 +397,7 @@ impl<'a> Session<'a> {
 
     /// The exact sums of the samples so far, where the request asked for them.
     pub fn exact_sums(&self) -> Result<Option<ExactSums>> {
-        if !self.request.exact_sums {
+        if !self.acc.keeps_exact_sums() {
             return Ok(None);
         }
         let words = self.acc.exact_words(self.ctx, &self.readback)?;

@@ -210,16 +210,13 @@ fn sample_done(pixel_index: u32, sample_base: u32, k: u32, radiance: vec3f, lane
     // (WGSL passes function-space pointers only.)
     var acc = pixel_acc;
     var bad = pixel_bad;
-    accumulate(&acc, &bad, radiance, first_bad_event, sample_index, pixel_index);
+    accumulate(&acc, &bad, radiance, first_bad_event, sample_index);
     pixel_acc = acc;
     pixel_bad = bad;
     //#if aovs
     var aovs = pixel_aovs;
     aov_add(&aovs, sample_index);
     pixel_aovs = aovs;
-    //#if exact_sums
-    exact_add_aovs(pixel_index, aov_sums());
-    //#endif
     //#endif
 }
 
@@ -570,14 +567,7 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
 // `acc`; a non-finite sample is dropped and counted in `bad` with the event `event`
 // that first made it so. One sample at a time, in sample order, so that the result
 // does not depend on how samples are split into dispatches or lanes.
-fn accumulate(
-    acc: ptr<function, vec4f>,
-    bad: ptr<function, u32>,
-    radiance: vec3f,
-    event: u32,
-    sample_index: u32,
-    pixel_index: u32,
-) {
+fn accumulate(acc: ptr<function, vec4f>, bad: ptr<function, u32>, radiance: vec3f, event: u32, sample_index: u32) {
     // A non-finite sample would poison the pixel for good: drop it, count it, keep its cause.
     if !all_finite(radiance) {
         if (*bad & 0xffffffu) == 0u {
@@ -586,19 +576,23 @@ fn accumulate(
         *bad = (*bad & 0xff000000u) | min((*bad & 0xffffffu) + 1u, 0xffffffu);
         return;
     }
-    var l = radiance;
-    var y = luminance(l);
-    if frame.clamp_luminance > 0.0 && y > frame.clamp_luminance {
-        l *= frame.clamp_luminance / y;
-        y = frame.clamp_luminance;
-    }
-    //#if exact_sums
-    exact_add_radiance(pixel_index, l, y);
-    //#endif
+    let c = clamped(radiance);
+    let l = c.rgb;
+    let y = c.w;
     let n = f32(sample_index + 1u - (*bad & 0xffffffu));
     let y_before = luminance((*acc).rgb);
     let mean = (*acc).rgb + (l - (*acc).rgb) / n;
     *acc = vec4f(mean, (*acc).w + (y - y_before) * (y - luminance(mean)));
+}
+
+// A finite sample's radiance scaled down to the clamp's luminance if it is over it, and
+// its luminance after.
+fn clamped(radiance: vec3f) -> vec4f {
+    let y = luminance(radiance);
+    if frame.clamp_luminance > 0.0 && y > frame.clamp_luminance {
+        return vec4f(radiance * (frame.clamp_luminance / y), frame.clamp_luminance);
+    }
+    return vec4f(radiance, y);
 }
 
 // One invocation per pixel, taking the dispatch's samples one after another.

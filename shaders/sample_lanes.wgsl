@@ -77,10 +77,19 @@ var<private> reduced_aovs: AovMeans;
 //#endif
 
 // Adds the lanes' sample `index` (`sample`, from `slot`) to the pixel's mean, and its
-// AOVs in the same order and by the same sums as `render` adds them.
+// AOVs in the same order and by the same sums as `render` adds them; and to the exact
+// sums, which only this kernel keeps: a render that asks for them takes its samples
+// through the lanes' scratch, one lane or more, so that the integer adds stay out of
+// the loop that traces paths.
 fn reduce_sample(acc: ptr<function, vec4f>, bad: ptr<function, u32>, sample: vec4f, slot: u32, index: u32) {
+    accumulate(acc, bad, sample.xyz, bitcast<u32>(sample.w), index);
+    //#if exact_sums
     let pixel_index = slot % (frame.width * frame.height);
-    accumulate(acc, bad, sample.xyz, bitcast<u32>(sample.w), index, pixel_index);
+    if all_finite(sample.xyz) {
+        let c = clamped(sample.xyz);
+        exact_add_radiance(pixel_index, c.rgb, c.w);
+    }
+    //#endif
     //#if aovs
     aov_lane_load(slot);
     var aovs = reduced_aovs;

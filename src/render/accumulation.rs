@@ -92,7 +92,9 @@ fn exact_sums_bytes(width: u32, height: u32, aovs: bool) -> u64 {
 /// Refuses exact sums (what `--sample-range` needs) that do not fit one GPU binding,
 /// naming the limit. Without them `rt render` makes its image from the running means.
 pub fn check_exact_sums(ctx: &GpuContext, width: u32, height: u32, aovs: bool) -> Result<()> {
-    let bytes = exact_sums_bytes(width, height, aovs);
+    // They are added up from the lanes' scratch, which must hold one sample at least.
+    let per_sample = if aovs { SAMPLE_BYTES + AOV_BYTES } else { SAMPLE_BYTES };
+    let bytes = exact_sums_bytes(width, height, aovs).max(width as u64 * height as u64 * per_sample);
     let max = ctx.device.limits().max_storage_buffer_binding_size;
     if bytes > max {
         let without = if aovs { ", or without AOVs" } else { "" };
@@ -150,21 +152,22 @@ impl Accumulation {
             cpu,
         };
         if lanes_wanted > 1 {
-            acc.prepare_lanes(ctx, layout);
+            acc.prepare_lanes(ctx, layout, false);
         }
         Ok(acc)
     }
 
-    /// Makes room for samples spread over lanes, if there is none yet.
-    pub fn prepare_lanes(&mut self, ctx: &GpuContext, layout: &wgpu::BindGroupLayout) {
+    /// Makes room for samples spread over lanes (one sample per pixel at least, with its
+    /// AOVs if `aovs`), if there is none yet.
+    pub fn prepare_lanes(&mut self, ctx: &GpuContext, layout: &wgpu::BindGroupLayout, aovs: bool) {
         let pixels = self.width as u64 * self.height as u64;
-        if self.lane_samples.size() >= pixels * SAMPLE_BYTES {
+        let one_sample = pixels * if aovs { SAMPLE_BYTES + AOV_BYTES } else { SAMPLE_BYTES };
+        if self.lane_samples.size() >= one_sample {
             return;
         }
         let max = ctx.device.limits().max_storage_buffer_binding_size;
-        let size = (pixels * SAMPLE_BYTES * MAX_SAMPLES_PER_DISPATCH as u64)
-            .min(LANE_SCRATCH_BYTES.max(pixels * SAMPLE_BYTES))
-            .min(max);
+        let size = (pixels * SAMPLE_BYTES * MAX_SAMPLES_PER_DISPATCH as u64).max(one_sample);
+        let size = size.min(LANE_SCRATCH_BYTES.max(one_sample)).min(max);
         self.lane_samples = ctx.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("lane samples"),
             size,
@@ -223,6 +226,9 @@ impl Accumulation {
         if changed {
             self.rebind(ctx, layout);
         }
+        if self.exact_kept {
+            self.prepare_lanes(ctx, layout, outputs.aovs);
+        }
     }
 
     /// The running means per pixel (RGB, then the luminance's sum of squared deviations),
@@ -242,9 +248,19 @@ impl Accumulation {
     }
 
     /// Lanes per pixel for a dispatch of `samples` samples per pixel: as many as keep the
-    /// GPU busy, or `forced`; 1 runs the plain one-invocation-per-pixel kernel.
+    /// GPU busy, or `forced`; 1 runs the plain one-invocation-per-pixel kernel (unless
+    /// the exact sums are kept, see [`Self::through_scratch`]).
     pub fn lanes(&self, samples: u32, forced: Option<u32>) -> u32 {
         forced.unwrap_or(self.lanes_wanted).clamp(1, samples.max(1))
+    }
+
+    /// Whether a dispatch over `lanes` lanes takes its samples through the lanes' scratch
+    /// and `reduce_lanes`: with more than one lane, and always while the exact sums are
+    /// kept, whose integer adds `reduce_lanes` alone makes: in the loop that traces paths
+    /// they stall every lane of a subgroup whenever one of its paths ends, and doubled the
+    /// time per sample (docs/splitting-renders.md).
+    fn through_scratch(&self, lanes: u32) -> bool {
+        lanes > 1 || self.exact_kept
     }
 
     /// Samples per pixel one dispatch with `lanes` lanes can take: as many as the lanes'
@@ -255,7 +271,7 @@ impl Accumulation {
             true => CPU_SAMPLES_PER_INVOCATION.saturating_mul(lanes.max(1)).min(MAX_SAMPLES_PER_DISPATCH),
             false => MAX_SAMPLES_PER_DISPATCH,
         };
-        if lanes <= 1 {
+        if !self.through_scratch(lanes) {
             return device;
         }
         let bytes = if aovs { SAMPLE_BYTES + AOV_BYTES } else { SAMPLE_BYTES };
@@ -279,7 +295,8 @@ impl Accumulation {
         let n = frame.samples_per_dispatch;
         let frame = GpuFrame { sample_base: self.samples, ..*frame };
         scene.write_frame(ctx, &frame);
-        if lanes > 1 {
+        let scratch = self.through_scratch(lanes);
+        if scratch {
             encoder.clear_buffer(&self.lane_chunks, 0, None);
         }
         let mut pass =
@@ -295,7 +312,7 @@ impl Accumulation {
             pass.set_pipeline(mask);
             pass.dispatch_workgroups(x, y, 1);
         }
-        if lanes > 1 {
+        if scratch {
             pass.set_pipeline(pipelines.entry("render_lanes"));
             pass.dispatch_workgroups(x, y, lanes);
             pass.set_pipeline(pipelines.entry("reduce_lanes"));

@@ -275,7 +275,7 @@ impl<'a> Session<'a> {
         let n = self.sizer.next(remaining);
         let mut lanes = self.acc.lanes(n, self.request.sample_lanes);
         if lanes > 1 {
-            self.acc.prepare_lanes(self.ctx, &self.pipelines.accumulation_layout);
+            self.acc.prepare_lanes(self.ctx, &self.pipelines.accumulation_layout, self.request.aovs);
         }
         let n = n.min(self.acc.max_samples(lanes, self.request.aovs));
         if n <= 1 {

@@ -541,12 +541,6 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
         first_sample: args.sample_range.as_ref().map_or(0, |r| r.start),
         ..args.flags().apply(&mut scene)?
     };
-    if args.sample_range.is_some() && request.adaptive() {
-        bail!(
-            "--sample-range: adaptive sampling stops pixels by all the samples before, so it cannot be split; \
-             add --noise-threshold 0"
-        );
-    }
     let exposure = scene.render.exposure;
     let ctx = GpuContext::new(adapter)?;
     say(format!("GPU: {}", ctx.describe()));
@@ -554,8 +548,7 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
     let mut session = Session::open(&ctx, scene, args.quality)?;
     say(format!("{origin}: features [{}]", session.features()));
     if args.sample_range.is_some() {
-        let aovs = request.aovs || session.features().has_alpha();
-        rt::render::check_exact_sums(&ctx, request.width, request.height, aovs).context("--sample-range")?;
+        check_part_request(&session, &request)?;
     }
     if let Some(tables) = session.atmosphere() {
         say(format!("atmosphere tables built in {:.1} ms", tables.build_time.as_secs_f64() * 1e3));
@@ -574,28 +567,7 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
         say(format!("wrote {} (samples {:?} of each pixel)", args.output.display(), part.samples));
         return Ok(());
     }
-    let aovs = if request.aovs { Some(session.aovs()?) } else { None };
-    let denoised = match (&mut denoiser, &aovs) {
-        (Some(denoiser), Some(aovs)) => {
-            let start = std::time::Instant::now();
-            let clean = denoiser.denoise(&image, aovs)?;
-            let took = start.elapsed().as_secs_f64();
-            say(format!("denoised with Open Image Denoise ({} device) in {took:.2} s", denoiser.device()));
-            Some(clean)
-        }
-        _ => None,
-    };
-    if let (Some(dir), Some(aovs)) = (&args.aov_files, &aovs) {
-        write_aov_files(dir, &image, aovs)?;
-    }
-    match (&aovs, denoised) {
-        (Some(aovs), denoised) if args.aovs => {
-            let channels = aov_channels(&image, aovs, denoised.as_deref());
-            write_layered_exr(&args.output, image.width, image.height, channels)?
-        }
-        (_, Some(clean)) => write_image(&Image { pixels: clean, ..image.clone() }, &args.output, exposure)?,
-        _ => write_image(&image, &args.output, exposure)?,
-    }
+    write_outputs(&args, &session, &image, denoiser.as_mut(), exposure, &say)?;
     say(format!(
         "wrote {} ({}x{}, {} spp) in {:.2} s: {}samples/s",
         args.output.display(),
@@ -625,6 +597,53 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
         eprintln!("{}", json_event("done", fields));
     }
     Ok(())
+}
+
+/// Writes what `rt render` was asked for: the image, denoised or not, with or without its
+/// AOV layers, and the AOV files.
+fn write_outputs(
+    args: &RenderArgs,
+    session: &Session,
+    image: &Image,
+    denoiser: Option<&mut Denoiser>,
+    exposure: f32,
+    say: &dyn Fn(String),
+) -> Result<()> {
+    let aovs = if session.request().aovs { Some(session.aovs()?) } else { None };
+    let denoised = match (denoiser, &aovs) {
+        (Some(denoiser), Some(aovs)) => {
+            let start = std::time::Instant::now();
+            let clean = denoiser.denoise(image, aovs)?;
+            let took = start.elapsed().as_secs_f64();
+            say(format!("denoised with Open Image Denoise ({} device) in {took:.2} s", denoiser.device()));
+            Some(clean)
+        }
+        _ => None,
+    };
+    if let (Some(dir), Some(aovs)) = (&args.aov_files, &aovs) {
+        write_aov_files(dir, image, aovs)?;
+    }
+    match (&aovs, denoised) {
+        (Some(aovs), denoised) if args.aovs => {
+            let channels = aov_channels(image, aovs, denoised.as_deref());
+            write_layered_exr(&args.output, image.width, image.height, channels)
+        }
+        (_, Some(clean)) => write_image(&Image { pixels: clean, ..image.clone() }, &args.output, exposure),
+        _ => write_image(image, &args.output, exposure),
+    }
+}
+
+/// Refuses a part the session cannot make: one under adaptive sampling, or one whose exact
+/// sums do not fit the GPU.
+fn check_part_request(session: &Session, request: &RenderRequest) -> Result<()> {
+    if request.adaptive() {
+        bail!(
+            "--sample-range: adaptive sampling stops pixels by all the samples before, so it cannot be split; \
+             add --noise-threshold 0"
+        );
+    }
+    let aovs = request.aovs || session.features().has_alpha();
+    rt::render::check_exact_sums(session.ctx(), request.width, request.height, aovs).context("--sample-range")
 }
 
 /// Refuses what a part of a render cannot hold: it is the samples' sums, finished by `rt merge`.

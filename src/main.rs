@@ -4,9 +4,12 @@
 
 use anyhow::{Context, Result, bail};
 use clap::{Args, Parser, Subcommand};
+use rt::bvh::SceneGeometry;
 use rt::bvh::{BuildQuality, PackOutcome, PackReport};
 use rt::denoise::{DenoiseDevice, Denoiser};
 use rt::gpu::GpuContext;
+use rt::gpu::PipelineCache;
+use rt::render::RenderReport;
 use rt::render::part::PartRequest;
 use rt::render::{
     DroppedSamples, Image, ImageFormat, Progress, RenderFlags, RenderRequest, Session, aov_channels, check_output,
@@ -78,7 +81,7 @@ enum Command {
     Doctor,
 }
 
-#[derive(Args)]
+#[derive(Args, Clone)]
 struct RenderArgs {
     /// Scene file; the built-in Cornell box when omitted.
     scene: Option<PathBuf>,
@@ -176,6 +179,11 @@ struct RenderArgs {
     /// --spp N gives, bit for bit. Give -o an .exr path.
     #[arg(long, value_parser = rt::render::part::parse_sample_range)]
     sample_range: Option<std::ops::Range<u32>>,
+    /// Render frames FIRST..LAST (both included) of an animation: #### in the scene's and
+    /// the output's names is the frame number (shot_####.toml → shot_0007.toml). One GPU
+    /// start and the pipelines built once serve every frame.
+    #[arg(long, value_parser = rt::render::frames::parse_frame_range)]
+    frames: Option<std::ops::RangeInclusive<u32>>,
 }
 
 /// A positive, finite number of seconds.
@@ -187,6 +195,16 @@ fn parse_seconds(s: &str) -> Result<f64, String> {
 }
 
 impl RenderArgs {
+    /// These arguments for one frame: the scene's and the output's #### filled in.
+    fn at_frame(&self, frame: u32) -> Result<Self> {
+        let scene = self.scene.as_deref().context("--frames: give the scene file, with #### for the frame number")?;
+        Ok(Self {
+            scene: Some(rt::render::frames::frame_path(scene, frame, "scene")?),
+            output: rt::render::frames::frame_path(&self.output, frame, "-o")?,
+            ..self.clone()
+        })
+    }
+
     fn flags(&self) -> RenderFlags {
         RenderFlags {
             size: self.size,
@@ -526,6 +544,11 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
     if args.aovs && image_format(&args.output)? != ImageFormat::Exr {
         bail!("--aovs: AOVs are written as one multi-layer OpenEXR; give -o an .exr path");
     }
+    if let Some(snapshot) = &args.snapshot
+        && image_format(snapshot)? != ImageFormat::Exr
+    {
+        bail!("--snapshot: snapshots are linear OpenEXR images; give an .exr path");
+    }
     // Before any rendering: a missing denoiser is known at once.
     let mut denoiser = match args.denoise {
         true => Some(Denoiser::new(args.denoise_device).context("--denoise")?),
@@ -534,6 +557,35 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
     if let Some(denoiser) = &denoiser {
         say(format!("denoising with Open Image Denoise on {}", denoiser.describe()));
     }
+    let frames = match args.frames.clone() {
+        Some(frames) => frames.map(|f| args.at_frame(f)).collect::<Result<Vec<_>>>()?,
+        None => vec![args],
+    };
+    // Every frame's scene is there before the first is rendered.
+    for frame in &frames {
+        if let Some(scene) = &frame.scene
+            && !rt::files::input::is_regular_file(scene).unwrap_or(false)
+        {
+            bail!("{}: no such scene file (a frame of --frames)", scene.display());
+        }
+    }
+    // The first scene is read and the flags checked before the GPU starts: a mistake is said at once.
+    let mut first = Some(scene_and_request(&frames[0])?);
+    let ctx = GpuContext::new(adapter)?;
+    say(format!("GPU: {}", ctx.describe()));
+    let mut pipelines = None;
+    for frame in &frames {
+        let scene_request = match first.take() {
+            Some(first) => first,
+            None => scene_and_request(frame)?,
+        };
+        pipelines = Some(render_frame(frame, &ctx, scene_request, denoiser.as_mut(), pipelines.take(), &say)?);
+    }
+    Ok(())
+}
+
+/// The scene `args` names, with the flags written into it, and the request they make.
+fn scene_and_request(args: &RenderArgs) -> Result<(Scene, RenderRequest)> {
     let mut scene = load_scene(args.scene.as_deref())?;
     let request = RenderRequest {
         progress: args.progress,
@@ -541,22 +593,31 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
         first_sample: args.sample_range.as_ref().map_or(0, |r| r.start),
         ..args.flags().apply(&mut scene)?
     };
+    Ok((scene, request))
+}
+
+/// One image of `rt render` (a frame of `--frames`), with the pipelines built so far;
+/// returns them, for the next frame.
+fn render_frame(
+    args: &RenderArgs,
+    ctx: &GpuContext,
+    (scene, request): (Scene, RenderRequest),
+    denoiser: Option<&mut Denoiser>,
+    pipelines: Option<PipelineCache>,
+    say: &dyn Fn(String),
+) -> Result<PipelineCache> {
+    let json = args.progress == Progress::Json;
     let exposure = scene.render.exposure;
-    let ctx = GpuContext::new(adapter)?;
-    say(format!("GPU: {}", ctx.describe()));
     let origin = scene.origin.clone();
-    let mut session = Session::open(&ctx, scene, args.quality)?;
+    let geometry = SceneGeometry::build(&scene, args.quality)?;
+    let pipelines = pipelines.unwrap_or_else(|| PipelineCache::new(ctx));
+    let mut session = Session::with_pipelines(ctx, scene, geometry, pipelines)?;
     say(format!("{origin}: features [{}]", session.features()));
     if args.sample_range.is_some() {
         check_part_request(&session, &request)?;
     }
     if let Some(tables) = session.atmosphere() {
         say(format!("atmosphere tables built in {:.1} ms", tables.build_time.as_secs_f64() * 1e3));
-    }
-    if let Some(snapshot) = &args.snapshot
-        && image_format(snapshot)? != ImageFormat::Exr
-    {
-        bail!("--snapshot: snapshots are linear OpenEXR images; give an .exr path");
     }
     let time_limit = args.time_limit.map(std::time::Duration::from_secs_f64);
     let mut snapshots = Snapshots::new(args.snapshot.as_deref(), args.snapshot_every, json);
@@ -565,9 +626,9 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
         let part = PartRequest { path: &args.output, samples, exposure, aov_layers: args.aovs };
         rt::render::part::save(&session, &part)?;
         say(format!("wrote {} (samples {:?} of each pixel)", args.output.display(), part.samples));
-        return Ok(());
+        return Ok(session.into_pipelines());
     }
-    write_outputs(&args, &session, &image, denoiser.as_mut(), exposure, &say)?;
+    write_outputs(args, &session, &image, denoiser, exposure, say)?;
     say(format!(
         "wrote {} ({}x{}, {} spp) in {:.2} s: {}samples/s",
         args.output.display(),
@@ -577,6 +638,14 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
         report.elapsed.as_secs_f64(),
         human(report.samples_per_second)
     ));
+    report_end(args, &report)?;
+    Ok(session.into_pipelines())
+}
+
+/// What a finished render says last: its dropped samples (an error with `--strict`), and
+/// with JSON progress the `done` event.
+fn report_end(args: &RenderArgs, report: &RenderReport) -> Result<()> {
+    let json = args.progress == Progress::Json;
     if !report.dropped.is_clean() {
         match json {
             true => {
@@ -585,7 +654,7 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
             false => eprintln!("warning: {}", report.dropped),
         }
         if args.strict {
-            return Err(StrictFinding(report.dropped).into());
+            return Err(StrictFinding(report.dropped.clone()).into());
         }
     }
     if json {

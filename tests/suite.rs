@@ -45,6 +45,7 @@ mod denoise;
 mod docs;
 mod environment;
 mod farm;
+mod frames;
 mod furnace;
 mod geometry_precision;
 mod instances;

@@ -6,6 +6,7 @@ mod aovs;
 mod camera;
 mod dropped;
 pub mod exact;
+pub mod frames;
 mod image_out;
 mod layers_out;
 mod pacing;

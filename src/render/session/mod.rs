@@ -79,9 +79,19 @@ impl<'a> Session<'a> {
 
     /// A session for `scene` placed as `geometry` (which must have been built from it).
     pub fn with_geometry(ctx: &'a GpuContext, scene: Scene, geometry: SceneGeometry) -> Result<Self> {
+        Self::with_pipelines(ctx, scene, geometry, PipelineCache::new(ctx))
+    }
+
+    /// A session for `scene` placed as `geometry`, keeping the pipelines another session of
+    /// the same device built (the frames of an animation).
+    pub fn with_pipelines(
+        ctx: &'a GpuContext,
+        scene: Scene,
+        geometry: SceneGeometry,
+        pipelines: PipelineCache,
+    ) -> Result<Self> {
         let features = FeatureSet::analyse(&scene, &geometry.summary());
         let request = with_alpha_counted(RenderRequest::from_scene(&scene), features);
-        let pipelines = PipelineCache::new(ctx);
         let mut acc = Accumulation::new(ctx, &pipelines.accumulation_layout, request.width, request.height)?;
         acc.prepare_outputs(ctx, &pipelines.accumulation_layout, outputs(&request));
         let buffers = SceneBuffers::new(ctx, &geometry, &pipelines.scene_layout)?;
@@ -139,6 +149,11 @@ impl<'a> Session<'a> {
 
     pub fn pipeline_cache(&self) -> &PipelineCache {
         &self.pipelines
+    }
+
+    /// The pipelines built so far, for the next session of the same device.
+    pub fn into_pipelines(self) -> PipelineCache {
+        self.pipelines
     }
 
     pub(super) fn pipelines_mut(&mut self) -> &mut PipelineCache {

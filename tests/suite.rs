@@ -67,6 +67,7 @@ mod scale_export;
 mod scene_reference;
 mod scenes_render;
 mod sentinel;
+mod shadow_rays;
 mod texture_inputs;
 mod textures;
 mod trace_reference;

@@ -561,10 +561,11 @@ fn render(args: RenderArgs, adapter: Option<&str>) -> Result<()> {
         Some(frames) => frames.map(|f| args.at_frame(f)).collect::<Result<Vec<_>>>()?,
         None => vec![args],
     };
-    // Every frame's scene is there before the first is rendered.
-    for frame in &frames {
+    // With --frames, every frame's scene is there before the first is rendered (what else
+    // is wrong with one is said when it is read).
+    for frame in frames.iter().skip(1) {
         if let Some(scene) = &frame.scene
-            && !rt::files::input::is_regular_file(scene).unwrap_or(false)
+            && std::fs::metadata(scene).is_err_and(|e| e.kind() == std::io::ErrorKind::NotFound)
         {
             bail!("{}: no such scene file (a frame of --frames)", scene.display());
         }

@@ -24,7 +24,7 @@ def frame_range(text: str) -> range:
 
 
 def parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="rt farm", description=__doc__.splitlines()[0])
+    p = argparse.ArgumentParser(prog="rt-farm", description=__doc__.splitlines()[0])
     p.add_argument("scene", help="scene file; with --frames, #### in its name is the frame number")
     p.add_argument("-o", "--output", required=True, help=".exr or .png; with --frames, #### is the frame number")
     p.add_argument("--spp", type=int, required=True, help="samples per pixel of each frame")
@@ -44,7 +44,10 @@ def main(argv=None) -> int:
     ours, flags = (argv[: argv.index("--")], argv[argv.index("--") + 1 :]) if "--" in argv else (argv, [])
     args = parser().parse_args(ours)
     if args.spp < 1 or args.parts < 1:
-        print("rt farm: --spp and --parts must be at least 1", file=sys.stderr)
+        print("rt-farm: --spp and --parts must be at least 1", file=sys.stderr)
+        return 2
+    if not Path(args.rt).is_file():
+        print(f"rt-farm: {args.rt}: no rt there to run and ship: put rt on PATH or give --rt PATH", file=sys.stderr)
         return 2
     parts_dir = args.parts_dir or Path(args.output).resolve().parent / ".rt-farm-parts"
     spec = job.Job(rt=args.rt, scene=args.scene, output=args.output, spp=args.spp, parts=min(args.parts, args.spp),
@@ -57,11 +60,11 @@ def main(argv=None) -> int:
     try:
         summary = job.run(spec)
     except (RuntimeError, ValueError) as e:
-        print(f"rt farm: {e}", file=sys.stderr)
+        print(f"rt-farm: {e}", file=sys.stderr)
         return 1
     finally:
         ray.shutdown()
-    print(f"rt farm: wrote {', '.join(summary['outputs'])} ({summary['tasks']} parts on {summary['nodes']} nodes)",
+    print(f"rt-farm: wrote {', '.join(summary['outputs'])} ({summary['tasks']} parts on {summary['nodes']} nodes)",
           file=sys.stderr)
     return 0
 

@@ -143,8 +143,8 @@ class Progress:
         rate = self.samples / elapsed if elapsed > 0 else 0.0
         left = (self.total - self.done) * elapsed / max(self.done, 1)
         frame = "" if task.frame is None else f"frame {task.frame}, "
-        print(f"rt farm: {self.done}/{self.total} parts ({frame}samples {task.first}..{task.end}), "
+        print(f"rt-farm: {self.done}/{self.total} parts ({frame}samples {task.first}..{task.end}), "
               f"{rate:.1f} spp/s across the cluster, ~{left:.0f} s left", file=sys.stderr, flush=True)
 
     def finish(self) -> None:
-        print(f"rt farm: {self.total} parts in {self.elapsed():.1f} s", file=sys.stderr, flush=True)
+        print(f"rt-farm: {self.total} parts in {self.elapsed():.1f} s", file=sys.stderr, flush=True)

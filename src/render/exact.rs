@@ -3,7 +3,6 @@
 //! the image made from them is the same bit for bit however the samples were split.
 
 use super::{Aovs, Image};
-use crate::scene::luminance;
 
 /// Words of one sum on the GPU (a 96-bit two's-complement integer, least significant first).
 pub const WORDS: usize = 3;
@@ -67,9 +66,13 @@ impl ExactSums {
             let n = finite.max(1) as f64;
             let mean = |v: i128| (v as f64 * UNIT / n) as f32;
             let rgb = [mean(pixel[0]), mean(pixel[1]), mean(pixel[2])];
-            let y = luminance([pixel[0], pixel[1], pixel[2]].map(|v| (v as f64 * UNIT / n) as f32)) as f64;
+            let [r, g, b] = [pixel[0], pixel[1], pixel[2]].map(|v| v as f64 * UNIT / n);
+            let y = 0.2126 * r + 0.7152 * g + 0.0722 * b;
             let square = pixel[3] as f64 * UNIT / n;
             let variance = ((square - y * y) * n / (n - 1.0).max(1.0)).max(0.0);
+            // Each sample's luminance and its square are rounded to f32 on the GPU, by parts
+            // in 10⁷: samples that agree to a part in 10³ make a noiseless pixel.
+            let variance = if variance <= 1e-6 * y * y { 0.0 } else { variance };
             image.pixels.push(rgb);
             image.std_error.push((variance / n).sqrt() as f32);
             image.sample_counts.push(finite);
@@ -155,6 +158,18 @@ mod tests {
         ] {
             assert!(shader.contains(&line), "exact_sums.wgsl lacks `{line}`");
         }
+    }
+
+    #[test]
+    fn a_pixel_whose_samples_agree_has_no_noise() {
+        // As the GPU adds them: the f32 luminance of each sample and its f32 square.
+        let (n, v) = (64i128, 0.1f32);
+        let y = 0.2126f32 * v + 0.7152 * v + 0.0722 * v;
+        let unit = |x: f32| (x as f64 / UNIT).round() as i128;
+        let sums = vec![n * unit(v), n * unit(v), n * unit(v), n * unit(y * y)];
+        let pixel = ExactSums { width: 1, height: 1, aovs: false, sums, taken: vec![64], dropped: vec![0] };
+        let image = pixel.image(64, false);
+        assert_eq!((image.pixels[0], image.std_error[0]), ([v; 3], 0.0));
     }
 
     #[test]

@@ -65,17 +65,29 @@ pub fn write_layered_exr(path: &Path, width: u32, height: u32, channels: Vec<(St
             AnyChannel::new(name.as_str(), FlatSamples::F32(values))
         })
         .collect();
+    write_exr(path, (width, height), list, LayerAttributes::default(), "image")
+}
+
+/// Writes `channels` (of any sample type) and the header's `attributes` as one OpenEXR at
+/// `path`, atomically; `what` names the content in an error.
+pub(super) fn write_exr(
+    path: &Path,
+    (width, height): (u32, u32),
+    channels: SmallVec<[AnyChannel<FlatSamples>; 4]>,
+    attributes: LayerAttributes,
+    what: &str,
+) -> Result<()> {
     let layer = Layer::new(
         Vec2(width as usize, height as usize),
-        LayerAttributes::default(),
+        attributes,
         // ZIP scan lines in increasing order: the same pixels always make the same file.
         Encoding::SMALL_LOSSLESS,
-        AnyChannels::sort(list),
+        AnyChannels::sort(channels),
     );
     let mut bytes = Cursor::new(Vec::new());
     exr::prelude::Image::from_layer(layer)
         .write()
         .to_buffered(&mut bytes)
-        .with_context(|| format!("{}: cannot encode the image", path.display()))?;
+        .with_context(|| format!("{}: cannot encode the {what}", path.display()))?;
     Ok(output::write_atomically(path, bytes.get_ref())?)
 }

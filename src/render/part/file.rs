@@ -4,15 +4,11 @@
 //! `rt.part` attribute holds the [`PartHeader`] as JSON.
 
 use super::PartHeader;
-use crate::files::output;
 use crate::render::exact::{self, ExactSums};
 use crate::render::{Image, beauty_channels};
 use anyhow::{Context, Result, bail};
 use exr::meta::attribute::{AttributeValue, Text};
-use exr::prelude::{
-    AnyChannel, AnyChannels, Encoding, FlatSamples, Layer, LayerAttributes, ReadChannels, ReadLayers, SmallVec, Vec2,
-    WritableImage,
-};
+use exr::prelude::{AnyChannel, FlatSamples, LayerAttributes, ReadChannels, ReadLayers, SmallVec};
 use std::io::Cursor;
 use std::path::Path;
 
@@ -42,18 +38,7 @@ pub fn write_part(path: &Path, header: &PartHeader, sums: &ExactSums, image: &Im
     let mut attributes = LayerAttributes::default();
     let json = serde_json::to_string(header)?;
     attributes.other.insert(Text::from(HEADER_ATTRIBUTE), AttributeValue::Text(Text::from(json.as_str())));
-    let layer = Layer::new(
-        Vec2(sums.width as usize, sums.height as usize),
-        attributes,
-        Encoding::SMALL_LOSSLESS,
-        AnyChannels::sort(list),
-    );
-    let mut bytes = Cursor::new(Vec::new());
-    exr::prelude::Image::from_layer(layer)
-        .write()
-        .to_buffered(&mut bytes)
-        .with_context(|| format!("{}: cannot encode the part", path.display()))?;
-    Ok(output::write_atomically(path, bytes.get_ref())?)
+    crate::render::layers_out::write_exr(path, (sums.width, sums.height), list, attributes, "part")
 }
 
 /// Reads a part written by [`write_part`]; an error names the file and what is wrong.

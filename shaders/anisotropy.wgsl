@@ -12,6 +12,7 @@
 //#include "common.wgsl"
 //#include "hit.wgsl"
 //#include "transform.wgsl"
+//#include "motion.wgsl"
 //#include "directions.wgsl"
 
 // Material.tangent: the Tangent node that Cycles gives the Principled BSDF's Tangent input.
@@ -48,7 +49,7 @@ fn set_surface_tangent(hit: Hit, position: vec3f, kind: u32) {
         surface_tangent = radial_tangent(select(kind, TANGENT_RADIAL_Z, kind == TANGENT_UV), p);
         return;
     }
-    let to_object = instances[hit.instance].world_to_object;
+    let to_object = instance_at(hit.instance).world_to_object;
     var t = vec3f(0.0);
     //#if uv_tangents
     if kind == TANGENT_UV {

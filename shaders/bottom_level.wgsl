@@ -5,11 +5,12 @@
 //#include "ray.wgsl"
 //#include "triangle.wgsl"
 //#include "transform.wgsl"
+//#include "motion.wgsl"
 //#include "hit.wgsl"
 //#include "wide_bvh.wgsl"
 
 fn triangle_surface(hit: Hit) -> Surface {
-    let inst = instances[hit.instance];
+    let inst = instance_at(hit.instance);
     let tri = triangles[hit.primitive];
     let b0 = 1.0 - hit.b1 - hit.b2;
     // Interpolating the vertices is more accurate than origin + t·direction.

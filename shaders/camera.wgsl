@@ -12,6 +12,32 @@
 //#if panorama
 //#include "panorama.wgsl"
 //#endif
+//#if motion
+//#include "motion.wgsl"
+//#endif
+
+// Where the camera is and how it is turned at the sample's time.
+struct CameraFrame {
+    position: vec3f,
+    right: vec3f,
+    up: vec3f,
+    forward: vec3f,
+}
+
+fn camera_frame() -> CameraFrame {
+    //#if motion
+    if frame.camera_motion_steps > 0u {
+        let m = camera_motion_now();
+        return CameraFrame(
+            vec3f(m[0].w, m[1].w, m[2].w),
+            vec3f(m[0].x, m[1].x, m[2].x),
+            vec3f(m[0].y, m[1].y, m[2].y),
+            vec3f(m[0].z, m[1].z, m[2].z),
+        );
+    }
+    //#endif
+    return CameraFrame(frame.camera_position, frame.camera_right, frame.camera_up, frame.camera_forward);
+}
 
 struct CameraRay {
     origin: vec3f,
@@ -54,9 +80,9 @@ fn camera_ray(pixel: vec2u, rng: ptr<function, Rng>) -> CameraRay {
     origin += vec3f(lens, 0.0);
     direction = focus - origin;
     //#endif
-    let world_origin =
-        frame.camera_position + origin.x * frame.camera_right + origin.y * frame.camera_up + origin.z * frame.camera_forward;
-    let world_direction = direction.x * frame.camera_right + direction.y * frame.camera_up + direction.z * frame.camera_forward;
+    let c = camera_frame();
+    let world_origin = c.position + origin.x * c.right + origin.y * c.up + origin.z * c.forward;
+    let world_direction = direction.x * c.right + direction.y * c.up + direction.z * c.forward;
     let unit = normalize(world_direction);
     let clip_length = frame.clip_end - frame.clip_start;
     // No far plane (clip_end = INFINITY), or one beyond f32's range: INFINITY, as for other rays.
@@ -71,8 +97,9 @@ fn camera_ray(pixel: vec2u, rng: ptr<function, Rng>) -> CameraRay {
 // camera: clip_start and clip_end are distances along the ray.
 fn panorama_ray(uv: vec2f, rng: ptr<function, Rng>) -> CameraRay {
     var direction = panorama_direction(uv);
+    let c = camera_frame();
     if all(direction == vec3f(0.0)) {
-        return CameraRay(frame.camera_position, vec3f(0.0), 0.0);
+        return CameraRay(c.position, vec3f(0.0), 0.0);
     }
     var origin = vec3f(0.0);
     //#if depth_of_field
@@ -91,8 +118,8 @@ fn panorama_ray(uv: vec2f, rng: ptr<function, Rng>) -> CameraRay {
     //#endif
     let o = panorama_to_camera(origin);
     let d = panorama_to_camera(direction);
-    let world_origin = frame.camera_position + o.x * frame.camera_right + o.y * frame.camera_up + o.z * frame.camera_forward;
-    let unit = normalize(d.x * frame.camera_right + d.y * frame.camera_up + d.z * frame.camera_forward);
+    let world_origin = c.position + o.x * c.right + o.y * c.up + o.z * c.forward;
+    let unit = normalize(d.x * c.right + d.y * c.up + d.z * c.forward);
     let t_max = min(frame.clip_end - frame.clip_start, INFINITY);
     return CameraRay(world_origin + unit * frame.clip_start, unit, t_max);
 }

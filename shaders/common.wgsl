@@ -63,6 +63,20 @@ struct Frame {
     // The index of the render's first sample (`--sample-range`): samples draw their random
     // numbers by their index in the whole render, whichever part of it takes them.
     first_sample: u32,
+    // How many of `camera_motion` the camera moves through over the shutter (0: it stands
+    // still at camera_position, …): motion.wgsl.
+    camera_motion_steps: u32,
+    camera_motion: array<MotionKey, 17>,
+}
+
+// One key of a motion over the shutter (motion.wgsl): a unit quaternion (x, y, z, w), the
+// translation and the stretch matrix S as S₀₀, (S₀₁, S₀₂, S₁₀, S₁₁), (S₁₂, S₂₀, S₂₁, S₂₂).
+struct MotionKey {
+    rotation: vec4f,
+    translation: vec3f,
+    stretch_xx: f32,
+    stretch_a: vec4f,
+    stretch_b: vec4f,
 }
 
 // A BVH2 node holding both children's boxes, so that one fetch decides where to go.
@@ -139,7 +153,8 @@ struct ObjectSettings {
     geometry_offset: f32,
     frequency_multiplier: f32,
     holdout: u32,
-    _pad0: u32,
+    // Motion blur: the index of its first motion key << 8 | how many (0: it stands still).
+    motion: u32,
 }
 
 struct Sphere {

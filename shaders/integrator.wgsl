@@ -285,6 +285,9 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
             rng = rng_for_sample(pixel_index, frame.first_sample + sample_base + k, frame.seed);
             first_bad_event = EVENT_NONE;
             path_key = rng.state;
+            //#if motion
+            begin_sample_time(&rng);
+            //#endif
             //#if node_graphs
             ray_from = NODE_RAY_CAMERA;
             ray_singular = false;

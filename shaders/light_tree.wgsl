@@ -10,6 +10,7 @@
 //#include "common.wgsl"
 //#include "rng.wgsl"
 //#include "transform.wgsl"
+//#include "motion.wgsl"
 
 // Mirrored by `GpuLightTreeNode` in src/layout.rs.
 struct LightTreeNode {
@@ -203,7 +204,7 @@ fn emitter_index_of(instance: u32, primitive: u32) -> u32 {
 
 // The world-space area of triangle `primitive` of instance `instance`.
 fn triangle_world_area(instance: u32, primitive: u32) -> f32 {
-    let to_world = affine_inverse(instances[instance].world_to_object).m;
+    let to_world = affine_inverse(instance_at(instance).world_to_object).m;
     let tri = triangles[primitive];
     let v0 = transform_point(to_world, tri.v0);
     let v1 = transform_point(to_world, tri.v1);

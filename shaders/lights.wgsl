@@ -7,6 +7,7 @@
 //#include "rng.wgsl"
 //#include "ray.wgsl"
 //#include "transform.wgsl"
+//#include "motion.wgsl"
 //#include "directions.wgsl"
 //#include "hit.wgsl"
 //#include "bsdf.wgsl"
@@ -220,7 +221,7 @@ fn sample_emitter_at(e: Emitter, tree_selection: f32, p: vec3f, rng: ptr<functio
         //#endif
     }
     //#if triangles
-    let inst = instances[e.instance];
+    let inst = instance_at(e.instance);
     let tri = triangles[e.primitive];
     let to_world = affine_inverse(inst.world_to_object).m;
     let v0 = transform_point(to_world, tri.v0);

@@ -7,6 +7,7 @@
 //#include "constants.wgsl"
 //#include "common.wgsl"
 //#include "transform.wgsl"
+//#include "motion.wgsl"
 //#include "texture.wgsl"
 //#include "node_noise.wgsl"
 //#include "node_math.wgsl"
@@ -542,7 +543,7 @@ fn node_point_on_triangle(inst: Instance, triangle: u32, b1: f32, b2: f32, posit
 // A hit's point: on a triangle, or on a sphere (whose object space is the world's).
 fn node_point_at(hit: Hit, surface: Surface, normal: vec3f, incoming: vec3f) -> NodePoint {
     if hit.kind == HIT_TRIANGLE {
-        return node_point_on_triangle(instances[hit.instance], hit.primitive, hit.b1, hit.b2, surface.position, normal, incoming);
+        return node_point_on_triangle(instance_at(hit.instance), hit.primitive, hit.b1, hit.b2, surface.position, normal, incoming);
     }
     let backfacing = dot(surface.geometric_normal, incoming) < 0.0;
     let side = select(1.0, -1.0, backfacing);

@@ -10,6 +10,7 @@
 //#include "common.wgsl"
 //#include "hit.wgsl"
 //#include "transform.wgsl"
+//#include "motion.wgsl"
 //#include "texture.wgsl"
 //#include "valid_reflection.wgsl"
 
@@ -61,7 +62,7 @@ fn map_normal(texture: u32, scale: f32, hit: Hit, uv: vec2f) -> vec3f {
     let bitangent = select(-1.0, 1.0, t.w >= 0.0) * cross(n, t.xyz);
     let c = sample_level(textures[texture], 0u, uv).rgb * 2.0 - 1.0;
     let mapped = (c.x * scale) * t.xyz + (c.y * scale) * bitangent + c.z * n;
-    let world = transform_normal_to_world(instances[hit.instance].world_to_object, mapped);
+    let world = transform_normal_to_world(instance_at(hit.instance).world_to_object, mapped);
     let length_squared = dot(world, world);
     // A texel of (0.5, 0.5, 0.5) or a NaN points nowhere: keep the interpolated normal.
     if !(length_squared > 0.0) {

@@ -13,6 +13,7 @@
 //#include "common.wgsl"
 //#include "hit.wgsl"
 //#include "transform.wgsl"
+//#include "motion.wgsl"
 //#include "valid_reflection.wgsl"
 
 // The triangle hit being shaded, for `shadow_ray_origin`.
@@ -71,7 +72,7 @@ fn smooth_surface_offset(ng: vec3f) -> vec3f {
     let w2 = smooth_hit.b2;
     let p = v[0] * u + v[1] * w1 + v[2] * w2;
     let n_object = n[0] * u + n[1] * w1 + n[2] * w2;
-    let to_world = affine_inverse(instances[smooth_hit.instance].world_to_object).m;
+    let to_world = affine_inverse(instance_at(smooth_hit.instance).world_to_object).m;
     let n_world = transform_vector(to_world, n_object);
     let a = dot(n[2] - n[0], v[0] - v[2]);
     let b = dot(n[2] - n[1], v[1] - v[2]);

@@ -10,6 +10,7 @@
 //#include "common.wgsl"
 //#include "hit.wgsl"
 //#include "transform.wgsl"
+//#include "motion.wgsl"
 //#include "rng.wgsl"
 //#include "reflectance.wgsl"
 //#include "srgb.wgsl"
@@ -84,7 +85,7 @@ fn texture_point(hit: Hit) -> TexturePoint {
         return p;
     }
     let tri = triangles[hit.primitive];
-    let to_world = affine_inverse(instances[hit.instance].world_to_object).m;
+    let to_world = affine_inverse(instance_at(hit.instance).world_to_object).m;
     let world_area = length(cross(transform_vector(to_world, tri.v1 - tri.v0), transform_vector(to_world, tri.v2 - tri.v0)));
     p.uv = triangle_uv(hit.primitive, 0u, hit.b1, hit.b2);
     p.uv_lod = uv_density_lod(triangle_uvs(hit.primitive, 0u), world_area);

@@ -13,6 +13,7 @@
 //#include "ray.wgsl"
 //#include "triangle.wgsl"
 //#include "transform.wgsl"
+//#include "motion.wgsl"
 //#include "hit.wgsl"
 //#if alpha_mask
 //#include "texture.wgsl"
@@ -114,7 +115,7 @@ fn intersect_instance(
     hit: ptr<function, Hit>,
     overflowed: ptr<function, bool>,
 ) {
-    let inst = instances[instance_index];
+    let inst = instance_at(instance_index);
     let origin = transform_point(inst.world_to_object, world_origin);
     let direction = transform_vector(inst.world_to_object, world_direction);
     let ray = traversal_ray(origin, direction);

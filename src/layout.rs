@@ -68,7 +68,47 @@ pub struct GpuFrame {
     /// The index of the render's first sample (`rt render --sample-range`): a sample's
     /// random numbers follow from its index in the whole render.
     pub first_sample: u32,
+    /// How many of `camera_motion` the camera moves through over the shutter (0: it stands
+    /// still; `camera_*` above are its frame then).
+    pub camera_motion_steps: u32,
+    pub _pad0: [u32; 3],
+    /// The camera's frames over the shutter (columns right, up, forward, position), split
+    /// for interpolation (`shaders/motion.wgsl`).
+    pub camera_motion: [GpuMotionKey; crate::scene::MAX_CAMERA_MOTION_KEYS],
 }
+
+/// One key of a motion over the shutter (`scene::Decomposed`): a unit quaternion, the
+/// translation, and the stretch matrix S (rows r, columns c) as `stretch_xx` = S₀₀,
+/// `stretch_a` = (S₀₁, S₀₂, S₁₀, S₁₁), `stretch_b` = (S₁₂, S₂₀, S₂₁, S₂₂).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuMotionKey {
+    /// (x, y, z, w).
+    pub rotation: [f32; 4],
+    pub translation: [f32; 3],
+    pub stretch_xx: f32,
+    pub stretch_a: [f32; 4],
+    pub stretch_b: [f32; 4],
+}
+
+impl From<&crate::scene::Decomposed> for GpuMotionKey {
+    fn from(d: &crate::scene::Decomposed) -> Self {
+        let s = d.stretch.transpose().to_cols_array_2d().map(|row| row.map(|v| v as f32));
+        Self {
+            rotation: d.rotation.as_quat().to_array(),
+            translation: d.translation.as_vec3().to_array(),
+            stretch_xx: s[0][0],
+            stretch_a: [s[0][1], s[0][2], s[1][0], s[1][1]],
+            stretch_b: [s[1][2], s[2][0], s[2][1], s[2][2]],
+        }
+    }
+}
+
+/// `GpuObjectSettings::motion` of an instance that stands still.
+pub const NO_MOTION: u32 = 0;
+/// The most motion keys of all instances together (`GpuObjectSettings::motion` keeps the
+/// first key's index in 24 bits).
+pub const MAX_INSTANCE_MOTION_KEYS: usize = 1 << 24;
 
 /// `GpuFrame::panorama`: which panorama maps the image to directions (`shaders/panorama.wgsl`).
 pub const PANORAMA_NONE: u32 = 0;
@@ -166,7 +206,9 @@ pub struct GpuObjectSettings {
     /// 1: Blender's Holdout (the object's or its collection's): the camera sees through
     /// it to nothing, and the pixel's alpha loses what it covers; other rays see it as it is.
     pub holdout: u32,
-    pub _pad0: u32,
+    /// Motion blur: the index of its first key in the motion keys << 8 | how many keys
+    /// ([`NO_MOTION`]: it stands still).
+    pub motion: u32,
 }
 
 impl Default for GpuObjectSettings {
@@ -181,7 +223,7 @@ impl GpuObjectSettings {
             geometry_offset: t.geometry_offset,
             frequency_multiplier: t.frequency_multiplier(),
             holdout: u32::from(holdout),
-            _pad0: 0,
+            motion: NO_MOTION,
         }
     }
 }

@@ -33,6 +33,7 @@ mod cycles_environment;
 mod cycles_film;
 mod cycles_instances;
 mod cycles_lamps;
+mod cycles_motion;
 mod cycles_node_graphs;
 mod cycles_normal_maps;
 mod cycles_passes;

@@ -39,7 +39,8 @@ def render_frame(scene, settings, folder, binary, on_progress=None, should_stop=
     if os.path.exists(output):
         os.remove(output)
     start = time.perf_counter()
-    rt_export.export_scene(scene, os.path.join(folder, "assets"), scene_path, depsgraph=more.get("depsgraph"))
+    rt_export.export_scene(scene, os.path.join(folder, "assets"), scene_path, depsgraph=more.get("depsgraph"),
+                           frame_set=more.get("frame_set"))
     exported = time.perf_counter()
     command = [binary, "render", scene_path, "-o", output, "--progress", "json"]
     command += rt_run.render_options(settings, scene.frame_current, more.get("preview", False))
@@ -165,6 +166,8 @@ class RtRenderEngine(bpy.types.RenderEngine):
             path, warnings, timings = render_frame(
                 scene, scene.rt_render, folder, rt_binary(), on_progress, self.test_break,
                 depsgraph=depsgraph, preview=preview, aov_dir=aov_dir, on_snapshot=None if preview else on_snapshot,
+                # Motion blur: the render's depsgraph evaluated over the shutter, as Cycles does.
+                frame_set=None if preview else self.frame_set,
             )
             for warning in warnings:
                 self.report({"WARNING"}, f"rt: {warning}")

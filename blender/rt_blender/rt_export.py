@@ -1114,6 +1114,11 @@ _shown = None
 _depsgraph = None
 
 
+# {object name: its world matrices over the shutter} of the objects and camera that move in
+# the export under way (see `motion_keys`).
+_motion = {}
+
+
 def world_matrix(obj):
     """`obj`'s world matrix in the depsgraph being exported (its own outside an export)."""
     return obj.evaluated_get(_depsgraph).matrix_world if _depsgraph is not None else obj.matrix_world
@@ -1693,6 +1698,17 @@ def panorama_lines(cam):
     return lines
 
 
+def camera_pose(matrix_world, focus):
+    """`position`, `look_at` and `up` lines of a camera at `matrix_world` (Blender's camera
+    looks down its local -Z with +Y up), looking at its focus distance."""
+    m = TO_RT @ matrix_world
+    position = m.translation
+    forward = -(m.to_3x3() @ Vector((0, 0, 1))).normalized()
+    up = (m.to_3x3() @ Vector((0, 1, 0))).normalized()
+    look_at = position + forward * (focus if focus > 0 else 10.0)
+    return [f"position = {vec(position)}", f"look_at = {vec(look_at)}", f"up = {vec(up)}"]
+
+
 def camera_toml(scene):
     """The camera as Cycles sees it: its roll through `up`, projection (perspective,
     orthographic or one of the panoramas of PANORAMAS), sensor, shift, clip planes and
@@ -1706,13 +1722,11 @@ def camera_toml(scene):
         log(f"camera {cam.name}: the {data.panorama_type} panorama is exported as a perspective camera")
     elif data.type not in {"PERSP", "ORTHO", "PANO"}:
         log(f"camera {cam.name}: {data.type} is exported as a perspective camera")
-    m = TO_RT @ world_matrix(cam)
-    position = m.translation
-    forward = -(m.to_3x3() @ Vector((0, 0, 1))).normalized()
-    up = (m.to_3x3() @ Vector((0, 1, 0))).normalized()
     focus = focus_distance(cam)
-    look_at = position + forward * (focus if focus > 0 else 10.0)
-    lines = [f"position = {vec(position)}", f"look_at = {vec(look_at)}", f"up = {vec(up)}"]
+    lines = camera_pose(world_matrix(cam), focus)
+    if cam.name in _motion:
+        poses = ", ".join("{ " + ", ".join(camera_pose(m, focus)) + " }" for m in _motion[cam.name])
+        lines.append(f"motion = [{poses}]")
     if panoramic:
         lines += panorama_lines(cam)
     elif data.type == "ORTHO":
@@ -2002,6 +2016,77 @@ def film_toml(scene):
     return text
 
 
+def rt_rows_of(matrix_world):
+    """An object's Blender world matrix as rt's row-major 16 numbers."""
+    m = TO_RT @ matrix_world @ FROM_RT
+    rows = [m[r][c] for r in range(4) for c in range(4)]
+    rows[12:16] = [0.0, 0.0, 0.0, 1.0]
+    return rows
+
+
+# --- motion blur --------------------------------------------------------------------
+#
+# As Cycles syncs motion (`BlenderSync::sync_motion`): with the render's Motion Blur on, an
+# object whose Object > Motion Blur is on is evaluated at 2^(steps-1)·2 + 1 evenly spaced
+# times from the shutter's opening to its closing (Motion Steps `steps`; the shutter lasts
+# Shutter frames, and starts at, is centred on or ends at the current frame by Position);
+# rt interpolates between those keys. Objects that do not move keep no keys.
+
+def motion_steps(obj):
+    """How many keys Cycles takes of `obj` over the shutter (0: it is not blurred)."""
+    settings = getattr(obj, "cycles", None)
+    if settings is None or not settings.use_motion_blur:
+        return 0
+    return (2 << (max(1, settings.motion_steps) - 1)) + 1
+
+
+def split_time(t):
+    """A frame time as Blender sets it: (frame, subframe)."""
+    frame = math.floor(t)
+    return frame, t - frame
+
+
+def shutter_centre(scene):
+    """The frame time at the middle of the open shutter, where Cycles evaluates the whole
+    scene (what does not blur, lamps, the camera's lens too): the current frame, moved by
+    half the shutter when it opens (Position Start) or closes (End) on the frame."""
+    render = scene.render
+    centre = scene.frame_current + scene.frame_subframe
+    return centre + {"START": 0.5, "END": -0.5}.get(render.motion_blur_position, 0.0) * render.motion_blur_shutter
+
+
+def shutter_times(scene, centre, steps):
+    """The `steps` frame times (frame, subframe) from the shutter's opening to its closing."""
+    half = 0.5 * scene.render.motion_blur_shutter
+    return [split_time(centre + (2.0 * k / (steps - 1) - 1.0) * half) for k in range(steps)]
+
+
+def motion_keys(scene, objects, centre, frame_set):
+    """{object name: its world matrices over the shutter} of the objects (and the camera)
+    that move while it is open, evaluated at each time by `frame_set(frame, subframe)`;
+    leaves the frame at the shutter's `centre`."""
+    movers = [o for o in objects if motion_steps(o) > 0]
+    if scene.camera is not None and motion_steps(scene.camera) > 0:
+        movers.append(scene.camera)
+    by_steps = {}
+    for obj in movers:
+        steps = motion_steps(obj)
+        if obj == scene.camera:
+            # rt keeps the camera's keys with each frame's constants: at most 17.
+            steps = min(steps, 17)
+        by_steps.setdefault(steps, []).append(obj)
+    keys = {}
+    try:
+        for steps, group in by_steps.items():
+            for frame, subframe in shutter_times(scene, centre, steps):
+                frame_set(frame, subframe)
+                for obj in group:
+                    keys.setdefault(obj.name, []).append(world_matrix(obj).copy())
+    finally:
+        frame_set(*split_time(centre))
+    return {name: ms for name, ms in keys.items() if any(m != ms[0] for m in ms[1:])}
+
+
 def scene_toml(scene, export, scene_path, objects):
     width, height = render_size(scene)
     scene_dir = os.path.dirname(os.path.abspath(scene_path))
@@ -2025,7 +2110,10 @@ def scene_toml(scene, export, scene_path, objects):
         rows = [m[r][c] for r in range(4) for c in range(4)]
         rows[12:16] = [0.0, 0.0, 0.0, 1.0]
         terminator = object_settings_toml(object_settings(obj, export.view_layer))
-        text.append(f"# {obj.name}\n[[mesh]]\nasset = {json.dumps(asset)}\nmatrix = {vec(rows)}\n{terminator}\n")
+        motion = ""
+        if obj.name in _motion:
+            motion = f"motion = [{', '.join(vec(rt_rows_of(k)) for k in _motion[obj.name])}]\n"
+        text.append(f"# {obj.name}\n[[mesh]]\nasset = {json.dumps(asset)}\nmatrix = {vec(rows)}\n{motion}{terminator}\n")
     text.append(instances_toml(export, scene_path))
     return "".join(text).rstrip("\n") + "\n"
 
@@ -2033,26 +2121,41 @@ def scene_toml(scene, export, scene_path, objects):
 # --- the export -------------------------------------------------------------------
 
 
-def export_scene(scene, out_dir, scene_path=None, only=None, previous=None, bake_size=0, depsgraph=None):
+def export_scene(scene, out_dir, scene_path=None, only=None, previous=None, bake_size=0, depsgraph=None,
+                 frame_set=None):
     """Exports every mesh object `depsgraph` shows into `out_dir`, and the scene TOML to
     `scene_path` if given. F12 passes the render's depsgraph (render visibility and
     render-level modifiers count), the viewport its own (the viewport's); without one,
     the context's depsgraph is evaluated and what renders in the view layer exported.
     With `only` (a set of object names) and the `previous` export, objects outside `only`
     keep the folder they had and are not evaluated. With `bake_size`, sockets fed by what
-    rt cannot follow are baked (see `Baker`)."""
-    global _shown, _depsgraph
+    rt cannot follow are baked (see `Baker`). With the render's Motion Blur on, the scene is
+    exported at the shutter's centre and its moving objects and camera over the shutter,
+    each time set by `frame_set(frame, subframe)` (the scene's own by default; F12 passes
+    the render engine's, as Cycles does); the frame is set back after."""
+    global _shown, _depsgraph, _motion
     _shown = shown_objects(depsgraph) if depsgraph is not None else None
     _depsgraph = depsgraph
+    # The viewport's live export (a depsgraph without a way to change its frame) stays sharp.
+    blur = scene.render.use_motion_blur and (depsgraph is None or frame_set is not None)
+    if frame_set is None:
+        frame_set = lambda frame, subframe: scene.frame_set(frame, subframe=subframe)  # noqa: E731
+    current = (scene.frame_current, scene.frame_subframe)
+    shutter = (shutter_centre(scene), frame_set) if blur else None
     if depsgraph is None:
         depsgraph = bpy.context.evaluated_depsgraph_get()
     try:
-        return _export_scene(scene, out_dir, scene_path, only, previous, bake_size, depsgraph)
+        if blur and shutter[0] != current[0] + current[1]:
+            frame_set(*split_time(shutter[0]))
+        return _export_scene(scene, out_dir, scene_path, only, previous, bake_size, depsgraph, shutter)
     finally:
+        if blur:
+            frame_set(*current)
         _shown = _depsgraph = None
+        _motion = {}
 
 
-def _export_scene(scene, out_dir, scene_path, only, previous, bake_size, depsgraph):
+def _export_scene(scene, out_dir, scene_path, only, previous, bake_size, depsgraph, shutter):
     # Images may have been painted or reloaded since the last export.
     _linear_pixels.clear()
     export = Export(out_dir)
@@ -2069,6 +2172,9 @@ def _export_scene(scene, out_dir, scene_path, only, previous, bake_size, depsgra
         export.add(obj, depsgraph)
     add_instances(export, depsgraph)
     if scene_path:
+        global _motion
+        if shutter is not None:
+            _motion = motion_keys(scene, [o for o in objects if o.name in export.folder_of], *shutter)
         path = bpy.path.abspath(scene_path) if scene_path.startswith("//") else scene_path
         if write_if_changed(path, scene_toml(scene, export, path, objects)):
             export.written.append(path)

@@ -4,8 +4,9 @@ describe what rt renders, shown with rt picked by adding rt to their COMPAT_ENGI
 material's Surface and Volume (the Shader Editor shows the node trees too, see
 `RtRenderEngine.bl_use_shading_nodes_custom`), the world's Surface, the light's settings,
 the camera's Lens, Camera and Depth of Field, Format, Output, Frame Range, Color
-Management, and every panel that edits geometry, particles or physics whatever the
-engine. Panels for what rt does not render (light probes, bake, motion blur, grease
+Management, Motion Blur (the render's and each object's), and every panel that edits
+geometry, particles or physics whatever the engine. Panels for what rt does not render
+(light probes, bake, the shutter curve, grease
 pencil and Freestyle lines, stereoscopy, volume objects, Cycles' own integrator
 settings) stay hidden under rt.
 """
@@ -31,6 +32,8 @@ CYCLES_PANELS = (
     "CYCLES_CAMERA_PT_dof_aperture",
     "CYCLES_PT_post_processing",
     "CYCLES_RENDER_PT_simplify",
+    "CYCLES_RENDER_PT_motion_blur",
+    "CYCLES_OBJECT_PT_motion_blur",
 )
 # Parts of the names of Blender's own panels for what rt does not render.
 NOT_RENDERED = ("lightprobe", "stereoscopy", "output_views", "freestyle", "gpencil", "grease_pencil", "volume_render")

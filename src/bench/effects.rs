@@ -109,6 +109,8 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
     force("terminator offset", own.terminator_offset, FeatureSet { terminator_offset: true, triangles: true, ..own });
     // The holdout test of each shaded surface reads the instance's settings: triangles come with it.
     force("holdout", own.holdout, FeatureSet { holdout: true, triangles: true, ..own });
+    // Motion blur's code where nothing moves: a time per sample and each instance's motion looked up.
+    force("motion", own.motion, FeatureSet { motion: true, ..own });
     // Texture lookups alone, so that the normal maps' own share of their price shows.
     force("textures", own.textures, FeatureSet { textures: true, ..own });
     // Normal maps are texture lookups: forcing them on forces the texture code too.
@@ -232,5 +234,10 @@ mod tests {
     #[test]
     fn holdout_is_among_the_forced_effects() {
         forced_once("+holdout", |f| FeatureSet { holdout: false, ..f });
+    }
+
+    #[test]
+    fn motion_is_among_the_forced_effects() {
+        forced_once("+motion", |f| FeatureSet { motion: false, ..f });
     }
 }

@@ -6,8 +6,8 @@
 use super::pack::LoadedMesh;
 use crate::asset::AssetError;
 use crate::asset::rtinst::{self, MaterialSets};
-use crate::layout::{GpuInstance, GpuObjectSettings, NO_MATERIAL};
-use crate::scene::{InstanceSet, Material, Scene};
+use crate::layout::{GpuInstance, GpuMotionKey, GpuObjectSettings, NO_MATERIAL};
+use crate::scene::{InstanceSet, Material, Motion, Scene};
 use anyhow::{Result, bail};
 use glam::{DMat4, Mat4, Vec3, Vec3A};
 use obvhs::aabb::Aabb;
@@ -48,6 +48,9 @@ pub(super) struct Placement<'m> {
     pub shading_offsets: bool,
     /// Some instance is a holdout.
     pub held_out: bool,
+    /// The moving instances' keys over the shutter, one block per instance
+    /// (`GpuObjectSettings::motion` says where its starts).
+    pub motion_keys: Vec<GpuMotionKey>,
     /// Which mesh each instance places.
     pub instance_mesh: Vec<u32>,
     /// World box of each instance, for the top level.
@@ -71,6 +74,7 @@ impl<'m> Placement<'m> {
             object_settings: Vec::new(),
             shading_offsets: false,
             held_out: false,
+            motion_keys: Vec::new(),
             instance_mesh: Vec::new(),
             boxes: Vec::new(),
             own_materials_shown: vec![false; meshes.len()],
@@ -81,17 +85,29 @@ impl<'m> Placement<'m> {
     }
 
     /// Places mesh `mesh_index` at `object_to_world` (invertible), with the material
-    /// table index `material_override` or `NO_MATERIAL`, with its object's settings.
-    /// Empty meshes place nothing.
+    /// table index `material_override` or `NO_MATERIAL`, with its object's settings, and
+    /// moving through `motion` over the shutter if it moves. Empty meshes place nothing.
     pub fn place(
         &mut self,
         mesh_index: usize,
         object_to_world: &Mat4,
         material_override: u32,
-        settings: GpuObjectSettings,
+        mut settings: GpuObjectSettings,
+        motion: Option<&Motion>,
     ) {
         let base = self.slots[mesh_index].material_base;
+        let Some(motion) = motion.filter(|_| self.meshes[mesh_index].triangle_count > 0) else {
+            self.place_with_base(mesh_index, object_to_world, material_override, base, settings);
+            return;
+        };
+        settings.motion = (self.motion_keys.len() as u32) << 8 | motion.keys.len() as u32;
+        self.motion_keys.extend(motion.decomposed().iter().map(GpuMotionKey::from));
         self.place_with_base(mesh_index, object_to_world, material_override, base, settings);
+        let bvh = &self.meshes[mesh_index].bvh;
+        let (lo, hi) = motion.swept_box(bvh.bounds_min, bvh.bounds_max);
+        if let Some(b) = self.boxes.last_mut() {
+            *b = transformed_box(&Mat4::IDENTITY, lo, hi);
+        }
     }
 
     /// As [`Self::place`], the mesh's triangles indexing materials from `material_base`

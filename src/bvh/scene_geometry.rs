@@ -37,6 +37,10 @@ pub struct SceneGeometry {
     pub shading_offsets: bool,
     /// Some instance is a holdout.
     pub held_out: bool,
+    /// Some emissive instance moves over the shutter (lights are then sampled by power).
+    pub moving_lights: bool,
+    /// The moving instances' transforms over the shutter (`GpuObjectSettings::motion`).
+    pub motion_keys: Vec<GpuMotionKey>,
     pub tlas_primitives: Vec<u32>,
     pub spheres: Vec<GpuSphere>,
     /// The default material first, then the scene's, then each mesh's own.
@@ -97,6 +101,8 @@ impl SceneGeometry {
             smooth_normals: self.smooth_normals,
             shading_offsets: self.shading_offsets,
             held_out: self.held_out,
+            moving: !self.motion_keys.is_empty(),
+            moving_lights: self.moving_lights,
             materials_in_use: self.materials_in_use.clone(),
         }
     }
@@ -118,6 +124,7 @@ impl SceneGeometry {
         let top_nodes = self.nodes.len() - self.tlas_root as usize;
         self.instances.len() * size_of::<GpuInstance>()
             + self.object_settings.len() * size_of::<GpuObjectSettings>()
+            + self.motion_keys.len() * size_of::<GpuMotionKey>()
             + self.spheres.len() * size_of::<GpuSphere>()
             + top_nodes * size_of::<GpuBvhNode>()
             + self.tlas_primitives.len() * size_of::<u32>()
@@ -208,7 +215,7 @@ impl SceneGeometry {
                 None => NO_MATERIAL,
             };
             let settings = GpuObjectSettings::new(m.shadow_terminator, m.holdout);
-            placement.place(mesh_of_path[&m.asset], &m.object_to_world, material_override, settings);
+            placement.place(mesh_of_path[&m.asset], &m.object_to_world, material_override, settings, m.motion.as_ref());
         }
         for set in &scene.instance_sets {
             let named = |n: &str| scene_material(&Some(n.to_owned()));
@@ -228,6 +235,7 @@ impl SceneGeometry {
             object_settings,
             shading_offsets,
             held_out,
+            motion_keys,
             instance_mesh,
             mut boxes,
             set_materials,
@@ -270,6 +278,16 @@ impl SceneGeometry {
         let emissive =
             EmissiveTriangles { mesh_triangles: &mesh_triangles, triangles: &triangles, materials: &materials };
         let (emitters, emitter_bounds, emitter_total_power) = emissive.table(&instances, &instance_mesh, &spheres);
+        // The tree bounds each light where the frame has it; a light that moves over the
+        // shutter could leave its bounds, so such scenes sample lights by power.
+        let moving_lights = emitters
+            .iter()
+            .any(|e| e.primitive & SPHERE_BIT == 0 && object_settings[e.instance as usize].motion != NO_MOTION);
+        let mut light_sampler = scene.render.light_sampler;
+        if moving_lights && light_sampler == LightSampler::Tree {
+            log::warn!("{}: an emissive mesh moves over the shutter: lights are sampled by power", scene.origin);
+            light_sampler = LightSampler::Power;
+        }
 
         let build_start = Instant::now();
         let (nodes, tlas_primitives) = if boxes.is_empty() {
@@ -301,12 +319,12 @@ impl SceneGeometry {
             scene.sun.is_some(),
             !emitters.is_empty(),
             scene_radius(bounds_min, bounds_max),
-            scene.render.light_sampler,
+            light_sampler,
         );
         let tree_start = Instant::now();
         // Scenes that sample by power pay nothing for the tree: theirs is empty, and a
         // pipeline with the tree's code (all features) then finds emitters by BSDF rays only.
-        let light_tree = if scene.render.light_sampler == LightSampler::Tree {
+        let light_tree = if light_sampler == LightSampler::Tree {
             tree_of(&emitter_bounds, &scene.lights, &lamps)?
         } else {
             LightTree::build(&[], emitter_bounds.len() + lamps.len())?
@@ -330,6 +348,8 @@ impl SceneGeometry {
             object_settings,
             shading_offsets,
             held_out,
+            moving_lights,
+            motion_keys,
             tlas_primitives,
             spheres,
             node_programs: materials.iter().flat_map(|m| m.node_program.iter().copied()).collect(),

@@ -22,6 +22,7 @@ pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     let bindings = [
         Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadWrite, ReadOnly, ReadOnly,
         Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly,
+        ReadOnly,
     ];
     sequential_layout(device, "scene", wgpu::ShaderStages::COMPUTE, &bindings)
 }
@@ -70,11 +71,13 @@ struct SceneData {
     object_settings: wgpu::Buffer,
     /// The materials' node programs (`crate::asset::node_graph`).
     node_programs: wgpu::Buffer,
+    /// The moving instances' transforms over the shutter (`shaders/motion.wgsl`).
+    motion_keys: wgpu::Buffer,
 }
 
 impl SceneData {
     /// The buffers in binding order (see [`scene_bind_group_layout`]).
-    fn bindings(&self) -> [&wgpu::Buffer; 22] {
+    fn bindings(&self) -> [&wgpu::Buffer; 23] {
         [
             &self.frame,
             &self.nodes,
@@ -98,6 +101,7 @@ impl SceneData {
             &self.second_uvs,
             &self.object_settings,
             &self.node_programs,
+            &self.motion_keys,
         ]
     }
 }
@@ -122,8 +126,9 @@ fn storage<T: Pod + Default>(ctx: &GpuContext, label: &str, data: &[T], extra: w
 }
 
 /// The geometry's buffers: (top-level nodes, triangles, shading, instances, top-level primitives,
-/// spheres, bottom-level nodes, tangents, second uvs, object_settings).
+/// spheres, bottom-level nodes, tangents, second uvs, object_settings, motion keys).
 type GeometryBuffers = (
+    wgpu::Buffer,
     wgpu::Buffer,
     wgpu::Buffer,
     wgpu::Buffer,
@@ -150,6 +155,7 @@ fn geometry_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<Geomet
         storage(ctx, "tangents", &geometry.tangents, none),
         storage(ctx, "second uvs", &geometry.second_uvs, none),
         storage(ctx, "object_settings", &geometry.object_settings, none),
+        storage(ctx, "motion keys", &geometry.motion_keys, none),
     ))
 }
 
@@ -188,8 +194,19 @@ fn material_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> (wgpu::Buffer
 
 impl SceneBuffers {
     pub fn new(ctx: &GpuContext, geometry: &SceneGeometry, layout: &wgpu::BindGroupLayout) -> Result<Self> {
-        let (nodes, triangles, shading, instances, tlas, spheres, wide_nodes, tangents, second_uvs, object_settings) =
-            geometry_buffers(ctx, geometry)?;
+        let (
+            nodes,
+            triangles,
+            shading,
+            instances,
+            tlas,
+            spheres,
+            wide_nodes,
+            tangents,
+            second_uvs,
+            object_settings,
+            motion_keys,
+        ) = geometry_buffers(ctx, geometry)?;
         let (materials, emitters, node_programs) = material_buffers(ctx, geometry);
         let frame = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("frame"),
@@ -224,6 +241,7 @@ impl SceneBuffers {
             second_uvs,
             object_settings,
             node_programs,
+            motion_keys,
         };
         let bind_group = bind_group(ctx, "scene", layout, &data.bindings());
         Ok(Self { data, bind_group, sky_bind_group: None })
@@ -249,6 +267,7 @@ impl SceneBuffers {
             d.tangents,
             d.second_uvs,
             d.object_settings,
+            d.motion_keys,
         ) = geometry_buffers(ctx, geometry)?;
         (d.materials, d.emitters, d.node_programs) = material_buffers(ctx, geometry);
         (d.lamps, d.lamp_info) = lamp_buffers(ctx, geometry);
@@ -318,6 +337,7 @@ fn check_sizes(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<()> {
         ("second uvs", std::mem::size_of_val(geometry.second_uvs.as_slice())),
         ("instances", std::mem::size_of_val(geometry.instances.as_slice())),
         ("instance settings", std::mem::size_of_val(geometry.object_settings.as_slice())),
+        ("motion keys", std::mem::size_of_val(geometry.motion_keys.as_slice())),
         ("emitters", std::mem::size_of_val(geometry.emitters.as_slice())),
         ("node programs", std::mem::size_of_val(geometry.node_programs.as_slice())),
         ("light tree nodes", std::mem::size_of_val(geometry.light_tree.nodes.as_slice())),

@@ -20,12 +20,12 @@ pub struct GpuContext {
     errors: Arc<Mutex<Vec<String>>>,
 }
 
-/// Storage buffers the integrator binds in one stage: 20 in the scene group (see
+/// Storage buffers the integrator binds in one stage: 21 in the scene group (see
 /// `shaders/common.wgsl`, the instances' Shadow Terminator settings and the node programs among them; the
-/// microfacet tables' in `shaders/microfacet_tables.wgsl`), 7 of the accumulation (with
+/// microfacet tables' in `shaders/microfacet_tables.wgsl`, the motion keys' in `shaders/motion.wgsl`), 7 of the accumulation (with
 /// AOVs, adaptive sampling's counts, the lanes' chunk counters and the exact sums) and the
 /// atmosphere's tables. lavapipe offers 32, the NVIDIA driver far more.
-const STORAGE_BUFFERS_NEEDED: u32 = 28;
+const STORAGE_BUFFERS_NEEDED: u32 = 29;
 
 const NO_ADAPTER_HELP: &str = "no GPU adapter found. rt needs Vulkan; on a machine without a GPU, \
 install Mesa's CPU driver (lavapipe): `sudo apt-get install mesa-vulkan-drivers`";

@@ -72,7 +72,10 @@ fn host_structs_match_wgsl_layouts() {
                 fisheye_lens,
                 panorama,
                 transparent_glass,
-                sky_light_share
+                sky_light_share,
+                first_sample,
+                camera_motion_steps,
+                camera_motion
             ]
         ),
         host_layout!("BvhNode", GpuBvhNode, [a_min, a_link, a_max, a_count, b_min, b_link, b_max, b_count]),
@@ -101,7 +104,8 @@ fn host_structs_match_wgsl_layouts() {
             GpuInstance,
             [world_to_object, node_offset, triangle_offset, material_base, material_override]
         ),
-        host_layout!("ObjectSettings", GpuObjectSettings, [geometry_offset, frequency_multiplier, holdout]),
+        host_layout!("ObjectSettings", GpuObjectSettings, [geometry_offset, frequency_multiplier, holdout, motion]),
+        host_layout!("MotionKey", GpuMotionKey, [rotation, translation, stretch_xx, stretch_a, stretch_b]),
         host_layout!("Sphere", GpuSphere, [center, radius, material, k]),
         host_layout!(
             "Material",

@@ -74,6 +74,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("lights.wgsl"),
     shader!("microfacet.wgsl"),
     shader!("microfacet_tables.wgsl"),
+    shader!("motion.wgsl"),
     shader!("principled.wgsl"),
     shader!("ray.wgsl"),
     shader!("reflectance.wgsl"),

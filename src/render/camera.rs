@@ -16,6 +16,13 @@ pub fn set_camera(frame: &mut GpuFrame, camera: &Camera, width: u32, height: u32
     frame.camera_forward = forward.to_array();
     frame.camera_right = right.to_array();
     frame.camera_up = up.to_array();
+    frame.camera_motion_steps = 0;
+    if let Some(motion) = &camera.motion {
+        frame.camera_motion_steps = motion.keys.len() as u32;
+        for (slot, key) in frame.camera_motion.iter_mut().zip(motion.decomposed()) {
+            *slot = (&key).into();
+        }
+    }
     frame.view_half_extent = plane.half_extent.to_array();
     frame.view_shift = plane.shift.to_array();
     frame.orthographic = u32::from(matches!(camera.projection, Projection::Orthographic { .. }));

@@ -69,6 +69,9 @@ pub struct Camera {
     /// planes along the view (metres); `clip_end` may be infinite.
     pub clip_start: f32,
     pub clip_end: f32,
+    /// Its frames over the shutter (`motion`; columns right, up, forward and position):
+    /// motion blur. `None`: it stands still.
+    pub motion: Option<super::Motion>,
 }
 
 impl Default for Camera {
@@ -85,6 +88,7 @@ impl Default for Camera {
             depth_of_field: None,
             clip_start: 0.0,
             clip_end: f32::INFINITY,
+            motion: None,
         }
     }
 }
@@ -323,6 +327,7 @@ pub(super) fn validate(src: &Source, c: schema::Camera) -> Result<Camera, SceneE
         depth_of_field,
         clip_start: c.clip_start,
         clip_end,
+        motion: c.motion.as_deref().map(|poses| super::motion::validate_camera(src, poses)).transpose()?,
     })
 }
 

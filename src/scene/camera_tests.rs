@@ -90,6 +90,7 @@ fn every_key_parses() {
         }),
         clip_start: 0.25,
         clip_end: 80.0,
+        motion: None,
     };
     assert_eq!(parse_camera(text), Ok(expected));
     let unclipped = parse_camera("").expect("valid");

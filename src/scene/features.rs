@@ -134,6 +134,9 @@ pub struct FeatureSet {
     /// Some material is (partly) a Holdout shader, or some object a holdout: the pixels'
     /// alpha is counted, and held-out surfaces take from it.
     pub holdout: bool,
+    /// Motion blur: some instance or the camera moves over the shutter; each sample has a
+    /// time, at which every ray of its path sees the scene.
+    pub motion: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -151,6 +154,10 @@ pub struct GeometrySummary {
     pub shading_offsets: bool,
     /// Some placed instance is a holdout.
     pub held_out: bool,
+    /// Some placed instance moves over the shutter.
+    pub moving: bool,
+    /// Some emissive instance moves over the shutter: lights are sampled by power, not the tree.
+    pub moving_lights: bool,
     /// Every material some triangle or sphere uses (an asset's own materials may
     /// emit or refract).
     pub materials_in_use: Vec<Material>,
@@ -205,6 +212,7 @@ impl FeatureSet {
             depth_of_field: scene.camera.depth_of_field.is_some(),
             panorama: matches!(scene.camera.projection, Projection::Panoramic { .. }),
             light_tree: settings.light_sampler == LightSampler::Tree
+                && !geometry.moving_lights
                 && settings.sampling == Sampling::Nee
                 && (materials_in_use.iter().any(|m| m.is_emissive()) || scene.lights.iter().any(|l| !l.is_sun())),
             aovs: false,
@@ -233,6 +241,7 @@ impl FeatureSet {
             smooth_normals: geometry.smooth_normals && settings.microfacet == Microfacet::Multiscatter,
             terminator_offset: geometry.shading_offsets,
             holdout: geometry.held_out || materials_in_use.iter().any(|m| m.holdout > 0.0),
+            motion: geometry.moving || scene.camera.motion.is_some(),
         }
     }
 
@@ -275,6 +284,7 @@ impl FeatureSet {
             smooth_normals: true,
             terminator_offset: true,
             holdout: true,
+            motion: true,
         }
     }
 
@@ -339,8 +349,9 @@ impl FeatureSet {
             // Surfaces whose lobes follow Cycles' rules (lobe_hemispheres.wgsl) exist.
             "cycles_lobe_rules" => self.normal_maps || self.smooth_normals,
             "holdout" => self.holdout,
-            // Each instance's Shadow Terminator settings, read by both, and its holdout.
-            "object_settings" => self.smooth_normals || self.terminator_offset || self.holdout,
+            "motion" => self.motion,
+            // Each instance's Shadow Terminator settings, read by both, its holdout and its motion.
+            "object_settings" => self.smooth_normals || self.terminator_offset || self.holdout || self.motion,
             "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen || self.thin_film,
             _ => return None,
         })
@@ -383,6 +394,7 @@ impl fmt::Display for FeatureSet {
             (self.smooth_normals, "smooth-normals"),
             (self.terminator_offset, "terminator-offset"),
             (self.holdout, "holdout"),
+            (self.motion, "motion"),
         ] {
             if on {
                 parts.push(name.to_string());

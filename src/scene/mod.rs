@@ -9,6 +9,7 @@ mod features;
 mod light;
 mod material;
 mod material_textures;
+mod motion;
 mod panorama;
 mod parse;
 mod schema;
@@ -25,6 +26,7 @@ pub use features::{ALPHA_DELTA, FeatureSet, GeometrySummary, LampKinds, SkyFeatu
 pub use light::{AreaShape, Light, LightShape};
 pub use material::{Material, Tangent, luminance, srgb_decode, srgb_encode};
 pub use material_textures::{LAYER_COUNT, LayerTextures, MaterialTextures, UvSet, slots};
+pub use motion::{Decomposed, MAX_CAMERA_MOTION_KEYS, Motion, interpolate};
 pub use panorama::Panorama;
 pub use parse::{SceneError, hint as did_you_mean, load, parse};
 pub use shadow_terminator::ShadowTerminator;
@@ -191,6 +193,8 @@ pub struct MeshInstance {
     /// where it sees this object, and the pixel's alpha loses it; reflections, shadows and
     /// light bounced from it stay.
     pub holdout: bool,
+    /// Its transforms over the shutter (`motion`): motion blur; `None`: it stands still.
+    pub motion: Option<Motion>,
 }
 
 /// One `[[instances]]`: an asset placed once per record of an instance file.

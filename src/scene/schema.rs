@@ -59,6 +59,16 @@ pub(super) struct Camera {
     pub longitude_max_deg: Option<f32>,
     pub fisheye_fov_deg: Option<f32>,
     pub fisheye_lens_mm: Option<f32>,
+    pub motion: Option<Vec<CameraPose>>,
+}
+
+/// One key of `[camera] motion`: where the camera is and looks at one time of the shutter.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct CameraPose {
+    pub position: [f32; 3],
+    pub look_at: [f32; 3],
+    pub up: Option<[f32; 3]>,
 }
 
 impl Default for Camera {
@@ -92,6 +102,7 @@ impl Default for Camera {
             longitude_max_deg: None,
             fisheye_fov_deg: None,
             fisheye_lens_mm: None,
+            motion: None,
         }
     }
 }
@@ -188,6 +199,8 @@ pub(super) struct Mesh {
     pub scale: Option<Scale>,
     /// Row-major; excludes `rotate_deg`, `translate` and `scale`.
     pub matrix: Option<[f32; 16]>,
+    /// Row-major matrices over the shutter (motion blur).
+    pub motion: Option<Vec<[f32; 16]>>,
     pub shadow_terminator_geometry_offset: Option<f32>,
     pub shadow_terminator_shading_offset: Option<f32>,
     #[serde(default)]

@@ -234,6 +234,9 @@ fn out_of_range_values_are_located() {
         [materials.m] | coat = 1.5 => 2:8: [materials.m]: coat must be in [0, 1], got 1.5
         [materials.m] | holdout = 1.5 => 2:11: [materials.m]: holdout must be in [0, 1], got 1.5
         [[mesh]] | asset = "a" | holdout = 1 => 3:11: mesh 1: holdout: invalid type: integer `1`, expected a boolean
+        [[mesh]] | asset = "a" | motion = [[1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]] => 3:10: mesh 1: motion must list 2 to 129 keys (the shutter's opening to its closing), got 1
+        [[mesh]] | asset = "a" | motion = [[1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1], [1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]] => 3:10: mesh 1: motion must be invertible
+        [camera] | motion = [{ position = [0, 0, 1], look_at = [0, 0, 1] }, { position = [0, 0, 1], look_at = [0, 0, 0] }] => 2:10: [camera]: motion key 1: look_at must differ from position
         [materials.m] | coat_ior = 0.5 => 2:12: [materials.m]: coat_ior must be at least 1, got 0.5
         [materials.m] | sheen = -0.5 => 2:9: [materials.m]: sheen must be in [0, 1], got -0.5
         [materials.m] | sheen_roughness = 2 => 2:19: [materials.m]: sheen_roughness must be in [0, 1], got 2

@@ -51,6 +51,7 @@ pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, 
                 m.shadow_terminator_shading_offset,
             )?,
             holdout: m.holdout,
+            motion: m.motion.as_deref().map(|keys| super::motion::validate_keys(src, &p, keys)).transpose()?,
         });
     }
     let mut spheres = Vec::new();
@@ -271,10 +272,15 @@ impl RenderSettings {
 
 /// A row-major `matrix` key: finite, affine and invertible.
 pub(super) fn matrix(src: &Source, p: &[Seg], rows: &[f32; 16]) -> Result<Mat4, SceneError> {
-    src.finite(p, "matrix", rows)?;
+    matrix_of(src, p, "matrix", rows)
+}
+
+/// A row-major matrix under the key `field` (see [`matrix`]).
+pub(super) fn matrix_of(src: &Source, p: &[Seg], field: &str, rows: &[f32; 16]) -> Result<Mat4, SceneError> {
+    src.finite(p, field, rows)?;
     if rows[12..] != [0.0, 0.0, 0.0, 1.0] {
         let last = &rows[12..];
-        return Err(src.error(p, "matrix", format!("last row must be [0, 0, 0, 1], got {last:?}")));
+        return Err(src.error(p, field, format!("last row must be [0, 0, 0, 1], got {last:?}")));
     }
     let matrix = Mat4::from_cols_array(rows).transpose();
     let [a, b, c] = [matrix.x_axis, matrix.y_axis, matrix.z_axis].map(|v| v.truncate());
@@ -282,7 +288,7 @@ pub(super) fn matrix(src: &Source, p: &[Seg], rows: &[f32; 16]) -> Result<Mat4, 
     // a uniform millimetre scale passes and a nearly flat matrix does not.
     let det = Mat3::from_cols(a, b, c).determinant().abs();
     if det <= 1e-6 * a.length() * b.length() * c.length() {
-        return Err(src.error(p, "matrix", "must be invertible"));
+        return Err(src.error(p, field, "must be invertible"));
     }
     Ok(matrix)
 }

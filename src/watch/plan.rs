@@ -111,7 +111,9 @@ pub fn plan(old: &Scene, new: &Scene, old_assets: &AssetPrints, new_assets: &Ass
     let mut changes = Vec::new();
     if old.camera != new.camera {
         changes.push(Change::Camera);
-        if old.camera.depth_of_field.is_some() != new.camera.depth_of_field.is_some() {
+        if old.camera.depth_of_field.is_some() != new.camera.depth_of_field.is_some()
+            || old.camera.motion.is_some() != new.camera.motion.is_some()
+        {
             changes.push(Change::Features);
         }
     }
@@ -346,6 +348,7 @@ mod tests {
             object_to_world: glam::Mat4::IDENTITY,
             shadow_terminator: Default::default(),
             holdout: false,
+            motion: None,
         });
         let mut new_prints = prints(1);
         new_prints.insert(PathBuf::from("/s/other.obj"), Ok([7; 32]));

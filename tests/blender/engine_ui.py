@@ -40,12 +40,12 @@ MUST_SHOW = (
     "DATA_PT_lens", "DATA_PT_camera", "CYCLES_CAMERA_PT_dof", "CYCLES_CAMERA_PT_dof_aperture",
     "RENDER_PT_format", "RENDER_PT_output", "RENDER_PT_frame_range", "RENDER_PT_color_management",
     "DATA_PT_vertex_groups", "DATA_PT_uv_texture", "DATA_PT_shape_keys", "OBJECT_PT_shadow_terminator",
-    "PARTICLE_PT_emission", "PHYSICS_PT_cloth",
+    "PARTICLE_PT_emission", "PHYSICS_PT_cloth", "CYCLES_RENDER_PT_motion_blur", "CYCLES_OBJECT_PT_motion_blur",
 )
 # Panels of what rt does not render, or of Cycles' own settings that rt's panels replace.
 MUST_HIDE = (
     "CYCLES_RENDER_PT_sampling", "CYCLES_RENDER_PT_light_paths", "CYCLES_RENDER_PT_bake",
-    "CYCLES_RENDER_PT_motion_blur", "CYCLES_RENDER_PT_passes", "DATA_PT_lightprobe", "RENDER_PT_stereoscopy",
+    "CYCLES_RENDER_PT_motion_blur_curve", "CYCLES_RENDER_PT_passes", "DATA_PT_lightprobe", "RENDER_PT_stereoscopy",
     "CYCLES_LIGHT_PT_settings", "VIEWLAYER_PT_freestyle",
 )
 

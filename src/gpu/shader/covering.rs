@@ -87,6 +87,7 @@ fn factors() -> Vec<Factor> {
         flag!(smooth_normals),
         flag!(terminator_offset),
         flag!(holdout),
+        flag!(motion),
     ]
 }
 

@@ -64,6 +64,7 @@ fn feature_sets() -> Vec<FeatureSet> {
             smooth_normals: on(1) != on(3),
             terminator_offset: on(4) != on(5),
             holdout: on(5) != on(6),
+            motion: on(1) != on(7),
         });
     }
     sets
@@ -111,6 +112,7 @@ fn plain() -> FeatureSet {
         smooth_normals: false,
         terminator_offset: false,
         holdout: false,
+        motion: false,
     }
 }
 

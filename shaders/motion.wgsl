@@ -1,0 +1,102 @@
+// Motion blur, as Cycles blurs it: each sample has a time over the open shutter, at
+// which every ray of its path sees the scene. Moving instances and the camera keep their
+// transforms at evenly spaced times (`scene::Motion`), each split into a translation, a
+// unit quaternion and a stretch matrix; between the two keys about a time the rotation is
+// slerped and the rest interpolated linearly (Cycles' `transform_motion_array_interpolate`).
+
+//#include "constants.wgsl"
+//#include "common.wgsl"
+//#include "rng.wgsl"
+//#include "transform.wgsl"
+
+// The time of the sample being traced, in [0, 1] over the open shutter (the shutter's
+// middle for kernels that trace without samples).
+var<private> motion_time: f32 = 0.5;
+
+//#if motion
+@group(0) @binding(22) var<storage, read> motion_keys: array<MotionKey>;
+
+// Object settings' `motion` of an instance that stands still.
+const NO_MOTION: u32 = 0u;
+// A draw of its own for the time, outside the sample's sequence of draws, so that the
+// other draws stay as they are: scrambled Sobol, stratified over the pixel's samples.
+const TIME_DIMENSION: u32 = 0xffffu;
+
+// Draws the time of the sample that `rng` draws for.
+fn begin_sample_time(rng: ptr<function, Rng>) {
+    motion_time = sobol_coordinate(sobol_draw_index(rng, TIME_DIMENSION), sobol_coordinate_seed(rng, TIME_DIMENSION));
+}
+
+// Cycles' `quat_interpolate` (keys are stored on one side of the sphere).
+fn slerp(a: vec4f, b: vec4f, t: f32) -> vec4f {
+    let cos_theta = dot(a, b);
+    if cos_theta > 0.9995 {
+        return normalize(mix(a, b, t));
+    }
+    let theta = acos(clamp(cos_theta, -1.0, 1.0));
+    let perpendicular = normalize(b - a * cos_theta);
+    return a * cos(theta * t) + perpendicular * sin(theta * t);
+}
+
+// The stretch matrix's rows.
+fn stretch_rows(k: MotionKey) -> array<vec3f, 3> {
+    return array<vec3f, 3>(
+        vec3f(k.stretch_xx, k.stretch_a.xy),
+        vec3f(k.stretch_a.zw, k.stretch_b.x),
+        k.stretch_b.yzw,
+    );
+}
+
+// The object-to-world rows between keys `a` and `b`, a fraction `f` of the way.
+fn motion_between(a: MotionKey, b: MotionKey, f: f32) -> array<vec4f, 3> {
+    let q = slerp(a.rotation, b.rotation, f);
+    let sa = stretch_rows(a);
+    let sb = stretch_rows(b);
+    let s = array<vec3f, 3>(mix(sa[0], sb[0], f), mix(sa[1], sb[1], f), mix(sa[2], sb[2], f));
+    let t = mix(a.translation, b.translation, f);
+    // The quaternion's rotation matrix, by rows.
+    let r = array<vec3f, 3>(
+        vec3f(1.0 - 2.0 * (q.y * q.y + q.z * q.z), 2.0 * (q.x * q.y - q.w * q.z), 2.0 * (q.x * q.z + q.w * q.y)),
+        vec3f(2.0 * (q.x * q.y + q.w * q.z), 1.0 - 2.0 * (q.x * q.x + q.z * q.z), 2.0 * (q.y * q.z - q.w * q.x)),
+        vec3f(2.0 * (q.x * q.z - q.w * q.y), 2.0 * (q.y * q.z + q.w * q.x), 1.0 - 2.0 * (q.x * q.x + q.y * q.y)),
+    );
+    var m: array<vec4f, 3>;
+    for (var i = 0u; i < 3u; i++) {
+        m[i] = vec4f(r[i].x * s[0] + r[i].y * s[1] + r[i].z * s[2], t[i]);
+    }
+    return m;
+}
+
+// Where time `t` falls among `count` keys: the key before it and the fraction past it.
+fn motion_step(count: u32, t: f32) -> vec2f {
+    let last = f32(count - 1u);
+    let step = min(floor(t * last), last - 1.0);
+    return vec2f(step, t * last - step);
+}
+
+// Instance motion `motion` (first key << 8 | count) at time `t`: object-to-world rows.
+fn instance_motion_at(motion: u32, t: f32) -> array<vec4f, 3> {
+    let at = motion_step(motion & 0xffu, t);
+    let first = (motion >> 8u) + u32(at.x);
+    return motion_between(motion_keys[first], motion_keys[first + 1u], at.y);
+}
+
+// The camera's frame at the sample's time (columns right, up, forward and position).
+fn camera_motion_now() -> array<vec4f, 3> {
+    let at = motion_step(frame.camera_motion_steps, motion_time);
+    let k = u32(at.x);
+    return motion_between(frame.camera_motion[k], frame.camera_motion[k + 1u], at.y);
+}
+//#endif
+
+// Instance `index` as the sample sees it: with its world-to-object matrix at the sample's time.
+fn instance_at(index: u32) -> Instance {
+    var inst = instances[index];
+    //#if motion
+    let motion = object_settings[index].motion;
+    if motion != NO_MOTION {
+        inst.world_to_object = affine_inverse(instance_motion_at(motion, motion_time)).m;
+    }
+    //#endif
+    return inst;
+}

@@ -1,0 +1,59 @@
+//! Motion blur against Cycles (`tests/cycles/make_motion_refs.py`): objects and the camera
+//! keyframed in Blender, exported over the shutter by `blender/rt_export.py`, rendered by
+//! both within the noise of both renders (luminance per 8×8 block); and a scene that does
+//! not move renders bit for bit as it does without the motion code.
+
+use crate::common;
+
+use common::reference::Noiseless;
+use common::{reference, render, render_request, repo};
+use rt::scene::FeatureSet;
+
+const REFERENCE_SPP: f64 = 1024.0;
+const SPP: u32 = 128;
+
+fn check(name: &str) {
+    let scene = rt::scene::load(&repo().join(format!("tests/cycles/scenes/{name}/scene.toml"))).unwrap();
+    let (w, h) = (scene.render.width, scene.render.height);
+    let ours = render(scene, w, h, SPP, 8);
+    let file = repo().join(format!("tests/cycles/{name}.exr"));
+    reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4)).check(name, "Cycles");
+}
+
+/// A sphere sliding, a cube turning 150° (nine keys), one growing, one moving with its
+/// Motion Blur off and one still, the shutter starting on the frame.
+#[test]
+fn moving_objects_blur_as_in_cycles() {
+    check("motion_objects");
+}
+
+/// The camera panning and sliding, the shutter (half a frame) ending on the frame.
+#[test]
+fn a_moving_camera_blurs_as_in_cycles() {
+    check("motion_camera");
+}
+
+/// The motion code (a time per sample, instances and the camera looked up at it) leaves a
+/// scene that stands still exactly as it was: the time is a draw of its own, outside the
+/// sample's other random numbers.
+#[test]
+fn a_still_scene_is_bit_for_bit_the_same_with_the_motion_code() {
+    let load = || rt::scene::load(&repo().join("tests/cycles/scenes/motion_objects/scene.toml")).unwrap();
+    let mut still = load();
+    still.camera.motion = None;
+    for mesh in &mut still.meshes {
+        mesh.motion = None;
+    }
+    let size = |r: &mut rt::render::RenderRequest| (r.width, r.height, r.spp) = (48, 32, 4);
+    let (plain, features) = render_request(still.clone(), size);
+    assert!(!features.motion, "a still scene's pipeline has no motion code");
+    let with_motion = FeatureSet { motion: true, ..features };
+    let (moving_code, _) = render_request(still, |r| {
+        size(r);
+        r.features = Some(with_motion);
+    });
+    assert!(plain.pixels == moving_code.pixels, "the motion code changed a still scene's image");
+    let (blurred, features) = render_request(load(), size);
+    assert!(features.motion);
+    assert!(blurred.pixels != plain.pixels, "the moving scene renders as the still one");
+}

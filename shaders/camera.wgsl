@@ -25,7 +25,7 @@ struct CameraFrame {
 }
 
 fn camera_frame() -> CameraFrame {
-    //#if motion
+    //#if camera_motion
     if frame.camera_motion_steps > 0u {
         let m = camera_motion_now();
         return CameraFrame(

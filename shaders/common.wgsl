@@ -153,8 +153,7 @@ struct ObjectSettings {
     geometry_offset: f32,
     frequency_multiplier: f32,
     holdout: u32,
-    // Motion blur: the index of its first motion key << 8 | how many (0: it stands still).
-    motion: u32,
+    _pad0: u32,
 }
 
 struct Sphere {

@@ -14,10 +14,6 @@
 var<private> motion_time: f32 = 0.5;
 
 //#if motion
-@group(0) @binding(22) var<storage, read> motion_keys: array<MotionKey>;
-
-// Object settings' `motion` of an instance that stands still.
-const NO_MOTION: u32 = 0u;
 // A draw of its own for the time, outside the sample's sequence of draws, so that the
 // other draws stay as they are: scrambled Sobol, stratified over the pixel's samples.
 const TIME_DIMENSION: u32 = 0xffffu;
@@ -38,33 +34,26 @@ fn slerp(a: vec4f, b: vec4f, t: f32) -> vec4f {
     return a * cos(theta * t) + perpendicular * sin(theta * t);
 }
 
-// The stretch matrix's rows.
-fn stretch_rows(k: MotionKey) -> array<vec3f, 3> {
-    return array<vec3f, 3>(
-        vec3f(k.stretch_xx, k.stretch_a.xy),
-        vec3f(k.stretch_a.zw, k.stretch_b.x),
-        k.stretch_b.yzw,
-    );
-}
-
-// The object-to-world rows between keys `a` and `b`, a fraction `f` of the way.
+// The object-to-world rows between keys `a` and `b`, a fraction `f` of the way: R·S with
+// R the slerped rotation and S the interpolated stretch (written out, without arrays
+// indexed at run time, to keep the traversal's registers few).
 fn motion_between(a: MotionKey, b: MotionKey, f: f32) -> array<vec4f, 3> {
     let q = slerp(a.rotation, b.rotation, f);
-    let sa = stretch_rows(a);
-    let sb = stretch_rows(b);
-    let s = array<vec3f, 3>(mix(sa[0], sb[0], f), mix(sa[1], sb[1], f), mix(sa[2], sb[2], f));
+    let xx = mix(a.stretch_xx, b.stretch_xx, f);
+    let sa = mix(a.stretch_a, b.stretch_a, f);
+    let sb = mix(a.stretch_b, b.stretch_b, f);
+    let s0 = vec3f(xx, sa.xy);
+    let s1 = vec3f(sa.zw, sb.x);
+    let s2 = sb.yzw;
     let t = mix(a.translation, b.translation, f);
-    // The quaternion's rotation matrix, by rows.
-    let r = array<vec3f, 3>(
-        vec3f(1.0 - 2.0 * (q.y * q.y + q.z * q.z), 2.0 * (q.x * q.y - q.w * q.z), 2.0 * (q.x * q.z + q.w * q.y)),
-        vec3f(2.0 * (q.x * q.y + q.w * q.z), 1.0 - 2.0 * (q.x * q.x + q.z * q.z), 2.0 * (q.y * q.z - q.w * q.x)),
-        vec3f(2.0 * (q.x * q.z - q.w * q.y), 2.0 * (q.y * q.z + q.w * q.x), 1.0 - 2.0 * (q.x * q.x + q.y * q.y)),
+    let r0 = vec3f(1.0 - 2.0 * (q.y * q.y + q.z * q.z), 2.0 * (q.x * q.y - q.w * q.z), 2.0 * (q.x * q.z + q.w * q.y));
+    let r1 = vec3f(2.0 * (q.x * q.y + q.w * q.z), 1.0 - 2.0 * (q.x * q.x + q.z * q.z), 2.0 * (q.y * q.z - q.w * q.x));
+    let r2 = vec3f(2.0 * (q.x * q.z - q.w * q.y), 2.0 * (q.y * q.z + q.w * q.x), 1.0 - 2.0 * (q.x * q.x + q.y * q.y));
+    return array<vec4f, 3>(
+        vec4f(r0.x * s0 + r0.y * s1 + r0.z * s2, t.x),
+        vec4f(r1.x * s0 + r1.y * s1 + r1.z * s2, t.y),
+        vec4f(r2.x * s0 + r2.y * s1 + r2.z * s2, t.z),
     );
-    var m: array<vec4f, 3>;
-    for (var i = 0u; i < 3u; i++) {
-        m[i] = vec4f(r[i].x * s[0] + r[i].y * s[1] + r[i].z * s[2], t[i]);
-    }
-    return m;
 }
 
 // Where time `t` falls among `count` keys: the key before it and the fraction past it.
@@ -73,14 +62,24 @@ fn motion_step(count: u32, t: f32) -> vec2f {
     let step = min(floor(t * last), last - 1.0);
     return vec2f(step, t * last - step);
 }
+//#endif
 
-// Instance motion `motion` (first key << 8 | count) at time `t`: object-to-world rows.
-fn instance_motion_at(motion: u32, t: f32) -> array<vec4f, 3> {
-    let at = motion_step(motion & 0xffu, t);
+//#if object_motion
+@group(0) @binding(22) var<storage, read> motion_keys: array<MotionKey>;
+
+// The bits of the NaN that a moving instance's record holds in world_to_object[0].x (its
+// motion, first key << 8 | how many keys, in [0].y): MOVING_INSTANCE in src/layout.rs.
+const MOVING_INSTANCE: u32 = 0x7fc04d56u;
+
+// Instance motion `motion` (first key << 8 | count) at the sample's time: object-to-world rows.
+fn instance_motion_now(motion: u32) -> array<vec4f, 3> {
+    let at = motion_step(motion & 0xffu, motion_time);
     let first = (motion >> 8u) + u32(at.x);
     return motion_between(motion_keys[first], motion_keys[first + 1u], at.y);
 }
+//#endif
 
+//#if camera_motion
 // The camera's frame at the sample's time (columns right, up, forward and position).
 fn camera_motion_now() -> array<vec4f, 3> {
     let at = motion_step(frame.camera_motion_steps, motion_time);
@@ -92,10 +91,9 @@ fn camera_motion_now() -> array<vec4f, 3> {
 // Instance `index` as the sample sees it: with its world-to-object matrix at the sample's time.
 fn instance_at(index: u32) -> Instance {
     var inst = instances[index];
-    //#if motion
-    let motion = object_settings[index].motion;
-    if motion != NO_MOTION {
-        inst.world_to_object = affine_inverse(instance_motion_at(motion, motion_time)).m;
+    //#if object_motion
+    if bitcast<u32>(inst.world_to_object[0].x) == MOVING_INSTANCE {
+        inst.world_to_object = affine_inverse(instance_motion_now(bitcast<u32>(inst.world_to_object[0].y))).m;
     }
     //#endif
     return inst;

@@ -104,11 +104,23 @@ impl From<&crate::scene::Decomposed> for GpuMotionKey {
     }
 }
 
-/// `GpuObjectSettings::motion` of an instance that stands still.
-pub const NO_MOTION: u32 = 0;
-/// The most motion keys of all instances together (`GpuObjectSettings::motion` keeps the
-/// first key's index in 24 bits).
+/// The bits of a NaN (which no placed matrix holds) that mark a moving instance's record:
+/// its `world_to_object[0][0]` holds them and `[0][1]` the bits of its motion (the index
+/// of its first key << 8 | how many keys), and the GPU looks its matrix up at each
+/// sample's time (`shaders/motion.wgsl`). Traversal reads the record anyway, so an
+/// instance that stands still pays one comparison.
+pub const MOVING_INSTANCE: u32 = 0x7fc0_4d56;
+/// The most motion keys of all instances together (a motion keeps its first key's index
+/// in 24 bits).
 pub const MAX_INSTANCE_MOTION_KEYS: usize = 1 << 24;
+
+impl GpuInstance {
+    /// Marks the record as moving through `motion` (see [`MOVING_INSTANCE`]).
+    pub fn mark_moving(&mut self, motion: u32) {
+        self.world_to_object[0][0] = f32::from_bits(MOVING_INSTANCE);
+        self.world_to_object[0][1] = f32::from_bits(motion);
+    }
+}
 
 /// `GpuFrame::panorama`: which panorama maps the image to directions (`shaders/panorama.wgsl`).
 pub const PANORAMA_NONE: u32 = 0;
@@ -206,9 +218,7 @@ pub struct GpuObjectSettings {
     /// 1: Blender's Holdout (the object's or its collection's): the camera sees through
     /// it to nothing, and the pixel's alpha loses what it covers; other rays see it as it is.
     pub holdout: u32,
-    /// Motion blur: the index of its first key in the motion keys << 8 | how many keys
-    /// ([`NO_MOTION`]: it stands still).
-    pub motion: u32,
+    pub _pad0: u32,
 }
 
 impl Default for GpuObjectSettings {
@@ -223,7 +233,7 @@ impl GpuObjectSettings {
             geometry_offset: t.geometry_offset,
             frequency_multiplier: t.frequency_multiplier(),
             holdout: u32::from(holdout),
-            motion: NO_MOTION,
+            _pad0: 0,
         }
     }
 }

@@ -46,14 +46,14 @@ fn a_still_scene_is_bit_for_bit_the_same_with_the_motion_code() {
     }
     let size = |r: &mut rt::render::RenderRequest| (r.width, r.height, r.spp) = (48, 32, 4);
     let (plain, features) = render_request(still.clone(), size);
-    assert!(!features.motion, "a still scene's pipeline has no motion code");
-    let with_motion = FeatureSet { motion: true, ..features };
+    assert!(!features.camera_motion && !features.object_motion, "a still scene's pipeline has no motion code");
+    let with_motion = FeatureSet { camera_motion: true, object_motion: true, ..features };
     let (moving_code, _) = render_request(still, |r| {
         size(r);
         r.features = Some(with_motion);
     });
     assert!(plain.pixels == moving_code.pixels, "the motion code changed a still scene's image");
     let (blurred, features) = render_request(load(), size);
-    assert!(features.motion);
+    assert!(features.object_motion && !features.camera_motion);
     assert!(blurred.pixels != plain.pixels, "the moving scene renders as the still one");
 }

@@ -74,7 +74,8 @@ impl EffectsReport {
 
 /// The pipelines to time: the scene's, all features, the scene's plus each absent effect,
 /// and, for a scene with node graphs, the scene's without them (each material's constants:
-/// the graphs' price against the same materials without them; another picture).
+/// the graphs' price against the same materials without them; another picture); for a
+/// scene that moves, the scene's without motion blur (its price; another picture).
 pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, FeatureSet)> {
     let mut v = vec![
         ("specialised".to_string(), own),
@@ -82,6 +83,11 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
     ];
     if own.node_graphs {
         v.push(("−node graphs (constants)".to_string(), FeatureSet { node_graphs: false, ..own }));
+    }
+    if own.camera_motion || own.object_motion {
+        // Everything where the frame has it (another picture; the top level still bounds the sweeps).
+        let sharp = FeatureSet { camera_motion: false, object_motion: false, ..own };
+        v.push(("−motion (sharp)".to_string(), sharp));
     }
     let mut force = |name: &str, on: bool, f: FeatureSet| {
         if !on {
@@ -109,8 +115,10 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
     force("terminator offset", own.terminator_offset, FeatureSet { terminator_offset: true, triangles: true, ..own });
     // The holdout test of each shaded surface reads the instance's settings: triangles come with it.
     force("holdout", own.holdout, FeatureSet { holdout: true, triangles: true, ..own });
-    // Motion blur's code where nothing moves: a time per sample and each instance's motion looked up.
-    force("motion", own.motion, FeatureSet { motion: true, ..own });
+    // Motion blur's code where nothing moves: a time per sample, and the camera's frame or
+    // each instance's motion looked up at it.
+    force("camera motion", own.camera_motion, FeatureSet { camera_motion: true, ..own });
+    force("object motion", own.object_motion, FeatureSet { object_motion: true, ..own });
     // Texture lookups alone, so that the normal maps' own share of their price shows.
     force("textures", own.textures, FeatureSet { textures: true, ..own });
     // Normal maps are texture lookups: forcing them on forces the texture code too.
@@ -238,6 +246,7 @@ mod tests {
 
     #[test]
     fn motion_is_among_the_forced_effects() {
-        forced_once("+motion", |f| FeatureSet { motion: false, ..f });
+        forced_once("+camera motion", |f| FeatureSet { camera_motion: false, ..f });
+        forced_once("+object motion", |f| FeatureSet { object_motion: false, ..f });
     }
 }

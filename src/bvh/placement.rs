@@ -48,9 +48,10 @@ pub(super) struct Placement<'m> {
     pub shading_offsets: bool,
     /// Some instance is a holdout.
     pub held_out: bool,
-    /// The moving instances' keys over the shutter, one block per instance
-    /// (`GpuObjectSettings::motion` says where its starts).
+    /// The moving instances' keys over the shutter, one block per instance.
     pub motion_keys: Vec<GpuMotionKey>,
+    /// Each moving instance and its motion: its first key << 8 | how many keys.
+    pub instance_motion: Vec<(usize, u32)>,
     /// Which mesh each instance places.
     pub instance_mesh: Vec<u32>,
     /// World box of each instance, for the top level.
@@ -75,6 +76,7 @@ impl<'m> Placement<'m> {
             shading_offsets: false,
             held_out: false,
             motion_keys: Vec::new(),
+            instance_motion: Vec::new(),
             instance_mesh: Vec::new(),
             boxes: Vec::new(),
             own_materials_shown: vec![false; meshes.len()],
@@ -92,7 +94,7 @@ impl<'m> Placement<'m> {
         mesh_index: usize,
         object_to_world: &Mat4,
         material_override: u32,
-        mut settings: GpuObjectSettings,
+        settings: GpuObjectSettings,
         motion: Option<&Motion>,
     ) {
         let base = self.slots[mesh_index].material_base;
@@ -100,9 +102,10 @@ impl<'m> Placement<'m> {
             self.place_with_base(mesh_index, object_to_world, material_override, base, settings);
             return;
         };
-        settings.motion = (self.motion_keys.len() as u32) << 8 | motion.keys.len() as u32;
+        let word = (self.motion_keys.len() as u32) << 8 | motion.keys.len() as u32;
         self.motion_keys.extend(motion.decomposed().iter().map(GpuMotionKey::from));
         self.place_with_base(mesh_index, object_to_world, material_override, base, settings);
+        self.instance_motion.push((self.instances.len() - 1, word));
         let bvh = &self.meshes[mesh_index].bvh;
         let (lo, hi) = motion.swept_box(bvh.bounds_min, bvh.bounds_max);
         if let Some(b) = self.boxes.last_mut() {

@@ -39,7 +39,7 @@ pub struct SceneGeometry {
     pub held_out: bool,
     /// Some emissive instance moves over the shutter (lights are then sampled by power).
     pub moving_lights: bool,
-    /// The moving instances' transforms over the shutter (`GpuObjectSettings::motion`).
+    /// The moving instances' transforms over the shutter (see `MOVING_INSTANCE`).
     pub motion_keys: Vec<GpuMotionKey>,
     pub tlas_primitives: Vec<u32>,
     pub spheres: Vec<GpuSphere>,
@@ -236,6 +236,7 @@ impl SceneGeometry {
             shading_offsets,
             held_out,
             motion_keys,
+            instance_motion,
             instance_mesh,
             mut boxes,
             set_materials,
@@ -278,11 +279,20 @@ impl SceneGeometry {
         let emissive =
             EmissiveTriangles { mesh_triangles: &mesh_triangles, triangles: &triangles, materials: &materials };
         let (emitters, emitter_bounds, emitter_total_power) = emissive.table(&instances, &instance_mesh, &spheres);
+        if motion_keys.len() > MAX_INSTANCE_MOTION_KEYS {
+            bail!("{}: {} motion keys; rt keeps at most {MAX_INSTANCE_MOTION_KEYS}", scene.origin, motion_keys.len());
+        }
+        // The emitter table and the lights' bounds are made from each instance at the frame;
+        // the GPU's records of moving ones say where their motion is instead.
+        let mut instances = instances;
+        let mut moving = vec![false; instances.len()];
+        for &(i, word) in &instance_motion {
+            instances[i].mark_moving(word);
+            moving[i] = true;
+        }
         // The tree bounds each light where the frame has it; a light that moves over the
         // shutter could leave its bounds, so such scenes sample lights by power.
-        let moving_lights = emitters
-            .iter()
-            .any(|e| e.primitive & SPHERE_BIT == 0 && object_settings[e.instance as usize].motion != NO_MOTION);
+        let moving_lights = emitters.iter().any(|e| e.primitive & SPHERE_BIT == 0 && moving[e.instance as usize]);
         let mut light_sampler = scene.render.light_sampler;
         if moving_lights && light_sampler == LightSampler::Tree {
             log::warn!("{}: an emissive mesh moves over the shutter: lights are sampled by power", scene.origin);

@@ -104,7 +104,7 @@ fn host_structs_match_wgsl_layouts() {
             GpuInstance,
             [world_to_object, node_offset, triangle_offset, material_base, material_override]
         ),
-        host_layout!("ObjectSettings", GpuObjectSettings, [geometry_offset, frequency_multiplier, holdout, motion]),
+        host_layout!("ObjectSettings", GpuObjectSettings, [geometry_offset, frequency_multiplier, holdout]),
         host_layout!("MotionKey", GpuMotionKey, [rotation, translation, stretch_xx, stretch_a, stretch_b]),
         host_layout!("Sphere", GpuSphere, [center, radius, material, k]),
         host_layout!(

@@ -134,9 +134,12 @@ pub struct FeatureSet {
     /// Some material is (partly) a Holdout shader, or some object a holdout: the pixels'
     /// alpha is counted, and held-out surfaces take from it.
     pub holdout: bool,
-    /// Motion blur: some instance or the camera moves over the shutter; each sample has a
-    /// time, at which every ray of its path sees the scene.
-    pub motion: bool,
+    /// Motion blur of the camera: it moves over the shutter; each sample has a time, at
+    /// which its camera ray starts.
+    pub camera_motion: bool,
+    /// Motion blur of objects: some instance moves over the shutter; each sample has a
+    /// time, at which every ray of its path sees the instances.
+    pub object_motion: bool,
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -241,7 +244,8 @@ impl FeatureSet {
             smooth_normals: geometry.smooth_normals && settings.microfacet == Microfacet::Multiscatter,
             terminator_offset: geometry.shading_offsets,
             holdout: geometry.held_out || materials_in_use.iter().any(|m| m.holdout > 0.0),
-            motion: geometry.moving || scene.camera.motion.is_some(),
+            camera_motion: scene.camera.motion.is_some(),
+            object_motion: geometry.moving,
         }
     }
 
@@ -284,7 +288,8 @@ impl FeatureSet {
             smooth_normals: true,
             terminator_offset: true,
             holdout: true,
-            motion: true,
+            camera_motion: true,
+            object_motion: true,
         }
     }
 
@@ -349,9 +354,12 @@ impl FeatureSet {
             // Surfaces whose lobes follow Cycles' rules (lobe_hemispheres.wgsl) exist.
             "cycles_lobe_rules" => self.normal_maps || self.smooth_normals,
             "holdout" => self.holdout,
-            "motion" => self.motion,
-            // Each instance's Shadow Terminator settings, read by both, its holdout and its motion.
-            "object_settings" => self.smooth_normals || self.terminator_offset || self.holdout || self.motion,
+            // A time per sample.
+            "motion" => self.camera_motion || self.object_motion,
+            "camera_motion" => self.camera_motion,
+            "object_motion" => self.object_motion,
+            // Each instance's Shadow Terminator settings, read by both, and its holdout.
+            "object_settings" => self.smooth_normals || self.terminator_offset || self.holdout,
             "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen || self.thin_film,
             _ => return None,
         })
@@ -394,7 +402,8 @@ impl fmt::Display for FeatureSet {
             (self.smooth_normals, "smooth-normals"),
             (self.terminator_offset, "terminator-offset"),
             (self.holdout, "holdout"),
-            (self.motion, "motion"),
+            (self.camera_motion, "camera-motion"),
+            (self.object_motion, "object-motion"),
         ] {
             if on {
                 parts.push(name.to_string());

@@ -87,7 +87,8 @@ fn factors() -> Vec<Factor> {
         flag!(smooth_normals),
         flag!(terminator_offset),
         flag!(holdout),
-        flag!(motion),
+        flag!(camera_motion),
+        flag!(object_motion),
     ]
 }
 

@@ -64,7 +64,8 @@ fn feature_sets() -> Vec<FeatureSet> {
             smooth_normals: on(1) != on(3),
             terminator_offset: on(4) != on(5),
             holdout: on(5) != on(6),
-            motion: on(1) != on(7),
+            camera_motion: on(1) != on(7),
+            object_motion: on(0) != on(6),
         });
     }
     sets
@@ -112,7 +113,8 @@ fn plain() -> FeatureSet {
         smooth_normals: false,
         terminator_offset: false,
         holdout: false,
-        motion: false,
+        camera_motion: false,
+        object_motion: false,
     }
 }
 
@@ -431,4 +433,13 @@ fn preprocessor_nests_and_negates() {
     assert_eq!(run(true, false), "abcf");
     assert_eq!(run(true, true), "abdf");
     assert_eq!(run(false, false), "aef");
+}
+
+#[test]
+fn the_moving_instance_mark_is_the_hosts() {
+    let (_, text) = ALL_PARTS.iter().find(|(name, _)| *name == "motion.wgsl").expect("motion.wgsl");
+    let line = text.lines().find(|l| l.starts_with("const MOVING_INSTANCE: u32 = ")).expect("the mark");
+    let hex = line.trim_start_matches("const MOVING_INSTANCE: u32 = 0x").trim_end_matches("u;");
+    assert_eq!(u32::from_str_radix(hex, 16), Ok(crate::layout::MOVING_INSTANCE));
+    assert!(f32::from_bits(crate::layout::MOVING_INSTANCE).is_nan(), "no placed matrix may hold the mark");
 }

@@ -21,6 +21,7 @@ mod blender_coat_normal;
 mod blender_engine;
 mod blender_engine_ui;
 mod blender_environment;
+mod blender_frames;
 mod blender_gltf_extensions;
 mod blender_live;
 mod blender_live_watch;

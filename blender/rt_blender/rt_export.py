@@ -2122,7 +2122,7 @@ def scene_toml(scene, export, scene_path, objects):
 
 
 def export_scene(scene, out_dir, scene_path=None, only=None, previous=None, bake_size=0, depsgraph=None,
-                 frame_set=None):
+                 frame_set=None, carry=None):
     """Exports every mesh object `depsgraph` shows into `out_dir`, and the scene TOML to
     `scene_path` if given. F12 passes the render's depsgraph (render visibility and
     render-level modifiers count), the viewport its own (the viewport's); without one,
@@ -2132,7 +2132,9 @@ def export_scene(scene, out_dir, scene_path=None, only=None, previous=None, bake
     rt cannot follow are baked (see `Baker`). With the render's Motion Blur on, the scene is
     exported at the shutter's centre and its moving objects and camera over the shutter,
     each time set by `frame_set(frame, subframe)` (the scene's own by default; F12 passes
-    the render engine's, as Cycles does); the frame is set back after."""
+    the render engine's, as Cycles does); the frame is set back after. With `carry`, the
+    export of another frame into the same `out_dir`, meshes go to the folder that already
+    holds the same bytes (see `export_frames`)."""
     global _shown, _depsgraph, _motion
     _shown = shown_objects(depsgraph) if depsgraph is not None else None
     _depsgraph = depsgraph
@@ -2147,7 +2149,7 @@ def export_scene(scene, out_dir, scene_path=None, only=None, previous=None, bake
     try:
         if blur and shutter[0] != current[0] + current[1]:
             frame_set(*split_time(shutter[0]))
-        return _export_scene(scene, out_dir, scene_path, only, previous, bake_size, depsgraph, shutter)
+        return _export_scene(scene, out_dir, scene_path, (only, previous, carry), bake_size, depsgraph, shutter)
     finally:
         if blur:
             frame_set(*current)
@@ -2155,10 +2157,14 @@ def export_scene(scene, out_dir, scene_path=None, only=None, previous=None, bake
         _motion = {}
 
 
-def _export_scene(scene, out_dir, scene_path, only, previous, bake_size, depsgraph, shutter):
+def _export_scene(scene, out_dir, scene_path, earlier, bake_size, depsgraph, shutter):
+    only, previous, carry = earlier
     # Images may have been painted or reloaded since the last export.
     _linear_pixels.clear()
     export = Export(out_dir)
+    if carry is not None:
+        # Frames of one range share their folders: a mesh that has not changed keeps its own.
+        export.content, export.images, export.triangles = dict(carry.content), dict(carry.images), dict(carry.triangles)
     export.bake_size = bake_size
     export.view_layer = depsgraph.view_layer
     objects = exported_objects(scene)
@@ -2179,6 +2185,38 @@ def _export_scene(scene, out_dir, scene_path, only, previous, bake_size, depsgra
         if write_if_changed(path, scene_toml(scene, export, path, objects)):
             export.written.append(path)
     return export
+
+
+def frame_path(pattern, frame):
+    """`pattern` with its run of `#` replaced by the zero-padded frame number (as rt reads
+    `--frames`)."""
+    start = pattern.find("#")
+    if start < 0:
+        raise ValueError(f"{pattern}: a frame range needs #### where the frame number goes")
+    end = start
+    while end < len(pattern) and pattern[end] == "#":
+        end += 1
+    return f"{pattern[:start]}{frame:0{end - start}d}{pattern[end:]}"
+
+
+def export_frames(scene, out_dir, scene_pattern, first, last, bake_size=0):
+    """Exports frames `first` to `last` (both included) into one `out_dir`, frame N's scene
+    to `scene_pattern` with its #### made N, for `rt render PATTERN --frames first..last`.
+    Meshes are stored by content: one that does not change from frame to frame is written
+    once and keeps its folder (and the BVH cache rt builds there); one that changes gets a
+    folder per distinct shape. Returns the last frame's export and the files written."""
+    current = (scene.frame_current, scene.frame_subframe)
+    export, written = None, []
+    try:
+        for frame in range(first, last + 1):
+            started = time.perf_counter()
+            scene.frame_set(frame)
+            export = export_scene(scene, out_dir, frame_path(scene_pattern, frame), bake_size=bake_size, carry=export)
+            written += export.written
+            log(f"frame {frame}: {len(export.written)} files written in {time.perf_counter() - started:.2f} s")
+    finally:
+        scene.frame_set(current[0], subframe=current[1])
+    return export, written
 
 
 # --- add-on: live export on save -------------------------------------------------
@@ -2425,7 +2463,11 @@ def main():
     if not inside_blender:
         parser.add_argument("blend", help="the .blend file to export")
     parser.add_argument("--out", required=True, help="folder that receives one asset folder per mesh")
-    parser.add_argument("--scene", help="scene TOML to write (asset paths relative to it)")
+    parser.add_argument("--scene", help="scene TOML to write (asset paths relative to it); with --frames, "
+                                        "its #### is each frame's number (shot_####.toml)")
+    parser.add_argument("--frames", metavar="A..B",
+                        help="export frames A to B (both included), one scene file each, meshes that do not "
+                             "change written once")
     parser.add_argument("--bake", action="store_true",
                         help="bake sockets fed by what rt cannot follow (procedural textures, Color Ramp, Mix ...) "
                              "with Cycles into image textures")
@@ -2434,9 +2476,20 @@ def main():
     args = parser.parse_args(argv)
     if args.bake_size <= 0:
         parser.error(f"--bake-size must be positive, not {args.bake_size}")
+    frames = None
+    if args.frames is not None:
+        match = re.fullmatch(r"(-?\d+)\.\.(-?\d+)", args.frames)
+        if match is None or int(match[1]) > int(match[2]) or not args.scene or "#" not in args.scene:
+            parser.error(f"--frames takes A..B (A at most B) with a --scene path holding ####, not {args.frames!r}")
+        frames = (int(match[1]), int(match[2]))
     if not inside_blender:
         bpy.ops.wm.open_mainfile(filepath=args.blend)
-    export = export_scene(bpy.context.scene, args.out, args.scene, bake_size=args.bake_size if args.bake else 0)
+    bake_size = args.bake_size if args.bake else 0
+    if frames is None:
+        export = export_scene(bpy.context.scene, args.out, args.scene, bake_size=bake_size)
+        written = export.written
+    else:
+        export, written = export_frames(bpy.context.scene, args.out, args.scene, *frames, bake_size=bake_size)
     for folder in sorted(export.content):
         log(f"{folder}: {export.triangles.get(folder, 0)} triangles")
-    log(f"{len(export.content)} meshes, {len(export.written)} files written")
+    log(f"{len(export.content)} meshes, {len(written)} files written")

@@ -1,8 +1,10 @@
 // Motion blur, as Cycles blurs it: each sample has a time over the open shutter, at
-// which every ray of its path sees the scene. Moving instances and the camera keep their
-// transforms at evenly spaced times (`scene::Motion`), each split into a translation, a
-// unit quaternion and a stretch matrix; between the two keys about a time the rotation is
-// slerped and the rest interpolated linearly (Cycles' `transform_motion_array_interpolate`).
+// which every ray of its path sees the scene. The camera keeps its transforms at evenly
+// spaced times (`scene::Motion`), each split into a translation, a unit quaternion and a
+// stretch matrix; between the two keys about a time the rotation is slerped and the rest
+// interpolated linearly (Cycles' `transform_motion_array_interpolate`). A moving instance
+// keeps that motion sampled densely on the host, as world-to-object matrices that a ray
+// meeting it interpolates linearly: the traversal stays light.
 
 //#include "constants.wgsl"
 //#include "common.wgsl"
@@ -23,6 +25,39 @@ fn begin_sample_time(rng: ptr<function, Rng>) {
     motion_time = sobol_coordinate(sobol_draw_index(rng, TIME_DIMENSION), sobol_coordinate_seed(rng, TIME_DIMENSION));
 }
 
+// Where time `t` falls among `count` keys: the key before it and the fraction past it.
+fn motion_step(count: u32, t: f32) -> vec2f {
+    let last = f32(count - 1u);
+    let step = min(floor(t * last), last - 1.0);
+    return vec2f(step, t * last - step);
+}
+//#endif
+
+//#if object_motion
+// A moving instance's world-to-object matrix at one time of the shutter: the decomposed
+// motion sampled densely on the host (`Motion::world_to_object_samples`), so that a ray
+// meeting the instance only interpolates two of them linearly.
+struct MotionMatrix {
+    world_to_object: array<vec4f, 3>,
+}
+
+@group(0) @binding(22) var<storage, read> motion_matrices: array<MotionMatrix>;
+
+// The bits of the NaN that a moving instance's record holds in world_to_object[0].x (its
+// motion, first matrix << 8 | how many, in [0].y): MOVING_INSTANCE in src/layout.rs.
+const MOVING_INSTANCE: u32 = 0x7fc04d56u;
+
+// Instance motion `motion` (first matrix << 8 | count) at the sample's time: world-to-object rows.
+fn instance_motion_now(motion: u32) -> array<vec4f, 3> {
+    let at = motion_step(motion & 0xffu, motion_time);
+    let first = (motion >> 8u) + u32(at.x);
+    let a = motion_matrices[first].world_to_object;
+    let b = motion_matrices[first + 1u].world_to_object;
+    return array<vec4f, 3>(mix(a[0], b[0], at.y), mix(a[1], b[1], at.y), mix(a[2], b[2], at.y));
+}
+//#endif
+
+//#if camera_motion
 // Cycles' `quat_interpolate` (keys are stored on one side of the sphere).
 fn slerp(a: vec4f, b: vec4f, t: f32) -> vec4f {
     let cos_theta = dot(a, b);
@@ -56,30 +91,6 @@ fn motion_between(a: MotionKey, b: MotionKey, f: f32) -> array<vec4f, 3> {
     );
 }
 
-// Where time `t` falls among `count` keys: the key before it and the fraction past it.
-fn motion_step(count: u32, t: f32) -> vec2f {
-    let last = f32(count - 1u);
-    let step = min(floor(t * last), last - 1.0);
-    return vec2f(step, t * last - step);
-}
-//#endif
-
-//#if object_motion
-@group(0) @binding(22) var<storage, read> motion_keys: array<MotionKey>;
-
-// The bits of the NaN that a moving instance's record holds in world_to_object[0].x (its
-// motion, first key << 8 | how many keys, in [0].y): MOVING_INSTANCE in src/layout.rs.
-const MOVING_INSTANCE: u32 = 0x7fc04d56u;
-
-// Instance motion `motion` (first key << 8 | count) at the sample's time: object-to-world rows.
-fn instance_motion_now(motion: u32) -> array<vec4f, 3> {
-    let at = motion_step(motion & 0xffu, motion_time);
-    let first = (motion >> 8u) + u32(at.x);
-    return motion_between(motion_keys[first], motion_keys[first + 1u], at.y);
-}
-//#endif
-
-//#if camera_motion
 // The camera's frame at the sample's time (columns right, up, forward and position).
 fn camera_motion_now() -> array<vec4f, 3> {
     let at = motion_step(frame.camera_motion_steps, motion_time);
@@ -93,7 +104,7 @@ fn instance_at(index: u32) -> Instance {
     var inst = instances[index];
     //#if object_motion
     if bitcast<u32>(inst.world_to_object[0].x) == MOVING_INSTANCE {
-        inst.world_to_object = affine_inverse(instance_motion_now(bitcast<u32>(inst.world_to_object[0].y))).m;
+        inst.world_to_object = instance_motion_now(bitcast<u32>(inst.world_to_object[0].y));
     }
     //#endif
     return inst;

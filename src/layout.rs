@@ -104,15 +104,30 @@ impl From<&crate::scene::Decomposed> for GpuMotionKey {
     }
 }
 
+/// A moving instance's world-to-object matrix at one time of the shutter
+/// (`scene::Motion::world_to_object_samples`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuMotionMatrix {
+    pub world_to_object: [[f32; 4]; 3],
+}
+
+impl From<&glam::DMat4> for GpuMotionMatrix {
+    fn from(m: &glam::DMat4) -> Self {
+        let row = |r: usize| m.row(r).as_vec4().to_array();
+        Self { world_to_object: [row(0), row(1), row(2)] }
+    }
+}
+
 /// The bits of a NaN (which no placed matrix holds) that mark a moving instance's record:
 /// its `world_to_object[0][0]` holds them and `[0][1]` the bits of its motion (the index
-/// of its first key << 8 | how many keys), and the GPU looks its matrix up at each
+/// of its first matrix << 8 | how many), and the GPU interpolates its matrix at each
 /// sample's time (`shaders/motion.wgsl`). Traversal reads the record anyway, so an
 /// instance that stands still pays one comparison.
 pub const MOVING_INSTANCE: u32 = 0x7fc0_4d56;
-/// The most motion keys of all instances together (a motion keeps its first key's index
-/// in 24 bits).
-pub const MAX_INSTANCE_MOTION_KEYS: usize = 1 << 24;
+/// The most motion matrices of all instances together (a motion keeps its first matrix's
+/// index in 24 bits).
+pub const MAX_INSTANCE_MOTION_MATRICES: usize = 1 << 24;
 
 impl GpuInstance {
     /// Marks the record as moving through `motion` (see [`MOVING_INSTANCE`]).

@@ -6,7 +6,7 @@
 use super::pack::LoadedMesh;
 use crate::asset::AssetError;
 use crate::asset::rtinst::{self, MaterialSets};
-use crate::layout::{GpuInstance, GpuMotionKey, GpuObjectSettings, NO_MATERIAL};
+use crate::layout::{GpuInstance, GpuMotionMatrix, GpuObjectSettings, NO_MATERIAL};
 use crate::scene::{InstanceSet, Material, Motion, Scene};
 use anyhow::{Result, bail};
 use glam::{DMat4, Mat4, Vec3, Vec3A};
@@ -48,9 +48,9 @@ pub(super) struct Placement<'m> {
     pub shading_offsets: bool,
     /// Some instance is a holdout.
     pub held_out: bool,
-    /// The moving instances' keys over the shutter, one block per instance.
-    pub motion_keys: Vec<GpuMotionKey>,
-    /// Each moving instance and its motion: its first key << 8 | how many keys.
+    /// The moving instances' matrices over the shutter, one block per instance.
+    pub motion_matrices: Vec<GpuMotionMatrix>,
+    /// Each moving instance and its motion: its first matrix << 8 | how many.
     pub instance_motion: Vec<(usize, u32)>,
     /// Which mesh each instance places.
     pub instance_mesh: Vec<u32>,
@@ -75,7 +75,7 @@ impl<'m> Placement<'m> {
             object_settings: Vec::new(),
             shading_offsets: false,
             held_out: false,
-            motion_keys: Vec::new(),
+            motion_matrices: Vec::new(),
             instance_motion: Vec::new(),
             instance_mesh: Vec::new(),
             boxes: Vec::new(),
@@ -102,8 +102,9 @@ impl<'m> Placement<'m> {
             self.place_with_base(mesh_index, object_to_world, material_override, base, settings);
             return;
         };
-        let word = (self.motion_keys.len() as u32) << 8 | motion.keys.len() as u32;
-        self.motion_keys.extend(motion.decomposed().iter().map(GpuMotionKey::from));
+        let samples = motion.world_to_object_samples();
+        let word = (self.motion_matrices.len() as u32) << 8 | samples.len() as u32;
+        self.motion_matrices.extend(samples.iter().map(GpuMotionMatrix::from));
         self.place_with_base(mesh_index, object_to_world, material_override, base, settings);
         self.instance_motion.push((self.instances.len() - 1, word));
         let bvh = &self.meshes[mesh_index].bvh;

@@ -39,8 +39,8 @@ pub struct SceneGeometry {
     pub held_out: bool,
     /// Some emissive instance moves over the shutter (lights are then sampled by power).
     pub moving_lights: bool,
-    /// The moving instances' transforms over the shutter (see `MOVING_INSTANCE`).
-    pub motion_keys: Vec<GpuMotionKey>,
+    /// The moving instances' matrices over the shutter (see `MOVING_INSTANCE`).
+    pub motion_matrices: Vec<GpuMotionMatrix>,
     pub tlas_primitives: Vec<u32>,
     pub spheres: Vec<GpuSphere>,
     /// The default material first, then the scene's, then each mesh's own.
@@ -101,7 +101,7 @@ impl SceneGeometry {
             smooth_normals: self.smooth_normals,
             shading_offsets: self.shading_offsets,
             held_out: self.held_out,
-            moving: !self.motion_keys.is_empty(),
+            moving: !self.motion_matrices.is_empty(),
             moving_lights: self.moving_lights,
             materials_in_use: self.materials_in_use.clone(),
         }
@@ -124,7 +124,7 @@ impl SceneGeometry {
         let top_nodes = self.nodes.len() - self.tlas_root as usize;
         self.instances.len() * size_of::<GpuInstance>()
             + self.object_settings.len() * size_of::<GpuObjectSettings>()
-            + self.motion_keys.len() * size_of::<GpuMotionKey>()
+            + self.motion_matrices.len() * size_of::<GpuMotionMatrix>()
             + self.spheres.len() * size_of::<GpuSphere>()
             + top_nodes * size_of::<GpuBvhNode>()
             + self.tlas_primitives.len() * size_of::<u32>()
@@ -235,7 +235,7 @@ impl SceneGeometry {
             object_settings,
             shading_offsets,
             held_out,
-            motion_keys,
+            motion_matrices,
             instance_motion,
             instance_mesh,
             mut boxes,
@@ -279,8 +279,9 @@ impl SceneGeometry {
         let emissive =
             EmissiveTriangles { mesh_triangles: &mesh_triangles, triangles: &triangles, materials: &materials };
         let (emitters, emitter_bounds, emitter_total_power) = emissive.table(&instances, &instance_mesh, &spheres);
-        if motion_keys.len() > MAX_INSTANCE_MOTION_KEYS {
-            bail!("{}: {} motion keys; rt keeps at most {MAX_INSTANCE_MOTION_KEYS}", scene.origin, motion_keys.len());
+        if motion_matrices.len() > MAX_INSTANCE_MOTION_MATRICES {
+            let count = motion_matrices.len();
+            bail!("{}: {count} motion matrices; rt keeps at most {MAX_INSTANCE_MOTION_MATRICES}", scene.origin);
         }
         // The emitter table and the lights' bounds are made from each instance at the frame;
         // the GPU's records of moving ones say where their motion is instead.
@@ -359,7 +360,7 @@ impl SceneGeometry {
             shading_offsets,
             held_out,
             moving_lights,
-            motion_keys,
+            motion_matrices,
             tlas_primitives,
             spheres,
             node_programs: materials.iter().flat_map(|m| m.node_program.iter().copied()).collect(),

@@ -72,7 +72,7 @@ struct SceneData {
     /// The materials' node programs (`crate::asset::node_graph`).
     node_programs: wgpu::Buffer,
     /// The moving instances' transforms over the shutter (`shaders/motion.wgsl`).
-    motion_keys: wgpu::Buffer,
+    motion_matrices: wgpu::Buffer,
 }
 
 impl SceneData {
@@ -101,7 +101,7 @@ impl SceneData {
             &self.second_uvs,
             &self.object_settings,
             &self.node_programs,
-            &self.motion_keys,
+            &self.motion_matrices,
         ]
     }
 }
@@ -155,7 +155,7 @@ fn geometry_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<Geomet
         storage(ctx, "tangents", &geometry.tangents, none),
         storage(ctx, "second uvs", &geometry.second_uvs, none),
         storage(ctx, "object_settings", &geometry.object_settings, none),
-        storage(ctx, "motion keys", &geometry.motion_keys, none),
+        storage(ctx, "motion matrices", &geometry.motion_matrices, none),
     ))
 }
 
@@ -205,7 +205,7 @@ impl SceneBuffers {
             tangents,
             second_uvs,
             object_settings,
-            motion_keys,
+            motion_matrices,
         ) = geometry_buffers(ctx, geometry)?;
         let (materials, emitters, node_programs) = material_buffers(ctx, geometry);
         let frame = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -241,7 +241,7 @@ impl SceneBuffers {
             second_uvs,
             object_settings,
             node_programs,
-            motion_keys,
+            motion_matrices,
         };
         let bind_group = bind_group(ctx, "scene", layout, &data.bindings());
         Ok(Self { data, bind_group, sky_bind_group: None })
@@ -267,7 +267,7 @@ impl SceneBuffers {
             d.tangents,
             d.second_uvs,
             d.object_settings,
-            d.motion_keys,
+            d.motion_matrices,
         ) = geometry_buffers(ctx, geometry)?;
         (d.materials, d.emitters, d.node_programs) = material_buffers(ctx, geometry);
         (d.lamps, d.lamp_info) = lamp_buffers(ctx, geometry);
@@ -337,7 +337,7 @@ fn check_sizes(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<()> {
         ("second uvs", std::mem::size_of_val(geometry.second_uvs.as_slice())),
         ("instances", std::mem::size_of_val(geometry.instances.as_slice())),
         ("instance settings", std::mem::size_of_val(geometry.object_settings.as_slice())),
-        ("motion keys", std::mem::size_of_val(geometry.motion_keys.as_slice())),
+        ("motion matrices", std::mem::size_of_val(geometry.motion_matrices.as_slice())),
         ("emitters", std::mem::size_of_val(geometry.emitters.as_slice())),
         ("node programs", std::mem::size_of_val(geometry.node_programs.as_slice())),
         ("light tree nodes", std::mem::size_of_val(geometry.light_tree.nodes.as_slice())),

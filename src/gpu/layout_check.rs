@@ -106,6 +106,7 @@ fn host_structs_match_wgsl_layouts() {
         ),
         host_layout!("ObjectSettings", GpuObjectSettings, [geometry_offset, frequency_multiplier, holdout]),
         host_layout!("MotionKey", GpuMotionKey, [rotation, translation, stretch_xx, stretch_a, stretch_b]),
+        host_layout!("MotionMatrix", GpuMotionMatrix, [world_to_object]),
         host_layout!("Sphere", GpuSphere, [center, radius, material, k]),
         host_layout!(
             "Material",

@@ -26,7 +26,7 @@ pub fn image_key(session: &Session) -> Result<String> {
     pod("second uvs", bytemuck::cast_slice(&g.second_uvs));
     pod("instances", bytemuck::cast_slice(&g.instances));
     pod("object settings", bytemuck::cast_slice(&g.object_settings));
-    pod("motion keys", bytemuck::cast_slice(&g.motion_keys));
+    pod("motion matrices", bytemuck::cast_slice(&g.motion_matrices));
     pod("tlas", bytemuck::cast_slice(&g.tlas_primitives));
     pod("spheres", bytemuck::cast_slice(&g.spheres));
     pod("materials", bytemuck::cast_slice(&g.materials));

@@ -136,6 +136,32 @@ fn f12_renders_the_renders_depsgraph_as_cycles_does() {
 /// A plane 5 m ahead, facing the camera: Blender's Depth pass is the distance along the
 /// view axis (5 everywhere, as Cycles' camera_z_depth), its Normal the world normal
 /// (0, -1, 0) in Blender's Z-up world; the denoising passes are rt's own AOVs.
+/// F12 with the render's Motion Blur on: the engine evaluates the render's depsgraph over
+/// the shutter (`RenderEngine.frame_set`, as Cycles' sync does) and the image is Cycles'
+/// of the same scene (`tests/cycles/make_motion_refs.py`), the frame set back after.
+#[test]
+fn f12_blurs_moving_objects_as_cycles_does() {
+    let out = out_dir("motion");
+    let report = engine_ui(&out, "motion", &[]);
+    let scene = report["scene"].as_str().expect("exported scene");
+    assert_eq!(scene.matches("\nmotion = ").count(), 3, "three objects move with their blur on:\n{scene}");
+    assert_eq!(report["frame"], serde_json::json!([2, 0.0]), "the frame is set back after the render");
+    let (w, h, all) = channels(&out.join("motion.exr"));
+    let (r, g, b) = (channel(&all, "Combined.R"), channel(&all, "Combined.G"), channel(&all, "Combined.B"));
+    let image = rt::render::Image {
+        width: w as u32,
+        height: h as u32,
+        samples: SPP,
+        pixels: (0..w * h).map(|i| [r[i], g[i], b[i]]).collect(),
+        std_error: channel(&all, "Noise.X").to_vec(),
+        sample_counts: vec![SPP; w * h],
+        alpha: None,
+    };
+    // make_motion_refs.py renders 1024 samples.
+    reference::compare(&image, &repo().join("tests/cycles/motion_objects.exr"), 1024.0)
+        .check("motion through F12", "Cycles");
+}
+
 #[test]
 fn f12_fills_the_passes_blender_asks_for() {
     let out = out_dir("passes");

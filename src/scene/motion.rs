@@ -244,7 +244,11 @@ mod tests {
             let exact = interpolate(&keys, t);
             for p in [DVec3::new(1.0, 1.0, 1.0), DVec3::new(-1.0, 0.5, 1.0)] {
                 let gpu = lerped.inverse().transform_point3(p);
-                assert!(gpu.distance(exact.transform_point3(p)) < 1e-3, "t {t}: {gpu} vs {}", exact.transform_point3(p));
+                assert!(
+                    gpu.distance(exact.transform_point3(p)) < 1e-3,
+                    "t {t}: {gpu} vs {}",
+                    exact.transform_point3(p)
+                );
                 let g = gpu.as_vec3();
                 assert!(g.cmpge(lo).all() && g.cmple(hi).all(), "t {t}: {g} outside {lo}..{hi}");
             }

@@ -18,6 +18,9 @@ engine's cache folder is under OUT). Each mode writes OUT/MODE.json.
                                     view: OUT/transparent.exr (multilayer), the exported scene
     engine_ui.py holdout OUT        F12 of that plane in a held-out collection, the film
                                     opaque: OUT/holdout.exr (multilayer), the exported scene
+    engine_ui.py motion OUT         F12 with Motion Blur of tests/cycles/make_motion_refs.py's
+                                    moving objects: OUT/motion.exr, the exported scene and the
+                                    frame after
 """
 
 import json
@@ -205,6 +208,23 @@ def holdout(out):
     save(out, "holdout", {"scene": text})
 
 
+def motion(out):
+    """F12 of the moving objects that tests/cycles/motion_objects.exr shows as Cycles renders
+    them (the engine evaluates the render's depsgraph over the shutter)."""
+    setup()
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "cycles"))
+    import make_motion_refs
+
+    scene = make_motion_refs.objects_scene()
+    scene.render.engine = "RT"
+    scene.rt_render.spp = int(os.environ.get("RT_TEST_SPP", "256"))
+    scene.rt_render.max_bounces = scene.cycles.max_bounces
+    bpy.context.view_layer.rt.noise = True
+    took = f12_multilayer(scene, os.path.join(out, "motion.exr"))
+    text = open(os.path.join(rt_run.cache_dir(), "scene.toml")).read()
+    save(out, "motion", {"seconds": took, "scene": text, "frame": [scene.frame_current, scene.frame_subframe]})
+
+
 def progressive(out):
     scene = facing_plane_scene()
     scene.rt_render.spp = 1_000_000
@@ -231,5 +251,5 @@ def progressive(out):
 if __name__ == "__main__":
     mode, args = sys.argv[1], sys.argv[2:]
     modes = {"ui": ui, "preview": preview, "levels": levels, "passes": passes, "size": size, "progressive": progressive}
-    modes["transparent"], modes["holdout"] = transparent, holdout
+    modes["transparent"], modes["holdout"], modes["motion"] = transparent, holdout, motion
     modes[mode](*args)

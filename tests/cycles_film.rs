@@ -6,19 +6,17 @@
 use crate::common;
 
 use common::layers::blocks;
-use common::reference::Noiseless;
-use common::{reference, render, repo};
+use common::reference::check_against_cycles;
+use common::repo;
 
 const REFERENCE_SPP: f64 = 1024.0;
 const SPP: u32 = 128;
 const BLOCK: usize = 8;
 
 fn check(name: &str) {
-    let scene = rt::scene::load(&repo().join(format!("tests/cycles/scenes/{name}/scene.toml"))).unwrap();
-    let (w, h) = (scene.render.width, scene.render.height);
-    let ours = render(scene, w, h, SPP, 8);
+    let ours = check_against_cycles(name, SPP, 8, REFERENCE_SPP);
+    let (w, h) = (ours.width, ours.height);
     let file = repo().join(format!("tests/cycles/{name}.exr"));
-    reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4)).check(name, "Cycles");
     let alpha = ours.alpha.as_ref().expect("the image has an alpha");
     let cycles = image::open(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display())).into_rgba32f();
     let cycles: Vec<f32> = cycles.pixels().map(|p| p.0[3]).collect();

@@ -5,19 +5,15 @@
 
 use crate::common;
 
-use common::reference::Noiseless;
-use common::{reference, render, render_request, repo};
+use common::reference::check_against_cycles;
+use common::{render_request, repo};
 use rt::scene::FeatureSet;
 
 const REFERENCE_SPP: f64 = 1024.0;
 const SPP: u32 = 128;
 
 fn check(name: &str) {
-    let scene = rt::scene::load(&repo().join(format!("tests/cycles/scenes/{name}/scene.toml"))).unwrap();
-    let (w, h) = (scene.render.width, scene.render.height);
-    let ours = render(scene, w, h, SPP, 8);
-    let file = repo().join(format!("tests/cycles/{name}.exr"));
-    reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4)).check(name, "Cycles");
+    check_against_cycles(name, SPP, 8, REFERENCE_SPP);
 }
 
 /// A sphere sliding, a cube turning 150° (nine keys), one growing, one moving with its
@@ -56,4 +52,20 @@ fn a_still_scene_is_bit_for_bit_the_same_with_the_motion_code() {
     let (blurred, features) = render_request(load(), size);
     assert!(features.object_motion && !features.camera_motion);
     assert!(blurred.pixels != plain.pixels, "the moving scene renders as the still one");
+}
+
+/// The light tree bounds each light where the frame has it: a scene whose emissive mesh moves
+/// samples its lights by power instead (and says so), and renders.
+#[test]
+fn a_moving_light_is_sampled_by_power() {
+    let mut scene = rt::scene::load(&repo().join("tests/cycles/scenes/motion_objects/scene.toml")).unwrap();
+    scene.render.light_sampler = rt::scene::LightSampler::Tree;
+    let glow = rt::scene::Material { emission: [4.0, 3.0, 2.0], ..Default::default() };
+    scene.materials.push(("glow".into(), glow));
+    let sphere = scene.meshes.iter_mut().find(|m| m.asset.ends_with("Sphere")).expect("the sphere");
+    assert!(sphere.motion.is_some(), "the sphere moves");
+    sphere.material = Some("glow".into());
+    let (image, features) = render_request(scene, |r| (r.width, r.height, r.spp) = (48, 32, 4));
+    assert!(features.object_motion && features.emission && !features.light_tree, "{features}");
+    assert!(image.pixels.iter().all(|p| p.iter().all(|c| c.is_finite())));
 }

@@ -72,6 +72,27 @@ pub struct SceneGeometry {
     pub bounds_max: Vec3,
 }
 
+/// Marks the GPU records of the moving instances (see `MOVING_INSTANCE`), once the emitter
+/// table and the lights' bounds are made from each instance where the frame has it;
+/// returns whether some emitter moves.
+fn mark_moving(
+    scene: &Scene,
+    instances: &mut [GpuInstance],
+    instance_motion: &[(usize, u32)],
+    matrices: usize,
+    emitters: &[GpuEmitter],
+) -> Result<bool> {
+    if matrices > MAX_INSTANCE_MOTION_MATRICES {
+        bail!("{}: {matrices} motion matrices; rt keeps at most {MAX_INSTANCE_MOTION_MATRICES}", scene.origin);
+    }
+    let mut moving = vec![false; instances.len()];
+    for &(i, word) in instance_motion {
+        instances[i].mark_moving(word);
+        moving[i] = true;
+    }
+    Ok(emitters.iter().any(|e| e.primitive & SPHERE_BIT == 0 && moving[e.instance as usize]))
+}
+
 /// The materials as the GPU reads them, each with where its node program starts.
 fn gpu_materials(materials: &[Material]) -> Vec<GpuMaterial> {
     let mut start = 0u32;
@@ -279,21 +300,10 @@ impl SceneGeometry {
         let emissive =
             EmissiveTriangles { mesh_triangles: &mesh_triangles, triangles: &triangles, materials: &materials };
         let (emitters, emitter_bounds, emitter_total_power) = emissive.table(&instances, &instance_mesh, &spheres);
-        if motion_matrices.len() > MAX_INSTANCE_MOTION_MATRICES {
-            let count = motion_matrices.len();
-            bail!("{}: {count} motion matrices; rt keeps at most {MAX_INSTANCE_MOTION_MATRICES}", scene.origin);
-        }
-        // The emitter table and the lights' bounds are made from each instance at the frame;
-        // the GPU's records of moving ones say where their motion is instead.
         let mut instances = instances;
-        let mut moving = vec![false; instances.len()];
-        for &(i, word) in &instance_motion {
-            instances[i].mark_moving(word);
-            moving[i] = true;
-        }
+        let moving_lights = mark_moving(scene, &mut instances, &instance_motion, motion_matrices.len(), &emitters)?;
         // The tree bounds each light where the frame has it; a light that moves over the
         // shutter could leave its bounds, so such scenes sample lights by power.
-        let moving_lights = emitters.iter().any(|e| e.primitive & SPHERE_BIT == 0 && moving[e.instance as usize]);
         let mut light_sampler = scene.render.light_sampler;
         if moving_lights && light_sampler == LightSampler::Tree {
             log::warn!("{}: an emissive mesh moves over the shutter: lights are sampled by power", scene.origin);

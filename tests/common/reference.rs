@@ -141,3 +141,16 @@ impl Comparison {
         assert!(self.worst_block_z <= 5.0, "{name}: a block is {:.2} σ from {against}'s", self.worst_block_z);
     }
 }
+
+/// Renders `tests/cycles/scenes/NAME/scene.toml` at its size with `spp` samples and
+/// `max_bounces`, and checks it against Cycles' `tests/cycles/NAME.exr` of `reference_spp`
+/// samples (blocks without noise within 1e-4); returns the image for further checks.
+pub fn check_against_cycles(name: &str, spp: u32, max_bounces: u32, reference_spp: f64) -> Image {
+    let repo = super::repo();
+    let scene = rt::scene::load(&repo.join(format!("tests/cycles/scenes/{name}/scene.toml"))).unwrap();
+    let (w, h) = (scene.render.width, scene.render.height);
+    let ours = super::render(scene, w, h, spp, max_bounces);
+    let file = repo.join(format!("tests/cycles/{name}.exr"));
+    compare_with(&ours, &file, reference_spp, Noiseless::Absolute(1e-4)).check(name, "Cycles");
+    ours
+}

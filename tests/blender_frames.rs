@@ -29,7 +29,7 @@ fn a_frame_range_exports_each_mesh_once_per_shape_and_renders() {
     let dir = empty_temp_dir("blender-frames");
     let deadline = Duration::from_secs(600);
     let mut build = Command::new(bpy_python());
-    build.arg(repo().join("tests/blender/frames.py")).arg(&dir);
+    build.arg(repo().join("tests/blender/frames.py")).arg("build").arg(&dir);
     run(build, deadline).expect("build the .blend", 0);
     let mut export = Command::new(bpy_python());
     export.arg(repo().join("blender/rt_export.py")).arg(dir.join("frames.blend"));
@@ -62,6 +62,18 @@ fn a_frame_range_exports_each_mesh_once_per_shape_and_renders() {
     assert!((1..4).all(|f| images[f] != images[f - 1]), "each frame shows its own state");
     let caches = walk(&dir.join("assets")).into_iter().filter(|p| p.extension().is_some_and(|e| e == "rtbvh")).count();
     assert_eq!(caches, 4, "one BVH per distinct mesh, built once for all frames");
+
+    // The add-on's Export now with Frame range on writes the same scenes; a scene file
+    // without #### is refused, saying why.
+    let mut addon = Command::new(bpy_python());
+    addon.arg(repo().join("tests/blender/frames.py")).arg("addon").arg(&dir);
+    run(addon, deadline).expect("the add-on's frame range", 0).says("no ####", &["refused:", "####"]);
+    for f in 1..=4 {
+        let name = format!("shot_{f:04}.toml");
+        let (ours, cli) = (meshes(&dir.join("addon").join(&name)), meshes(&dir.join(&name)));
+        let matrices = |m: &[(String, String)]| m.iter().map(|(_, matrix)| matrix.clone()).collect::<Vec<_>>();
+        assert_eq!(matrices(&ours), matrices(&cli), "{name}: the add-on places what the command line does");
+    }
 }
 
 fn walk(dir: &Path) -> Vec<std::path::PathBuf> {

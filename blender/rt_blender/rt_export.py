@@ -2361,10 +2361,38 @@ class RtExportSettings(bpy.types.PropertyGroup):
     )
     bake_size: bpy.props.IntProperty(name="Bake size", description="Width and height of each baked image",
                                      default=DEFAULT_BAKE_SIZE, min=1, max=8192)
+    frame_range: bpy.props.BoolProperty(
+        name="Frame range",
+        description="Export every frame from the scene's Frame Start to its End, one scene file each (#### in the "
+                    "scene file's name is the frame number); meshes that do not change are written once",
+        default=False,
+    )
 
     def bake_texels(self):
         """The `bake_size` argument of `export_scene`: 0 unless baking is on."""
         return self.bake_size if self.bake else 0
+
+    def export(self, scene, out_dir):
+        """Exports `scene` into `out_dir` as these settings say: (meshes, files written), or
+        raises ValueError for a frame range whose scene file has no ####."""
+        scene_path = self.scene_file if self.write_scene else None
+        if self.frame_range and scene_path:
+            export, written = export_frames(scene, out_dir, scene_path, scene.frame_start, scene.frame_end,
+                                            bake_size=self.bake_texels())
+            return len(export.content), len(written)
+        export = export_scene(scene, out_dir, scene_path, bake_size=self.bake_texels())
+        return len(export.content), len(export.written)
+
+
+def report_export(operator, export):
+    """Runs `export` (returning meshes and files written) and reports what it did, or why not."""
+    try:
+        meshes, written = export()
+    except ValueError as e:
+        operator.report({"ERROR"}, f"rt: {e}")
+        return {"CANCELLED"}
+    operator.report({"INFO"}, f"rt: {meshes} meshes, {written} files written")
+    return {"FINISHED"}
 
 
 class RT_OT_export(bpy.types.Operator):
@@ -2379,11 +2407,7 @@ class RT_OT_export(bpy.types.Operator):
         return {"RUNNING_MODAL"}
 
     def execute(self, context):
-        settings = context.scene.rt_export
-        scene_path = settings.scene_file if settings.write_scene else None
-        export = export_scene(context.scene, self.directory, scene_path, bake_size=settings.bake_texels())
-        self.report({"INFO"}, f"rt: {len(export.content)} meshes, {len(export.written)} files written")
-        return {"FINISHED"}
+        return report_export(self, lambda: context.scene.rt_export.export(context.scene, self.directory))
 
 
 class RT_OT_export_now(bpy.types.Operator):
@@ -2393,14 +2417,11 @@ class RT_OT_export_now(bpy.types.Operator):
     bl_label = "Export now"
 
     def execute(self, context):
-        export = live_export(context.scene) if context.scene.rt_export.live else None
-        if export is None:
-            settings = context.scene.rt_export
-            scene_path = settings.scene_file if settings.write_scene else None
-            export = export_scene(context.scene, bpy.path.abspath(settings.out_dir), scene_path,
-                                  bake_size=settings.bake_texels())
-        self.report({"INFO"}, f"rt: {len(export.content)} meshes, {len(export.written)} files written")
-        return {"FINISHED"}
+        settings = context.scene.rt_export
+        export = live_export(context.scene) if settings.live and not settings.frame_range else None
+        if export is not None:
+            return report_export(self, lambda: (len(export.content), len(export.written)))
+        return report_export(self, lambda: settings.export(context.scene, bpy.path.abspath(settings.out_dir)))
 
 
 class RT_PT_panel(bpy.types.Panel):
@@ -2417,6 +2438,9 @@ class RT_PT_panel(bpy.types.Panel):
         row = layout.row()
         row.enabled = settings.write_scene
         row.prop(settings, "scene_file")
+        row = layout.row()
+        row.enabled = settings.write_scene
+        row.prop(settings, "frame_range")
         layout.operator(RT_OT_export_now.bl_idname)
         layout.prop(settings, "bake")
         row = layout.row()

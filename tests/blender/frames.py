@@ -1,8 +1,10 @@
 """Blender side of tests/blender_frames.rs (run with the bpy venv's python).
 
-    frames.py OUT   builds OUT/frames.blend: over frames 1 to 4 a cube slides (its mesh
-                    does not change), a plane's shape key bends it on frames 2 and 3 and
-                    lets it go on 4 (two shapes), a floor stands still; a camera looks on.
+    frames.py build OUT   builds OUT/frames.blend: over frames 1 to 4 a cube slides (its mesh
+                          does not change), a plane's shape key bends it on frames 2 and 3
+                          and lets it go on 4 (two shapes), a floor stands still; a camera
+                          looks on.
+    frames.py addon OUT   the add-on's Export now with Frame range on, into OUT/addon/
 """
 
 import os
@@ -55,5 +57,27 @@ def build(out):
     bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, "frames.blend"))
 
 
+
+
+def addon(out):
+    """The add-on's Export now with Frame range on: OUT/addon/shot_####.toml for frames 1 to 4."""
+    bpy.ops.wm.open_mainfile(filepath=os.path.join(out, "frames.blend"))
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
+                                    "blender"))
+    import rt_blender
+
+    rt_blender.register()
+    settings = bpy.context.scene.rt_export
+    settings.out_dir = os.path.join(out, "addon", "assets")
+    settings.scene_file = os.path.join(out, "addon", "shot_####.toml")
+    settings.frame_range = True
+    assert bpy.ops.rt.export_now() == {"FINISHED"}
+    settings.scene_file = os.path.join(out, "addon", "no_hashes.toml")
+    try:
+        bpy.ops.rt.export_now()
+    except RuntimeError as e:
+        print(f"refused: {e}", file=sys.stderr)
+
+
 if __name__ == "__main__":
-    build(sys.argv[-1])
+    {"build": build, "addon": addon}[sys.argv[-2]](sys.argv[-1])

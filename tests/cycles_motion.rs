@@ -69,3 +69,35 @@ fn a_moving_light_is_sampled_by_power() {
     assert!(features.object_motion && features.emission && !features.light_tree, "{features}");
     assert!(image.pixels.iter().all(|p| p.iter().all(|c| c.is_finite())));
 }
+
+/// An instance file's records move as `[[mesh]]` entries do: the moving sphere placed from
+/// an `.rtinst` with its motion keys renders the very image of the scene file's.
+#[test]
+fn instance_files_carry_motion_as_the_scene_file_does() {
+    use rt::asset::rtinst::{self, InstanceRecord, MaterialSets, OWN_MATERIALS};
+    let dir = common::empty_temp_dir("instance-motion");
+    let mut scene = rt::scene::load(&repo().join("tests/cycles/scenes/motion_objects/scene.toml")).unwrap();
+    let size = |r: &mut rt::render::RenderRequest| (r.width, r.height, r.spp) = (48, 32, 4);
+    let (from_mesh, _) = render_request(scene.clone(), size);
+    let at = scene.meshes.iter().position(|m| m.asset.ends_with("Sphere")).expect("the sphere");
+    let sphere = scene.meshes.remove(at);
+    let motion = sphere.motion.as_ref().expect("the sphere moves");
+    let rows: Vec<[f32; 12]> = motion.keys.iter().map(|m| InstanceRecord::new(m, OWN_MATERIALS).rows).collect();
+    let file = dir.join("sphere.rtinst");
+    let record = [InstanceRecord::new(&sphere.object_to_world, OWN_MATERIALS)];
+    let bytes = rtinst::encode_moving(&record, &MaterialSets::default(), rows.len() as u32, &rows);
+    std::fs::write(&file, bytes).expect("write the instance file");
+    scene.instance_sets.push(rt::scene::InstanceSet {
+        asset: sphere.asset.clone(),
+        file,
+        materials: vec![],
+        shadow_terminator: sphere.shadow_terminator,
+        holdout: false,
+    });
+    let (from_file, features) = render_request(scene, size);
+    assert!(features.object_motion);
+    let worst =
+        from_mesh.pixels.iter().zip(&from_file.pixels).flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs()));
+    let worst = worst.fold(0.0f32, f32::max);
+    assert!(worst <= 1e-5, "the instance file's sphere differs from the scene file's by {worst}");
+}

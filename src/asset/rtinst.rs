@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! bytes 0..8   magic b"RTINST\0\0"
-//! u32 version (=2) · u32 instance_count · u32 slot_count · u32 set_count
+//! u32 version (=3) · u32 instance_count · u32 slot_count · u32 set_count · u32 motion_keys
 //! set_count × slot_count × u32   material sets: for each slot (the material index that
 //!                                the asset's triangles carry), an index into the asset's
 //!                                own materials (its `.gltf` `materials`)
@@ -14,10 +14,15 @@
 //!              MATERIAL_SET | k for material set k of this file; otherwise an index into
 //!              the scene entry's `materials` list, which replaces all the asset's
 //! }
+//! instance_count × motion_keys × f32[12]   motion blur: each instance's matrices at
+//!              evenly spaced times from the shutter's opening to its closing (as the
+//!              scene file's `motion`), the instances in order; motion_keys is 0 (none)
+//!              or 2 to 129
 //! ```
 //!
-//! Little-endian, no padding: 24 + 4 × slot_count × set_count + 52 × instance_count bytes
-//! exactly. Version 1 files (a 16-byte header: magic, version, instance_count; no sets)
+//! Little-endian, no padding: 28 + 4 × slot_count × set_count + (52 + 48 × motion_keys) ×
+//! instance_count bytes exactly. Version 2 files (a 24-byte header without motion_keys, no
+//! motion) and version 1 files (a 16-byte header: magic, version, instance_count; no sets)
 //! are read too. The size is checked against the header before anything is allocated,
 //! and every matrix must be finite and invertible (an error names the file and the
 //! instance's index).
@@ -28,11 +33,15 @@ use glam::{Mat3, Mat4, Vec3, Vec4};
 use std::path::Path;
 
 pub const MAGIC: [u8; 8] = *b"RTINST\0\0";
-pub const VERSION: u32 = 2;
-/// The header of version 2; version 1's is 16 bytes (no slot and set counts).
-pub const HEADER_BYTES: u64 = 24;
+pub const VERSION: u32 = 3;
+/// The header of version 3; version 2's is 24 bytes (no motion_keys), version 1's 16 (no
+/// slot and set counts either).
+pub const HEADER_BYTES: u64 = 28;
+const HEADER_BYTES_V2: u64 = 24;
 const HEADER_BYTES_V1: u64 = 16;
 pub const RECORD_BYTES: u64 = 52;
+/// One motion key: the top three rows of a matrix.
+const KEY_BYTES: u64 = 48;
 /// The material of an instance that keeps its asset's own materials.
 pub const OWN_MATERIALS: u32 = u32::MAX;
 /// Marks a record's material as `MATERIAL_SET | k`: material set `k` of its file.
@@ -82,6 +91,20 @@ impl MaterialSets {
 pub struct InstanceFile {
     pub records: Vec<InstanceRecord>,
     pub material_sets: MaterialSets,
+    /// Motion blur: `motion_keys` matrices per instance (0: none), each as a record's rows.
+    pub motion_keys: u32,
+    pub motion: Vec<[f32; 12]>,
+}
+
+impl InstanceFile {
+    /// Instance `index`'s motion over the shutter, if the file has motion.
+    pub fn motion_of(&self, index: usize) -> Option<crate::scene::Motion> {
+        let k = self.motion_keys as usize;
+        let keys = self.motion.get(index * k..(index + 1) * k).filter(|_| k > 0)?;
+        Some(crate::scene::Motion {
+            keys: keys.iter().map(|rows| InstanceRecord { rows: *rows, material: 0 }.object_to_world()).collect(),
+        })
+    }
 }
 
 /// One instance as the file stores it.
@@ -149,34 +172,51 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<InstanceFile, AssetError> {
         return fail("not an .rtinst file (bad magic bytes)".into());
     }
     let [version, count] = [8, 12].map(|o| u32_at(bytes, o));
-    let (header, slot_count, set_count) = match version {
-        1 => (HEADER_BYTES_V1, 0, 0),
-        VERSION if bytes.len() >= HEADER_BYTES as usize => (HEADER_BYTES, u32_at(bytes, 16), u32_at(bytes, 20)),
-        VERSION => {
-            return fail(format!("truncated: {} bytes is shorter than the 24-byte .rtinst header", bytes.len()));
-        }
-        _ => return fail(format!("unsupported .rtinst version {version} (this rt reads versions 1 and {VERSION})")),
+    let header = match version {
+        1 => HEADER_BYTES_V1,
+        2 => HEADER_BYTES_V2,
+        VERSION => HEADER_BYTES,
+        _ => return fail(format!("unsupported .rtinst version {version} (this rt reads versions 1 to {VERSION})")),
     };
+    if bytes.len() < header as usize {
+        return fail(format!("truncated: {} bytes is shorter than the {header}-byte .rtinst header", bytes.len()));
+    }
+    let word = |offset: u64| if offset < header { u32_at(bytes, offset as usize) } else { 0 };
+    let (slot_count, set_count, motion_keys) = (word(16), word(20), word(24));
+    if motion_keys == 1 || motion_keys as usize > crate::scene::MAX_MOTION_KEYS {
+        let most = crate::scene::MAX_MOTION_KEYS;
+        return fail(format!("motion_keys must be 0 (no motion) or 2 to {most}, got {motion_keys}"));
+    }
     // Checked before anything is allocated: a header cannot make rt reserve memory the
     // file does not back (in u128: the counts' product can pass u64).
     let set_bytes = 4 * slot_count as u128 * set_count as u128;
-    let expected = header as u128 + set_bytes + RECORD_BYTES as u128 * count as u128;
+    let record_bytes = (RECORD_BYTES + KEY_BYTES * motion_keys as u64) as u128;
+    let expected = header as u128 + set_bytes + record_bytes * count as u128;
     if bytes.len() as u128 != expected {
         return fail(format!(
-            "size is {} bytes but its header ({count} instances, {set_count} material sets of {slot_count} slots) \
-             implies {expected} (truncated or corrupt)",
+            "size is {} bytes but its header ({count} instances, {set_count} material sets of {slot_count} slots, \
+             {motion_keys} motion keys) implies {expected} (truncated or corrupt)",
             bytes.len()
         ));
     }
     let records_at = header as usize + set_bytes as usize;
+    let motion_at = records_at + RECORD_BYTES as usize * count as usize;
     let indices: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes[header as usize..records_at]);
-    let records: Vec<InstanceRecord> = bytemuck::pod_collect_to_vec(&bytes[records_at..]);
+    let records: Vec<InstanceRecord> = bytemuck::pod_collect_to_vec(&bytes[records_at..motion_at]);
+    let motion: Vec<[f32; 12]> = bytemuck::pod_collect_to_vec(&bytes[motion_at..]);
     for (index, r) in records.iter().enumerate() {
         if let Some(problem) = matrix_problem(&r.object_to_world()) {
             return fail(format!("instance {index}: its matrix {problem}: {:?}", r.rows));
         }
     }
-    Ok(InstanceFile { records, material_sets: MaterialSets { slot_count, indices } })
+    for (i, rows) in motion.iter().enumerate() {
+        let key = InstanceRecord { rows: *rows, material: 0 };
+        if let Some(problem) = matrix_problem(&key.object_to_world()) {
+            let (index, k) = (i / motion_keys as usize, i % motion_keys as usize);
+            return fail(format!("instance {index}: its motion key {k} {problem}: {rows:?}"));
+        }
+    }
+    Ok(InstanceFile { records, material_sets: MaterialSets { slot_count, indices }, motion_keys, motion })
 }
 
 /// Reads a `.rtinst` file; see [`parse`].
@@ -185,16 +225,30 @@ pub fn read(path: &Path) -> Result<InstanceFile, AssetError> {
     parse(path, &bytes)
 }
 
-/// The bytes of `records` with `sets` as a `.rtinst` (version 2).
+/// The bytes of `records` with `sets` as a `.rtinst`, without motion.
 pub fn encode(records: &[InstanceRecord], sets: &MaterialSets) -> Vec<u8> {
+    encode_moving(records, sets, 0, &[])
+}
+
+/// The bytes of `records` with `sets` and `motion_keys` matrices of `motion` per record
+/// (record after record; see the format above) as a `.rtinst`.
+pub fn encode_moving(
+    records: &[InstanceRecord],
+    sets: &MaterialSets,
+    motion_keys: u32,
+    motion: &[[f32; 12]],
+) -> Vec<u8> {
     let set_bytes = 4 * sets.indices.len() as u64;
-    let mut out = Vec::with_capacity((HEADER_BYTES + set_bytes + RECORD_BYTES * records.len() as u64) as usize);
+    let motion_bytes = KEY_BYTES * motion.len() as u64;
+    let mut out =
+        Vec::with_capacity((HEADER_BYTES + set_bytes + RECORD_BYTES * records.len() as u64 + motion_bytes) as usize);
     out.extend_from_slice(&MAGIC);
-    for word in [VERSION, records.len() as u32, sets.slot_count, sets.len() as u32] {
+    for word in [VERSION, records.len() as u32, sets.slot_count, sets.len() as u32, motion_keys] {
         out.extend_from_slice(&word.to_le_bytes());
     }
     out.extend_from_slice(bytemuck::cast_slice(&sets.indices));
     out.extend_from_slice(bytemuck::cast_slice(records));
+    out.extend_from_slice(bytemuck::cast_slice(motion));
     out
 }
 
@@ -245,7 +299,7 @@ mod tests {
         let mut records = two();
         records[1].material = MATERIAL_SET | 1;
         let bytes = encode(&records, &sets);
-        assert_eq!(bytes.len(), 24 + 4 * 4 + 2 * 52);
+        assert_eq!(bytes.len(), 28 + 4 * 4 + 2 * 52);
         let back = parse(Path::new("t.rtinst"), &bytes).expect("parses");
         assert_eq!(back.records, records);
         assert_eq!(back.material_sets, sets);
@@ -262,6 +316,43 @@ mod tests {
         assert!(MaterialSets::new(2, &[vec![1]]).is_none());
     }
 
+    /// `records` and `sets` as version 2 wrote them: no motion_keys.
+    fn version_2(records: &[InstanceRecord], sets: &MaterialSets) -> Vec<u8> {
+        let mut out = MAGIC.to_vec();
+        for word in [2, records.len() as u32, sets.slot_count, sets.len() as u32] {
+            out.extend_from_slice(&word.to_le_bytes());
+        }
+        out.extend_from_slice(bytemuck::cast_slice(&sets.indices));
+        out.extend_from_slice(bytemuck::cast_slice(records));
+        out
+    }
+
+    #[test]
+    fn version_2_files_are_read_as_they_were() {
+        let sets = MaterialSets::new(1, &[vec![0]]).expect("sets");
+        let back = parse(Path::new("t.rtinst"), &version_2(&two(), &sets)).expect("parses");
+        assert_eq!((back.records, back.material_sets, back.motion_keys), (two(), sets, 0));
+    }
+
+    #[test]
+    fn motion_keys_round_trip_and_bad_ones_are_refused() {
+        let keys = |x: f32| [Mat4::IDENTITY, Mat4::from_translation(Vec3::new(x, 0.0, 0.0))];
+        let rows = |m: &Mat4| InstanceRecord::new(m, 0).rows;
+        let motion: Vec<[f32; 12]> = [1.0, 2.0].iter().flat_map(|&x| keys(x).map(|m| rows(&m))).collect();
+        let bytes = encode_moving(&two(), &MaterialSets::default(), 2, &motion);
+        assert_eq!(bytes.len(), 28 + 2 * (52 + 2 * 48));
+        let back = parse(Path::new("t.rtinst"), &bytes).expect("parses");
+        assert_eq!(back.motion_of(1).map(|m| m.keys), Some(keys(2.0).to_vec()));
+        assert_eq!(parse(Path::new("t.rtinst"), &plain(&two())).expect("parses").motion_of(0), None);
+        let mut one_key = bytes.clone();
+        one_key[24] = 1;
+        assert!(error(&one_key).contains("motion_keys must be 0 (no motion) or 2 to 129, got 1"));
+        let mut flat = motion.clone();
+        flat[3][0] = 0.0;
+        let message = error(&encode_moving(&two(), &MaterialSets::default(), 2, &flat));
+        assert!(message.contains("instance 1: its motion key 1 is singular"), "{message}");
+    }
+
     #[test]
     fn version_1_files_are_read_as_they_were() {
         let back = parse(Path::new("t.rtinst"), &version_1(&two())).expect("parses");
@@ -275,20 +366,20 @@ mod tests {
     fn a_header_that_lies_about_its_size_is_refused_before_allocating() {
         let mut bytes = plain(&two());
         bytes.pop();
-        assert!(error(&bytes).contains("implies 128"), "{}", error(&bytes));
-        // Four billion instances claimed by a 24-byte file: refused on the size alone.
+        assert!(error(&bytes).contains("implies 132"), "{}", error(&bytes));
+        // Four billion instances claimed by a 28-byte file: refused on the size alone.
         let mut bytes = plain(&[]);
         bytes[12..16].copy_from_slice(&4_000_000_000u32.to_le_bytes());
         let message = error(&bytes);
-        assert!(message.starts_with("t.rtinst: size is 24 bytes"), "{message}");
+        assert!(message.starts_with("t.rtinst: size is 28 bytes"), "{message}");
         assert!(message.contains("4000000000 instances"), "{message}");
         // As many sets of as many slots: 2⁶⁶ bytes claimed, counted without overflow.
         let mut bytes = plain(&[]);
         bytes[16..24].copy_from_slice(&[0xff; 8]);
         let message = error(&bytes);
         assert!(message.contains("4294967295 material sets of 4294967295 slots"), "{message}");
-        // A version 2 header cut short.
-        assert!(error(&plain(&[])[..20]).contains("shorter than the 24-byte"));
+        // A version 3 header cut short.
+        assert!(error(&plain(&[])[..20]).contains("shorter than the 28-byte"));
     }
 
     #[test]
@@ -299,8 +390,8 @@ mod tests {
         bytes[0] = b'X';
         assert!(error(&bytes).contains("bad magic"));
         let mut bytes = good.clone();
-        bytes[8] = 3;
-        assert!(error(&bytes).contains("unsupported .rtinst version 3"));
+        bytes[8] = 4;
+        assert!(error(&bytes).contains("unsupported .rtinst version 4"));
 
         let mut records = two();
         records[1].rows[5] = f32::NAN;

@@ -98,14 +98,19 @@ impl<'m> Placement<'m> {
         motion: Option<&Motion>,
     ) {
         let base = self.slots[mesh_index].material_base;
-        let Some(motion) = motion.filter(|_| self.meshes[mesh_index].triangle_count > 0) else {
-            self.place_with_base(mesh_index, object_to_world, material_override, base, settings);
-            return;
-        };
+        if self.place_with_base(mesh_index, object_to_world, material_override, base, settings)
+            && let Some(motion) = motion
+        {
+            self.set_moving(mesh_index, motion);
+        }
+    }
+
+    /// Makes the instance placed last, of mesh `mesh_index`, move through `motion`: its
+    /// matrices over the shutter, and a top-level box that holds its whole sweep.
+    fn set_moving(&mut self, mesh_index: usize, motion: &Motion) {
         let samples = motion.world_to_object_samples();
         let word = (self.motion_matrices.len() as u32) << 8 | samples.len() as u32;
         self.motion_matrices.extend(samples.iter().map(GpuMotionMatrix::from));
-        self.place_with_base(mesh_index, object_to_world, material_override, base, settings);
         self.instance_motion.push((self.instances.len() - 1, word));
         let bvh = &self.meshes[mesh_index].bvh;
         let (lo, hi) = motion.swept_box(bvh.bounds_min, bvh.bounds_max);
@@ -114,8 +119,9 @@ impl<'m> Placement<'m> {
         }
     }
 
-    /// As [`Self::place`], the mesh's triangles indexing materials from `material_base`
-    /// (the mesh's own, or a block of `set_materials`).
+    /// As [`Self::place`] without motion, the mesh's triangles indexing materials from
+    /// `material_base` (the mesh's own, or a block of `set_materials`); whether it placed
+    /// anything (an empty mesh places nothing).
     fn place_with_base(
         &mut self,
         mesh_index: usize,
@@ -123,10 +129,10 @@ impl<'m> Placement<'m> {
         material_override: u32,
         material_base: u32,
         settings: GpuObjectSettings,
-    ) {
+    ) -> bool {
         let mesh = &self.meshes[mesh_index];
         if mesh.triangle_count == 0 {
-            return;
+            return false;
         }
         if material_override == NO_MATERIAL && material_base == self.slots[mesh_index].material_base {
             self.own_materials_shown[mesh_index] = true;
@@ -146,6 +152,7 @@ impl<'m> Placement<'m> {
         self.object_settings.push(settings);
         self.shading_offsets |= settings.frequency_multiplier > 1.0;
         self.held_out |= settings.holdout != 0;
+        true
     }
 
     /// Places every record of `set`'s instance file; `scene_material` maps a scene
@@ -161,7 +168,7 @@ impl<'m> Placement<'m> {
         let overrides: Vec<u32> = set.materials.iter().map(|n| scene_material(n)).collect::<Result<_>>()?;
         let set_bases = self.material_set_blocks(&set.file, &file.material_sets, mesh_index)?;
         let own_base = self.slots[mesh_index].material_base;
-        let records = file.records;
+        let records = &file.records;
         self.instances.reserve(records.len());
         self.object_settings.reserve(records.len());
         let settings = GpuObjectSettings::new(set.shadow_terminator, set.holdout);
@@ -194,7 +201,11 @@ impl<'m> Placement<'m> {
                     }
                 },
             };
-            self.place_with_base(mesh_index, &r.object_to_world(), material, base, settings);
+            if self.place_with_base(mesh_index, &r.object_to_world(), material, base, settings)
+                && let Some(motion) = file.motion_of(index)
+            {
+                self.set_moving(mesh_index, &motion);
+            }
         }
         Ok(())
     }

@@ -106,7 +106,13 @@ fn rtinst_file() -> Vec<u8> {
         rtinst::InstanceRecord::new(&spin, rtinst::MATERIAL_SET | 1),
     ];
     let sets = rtinst::MaterialSets::new(1, &[vec![0], vec![0]]).unwrap_or_default();
-    rtinst::encode(&records, &sets)
+    // Two motion keys per instance: where each starts and where it ends.
+    let moved = glam::Mat4::from_translation(glam::Vec3::X);
+    let motion: Vec<[f32; 12]> = records
+        .iter()
+        .flat_map(|r| [r.rows, rtinst::InstanceRecord::new(&(moved * r.object_to_world()), 0).rows])
+        .collect();
+    rtinst::encode_moving(&records, &sets, 2, &motion)
 }
 
 /// A 24×16 image with a gradient, in `format` (floats for HDR and OpenEXR).

@@ -26,7 +26,7 @@ pub use features::{ALPHA_DELTA, FeatureSet, GeometrySummary, LampKinds, SkyFeatu
 pub use light::{AreaShape, Light, LightShape};
 pub use material::{Material, Tangent, luminance, srgb_decode, srgb_encode};
 pub use material_textures::{LAYER_COUNT, LayerTextures, MaterialTextures, UvSet, slots};
-pub use motion::{Decomposed, MAX_CAMERA_MOTION_KEYS, Motion, interpolate};
+pub use motion::{Decomposed, MAX_CAMERA_MOTION_KEYS, MAX_MOTION_KEYS, Motion, interpolate};
 pub use panorama::Panorama;
 pub use parse::{SceneError, hint as did_you_mean, load, parse};
 pub use shadow_terminator::ShadowTerminator;

@@ -74,6 +74,11 @@ fn a_frame_range_exports_each_mesh_once_per_shape_and_renders() {
         let matrices = |m: &[(String, String)]| m.iter().map(|(_, matrix)| matrix.clone()).collect::<Vec<_>>();
         assert_eq!(matrices(&ours), matrices(&cli), "{name}: the add-on places what the command line does");
     }
+
+    // Live export on every edit with Motion Blur on: one export per edit, sharp, the frame kept.
+    let mut live = Command::new(bpy_python());
+    live.arg(repo().join("tests/blender/frames.py")).arg("live").arg(&dir);
+    run(live, deadline).expect("a live edit", 0).says("live and sharp", &["live exports: 1; frame 2; motion keys: 0"]);
 }
 
 fn walk(dir: &Path) -> Vec<std::path::PathBuf> {

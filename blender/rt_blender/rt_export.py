@@ -2122,7 +2122,7 @@ def scene_toml(scene, export, scene_path, objects):
 
 
 def export_scene(scene, out_dir, scene_path=None, only=None, previous=None, bake_size=0, depsgraph=None,
-                 frame_set=None, carry=None):
+                 frame_set=None, carry=None, motion_blur=True):
     """Exports every mesh object `depsgraph` shows into `out_dir`, and the scene TOML to
     `scene_path` if given. F12 passes the render's depsgraph (render visibility and
     render-level modifiers count), the viewport its own (the viewport's); without one,
@@ -2132,14 +2132,16 @@ def export_scene(scene, out_dir, scene_path=None, only=None, previous=None, bake
     rt cannot follow are baked (see `Baker`). With the render's Motion Blur on, the scene is
     exported at the shutter's centre and its moving objects and camera over the shutter,
     each time set by `frame_set(frame, subframe)` (the scene's own by default; F12 passes
-    the render engine's, as Cycles does); the frame is set back after. With `carry`, the
+    the render engine's, as Cycles does); the frame is set back after, and `motion_blur`
+    False leaves it alone (live exports, which run from Blender's update handlers, where
+    changing the frame would start another update). With `carry`, the
     export of another frame into the same `out_dir`, meshes go to the folder that already
     holds the same bytes (see `export_frames`)."""
     global _shown, _depsgraph, _motion
     _shown = shown_objects(depsgraph) if depsgraph is not None else None
     _depsgraph = depsgraph
     # The viewport's live export (a depsgraph without a way to change its frame) stays sharp.
-    blur = scene.render.use_motion_blur and (depsgraph is None or frame_set is not None)
+    blur = motion_blur and scene.render.use_motion_blur and (depsgraph is None or frame_set is not None)
     if frame_set is None:
         frame_set = lambda frame, subframe: scene.frame_set(frame, subframe=subframe)  # noqa: E731
     current = (scene.frame_current, scene.frame_subframe)
@@ -2283,7 +2285,8 @@ def live_export(scene):
     previous = _last_export.get(scene.name)
     only = changed_objects(scene) if previous is not None else None
     scene_path = settings.scene_file if settings.write_scene else None
-    export = export_scene(scene, bpy.path.abspath(settings.out_dir), scene_path, only, previous)
+    # Sharp, as the viewport: a live export runs from handlers, where the frame must not move.
+    export = export_scene(scene, bpy.path.abspath(settings.out_dir), scene_path, only, previous, motion_blur=False)
     _last_export[scene.name] = export
     for key in _changes:
         _changes[key].clear()

@@ -5,6 +5,10 @@
                           and lets it go on 4 (two shapes), a floor stands still; a camera
                           looks on.
     frames.py addon OUT   the add-on's Export now with Frame range on, into OUT/addon/
+    frames.py live OUT    Live export on every edit with the render's Motion Blur on: an
+                          edit exports once, sharp, and the frame stays (a live export runs
+                          from Blender's update handler, where moving the frame would start
+                          another update); prints what happened
 """
 
 import os
@@ -79,5 +83,36 @@ def addon(out):
         print(f"refused: {e}", file=sys.stderr)
 
 
+def live(out):
+    bpy.ops.wm.open_mainfile(filepath=os.path.join(out, "frames.blend"))
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
+                                    "blender"))
+    import rt_blender
+    from rt_blender import rt_export
+
+    rt_blender.register()
+    scene = bpy.context.scene
+    scene.render.use_motion_blur = True
+    scene.frame_set(2)
+    settings = scene.rt_export
+    settings.out_dir = os.path.join(out, "live", "assets")
+    settings.scene_file = os.path.join(out, "live", "scene.toml")
+    rt_export.live_export(scene)
+    exports = []
+    original = rt_export.live_export
+
+    def counted(s):
+        exports.append(s.frame_current)
+        return original(s)
+
+    rt_export.live_export = counted
+    settings.live_edits = True
+    bpy.data.objects["floor"].location.z += 0.01
+    bpy.context.view_layer.update()
+    text = open(settings.scene_file).read()
+    print(f"live exports: {len(exports)}; frame {scene.frame_current}; motion keys: {text.count('motion =')}",
+          file=sys.stderr)
+
+
 if __name__ == "__main__":
-    {"build": build, "addon": addon}[sys.argv[-2]](sys.argv[-1])
+    {"build": build, "addon": addon, "live": live}[sys.argv[-2]](sys.argv[-1])

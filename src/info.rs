@@ -49,6 +49,14 @@ pub fn print_info(scene: Scene, quality: BuildQuality, adapter: Option<&str>) ->
         g.lamps.len()
     );
     println!("bounds     {:?} .. {:?}", g.bounds_min.to_array(), g.bounds_max.to_array());
+    let moving = g.instances.iter().filter(|i| i.is_moving()).count();
+    let camera_keys = scene.camera.motion.as_ref().map_or(0, |m| m.keys.len());
+    if moving > 0 || camera_keys > 0 {
+        println!(
+            "motion     {moving} moving instances ({} matrices over the shutter), the camera in {camera_keys} keys",
+            g.motion_matrices.len()
+        );
+    }
     for m in &g.meshes {
         let s = m.bvh.stats;
         let provenance = match m.provenance {

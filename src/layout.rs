@@ -135,6 +135,11 @@ impl GpuInstance {
         self.world_to_object[0][0] = f32::from_bits(MOVING_INSTANCE);
         self.world_to_object[0][1] = f32::from_bits(motion);
     }
+
+    /// Whether the record is marked as moving (see [`MOVING_INSTANCE`]).
+    pub fn is_moving(&self) -> bool {
+        self.world_to_object[0][0].to_bits() == MOVING_INSTANCE
+    }
 }
 
 /// `GpuFrame::panorama`: which panorama maps the image to directions (`shaders/panorama.wgsl`).

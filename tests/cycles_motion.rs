@@ -101,3 +101,14 @@ fn instance_files_carry_motion_as_the_scene_file_does() {
     let worst = worst.fold(0.0f32, f32::max);
     assert!(worst <= 1e-5, "the instance file's sphere differs from the scene file's by {worst}");
 }
+
+/// `rt info` says what moves.
+#[test]
+fn rt_info_says_what_moves() {
+    let scene = repo().join("tests/cycles/scenes/motion_objects/scene.toml");
+    let scene = scene.to_str().expect("a path");
+    let info = common::bounded::rt(&repo(), &["info", scene], std::time::Duration::from_secs(300));
+    info.expect("rt info", 0);
+    let line = "motion     3 moving instances (765 matrices over the shutter), the camera in 0 keys";
+    assert!(info.stdout.contains(line), "{}", info.stdout);
+}

@@ -148,3 +148,25 @@ fn a_procedural_principled_material_matches_cycles() {
     )
     .check("graph_material", "Cycles");
 }
+
+/// A scene's node shapes run as specialised code, and the interpreter (which runs scenes
+/// with too many shapes) gives the same image: the same operations on the same values.
+#[test]
+fn specialised_and_interpreted_programs_give_the_same_image() {
+    let scene = || rt::scene::load(&repo().join("tests/cycles/scenes/graph_math/scene.toml")).unwrap();
+    let adjust = |r: &mut rt::render::RenderRequest| (r.width, r.height, r.spp, r.max_bounces) = (64, 64, 2, 1);
+    let (specialised, features) = common::render_request(scene(), adjust);
+    assert_ne!(features.node_code, 0, "graph_math's programs are specialised");
+    let (interpreted, _) = common::render_request(scene(), |r| {
+        adjust(r);
+        r.features = Some(rt::scene::FeatureSet { node_code: 0, ..features });
+    });
+    let mut worst = 0.0f32;
+    for (a, b) in specialised.pixels.iter().zip(&interpreted.pixels) {
+        for c in 0..3 {
+            worst = worst.max((a[c] - b[c]).abs() / (1.0 + b[c].abs()));
+        }
+    }
+    println!("specialised vs interpreted: largest difference {worst:.2e}");
+    assert!(worst <= 1e-4, "the specialised code differs from the interpreter's by {worst}");
+}

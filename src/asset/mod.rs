@@ -11,6 +11,7 @@ mod gltf_texture_transform;
 mod gltf_textures;
 pub mod node_graph;
 pub mod node_kinds;
+pub mod node_program;
 pub mod notes;
 pub mod obj_import;
 pub mod rtinst;

@@ -24,6 +24,8 @@ pub const COMPILER_VERSION: u32 = 2;
 pub const CONSTANT: u32 = 0x8000_0000;
 /// Registers of the interpreter (`NODE_REGISTERS` in the shader).
 pub const REGISTERS: u32 = 32;
+/// Operands an instruction may have (`NODE_MAX_OPERANDS` in the shader).
+pub const MAX_OPERANDS: u32 = 9;
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -309,40 +311,9 @@ fn uses(graph: &NodeGraph) -> HashMap<(usize, String), u32> {
     uses
 }
 
-/// Checks that `program` is one the shader can walk: instructions that end before the
-/// constants, known operations, registers and constants in range.
+/// Checks that `program` is one the shader can walk ([`super::node_program::instructions`]).
 pub fn check_program(program: &[u32]) -> Result<(), String> {
-    let constants_at = *program.first().ok_or("empty")? as usize;
-    if constants_at > program.len() || !(program.len() - constants_at).is_multiple_of(4) {
-        return Err(format!("its constants start at word {constants_at} of {}", program.len()));
-    }
-    let constants = ((program.len() - constants_at) / 4) as u32;
-    let word =
-        |i: usize| program.get(i).copied().filter(|_| i < constants_at).ok_or("an instruction runs past its end");
-    let mut at = 1;
-    loop {
-        let op = word(at)? & 0xff;
-        if op == node_kinds::OP_END {
-            return Ok(());
-        }
-        if !node_kinds::OPERATIONS.iter().any(|(_, o)| *o == op) {
-            return Err(format!("unknown operation {op} at word {at}"));
-        }
-        let out = word(at + 1)?;
-        let operands = word(at + 2)? as usize;
-        for i in 0..operands {
-            let operand = word(at + 3 + i)?;
-            let bad = if operand & CONSTANT != 0 { operand & !CONSTANT >= constants } else { operand >= REGISTERS };
-            if bad {
-                return Err(format!("operand {operand:#x} at word {} is out of range", at + 3 + i));
-            }
-        }
-        let extra = word(at + 3 + operands)? as usize;
-        if out >= REGISTERS {
-            return Err(format!("output register {out} at word {at}"));
-        }
-        at += 4 + operands + extra;
-    }
+    super::node_program::instructions(program).map(|_| ())
 }
 
 /// A curve's range (`range`: the lowest and highest x of its points) and table of

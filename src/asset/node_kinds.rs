@@ -1,7 +1,7 @@
 //! The shader nodes rt evaluates on the GPU: for each of Blender's node types, the
 //! program operation it becomes, its inputs in operand order and its outputs in register
 //! order, and how its settings become the operation's mode and flags. The operations are
-//! `shaders/node_program.wgsl`'s `NODE_OP_*`; a unit test checks that both agree, and
+//! `shaders/node_step.wgsl`'s `NODE_OP_*`; a unit test checks that both agree, and
 //! another that `blender/rt_blender/rt_node_graph.py` exports exactly these nodes.
 
 use serde_json::{Map, Value};
@@ -422,10 +422,10 @@ mod tests {
     /// The shader's `NODE_OP_*` constants are these operations.
     #[test]
     fn operations_agree_with_the_shader() {
-        let wgsl = include_str!("../../shaders/node_program.wgsl");
+        let wgsl = include_str!("../../shaders/node_step.wgsl");
         for (name, value) in OPERATIONS {
             let line = format!("const NODE_OP_{name}: u32 = {value}u;");
-            assert!(wgsl.contains(&line), "node_program.wgsl lacks `{line}`");
+            assert!(wgsl.contains(&line), "node_step.wgsl lacks `{line}`");
         }
         assert_eq!(wgsl.matches("const NODE_OP_").count(), OPERATIONS.len());
     }

@@ -75,7 +75,8 @@ impl EffectsReport {
 /// The pipelines to time: the scene's, all features, the scene's plus each absent effect,
 /// and, for a scene with node graphs, the scene's without them (each material's constants:
 /// the graphs' price against the same materials without them; another picture); for a
-/// scene that moves, the scene's without motion blur (its price; another picture).
+/// scene that moves, the scene's without motion blur (its price; another picture); for
+/// specialised node programs, the same programs interpreted.
 pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, FeatureSet)> {
     let mut v = vec![
         ("specialised".to_string(), own),
@@ -83,6 +84,10 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
     ];
     if own.node_graphs {
         v.push(("−node graphs (constants)".to_string(), FeatureSet { node_graphs: false, ..own }));
+    }
+    if own.node_graphs && own.node_code != 0 {
+        // The same programs through the interpreter, which scenes with many shapes run.
+        v.push(("node graphs interpreted".to_string(), FeatureSet { node_code: 0, ..own }));
     }
     if own.camera_motion || own.object_motion {
         // Everything where the frame has it (another picture; the top level still bounds the sweeps).

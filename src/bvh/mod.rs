@@ -12,6 +12,7 @@ pub mod light_tree;
 mod lights;
 mod mesh_bvh;
 mod node;
+pub mod node_table;
 pub mod pack;
 mod placement;
 mod scene_geometry;

@@ -6,6 +6,7 @@ use super::light_tree::{LightBounds, LightTree, TreeLight};
 use super::lights::{LampTable, lamp_table, scene_radius};
 use super::mesh_bvh::BuildQuality;
 use super::node::{BvhStats, convert_bvh2, stats};
+use super::node_table::NodeTable;
 use super::pack::{LoadedMesh, build_all_in_memory, load_or_pack_all};
 use super::placement::{MeshSlot, Placement, with_bases};
 use crate::layout::*;
@@ -45,8 +46,13 @@ pub struct SceneGeometry {
     pub spheres: Vec<GpuSphere>,
     /// The default material first, then the scene's, then each mesh's own.
     pub materials: Vec<GpuMaterial>,
-    /// The materials' node programs, one after another (`GpuMaterial::node_program`).
+    /// The materials' node programs, one after another, each after its shape's number
+    /// (`GpuMaterial::node_program` is where its first word is).
     pub node_programs: Vec<u32>,
+    /// One program of each shape, for the pipeline's specialised code (none: interpreted).
+    pub node_shapes: Vec<Vec<u32>>,
+    /// Names `node_shapes` (0 when there are none).
+    pub node_code: u64,
     /// Emissive triangles and spheres with their cumulative selection probabilities.
     pub emitters: Vec<GpuEmitter>,
     /// Sum of the emitters' powers (area × luminance of emission).
@@ -94,18 +100,13 @@ fn mark_moving(
 }
 
 /// The materials as the GPU reads them, each with where its node program starts.
-fn gpu_materials(materials: &[Material]) -> Vec<GpuMaterial> {
-    let mut start = 0u32;
-    let mut out = Vec::with_capacity(materials.len());
-    for m in materials {
-        let mut gpu = GpuMaterial::from(m);
-        if !m.node_program.is_empty() {
-            gpu.node_program = start;
-            start += m.node_program.len() as u32;
-        }
-        out.push(gpu);
-    }
-    out
+fn gpu_materials(materials: &[Material], nodes: &NodeTable) -> Vec<GpuMaterial> {
+    let programs = nodes.starts.iter().copied();
+    materials
+        .iter()
+        .zip(programs)
+        .map(|(m, start)| GpuMaterial { node_program: start.unwrap_or(NO_PROGRAM), ..GpuMaterial::from(m) })
+        .collect()
 }
 
 impl SceneGeometry {
@@ -124,6 +125,7 @@ impl SceneGeometry {
             held_out: self.held_out,
             moving: !self.motion_matrices.is_empty(),
             moving_lights: self.moving_lights,
+            node_code: self.node_code,
             materials_in_use: self.materials_in_use.clone(),
         }
     }
@@ -291,6 +293,7 @@ impl SceneGeometry {
                 in_use[mix as usize] = true;
             }
         }
+        let node_table = NodeTable::of(&materials);
         let materials_in_use = materials.iter().zip(&in_use).filter(|(_, u)| **u).map(|(m, _)| m.clone()).collect();
         let mesh_triangles: Vec<_> = slots
             .iter()
@@ -373,8 +376,10 @@ impl SceneGeometry {
             motion_matrices,
             tlas_primitives,
             spheres,
-            node_programs: materials.iter().flat_map(|m| m.node_program.iter().copied()).collect(),
-            materials: gpu_materials(&materials),
+            materials: gpu_materials(&materials, &node_table),
+            node_programs: node_table.words,
+            node_shapes: node_table.shapes,
+            node_code: node_table.key,
             emitters,
             emitter_total_power,
             lamps,

@@ -8,6 +8,7 @@ mod context;
 #[cfg(test)]
 mod layout_check;
 mod microfacet_tables;
+pub mod node_code;
 mod pipelines;
 mod readback;
 pub mod shader;

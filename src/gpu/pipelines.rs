@@ -3,7 +3,9 @@
 use super::GpuContext;
 use super::buffers::{io_bind_group_layout, scene_bind_group_layout, sky_bind_group_layout};
 use super::build::compute_pipelines;
+use super::node_code;
 use super::shader::{Program, ShaderFiles, assemble_from};
+use crate::bvh::SceneGeometry;
 use crate::scene::{FeatureSet, SkyFeature};
 use anyhow::{Result, anyhow};
 use std::collections::HashMap;
@@ -29,6 +31,8 @@ pub struct PipelineCache {
     pub sky_layout: wgpu::BindGroupLayout,
     files: ShaderFiles,
     built: HashMap<(Program, FeatureSet), Rc<Pipelines>>,
+    /// Specialised node code by `FeatureSet::node_code`, as [`Self::learn_node_code`] made it.
+    node_code: HashMap<u64, String>,
 }
 
 impl PipelineCache {
@@ -42,6 +46,15 @@ impl PipelineCache {
             sky_layout: sky_bind_group_layout(&ctx.device, false),
             files: ShaderFiles::BuiltIn,
             built: HashMap::new(),
+            node_code: HashMap::new(),
+        }
+    }
+
+    /// Makes the specialised code of `geometry`'s node programs, for the feature sets
+    /// that name it (see [`crate::gpu::node_code`]).
+    pub fn learn_node_code(&mut self, geometry: &SceneGeometry) {
+        if let Some(code) = node_code::of_geometry(geometry) {
+            self.node_code.entry(geometry.node_code).or_insert(code);
         }
     }
 
@@ -83,7 +96,11 @@ impl PipelineCache {
                 &["trace", "generate_camera_rays", "generate_diffuse_rays", "generate_through_rays"],
             ),
         };
-        let source = assemble_from(files, program, &features).map_err(|e| anyhow!(e))?;
+        let mut source = assemble_from(files, program, &features).map_err(|e| anyhow!(e))?;
+        if program == Program::Integrator && features.flag("node_code") == Some(true) {
+            let code = self.node_code.get(&features.node_code);
+            source.push_str(code.ok_or_else(|| anyhow!("no specialised node code {:x}", features.node_code))?);
+        }
         // Only the integrator reads the atmosphere; the trace program never calls the sky.
         let mut groups = vec![&self.scene_layout, io_layout];
         if program == Program::Integrator && matches!(features.sky, SkyFeature::Atmosphere | SkyFeature::Environment) {

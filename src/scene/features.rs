@@ -77,6 +77,9 @@ pub struct FeatureSet {
     pub textures: bool,
     /// Shader node graphs drive some material's inputs (`asset::node_graph`).
     pub node_graphs: bool,
+    /// Names the node programs' shapes whose code the pipeline specialises (the scene
+    /// geometry's `node_code`); 0: the node programs are interpreted.
+    pub node_code: u64,
     /// Cut-outs: some material's alpha can remove parts of its surface, for every ray.
     pub alpha_mask: bool,
     /// Stochastic transparency: some material's opacity is a probability (glTF BLEND).
@@ -161,6 +164,8 @@ pub struct GeometrySummary {
     pub moving: bool,
     /// Some emissive instance moves over the shutter: lights are sampled by power, not the tree.
     pub moving_lights: bool,
+    /// Names the node programs' shapes when the pipeline specialises them (0: the interpreter).
+    pub node_code: u64,
     /// Every material some triangle or sphere uses (an asset's own materials may
     /// emit or refract).
     pub materials_in_use: Vec<Material>,
@@ -207,6 +212,7 @@ impl FeatureSet {
             textures: materials_in_use.iter().any(|m| m.textures.any() || m.textures.has_alpha())
                 || materials_in_use.iter().any(|m| !m.node_program.is_empty()),
             node_graphs: materials_in_use.iter().any(|m| !m.node_program.is_empty()),
+            node_code: geometry.node_code,
             alpha_mask: materials_in_use.iter().any(|m| m.textures.has_alpha()),
             alpha_blend: materials_in_use.iter().any(|m| m.textures.alpha_blend),
             normal_maps: materials_in_use.iter().any(|m| m.textures.has_normal_map()),
@@ -263,6 +269,7 @@ impl FeatureSet {
             lamps: LampKinds::ALL,
             textures: true,
             node_graphs: true,
+            node_code: 0,
             alpha_mask: true,
             alpha_blend: true,
             normal_maps: true,
@@ -325,6 +332,8 @@ impl FeatureSet {
             "lamp_sun" => self.lamps.sun,
             "textures" => self.textures,
             "node_graphs" => self.node_graphs,
+            // Specialised node code, appended to the module (`gpu::node_code`).
+            "node_code" => self.node_graphs && self.node_code != 0,
             "alpha_mask" => self.alpha_mask,
             "alpha_blend" => self.alpha_blend,
             "normal_maps" => self.normal_maps,
@@ -379,7 +388,8 @@ impl fmt::Display for FeatureSet {
             (self.depth_of_field, "depth-of-field"),
             (self.panorama, "panorama"),
             (self.textures, "textures"),
-            (self.node_graphs, "node-graphs"),
+            (self.node_graphs && self.node_code == 0, "node-graphs"),
+            (self.node_graphs && self.node_code != 0, "node-graphs=specialised"),
             (self.alpha_mask, "alpha-mask"),
             (self.light_tree, "light-tree"),
             (self.alpha_blend, "alpha-blend"),

@@ -38,6 +38,7 @@ fn feature_sets() -> Vec<FeatureSet> {
             },
             textures: on(0) != on(4),
             node_graphs: on(0) != on(4) && on(7) && on(1),
+            node_code: 0,
             alpha_mask: on(0) != on(4) && on(6),
             alpha_blend: on(0) != on(4) && on(6) && on(1),
             normal_maps: on(0) != on(4) && on(7),
@@ -88,6 +89,7 @@ fn plain() -> FeatureSet {
         lamps: LampKinds::default(),
         textures: false,
         node_graphs: false,
+        node_code: 0,
         alpha_mask: false,
         alpha_blend: false,
         normal_maps: false,
@@ -166,6 +168,27 @@ fn every_pair_of_effects_assembles_to_valid_wgsl() {
             validate(&assemble(program, features), &format!("[{features}] {program:?}"));
         }
     }
+}
+
+/// Specialised node code (one shape running every operation) with the integrator that
+/// calls it.
+#[test]
+fn specialised_node_code_is_valid_wgsl() {
+    use crate::asset::node_graph::CONSTANT;
+    use crate::asset::node_kinds::{OP_END, OP_OUTPUT, OPERATIONS};
+    let mut program = vec![0];
+    for (_, op) in &OPERATIONS[2..] {
+        program.extend([*op, 0, 1, CONSTANT, 0]);
+    }
+    program.extend([OP_OUTPUT, 0, 1, 0, 0, OP_END]);
+    program[0] = program.len() as u32;
+    program.extend([0; 4]);
+    let features = FeatureSet { node_code: 1, ..all_on() };
+    let mut source = assemble(Program::Integrator, &features);
+    assert!(!source.contains("fn run_node_program"), "the interpreter is left out");
+    source.push_str(&crate::gpu::node_code::generate(&[program.clone(), program]));
+    assert!(source.contains("node_op_voronoi(start, NodeStep(23u"));
+    validate(&source, "specialised node code");
 }
 
 #[test]

@@ -88,8 +88,9 @@ impl<'a> Session<'a> {
         ctx: &'a GpuContext,
         scene: Scene,
         geometry: SceneGeometry,
-        pipelines: PipelineCache,
+        mut pipelines: PipelineCache,
     ) -> Result<Self> {
+        pipelines.learn_node_code(&geometry);
         let features = FeatureSet::analyse(&scene, &geometry.summary());
         let request = with_alpha_counted(RenderRequest::from_scene(&scene), features);
         let mut acc = Accumulation::new(ctx, &pipelines.accumulation_layout, request.width, request.height)?;

@@ -87,6 +87,9 @@ impl Session<'_> {
             Some(GeometryUpdate::Replace(g) | GeometryUpdate::Materials(g)) => g.summary(),
             None => self.geometry.summary(),
         };
+        if let Some(GeometryUpdate::Replace(g) | GeometryUpdate::Materials(g)) = &geometry {
+            self.pipelines.learn_node_code(g);
+        }
         let features = FeatureSet::analyse(&scene, &summary);
         self.pipelines.get(self.ctx, Program::Integrator, features)?;
         if scene.sky != self.scene.sky {

@@ -1,0 +1,211 @@
+// What node operations read at a point and compute, beside the textures' own files:
+// coordinates, Light Path, ramps and curves, Mapping, Checker, Gradient, Fresnel, Layer
+// Weight, and the noise and Voronoi textures' operands.
+
+//#include "transform.wgsl"
+//#include "motion.wgsl"
+//#include "texture.wgsl"
+//#include "node_step.wgsl"
+//#include "node_noise.wgsl"
+//#include "node_math.wgsl"
+//#include "node_voronoi.wgsl"
+
+// Texture Coordinate (modes 0-3: Generated, Normal, UV, Object) and Geometry (4-8:
+// Position, Normal, True Normal, Incoming, Backfacing). Generated's texture space is in
+// the instruction's extra words at `extra`.
+fn node_coordinate(mode: u32, p: NodePoint, extra: u32) -> vec4f {
+    switch mode {
+        case 0u: {
+            let scale = vec3f(node_word_f(extra), node_word_f(extra + 1u), node_word_f(extra + 2u));
+            let offset = vec3f(node_word_f(extra + 3u), node_word_f(extra + 4u), node_word_f(extra + 5u));
+            return vec4f(p.object * scale + offset, 0.0);
+        }
+        case 1u: { return vec4f(p.object_normal, 0.0); }
+        case 2u: { return vec4f(p.uv, 0.0, 0.0); }
+        case 3u: { return vec4f(p.object, 0.0); }
+        case 4u: { return vec4f(p.position, 0.0); }
+        case 5u: { return vec4f(p.normal, 0.0); }
+        case 6u: { return vec4f(p.true_normal, 0.0); }
+        case 7u: { return vec4f(p.incoming, 0.0); }
+        case 8u: { return vec4f(select(0.0, 1.0, p.backfacing)); }
+        default: { return vec4f(node_light_path(mode - 9u, p)); }
+    }
+}
+
+// Light Path's outputs in node_kinds' order: Is Camera, Shadow, Diffuse, Glossy, Singular,
+// Reflection, Transmission, Volume Scatter Ray, Ray Length, Ray Depth. A lobe's bounce is
+// diffuse (diffuse, sheen) or glossy (the others, singular ones too, as in Cycles),
+// transmission for the glass lobe.
+fn node_light_path(output: u32, p: NodePoint) -> f32 {
+    let bounced = p.ray_from != NODE_RAY_CAMERA && p.ray_from != NODE_RAY_NONE;
+    let lobe = p.ray_from - 1u;
+    let diffuse = bounced && (lobe == 0u || lobe == 5u);
+    let transmission = bounced && lobe == 3u;
+    var on = false;
+    switch output {
+        case 0u: { on = p.ray_from == NODE_RAY_CAMERA; }
+        case 2u: { on = diffuse; }
+        case 3u: { on = bounced && !diffuse; }
+        case 4u: { on = bounced && p.singular; }
+        case 5u: { on = bounced && !transmission; }
+        case 6u: { on = transmission; }
+        case 8u: { return p.ray_length; }
+        case 9u: { return p.ray_depth; }
+        default: {}
+    }
+    return select(0.0, 1.0, on);
+}
+
+// Cycles' ramp lookup in a table of RAMP_TABLE_SIZE RGBA entries at `table`.
+fn node_ramp(table: u32, fac: f32, interpolate: bool) -> vec4f {
+    let f = clamp(fac, 0.0, 1.0) * f32(RAMP_TABLE_SIZE - 1u);
+    let i = u32(clamp(i32(f), 0, i32(RAMP_TABLE_SIZE) - 1));
+    let t = f - f32(i);
+    let a = node_vec4(table + 4u * i);
+    if interpolate && t > 0.0 {
+        return (1.0 - t) * a + t * node_vec4(table + 4u * (i + 1u));
+    }
+    return a;
+}
+
+// Cycles' ramp lookup with extrapolation: beyond [0, 1] the table's end slope continues.
+fn node_ramp_extended(table: u32, fac: f32, extrapolate: bool) -> vec4f {
+    let last = RAMP_TABLE_SIZE - 1u;
+    if extrapolate && fac < 0.0 {
+        let t0 = node_vec4(table);
+        return t0 + (t0 - node_vec4(table + 4u)) * -fac * f32(last);
+    }
+    if extrapolate && fac > 1.0 {
+        let t0 = node_vec4(table + 4u * last);
+        return t0 + (t0 - node_vec4(table + 4u * (last - 1u))) * (fac - 1.0) * f32(last);
+    }
+    return node_ramp(table, fac, true);
+}
+
+// RGB and Vector Curves (mode 0: each channel through its curve) and Float Curve (mode 1),
+// mixed with the input by `fac`; `extra` holds the curves' range, then their table.
+fn node_curves(mode: u32, extrapolate: bool, extra: u32, fac: f32, v: vec3f) -> vec3f {
+    let lo = node_word_f(extra);
+    let relative = (v - lo) / (node_word_f(extra + 1u) - lo);
+    let table = extra + 2u;
+    var curved = vec3f(
+        node_ramp_extended(table, relative.x, extrapolate).x,
+        node_ramp_extended(table, relative.y, extrapolate).y,
+        node_ramp_extended(table, relative.z, extrapolate).z,
+    );
+    if mode == 1u {
+        curved = vec3f(node_ramp_extended(table, relative.x, extrapolate).x);
+    }
+    return mix(v, curved, fac);
+}
+
+// Blender's XYZ Euler rotation (Cycles' euler_to_transform), as rows.
+fn euler_rows(e: vec3f) -> mat3x3f {
+    let c = cos(e);
+    let s = sin(e);
+    return mat3x3f(
+        vec3f(c.y * c.z, s.y * s.x * c.z - c.x * s.z, s.y * c.x * c.z + s.x * s.z),
+        vec3f(c.y * s.z, s.y * s.x * s.z + c.x * c.z, s.y * c.x * s.z - s.x * c.z),
+        vec3f(-s.y, c.y * s.x, c.y * c.x),
+    );
+}
+
+// Mapping: mode 0 point, 1 texture, 2 vector, 3 normal.
+fn node_mapping(mode: u32, v: vec3f, location: vec3f, rotation: vec3f, scale: vec3f) -> vec3f {
+    let rows = euler_rows(rotation);
+    // `m * x` with rows as columns is the transpose's product: the inverse rotation.
+    switch mode {
+        case 0u: { return v * scale * rows + location; }
+        case 1u: { return safe_divide3(rows * (v - location), scale); }
+        case 2u: { return v * scale * rows; }
+        default: { return safe_normalize(safe_divide3(v, scale) * rows); }
+    }
+}
+
+fn node_checker(co: vec3f) -> f32 {
+    let p = (co + 0.000001) * 0.999999;
+    let i = abs(vec3i(floor(p)));
+    return select(0.0, 1.0, ((i.x % 2) == (i.y % 2)) == ((i.z % 2) != 0));
+}
+
+// Gradient Texture: types in the order of node_kinds' GRADIENT_TYPES.
+fn node_gradient(kind: u32, p: vec3f) -> f32 {
+    switch kind {
+        case 1u: { let r = max(p.x, 0.0); return r * r; }
+        case 2u: {
+            let r = clamp(p.x, 0.0, 1.0);
+            let t = r * r;
+            return 3.0 * t - 2.0 * t * r;
+        }
+        case 3u: { return (p.x + p.y) * 0.5; }
+        case 4u: { return max(0.999999 - length(p), 0.0); }
+        case 5u: { let r = max(0.999999 - length(p), 0.0); return r * r; }
+        case 6u: { return atan2(p.y, p.x) / (2.0 * PI) + 0.5; }
+        default: { return p.x; }
+    }
+}
+
+// Cycles' fresnel_dielectric_cos.
+fn node_fresnel(cos_i: f32, eta: f32) -> f32 {
+    let c = abs(cos_i);
+    var g = eta * eta - 1.0 + c * c;
+    if g > 0.0 {
+        g = sqrt(g);
+        let a = (g - c) / (g + c);
+        let b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
+        return 0.5 * a * a * (1.0 + b * b);
+    }
+    return 1.0;
+}
+
+// A Normal input the graph leaves unlinked reads 0: the point's own normal.
+fn node_normal(n: vec3f, p: NodePoint) -> vec3f {
+    return select(n, p.normal, all(n == vec3f(0.0)));
+}
+
+// Layer Weight's Fresnel (x) and Facing (y).
+fn node_layer_weight(blend_in: f32, n: vec3f, p: NodePoint) -> vec2f {
+    var eta = max(1.0 - blend_in, 1e-5);
+    eta = select(1.0 / eta, eta, p.backfacing);
+    let cos_i = dot(p.incoming, n);
+    let fresnel = node_fresnel(cos_i, eta);
+    var facing = abs(cos_i);
+    if blend_in != 0.5 {
+        var blend = clamp(blend_in, 0.0, 1.0 - 1e-5);
+        blend = select(0.5 / (1.0 - blend), 2.0 * blend, blend < 0.5);
+        facing = pow(facing, blend);
+    }
+    return vec2f(fresnel, 1.0 - facing);
+}
+
+fn node_noise(start: u32, step: NodeStep, kind: u32, normalize: bool) -> vec4f {
+    let scale = node_in(start, step, 2u).x;
+    let s = NoiseSettings(
+        clamp(node_in(start, step, 3u).x, 0.0, 15.0),
+        max(node_in(start, step, 4u).x, 0.0),
+        node_in(start, step, 5u).x,
+        node_in(start, step, 6u).x,
+        node_in(start, step, 7u).x,
+        kind,
+        normalize,
+    );
+    return noise_texture_3d(node_in(start, step, 0u).xyz * scale, node_in(start, step, 8u).x, s);
+}
+
+// Voronoi Texture: mode = feature | metric << 4 (node_kinds' VORONOI_FEATURES, _METRICS).
+fn node_voronoi(start: u32, step: NodeStep, mode: u32, normalize: bool) -> VoronoiResult {
+    let p = VoronoiParams(
+        node_in(start, step, 2u).x,
+        node_in(start, step, 3u).x,
+        node_in(start, step, 4u).x,
+        node_in(start, step, 5u).x,
+        node_in(start, step, 6u).x,
+        node_in(start, step, 7u).x,
+        node_in(start, step, 8u).x,
+        0.0,
+        normalize,
+        mode & 15u,
+        mode >> 4u,
+    );
+    return voronoi_texture(node_in(start, step, 0u).xyz, p);
+}

@@ -1,0 +1,125 @@
+// A node program's machine: the program table, its operations, the registers, the point a
+// graph is evaluated at, what a program sets, and one instruction (`NodeStep`) with its
+// operands. Vectors are in Blender's axes, as a graph expects.
+
+//#include "constants.wgsl"
+//#include "common.wgsl"
+
+@group(0) @binding(21) var<storage, read> node_programs: array<u32>;
+
+const NODE_OP_END: u32 = 0u;
+const NODE_OP_OUTPUT: u32 = 1u;
+const NODE_OP_CONVERT: u32 = 2u;
+const NODE_OP_COORDINATE: u32 = 3u;
+const NODE_OP_MATH: u32 = 4u;
+const NODE_OP_VECTOR_MATH: u32 = 5u;
+const NODE_OP_MIX: u32 = 6u;
+const NODE_OP_MAP_RANGE: u32 = 7u;
+const NODE_OP_CLAMP: u32 = 8u;
+const NODE_OP_INVERT: u32 = 9u;
+const NODE_OP_RAMP: u32 = 10u;
+const NODE_OP_SEPARATE: u32 = 11u;
+const NODE_OP_COMBINE: u32 = 12u;
+const NODE_OP_MAPPING: u32 = 13u;
+const NODE_OP_NOISE: u32 = 14u;
+const NODE_OP_CHECKER: u32 = 15u;
+const NODE_OP_GRADIENT: u32 = 16u;
+const NODE_OP_LAYER_WEIGHT: u32 = 17u;
+const NODE_OP_FRESNEL: u32 = 18u;
+const NODE_OP_HUE_SATURATION: u32 = 19u;
+const NODE_OP_BRIGHT_CONTRAST: u32 = 20u;
+const NODE_OP_GAMMA: u32 = 21u;
+const NODE_OP_WHITE_NOISE: u32 = 22u;
+const NODE_OP_VORONOI: u32 = 23u;
+const NODE_OP_WAVE: u32 = 24u;
+const NODE_OP_CURVES: u32 = 25u;
+const NODE_OP_MAGIC: u32 = 26u;
+
+const NODE_REGISTERS: u32 = 32u;
+const NODE_MAX_OPERANDS: u32 = 9u;
+const NODE_CONSTANT: u32 = 0x80000000u;
+// A bound on the instructions of one program, so that a corrupt one cannot hang the GPU.
+const NODE_MAX_INSTRUCTIONS: u32 = 4096u;
+const RAMP_TABLE_SIZE: u32 = 257u;
+// Linear Rec. 709's luminance, as Cycles weighs a colour read as a value.
+const NODE_LUMINANCE: vec3f = vec3f(0.2126729, 0.7151522, 0.0721750);
+
+// Where a graph is evaluated, in Blender's axes.
+struct NodePoint {
+    position: vec3f,
+    // Object space.
+    object: vec3f,
+    // The shading normal on the viewer's side, and the same in object space.
+    normal: vec3f,
+    object_normal: vec3f,
+    true_normal: vec3f,
+    // Towards the viewer.
+    incoming: vec3f,
+    uv: vec2f,
+    backfacing: bool,
+    // The ray that found the point (Light Path): NODE_RAY_* and whether its bounce was
+    // singular (a mirror or clear glass), its length and the bounces before it.
+    ray_from: u32,
+    singular: bool,
+    ray_length: f32,
+    ray_depth: f32,
+}
+
+// What a ray found the point by: from the camera, after a lobe (LOBE_* + 1), or none of
+// these (a light sample's point: every Light Path flag off, as Cycles evaluates emission).
+const NODE_RAY_CAMERA: u32 = 0u;
+const NODE_RAY_NONE: u32 = 255u;
+
+// What a program sets: `driven` bit i for target i (node_kinds::TARGETS).
+struct NodeOutputs {
+    base_color: vec3f,
+    roughness: f32,
+    emission: vec3f,
+    metallic: f32,
+    mix_factor: f32,
+    driven: u32,
+}
+
+var<private> node_registers: array<vec4f, NODE_REGISTERS>;
+
+fn blender_axes(v: vec3f) -> vec3f {
+    return vec3f(v.x, -v.z, v.y);
+}
+
+fn node_word_f(at: u32) -> f32 {
+    return bitcast<f32>(node_programs[at]);
+}
+
+fn node_vec4(at: u32) -> vec4f {
+    return vec4f(node_word_f(at), node_word_f(at + 1u), node_word_f(at + 2u), node_word_f(at + 3u));
+}
+
+// One instruction: decoded from the program table by the interpreter, or written with
+// constants into a program shape's specialised code (src/gpu/node_code.rs), where the
+// compiler then keeps only its operation's code and its registers in registers.
+struct NodeStep {
+    op: u32,
+    mode: u32,
+    flags: u32,
+    out: u32,
+    // Where its extra words (a ramp's table, a texture space) start in the table.
+    extra: u32,
+    operands: array<u32, NODE_MAX_OPERANDS>,
+}
+
+// Operand `i` of instruction `s`: a register or one of the program's constants.
+fn node_in(start: u32, step: NodeStep, i: u32) -> vec4f {
+    let operand = step.operands[i];
+    if operand >= NODE_CONSTANT {
+        return node_vec4(start + node_programs[start] + 4u * (operand - NODE_CONSTANT));
+    }
+    return node_registers[min(operand, NODE_REGISTERS - 1u)];
+}
+
+fn node_store(slot: u32, value: vec4f) {
+    node_registers[min(slot, NODE_REGISTERS - 1u)] = value;
+}
+
+fn node_outputs_none() -> NodeOutputs {
+    return NodeOutputs(vec3f(0.0), 0.0, vec3f(0.0), 0.0, 0.0, 0u);
+}

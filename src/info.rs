@@ -50,7 +50,7 @@ pub fn print_info(scene: Scene, quality: BuildQuality, adapter: Option<&str>) ->
     );
     println!("bounds     {:?} .. {:?}", g.bounds_min.to_array(), g.bounds_max.to_array());
     let moving = g.instances.iter().filter(|i| i.is_moving()).count();
-    let camera_keys = scene.camera.motion.as_ref().map_or(0, |m| m.keys.len());
+    let camera_keys = scene.camera.motion.as_ref().map_or(0, |m| m.keys().len());
     if moving > 0 || camera_keys > 0 {
         println!(
             "motion     {moving} moving instances ({} matrices over the shutter), the camera in {camera_keys} keys",

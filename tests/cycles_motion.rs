@@ -82,7 +82,7 @@ fn instance_files_carry_motion_as_the_scene_file_does() {
     let at = scene.meshes.iter().position(|m| m.asset.ends_with("Sphere")).expect("the sphere");
     let sphere = scene.meshes.remove(at);
     let motion = sphere.motion.as_ref().expect("the sphere moves");
-    let rows: Vec<[f32; 12]> = motion.keys.iter().map(|m| InstanceRecord::new(m, OWN_MATERIALS).rows).collect();
+    let rows: Vec<[f32; 12]> = motion.keys().iter().map(|m| InstanceRecord::new(m, OWN_MATERIALS).rows).collect();
     let file = dir.join("sphere.rtinst");
     let record = [InstanceRecord::new(&sphere.object_to_world, OWN_MATERIALS)];
     let bytes = rtinst::encode_moving(&record, &MaterialSets::default(), rows.len() as u32, &rows);

@@ -101,9 +101,9 @@ impl InstanceFile {
     pub fn motion_of(&self, index: usize) -> Option<crate::scene::Motion> {
         let k = self.motion_keys as usize;
         let keys = self.motion.get(index * k..(index + 1) * k).filter(|_| k > 0)?;
-        Some(crate::scene::Motion {
-            keys: keys.iter().map(|rows| InstanceRecord { rows: *rows, material: 0 }.object_to_world()).collect(),
-        })
+        Some(crate::scene::Motion::new(
+            keys.iter().map(|rows| InstanceRecord { rows: *rows, material: 0 }.object_to_world()).collect(),
+        ))
     }
 }
 
@@ -342,7 +342,7 @@ mod tests {
         let bytes = encode_moving(&two(), &MaterialSets::default(), 2, &motion);
         assert_eq!(bytes.len(), 28 + 2 * (52 + 2 * 48));
         let back = parse(Path::new("t.rtinst"), &bytes).expect("parses");
-        assert_eq!(back.motion_of(1).map(|m| m.keys), Some(keys(2.0).to_vec()));
+        assert_eq!(back.motion_of(1).map(|m| m.keys().to_vec()), Some(keys(2.0).to_vec()));
         assert_eq!(parse(Path::new("t.rtinst"), &plain(&two())).expect("parses").motion_of(0), None);
         let mut one_key = bytes.clone();
         one_key[24] = 1;

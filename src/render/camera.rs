@@ -18,9 +18,9 @@ pub fn set_camera(frame: &mut GpuFrame, camera: &Camera, width: u32, height: u32
     frame.camera_up = up.to_array();
     frame.camera_motion_steps = 0;
     if let Some(motion) = &camera.motion {
-        frame.camera_motion_steps = motion.keys.len() as u32;
+        frame.camera_motion_steps = motion.keys().len() as u32;
         for (slot, key) in frame.camera_motion.iter_mut().zip(motion.decomposed()) {
-            *slot = (&key).into();
+            *slot = key.into();
         }
     }
     frame.view_half_extent = plane.half_extent.to_array();

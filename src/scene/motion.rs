@@ -31,28 +31,27 @@ pub struct Decomposed {
     pub stretch: DMat3,
 }
 
-/// Transforms at evenly spaced times over the open shutter (at least two).
+/// Transforms at evenly spaced times over the open shutter (at least two), split for
+/// interpolation once, when the motion is made.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Motion {
-    pub keys: Vec<Mat4>,
+    keys: Vec<Mat4>,
+    decomposed: Vec<Decomposed>,
 }
 
 impl Motion {
-    /// The keys split for interpolation, each rotation on the side of its predecessor's
-    /// (a quaternion and its negation are one rotation; interpolating between opposite
-    /// ones would take the long way round).
-    pub fn decomposed(&self) -> Vec<Decomposed> {
-        let mut out: Vec<Decomposed> = Vec::with_capacity(self.keys.len());
-        for key in &self.keys {
-            let mut d = decompose(&key.as_dmat4());
-            if let Some(before) = out.last()
-                && before.rotation.dot(d.rotation) < 0.0
-            {
-                d.rotation = -d.rotation;
-            }
-            out.push(d);
-        }
-        out
+    pub fn new(keys: Vec<Mat4>) -> Self {
+        let decomposed = decompose_keys(&keys);
+        Self { keys, decomposed }
+    }
+
+    pub fn keys(&self) -> &[Mat4] {
+        &self.keys
+    }
+
+    /// The keys split for interpolation, each rotation on the side of its predecessor's.
+    pub fn decomposed(&self) -> &[Decomposed] {
+        &self.decomposed
     }
 
     /// The world-to-object matrices at evenly spaced times from the shutter's opening to
@@ -62,9 +61,9 @@ impl Motion {
     /// full one between the keys of a three-key motion:
     /// between samples δ apart a rotation's chord shortens by 1 − cos(δ/2).
     pub fn world_to_object_samples(&self) -> Vec<DMat4> {
-        let keys = self.decomposed();
+        let keys = &self.decomposed;
         let count = (1 + MOTION_SAMPLES_PER_INTERVAL * (keys.len() - 1)).min(MAX_MOTION_SAMPLES);
-        (0..count).map(|i| interpolate(&keys, i as f64 / (count - 1) as f64).inverse()).collect()
+        (0..count).map(|i| interpolate(keys, i as f64 / (count - 1) as f64).inverse()).collect()
     }
 
     /// The box that holds `lo..hi` transformed at every time of the shutter: the boxes at
@@ -73,7 +72,7 @@ impl Motion {
     /// corner moves farthest; between two times a point stays within that of both).
     pub fn swept_box(&self, lo: Vec3, hi: Vec3) -> (Vec3, Vec3) {
         const PER_INTERVAL: usize = 64;
-        let keys = self.decomposed();
+        let keys = &self.decomposed;
         let steps = PER_INTERVAL * (keys.len() - 1);
         let corners: Vec<DVec3> = (0..8)
             .map(|i| {
@@ -85,7 +84,7 @@ impl Motion {
         let mut reach = 0.0f64;
         let mut before: Option<Vec<DVec3>> = None;
         for s in 0..=steps {
-            let m = interpolate(&keys, s as f64 / steps as f64);
+            let m = interpolate(keys, s as f64 / steps as f64);
             let placed: Vec<DVec3> = corners.iter().map(|c| m.transform_point3(*c)).collect();
             for p in &placed {
                 min = min.min(*p);
@@ -98,6 +97,23 @@ impl Motion {
         }
         ((min - reach).as_vec3(), (max + reach).as_vec3())
     }
+}
+
+/// `keys` split for interpolation, each rotation on the side of its predecessor's (a
+/// quaternion and its negation are one rotation; interpolating between opposite ones
+/// would take the long way round).
+fn decompose_keys(keys: &[Mat4]) -> Vec<Decomposed> {
+    let mut out: Vec<Decomposed> = Vec::with_capacity(keys.len());
+    for key in keys {
+        let mut d = decompose(&key.as_dmat4());
+        if let Some(before) = out.last()
+            && before.rotation.dot(d.rotation) < 0.0
+        {
+            d.rotation = -d.rotation;
+        }
+        out.push(d);
+    }
+    out
 }
 
 /// `m` split by its polar decomposition (Higham's iteration R ← (R + R⁻ᵀ)/2, which
@@ -150,7 +166,7 @@ fn slerp(a: DQuat, b: DQuat, t: f64) -> DQuat {
 pub(super) fn validate_keys(src: &Source, p: &[Seg], keys: &[[f32; 16]]) -> Result<Motion, SceneError> {
     check_count(src, p, keys.len(), MAX_MOTION_KEYS)?;
     let keys = keys.iter().map(|k| matrix_of(src, p, "motion", k)).collect::<Result<_, _>>()?;
-    Ok(Motion { keys })
+    Ok(Motion::new(keys))
 }
 
 /// `[camera] motion`: the camera's position, look_at and up at each key, as its own keys
@@ -178,7 +194,7 @@ pub(super) fn validate_camera(src: &Source, poses: &[super::schema::CameraPose])
         }
         keys.push(Mat4::from_cols(right.extend(0.0), up.extend(0.0), forward.extend(0.0), camera.position.extend(1.0)));
     }
-    Ok(Motion { keys })
+    Ok(Motion::new(keys))
 }
 
 fn check_count(src: &Source, p: &[Seg], count: usize, most: usize) -> Result<(), SceneError> {
@@ -212,14 +228,14 @@ mod tests {
 
     #[test]
     fn a_spin_is_interpolated_along_its_arc() {
-        let motion = Motion { keys: vec![Mat4::IDENTITY, Mat4::from_rotation_z(1.5), Mat4::from_rotation_z(3.0)] };
+        let motion = Motion::new(vec![Mat4::IDENTITY, Mat4::from_rotation_z(1.5), Mat4::from_rotation_z(3.0)]);
         let keys = motion.decomposed();
-        let halfway = interpolate(&keys, 0.25);
+        let halfway = interpolate(keys, 0.25);
         assert!(close(halfway, DMat4::from_rotation_z(f64::from(1.5f32) * 0.5)), "{halfway:?}");
         // The box of a unit square turning by 3 rad about its corner holds the whole sweep.
         let (lo, hi) = motion.swept_box(Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0));
         for i in 0..=300 {
-            let m = interpolate(&keys, f64::from(i) / 300.0);
+            let m = interpolate(keys, f64::from(i) / 300.0);
             for c in [DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, 0.0), DVec3::new(0.7, 0.2, 0.0)] {
                 let p = m.transform_point3(c).as_vec3();
                 assert!(p.cmpge(lo).all() && p.cmple(hi).all(), "{p} outside {lo}..{hi}");
@@ -230,7 +246,7 @@ mod tests {
     #[test]
     fn the_gpus_samples_follow_the_decomposed_motion() {
         let turn = Mat4::from_translation(Vec3::new(1.0, 0.0, 0.0)) * Mat4::from_rotation_y(3.0);
-        let motion = Motion { keys: vec![Mat4::IDENTITY, turn, Mat4::from_scale(Vec3::splat(2.0))] };
+        let motion = Motion::new(vec![Mat4::IDENTITY, turn, Mat4::from_scale(Vec3::splat(2.0))]);
         let samples = motion.world_to_object_samples();
         assert_eq!(samples.len(), 1 + 2 * MOTION_SAMPLES_PER_INTERVAL.min(127));
         let keys = motion.decomposed();
@@ -241,7 +257,7 @@ mod tests {
             let k = (x as usize).min(samples.len() - 2);
             let f = x - k as f64;
             let lerped = samples[k] * (1.0 - f) + samples[k + 1] * f;
-            let exact = interpolate(&keys, t);
+            let exact = interpolate(keys, t);
             for p in [DVec3::new(1.0, 1.0, 1.0), DVec3::new(-1.0, 0.5, 1.0)] {
                 let gpu = lerped.inverse().transform_point3(p);
                 assert!(
@@ -257,10 +273,10 @@ mod tests {
 
     #[test]
     fn opposite_quaternions_turn_the_short_way() {
-        let motion = Motion { keys: vec![Mat4::from_rotation_x(3.0), Mat4::from_rotation_x(-3.0)] };
+        let motion = Motion::new(vec![Mat4::from_rotation_x(3.0), Mat4::from_rotation_x(-3.0)]);
         let keys = motion.decomposed();
         // 3 rad to −3 rad is 0.28 rad through π, not 6 rad back through 0.
-        let middle = interpolate(&keys, 0.5);
+        let middle = interpolate(keys, 0.5);
         assert!(close(middle, DMat4::from_rotation_x(std::f64::consts::PI)), "{middle:?}");
     }
 }

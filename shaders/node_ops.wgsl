@@ -38,222 +38,171 @@ fn node_instruction(start: u32, step: NodeStep, p: NodePoint) {
 
 // Each operation: what instruction `step` of the program at `start` stores at point `p`.
 fn node_op_convert(start: u32, step: NodeStep, p: NodePoint) {
-    let mode = step.mode;
-    let out = step.out;
     let a = node_in(start, step, 0u);
-    node_store(out, vec4f(select(dot(a.xyz, vec3f(1.0 / 3.0)), dot(a.xyz, NODE_LUMINANCE), mode == 0u)));
+    node_store(step.out, vec4f(select(dot(a.xyz, vec3f(1.0 / 3.0)), dot(a.xyz, NODE_LUMINANCE), step.mode == 0u)));
 }
 
 fn node_op_coordinate(start: u32, step: NodeStep, p: NodePoint) {
-    let mode = step.mode;
-    let out = step.out;
-    let extra = step.extra;
-    node_store(out, node_coordinate(mode, p, extra));
+    node_store(step.out, node_coordinate(step.mode, p, step.extra));
 }
 
 fn node_op_math(start: u32, step: NodeStep, p: NodePoint) {
-    let mode = step.mode;
-    let flags = step.flags;
-    let out = step.out;
     let a = node_in(start, step, 0u);
-    var v = node_math(mode, a.x, node_in(start, step, 1u).x, node_in(start, step, 2u).x);
-    if flags != 0u {
+    var v = node_math(step.mode, a.x, node_in(start, step, 1u).x, node_in(start, step, 2u).x);
+    if step.flags != 0u {
         v = clamp(v, 0.0, 1.0);
     }
-    node_store(out, vec4f(v));
+    node_store(step.out, vec4f(v));
 }
 
 fn node_op_vector_math(start: u32, step: NodeStep, p: NodePoint) {
-    let mode = step.mode;
-    let out = step.out;
     let a = node_in(start, step, 0u);
-    let r = node_vector_math(mode, a.xyz, node_in(start, step, 1u).xyz, node_in(start, step, 2u).xyz, node_in(start, step, 3u).x);
-    node_store(out, vec4f(r.xyz, 0.0));
-    node_store(out + 1u, vec4f(r.w));
+    let r = node_vector_math(step.mode, a.xyz, node_in(start, step, 1u).xyz, node_in(start, step, 2u).xyz, node_in(start, step, 3u).x);
+    node_store(step.out, vec4f(r.xyz, 0.0));
+    node_store(step.out + 1u, vec4f(r.w));
 }
 
 fn node_op_mix(start: u32, step: NodeStep, p: NodePoint) {
-    let mode = step.mode;
-    let flags = step.flags;
-    let out = step.out;
     let a = node_in(start, step, 0u);
-    node_store(out, node_mix(mode, flags, a, node_in(start, step, 1u), node_in(start, step, 2u)));
+    node_store(step.out, node_mix(step.mode, step.flags, a, node_in(start, step, 1u), node_in(start, step, 2u)));
 }
 
 fn node_op_map_range(start: u32, step: NodeStep, p: NodePoint) {
-    let mode = step.mode;
-    let flags = step.flags;
-    let out = step.out;
     let a = node_in(start, step, 0u);
-    let v = node_map_range(mode, flags != 0u, a.x, node_in(start, step, 1u).x, node_in(start, step, 2u).x,
+    let v = node_map_range(step.mode, step.flags != 0u, a.x, node_in(start, step, 1u).x, node_in(start, step, 2u).x,
         node_in(start, step, 3u).x, node_in(start, step, 4u).x, node_in(start, step, 5u).x);
-    node_store(out, vec4f(v));
+    node_store(step.out, vec4f(v));
 }
 
 fn node_op_clamp(start: u32, step: NodeStep, p: NodePoint) {
-    let mode = step.mode;
-    let out = step.out;
     let a = node_in(start, step, 0u);
     let lo = node_in(start, step, 1u).x;
     let hi = node_in(start, step, 2u).x;
-    node_store(out, vec4f(select(min(max(a.x, lo), hi), clamp_range(a.x, lo, hi), mode == 1u)));
+    node_store(step.out, vec4f(select(min(max(a.x, lo), hi), clamp_range(a.x, lo, hi), step.mode == 1u)));
 }
 
 fn node_op_invert(start: u32, step: NodeStep, p: NodePoint) {
-    let out = step.out;
     let a = node_in(start, step, 0u);
     let c = node_in(start, step, 1u);
-    node_store(out, vec4f(mix(c.xyz, 1.0 - c.xyz, a.x), c.w));
+    node_store(step.out, vec4f(mix(c.xyz, 1.0 - c.xyz, a.x), c.w));
 }
 
 fn node_op_ramp(start: u32, step: NodeStep, p: NodePoint) {
-    let flags = step.flags;
-    let out = step.out;
-    let extra = step.extra;
     let a = node_in(start, step, 0u);
-    let c = node_ramp(extra, a.x, flags != 0u);
-    node_store(out, vec4f(c.xyz, 1.0));
-    node_store(out + 1u, vec4f(c.w));
+    let c = node_ramp(step.extra, a.x, step.flags != 0u);
+    node_store(step.out, vec4f(c.xyz, 1.0));
+    node_store(step.out + 1u, vec4f(c.w));
 }
 
 fn node_op_separate(start: u32, step: NodeStep, p: NodePoint) {
-    let mode = step.mode;
-    let out = step.out;
     let a = node_in(start, step, 0u);
     // Mode 1: Separate Color in HSV.
-    let c = select(a.xyz, rgb_to_hsv(a.xyz), mode == 1u);
-    node_store(out, vec4f(c.x));
-    node_store(out + 1u, vec4f(c.y));
-    node_store(out + 2u, vec4f(c.z));
+    let c = select(a.xyz, rgb_to_hsv(a.xyz), step.mode == 1u);
+    node_store(step.out, vec4f(c.x));
+    node_store(step.out + 1u, vec4f(c.y));
+    node_store(step.out + 2u, vec4f(c.z));
 }
 
 fn node_op_combine(start: u32, step: NodeStep, p: NodePoint) {
-    let mode = step.mode;
-    let out = step.out;
     let a = node_in(start, step, 0u);
     let c = vec3f(a.x, node_in(start, step, 1u).x, node_in(start, step, 2u).x);
-    node_store(out, vec4f(select(c, hsv_to_rgb(c), mode == 1u), 1.0));
+    node_store(step.out, vec4f(select(c, hsv_to_rgb(c), step.mode == 1u), 1.0));
 }
 
 fn node_op_hue_saturation(start: u32, step: NodeStep, p: NodePoint) {
-    let out = step.out;
     let a = node_in(start, step, 0u);
     let c = node_in(start, step, 4u);
     let h = node_hue_saturation(a.x, node_in(start, step, 1u).x, node_in(start, step, 2u).x, node_in(start, step, 3u).x, c.xyz);
-    node_store(out, vec4f(h, c.w));
+    node_store(step.out, vec4f(h, c.w));
 }
 
 fn node_op_bright_contrast(start: u32, step: NodeStep, p: NodePoint) {
-    let out = step.out;
     let a = node_in(start, step, 0u);
     let contrast = node_in(start, step, 2u).x;
     let c = max((1.0 + contrast) * a.xyz + node_in(start, step, 1u).x - 0.5 * contrast, vec3f(0.0));
-    node_store(out, vec4f(c, a.w));
+    node_store(step.out, vec4f(c, a.w));
 }
 
 fn node_op_gamma(start: u32, step: NodeStep, p: NodePoint) {
-    let out = step.out;
     let a = node_in(start, step, 0u);
-    node_store(out, vec4f(node_gamma(a.xyz, node_in(start, step, 1u).x), a.w));
+    node_store(step.out, vec4f(node_gamma(a.xyz, node_in(start, step, 1u).x), a.w));
 }
 
 fn node_op_voronoi(start: u32, step: NodeStep, p: NodePoint) {
-    let mode = step.mode;
-    let flags = step.flags;
-    let out = step.out;
-    let v = node_voronoi(start, step, mode, flags != 0u);
-    node_store(out, vec4f(v.distance));
-    node_store(out + 1u, vec4f(v.color, 1.0));
-    node_store(out + 2u, vec4f(v.position, 0.0));
-    node_store(out + 3u, vec4f(0.0));
-    node_store(out + 4u, vec4f(v.radius));
+    let v = node_voronoi(start, step, step.mode, step.flags != 0u);
+    node_store(step.out, vec4f(v.distance));
+    node_store(step.out + 1u, vec4f(v.color, 1.0));
+    node_store(step.out + 2u, vec4f(v.position, 0.0));
+    node_store(step.out + 3u, vec4f(0.0));
+    node_store(step.out + 4u, vec4f(v.radius));
 }
 
 fn node_op_curves(start: u32, step: NodeStep, p: NodePoint) {
-    let mode = step.mode;
-    let flags = step.flags;
-    let out = step.out;
-    let extra = step.extra;
     let a = node_in(start, step, 0u);
     let v = node_in(start, step, 1u);
-    let c = node_curves(mode, flags != 0u, extra, a.x, v.xyz);
-    node_store(out, select(vec4f(c, v.w), vec4f(c.x), mode == 1u));
+    let c = node_curves(step.mode, step.flags != 0u, step.extra, a.x, v.xyz);
+    node_store(step.out, select(vec4f(c, v.w), vec4f(c.x), step.mode == 1u));
 }
 
 fn node_op_magic(start: u32, step: NodeStep, p: NodePoint) {
-    let mode = step.mode;
-    let out = step.out;
     let a = node_in(start, step, 0u);
-    let c = node_magic(a.xyz * node_in(start, step, 1u).x, i32(mode), node_in(start, step, 2u).x);
-    node_store(out, vec4f(c, 1.0));
-    node_store(out + 1u, vec4f((c.x + c.y + c.z) / 3.0));
+    let c = node_magic(a.xyz * node_in(start, step, 1u).x, i32(step.mode), node_in(start, step, 2u).x);
+    node_store(step.out, vec4f(c, 1.0));
+    node_store(step.out + 1u, vec4f((c.x + c.y + c.z) / 3.0));
 }
 
 fn node_op_wave(start: u32, step: NodeStep, p: NodePoint) {
-    let mode = step.mode;
-    let out = step.out;
     let a = node_in(start, step, 0u);
-    let f = node_wave(mode, a.xyz * node_in(start, step, 1u).x, node_in(start, step, 2u).x, node_in(start, step, 3u).x,
+    let f = node_wave(step.mode, a.xyz * node_in(start, step, 1u).x, node_in(start, step, 2u).x, node_in(start, step, 3u).x,
         node_in(start, step, 4u).x, node_in(start, step, 5u).x, node_in(start, step, 6u).x);
-    node_store(out, vec4f(f, f, f, 1.0));
-    node_store(out + 1u, vec4f(f));
+    node_store(step.out, vec4f(f, f, f, 1.0));
+    node_store(step.out + 1u, vec4f(f));
 }
 
 fn node_op_white_noise(start: u32, step: NodeStep, p: NodePoint) {
-    let out = step.out;
     let a = node_in(start, step, 0u);
-    node_store(out, vec4f(hash_float3_to_float(a.xyz)));
-    node_store(out + 1u, vec4f(hash_float3_to_float3(a.xyz), 1.0));
+    node_store(step.out, vec4f(hash_float3_to_float(a.xyz)));
+    node_store(step.out + 1u, vec4f(hash_float3_to_float3(a.xyz), 1.0));
 }
 
 fn node_op_mapping(start: u32, step: NodeStep, p: NodePoint) {
-    let mode = step.mode;
-    let out = step.out;
     let a = node_in(start, step, 0u);
-    let v = node_mapping(mode, a.xyz, node_in(start, step, 1u).xyz, node_in(start, step, 2u).xyz, node_in(start, step, 3u).xyz);
-    node_store(out, vec4f(v, 0.0));
+    let v = node_mapping(step.mode, a.xyz, node_in(start, step, 1u).xyz, node_in(start, step, 2u).xyz, node_in(start, step, 3u).xyz);
+    node_store(step.out, vec4f(v, 0.0));
 }
 
 fn node_op_noise(start: u32, step: NodeStep, p: NodePoint) {
-    let mode = step.mode;
-    let flags = step.flags;
-    let out = step.out;
-    let n = node_noise(start, step, mode, flags != 0u);
-    node_store(out, vec4f(n.w));
-    node_store(out + 1u, vec4f(n.xyz, 1.0));
+    let n = node_noise(start, step, step.mode, step.flags != 0u);
+    node_store(step.out, vec4f(n.w));
+    node_store(step.out + 1u, vec4f(n.xyz, 1.0));
 }
 
 fn node_op_checker(start: u32, step: NodeStep, p: NodePoint) {
-    let out = step.out;
     let a = node_in(start, step, 0u);
     let f = node_checker(a.xyz * node_in(start, step, 3u).x);
-    node_store(out, select(node_in(start, step, 2u), node_in(start, step, 1u), f == 1.0));
-    node_store(out + 1u, vec4f(f));
+    node_store(step.out, select(node_in(start, step, 2u), node_in(start, step, 1u), f == 1.0));
+    node_store(step.out + 1u, vec4f(f));
 }
 
 fn node_op_gradient(start: u32, step: NodeStep, p: NodePoint) {
-    let mode = step.mode;
-    let out = step.out;
     let a = node_in(start, step, 0u);
-    let f = clamp(node_gradient(mode, a.xyz), 0.0, 1.0);
-    node_store(out, vec4f(f, f, f, 1.0));
-    node_store(out + 1u, vec4f(f));
+    let f = clamp(node_gradient(step.mode, a.xyz), 0.0, 1.0);
+    node_store(step.out, vec4f(f, f, f, 1.0));
+    node_store(step.out + 1u, vec4f(f));
 }
 
 fn node_op_layer_weight(start: u32, step: NodeStep, p: NodePoint) {
-    let out = step.out;
     let a = node_in(start, step, 0u);
     let w = node_layer_weight(a.x, node_normal(node_in(start, step, 1u).xyz, p), p);
-    node_store(out, vec4f(w.x));
-    node_store(out + 1u, vec4f(w.y));
+    node_store(step.out, vec4f(w.x));
+    node_store(step.out + 1u, vec4f(w.y));
 }
 
 fn node_op_fresnel(start: u32, step: NodeStep, p: NodePoint) {
-    let out = step.out;
     let a = node_in(start, step, 0u);
     let eta = max(a.x, 1e-5);
     let n = node_normal(node_in(start, step, 1u).xyz, p);
-    node_store(out, vec4f(node_fresnel(dot(p.incoming, n), select(eta, 1.0 / eta, p.backfacing))));
+    node_store(step.out, vec4f(node_fresnel(dot(p.incoming, n), select(eta, 1.0 / eta, p.backfacing))));
 }
 
 // Sets the material input that Output instruction `step` names.

@@ -1,6 +1,6 @@
 // What node operations read at a point and compute, beside the textures' own files:
 // coordinates, Light Path, ramps and curves, Mapping, Checker, Gradient, Fresnel, Layer
-// Weight, and the noise and Voronoi textures' operands.
+// Weight, Brick, and the noise and Voronoi textures' operands.
 
 //#include "transform.wgsl"
 //#include "motion.wgsl"
@@ -208,4 +208,52 @@ fn node_voronoi(start: u32, step: NodeStep, mode: u32, normalize: bool) -> Voron
         mode >> 4u,
     );
     return voronoi_texture(node_in(start, step, 0u).xyz, p);
+}
+
+// A Brick Texture's settings: its sockets' values and its node's properties.
+struct BrickShape {
+    mortar_size: f32,
+    mortar_smooth: f32,
+    bias: f32,
+    width: f32,
+    row_height: f32,
+    offset: f32,
+    offset_frequency: i32,
+    squash: f32,
+    squash_frequency: i32,
+}
+
+// Cycles' brick_noise: a fast integer hash of a brick's row and number, in [0, 1).
+fn brick_noise(seed: u32) -> f32 {
+    var n = (seed + 1013u) & 0x7fffffffu;
+    n = (n >> 13u) ^ n;
+    let nn = (n * (n * n * 60493u + 19990303u) + 1376312589u) & 0x7fffffffu;
+    return 0.5 * (f32(nn) / 1073741824.0);
+}
+
+// Cycles' svm_brick at `p`: the brick's tint and the mortar's share. Every other row
+// (by the frequencies) is offset and squashed; the mortar is where the point is nearer
+// than its size to the brick's edge, smoothed by Mortar Smooth.
+fn node_brick(p: vec3f, s: BrickShape) -> vec2f {
+    let row = i32(floor(p.y / s.row_height));
+    var width = s.width;
+    var offset = 0.0;
+    if s.offset_frequency != 0 && s.squash_frequency != 0 {
+        width *= select(s.squash, 1.0, row % s.squash_frequency != 0);
+        offset = select(width * s.offset, 0.0, row % s.offset_frequency != 0);
+    }
+    let brick = i32(floor((p.x + offset) / width));
+    let x = (p.x + offset) - width * f32(brick);
+    let y = p.y - s.row_height * f32(row);
+    let tint = clamp(brick_noise(bitcast<u32>((row << 16u) + (brick & 0xffff))) + s.bias, 0.0, 1.0);
+    let edge = min(min(x, y), min(width - x, s.row_height - y));
+    if edge >= s.mortar_size {
+        return vec2f(tint, 0.0);
+    }
+    if s.mortar_smooth == 0.0 {
+        return vec2f(tint, 1.0);
+    }
+    // Cycles' smoothstepf, in its own form.
+    let f = clamp((1.0 - edge / s.mortar_size) / s.mortar_smooth, 0.0, 1.0);
+    return vec2f(tint, 3.0 * f * f - 2.0 * f * f * f);
 }

@@ -32,6 +32,7 @@ fn node_instruction(start: u32, step: NodeStep, p: NodePoint) {
         case NODE_OP_GRADIENT: { node_op_gradient(start, step, p); }
         case NODE_OP_LAYER_WEIGHT: { node_op_layer_weight(start, step, p); }
         case NODE_OP_FRESNEL: { node_op_fresnel(start, step, p); }
+        case NODE_OP_BRICK: { node_op_brick(start, step, p); }
         default: {}
     }
 }
@@ -216,4 +217,19 @@ fn node_op_output(start: u32, step: NodeStep, outputs: ptr<function, NodeOutputs
         case 3u: { (*outputs).emission = v.xyz; }
         default: { (*outputs).mix_factor = v.x; }
     }
+}
+
+// Brick Texture (Cycles' svm_node_tex_brick): a brick's colour is Color1 tinted towards
+// Color2 by its hash, the mortar's share blends in Mortar.
+fn node_op_brick(start: u32, step: NodeStep, p: NodePoint) {
+    let shape = BrickShape(node_in(start, step, 5u).x, node_in(start, step, 6u).x, node_in(start, step, 7u).x,
+        node_in(start, step, 8u).x, node_in(start, step, 9u).x, node_word_f(step.extra), i32(step.mode & 0xffu),
+        node_word_f(step.extra + 1u), i32(step.mode >> 8u));
+    let b = node_brick(node_in(start, step, 0u).xyz * node_in(start, step, 4u).x, shape);
+    var color = node_in(start, step, 1u).xyz;
+    if b.y != 1.0 {
+        color = (1.0 - b.x) * color + b.x * node_in(start, step, 2u).xyz;
+    }
+    node_store(step.out, vec4f(color * (1.0 - b.y) + node_in(start, step, 3u).xyz * b.y, 1.0));
+    node_store(step.out + 1u, vec4f(b.y));
 }

@@ -34,9 +34,10 @@ const NODE_OP_VORONOI: u32 = 23u;
 const NODE_OP_WAVE: u32 = 24u;
 const NODE_OP_CURVES: u32 = 25u;
 const NODE_OP_MAGIC: u32 = 26u;
+const NODE_OP_BRICK: u32 = 27u;
 
 const NODE_REGISTERS: u32 = 32u;
-const NODE_MAX_OPERANDS: u32 = 9u;
+const NODE_MAX_OPERANDS: u32 = 10u;
 const NODE_CONSTANT: u32 = 0x80000000u;
 // A bound on the instructions of one program, so that a corrupt one cannot hang the GPU.
 const NODE_MAX_INSTRUCTIONS: u32 = 4096u;

@@ -101,6 +101,11 @@ fn magic_of_every_depth_matches_cycles() {
 }
 
 #[test]
+fn bricks_of_every_setting_match_cycles() {
+    check_channels("graph_brick", 1e-3);
+}
+
+#[test]
 fn map_range_clamp_and_converters_match_cycles() {
     check_channels("graph_convert", 1e-3);
 }

@@ -49,6 +49,7 @@ EVALUATED = {
     "TEX_VORONOI": ("Distance", "Color", "Position", "W", "Radius"),
     "TEX_WAVE": ("Color", "Fac"),
     "TEX_MAGIC": ("Color", "Fac"),
+    "TEX_BRICK": ("Color", "Fac"),
 }
 
 BLEND_TYPES = {"MIX", "DARKEN", "MULTIPLY", "BURN", "LIGHTEN", "SCREEN", "DODGE", "ADD", "OVERLAY", "SOFT_LIGHT",
@@ -76,6 +77,7 @@ EVALUATED_SETTINGS = {
     "TEX_VORONOI": {"voronoi_dimensions": {"3D"}, "feature": None, "distance": None, "normalize": None},
     "TEX_WAVE": {"wave_type": None, "bands_direction": None, "rings_direction": None, "wave_profile": None},
     "TEX_MAGIC": {"turbulence_depth": None},
+    "TEX_BRICK": {"offset": None, "offset_frequency": None, "squash": None, "squash_frequency": None},
     "MAPPING": {"vector_type": None},
     "TEX_NOISE": {"noise_dimensions": {"3D"}, "noise_type": None, "normalize": None},
     "TEX_GRADIENT": {"gradient_type": None},
@@ -83,7 +85,8 @@ EVALUATED_SETTINGS = {
 # Texture nodes' unlinked Vector, as in Cycles: the Generated coordinates (White Noise's is 0).
 DEFAULT_VECTOR = {"TEX_NOISE": ("TEX_COORD", "Generated"), "TEX_CHECKER": ("TEX_COORD", "Generated"),
                   "TEX_GRADIENT": ("TEX_COORD", "Generated"), "TEX_VORONOI": ("TEX_COORD", "Generated"),
-                  "TEX_WAVE": ("TEX_COORD", "Generated"), "TEX_MAGIC": ("TEX_COORD", "Generated")}
+                  "TEX_WAVE": ("TEX_COORD", "Generated"), "TEX_MAGIC": ("TEX_COORD", "Generated"),
+                  "TEX_BRICK": ("TEX_COORD", "Generated")}
 # Shader inputs a graph can drive: rt's material input, the socket's type there.
 TARGETS = {
     "BSDF_PRINCIPLED": {"Base Color": "base_color", "Roughness": "roughness", "Metallic": "metallic",

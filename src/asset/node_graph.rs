@@ -25,7 +25,7 @@ pub const CONSTANT: u32 = 0x8000_0000;
 /// Registers of the interpreter (`NODE_REGISTERS` in the shader).
 pub const REGISTERS: u32 = 32;
 /// Operands an instruction may have (`NODE_MAX_OPERANDS` in the shader).
-pub const MAX_OPERANDS: u32 = 9;
+pub const MAX_OPERANDS: u32 = 10;
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -264,6 +264,7 @@ impl Compiler<'_> {
                 let extra = match op {
                     node_kinds::OP_RAMP => ramp_table(&node.settings)?,
                     node_kinds::OP_CURVES => curve_table(&node.settings)?,
+                    node_kinds::OP_BRICK => brick_amounts(&node.settings)?,
                     _ => Vec::new(),
                 };
                 let out = self.allocate(kind.outputs.len() as u32)?;
@@ -314,6 +315,15 @@ fn uses(graph: &NodeGraph) -> HashMap<(usize, String), u32> {
 /// Checks that `program` is one the shader can walk ([`super::node_program::instructions`]).
 pub fn check_program(program: &[u32]) -> Result<(), String> {
     super::node_program::instructions(program).map(|_| ())
+}
+
+/// A Brick Texture's offset and squash amounts, as floats' words.
+fn brick_amounts(settings: &Map<String, Value>) -> Result<Vec<u32>, String> {
+    let amount = |key: &str| match settings.get(key).and_then(Value::as_f64) {
+        Some(a) if a.is_finite() => Ok((a as f32).to_bits()),
+        _ => Err(format!("{key} is missing or not a number")),
+    };
+    Ok(vec![amount("offset")?, amount("squash")?])
 }
 
 /// A curve's range (`range`: the lowest and highest x of its points) and table of

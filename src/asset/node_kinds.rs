@@ -33,9 +33,10 @@ pub const OP_VORONOI: u32 = 23;
 pub const OP_WAVE: u32 = 24;
 pub const OP_CURVES: u32 = 25;
 pub const OP_MAGIC: u32 = 26;
+pub const OP_BRICK: u32 = 27;
 
 /// Every operation by its WGSL name, for the check against the shader.
-pub const OPERATIONS: [(&str, u32); 27] = [
+pub const OPERATIONS: [(&str, u32); 28] = [
     ("END", OP_END),
     ("OUTPUT", OP_OUTPUT),
     ("CONVERT", OP_CONVERT),
@@ -63,6 +64,7 @@ pub const OPERATIONS: [(&str, u32); 27] = [
     ("WAVE", OP_WAVE),
     ("CURVES", OP_CURVES),
     ("MAGIC", OP_MAGIC),
+    ("BRICK", OP_BRICK),
 ];
 
 /// `OP_CONVERT` modes: a colour to a value (its luminance), a vector to one (the mean).
@@ -213,7 +215,7 @@ const fn op(name: &'static str, op: u32, inputs: &'static [&'static str], output
     Kind { name, emit: Emit::Operation(op), inputs, outputs }
 }
 
-pub const KINDS: [Kind; 34] = [
+pub const KINDS: [Kind; 35] = [
     Kind { name: "VALUE", emit: Emit::Constant, inputs: &[], outputs: &["Value"] },
     Kind { name: "RGB", emit: Emit::Constant, inputs: &[], outputs: &["Color"] },
     Kind {
@@ -283,6 +285,23 @@ pub const KINDS: [Kind; 34] = [
         &["Color", "Fac"],
     ),
     op("TEX_MAGIC", OP_MAGIC, &["Vector", "Scale", "Distortion"], &["Color", "Fac"]),
+    op(
+        "TEX_BRICK",
+        OP_BRICK,
+        &[
+            "Vector",
+            "Color1",
+            "Color2",
+            "Mortar",
+            "Scale",
+            "Mortar Size",
+            "Mortar Smooth",
+            "Bias",
+            "Brick Width",
+            "Row Height",
+        ],
+        &["Color", "Fac"],
+    ),
     op(
         "TEX_VORONOI",
         OP_VORONOI,
@@ -389,6 +408,15 @@ pub fn mode(name: &str, settings: &Map<String, Value>) -> Result<Mode, String> {
             Some(depth) if (0.0..=10.0).contains(&depth) => plain(depth as u32),
             _ => Err("turbulence_depth is missing or outside 0..=10".into()),
         },
+        // Mode: the offset's frequency, and the squash's << 8 (Blender's 1 to 99 each); the
+        // amounts are the instruction's extra words.
+        "TEX_BRICK" => {
+            let frequency = |key: &str| match settings.get(key).and_then(Value::as_f64) {
+                Some(f) if (1.0..=99.0).contains(&f) => Ok(f as u32),
+                _ => Err(format!("{key} is missing or outside 1..=99")),
+            };
+            plain(frequency("offset_frequency")? | frequency("squash_frequency")? << 8)
+        }
         "TEX_VORONOI" => {
             if text(settings, "voronoi_dimensions")? != "3D" {
                 return Err("only 3D Voronoi is evaluated yet".into());

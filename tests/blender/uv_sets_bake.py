@@ -1,9 +1,9 @@
 """Exports two scenes of tests/cycles/make_texture_refs.py with blender/rt_export.py into
 the folder given as the first argument, for tests/blender_uv_sets.rs: `uv_sets` (a
 texture on the second uv map, one on the first), `mappings` (two Mapping nodes on one uv
-map) and `baked_noise` with its noise turned into a Brick Texture (which rt does not
+map) and `baked_noise` with its noise turned into a Gabor Texture (which rt does not
 evaluate) with --bake (32 texels) and without; `baked_noise` as it is, whose noise rt
-evaluates as a node graph (nothing baked, even with --bake); then, with --bake, the Brick
+evaluates as a node graph (nothing baked, even with --bake); then, with --bake, the Gabor
 plane seen only through two collection instances (its collection excluded from the view
 layer), and a plane whose Normal is a Bump node fed by the noise. Writes report.json with
 what the node trees looked like around the bake."""
@@ -31,12 +31,12 @@ rt_export.export_scene(scene, os.path.join(out, "mappings", "assets"), os.path.j
 
 
 
-def brick_instead(material):
-    """The material's base colour from a Brick Texture: a node rt does not evaluate."""
+def gabor_instead(material):
+    """The material's base colour from a Gabor Texture: a node rt does not evaluate."""
     tree = material.node_tree
-    brick = tree.nodes.new("ShaderNodeTexBrick")
-    brick.inputs["Scale"].default_value = 4.0
-    tree.links.new(brick.outputs["Color"], tree.nodes["Principled BSDF"].inputs["Base Color"])
+    gabor = tree.nodes.new("ShaderNodeTexGabor")
+    gabor.inputs["Scale"].default_value = 4.0
+    tree.links.new(gabor.outputs["Value"], tree.nodes["Principled BSDF"].inputs["Base Color"])
 
 
 scene = refs.reset()
@@ -47,7 +47,7 @@ rt_export.export_scene(scene, os.path.join(out, "graph", "assets"), os.path.join
 scene = refs.reset()
 refs.scene_baked_noise(scene)
 material = bpy.data.materials["noise"]
-brick_instead(material)
+gabor_instead(material)
 
 
 def tree_shape(m):
@@ -64,7 +64,7 @@ report["images"] = len(bpy.data.images)
 rt_export.export_scene(scene, os.path.join(out, "unbaked", "assets"), os.path.join(out, "unbaked", "scene.toml"))
 scene = refs.reset()
 refs.scene_baked_noise(scene)
-brick_instead(bpy.data.materials["noise"])
+gabor_instead(bpy.data.materials["noise"])
 plane = bpy.data.objects["plane"]
 hidden = bpy.data.collections.new("hidden")
 scene.collection.children.link(hidden)

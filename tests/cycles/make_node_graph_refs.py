@@ -4,7 +4,7 @@ compares rt against them).
     /work/main/.venv-bpy/bin/python tests/cycles/make_node_graph_refs.py [--spp 1024] [NAME...]
 
 The per-node scenes (`graph_noise`, `graph_math`, `graph_color`, `graph_vector`,
-`graph_convert`, `graph_shading`) are a 4 x 4 grid of tiles seen from above by an orthographic camera, under
+`graph_convert`, `graph_brick`, `graph_shading` and the other textures) are a 4 x 4 grid of tiles seen from above by an orthographic camera, under
 a black world; each tile only emits, its Emission colour the output of a small node graph
 (its own material), so a pixel is the graph's mean value over the pixel: the comparison
 tests the nodes and nothing else. `graph_shading`'s tiles are smooth spheres, for the nodes
@@ -453,6 +453,32 @@ MAGIC = [lambda t, d=d: magic(t, turbulence_depth=d, Distortion=1.0 + 0.4 * d) f
 ]
 
 
+def brick(t, which="Color", vector=True, **props):
+    colours = {"Color1": (0.8, 0.25, 0.1, 1.0), "Color2": (0.1, 0.3, 0.9, 1.0), "Mortar": (0.2, 0.7, 0.3, 1.0)}
+    return texture(t, "ShaderNodeTexBrick", which, vector, 2.5, {**colours, **props})
+
+
+# Offsets and squashes of other frequencies, hard and no mortar, biased tints, other
+# brick sizes, the Fac output and the default coordinates; Object coordinates reach
+# negative rows and bricks.
+BRICK = [
+    lambda t: brick(t),
+    lambda t: brick(t, "Fac"),
+    lambda t: brick(t, offset=0.25, offset_frequency=3),
+    lambda t: brick(t, squash=0.5, squash_frequency=3),
+    lambda t: brick(t, squash=1.7, squash_frequency=2, offset=0.8, offset_frequency=1),
+    lambda t: brick(t, **{"Mortar Smooth": 0.0, "Mortar Size": 0.05}),
+    lambda t: brick(t, **{"Mortar Smooth": 0.8, "Mortar Size": 0.08}),
+    lambda t: brick(t, **{"Mortar Size": 0.0}),
+    lambda t: brick(t, Bias=0.5),
+    lambda t: brick(t, Bias=-0.7),
+    lambda t: brick(t, **{"Brick Width": 0.3, "Row Height": 0.4}),
+    lambda t: brick(t, vector=False, Scale=6.0),
+    lambda t: ramp(t, brick(t, "Fac", **{"Mortar Smooth": 1.0, "Mortar Size": 0.1}), "LINEAR", STOPS),
+    lambda t: brick(t, Scale=7.0, offset=0.0),
+]
+
+
 def procedural_material(name, build):
     material = bpy.data.materials.new(name)
     tree = material.node_tree
@@ -576,6 +602,7 @@ SCENES = {
     "graph_voronoi": lambda: grid_scene("voronoi", VORONOI),
     "graph_wave": lambda: grid_scene("wave", WAVE),
     "graph_magic": lambda: grid_scene("magic", MAGIC),
+    "graph_brick": lambda: grid_scene("brick", BRICK),
     "graph_shading": lambda: grid_scene("shading", SHADING, shape="sphere"),
     "graph_material": material_scene,
     "graph_mix": mix_scene,

@@ -175,3 +175,31 @@ fn specialised_and_interpreted_programs_give_the_same_image() {
     println!("specialised vs interpreted: largest difference {worst:.2e}");
     assert!(worst <= 1e-4, "the specialised code differs from the interpreter's by {worst}");
 }
+
+/// Editing graphs in a live session (`rt watch`, Blender's viewport): a graph of another
+/// shape builds its pipeline, and the session keeps only the code and pipelines of the
+/// shapes it renders, however many edits come (before, each new shape's code and
+/// pipeline stayed for the session's life).
+#[test]
+fn a_live_session_keeps_only_the_node_code_it_renders() {
+    use rt::bvh::{BuildQuality, SceneGeometry};
+    use rt::render::{GeometryUpdate, RenderRequest, SceneUpdate, Session};
+    let load = |name: &str| rt::scene::load(&repo().join(format!("tests/cycles/scenes/{name}/scene.toml"))).unwrap();
+    let render = |session: &mut Session| {
+        let mut request = RenderRequest::from_scene(session.scene());
+        (request.width, request.height, request.spp, request.max_bounces) = (16, 16, 1, 1);
+        session.render(&request, None).unwrap_or_else(|e| panic!("{e:#}"));
+    };
+    let mut session = Session::open(common::gpu(), load("graph_mix"), BuildQuality::Medium).unwrap();
+    render(&mut session);
+    let (_, built) = session.pipeline_cache().sizes();
+    for name in ["graph_light_path", "graph_mix", "graph_light_path"] {
+        let scene = load(name);
+        let geometry = SceneGeometry::build(&scene, BuildQuality::Medium).unwrap();
+        let update = SceneUpdate { scene, geometry: Some(GeometryUpdate::Replace(geometry)), shaders: None };
+        session.apply(update).unwrap_or_else(|e| panic!("{e:#}"));
+        render(&mut session);
+        assert_ne!(session.features().node_code, 0, "{name} is specialised");
+        assert_eq!(session.pipeline_cache().sizes(), (1, built), "after {name}: one code, as many pipelines");
+    }
+}

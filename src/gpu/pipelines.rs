@@ -58,6 +58,19 @@ impl PipelineCache {
         }
     }
 
+    /// Forgets the specialised code, and the pipelines built with it, of every node shapes
+    /// but `key`'s (the geometry now rendered): each edit of a graph's shape in `rt watch`
+    /// or Blender's viewport makes new code, and a long session must not keep them all.
+    pub fn keep_node_code(&mut self, key: u64) {
+        self.node_code.retain(|k, _| *k == key);
+        self.built.retain(|(_, f), _| f.node_code == 0 || f.node_code == key);
+    }
+
+    /// How many specialised node codes are kept, and pipelines built.
+    pub fn sizes(&self) -> (usize, usize) {
+        (self.node_code.len(), self.built.len())
+    }
+
     /// Reads the shaders from `files` from now on, rebuilding every pipeline that was
     /// built. Atomic: if any fails to build, nothing changes and the error says why.
     pub fn reload_shaders(&mut self, ctx: &GpuContext, files: ShaderFiles) -> Result<()> {

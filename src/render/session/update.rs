@@ -107,6 +107,7 @@ impl Session<'_> {
             }
             None => {}
         }
+        self.pipelines.keep_node_code(self.geometry.node_code);
         let reset = reshaded || regeometry || features != self.features || !same_image(&scene, &self.scene);
         self.scene = scene;
         self.features = features;

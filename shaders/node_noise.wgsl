@@ -77,7 +77,44 @@ fn hash_to_unit(h: u32) -> f32 {
     return f32(h) * (1.0 / 4294967296.0);
 }
 
-// Cycles' hash_float3_to_float and hash_float3_to_float3: the White Noise Texture.
+fn hash_uint1(kx: u32) -> u32 {
+    let seed = 0xdeadbeefu + (1u << 2u) + 13u;
+    return hash_final(seed + kx, seed, seed);
+}
+
+fn hash_float_to_float(k: f32) -> f32 {
+    return hash_to_unit(hash_uint1(bitcast<u32>(k)));
+}
+
+fn hash_float4_to_float(k: vec4f) -> f32 {
+    let b = bitcast<vec4u>(k);
+    return hash_to_unit(hash_uint4(b.x, b.y, b.z, b.w));
+}
+
+// The White Noise Texture of `dimensions` (0 to 3: 1D of `w`, 2D of `v.xy`, 3D of `v`, 4D
+// of both) as Cycles hashes it (svm/white_noise.h, util/hash.h): the colour, the value in w.
+fn white_noise(dimensions: u32, v: vec3f, w: f32) -> vec4f {
+    switch dimensions {
+        case 0u: {
+            let value = hash_float_to_float(w);
+            return vec4f(value, hash_float2_to_float(vec2f(w, 1.0)), hash_float2_to_float(vec2f(w, 2.0)), value);
+        }
+        case 1u: {
+            let value = hash_float2_to_float(v.xy);
+            return vec4f(value, hash_float3_to_float(vec3f(v.xy, 1.0)), hash_float3_to_float(vec3f(v.xy, 2.0)), value);
+        }
+        case 3u: {
+            let k = vec4f(v, w);
+            let value = hash_float4_to_float(k);
+            return vec4f(value, hash_float4_to_float(k.zxwy), hash_float4_to_float(k.wzyx), value);
+        }
+        default: {
+            return vec4f(hash_float3_to_float3(v), hash_float3_to_float(v));
+        }
+    }
+}
+
+// Cycles' hash_float3_to_float and hash_float3_to_float3.
 fn hash_float3_to_float(k: vec3f) -> f32 {
     let b = bitcast<vec3u>(k);
     return hash_to_unit(hash_uint3(b.x, b.y, b.z));

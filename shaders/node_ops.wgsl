@@ -161,9 +161,9 @@ fn node_op_wave(start: u32, step: NodeStep, p: NodePoint) {
 }
 
 fn node_op_white_noise(start: u32, step: NodeStep, p: NodePoint) {
-    let a = node_in(start, step, 0u);
-    node_store(step.out, vec4f(hash_float3_to_float(a.xyz)));
-    node_store(step.out + 1u, vec4f(hash_float3_to_float3(a.xyz), 1.0));
+    let c = white_noise(step.mode, node_in(start, step, 0u).xyz, node_in(start, step, 1u).x);
+    node_store(step.out, vec4f(c.w));
+    node_store(step.out + 1u, vec4f(c.xyz, 1.0));
 }
 
 fn node_op_mapping(start: u32, step: NodeStep, p: NodePoint) {

@@ -105,6 +105,13 @@ fn bricks_of_every_setting_match_cycles() {
     check_channels("graph_brick", 1e-3);
 }
 
+/// White Noise of one to four dimensions over cells (constant per cell, so a pixel's mean
+/// shows the hash itself).
+#[test]
+fn white_noise_of_every_dimension_matches_cycles() {
+    check_channels("graph_white_noise", 1e-3);
+}
+
 #[test]
 fn map_range_clamp_and_converters_match_cycles() {
     check_channels("graph_convert", 1e-3);

@@ -73,7 +73,7 @@ EVALUATED_SETTINGS = {
     "CURVE_FLOAT": {},
     "SEPARATE_COLOR": {"mode": {"RGB", "HSV"}},
     "COMBINE_COLOR": {"mode": {"RGB", "HSV"}},
-    "TEX_WHITE_NOISE": {"noise_dimensions": {"3D"}},
+    "TEX_WHITE_NOISE": {"noise_dimensions": None},
     "TEX_VORONOI": {"voronoi_dimensions": {"3D"}, "feature": None, "distance": None, "normalize": None},
     "TEX_WAVE": {"wave_type": None, "bands_direction": None, "rings_direction": None, "wave_profile": None},
     "TEX_MAGIC": {"turbulence_depth": None},

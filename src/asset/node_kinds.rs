@@ -184,6 +184,8 @@ const MIX_DATA_TYPES: [&str; 3] = ["FLOAT", "VECTOR", "RGBA"];
 const MAP_RANGE_INTERPOLATIONS: [&str; 4] = ["LINEAR", "STEPPED", "SMOOTHSTEP", "SMOOTHERSTEP"];
 const CLAMP_TYPES: [&str; 2] = ["MINMAX", "RANGE"];
 const MAPPING_TYPES: [&str; 4] = ["POINT", "TEXTURE", "VECTOR", "NORMAL"];
+/// White Noise's dimensions, its mode.
+const NOISE_DIMENSIONS: [&str; 4] = ["1D", "2D", "3D", "4D"];
 const NOISE_TYPES: [&str; 5] = ["FBM", "MULTIFRACTAL", "HYBRID_MULTIFRACTAL", "RIDGED_MULTIFRACTAL", "HETERO_TERRAIN"];
 const GRADIENT_TYPES: [&str; 7] =
     ["LINEAR", "QUADRATIC", "EASING", "DIAGONAL", "SPHERICAL", "QUADRATIC_SPHERE", "RADIAL"];
@@ -315,7 +317,7 @@ pub const KINDS: [Kind; 35] = [
 pub fn compiler_signature() -> String {
     let kinds: Vec<_> = KINDS.iter().map(|k| (k.name, k.inputs, k.outputs)).collect();
     format!(
-        "node programs {} {} {OPERATIONS:?} {MATH_OPERATIONS:?} {VECTOR_MATH_OPERATIONS:?} {BLEND_TYPES:?} {RAMP_TABLE_SIZE} {kinds:?} {VORONOI_FEATURES:?} {VORONOI_METRICS:?} {WAVE_TYPES:?} {WAVE_BANDS:?} {WAVE_RINGS:?} {WAVE_PROFILES:?}",
+        "node programs {} {} {OPERATIONS:?} {MATH_OPERATIONS:?} {VECTOR_MATH_OPERATIONS:?} {BLEND_TYPES:?} {RAMP_TABLE_SIZE} {kinds:?} {VORONOI_FEATURES:?} {VORONOI_METRICS:?} {NOISE_DIMENSIONS:?} {WAVE_TYPES:?} {WAVE_BANDS:?} {WAVE_RINGS:?} {WAVE_PROFILES:?}",
         super::node_graph::FORMAT_VERSION,
         super::node_graph::COMPILER_VERSION
     )
@@ -381,12 +383,7 @@ pub fn mode(name: &str, settings: &Map<String, Value>) -> Result<Mode, String> {
         }),
         "RGBTOBW" => plain(CONVERT_COLOR_TO_VALUE),
         "SEPARATE_COLOR" | "COMBINE_COLOR" => plain(choice(settings, "mode", &COLOR_MODES)?),
-        "TEX_WHITE_NOISE" => {
-            if text(settings, "noise_dimensions")? != "3D" {
-                return Err("only 3D white noise is evaluated yet".into());
-            }
-            plain(0)
-        }
+        "TEX_WHITE_NOISE" => plain(choice(settings, "noise_dimensions", &NOISE_DIMENSIONS)?),
         "MAPPING" => plain(choice(settings, "vector_type", &MAPPING_TYPES)?),
         "TEX_NOISE" => {
             if text(settings, "noise_dimensions")? != "3D" {

@@ -4,7 +4,7 @@ compares rt against them).
     /work/main/.venv-bpy/bin/python tests/cycles/make_node_graph_refs.py [--spp 1024] [NAME...]
 
 The per-node scenes (`graph_noise`, `graph_math`, `graph_color`, `graph_vector`,
-`graph_convert`, `graph_brick`, `graph_shading` and the other textures) are a 4 x 4 grid of tiles seen from above by an orthographic camera, under
+`graph_convert`, `graph_brick`, `graph_white_noise`, `graph_shading` and the other textures) are a 4 x 4 grid of tiles seen from above by an orthographic camera, under
 a black world; each tile only emits, its Emission colour the output of a small node graph
 (its own material), so a pixel is the graph's mean value over the pixel: the comparison
 tests the nodes and nothing else. `graph_shading`'s tiles are smooth spheres, for the nodes
@@ -479,6 +479,18 @@ BRICK = [
 ]
 
 
+def white_noise(t, dimensions, which, scale=4.0):
+    """White Noise of `dimensions` over cells (constant per cell), W the cell's column."""
+    vector = cells(t, scale)
+    w = math_node(t, "MULTIPLY_ADD", new(t, "ShaderNodeSeparateXYZ", {"Vector": vector}).outputs["X"], 0.5, 0.25)
+    node = new(t, "ShaderNodeTexWhiteNoise", {"Vector": vector, "W": w}, noise_dimensions=dimensions)
+    return node.outputs[which]
+
+
+WHITE_NOISE = [lambda t, d=d, o=o, s=s: white_noise(t, d, o, s) for d in ("1D", "2D", "3D", "4D")
+               for o, s in (("Color", 4.0), ("Value", 6.0))]
+
+
 def procedural_material(name, build):
     material = bpy.data.materials.new(name)
     tree = material.node_tree
@@ -603,6 +615,7 @@ SCENES = {
     "graph_wave": lambda: grid_scene("wave", WAVE),
     "graph_magic": lambda: grid_scene("magic", MAGIC),
     "graph_brick": lambda: grid_scene("brick", BRICK),
+    "graph_white_noise": lambda: grid_scene("white_noise", WHITE_NOISE),
     "graph_shading": lambda: grid_scene("shading", SHADING, shape="sphere"),
     "graph_material": material_scene,
     "graph_mix": mix_scene,

@@ -28,17 +28,23 @@ pub struct NodeTable {
 
 impl NodeTable {
     pub fn of(materials: &[Material]) -> Self {
-        let mut by_shape: BTreeMap<Vec<u32>, Vec<u32>> = BTreeMap::new();
-        for m in materials.iter().filter(|m| !m.node_program.is_empty()) {
-            // The cache and the importer check programs; one that still cannot be read
-            // leaves the whole table to the interpreter, which bounds its walk.
-            let Ok(s) = shape(&m.node_program) else {
-                by_shape.clear();
-                break;
-            };
-            by_shape.entry(s).or_insert_with(|| m.node_program.clone());
+        // Each program read once: its shape (None: no program, or one that cannot be read).
+        let shapes: Vec<Option<Vec<u32>>> = materials
+            .iter()
+            .map(|m| (!m.node_program.is_empty()).then(|| shape(&m.node_program).ok()).flatten())
+            .collect();
+        // The cache and the importer check programs; one that still cannot be read leaves
+        // the whole table to the interpreter, which bounds its walk.
+        let unreadable = materials.iter().zip(&shapes).any(|(m, s)| !m.node_program.is_empty() && s.is_none());
+        let mut by_shape: BTreeMap<&Vec<u32>, &Vec<u32>> = BTreeMap::new();
+        if !unreadable {
+            for (m, s) in materials.iter().zip(&shapes) {
+                if let Some(s) = s {
+                    by_shape.entry(s).or_insert(&m.node_program);
+                }
+            }
         }
-        let numbers: BTreeMap<&Vec<u32>, u32> = by_shape.keys().zip(0..).collect();
+        let numbers: BTreeMap<&Vec<u32>, u32> = by_shape.keys().copied().zip(0..).collect();
         let count: usize = by_shape.values().map(|p| instructions(p).map_or(0, |i| i.len())).sum();
         let specialised =
             !by_shape.is_empty() && by_shape.len() <= MAX_SPECIALISED_SHAPES && count <= MAX_SPECIALISED_INSTRUCTIONS;
@@ -47,13 +53,12 @@ impl NodeTable {
             log::debug!("node programs: {} shapes, {count} instructions: {how}", by_shape.len());
         }
         let mut table = NodeTable::default();
-        for m in materials {
+        for (m, s) in materials.iter().zip(&shapes) {
             if m.node_program.is_empty() {
                 table.starts.push(None);
                 continue;
             }
-            let number = shape(&m.node_program).ok().and_then(|s| numbers.get(&s).copied()).unwrap_or(u32::MAX);
-            table.words.push(number);
+            table.words.push(s.as_ref().and_then(|s| numbers.get(s).copied()).unwrap_or(u32::MAX));
             table.starts.push(Some(table.words.len() as u32));
             table.words.extend(&m.node_program);
         }
@@ -65,7 +70,7 @@ impl NodeTable {
             }
             let bytes = hasher.finalize();
             table.key = u64::from_le_bytes(bytes.as_bytes()[..8].try_into().unwrap_or_default()).max(1);
-            table.shapes = by_shape.into_values().collect();
+            table.shapes = by_shape.into_values().cloned().collect();
         }
         table
     }

@@ -84,12 +84,12 @@ impl Session<'_> {
             self.pipelines.reload_shaders(self.ctx, files)?;
         }
         let summary = match &geometry {
-            Some(GeometryUpdate::Replace(g) | GeometryUpdate::Materials(g)) => g.summary(),
+            Some(GeometryUpdate::Replace(g) | GeometryUpdate::Materials(g)) => {
+                self.pipelines.learn_node_code(g);
+                g.summary()
+            }
             None => self.geometry.summary(),
         };
-        if let Some(GeometryUpdate::Replace(g) | GeometryUpdate::Materials(g)) = &geometry {
-            self.pipelines.learn_node_code(g);
-        }
         let features = FeatureSet::analyse(&scene, &summary);
         self.pipelines.get(self.ctx, Program::Integrator, features)?;
         if scene.sky != self.scene.sky {

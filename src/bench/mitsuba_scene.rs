@@ -31,7 +31,7 @@ use serde_json::{Map, Value, json};
 use std::path::Path;
 
 /// rt's bounce after which Russian roulette may end a path (`ROULETTE_START` in
-/// `shaders/integrator.wgsl`, checked by a test): Mitsuba's depth counts one more vertex,
+/// `shaders/path_scatter.wgsl`, checked by a test): Mitsuba's depth counts one more vertex,
 /// and decides after the vertex it counts.
 pub const ROULETTE_START: u32 = 3;
 /// How far the flipped copy of an emitting surface lies behind it: far enough that
@@ -328,8 +328,8 @@ mod tests {
 
     #[test]
     fn russian_roulette_starts_where_the_integrator_starts_it() {
-        let wgsl = include_str!("../../shaders/integrator.wgsl");
-        assert!(wgsl.contains(&format!("const ROULETTE_START: u32 = {ROULETTE_START}u;")), "integrator.wgsl changed");
+        let wgsl = include_str!("../../shaders/path_scatter.wgsl");
+        assert!(wgsl.contains(&format!("const ROULETTE_START: u32 = {ROULETTE_START}u;")), "path_scatter.wgsl changed");
     }
 
     #[test]

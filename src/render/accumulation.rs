@@ -50,7 +50,7 @@ pub struct Accumulation {
     /// the image is large enough to keep the GPU busy on its own).
     lane_samples: wgpu::Buffer,
     /// Per pixel, the chunks of samples its lanes claimed (`next_sample` in
-    /// `shaders/integrator.wgsl`): zeroed before each dispatch over lanes.
+    /// `shaders/sample_lanes.wgsl`): zeroed before each dispatch over lanes.
     lane_chunks: wgpu::Buffer,
     /// The AOVs' running means (a token buffer until a render asks for them).
     aovs: wgpu::Buffer,

@@ -7,6 +7,7 @@ pub mod cache;
 mod cache_check;
 mod cached_material;
 mod cached_texture;
+mod emitter_table;
 mod light_bounds;
 pub mod light_tree;
 mod lights;
@@ -16,6 +17,8 @@ pub mod node_table;
 pub mod pack;
 mod placement;
 mod scene_geometry;
+mod scene_lights;
+mod top_level;
 mod wide_node;
 
 pub use mesh_bvh::{BuildQuality, MeshBvh};

@@ -15,15 +15,6 @@
 //#include "motion.wgsl"
 //#include "directions.wgsl"
 
-// Material.tangent: the Tangent node that Cycles gives the Principled BSDF's Tangent input.
-// Radial about Blender's axis A is the Tangent node's A × (the point's generated
-// coordinates about the texture space's centre), in rt's axes (x, y, z) = Blender's
-// (x, z, −y); uv: the mesh's MikkTSpace tangent of its first uv set, interpolated.
-const TANGENT_RADIAL_Z: u32 = 0u;
-const TANGENT_RADIAL_X: u32 = 1u;
-const TANGENT_RADIAL_Y: u32 = 2u;
-const TANGENT_UV: u32 = 3u;
-
 // The tangent at the surface being shaded (world space, not yet made orthogonal to the
 // normal); set by the integrator at each hit.
 var<private> surface_tangent: vec3f;

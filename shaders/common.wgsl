@@ -1,4 +1,6 @@
-// Shared declarations: GPU structs (mirrored by src/gpu/layout.rs), bindings, constants.
+// Shared declarations: GPU structs (mirrored by src/layout.rs), bindings, constants.
+
+//#include "shared_constants.wgsl"
 
 struct Frame {
     camera_position: vec3f,
@@ -318,14 +320,6 @@ struct Emitter {
     cdf: f32,
     _pad0: u32,
 }
-
-const EMPTY_LINK: u32 = 0xffffffffu;
-const NO_MATERIAL: u32 = 0xffffffffu;
-// Top-level leaves hold instances and spheres; the top bit says which.
-const SPHERE_BIT: u32 = 0x80000000u;
-const NO_TEXTURE: u32 = 0xffffffffu;
-const NO_PROGRAM: u32 = 0xffffffffu;
-const ALPHA_BLEND: f32 = -1.0;
 
 // Counters in the statistics buffer.
 const STAT_STACK_OVERFLOW: u32 = 0u;

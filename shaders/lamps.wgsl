@@ -39,16 +39,6 @@ struct LampInfo {
 @group(0) @binding(10) var<storage, read> lamps: array<Lamp>;
 @group(0) @binding(11) var<uniform> lamp_info: LampInfo;
 
-const LAMP_POINT: u32 = 0u;
-const LAMP_SPOT: u32 = 1u;
-const LAMP_AREA: u32 = 2u;
-const LAMP_SUN: u32 = 3u;
-const LAMP_KIND: u32 = 0xffu;
-// A point or spot lamp that is a sphere; without the bit, a disk facing the shaded point.
-const LAMP_SPHERE: u32 = 0x100u;
-const LAMP_ELLIPSE: u32 = 0x200u;
-const LAMP_CAMERA: u32 = 0x400u;
-
 // 1 − cos of a cone's half-angle from its sin², without cancellation (s < 1).
 fn lamp_sin2_to_one_minus_cos(s: f32) -> f32 {
     return s / (1.0 + sqrt(max(1.0 - s, 0.0)));

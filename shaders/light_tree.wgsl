@@ -30,11 +30,6 @@ struct LightTreeNode {
 // Per light, emitters then lamps: the children taken from the root, bit d at depth d.
 @group(0) @binding(16) var<storage, read> light_tree_trails: array<u32>;
 
-const LIGHT_TREE_LEAF: u32 = 1u;
-const LIGHT_TREE_TWO_SIDED: u32 = 2u;
-const LIGHT_TREE_LAMP: u32 = 0x80000000u;
-const LIGHT_TREE_ABSENT: u32 = 0xffffffffu;
-
 var<private> light_tree_point: vec3f;
 var<private> light_tree_normal: vec3f;
 

@@ -43,9 +43,6 @@ struct MotionMatrix {
 
 @group(0) @binding(22) var<storage, read> motion_matrices: array<MotionMatrix>;
 
-// The bits of the NaN that a moving instance's record holds in world_to_object[0].x (its
-// motion, first matrix << 8 | how many, in [0].y): MOVING_INSTANCE in src/layout.rs.
-const MOVING_INSTANCE: u32 = 0x7fc04d56u;
 
 // Instance motion `motion` (first matrix << 8 | count) at the sample's time: world-to-object rows.
 fn instance_motion_now(motion: u32) -> array<vec4f, 3> {

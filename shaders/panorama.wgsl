@@ -7,11 +7,6 @@
 
 //#include "common.wgsl"
 
-const PANORAMA_NONE: u32 = 0u;
-const PANORAMA_EQUIRECTANGULAR: u32 = 1u;
-const PANORAMA_FISHEYE_EQUIDISTANT: u32 = 2u;
-const PANORAMA_FISHEYE_EQUISOLID: u32 = 3u;
-const PANORAMA_MIRROR_BALL: u32 = 4u;
 
 // Cycles' `panorama_to_direction`, not normalised; zero outside a fisheye's or a mirror
 // ball's image, where Cycles sends no ray.

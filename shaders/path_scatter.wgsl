@@ -19,9 +19,6 @@
 //#include "aovs.wgsl"
 //#endif
 
-// Bounces after which Russian roulette may end a path.
-const ROULETTE_START: u32 = 3u;
-
 // The surface as the path's lobes see it.
 struct Scattering {
     ctx: ShadingContext,

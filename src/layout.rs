@@ -2,6 +2,14 @@
 //! builder packs and the GPU room uploads as it is. `gpu::layout_check` checks every
 //! size and field offset against naga's layout of the WGSL.
 
+/// Constants the shaders share, declared once (see [`crate::shared_constants`]).
+pub use crate::shared_constants::{
+    ALPHA_BLEND, EMPTY_LINK, LAMP_AREA, LAMP_CAMERA, LAMP_ELLIPSE, LAMP_KIND, LAMP_POINT, LAMP_SPHERE, LAMP_SPOT,
+    LAMP_SUN, LIGHT_TREE_ABSENT, LIGHT_TREE_LAMP, LIGHT_TREE_LEAF, LIGHT_TREE_TWO_SIDED, MOVING_INSTANCE, NO_MATERIAL,
+    NO_PROGRAM, NO_TEXTURE, PANORAMA_EQUIRECTANGULAR, PANORAMA_FISHEYE_EQUIDISTANT, PANORAMA_FISHEYE_EQUISOLID,
+    PANORAMA_MIRROR_BALL, PANORAMA_NONE, SPHERE_BIT, TANGENT_RADIAL_X, TANGENT_RADIAL_Y, TANGENT_RADIAL_Z, TANGENT_UV,
+};
+
 use bytemuck::{Pod, Zeroable};
 
 #[repr(C)]
@@ -119,12 +127,6 @@ impl From<&glam::DMat4> for GpuMotionMatrix {
     }
 }
 
-/// The bits of a NaN (which no placed matrix holds) that mark a moving instance's record:
-/// its `world_to_object[0][0]` holds them and `[0][1]` the bits of its motion (the index
-/// of its first matrix << 8 | how many), and the GPU interpolates its matrix at each
-/// sample's time (`shaders/motion.wgsl`). Traversal reads the record anyway, so an
-/// instance that stands still pays one comparison.
-pub const MOVING_INSTANCE: u32 = 0x7fc0_4d56;
 /// The most motion matrices of all instances together (a motion keeps its first matrix's
 /// index in 24 bits).
 pub const MAX_INSTANCE_MOTION_MATRICES: usize = 1 << 24;
@@ -141,13 +143,6 @@ impl GpuInstance {
         self.world_to_object[0][0].to_bits() == MOVING_INSTANCE
     }
 }
-
-/// `GpuFrame::panorama`: which panorama maps the image to directions (`shaders/panorama.wgsl`).
-pub const PANORAMA_NONE: u32 = 0;
-pub const PANORAMA_EQUIRECTANGULAR: u32 = 1;
-pub const PANORAMA_FISHEYE_EQUIDISTANT: u32 = 2;
-pub const PANORAMA_FISHEYE_EQUISOLID: u32 = 3;
-pub const PANORAMA_MIRROR_BALL: u32 = 4;
 
 /// A BVH2 node with both children's boxes (see `shaders/common.wgsl`).
 #[repr(C)]
@@ -378,13 +373,6 @@ pub struct GpuMaterial {
     pub thin_film_ior_minimum: f32,
 }
 
-/// `GpuMaterial::tangent`: Cycles' Tangent node, radial about Blender's Z (the default), X
-/// or Y, or the MikkTSpace tangent of the first uv set (`shaders/anisotropy.wgsl`).
-pub const TANGENT_RADIAL_Z: u32 = 0;
-pub const TANGENT_RADIAL_X: u32 = 1;
-pub const TANGENT_RADIAL_Y: u32 = 2;
-pub const TANGENT_UV: u32 = 3;
-
 /// The object-space tangents of a triangle's vertices (xyz, MikkTSpace) with the
 /// bitangent's sign (w), in the triangles' order; zero where a mesh has none.
 #[repr(C)]
@@ -498,25 +486,6 @@ pub struct GpuLightTreeNode {
     pub _pad: [u32; 2],
 }
 
-pub const LIGHT_TREE_LEAF: u32 = 1;
-/// The lights below emit from both sides of their surfaces.
-pub const LIGHT_TREE_TWO_SIDED: u32 = 2;
-/// A leaf's `link` names a lamp rather than an emitter.
-pub const LIGHT_TREE_LAMP: u32 = 0x8000_0000;
-/// The trail of a light that is not in the tree (it emits nothing, or is a sun).
-pub const LIGHT_TREE_ABSENT: u32 = u32::MAX;
-
-pub const LAMP_POINT: u32 = 0;
-pub const LAMP_SPOT: u32 = 1;
-pub const LAMP_AREA: u32 = 2;
-pub const LAMP_SUN: u32 = 3;
-/// A point or spot lamp that is a sphere rather than a disk facing the shaded point.
-pub const LAMP_SPHERE: u32 = 0x100;
-/// An area lamp that is an ellipse rather than a rectangle.
-pub const LAMP_ELLIPSE: u32 = 0x200;
-/// Camera rays see the lamp.
-pub const LAMP_CAMERA: u32 = 0x400;
-
 /// An environment image's constants (`shaders/environment.wgsl`), group 2 of the
 /// integrator; its texels and distribution are the group's storage buffer.
 #[repr(C)]
@@ -590,15 +559,6 @@ pub struct GpuTraceHit {
     pub b2: f32,
     pub _pad: [u32; 2],
 }
-
-pub const EMPTY_LINK: u32 = u32::MAX;
-pub const NO_MATERIAL: u32 = u32::MAX;
-pub const SPHERE_BIT: u32 = 0x8000_0000;
-pub const NO_TEXTURE: u32 = u32::MAX;
-/// A material without a node program.
-pub const NO_PROGRAM: u32 = u32::MAX;
-/// `GpuMaterial::alpha_cutoff` of glTF's `BLEND`: stochastic transparency.
-pub const ALPHA_BLEND: f32 = -1.0;
 
 use crate::scene::Tangent;
 

@@ -18,5 +18,6 @@ pub mod info;
 pub mod layout;
 pub mod render;
 pub mod scene;
+pub mod shared_constants;
 pub mod sky;
 pub mod watch;

@@ -30,10 +30,9 @@ use glam::{Mat3, Vec3, Vec4Swizzles};
 use serde_json::{Map, Value, json};
 use std::path::Path;
 
-/// rt's bounce after which Russian roulette may end a path (`ROULETTE_START` in
-/// `shaders/path_scatter.wgsl`, checked by a test): Mitsuba's depth counts one more vertex,
-/// and decides after the vertex it counts.
-pub const ROULETTE_START: u32 = 3;
+// rt's bounce after which Russian roulette may end a path: Mitsuba's depth counts one
+// more vertex, and decides after the vertex it counts.
+use crate::shared_constants::ROULETTE_START;
 /// How far the flipped copy of an emitting surface lies behind it: far enough that
 /// Mitsuba's ray offsets never confuse the two, near enough not to show (a copy 0.1 mm
 /// away showed as a sliver at a light's silhouette).
@@ -324,12 +323,6 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("rt-mitsuba-{name}-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         dir
-    }
-
-    #[test]
-    fn russian_roulette_starts_where_the_integrator_starts_it() {
-        let wgsl = include_str!("../../shaders/path_scatter.wgsl");
-        assert!(wgsl.contains(&format!("const ROULETTE_START: u32 = {ROULETTE_START}u;")), "path_scatter.wgsl changed");
     }
 
     #[test]

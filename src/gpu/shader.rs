@@ -134,6 +134,10 @@ impl Program {
     }
 }
 
+/// The file generated from [`crate::shared_constants`], in no folder: the constants the
+/// shaders share with the host.
+const SHARED_CONSTANTS: &str = "shared_constants.wgsl";
+
 /// The entry file of the atmosphere's table passes.
 const ATMOSPHERE_TABLES_ENTRY: &str = "atmosphere_tables.wgsl";
 
@@ -150,6 +154,9 @@ pub enum ShaderFiles {
 impl ShaderFiles {
     /// The text of one shader file, or why it cannot be had.
     fn read(&self, name: &str) -> Result<String, String> {
+        if name == SHARED_CONSTANTS {
+            return Ok(crate::shared_constants::wgsl());
+        }
         match self {
             ShaderFiles::BuiltIn => ALL_PARTS
                 .iter()

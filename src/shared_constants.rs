@@ -1,0 +1,138 @@
+//! Constants the host and the shaders share, declared once. Each group below makes the
+//! Rust `pub const`s and the WGSL `const` lines of the shaders' generated file
+//! `shared_constants.wgsl` ([`wgsl`]), so the two cannot differ: a shader that needs one
+//! includes that file (through `constants.wgsl`) and declares none of its own.
+
+/// One shared constant as WGSL writes it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Value {
+    U32(u32),
+    F32(f32),
+}
+
+/// A constant's name and value.
+pub struct Shared {
+    pub name: &'static str,
+    pub value: Value,
+}
+
+/// Declares a group of shared constants: `pub const`s and a table of them named `$group`.
+macro_rules! shared_constants {
+    ($group:ident; $($(#[doc = $doc:literal])* $name:ident: $ty:ident = $value:expr;)*) => {
+        $($(#[doc = $doc])* pub const $name: $ty = $value;)*
+        pub const $group: &[Shared] = &[
+            $(Shared { name: stringify!($name), value: shared_constants!(@value $ty $name) },)*
+        ];
+    };
+    (@value u32 $name:ident) => { Value::U32($name) };
+    (@value f32 $name:ident) => { Value::F32($name) };
+}
+
+shared_constants! { PANORAMA;
+    /// `GpuFrame::panorama`: which panorama maps the image to directions (`shaders/panorama.wgsl`).
+    PANORAMA_NONE: u32 = 0;
+    PANORAMA_EQUIRECTANGULAR: u32 = 1;
+    PANORAMA_FISHEYE_EQUIDISTANT: u32 = 2;
+    PANORAMA_FISHEYE_EQUISOLID: u32 = 3;
+    PANORAMA_MIRROR_BALL: u32 = 4;
+}
+
+shared_constants! { TANGENTS;
+    /// `GpuMaterial::tangent`: Cycles' Tangent node, radial about Blender's Z (the default),
+    /// X or Y, or the MikkTSpace tangent of the first uv set (`shaders/anisotropy.wgsl`).
+    /// Radial about Blender's axis A is A × (the point's generated coordinates about the
+    /// texture space's centre), in rt's axes (x, y, z) = Blender's (x, z, −y).
+    TANGENT_RADIAL_Z: u32 = 0;
+    TANGENT_RADIAL_X: u32 = 1;
+    TANGENT_RADIAL_Y: u32 = 2;
+    TANGENT_UV: u32 = 3;
+}
+
+shared_constants! { LIGHT_TREE;
+    /// `GpuLightTreeNode::flags`: the node is a leaf.
+    LIGHT_TREE_LEAF: u32 = 1;
+    /// The lights below emit from both sides of their surfaces.
+    LIGHT_TREE_TWO_SIDED: u32 = 2;
+    /// A leaf's `link` names a lamp rather than an emitter.
+    LIGHT_TREE_LAMP: u32 = 0x8000_0000;
+    /// The trail of a light that is not in the tree (it emits nothing, or is a sun).
+    LIGHT_TREE_ABSENT: u32 = u32::MAX;
+}
+
+shared_constants! { LAMPS;
+    /// `GpuLamp::kind`'s low byte: the kind of lamp (`shaders/lamps.wgsl`).
+    LAMP_POINT: u32 = 0;
+    LAMP_SPOT: u32 = 1;
+    LAMP_AREA: u32 = 2;
+    LAMP_SUN: u32 = 3;
+    /// The bits of `GpuLamp::kind` that hold the kind.
+    LAMP_KIND: u32 = 0xff;
+    /// A point or spot lamp that is a sphere rather than a disk facing the shaded point.
+    LAMP_SPHERE: u32 = 0x100;
+    /// An area lamp that is an ellipse rather than a rectangle.
+    LAMP_ELLIPSE: u32 = 0x200;
+    /// Camera rays see the lamp.
+    LAMP_CAMERA: u32 = 0x400;
+}
+
+shared_constants! { LINKS;
+    /// The bits of a NaN (which no placed matrix holds) that mark a moving instance's record:
+    /// its `world_to_object[0][0]` holds them and `[0][1]` the bits of its motion (the index
+    /// of its first matrix << 8 | how many), and the GPU interpolates its matrix at each
+    /// sample's time (`shaders/motion.wgsl`). Traversal reads the record anyway, so an
+    /// instance that stands still pays one comparison.
+    MOVING_INSTANCE: u32 = 0x7fc0_4d56;
+    /// A BVH node's child or an emitter's link that leads nowhere.
+    EMPTY_LINK: u32 = u32::MAX;
+    /// An instance without a material override.
+    NO_MATERIAL: u32 = u32::MAX;
+    /// Top-level leaves hold instances and spheres; the top bit says which.
+    SPHERE_BIT: u32 = 0x8000_0000;
+    /// A material slot without a texture.
+    NO_TEXTURE: u32 = u32::MAX;
+    /// A material without a node program.
+    NO_PROGRAM: u32 = u32::MAX;
+    /// `GpuMaterial::alpha_cutoff` of glTF's `BLEND`: stochastic transparency.
+    ALPHA_BLEND: f32 = -1.0;
+}
+
+shared_constants! { PATHS;
+    /// Bounces after which Russian roulette may end a path (`shaders/path_scatter.wgsl`).
+    ROULETTE_START: u32 = 3;
+}
+
+/// Every group, in the order `shared_constants.wgsl` lists them.
+const ALL: [&[Shared]; 6] = [PANORAMA, TANGENTS, LIGHT_TREE, LAMPS, LINKS, PATHS];
+
+/// The WGSL of every shared constant (what each means is said in this file).
+pub fn wgsl() -> String {
+    let mut wgsl = String::from("// Generated from src/shared_constants.rs, which says what each one means.\n");
+    for group in ALL {
+        for constant in group {
+            let (ty, literal) = match constant.value {
+                Value::U32(v) if v < 0x1000 => ("u32", format!("{v}u")),
+                Value::U32(v) => ("u32", format!("{v:#x}u")),
+                Value::F32(v) => ("f32", format!("{v:?}")),
+            };
+            wgsl.push_str(&format!("const {}: {ty} = {literal};\n", constant.name));
+        }
+    }
+    wgsl
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_wgsl_declares_each_constant_with_the_hosts_value() {
+        let wgsl = wgsl();
+        assert!(wgsl.contains("const LAMP_CAMERA: u32 = 1024u;\n"), "{wgsl}");
+        assert!(wgsl.contains("const MOVING_INSTANCE: u32 = 0x7fc04d56u;\n"), "{wgsl}");
+        assert!(wgsl.contains("const NO_TEXTURE: u32 = 0xffffffffu;\n"), "{wgsl}");
+        assert!(wgsl.contains("const ALPHA_BLEND: f32 = -1.0;\n"), "{wgsl}");
+        assert!(f32::from_bits(MOVING_INSTANCE).is_nan(), "no placed matrix may hold the mark");
+        let count = ALL.iter().map(|g| g.len()).sum::<usize>();
+        assert_eq!(wgsl.lines().filter(|l| l.starts_with("const ")).count(), count);
+    }
+}

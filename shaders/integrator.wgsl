@@ -5,17 +5,73 @@
 
 //#include "constants.wgsl"
 //#include "common.wgsl"
-//#include "path.wgsl"
+//#include "rng.wgsl"
+//#include "ray.wgsl"
+//#include "camera.wgsl"
+//#include "hit.wgsl"
 //#include "traverse.wgsl"
-//#include "path_emission.wgsl"
-//#include "path_surface.wgsl"
-//#include "path_scatter.wgsl"
+//#include "surface.wgsl"
+//#include "sky.wgsl"
+//#include "bsdf.wgsl"
+//#include "sampling.wgsl"
+//#if nee
+//#include "lights.wgsl"
+//#endif
+//#if lamps
+//#include "lamps.wgsl"
+//#endif
+//#if media
+//#include "segment.wgsl"
+//#endif
+//#if sun
+//#include "sun.wgsl"
+//#endif
+//#if sky_atmosphere
+//#include "atmosphere_sky.wgsl"
+//#endif
+//#if textures
+//#include "texture.wgsl"
+//#endif
+//#if node_graphs
+//#include "node_program.wgsl"
+//#endif
+//#if normal_maps
+//#include "normal_map.wgsl"
+//#endif
+//#if smooth_normals
+//#include "smooth_shading.wgsl"
+//#endif
+//#if emission
+//#include "layered_emission.wgsl"
+//#endif
+//#if terminator_offset
+//#include "terminator_offset.wgsl"
+//#endif
+//#if aovs
+//#include "aovs.wgsl"
+//#endif
+//#if holdout
+//#include "holdout.wgsl"
+//#endif
 //#if adaptive
 //#include "adaptive.wgsl"
 //#endif
 //#if exact_sums
 //#include "exact_sums.wgsl"
 //#endif
+
+// The mean of a colour's channels: how much of the pixel a path of this throughput
+// stands for (Cycles' `average`, as it counts transparency).
+fn channel_mean(c: vec3f) -> f32 {
+    return (c.x + c.y + c.z) / 3.0;
+}
+
+// Film › Transparent Glass: glass whose GGX α is at most the frame's threshold (the
+// square of Cycles' Roughness Threshold) lets the camera's path keep the background
+// transparent.
+fn is_clear_glass(m: Material) -> bool {
+    return frame.transparent_glass >= 0.0 && m.alpha <= frame.transparent_glass;
+}
 
 // rgb: the running mean of radiance; w: the running sum of squared deviations
 // of luminance (Welford), for the standard error. Means rather than sums: a sum
@@ -25,6 +81,110 @@
 // produced the first one (top 8 bits).
 @group(1) @binding(1) var<storage, read_write> non_finite: array<u32>;
 
+// What produced a non-finite value first, recorded per pixel (src/render/sentinel.rs reads it).
+const EVENT_NONE: u32 = 0u;
+const EVENT_EMISSION: u32 = 1u;
+const EVENT_SKY: u32 = 2u;
+const EVENT_LIGHT_SAMPLE: u32 = 3u;
+const EVENT_MEDIUM: u32 = 4u;
+const EVENT_AIR: u32 = 5u;
+// EVENT_LOBE + lobe index (LOBE_* in bsdf.wgsl): the BSDF sample of that lobe.
+const EVENT_LOBE: u32 = 6u;
+
+// The first event of this sample that produced a non-finite value.
+var<private> first_bad_event: u32;
+
+// Adds a contribution to the path's radiance, noting the event if the sum stops being finite.
+fn gather(radiance: ptr<function, vec3f>, contribution: vec3f, event: u32) {
+    *radiance += contribution;
+    if first_bad_event == EVENT_NONE && !all_finite(*radiance) {
+        first_bad_event = event;
+    }
+}
+
+// Multiplies the throughput, noting the event if the result is not finite.
+fn attenuate(throughput: ptr<function, vec3f>, factor: vec3f, event: u32) {
+    *throughput *= factor;
+    if first_bad_event == EVENT_NONE && !all_finite(*throughput) {
+        first_bad_event = event;
+    }
+}
+
+// Russian roulette may end a path after ROULETTE_START bounces (src/shared_constants.rs).
+
+// Tested on the bits: compilers may fold `x != x` away under fast-math rules.
+fn all_finite(v: vec3f) -> bool {
+    let exponent = bitcast<vec3u>(v) & vec3u(0x7f800000u);
+    return all(exponent != vec3u(0x7f800000u));
+}
+
+//#if emission
+// Emission of the surface hit, MIS-weighted against light sampling when the
+// bounce that found it could also have been found by next-event estimation.
+// `layers`: the normals of the layers over the emission (see layered_emission.wgsl).
+fn emission_seen(m: Material, hit: Hit, surface: Surface, layers: LayerNormals, origin: vec3f, direction: vec3f, bsdf_pdf: f32) -> vec3f {
+    var weight = 1.0;
+    //#if nee
+    if bsdf_pdf > 0.0 {
+        var light_pdf = 0.0;
+        if hit.kind == HIT_SPHERE {
+            //#if spheres
+            light_pdf = sphere_hit_pdf(origin, hit.primitive, m.emission_luminance);
+            //#endif
+        } else {
+            light_pdf = triangle_hit_pdf(m.emission_luminance, hit, abs(dot(surface.geometric_normal, direction)));
+        }
+        weight = power_heuristic(bsdf_pdf, light_pdf);
+    }
+    //#endif
+    return layered_emission(m, m.emission, layers, -direction) * weight;
+}
+//#endif
+
+//#if sun
+// The sun's disk seen by a ray that leaves the scene.
+fn sun_seen(origin: vec3f, direction: vec3f, bsdf_pdf: f32) -> vec3f {
+    if !in_sun_disk(direction) {
+        return vec3f(0.0);
+    }
+    var weight = 1.0;
+    //#if nee
+    if bsdf_pdf > 0.0 {
+        weight = power_heuristic(bsdf_pdf, sun_share() / sun_solid_angle());
+    }
+    //#endif
+    return sun_radiance_at(origin, direction) * weight;
+}
+//#endif
+
+//#if sky_uniform_light
+// The uniform sky seen by a ray that leaves the scene, MIS-weighted against light
+// sampling after a BSDF sample, as `environment_seen` below.
+fn uniform_sky_seen(bsdf_pdf: f32) -> vec3f {
+    var weight = 1.0;
+    //#if nee
+    if bsdf_pdf > 0.0 {
+        weight = power_heuristic(bsdf_pdf, frame.sky_light_share / (4.0 * PI));
+    }
+    //#endif
+    return frame.sky_color * weight;
+}
+//#endif
+
+//#if sky_environment
+// The environment seen by a ray that leaves the scene, MIS-weighted against light
+// sampling after a BSDF sample (the camera's rays and delta lobes have bsdf_pdf 0).
+fn environment_seen(direction: vec3f, bsdf_pdf: f32) -> vec3f {
+    var weight = 1.0;
+    //#if nee
+    if bsdf_pdf > 0.0 {
+        weight = power_heuristic(bsdf_pdf, environment.light_share * environment_pdf(direction));
+    }
+    //#endif
+    return environment_radiance(direction) * weight;
+}
+//#endif
+
 // What a finished sample is added to: `render`'s pixel, read before its samples and
 // written after them.
 var<private> pixel_acc: vec4f;
@@ -33,15 +193,14 @@ var<private> pixel_bad: u32;
 var<private> pixel_aovs: AovMeans;
 //#endif
 
-// A finished sample `sample_base + k` of radiance `radiance` (`bad_event`: what first
-// made it non-finite, if anything): into the pixel's running mean, or, for
-// `render_lanes`, into slot k of `lane_samples` (its AOVs too, after the dispatch's
-// radiance samples).
-fn sample_done(pixel_index: u32, sample_base: u32, k: u32, radiance: vec3f, bad_event: u32, lanes: bool) {
+// A finished sample `sample_base + k` of radiance `radiance`: into the pixel's running
+// mean, or, for `render_lanes`, into slot k of `lane_samples` (its AOVs too, after the
+// dispatch's radiance samples).
+fn sample_done(pixel_index: u32, sample_base: u32, k: u32, radiance: vec3f, lanes: bool) {
     let sample_index = sample_base + k;
     if lanes {
         let slot = k * frame.width * frame.height + pixel_index;
-        lane_samples[slot] = vec4f(radiance, bitcast<f32>(bad_event));
+        lane_samples[slot] = vec4f(radiance, bitcast<f32>(first_bad_event));
         //#if aovs
         aov_lane_store(slot);
         //#endif
@@ -50,7 +209,7 @@ fn sample_done(pixel_index: u32, sample_base: u32, k: u32, radiance: vec3f, bad_
     // (WGSL passes function-space pointers only.)
     var acc = pixel_acc;
     var bad = pixel_bad;
-    accumulate(&acc, &bad, radiance, bad_event, sample_index);
+    accumulate(&acc, &bad, radiance, first_bad_event, sample_index);
     pixel_acc = acc;
     pixel_bad = bad;
     //#if aovs
@@ -74,102 +233,336 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         return;
     }
     var k = first;
-    var path: Path;
+    var rng: Rng;
+    var origin: vec3f;
+    var direction: vec3f;
+    // The camera ray ends at the far clip plane; the rays after it do not.
+    var path_t_max: f32;
+    var radiance: vec3f;
+    var throughput: vec3f;
+    // Density of the last BSDF sample, for MIS; 0 after the camera and after delta lobes.
+    var bsdf_pdf: f32;
+    // The medium the path travels in: absorption and emission per metre.
+    var medium_absorption: vec3f;
+    var medium_emission: vec3f;
+    var bounce: u32;
+    // The camera's path has only passed through what lets the background through (alpha
+    // and, with Film › Transparent Glass, clear glass): what it meets may still be a hole
+    // (Cycles' PATH_RAY_TRANSPARENT_BACKGROUND).
+    var transparent_background: bool;
+    // A light sample waiting for its shadow ray, weighted by the throughput it was taken with.
+    //#if nee
+    var shadow: ShadowRay;
+    //#endif
+    var shadow_pending: bool;
+    var path_ended: bool;
     // Set when the path has ended and its sample is to be added (in `continuing`).
     var sample_finished = false;
     var starting = true;
     // Set by the traversal when a stack was full (it counts that in `stats` itself).
     var stack_overflowed = false;
+    //#if textures
+    // The ray cone (Ray Tracing Gems ch. 20): its width grows by the pixel's angle per
+    // unit of distance; later bounces keep widening it by the path's length, a
+    // lower bound on their footprint (a finer level than ideal: noise, never blur).
+    // A pixel's angle seen from the camera (view_half_extent is the image plane's half size
+    // at distance 1); an orthographic camera's rays do not spread.
+    let cone_spread = select(2.0 * frame.view_half_extent.y / f32(frame.height), 0.0, frame.orthographic != 0u);
+    var cone_width: f32;
+    //#endif
+    // The sample's identity (its random stream's start: pixel, sample and seed) for the
+    // coins of blended surfaces and of Mix Shaders.
+    var path_key: u32;
+    //#if node_graphs
+    // What the path's last ray came from, for the Light Path node (NODE_RAY_*).
+    var ray_from: u32;
+    var ray_singular: bool;
+    //#endif
     loop {
         if starting {
             starting = false;
-            path = path_from_camera(pixel, pixel_index, frame.first_sample + sample_base + k);
+            rng = rng_for_sample(pixel_index, frame.first_sample + sample_base + k, frame.seed);
+            first_bad_event = EVENT_NONE;
+            path_key = rng.state;
+            //#if motion
+            begin_sample_time(&rng);
+            //#endif
+            //#if node_graphs
+            ray_from = NODE_RAY_CAMERA;
+            ray_singular = false;
+            //#endif
+            let camera = camera_ray(pixel, &rng);
+            origin = camera.origin;
+            direction = camera.direction;
+            path_t_max = camera.t_max;
+            radiance = vec3f(0.0);
+            throughput = vec3f(1.0);
+            bsdf_pdf = 0.0;
+            medium_absorption = vec3f(0.0);
+            medium_emission = vec3f(0.0);
+            bounce = 0u;
+            transparent_background = true;
+            shadow_pending = false;
+            path_ended = false;
+            //#if textures
+            cone_width = 0.0;
+            //#endif
             //#if aovs
             aov_begin();
             //#endif
             //#if panorama
-            if path.ended {
+            // Where a panorama sends no ray (outside a fisheye's image), Cycles' pixel is black.
+            if no_camera_ray(camera) {
                 sample_finished = true;
                 continue;
             }
             //#endif
         }
-        var ray_origin = path.origin;
-        var ray_direction = path.direction;
-        var ray_t_max = path.t_max;
+        var ray_origin = origin;
+        var ray_direction = direction;
+        var ray_t_max = path_t_max;
         //#if nee
-        if path.shadow_pending {
-            ray_origin = path.shadow.origin;
-            ray_direction = path.shadow.direction;
-            ray_t_max = path.shadow.t_max;
+        if shadow_pending {
+            ray_origin = shadow.origin;
+            ray_direction = shadow.direction;
+            ray_t_max = shadow.t_max;
         }
         //#endif
         //#if alpha_blend
-        set_alpha_ray_key(pcg_hash(path.key ^ pcg_hash(2u * path.bounce + u32(path.shadow_pending))));
+        set_alpha_ray_key(pcg_hash(path_key ^ pcg_hash(2u * bounce + u32(shadow_pending))));
         //#endif
         // A shadow ray only asks whether anything is in the way.
-        let hit = intersect_scene(ray_origin, ray_direction, ray_t_max, path.shadow_pending, &stack_overflowed);
+        let hit = intersect_scene(ray_origin, ray_direction, ray_t_max, shadow_pending, &stack_overflowed);
         //#if nee
-        if path.shadow_pending {
-            path.shadow_pending = false;
+        if shadow_pending {
+            shadow_pending = false;
             if hit.kind == HIT_NONE {
-                gather(&path, path.shadow.contribution, EVENT_LIGHT_SAMPLE);
+                gather(&radiance, shadow.contribution, EVENT_LIGHT_SAMPLE);
             }
-            sample_finished = path.ended;
+            sample_finished = path_ended;
             continue;
         }
         //#endif
-        light_on_the_way(&path, hit, ray_t_max);
+        //#if lamps
+        // Lamps are not in the BVH: the path meets those before the surface and goes on.
+        // (Seen through a medium, they skip its absorption.)
+        let lamp_light = lamps_seen(origin, direction, min(hit.t, ray_t_max), hit.kind == HIT_NONE, bsdf_pdf, bounce == 0u);
+        gather(&radiance, throughput * lamp_light, EVENT_EMISSION);
+        //#if aovs
+        if bounce == 0u {
+            aov_emission_seen(lamp_light);
+        }
+        //#endif
+        //#endif
+        //#if media
+        let segment = integrate_segment(medium_absorption, medium_emission, hit.t);
+        gather(&radiance, throughput * segment.radiance, EVENT_MEDIUM);
+        attenuate(&throughput, segment.transmittance, EVENT_MEDIUM);
+        //#endif
+        //#if aovs
+        if bounce == 0u && hit.kind != HIT_NONE {
+            aov_first_hit(hit.t, origin + direction * hit.t);
+        }
+        //#endif
         if hit.kind == HIT_NONE {
-            escaped(&path);
+            //#if transparent_film
+            // Film › Transparent: the background the camera sees adds nothing, and the
+            // sample counts as one that met nothing (the pixel's alpha is the share that met
+            // the scene), also when it passed through stochastically transparent surfaces.
+            if transparent_background {
+                //#if aovs
+                aov_background_seen(channel_mean(throughput), bounce == 0u);
+                //#endif
+                sample_finished = true;
+                continue;
+            }
+            //#endif
+            //#if sky_environment
+            gather(&radiance, throughput * environment_seen(direction, bsdf_pdf), EVENT_SKY);
+            //#endif
+            //#if sky_uniform_light
+            gather(&radiance, throughput * uniform_sky_seen(bsdf_pdf), EVENT_SKY);
+            //#endif
+            //#if !sky_environment
+            //#if !sky_uniform_light
+            gather(&radiance, throughput * sky_radiance(origin, direction), EVENT_SKY);
+            //#endif
+            //#endif
+            //#if sun
+            gather(&radiance, throughput * sun_seen(origin, direction, bsdf_pdf), EVENT_SKY);
+            //#endif
             sample_finished = true;
             continue;
         }
-        surface_hit(&path, hit);
+        //#if sky_atmosphere
+        let air = atmosphere_segment(origin, direction, hit.t);
+        gather(&radiance, throughput * air.radiance, EVENT_AIR);
+        attenuate(&throughput, air.transmittance, EVENT_AIR);
+        //#endif
+        var surface = surface_at(hit, origin, direction);
+        var m = materials[surface.material];
+        //#if textures
+        cone_width += cone_spread * hit.t;
+        let cos_hit = max(abs(dot(surface.geometric_normal, direction)), 1e-4);
+        // The uv and its footprint, only where the material reads a texture: it costs a
+        // triangle's vertices, its uvs and an instance's inverse transform.
+        var texture_at: TexturePoint;
+        if has_textures(m) {
+            texture_at = texture_point(hit);
+        }
+        //#if node_graphs
+        // A graph reads the interpolated normal, as Cycles' nodes read N, not a normal map's.
+        let node_normal = surface.shading_normal;
+        //#endif
+        //#if normal_maps
+        let n_unmapped = surface.shading_normal;
+        surface.shading_normal = normal_mapped(m, hit, n_unmapped, surface.geometric_normal, -direction, slot_uv(m, UV1_NORMAL, texture_at));
+        //#endif
+        //#if coat_normal
+        let coat_normal = coat_normal_mapped(m, hit, n_unmapped, surface.geometric_normal, -direction, slot_uv(m, UV1_COAT_NORMAL, texture_at));
+        //#endif
+        m = textured_material(m, texture_at, log2(cone_width / cos_hit));
+        //#if node_graphs
+        if m.node_program != NO_PROGRAM {
+            var point = node_point_at(hit, surface, node_normal, -direction);
+            point.ray_from = ray_from;
+            point.singular = ray_singular;
+            point.ray_length = hit.t;
+            point.ray_depth = f32(bounce);
+            let graph = run_node_program(m.node_program, point);
+            m = node_graph_applied(m, graph);
+            if node_mix_second(m, graph, path_key, bounce) {
+                m = textured_material(materials[m.mix_material], texture_at, log2(cone_width / cos_hit));
+                if m.node_program != NO_PROGRAM {
+                    m = node_graph_material(m, point);
+                }
+            }
+        }
+        //#endif
+        //#endif
+        //#if holdout
+        let held_out = held_out_share(m, hit, transparent_background);
+        if held_out > 0.0 {
+            //#if aovs
+            if transparent_background {
+                aov_held_out(held_out * channel_mean(throughput));
+            }
+            //#endif
+            throughput *= 1.0 - held_out;
+            if held_out >= 1.0 {
+                sample_finished = true;
+                continue;
+            }
+        }
+        //#endif
+        //#if emission
+        var coat_layer_normal = surface.shading_normal;
+        //#if coat_normal
+        coat_layer_normal = coat_normal;
+        //#endif
+        let layer_side = select(-1.0, 1.0, dot(surface.geometric_normal, direction) < 0.0);
+        let layers = mapped_layer_normals(m, surface.shading_normal, coat_layer_normal, layer_side);
+        let emitted = throughput * emission_seen(m, hit, surface, layers, origin, direction, bsdf_pdf);
+        gather(&radiance, emitted, EVENT_EMISSION);
+        //#if aovs
+        if bounce == 0u {
+            aov_emission_seen(emitted);
+        }
+        //#endif
+        //#endif
+        if bounce >= frame.max_bounces {
+            sample_finished = true;
+            continue;
+        }
+        bounce++;
+        // The viewer is outside when the ray meets the outward normal head on.
+        let entering = dot(surface.geometric_normal, direction) < 0.0;
+        let n_geometric = select(-surface.geometric_normal, surface.geometric_normal, entering);
+        var n_shading = select(-surface.shading_normal, surface.shading_normal, entering);
+        var mapped = false;
+        //#if normal_maps
+        let side = select(-1.0, 1.0, entering);
+        mapped = m.normal_texture != NO_TEXTURE;
+        set_unmapped_normal(side * n_unmapped, mapped, side * diffuse_mapped_normal());
+        //#endif
+        //#if coat_normal
+        set_coat_normal(side * coat_normal, side * n_unmapped, side * coat_normal_before_bending());
+        //#endif
+        //#if smooth_normals
+        var n_interpolated = n_shading;
+        //#if normal_maps
+        n_interpolated = side * n_unmapped;
+        //#endif
+        n_shading = set_smooth_shading(m, hit, n_interpolated, n_shading, n_geometric, -direction, mapped);
+        //#endif
+        //#if terminator_offset
+        set_terminator_shift(hit);
+        //#endif
+        //#if anisotropy
+        set_surface_tangent(hit, surface.position, m.tangent);
+        //#endif
+        let ctx = shading_context(m, n_shading, n_geometric, -direction, entering);
+        //#if aovs
+        if bounce == 1u {
+            aov_diffuse_color_seen(ctx, throughput);
+        }
+        //#endif
+        //#if nee
+        shadow = direct_light(ctx, surface, n_geometric, medium_absorption, &rng);
+        shadow.contribution *= throughput;
+        shadow_pending = any(shadow.contribution != vec3f(0.0));
+        //#endif
+        var s = bsdf_sample(ctx, &rng);
+        //#if terminator_offset
+        // Delta reflections (the other lobes' samples are weighed by `bsdf_eval`).
+        if s.pdf == 0.0 && !s.transmitted {
+            s.weight *= terminator_shift(dot(s.direction, n_shading));
+        }
+        //#endif
+        //#if aovs
+        aov_surface(s, n_shading);
+        //#endif
+        if !s.valid {
+            path_ended = true;
+        } else {
+            attenuate(&throughput, s.weight, EVENT_LOBE + s.lobe);
+            transparent_background = transparent_background && s.transmitted && is_clear_glass(m);
+            bsdf_pdf = s.pdf;
+            //#if node_graphs
+            ray_from = s.lobe + 1u;
+            ray_singular = s.pdf == 0.0;
+            //#endif
+            //#if media
+            // Crossing into a material adds its medium, leaving subtracts it: nested media add up.
+            if s.transmitted {
+                let sign = select(-1.0, 1.0, entering);
+                medium_absorption = max(medium_absorption + sign * m.absorption, vec3f(0.0));
+                medium_emission = max(medium_emission + sign * m.volume_emission, vec3f(0.0));
+            }
+            //#endif
+            if bounce > ROULETTE_START {
+                let survival = min(max(throughput.x, max(throughput.y, throughput.z)), 0.95);
+                if rng_next(&rng) >= survival {
+                    path_ended = true;
+                }
+                throughput /= survival;
+            }
+            origin = offset_ray_origin(surface.position, surface.position_error, select(-n_geometric, n_geometric, dot(s.direction, n_geometric) > 0.0));
+            direction = s.direction;
+            path_t_max = INFINITY;
+        }
         // The pending shadow ray, if any, is traced before the path ends.
-        sample_finished = path.ended && !path.shadow_pending;
+        sample_finished = path_ended && !shadow_pending;
         continuing {
             if sample_finished {
                 sample_finished = false;
-                sample_done(pixel_index, sample_base, k, path.radiance, path.bad_event, lanes);
+                sample_done(pixel_index, sample_base, k, radiance, lanes);
                 k = next_sample(k, pixel_index, lanes);
                 starting = true;
             }
             break if starting && k >= frame.samples_per_dispatch;
         }
     }
-}
-
-// The path at the surface its ray hit: a holdout may take all of it, the surface's
-// emission is gathered, and unless the path is as long as allowed it scatters on, with
-// a light sample for a shadow ray to test.
-fn surface_hit(path: ptr<function, Path>, hit: Hit) {
-    let at = shading_point(path, hit);
-    //#if holdout
-    if held_out(path, at, hit) {
-        path.ended = true;
-        return;
-    }
-    //#endif
-    //#if emission
-    surface_emission(path, at, hit);
-    //#endif
-    if path.bounce >= frame.max_bounces {
-        path.ended = true;
-        return;
-    }
-    path.bounce++;
-    let sc = scattering_at(path, at, hit);
-    //#if aovs
-    if path.bounce == 1u {
-        aov_diffuse_color_seen(sc.ctx, path.throughput);
-    }
-    //#endif
-    //#if nee
-    path.shadow = light_sample(path, at, sc);
-    path.shadow_pending = any(path.shadow.contribution != vec3f(0.0));
-    //#endif
-    bsdf_scatter(path, at, sc);
 }
 
 // Adds sample `sample_index` of a pixel, of radiance `radiance`, to its running mean

@@ -97,7 +97,7 @@ shared_constants! { LINKS;
 }
 
 shared_constants! { PATHS;
-    /// Bounces after which Russian roulette may end a path (`shaders/path_scatter.wgsl`).
+    /// Bounces after which Russian roulette may end a path (`shaders/integrator.wgsl`).
     ROULETTE_START: u32 = 3;
 }
 

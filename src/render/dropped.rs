@@ -4,7 +4,7 @@
 use std::fmt;
 
 /// The event that first produced a non-finite value in a sample
-/// (`EVENT_*` in `shaders/path.wgsl`).
+/// (`EVENT_*` in `shaders/integrator.wgsl`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum NonFiniteCause {
     Unknown,

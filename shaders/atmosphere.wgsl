@@ -11,7 +11,7 @@
 
 //#include "constants.wgsl"
 
-// Mirrored by `GpuAtmosphere` in src/gpu/layout.rs.
+// Mirrored by `GpuAtmosphere` in src/layout.rs.
 struct Atmosphere {
     // Scattering coefficients at the ground, per metre.
     rayleigh_scattering: vec3f,

@@ -14,7 +14,7 @@
 //#include "light_tree.wgsl"
 //#endif
 
-// Mirrored by `GpuLamp` in src/gpu/layout.rs; what each field holds per kind is said there.
+// Mirrored by `GpuLamp` in src/layout.rs; what each field holds per kind is said there.
 struct Lamp {
     position: vec3f,
     kind: u32,

@@ -1,7 +1,7 @@
 //! Constants the host and the shaders share, declared once. Each group below makes the
 //! Rust `pub const`s and the WGSL `const` lines of the shaders' generated file
 //! `shared_constants.wgsl` ([`wgsl`]), so the two cannot differ: a shader that needs one
-//! includes that file (through `constants.wgsl`) and declares none of its own.
+//! includes that file (through `common.wgsl`) and declares none of its own.
 
 /// One shared constant as WGSL writes it.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -25,14 +25,12 @@
 
 use crate::asset::load_mesh;
 use crate::scene::{Material, Microfacet, Projection, Scene, Sky};
+use crate::shared_constants::ROULETTE_START;
 use anyhow::{Context, Result, bail};
 use glam::{Mat3, Vec3, Vec4Swizzles};
 use serde_json::{Map, Value, json};
 use std::path::Path;
 
-// rt's bounce after which Russian roulette may end a path: Mitsuba's depth counts one
-// more vertex, and decides after the vertex it counts.
-use crate::shared_constants::ROULETTE_START;
 /// How far the flipped copy of an emitting surface lies behind it: far enough that
 /// Mitsuba's ray offsets never confuse the two, near enough not to show (a copy 0.1 mm
 /// away showed as a sliver at a light's silhouette).
@@ -255,6 +253,8 @@ pub fn translate(scene: &Scene, size: (u32, u32), spp: u32, dir: &Path) -> Resul
     let mut d = Map::new();
     let has_medium = scene.materials.iter().any(|(_, m)| m.has_medium());
     d.insert("type".into(), json!("scene"));
+    // rt's Russian roulette starts after bounce ROULETTE_START: Mitsuba's depth counts one
+    // more vertex, and decides after the vertex it counts.
     d.insert(
         "integrator".into(),
         json!({ "type": if has_medium { "volpath" } else { "path" },

@@ -187,7 +187,7 @@ impl SceneGeometry {
         let placed = Placed::of(scene, &meshes, &slots, &mut materials, &mesh_of_path)?;
         let Placed { placement, mut in_use, entries, boxes, spheres } = placed;
         let Placement {
-            instances,
+            mut instances,
             object_settings,
             shading_offsets,
             held_out,
@@ -207,7 +207,6 @@ impl SceneGeometry {
         let emissive =
             EmissiveTriangles { mesh_triangles: &mesh_triangles, triangles: &triangles, materials: &materials };
         let (emitters, emitter_bounds, emitter_total_power) = emissive.table(&instances, &instance_mesh, &spheres);
-        let mut instances = instances;
         let moving_lights = mark_moving(scene, &mut instances, &instance_motion, motion_matrices.len(), &emitters)?;
         let top = TopLevel::build(&boxes, &entries);
         let lights =

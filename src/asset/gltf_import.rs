@@ -49,10 +49,8 @@ use super::gltf_texture_transform::{of_info, of_normal};
 use super::gltf_textures::{ColorSpace, TextureLoader};
 use super::{AssetError, MeshData};
 use crate::scene::{Material, MaterialTextures, Tangent, slots};
-use glam::{Mat3, Mat4, Vec3};
 use gltf::json::Value;
 use gltf::material::AlphaMode;
-use gltf::mesh::{Mode, Semantic};
 use std::path::Path;
 
 /// Loads the default scene (else the first, else every root node) of a glTF file,
@@ -75,47 +73,7 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
     let mut loader = TextureLoader::new(&buffers, dir);
     for (i, m) in document.materials().enumerate() {
         let name = m.name().map_or_else(|| format!("material_{i}"), str::to_owned);
-        let mut material = map_material(&m).map_err(|e| err(format!("material `{name}`: {e}")))?;
-        material.textures = material_textures(&m, &mut loader).map_err(|e| err(format!("material `{name}`: {e}")))?;
-        let layers = super::gltf_layer_textures::layer_textures(&document, &m, &mut loader)
-            .map_err(|e| err(format!("material `{name}`: {e}")))?;
-        material.textures.layers = layers.textures;
-        material.textures.second_uv_set |= layers.second_uv_set;
-        material.textures.anisotropy_directions = layers.anisotropy_directions;
-        let (coat_normal, coat_normal_scale, coat_normal_uv_set) =
-            super::gltf_layer_textures::coat_normal_texture(&m, &document, &mut loader)
-                .map_err(|e| err(format!("material `{name}`: {e}")))?;
-        (material.textures.coat_normal, material.textures.coat_normal_scale) = (coat_normal, coat_normal_scale);
-        material.textures.second_uv_set |= coat_normal_uv_set;
-        material.textures.thin_film_minimum = iridescence(&m).ok().flatten().map_or(0.0, |f| f.minimum);
-        let textured_metal = material.textures.metallic_roughness.is_some();
-        let textured_transmission = material.textures.layers.transmission.is_some();
-        if textured_metal || textured_transmission {
-            // The lobe weights become those of the part that is not metal, or does not
-            // transmit: the texture sets the rest.
-            material.textures.transmission = transmission_factor(&m);
-            material = Material {
-                textures: material.textures,
-                ..map_material_with(
-                    &m,
-                    if textured_metal { 0.0 } else { metallic_factor(&m) },
-                    if textured_transmission { 0.0 } else { transmission_factor(&m) },
-                )
-                .map_err(|e| err(format!("material `{name}`: {e}")))?
-            };
-        }
-        // A channel of the indices' texture that an export leaves undriven has the material's own index.
-        if material.textures.layers.ior.is_some() {
-            let mut minimum = [material.ior, material.coat_ior, material.thin_film_ior];
-            for (i, key) in
-                ["rt_ior_minimum", "rt_coat_ior_minimum", "rt_thin_film_ior_minimum"].into_iter().enumerate()
-            {
-                if let Some(v) = extra::<f32>(m.extras(), key).map_err(|e| err(format!("material `{name}`: {e}")))? {
-                    minimum[i] = v;
-                }
-            }
-            material.textures.ior_minimum = minimum;
-        }
+        let material = gltf_material(&m, &document, &mut loader).map_err(|e| err(format!("material `{name}`: {e}")))?;
         mesh.materials.push((name, material));
     }
     let count = mesh.materials.len();
@@ -128,212 +86,52 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
     }
     mesh.textures = loader.textures;
 
-    let roots: Vec<gltf::Node> = match document.default_scene().or_else(|| document.scenes().next()) {
-        Some(scene) => scene.nodes().collect(),
-        None => {
-            let mut is_child = vec![false; document.nodes().len()];
-            for child in document.nodes().flat_map(|n| n.children()) {
-                is_child[child.index()] = true;
-            }
-            document.nodes().filter(|n| !is_child[n.index()]).collect()
-        }
-    };
-
-    let mut walk = Walk {
-        buffers: &buffers,
-        node_count: document.nodes().len(),
-        mesh,
-        normals: Vec::new(),
-        uvs: Vec::new(),
-        second_uvs: Vec::new(),
-        tangents: Vec::new(),
-        all_normals: true,
-        all_tangents: true,
-        all_uvs: true,
-        all_second_uvs: true,
-        default_material: None,
-    };
-    for root in &roots {
-        walk.visit(root, Mat4::IDENTITY, 0).map_err(err)?;
-    }
-    let mut mesh = walk.mesh;
-    if (!walk.all_normals && !walk.normals.is_empty()) || (!walk.all_uvs && !walk.uvs.is_empty()) {
-        log::warn!("{}: NORMAL or TEXCOORD_0 is missing on some primitives; dropped them all", path.display());
-    }
-    if !mesh.positions.is_empty() {
-        mesh.normals = walk.all_normals.then_some(walk.normals);
-        mesh.uvs = walk.all_uvs.then_some(walk.uvs);
-        // Only if some material reads it: see `keep_second_uvs_where_read`.
-        mesh.second_uvs = (walk.all_second_uvs && walk.all_uvs).then_some(walk.second_uvs);
-        // Tangents without the normals and uvs they belong to mean nothing.
-        let frame = mesh.normals.is_some() && mesh.uvs.is_some();
-        mesh.tangents = (walk.all_tangents && frame).then_some(walk.tangents);
-    }
-    Ok(mesh)
+    super::gltf_nodes::place_meshes(&document, &buffers, mesh, path).map_err(err)
 }
 
-/// State of the depth-first walk over the node hierarchy.
-struct Walk<'a> {
-    buffers: &'a [gltf::buffer::Data],
-    node_count: usize,
-    mesh: MeshData,
-    normals: Vec<[f32; 3]>,
-    uvs: Vec<[f32; 2]>,
-    second_uvs: Vec<[f32; 2]>,
-    tangents: Vec<[f32; 4]>,
-    /// Shading attributes are kept only if every primitive has them.
-    all_normals: bool,
-    all_tangents: bool,
-    all_uvs: bool,
-    all_second_uvs: bool,
-    default_material: Option<u32>,
-}
-
-impl Walk<'_> {
-    fn visit(&mut self, node: &gltf::Node, parent: Mat4, depth: usize) -> Result<(), String> {
-        // A path longer than the node count must revisit a node.
-        if depth > self.node_count {
-            return Err("the node hierarchy has a cycle".into());
-        }
-        let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
-        if let Some(mesh) = node.mesh() {
-            self.add_mesh(&mesh, node.index(), world)?;
-        }
-        for child in node.children() {
-            self.visit(&child, world, depth + 1)?;
-        }
-        Ok(())
+/// The rt material of glTF material `m`, with its textures (decoded by `loader`).
+fn gltf_material(
+    m: &gltf::Material,
+    document: &gltf::Document,
+    loader: &mut TextureLoader,
+) -> Result<Material, String> {
+    let mut material = map_material(m)?;
+    material.textures = material_textures(m, loader)?;
+    let layers = super::gltf_layer_textures::layer_textures(document, m, loader)?;
+    material.textures.layers = layers.textures;
+    material.textures.second_uv_set |= layers.second_uv_set;
+    material.textures.anisotropy_directions = layers.anisotropy_directions;
+    let (coat_normal, coat_normal_scale, coat_normal_uv_set) =
+        super::gltf_layer_textures::coat_normal_texture(m, document, loader)?;
+    (material.textures.coat_normal, material.textures.coat_normal_scale) = (coat_normal, coat_normal_scale);
+    material.textures.second_uv_set |= coat_normal_uv_set;
+    material.textures.thin_film_minimum = iridescence(m).ok().flatten().map_or(0.0, |f| f.minimum);
+    let textured_metal = material.textures.metallic_roughness.is_some();
+    let textured_transmission = material.textures.layers.transmission.is_some();
+    if textured_metal || textured_transmission {
+        // The lobe weights become those of the part that is not metal, or does not
+        // transmit: the texture sets the rest.
+        material.textures.transmission = transmission_factor(m);
+        material = Material {
+            textures: material.textures,
+            ..map_material_with(
+                m,
+                if textured_metal { 0.0 } else { metallic_factor(m) },
+                if textured_transmission { 0.0 } else { transmission_factor(m) },
+            )?
+        };
     }
-
-    fn add_mesh(&mut self, mesh: &gltf::Mesh, node: usize, world: Mat4) -> Result<(), String> {
-        let det = world.determinant();
-        if !det.is_finite() {
-            return Err(format!("node {node} has a non-finite transform"));
-        }
-        if det == 0.0 {
-            // Every triangle would have zero area; zero scale is how animators hide things.
-            log::warn!("node {node} scales mesh {} to nothing; skipped", mesh.index());
-            return Ok(());
-        }
-        let normal_matrix = Mat3::from_mat4(world).inverse().transpose();
-        // A mirroring transform turns counter-clockwise triangles clockwise.
-        let flip = det < 0.0;
-
-        for prim in mesh.primitives() {
-            let at = format!("mesh {} primitive {}", mesh.index(), prim.index());
-            if prim.mode() != Mode::Triangles {
-                log::warn!("{at}: mode {:?} is not triangles; skipped", prim.mode());
-                continue;
-            }
-            if prim.get(&Semantic::Positions).is_none() {
-                log::warn!("{at}: no POSITION attribute; skipped");
-                continue;
-            }
-            let unreadable = |what: &str| format!("{at}: cannot read {what} (accessor outside its buffer?)");
-            // gltf's readers assume the types the specification requires, and panic otherwise.
-            use gltf::accessor::{DataType as T, Dimensions as D};
-            let attributes = [
-                (Semantic::Positions, "POSITION", &[T::F32][..], D::Vec3),
-                (Semantic::Normals, "NORMAL", &[T::F32][..], D::Vec3),
-                (Semantic::TexCoords(0), "TEXCOORD_0", &[T::F32, T::U8, T::U16][..], D::Vec2),
-                (Semantic::TexCoords(1), "TEXCOORD_1", &[T::F32, T::U8, T::U16][..], D::Vec2),
-                (Semantic::Tangents, "TANGENT", &[T::F32][..], D::Vec4),
-            ];
-            for (semantic, name, types, dimensions) in attributes {
-                if let Some(a) = prim.get(&semantic) {
-                    check_accessor(&at, name, &a, types, dimensions)?;
-                }
-            }
-            if let Some(a) = prim.indices() {
-                check_accessor(&at, "indices", &a, &[T::U8, T::U16, T::U32], D::Scalar)?;
-            }
-            let reader = prim.reader(|b| self.buffers.get(b.index()).map(|d| &d.0[..]));
-            let positions: Vec<[f32; 3]> = reader
-                .read_positions()
-                .ok_or_else(|| unreadable("POSITION"))?
-                .map(|p| world.transform_point3(Vec3::from(p)).to_array())
-                .collect();
-            let count = positions.len();
-            if u32::try_from(self.mesh.positions.len() + count).is_err() {
-                return Err(format!("{at}: more than 2^32 vertices in all"));
-            }
-            let base = self.mesh.positions.len() as u32;
-
-            // Read even once incomplete, so that the final warning knows what was dropped.
-            if prim.get(&Semantic::Normals).is_none() {
-                self.all_normals = false;
-            } else {
-                let normals = reader.read_normals().ok_or_else(|| unreadable("NORMAL"))?;
-                let start = self.normals.len();
-                self.normals.extend(normals.map(|n| (normal_matrix * Vec3::from(n)).normalize_or_zero().to_array()));
-                if self.normals.len() - start != count {
-                    return Err(format!("{at}: NORMAL and POSITION counts differ"));
-                }
-            }
-            if prim.get(&Semantic::Tangents).is_none() {
-                self.all_tangents = false;
-            } else {
-                let tangents = reader.read_tangents().ok_or_else(|| unreadable("TANGENT"))?;
-                let start = self.tangents.len();
-                let to_world = Mat3::from_mat4(world);
-                // A mirroring transform flips the bitangent against n × t.
-                let handedness = if flip { -1.0 } else { 1.0 };
-                self.tangents.extend(tangents.map(|[x, y, z, w]| {
-                    let t = (to_world * Vec3::new(x, y, z)).normalize_or_zero();
-                    [t.x, t.y, t.z, if w < 0.0 { -handedness } else { handedness }]
-                }));
-                if self.tangents.len() - start != count {
-                    return Err(format!("{at}: TANGENT and POSITION counts differ"));
-                }
-            }
-            for set in [0, 1] {
-                let (all, uvs) = match set {
-                    0 => (&mut self.all_uvs, &mut self.uvs),
-                    _ => (&mut self.all_second_uvs, &mut self.second_uvs),
-                };
-                if prim.get(&Semantic::TexCoords(set)).is_none() {
-                    *all = false;
-                    continue;
-                }
-                let name = format!("TEXCOORD_{set}");
-                let read = reader.read_tex_coords(set).ok_or_else(|| unreadable(&name))?;
-                let start = uvs.len();
-                // As they are: each texture applies its own transform (`gltf_texture_transform`).
-                uvs.extend(read.into_f32().map(|[u, v]| [u, 1.0 - v]));
-                if uvs.len() - start != count {
-                    return Err(format!("{at}: {name} and POSITION counts differ"));
-                }
-            }
-
-            let indices: Vec<u32> = match prim.indices() {
-                Some(_) => reader.read_indices().ok_or_else(|| unreadable("indices"))?.into_u32().collect(),
-                None => (0..count as u32).collect(),
-            };
-            if !indices.len().is_multiple_of(3) {
-                return Err(format!("{at}: {} indices is not a whole number of triangles", indices.len()));
-            }
-            // Checked here, per primitive: once offset, an index past this primitive's
-            // vertices could land in the next one and pass the final validation.
-            if let Some(&bad) = indices.iter().find(|&&i| i as usize >= count) {
-                return Err(format!("{at}: index {bad} but the primitive has only {count} vertices"));
-            }
-
-            let material = match prim.material().index() {
-                Some(i) => i as u32,
-                None => *self.default_material.get_or_insert_with(|| {
-                    self.mesh.materials.push(("default".into(), Material::default()));
-                    (self.mesh.materials.len() - 1) as u32
-                }),
-            };
-            self.mesh.positions.extend(positions);
-            for tri in indices.chunks_exact(3) {
-                let [a, b, c] = [tri[0] + base, tri[1] + base, tri[2] + base];
-                self.mesh.indices.push(if flip { [a, c, b] } else { [a, b, c] });
-                self.mesh.material_ids.push(material);
+    // A channel of the indices' texture that an export leaves undriven has the material's own index.
+    if material.textures.layers.ior.is_some() {
+        let mut minimum = [material.ior, material.coat_ior, material.thin_film_ior];
+        for (i, key) in ["rt_ior_minimum", "rt_coat_ior_minimum", "rt_thin_film_ior_minimum"].into_iter().enumerate() {
+            if let Some(v) = extra::<f32>(m.extras(), key)? {
+                minimum[i] = v;
             }
         }
-        Ok(())
+        material.textures.ior_minimum = minimum;
     }
+    Ok(material)
 }
 
 /// The textures of a material; unsupported ones (occlusion: a path tracer finds
@@ -550,20 +348,6 @@ fn check_primitive_accessors(json: &gltf::json::Root) -> Result<(), String> {
                 return Err(format!("mesh {m} primitive {p}: accessor {bad} does not exist ({count} accessors)"));
             }
         }
-    }
-    Ok(())
-}
-
-/// Refuses an accessor whose component type or shape the specification does not allow for `name`.
-fn check_accessor(
-    at: &str,
-    name: &str,
-    a: &gltf::Accessor,
-    types: &[gltf::accessor::DataType],
-    dimensions: gltf::accessor::Dimensions,
-) -> Result<(), String> {
-    if !types.contains(&a.data_type()) || a.dimensions() != dimensions {
-        return Err(format!("{at}: {name} is {:?} {:?}, which glTF does not allow", a.data_type(), a.dimensions()));
     }
     Ok(())
 }

@@ -7,6 +7,7 @@ mod gltf_buffers;
 mod gltf_extensions;
 pub mod gltf_import;
 mod gltf_layer_textures;
+mod gltf_nodes;
 mod gltf_texture_transform;
 mod gltf_textures;
 pub mod node_graph;

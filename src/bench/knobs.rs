@@ -71,6 +71,18 @@ pub struct Knob {
     pub inapplicable: fn(&FeatureSet) -> Option<&'static str>,
 }
 
+impl Knob {
+    /// A knob measured at the sweep's own levels.
+    fn new(
+        name: &'static str,
+        about: &'static str,
+        settings: Vec<Setting>,
+        inapplicable: fn(&FeatureSet) -> Option<&'static str>,
+    ) -> Self {
+        Knob { name, about, settings, spp_levels: None, inapplicable }
+    }
+}
+
 fn always(_: &FeatureSet) -> Option<&'static str> {
     None
 }
@@ -120,48 +132,51 @@ const CLEAN_IMAGE_THRESHOLD: f32 = 0.05;
 pub fn all_knobs(levels: &[u32]) -> Vec<Knob> {
     let (lo, hi) = (levels.iter().copied().min().unwrap_or(1), levels.iter().copied().max().unwrap_or(1));
     let ladder: Vec<u32> = (0..32).map(|i| 1u32 << i).filter(|s| (lo..=hi).contains(s)).collect();
+    let spp = Knob {
+        name: "spp",
+        about: "samples per pixel, at the scene's own settings: the convergence of the baseline",
+        settings: vec![Setting::new("scene defaults", |_| {})],
+        spp_levels: Some(if ladder.len() >= 3 { ladder } else { levels.to_vec() }),
+        inapplicable: always,
+    };
+    let groups = [vec![spp], estimator_knobs(), engine_knobs(), clean_image_knobs(), atmosphere_knobs()];
+    groups.into_iter().flatten().collect()
+}
+
+/// The estimator's settings: path length, how paths find light, the rough-glass model.
+fn estimator_knobs() -> Vec<Knob> {
     vec![
-        Knob {
-            name: "spp",
-            about: "samples per pixel, at the scene's own settings: the convergence of the baseline",
-            settings: vec![Setting::new("scene defaults", |_| {})],
-            spp_levels: Some(if ladder.len() >= 3 { ladder } else { levels.to_vec() }),
-            inapplicable: always,
-        },
-        Knob {
-            name: "max-bounces",
-            about: "path length cap (biased: light that needs more bounces is missing)",
-            settings: [1u32, 2, 3, 4, 6, 8, 12, 16]
+        Knob::new(
+            "max-bounces",
+            "path length cap (biased: light that needs more bounces is missing)",
+            [1u32, 2, 3, 4, 6, 8, 12, 16]
                 .into_iter()
                 .map(|b| Setting::new(format!("{b}"), move |t| t.request.max_bounces = b))
                 .collect(),
-            spp_levels: None,
-            inapplicable: always,
-        },
-        Knob {
-            name: "sampling",
-            about: "how paths find light: resampled BSDF directions, or next-event estimation with MIS",
-            settings: [Sampling::Resampled, Sampling::Nee]
+            always,
+        ),
+        Knob::new(
+            "sampling",
+            "how paths find light: resampled BSDF directions, or next-event estimation with MIS",
+            [Sampling::Resampled, Sampling::Nee]
                 .into_iter()
                 .map(|s| Setting::new(format!("{s:?}").to_lowercase(), move |t| t.scene.render.sampling = s))
                 .collect(),
-            spp_levels: None,
-            inapplicable: always,
-        },
-        Knob {
-            name: "light-sampler",
-            about: "how light sampling picks a lamp or emitter: by power, or down the light tree by importance",
-            settings: [LightSampler::Power, LightSampler::Tree]
+            always,
+        ),
+        Knob::new(
+            "light-sampler",
+            "how light sampling picks a lamp or emitter: by power, or down the light tree by importance",
+            [LightSampler::Power, LightSampler::Tree]
                 .into_iter()
                 .map(|s| Setting::new(format!("{s:?}").to_lowercase(), move |t| t.scene.render.light_sampler = s))
                 .collect(),
-            spp_levels: None,
-            inapplicable: without_tree_lights,
-        },
-        Knob {
-            name: "ris-candidates",
-            about: "candidates M per resampled direction, with resampled sampling",
-            settings: [1u32, 2, 4, 8, 16, 32]
+            without_tree_lights,
+        ),
+        Knob::new(
+            "ris-candidates",
+            "candidates M per resampled direction, with resampled sampling",
+            [1u32, 2, 4, 8, 16, 32]
                 .into_iter()
                 .map(|m| {
                     Setting::new(format!("M={m}"), move |t| {
@@ -170,23 +185,27 @@ pub fn all_knobs(levels: &[u32]) -> Vec<Knob> {
                     })
                 })
                 .collect(),
-            spp_levels: None,
-            inapplicable: always,
-        },
-        Knob {
-            name: "rough-glass",
-            about: "model of rough refraction: GGX microfacets, or the seed's cone (cheaper, biased)",
-            settings: [RoughTransmission::Ggx, RoughTransmission::Cone]
+            always,
+        ),
+        Knob::new(
+            "rough-glass",
+            "model of rough refraction: GGX microfacets, or the seed's cone (cheaper, biased)",
+            [RoughTransmission::Ggx, RoughTransmission::Cone]
                 .into_iter()
                 .map(|r| Setting::new(format!("{r:?}").to_lowercase(), move |t| t.scene.render.rough_transmission = r))
                 .collect(),
-            spp_levels: None,
-            inapplicable: without_rough_glass,
-        },
-        Knob {
-            name: "bvh-quality",
-            about: "BVH build quality: build time against trace time (the image does not change)",
-            settings: [BuildQuality::Fastest, BuildQuality::Medium, BuildQuality::Slow, BuildQuality::VerySlow]
+            without_rough_glass,
+        ),
+    ]
+}
+
+/// How the work is laid out on the GPU: the BVH's build quality and the dispatch size (the image does not change).
+fn engine_knobs() -> Vec<Knob> {
+    vec![
+        Knob::new(
+            "bvh-quality",
+            "BVH build quality: build time against trace time (the image does not change)",
+            [BuildQuality::Fastest, BuildQuality::Medium, BuildQuality::Slow, BuildQuality::VerySlow]
                 .into_iter()
                 .map(|q| {
                     let name = q.to_possible_value().map_or(format!("{q:?}"), |v| v.get_name().to_string());
@@ -196,26 +215,30 @@ pub fn all_knobs(levels: &[u32]) -> Vec<Knob> {
                     })
                 })
                 .collect(),
-            spp_levels: None,
-            inapplicable: always,
-        },
-        Knob {
-            name: "samples-per-dispatch",
-            about: "samples per pixel in one GPU dispatch (auto: sized to ~80 ms, as `rt render` does)",
-            settings: [Some(1u32), Some(4), Some(16), Some(64), None]
+            always,
+        ),
+        Knob::new(
+            "samples-per-dispatch",
+            "samples per pixel in one GPU dispatch (auto: sized to ~80 ms, as `rt render` does)",
+            [Some(1u32), Some(4), Some(16), Some(64), None]
                 .into_iter()
                 .map(|n| {
                     let label = n.map_or("auto".to_string(), |n| n.to_string());
                     Setting::new(label, move |t| t.request.samples_per_dispatch = n)
                 })
                 .collect(),
-            spp_levels: None,
-            inapplicable: always,
-        },
-        Knob {
-            name: "denoise",
-            about: "Open Image Denoise on the image, guided by albedo and normal AOVs (its time counts)",
-            settings: [false, true]
+            always,
+        ),
+    ]
+}
+
+/// The ways to a clean image: denoising, adaptive sampling, and both.
+fn clean_image_knobs() -> Vec<Knob> {
+    vec![
+        Knob::new(
+            "denoise",
+            "Open Image Denoise on the image, guided by albedo and normal AOVs (its time counts)",
+            [false, true]
                 .into_iter()
                 .map(|on| {
                     Setting::new(if on { "on" } else { "off" }, move |t| {
@@ -224,27 +247,25 @@ pub fn all_knobs(levels: &[u32]) -> Vec<Knob> {
                     })
                 })
                 .collect(),
-            spp_levels: None,
-            inapplicable: without_denoiser,
-        },
-        Knob {
-            name: "adaptive",
-            about: "adaptive sampling: pixels stop at this relative standard error (after 16 samples)",
-            settings: [0.0f32, 0.05, 0.02, 0.01]
+            without_denoiser,
+        ),
+        Knob::new(
+            "adaptive",
+            "adaptive sampling: pixels stop at this relative standard error (after 16 samples)",
+            [0.0f32, 0.05, 0.02, 0.01]
                 .into_iter()
                 .map(|threshold| {
                     let label = if threshold == 0.0 { "off".to_string() } else { format!("{threshold}") };
                     Setting::new(label, move |t| t.request.noise_threshold = threshold)
                 })
                 .collect(),
-            spp_levels: None,
-            inapplicable: always,
-        },
-        Knob {
-            name: "clean-image",
-            about: "the ways to a clean image side by side: raw, adaptive sampling (stops at 0.05 relative \
+            always,
+        ),
+        Knob::new(
+            "clean-image",
+            "the ways to a clean image side by side: raw, adaptive sampling (stops at 0.05 relative \
                     standard error, after 16 samples), denoised, and adaptive sampling then denoised",
-            settings: [(false, false), (true, false), (false, true), (true, true)]
+            [(false, false), (true, false), (false, true), (true, true)]
                 .into_iter()
                 .map(|(adaptive, denoise)| {
                     let label = match (adaptive, denoise) {
@@ -260,42 +281,40 @@ pub fn all_knobs(levels: &[u32]) -> Vec<Knob> {
                     })
                 })
                 .collect(),
-            spp_levels: None,
-            inapplicable: without_denoiser,
-        },
-        Knob {
-            name: "atmosphere-steps",
-            about: "march steps per ray through the atmosphere",
-            settings: [4u32, 8, 16, 32, 64]
+            without_denoiser,
+        ),
+    ]
+}
+
+/// The atmosphere's cost against its accuracy (skies that are not one leave them out).
+fn atmosphere_knobs() -> Vec<Knob> {
+    vec![
+        Knob::new(
+            "atmosphere-steps",
+            "march steps per ray through the atmosphere",
+            [4u32, 8, 16, 32, 64]
                 .into_iter()
                 .map(|n| Setting::new(format!("{n}"), move |t| with_atmosphere(t, |a| a.steps = n)))
                 .collect(),
-            spp_levels: None,
-            inapplicable: without_atmosphere,
-        },
-        Knob {
-            name: "atmosphere-tables",
-            about: "sizes of the transmittance and multiple-scattering tables",
-            settings: [
-                ([64u32, 16u32], [8u32, 8u32]),
-                ([128, 32], [16, 16]),
-                ([256, 64], [32, 32]),
-                ([512, 128], [64, 64]),
-            ]
-            .into_iter()
-            .map(|(t_lut, ms_lut)| {
-                Setting::new(format!("{}x{}, {}x{}", t_lut[0], t_lut[1], ms_lut[0], ms_lut[1]), move |t| {
-                    with_atmosphere(t, |a| (a.transmittance_lut, a.multiple_scattering_lut) = (t_lut, ms_lut))
+            without_atmosphere,
+        ),
+        Knob::new(
+            "atmosphere-tables",
+            "sizes of the transmittance and multiple-scattering tables",
+            [([64u32, 16u32], [8u32, 8u32]), ([128, 32], [16, 16]), ([256, 64], [32, 32]), ([512, 128], [64, 64])]
+                .into_iter()
+                .map(|(t_lut, ms_lut)| {
+                    Setting::new(format!("{}x{}, {}x{}", t_lut[0], t_lut[1], ms_lut[0], ms_lut[1]), move |t| {
+                        with_atmosphere(t, |a| (a.transmittance_lut, a.multiple_scattering_lut) = (t_lut, ms_lut))
+                    })
                 })
-            })
-            .collect(),
-            spp_levels: None,
-            inapplicable: without_atmosphere,
-        },
-        Knob {
-            name: "multiple-scattering",
-            about: "light scattered more than once in the air: the closure of the seed, or single scattering only",
-            settings: [true, false]
+                .collect(),
+            without_atmosphere,
+        ),
+        Knob::new(
+            "multiple-scattering",
+            "light scattered more than once in the air: the closure of the seed, or single scattering only",
+            [true, false]
                 .into_iter()
                 .map(|on| {
                     Setting::new(if on { "on" } else { "off" }, move |t| {
@@ -303,9 +322,8 @@ pub fn all_knobs(levels: &[u32]) -> Vec<Knob> {
                     })
                 })
                 .collect(),
-            spp_levels: None,
-            inapplicable: without_atmosphere,
-        },
+            without_atmosphere,
+        ),
     ]
 }
 

@@ -72,10 +72,10 @@ fn write_file(path: &Path, text: &str) -> Result<()> {
     Ok(crate::files::write_atomically(path, text.as_bytes())?)
 }
 
-fn markdown(sweep: &Sweep, views: &[KnobView], baseline: &SettingView, targets: Targets) -> String {
+/// The sweep's settings: adapter, timing, sizes, the reference and the models.
+fn describe_sweep(md: &mut String, sweep: &Sweep, targets: Targets) {
     let o = &sweep.options;
     let r = &sweep.reference;
-    let mut md = String::new();
     let _ = writeln!(md, "# Accuracy against time: {}\n", sweep.scene.origin);
     let _ = writeln!(md, "- adapter: {}", sweep.adapter);
     let _ = writeln!(md, "- timing: {}, median of {} repeats (seeds 1..) after a warm-up", sweep.timing, o.repeats);
@@ -120,8 +120,13 @@ fn markdown(sweep: &Sweep, views: &[KnobView], baseline: &SettingView, targets: 
          and beyond the highest along the last slope (which errs towards more samples)\n",
         targets.ssim
     );
+}
+
+fn markdown(sweep: &Sweep, views: &[KnobView], baseline: &SettingView, targets: Targets) -> String {
+    let mut md = String::new();
+    describe_sweep(&mut md, sweep, targets);
     let _ = writeln!(
-        md,
+        &mut md,
         "**Scene defaults** reach {} in {}, SSIM {} in {}.",
         percent(targets.error),
         time_to(baseline),
@@ -129,8 +134,13 @@ fn markdown(sweep: &Sweep, views: &[KnobView], baseline: &SettingView, targets: 
         time_to_ssim(baseline)
     );
     if let Some((knob, s)) = fastest_to_target(views) {
-        let _ =
-            writeln!(md, "**Fastest setting to {}**: {knob} = {}, {}.\n", percent(targets.error), s.label, time_to(s));
+        let _ = writeln!(
+            &mut md,
+            "**Fastest setting to {}**: {knob} = {}, {}.\n",
+            percent(targets.error),
+            s.label,
+            time_to(s)
+        );
     }
     for (view, knob) in views.iter().zip(&sweep.knobs) {
         let _ = writeln!(md, "## {}\n\n{}\n", view.name, view.about);
@@ -141,44 +151,49 @@ fn markdown(sweep: &Sweep, views: &[KnobView], baseline: &SettingView, targets: 
         if view.name == "spp" {
             spp_table(&mut md, sweep, &knob.settings);
         }
-        let builds = view.settings.iter().any(|s| s.build_seconds.is_some());
-        let _ = writeln!(
-            md,
-            "| setting | ms/spp | rel. RMSE @ top | PSNR @ top | SSIM @ top | rel. mean error | bias | error in budget \
-             | time to {} | time to SSIM {} |{} front |",
-            percent(targets.error),
-            targets.ssim,
-            if builds { " BVH build |" } else { "" }
-        );
-        let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|{}---|", if builds { "---|" } else { "" });
-        for s in &view.settings {
-            let build = match (builds, s.build_seconds) {
-                (false, _) => String::new(),
-                (true, Some(b)) => format!(" {:.1} ms |", b * 1e3),
-                (true, None) => " – |".into(),
-            };
-            let _ = writeln!(
-                md,
-                "| {} | {} | {} | {:.2} dB | {:.4} | {:+.2} % | {} | {} | {} | {} |{build} {} |",
-                s.label,
-                s.seconds_per_spp.map_or("–".into(), |t| format!("{:.3}", t * 1e3)),
-                percent(s.top_relative_rmse),
-                s.top_psnr_db,
-                s.top_ssim,
-                s.top_relative_mean_error * 100.0,
-                s.relative_bias.map_or("–".into(), |b| if b > 0.0 { percent(b) } else { "0".into() }),
-                s.error_in_budget.map_or("–".into(), percent),
-                time_to(s),
-                time_to_ssim(s),
-                if s.on_front { "yes" } else { "dominated" }
-            );
-        }
+        settings_table(&mut md, view, targets);
         if view.name == "denoise" {
             denoise_table(&mut md, &knob.settings);
         }
         let _ = writeln!(md, "\n![{}]({}.png)\n", view.name, view.name);
     }
     md
+}
+
+/// One row per setting of a knob: its speed, errors, times to the targets and whether it is on the front.
+fn settings_table(md: &mut String, view: &KnobView, targets: Targets) {
+    let builds = view.settings.iter().any(|s| s.build_seconds.is_some());
+    let _ = writeln!(
+        md,
+        "| setting | ms/spp | rel. RMSE @ top | PSNR @ top | SSIM @ top | rel. mean error | bias | error in budget \
+         | time to {} | time to SSIM {} |{} front |",
+        percent(targets.error),
+        targets.ssim,
+        if builds { " BVH build |" } else { "" }
+    );
+    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|{}---|", if builds { "---|" } else { "" });
+    for s in &view.settings {
+        let build = match (builds, s.build_seconds) {
+            (false, _) => String::new(),
+            (true, Some(b)) => format!(" {:.1} ms |", b * 1e3),
+            (true, None) => " – |".into(),
+        };
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {:.2} dB | {:.4} | {:+.2} % | {} | {} | {} | {} |{build} {} |",
+            s.label,
+            s.seconds_per_spp.map_or("–".into(), |t| format!("{:.3}", t * 1e3)),
+            percent(s.top_relative_rmse),
+            s.top_psnr_db,
+            s.top_ssim,
+            s.top_relative_mean_error * 100.0,
+            s.relative_bias.map_or("–".into(), |b| if b > 0.0 { percent(b) } else { "0".into() }),
+            s.error_in_budget.map_or("–".into(), percent),
+            time_to(s),
+            time_to_ssim(s),
+            if s.on_front { "yes" } else { "dominated" }
+        );
+    }
 }
 
 /// The baseline's convergence: one row per level, and the log–log slope (−½ for pure noise).

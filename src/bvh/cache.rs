@@ -298,38 +298,7 @@ pub fn write(path: &Path, mesh: &PackedMesh, source_hash: [u8; 32], params_hash:
 /// size, offset, link and index before anything of it is used.
 pub fn read(path: &Path, source_hash: [u8; 32], params_hash: [u8; 32]) -> Result<PackedMesh, CacheProblem> {
     let invalid = |m: String| CacheProblem::Invalid(m);
-    // Reads below stop at this size: the header's sections are checked against it.
-    let (mut file, len) = match crate::files::input::open(path) {
-        Ok(opened) => opened,
-        Err(e) if e.is_not_found() => return Err(CacheProblem::Missing),
-        Err(e) => return Err(invalid(e.message())),
-    };
-    if len < HEADER_BYTES {
-        return Err(invalid(format!("truncated: {len} bytes is shorter than the {HEADER_BYTES}-byte header")));
-    }
-    let mut header_bytes = [0u8; HEADER_BYTES as usize];
-    file.read_exact(&mut header_bytes).map_err(|e| invalid(format!("cannot read the header: {e}")))?;
-    let header: Header = bytemuck::pod_read_unaligned(&header_bytes);
-    check_header(&header, len)?;
-    if header.params_hash != params_hash {
-        return Err(CacheProblem::Stale("built with other parameters (quality, node layout or rt version)".into()));
-    }
-    if header.source_hash != source_hash {
-        return Err(CacheProblem::Stale("the source files changed since it was packed".into()));
-    }
-
-    // The size was checked against the header, so this allocation is what the file holds.
-    // u32 words: every GPU struct is 4-byte aligned, so sections cast in place.
-    let mut words = vec![0u32; (len / 4) as usize];
-    let bytes: &mut [u8] = bytemuck::cast_slice_mut(&mut words);
-    bytes[..HEADER_BYTES as usize].copy_from_slice(&header_bytes);
-    file.read_exact(&mut bytes[HEADER_BYTES as usize..]).map_err(|e| invalid(format!("cannot read: {e}")))?;
-    let checksum_at = offset_of!(Header, checksum);
-    bytes[checksum_at..checksum_at + 32].fill(0);
-    if *blake3::hash(bytes).as_bytes() != header.checksum {
-        return Err(invalid("checksum mismatch: the file is corrupt".into()));
-    }
-
+    let (header, words) = read_words(path, source_hash, params_hash)?;
     let section = |i: usize| {
         let s = header.sections[i];
         &words[(s.offset / 4) as usize..((s.offset + s.bytes) / 4) as usize]
@@ -348,39 +317,10 @@ pub fn read(path: &Path, source_hash: [u8; 32], params_hash: [u8; 32]) -> Result
         bytemuck::pod_collect_to_vec(bytemuck::cast_slice::<u32, u8>(section(TEXTURES)));
     let textures = cached_texture::decode(&texture_table, section(TEXELS)).map_err(invalid)?;
     let tangents: Vec<GpuTriangleTangents> = bytemuck::cast_slice(section(TANGENTS)).to_vec();
-    if !tangents.is_empty() && tangents.len() != triangles.len() {
-        return Err(invalid(format!("{} triangle tangents for {} triangles", tangents.len(), triangles.len())));
-    }
-    if let Some(i) = tangents.iter().position(|t| ![t.t0, t.t1, t.t2].into_iter().flatten().all(f32::is_finite)) {
-        return Err(invalid(format!("triangle {i} has a non-finite tangent")));
-    }
     let second_uvs: Vec<GpuTriangleUvs> = bytemuck::cast_slice(section(SECOND_UVS)).to_vec();
-    if !second_uvs.is_empty() && second_uvs.len() != triangles.len() {
-        return Err(invalid(format!("{} triangles' second uvs for {} triangles", second_uvs.len(), triangles.len())));
-    }
-    if let Some(i) = second_uvs.iter().position(|t| ![t.uv0, t.uv1, t.uv2].into_iter().flatten().all(f32::is_finite)) {
-        return Err(invalid(format!("triangle {i} has a non-finite texture coordinate of set 1")));
-    }
+    check_triangle_extras(&tangents, &second_uvs, triangles.len()).map_err(invalid)?;
     check_contents(&nodes, &triangles, &shading, materials, names.len(), bounds).map_err(invalid)?;
-    if let Some((i, t)) = materials
-        .iter()
-        .enumerate()
-        .find_map(|(i, m)| m.textures().find(|&t| t as usize >= textures.len()).map(|t| (i, t)))
-    {
-        return Err(invalid(format!("material {i} uses texture {t} of {}", textures.len())));
-    }
-    if let Some(i) =
-        materials.iter().position(|m| m.mix_material != NO_TEXTURE && m.mix_material as usize >= materials.len())
-    {
-        return Err(invalid(format!(
-            "material {i} mixes with material {} of {}",
-            materials[i].mix_material,
-            materials.len()
-        )));
-    }
-    if let Some(i) = materials.iter().position(|m| !m.tangent_known()) {
-        return Err(invalid(format!("material {i} has an unknown tangent kind")));
-    }
+    check_material_links(materials, textures.len()).map_err(invalid)?;
 
     let stats = BvhStats {
         nodes: header.stats_nodes as usize,
@@ -413,6 +353,83 @@ pub fn read(path: &Path, source_hash: [u8; 32], params_hash: [u8; 32]) -> Result
         vertex_count: header.source_vertices,
         triangle_count: header.source_triangles,
     })
+}
+
+/// The cache's header and its whole contents as u32 words, once the header, the hashes
+/// it must match and the checksum are checked.
+fn read_words(path: &Path, source_hash: [u8; 32], params_hash: [u8; 32]) -> Result<(Header, Vec<u32>), CacheProblem> {
+    let invalid = |m: String| CacheProblem::Invalid(m);
+    // Reads below stop at this size: the header's sections are checked against it.
+    let (mut file, len) = match crate::files::input::open(path) {
+        Ok(opened) => opened,
+        Err(e) if e.is_not_found() => return Err(CacheProblem::Missing),
+        Err(e) => return Err(invalid(e.message())),
+    };
+    if len < HEADER_BYTES {
+        return Err(invalid(format!("truncated: {len} bytes is shorter than the {HEADER_BYTES}-byte header")));
+    }
+    let mut header_bytes = [0u8; HEADER_BYTES as usize];
+    file.read_exact(&mut header_bytes).map_err(|e| invalid(format!("cannot read the header: {e}")))?;
+    let header: Header = bytemuck::pod_read_unaligned(&header_bytes);
+    check_header(&header, len)?;
+    if header.params_hash != params_hash {
+        return Err(CacheProblem::Stale("built with other parameters (quality, node layout or rt version)".into()));
+    }
+    if header.source_hash != source_hash {
+        return Err(CacheProblem::Stale("the source files changed since it was packed".into()));
+    }
+
+    // The size was checked against the header, so this allocation is what the file holds.
+    // u32 words: every GPU struct is 4-byte aligned, so sections cast in place.
+    let mut words = vec![0u32; (len / 4) as usize];
+    let bytes: &mut [u8] = bytemuck::cast_slice_mut(&mut words);
+    bytes[..HEADER_BYTES as usize].copy_from_slice(&header_bytes);
+    file.read_exact(&mut bytes[HEADER_BYTES as usize..]).map_err(|e| invalid(format!("cannot read: {e}")))?;
+    let checksum_at = offset_of!(Header, checksum);
+    bytes[checksum_at..checksum_at + 32].fill(0);
+    if *blake3::hash(bytes).as_bytes() != header.checksum {
+        return Err(invalid("checksum mismatch: the file is corrupt".into()));
+    }
+    Ok((header, words))
+}
+
+/// Tangents and second uvs, where present, are one per triangle and finite.
+fn check_triangle_extras(
+    tangents: &[GpuTriangleTangents],
+    second_uvs: &[GpuTriangleUvs],
+    triangles: usize,
+) -> Result<(), String> {
+    if !tangents.is_empty() && tangents.len() != triangles {
+        return Err(format!("{} triangle tangents for {triangles} triangles", tangents.len()));
+    }
+    if let Some(i) = tangents.iter().position(|t| ![t.t0, t.t1, t.t2].into_iter().flatten().all(f32::is_finite)) {
+        return Err(format!("triangle {i} has a non-finite tangent"));
+    }
+    if !second_uvs.is_empty() && second_uvs.len() != triangles {
+        return Err(format!("{} triangles' second uvs for {triangles} triangles", second_uvs.len()));
+    }
+    if let Some(i) = second_uvs.iter().position(|t| ![t.uv0, t.uv1, t.uv2].into_iter().flatten().all(f32::is_finite)) {
+        return Err(format!("triangle {i} has a non-finite texture coordinate of set 1"));
+    }
+    Ok(())
+}
+
+/// Every texture and mix material a material names exists, and its tangent kind is known.
+fn check_material_links(materials: &[CachedMaterial], textures: usize) -> Result<(), String> {
+    if let Some((i, t)) =
+        materials.iter().enumerate().find_map(|(i, m)| m.textures().find(|&t| t as usize >= textures).map(|t| (i, t)))
+    {
+        return Err(format!("material {i} uses texture {t} of {textures}"));
+    }
+    if let Some(i) =
+        materials.iter().position(|m| m.mix_material != NO_TEXTURE && m.mix_material as usize >= materials.len())
+    {
+        return Err(format!("material {i} mixes with material {} of {}", materials[i].mix_material, materials.len()));
+    }
+    if let Some(i) = materials.iter().position(|m| !m.tangent_known()) {
+        return Err(format!("material {i} has an unknown tangent kind"));
+    }
+    Ok(())
 }
 
 /// Magic, version, layout and a section table that tiles the file exactly.

@@ -4,7 +4,7 @@
 //! lens whose aperture is a disk or a regular polygon.
 
 use super::panorama::{self, Panorama};
-use super::parse::{SceneError, Seg::Key, Source};
+use super::parse::{SceneError, Seg, Seg::Key, Source};
 use super::schema;
 use glam::{Vec2, Vec3};
 use serde::Deserialize;
@@ -221,94 +221,25 @@ const DEFAULT_ORTHO_SCALE: f32 = 6.0;
 /// Blender's limit on `aperture_blades`.
 pub const MAX_BLADES: u32 = 16;
 
+/// Where the camera's keys sit in the scene file, for errors.
+const AT: [Seg<'static>; 1] = [Key("camera")];
+
 pub(super) fn validate(src: &Source, c: schema::Camera) -> Result<Camera, SceneError> {
-    let p = [Key("camera")];
+    let p = AT;
     src.finite(&p, "position", &c.position)?;
     src.finite(&p, "look_at", &c.look_at)?;
     if c.position == c.look_at {
         return Err(src.error(&p, "look_at", "must differ from position"));
     }
     let (position, look_at) = (Vec3::from(c.position), Vec3::from(c.look_at));
-    let up = match c.up {
-        None => None,
-        Some(up) => {
-            src.finite(&p, "up", &up)?;
-            let (up, forward) = (Vec3::from(up), (look_at - position).normalize());
-            if up.cross(forward).length_squared() <= 1e-12 * up.length_squared() {
-                return Err(src.error(&p, "up", "must be a direction not along the view (look_at − position)"));
-            }
-            Some(up)
-        }
-    };
-    let only = |key: &str, present: bool, condition: &str| match present {
-        true => Err(src.error(&p, key, format!("only applies {condition}"))),
-        false => Ok(()),
-    };
-    let projection = match (panorama::validate(src, &c)?, c.projection) {
-        (Some(panorama), _) => {
-            only("fov_y_deg", c.fov_y_deg.is_some(), "to projection = \"perspective\"")?;
-            only("ortho_scale", c.ortho_scale.is_some(), "to projection = \"orthographic\"")?;
-            // A panorama's focal length only sizes its aperture.
-            let with_fstop = "to a panorama with fstop (its aperture)";
-            only("focal_length_mm", c.focal_length_mm.is_some() && c.fstop.is_none(), with_fstop)?;
-            let lens_mm = c.focal_length_mm.unwrap_or(DEFAULT_LENS_MM);
-            src.check(&p, "focal_length_mm", &[lens_mm], "positive", |f| f > 0.0)?;
-            Projection::Panoramic { panorama, lens_mm }
-        }
-        (None, schema::Projection::Orthographic) => {
-            let perspective_only = "to projection = \"perspective\"";
-            only("fov_y_deg", c.fov_y_deg.is_some(), perspective_only)?;
-            only("focal_length_mm", c.focal_length_mm.is_some(), perspective_only)?;
-            let scale = c.ortho_scale.unwrap_or(DEFAULT_ORTHO_SCALE);
-            src.check(&p, "ortho_scale", &[scale], "positive", |s| s > 0.0)?;
-            Projection::Orthographic { scale }
-        }
-        (None, _) => {
-            only("ortho_scale", c.ortho_scale.is_some(), "to projection = \"orthographic\"")?;
-            match (c.fov_y_deg, c.focal_length_mm) {
-                (Some(_), Some(_)) => return Err(src.error(&p, "focal_length_mm", "excludes fov_y_deg: give one")),
-                (None, Some(mm)) => {
-                    src.check(&p, "focal_length_mm", &[mm], "positive", |f| f > 0.0)?;
-                    Projection::FocalLength { mm }
-                }
-                (fov, None) => {
-                    let degrees = fov.unwrap_or(DEFAULT_FOV_Y_DEG);
-                    src.check(&p, "fov_y_deg", &[degrees], "in (0, 180)", |f| f > 0.0 && f < 180.0)?;
-                    Projection::FovY { degrees }
-                }
-            }
-        }
-    };
+    let up = c.up.map(|up| validate_up(src, up, look_at - position)).transpose()?;
+    let projection = validate_projection(src, &c)?;
     src.check(&p, "sensor_width_mm", &[c.sensor_width_mm], "positive", |s| s > 0.0)?;
     src.check(&p, "sensor_height_mm", &[c.sensor_height_mm], "positive", |s| s > 0.0)?;
     src.finite(&p, "shift_x", &[c.shift_x])?;
     src.finite(&p, "shift_y", &[c.shift_y])?;
     src.check(&p, "pixel_aspect", &c.pixel_aspect, "positive", |a| a > 0.0)?;
-    let depth_of_field = match c.fstop {
-        None => {
-            let with_fstop = "with fstop (depth of field)";
-            only("focus_distance", c.focus_distance.is_some(), with_fstop)?;
-            only("blades", c.blades.is_some(), with_fstop)?;
-            only("blade_rotation_deg", c.blade_rotation_deg.is_some(), with_fstop)?;
-            only("aperture_ratio", c.aperture_ratio.is_some(), with_fstop)?;
-            None
-        }
-        Some(fstop) => {
-            src.check(&p, "fstop", &[fstop], "positive", |f| f > 0.0)?;
-            let focus_distance = c.focus_distance.unwrap_or_else(|| position.distance(look_at));
-            src.check(&p, "focus_distance", &[focus_distance], "positive", |d| d > 0.0)?;
-            let blades = c.blades.unwrap_or(0);
-            if blades == 1 || blades == 2 || blades > MAX_BLADES {
-                let message = format!("must be 0 (round) or in 3..={MAX_BLADES}, got {blades}");
-                return Err(src.error(&p, "blades", message));
-            }
-            let blade_rotation_deg = c.blade_rotation_deg.unwrap_or(0.0);
-            src.finite(&p, "blade_rotation_deg", &[blade_rotation_deg])?;
-            let aperture_ratio = c.aperture_ratio.unwrap_or(1.0);
-            src.check(&p, "aperture_ratio", &[aperture_ratio], "positive", |r| r > 0.0)?;
-            Some(DepthOfField { fstop, focus_distance, blades, blade_rotation_deg, aperture_ratio })
-        }
-    };
+    let depth_of_field = validate_depth_of_field(src, &c, position.distance(look_at))?;
     src.check(&p, "clip_start", &[c.clip_start], "at least 0", |s| s >= 0.0)?;
     let clip_end = c.clip_end.unwrap_or(f32::INFINITY);
     if c.clip_end.is_some() {
@@ -329,6 +260,92 @@ pub(super) fn validate(src: &Source, c: schema::Camera) -> Result<Camera, SceneE
         clip_end,
         motion: c.motion.as_deref().map(|poses| super::motion::validate_camera(src, poses)).transpose()?,
     })
+}
+
+/// An error if `key` is `present` where it does not apply (`condition` says where it does).
+fn only(src: &Source, key: &str, present: bool, condition: &str) -> Result<(), SceneError> {
+    match present {
+        true => Err(src.error(&AT, key, format!("only applies {condition}"))),
+        false => Ok(()),
+    }
+}
+
+fn validate_up(src: &Source, up: [f32; 3], view: Vec3) -> Result<Vec3, SceneError> {
+    src.finite(&AT, "up", &up)?;
+    let (up, forward) = (Vec3::from(up), view.normalize());
+    if up.cross(forward).length_squared() <= 1e-12 * up.length_squared() {
+        return Err(src.error(&AT, "up", "must be a direction not along the view (look_at − position)"));
+    }
+    Ok(up)
+}
+
+fn validate_projection(src: &Source, c: &schema::Camera) -> Result<Projection, SceneError> {
+    let p = AT;
+    let (perspective_only, orthographic_only) = ("to projection = \"perspective\"", "to projection = \"orthographic\"");
+    Ok(match (panorama::validate(src, c)?, c.projection) {
+        (Some(panorama), _) => {
+            only(src, "fov_y_deg", c.fov_y_deg.is_some(), perspective_only)?;
+            only(src, "ortho_scale", c.ortho_scale.is_some(), orthographic_only)?;
+            // A panorama's focal length only sizes its aperture.
+            let with_fstop = "to a panorama with fstop (its aperture)";
+            only(src, "focal_length_mm", c.focal_length_mm.is_some() && c.fstop.is_none(), with_fstop)?;
+            let lens_mm = c.focal_length_mm.unwrap_or(DEFAULT_LENS_MM);
+            src.check(&p, "focal_length_mm", &[lens_mm], "positive", |f| f > 0.0)?;
+            Projection::Panoramic { panorama, lens_mm }
+        }
+        (None, schema::Projection::Orthographic) => {
+            only(src, "fov_y_deg", c.fov_y_deg.is_some(), perspective_only)?;
+            only(src, "focal_length_mm", c.focal_length_mm.is_some(), perspective_only)?;
+            let scale = c.ortho_scale.unwrap_or(DEFAULT_ORTHO_SCALE);
+            src.check(&p, "ortho_scale", &[scale], "positive", |s| s > 0.0)?;
+            Projection::Orthographic { scale }
+        }
+        (None, _) => {
+            only(src, "ortho_scale", c.ortho_scale.is_some(), orthographic_only)?;
+            match (c.fov_y_deg, c.focal_length_mm) {
+                (Some(_), Some(_)) => return Err(src.error(&p, "focal_length_mm", "excludes fov_y_deg: give one")),
+                (None, Some(mm)) => {
+                    src.check(&p, "focal_length_mm", &[mm], "positive", |f| f > 0.0)?;
+                    Projection::FocalLength { mm }
+                }
+                (fov, None) => {
+                    let degrees = fov.unwrap_or(DEFAULT_FOV_Y_DEG);
+                    src.check(&p, "fov_y_deg", &[degrees], "in (0, 180)", |f| f > 0.0 && f < 180.0)?;
+                    Projection::FovY { degrees }
+                }
+            }
+        }
+    })
+}
+
+/// The aperture, with `fstop`; focus at `look_at_distance` unless given.
+fn validate_depth_of_field(
+    src: &Source,
+    c: &schema::Camera,
+    look_at_distance: f32,
+) -> Result<Option<DepthOfField>, SceneError> {
+    let p = AT;
+    let Some(fstop) = c.fstop else {
+        let with_fstop = "with fstop (depth of field)";
+        only(src, "focus_distance", c.focus_distance.is_some(), with_fstop)?;
+        only(src, "blades", c.blades.is_some(), with_fstop)?;
+        only(src, "blade_rotation_deg", c.blade_rotation_deg.is_some(), with_fstop)?;
+        only(src, "aperture_ratio", c.aperture_ratio.is_some(), with_fstop)?;
+        return Ok(None);
+    };
+    src.check(&p, "fstop", &[fstop], "positive", |f| f > 0.0)?;
+    let focus_distance = c.focus_distance.unwrap_or(look_at_distance);
+    src.check(&p, "focus_distance", &[focus_distance], "positive", |d| d > 0.0)?;
+    let blades = c.blades.unwrap_or(0);
+    if blades == 1 || blades == 2 || blades > MAX_BLADES {
+        let message = format!("must be 0 (round) or in 3..={MAX_BLADES}, got {blades}");
+        return Err(src.error(&p, "blades", message));
+    }
+    let blade_rotation_deg = c.blade_rotation_deg.unwrap_or(0.0);
+    src.finite(&p, "blade_rotation_deg", &[blade_rotation_deg])?;
+    let aperture_ratio = c.aperture_ratio.unwrap_or(1.0);
+    src.check(&p, "aperture_ratio", &[aperture_ratio], "positive", |r| r > 0.0)?;
+    Ok(Some(DepthOfField { fstop, focus_distance, blades, blade_rotation_deg, aperture_ratio }))
 }
 
 #[cfg(test)]

@@ -20,85 +20,15 @@ pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, 
     if let Err((key, message)) = render.check() {
         return Err(src.error(&[Key("render")], key, message));
     }
-
-    let mut materials: Vec<(String, Material)> = file.materials.into_iter().collect();
-    materials.sort_by_key(|(name, _)| src.locate(&[Key("materials"), Key(name)]).map(|s| s.start));
-    for (name, m) in &materials {
-        material(src, &[Key("materials"), Key(name)], m)?;
-    }
-    let material_ref = |p: &[_], name: Option<String>| match name {
-        Some(n) if !materials.iter().any(|(m, _)| *m == n) => {
-            let names = hint(&n, materials.iter().map(|(m, _)| m.as_str()));
-            Err(src.error(p, "material", format!("`{n}` names no [materials.*] table{names}")))
-        }
-        _ => Ok(name),
-    };
-
-    let mut meshes = Vec::new();
-    for (i, m) in file.mesh.into_iter().enumerate() {
-        let p = [Key("mesh"), Index(i)];
-        if m.asset.is_empty() {
-            return Err(src.error(&p, "asset", "must name a file or folder, got \"\""));
-        }
-        meshes.push(MeshInstance {
-            object_to_world: transform(src, &p, &m)?,
-            asset: base_dir.join(&m.asset),
-            material: material_ref(&p, m.material)?,
-            shadow_terminator: ShadowTerminator::validate(
-                src,
-                &p,
-                m.shadow_terminator_geometry_offset,
-                m.shadow_terminator_shading_offset,
-            )?,
-            holdout: m.holdout,
-            motion: m.motion.as_deref().map(|keys| super::motion::validate_keys(src, &p, keys)).transpose()?,
-        });
-    }
-    let mut spheres = Vec::new();
-    for (i, s) in file.sphere.into_iter().enumerate() {
-        let p = [Key("sphere"), Index(i)];
-        let within = format!("within ±{MAX_SPHERE_EXTENT:e} m (rt intersects spheres in f32)");
-        src.check(&p, "center", &s.center, &within, |c| c.abs() <= MAX_SPHERE_EXTENT)?;
-        let size = format!("positive and at most {MAX_SPHERE_EXTENT:e} m (rt intersects spheres in f32)");
-        src.check(&p, "radius", &[s.radius], &size, |r| r > 0.0 && r <= MAX_SPHERE_EXTENT)?;
-        let material = material_ref(&p, s.material)?;
-        spheres.push(Sphere { center: s.center.into(), radius: s.radius, material });
-    }
-
-    let mut lights = Vec::new();
-    for (i, l) in file.light.into_iter().enumerate() {
-        lights.push(light::validate(src, i, l)?);
-    }
-    let mut instance_sets = Vec::new();
-    for (i, set) in file.instances.into_iter().enumerate() {
-        let p = [Key("instances"), Index(i)];
-        for (field, value) in [("asset", &set.asset), ("file", &set.file)] {
-            if value.is_empty() {
-                return Err(src.error(&p, field, "must name a file or folder, got \"\""));
-            }
-        }
-        for (j, name) in set.materials.iter().enumerate() {
-            if !materials.iter().any(|(m, _)| m == name) {
-                let names = hint(name, materials.iter().map(|(m, _)| m.as_str()));
-                let message = format!("entry {j}: `{name}` names no [materials.*] table{names}");
-                return Err(src.error(&p, "materials", message));
-            }
-        }
-        let shadow_terminator = ShadowTerminator::validate(
-            src,
-            &p,
-            set.shadow_terminator_geometry_offset,
-            set.shadow_terminator_shading_offset,
-        )?;
-        instance_sets.push(InstanceSet {
-            shadow_terminator,
-            asset: base_dir.join(&set.asset),
-            file: base_dir.join(&set.file),
-            materials: set.materials,
-            holdout: set.holdout,
-        });
-    }
-
+    let materials = materials(src, file.materials)?;
+    let meshes = file.mesh.into_iter().enumerate().map(|(i, m)| mesh(src, i, m, &materials, base_dir));
+    let meshes = meshes.collect::<Result<_, _>>()?;
+    let spheres = file.sphere.into_iter().enumerate().map(|(i, s)| sphere(src, i, s, &materials));
+    let spheres = spheres.collect::<Result<_, _>>()?;
+    let lights = file.light.into_iter().enumerate().map(|(i, l)| light::validate(src, i, l));
+    let lights = lights.collect::<Result<_, _>>()?;
+    let sets = file.instances.into_iter().enumerate().map(|(i, set)| instance_set(src, i, set, &materials, base_dir));
+    let instance_sets = sets.collect::<Result<_, _>>()?;
     Ok(Scene {
         origin: src.origin.to_owned(),
         render,
@@ -110,6 +40,109 @@ pub(super) fn scene(file: File, src: &Source, base_dir: &Path) -> Result<Scene, 
         spheres,
         lights,
         instance_sets,
+    })
+}
+
+/// The materials in the order the file gives them, each checked.
+fn materials(
+    src: &Source,
+    materials: std::collections::BTreeMap<String, Material>,
+) -> Result<Vec<(String, Material)>, SceneError> {
+    let mut materials: Vec<(String, Material)> = materials.into_iter().collect();
+    materials.sort_by_key(|(name, _)| src.locate(&[Key("materials"), Key(name)]).map(|s| s.start));
+    for (name, m) in &materials {
+        material(src, &[Key("materials"), Key(name)], m)?;
+    }
+    Ok(materials)
+}
+
+/// An error unless `name` names one of `materials` (`entry`: where in a list it stands).
+fn check_material_name(
+    src: &Source,
+    p: &[Seg],
+    key: &str,
+    entry: Option<usize>,
+    name: &str,
+    materials: &[(String, Material)],
+) -> Result<(), SceneError> {
+    if materials.iter().any(|(m, _)| m == name) {
+        return Ok(());
+    }
+    let names = hint(name, materials.iter().map(|(m, _)| m.as_str()));
+    let entry = entry.map_or(String::new(), |j| format!("entry {j}: "));
+    Err(src.error(p, key, format!("{entry}`{name}` names no [materials.*] table{names}")))
+}
+
+fn mesh(
+    src: &Source,
+    i: usize,
+    m: schema::Mesh,
+    materials: &[(String, Material)],
+    base_dir: &Path,
+) -> Result<MeshInstance, SceneError> {
+    let p = [Key("mesh"), Index(i)];
+    if m.asset.is_empty() {
+        return Err(src.error(&p, "asset", "must name a file or folder, got \"\""));
+    }
+    let object_to_world = transform(src, &p, &m)?;
+    if let Some(name) = &m.material {
+        check_material_name(src, &p, "material", None, name, materials)?;
+    }
+    Ok(MeshInstance {
+        object_to_world,
+        asset: base_dir.join(&m.asset),
+        material: m.material,
+        shadow_terminator: ShadowTerminator::validate(
+            src,
+            &p,
+            m.shadow_terminator_geometry_offset,
+            m.shadow_terminator_shading_offset,
+        )?,
+        holdout: m.holdout,
+        motion: m.motion.as_deref().map(|keys| super::motion::validate_keys(src, &p, keys)).transpose()?,
+    })
+}
+
+fn sphere(src: &Source, i: usize, s: schema::Sphere, materials: &[(String, Material)]) -> Result<Sphere, SceneError> {
+    let p = [Key("sphere"), Index(i)];
+    let within = format!("within ±{MAX_SPHERE_EXTENT:e} m (rt intersects spheres in f32)");
+    src.check(&p, "center", &s.center, &within, |c| c.abs() <= MAX_SPHERE_EXTENT)?;
+    let size = format!("positive and at most {MAX_SPHERE_EXTENT:e} m (rt intersects spheres in f32)");
+    src.check(&p, "radius", &[s.radius], &size, |r| r > 0.0 && r <= MAX_SPHERE_EXTENT)?;
+    if let Some(name) = &s.material {
+        check_material_name(src, &p, "material", None, name, materials)?;
+    }
+    Ok(Sphere { center: s.center.into(), radius: s.radius, material: s.material })
+}
+
+fn instance_set(
+    src: &Source,
+    i: usize,
+    set: schema::Instances,
+    materials: &[(String, Material)],
+    base_dir: &Path,
+) -> Result<InstanceSet, SceneError> {
+    let p = [Key("instances"), Index(i)];
+    for (field, value) in [("asset", &set.asset), ("file", &set.file)] {
+        if value.is_empty() {
+            return Err(src.error(&p, field, "must name a file or folder, got \"\""));
+        }
+    }
+    for (j, name) in set.materials.iter().enumerate() {
+        check_material_name(src, &p, "materials", Some(j), name, materials)?;
+    }
+    let shadow_terminator = ShadowTerminator::validate(
+        src,
+        &p,
+        set.shadow_terminator_geometry_offset,
+        set.shadow_terminator_shading_offset,
+    )?;
+    Ok(InstanceSet {
+        shadow_terminator,
+        asset: base_dir.join(&set.asset),
+        file: base_dir.join(&set.file),
+        materials: set.materials,
+        holdout: set.holdout,
     })
 }
 

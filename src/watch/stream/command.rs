@@ -111,96 +111,111 @@ fn positive_float(text: &str, key: &str) -> Result<f32, String> {
 }
 
 fn camera(args: &[&str]) -> Result<Camera, String> {
-    let mut view = None;
-    let mut lens = None;
-    let mut optics = Optics::default();
-    let mut radius = None;
-    let mut aperture = Aperture { radius: 0.0, focus_distance: 0.0, blades: 0, blade_rotation_deg: 0.0, ratio: 1.0 };
-    let mut aperture_keys = Vec::new();
+    let mut parsed = CameraArgs::new();
     for arg in args {
         let Some((key, value)) = arg.split_once('=') else {
             return Err(format!("camera: `{arg}` is not key=value"));
         };
-        if APERTURE_KEYS.contains(&key) {
-            aperture_keys.push(key);
+        parsed.set(key, value)?;
+    }
+    parsed.camera()
+}
+
+/// A camera command's keys as read so far.
+struct CameraArgs {
+    view: Option<Mat4>,
+    lens: Option<Lens>,
+    optics: Optics,
+    radius: Option<f32>,
+    aperture: Aperture,
+    aperture_keys: Vec<String>,
+}
+
+impl CameraArgs {
+    fn new() -> Self {
+        CameraArgs {
+            view: None,
+            lens: None,
+            optics: Optics::default(),
+            radius: None,
+            aperture: Aperture { radius: 0.0, focus_distance: 0.0, blades: 0, blade_rotation_deg: 0.0, ratio: 1.0 },
+            aperture_keys: Vec::new(),
         }
-        let projection = match key {
-            "view" => {
-                view = Some(matrix(value, key)?);
-                None
+    }
+
+    fn set(&mut self, key: &str, value: &str) -> Result<(), String> {
+        if APERTURE_KEYS.contains(&key) {
+            self.aperture_keys.push(key.to_owned());
+        }
+        if let Some(lens) = lens(key, value)? {
+            if self.lens.is_some() {
+                return Err("camera: give one of lens=, fov=, ortho=, projection=".into());
             }
-            "lens" => Some(Lens::FocalLength(positive_float(value, key)?)),
-            "fov" => {
-                let degrees = positive_float(value, key)?;
-                if degrees >= 180.0 {
-                    return Err(format!("fov must be below 180 degrees, not {degrees}"));
-                }
-                Some(Lens::FovY(degrees))
-            }
-            "ortho" => Some(Lens::Orthographic(positive_float(value, key)?)),
-            "projection" => Some(Lens::Matrix(matrix(value, key)?)),
+            self.lens = Some(lens);
+            return Ok(());
+        }
+        match key {
+            "view" => self.view = Some(matrix(value, key)?),
             "sensor" => {
                 let s = floats(value, 2, key)?;
                 if s.iter().any(|&v| v <= 0.0) {
                     return Err(format!("sensor must be positive, not {value}"));
                 }
-                optics.sensor = Vec2::new(s[0], s[1]);
-                None
+                self.optics.sensor = Vec2::new(s[0], s[1]);
             }
             "fit" => {
-                optics.fit = match value {
+                self.optics.fit = match value {
                     "auto" => SensorFit::Auto,
                     "horizontal" => SensorFit::Horizontal,
                     "vertical" => SensorFit::Vertical,
                     _ => return Err(format!("fit: `{value}` is not auto, horizontal or vertical")),
                 };
-                None
             }
             "shift" => {
                 let s = floats(value, 2, key)?;
-                optics.shift = Vec2::new(s[0], s[1]);
-                None
+                self.optics.shift = Vec2::new(s[0], s[1]);
             }
-            "aperture" => {
-                radius = Some(positive_float(value, key)?);
-                None
-            }
-            "focus" => {
-                aperture.focus_distance = positive_float(value, key)?;
-                None
-            }
-            "blades" => {
-                aperture.blades = number(value, key)?;
-                None
-            }
-            "blade_rotation" => {
-                aperture.blade_rotation_deg = floats(value, 1, key)?[0];
-                None
-            }
-            "aperture_ratio" => {
-                aperture.ratio = positive_float(value, key)?;
-                None
-            }
+            "aperture" => self.radius = Some(positive_float(value, key)?),
+            "focus" => self.aperture.focus_distance = positive_float(value, key)?,
+            "blades" => self.aperture.blades = number(value, key)?,
+            "blade_rotation" => self.aperture.blade_rotation_deg = floats(value, 1, key)?[0],
+            "aperture_ratio" => self.aperture.ratio = positive_float(value, key)?,
             _ => return Err(format!("camera: unknown key `{key}`{}", did_you_mean(key, CAMERA_KEYS.into_iter()))),
-        };
-        if let Some(p) = projection {
-            if lens.is_some() {
-                return Err("camera: give one of lens=, fov=, ortho=, projection=".into());
-            }
-            lens = Some(p);
         }
+        Ok(())
     }
-    let view = view.ok_or("camera needs view=<16 numbers, the world-to-camera matrix row by row>")?;
-    optics.lens = lens.unwrap_or(optics.lens);
-    optics.aperture = match radius {
-        Some(radius) if aperture.focus_distance > 0.0 => Some(Aperture { radius, ..aperture }),
-        Some(_) => return Err("camera: aperture= needs focus=<metres to the plane in focus>".into()),
-        None => match aperture_keys.first() {
-            Some(key) => return Err(format!("camera: {key}= only applies with aperture=<radius in metres>")),
-            None => None,
-        },
-    };
-    camera_from_view(view, optics)
+
+    fn camera(self) -> Result<Camera, String> {
+        let view = self.view.ok_or("camera needs view=<16 numbers, the world-to-camera matrix row by row>")?;
+        let mut optics = self.optics;
+        optics.lens = self.lens.unwrap_or(optics.lens);
+        optics.aperture = match self.radius {
+            Some(radius) if self.aperture.focus_distance > 0.0 => Some(Aperture { radius, ..self.aperture }),
+            Some(_) => return Err("camera: aperture= needs focus=<metres to the plane in focus>".into()),
+            None => match self.aperture_keys.first() {
+                Some(key) => return Err(format!("camera: {key}= only applies with aperture=<radius in metres>")),
+                None => None,
+            },
+        };
+        camera_from_view(view, optics)
+    }
+}
+
+/// The projection `key` sets, if it is one of the lens keys.
+fn lens(key: &str, value: &str) -> Result<Option<Lens>, String> {
+    Ok(Some(match key {
+        "lens" => Lens::FocalLength(positive_float(value, key)?),
+        "fov" => {
+            let degrees = positive_float(value, key)?;
+            if degrees >= 180.0 {
+                return Err(format!("fov must be below 180 degrees, not {degrees}"));
+            }
+            Lens::FovY(degrees)
+        }
+        "ortho" => Lens::Orthographic(positive_float(value, key)?),
+        "projection" => Lens::Matrix(matrix(value, key)?),
+        _ => return Ok(None),
+    }))
 }
 
 #[cfg(test)]

@@ -11,36 +11,8 @@
 
 //#include "constants.wgsl"
 
-// Mirrored by `GpuAtmosphere` in src/layout.rs.
-struct Atmosphere {
-    // Scattering coefficients at the ground, per metre.
-    rayleigh_scattering: vec3f,
-    bottom_radius: f32,
-    mie_scattering: vec3f,
-    top_altitude: f32,
-    mie_absorption: vec3f,
-    rayleigh_scale_height: f32,
-    ozone_absorption: vec3f,
-    mie_scale_height: f32,
-    ground_albedo: vec3f,
-    mie_g: f32,
-    // The ozone's density is a tent of this centre and half width.
-    ozone_center: f32,
-    ozone_half_width: f32,
-    // Altitude of rt's y = 0 plane.
-    ground_altitude: f32,
-    // March steps per ray.
-    steps: u32,
-    // Entries of the tables in `atmosphere_luts`: transmittance, then the planes
-    // of the multiple scattering table, then the ground's rows.
-    transmittance_size: vec2u,
-    scattering_size: vec2u,
-    scattering_offset: u32,
-    ground_offset: u32,
-    // 1 to add light scattered more than once, 0 for single scattering only.
-    multiple_scattering: f32,
-    _pad0: u32,
-}
+// Atmosphere: declared in src/layout.rs (GpuAtmosphere).
+//#include "Atmosphere.struct.wgsl"
 
 // Scattering and extinction coefficients at one altitude.
 struct Medium {

@@ -8,20 +8,8 @@
 //#include "rng.wgsl"
 //#include "srgb.wgsl"
 
-// Mirrored by `GpuEnvironment` in src/layout.rs.
-struct Environment {
-    to_image_x: vec3f,
-    width: u32,
-    to_image_y: vec3f,
-    height: u32,
-    to_image_z: vec3f,
-    strength: f32,
-    light_share: f32,
-    importance: u32,
-    // 1: the texels are sRGB codes, decoded after the lookup (as Cycles filters them).
-    srgb: u32,
-    _pad0: u32,
-}
+// Environment: declared in src/layout.rs (GpuEnvironment).
+//#include "Environment.struct.wgsl"
 
 @group(2) @binding(0) var<uniform> environment: Environment;
 // width × height texels: rgb, and in w the row's cumulative probability up to the

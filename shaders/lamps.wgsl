@@ -14,27 +14,11 @@
 //#include "light_tree.wgsl"
 //#endif
 
-// Mirrored by `GpuLamp` in src/layout.rs; what each field holds per kind is said there.
-struct Lamp {
-    position: vec3f,
-    kind: u32,
-    emission: vec3f,
-    radius: f32,
-    axis_u: vec3f,
-    len_u: f32,
-    axis_v: vec3f,
-    len_v: f32,
-    normal: vec3f,
-    cdf: f32,
-}
+// Lamp: declared in src/layout.rs (GpuLamp).
+//#include "Lamp.struct.wgsl"
 
-// How light sampling shares its samples between the [sun], emitters and lamps.
-struct LampInfo {
-    count: u32,
-    sun_share: f32,
-    emitter_share: f32,
-    lamp_share: f32,
-}
+// LampInfo: declared in src/layout.rs (GpuLampInfo).
+//#include "LampInfo.struct.wgsl"
 
 @group(0) @binding(10) var<storage, read> lamps: array<Lamp>;
 @group(0) @binding(11) var<uniform> lamp_info: LampInfo;

@@ -12,19 +12,8 @@
 //#include "transform.wgsl"
 //#include "motion.wgsl"
 
-// Mirrored by `GpuLightTreeNode` in src/layout.rs.
-struct LightTreeNode {
-    bounds_min: vec3f,
-    power: f32,
-    bounds_max: vec3f,
-    cos_theta_o: f32,
-    axis: vec3f,
-    cos_theta_e: f32,
-    // Inner: the second child (the first follows the node); leaf: the light.
-    link: u32,
-    flags: u32,
-    _pad: vec2u,
-}
+// LightTreeNode: declared in src/layout.rs (GpuLightTreeNode).
+//#include "LightTreeNode.struct.wgsl"
 
 @group(0) @binding(15) var<storage, read> light_tree_nodes: array<LightTreeNode>;
 // Per light, emitters then lamps: the children taken from the root, bit d at depth d.

@@ -34,12 +34,8 @@ fn motion_step(count: u32, t: f32) -> vec2f {
 //#endif
 
 //#if object_motion
-// A moving instance's world-to-object matrix at one time of the shutter: the decomposed
-// motion sampled densely on the host (`Motion::world_to_object_samples`), so that a ray
-// meeting the instance only interpolates two of them linearly.
-struct MotionMatrix {
-    world_to_object: array<vec4f, 3>,
-}
+// MotionMatrix: declared in src/layout.rs (GpuMotionMatrix).
+//#include "MotionMatrix.struct.wgsl"
 
 @group(0) @binding(22) var<storage, read> motion_matrices: array<MotionMatrix>;
 

@@ -11,25 +11,11 @@
 //#include "traverse.wgsl"
 //#include "surface.wgsl"
 
-struct TraceRay {
-    origin: vec3f,
-    t_max: f32,
-    direction: vec3f,
-    _pad: u32,
-}
+// TraceRay: declared in src/layout.rs (GpuTraceRay).
+//#include "TraceRay.struct.wgsl"
 
-struct TraceHit {
-    t: f32,
-    // Triangle index, or sphere index | SPHERE_BIT, or EMPTY_LINK for a miss.
-    primitive: u32,
-    instance: u32,
-    overflowed: u32,
-    // Barycentric weights of the triangle's second and third vertices.
-    b1: f32,
-    b2: f32,
-    _pad0: u32,
-    _pad1: u32,
-}
+// TraceHit: declared in src/layout.rs (GpuTraceHit).
+//#include "TraceHit.struct.wgsl"
 
 @group(1) @binding(0) var<storage, read_write> trace_rays: array<TraceRay>;
 @group(1) @binding(1) var<storage, read_write> trace_hits: array<TraceHit>;

@@ -14,6 +14,7 @@ pub mod doctor;
 pub mod files;
 pub mod fuzz;
 pub mod gpu;
+pub mod gpu_struct;
 pub mod info;
 pub mod layout;
 pub mod render;

@@ -1,5 +1,5 @@
 //! The GPU side: device setup, shader assembly per feature set, scene buffers and
-//! the pipelines that use them. The host mirrors of GPU structs live in `crate::layout`.
+//! the pipelines that use them. The GPU structs are declared in `crate::layout`.
 
 mod bind;
 mod buffers;

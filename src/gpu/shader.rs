@@ -134,6 +134,22 @@ impl Program {
 /// shaders share with the host.
 const SHARED_CONSTANTS: &str = "shared_constants.wgsl";
 
+/// The ending of the files generated from [`crate::layout`]'s GPU structs, in no folder:
+/// `Frame.struct.wgsl` declares the struct `Frame`.
+const STRUCT_FILE: &str = ".struct.wgsl";
+
+/// The text of `name` if it is a file the assembler makes rather than reads.
+fn generated(name: &str) -> Option<Result<String, String>> {
+    if name == SHARED_CONSTANTS {
+        return Some(Ok(crate::shared_constants::wgsl()));
+    }
+    let name = name.strip_suffix(STRUCT_FILE)?;
+    Some(
+        crate::layout::struct_declaration(name)
+            .ok_or_else(|| format!("{name}{STRUCT_FILE}: no GPU struct `{name}` is declared in src/layout.rs")),
+    )
+}
+
 /// The entry file of the atmosphere's table passes.
 const ATMOSPHERE_TABLES_ENTRY: &str = "atmosphere_tables.wgsl";
 
@@ -150,8 +166,8 @@ pub enum ShaderFiles {
 impl ShaderFiles {
     /// The text of one shader file, or why it cannot be had.
     fn read(&self, name: &str) -> Result<String, String> {
-        if name == SHARED_CONSTANTS {
-            return Ok(crate::shared_constants::wgsl());
+        if let Some(text) = generated(name) {
+            return text;
         }
         match self {
             ShaderFiles::BuiltIn => ALL_PARTS

@@ -20,8 +20,7 @@
 // LampInfo: declared in src/layout.rs (GpuLampInfo).
 //#include "LampInfo.struct.wgsl"
 
-@group(0) @binding(10) var<storage, read> lamps: array<Lamp>;
-@group(0) @binding(11) var<uniform> lamp_info: LampInfo;
+//#include "lamps.bindings.wgsl"
 
 // 1 − cos of a cone's half-angle from its sin², without cancellation (s < 1).
 fn lamp_sin2_to_one_minus_cos(s: f32) -> f32 {

@@ -15,9 +15,7 @@
 // LightTreeNode: declared in src/layout.rs (GpuLightTreeNode).
 //#include "LightTreeNode.struct.wgsl"
 
-@group(0) @binding(15) var<storage, read> light_tree_nodes: array<LightTreeNode>;
-// Per light, emitters then lamps: the children taken from the root, bit d at depth d.
-@group(0) @binding(16) var<storage, read> light_tree_trails: array<u32>;
+//#include "light_tree.bindings.wgsl"
 
 var<private> light_tree_point: vec3f;
 var<private> light_tree_normal: vec3f;

@@ -3,7 +3,7 @@
 // (`lookup_table_read_*`). Axes: rough = √α, mu = cos θ of the viewer, z = F0^¼
 // for an index (`microfacet_table_z`).
 
-@group(0) @binding(18) var<storage, read> microfacet_tables: array<f32>;
+//#include "microfacet_tables.bindings.wgsl"
 
 const TABLE_GGX_E: u32 = 0u; // [32 mu][32 rough]
 const TABLE_GGX_EAVG: u32 = 1024u; // [32 rough]

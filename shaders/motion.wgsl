@@ -37,7 +37,7 @@ fn motion_step(count: u32, t: f32) -> vec2f {
 // MotionMatrix: declared in src/layout.rs (GpuMotionMatrix).
 //#include "MotionMatrix.struct.wgsl"
 
-@group(0) @binding(22) var<storage, read> motion_matrices: array<MotionMatrix>;
+//#include "motion.bindings.wgsl"
 
 
 // Instance motion `motion` (first matrix << 8 | count) at the sample's time: world-to-object rows.

@@ -5,7 +5,7 @@
 //#include "constants.wgsl"
 //#include "common.wgsl"
 
-@group(0) @binding(21) var<storage, read> node_programs: array<u32>;
+//#include "node_step.bindings.wgsl"
 
 const NODE_OP_END: u32 = 0u;
 const NODE_OP_OUTPUT: u32 = 1u;

@@ -4,6 +4,7 @@ use super::GpuContext;
 use super::bind::{Binding, bind_group, sequential_layout};
 use super::microfacet_tables::microfacet_tables;
 use super::readback::read_buffer;
+use super::scene_bindings::{SCENE_BINDINGS, SceneData};
 use super::textures::TextureStore;
 use crate::bvh::SceneGeometry;
 use crate::layout::GpuFrame;
@@ -15,16 +16,9 @@ use wgpu::util::DeviceExt;
 pub const STAT_STACK_OVERFLOW: usize = 0;
 const STAT_COUNT: usize = 1;
 
-/// The scene group's bindings, in the order of `shaders/common.wgsl` and of
-/// [`SceneData::bindings`].
+/// The scene group's layout (see `super::scene_bindings`).
 pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-    use Binding::*;
-    let bindings = [
-        Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadWrite, ReadOnly, ReadOnly,
-        Uniform, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly, ReadOnly,
-        ReadOnly,
-    ];
-    sequential_layout(device, "scene", wgpu::ShaderStages::COMPUTE, &bindings)
+    sequential_layout(device, "scene", wgpu::ShaderStages::COMPUTE, SCENE_BINDINGS)
 }
 
 /// Layout of the atmosphere's group: its parameters (uniform) and its tables
@@ -37,73 +31,6 @@ pub fn sky_bind_group_layout(device: &wgpu::Device, tables_writable: bool) -> wg
 /// Layout of group 1: `count` read-write storage buffers (accumulation, or trace rays and hits).
 pub fn io_bind_group_layout(device: &wgpu::Device, count: usize) -> wgpu::BindGroupLayout {
     sequential_layout(device, "io", wgpu::ShaderStages::COMPUTE, &vec![Binding::ReadWrite; count])
-}
-
-/// The scene's buffers, so that a live reload can replace some of them and rebind.
-struct SceneData {
-    frame: wgpu::Buffer,
-    nodes: wgpu::Buffer,
-    triangles: wgpu::Buffer,
-    shading: wgpu::Buffer,
-    instances: wgpu::Buffer,
-    tlas: wgpu::Buffer,
-    spheres: wgpu::Buffer,
-    materials: wgpu::Buffer,
-    stats: wgpu::Buffer,
-    emitters: wgpu::Buffer,
-    lamps: wgpu::Buffer,
-    /// The lamps' count and share of light samples.
-    lamp_info: wgpu::Buffer,
-    wide_nodes: wgpu::Buffer,
-    /// The texture store (see `super::textures`): its table and its texels.
-    textures: wgpu::Buffer,
-    texels: wgpu::Buffer,
-    /// The light tree's nodes and each light's trail (`shaders/light_tree.wgsl`).
-    light_tree_nodes: wgpu::Buffer,
-    light_tree_trails: wgpu::Buffer,
-    /// Per-triangle tangents, for normal maps and uv tangents.
-    tangents: wgpu::Buffer,
-    /// Cycles' microfacet albedo tables (see `super::microfacet_tables`).
-    microfacet_tables: wgpu::Buffer,
-    /// Per-triangle second uv set, for textures that read it.
-    second_uvs: wgpu::Buffer,
-    /// Per-instance Shadow Terminator settings, for smooth shading and the terminator shift.
-    object_settings: wgpu::Buffer,
-    /// The materials' node programs (`crate::asset::node_graph`).
-    node_programs: wgpu::Buffer,
-    /// The moving instances' transforms over the shutter (`shaders/motion.wgsl`).
-    motion_matrices: wgpu::Buffer,
-}
-
-impl SceneData {
-    /// The buffers in binding order (see [`scene_bind_group_layout`]).
-    fn bindings(&self) -> [&wgpu::Buffer; 23] {
-        [
-            &self.frame,
-            &self.nodes,
-            &self.triangles,
-            &self.shading,
-            &self.instances,
-            &self.tlas,
-            &self.spheres,
-            &self.materials,
-            &self.stats,
-            &self.emitters,
-            &self.lamps,
-            &self.lamp_info,
-            &self.wide_nodes,
-            &self.textures,
-            &self.texels,
-            &self.light_tree_nodes,
-            &self.light_tree_trails,
-            &self.tangents,
-            &self.microfacet_tables,
-            &self.second_uvs,
-            &self.object_settings,
-            &self.node_programs,
-            &self.motion_matrices,
-        ]
-    }
 }
 
 pub struct SceneBuffers {
@@ -199,10 +126,10 @@ impl SceneBuffers {
             triangles,
             shading,
             instances,
-            tlas,
+            tlas_primitives,
             spheres,
             wide_nodes,
-            tangents,
+            tangent_frames,
             second_uvs,
             object_settings,
             motion_matrices,
@@ -224,7 +151,7 @@ impl SceneBuffers {
             triangles,
             shading,
             instances,
-            tlas,
+            tlas_primitives,
             spheres,
             materials,
             stats,
@@ -236,7 +163,7 @@ impl SceneBuffers {
             texels,
             light_tree_nodes,
             light_tree_trails,
-            tangents,
+            tangent_frames,
             microfacet_tables: storage(ctx, "microfacet tables", &microfacet_tables(), wgpu::BufferUsages::empty()),
             second_uvs,
             object_settings,
@@ -261,10 +188,10 @@ impl SceneBuffers {
             d.triangles,
             d.shading,
             d.instances,
-            d.tlas,
+            d.tlas_primitives,
             d.spheres,
             d.wide_nodes,
-            d.tangents,
+            d.tangent_frames,
             d.second_uvs,
             d.object_settings,
             d.motion_matrices,

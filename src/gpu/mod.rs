@@ -11,6 +11,7 @@ mod microfacet_tables;
 pub mod node_code;
 mod pipelines;
 mod readback;
+mod scene_bindings;
 pub mod shader;
 mod textures;
 mod timer;

@@ -138,10 +138,20 @@ const SHARED_CONSTANTS: &str = "shared_constants.wgsl";
 /// `Frame.struct.wgsl` declares the struct `Frame`.
 const STRUCT_FILE: &str = ".struct.wgsl";
 
+/// The ending of the files generated from the scene group's bindings
+/// (`super::scene_bindings`): `lamps.bindings.wgsl` declares those of `lamps.wgsl`.
+const BINDINGS_FILE: &str = ".bindings.wgsl";
+
 /// The text of `name` if it is a file the assembler makes rather than reads.
 fn generated(name: &str) -> Option<Result<String, String>> {
     if name == SHARED_CONSTANTS {
         return Some(Ok(crate::shared_constants::wgsl()));
+    }
+    if let Some(file) = name.strip_suffix(BINDINGS_FILE) {
+        return Some(
+            super::scene_bindings::declarations(file)
+                .ok_or_else(|| format!("{name}: no binding of the scene group is declared in {file}.wgsl")),
+        );
     }
     let name = name.strip_suffix(STRUCT_FILE)?;
     Some(

@@ -892,10 +892,61 @@ fn pack(paths: &[PathBuf], quality: BuildQuality, force: bool) -> Result<()> {
     Ok(())
 }
 
-fn main() -> ExitCode {
-    rt::gpu::ensure_runtime_dir();
-    let cli = Cli::parse();
-    let json = matches!(&cli.command, Command::Render(args) if args.progress == Progress::Json);
+/// Runs one of `rt bench`'s measurements.
+fn bench(command: BenchCommand, adapter: Option<&str>) -> Result<()> {
+    match command {
+        BenchCommand::Throughput { scene, size, runs, spp, sample_lanes } => {
+            let options = rt::bench::ThroughputOptions { size, runs, spp, lanes: sample_lanes, rays: true };
+            load_scene(scene.as_deref()).and_then(|s| rt::bench::throughput(s, &options, adapter))
+        }
+        BenchCommand::Instances { counts, size, runs, spp } => {
+            rt::bench::instances(&rt::bench::InstanceScaleOptions { counts, size, runs, spp }, adapter)
+        }
+        BenchCommand::Compare { scenes, size, spp, runs, sampler, python, variant } => {
+            let root = PathBuf::new();
+            let options = rt::bench::CompareOptions { scenes, size, spp, runs, python, variant, sampler, root };
+            rt::bench::compare(&options, adapter)
+        }
+        BenchCommand::MitsubaScene { scene, out, size } => {
+            load_scene(Some(&scene)).and_then(|s| rt::bench::mitsuba_scene::write(&s, size, &out))
+        }
+        BenchCommand::Sky { scene, size, spp } => {
+            load_scene(Some(&scene)).and_then(|s| rt::bench::sky(s, size, spp, adapter))
+        }
+        BenchCommand::WatchLatency { asset, size, runs } => {
+            rt::watch::latency::watch_latency(&asset, size, runs, adapter)
+        }
+        BenchCommand::StreamLatency { scene, asset, size, runs } => {
+            rt::watch::stream::latency::stream_latency(scene.as_deref(), &asset, size, runs, adapter)
+        }
+        BenchCommand::FirstPixel { scene, size, child: true } => {
+            load_scene(scene.as_deref()).and_then(|s| rt::bench::first_pixel::child(s, size, adapter))
+        }
+        BenchCommand::FirstPixel { scene, size, child: false } => {
+            rt::bench::first_pixel::first_pixel(scene.as_deref(), size, adapter)
+        }
+        BenchCommand::Denoise { scene, size, runs, spp } => {
+            let options = rt::bench::DenoiseBenchOptions { size, runs, spp };
+            load_scene(scene.as_deref()).and_then(|s| rt::bench::denoise_bench(s, &options, adapter).map(|_| ()))
+        }
+        BenchCommand::Accuracy(args) => bench_accuracy(args, adapter),
+        BenchCommand::Effects { scene, size, spp, repeats } => {
+            load_scene(scene.as_deref()).and_then(|s| rt::bench::commands::effects(s, size, spp, repeats, adapter))
+        }
+        BenchCommand::Fireflies(a) => load_scene(a.scene.as_deref()).and_then(|s| {
+            let options =
+                rt::bench::FireflyOptions { size: (0, 0), samples: a.samples, seeds: a.seeds, clamp: a.clamp };
+            rt::bench::commands::fireflies(&s, options, a.size, a.out.as_deref(), adapter)
+        }),
+        BenchCommand::Headline { out, size, spp, reference_spp, docs } => {
+            let accuracy = rt::bench::AccuracyOptions { out, size, levels: spp, reference_spp, ..Default::default() };
+            rt::bench::commands::headline(accuracy, docs.then(|| PathBuf::from("docs/benchmarks.md")), adapter)
+        }
+    }
+}
+
+/// Logs through env_logger (warnings by default); with `--progress json`, as JSON events.
+fn init_logging(json: bool) {
     let mut logger = env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn"));
     if json {
         logger.format(|out, record| {
@@ -904,6 +955,13 @@ fn main() -> ExitCode {
         });
     }
     logger.init();
+}
+
+fn main() -> ExitCode {
+    rt::gpu::ensure_runtime_dir();
+    let cli = Cli::parse();
+    let json = matches!(&cli.command, Command::Render(args) if args.progress == Progress::Json);
+    init_logging(json);
     let adapter = cli.adapter.as_deref();
     let result = match cli.command {
         Command::Pack { paths, quality, force } => pack(&paths, quality, force),
@@ -918,53 +976,7 @@ fn main() -> ExitCode {
             rt::doctor::findings(VERSION, adapter).iter().for_each(|f| println!("{f}"));
             Ok(())
         }
-        Command::Bench(BenchCommand::Throughput { scene, size, runs, spp, sample_lanes }) => {
-            let options = rt::bench::ThroughputOptions { size, runs, spp, lanes: sample_lanes, rays: true };
-            load_scene(scene.as_deref()).and_then(|s| rt::bench::throughput(s, &options, adapter))
-        }
-        Command::Bench(BenchCommand::Instances { counts, size, runs, spp }) => {
-            rt::bench::instances(&rt::bench::InstanceScaleOptions { counts, size, runs, spp }, adapter)
-        }
-        Command::Bench(BenchCommand::Compare { scenes, size, spp, runs, sampler, python, variant }) => {
-            let root = PathBuf::new();
-            let options = rt::bench::CompareOptions { scenes, size, spp, runs, python, variant, sampler, root };
-            rt::bench::compare(&options, adapter)
-        }
-        Command::Bench(BenchCommand::MitsubaScene { scene, out, size }) => {
-            load_scene(Some(&scene)).and_then(|s| rt::bench::mitsuba_scene::write(&s, size, &out))
-        }
-        Command::Bench(BenchCommand::Sky { scene, size, spp }) => {
-            load_scene(Some(&scene)).and_then(|s| rt::bench::sky(s, size, spp, adapter))
-        }
-        Command::Bench(BenchCommand::WatchLatency { asset, size, runs }) => {
-            rt::watch::latency::watch_latency(&asset, size, runs, adapter)
-        }
-        Command::Bench(BenchCommand::StreamLatency { scene, asset, size, runs }) => {
-            rt::watch::stream::latency::stream_latency(scene.as_deref(), &asset, size, runs, adapter)
-        }
-        Command::Bench(BenchCommand::FirstPixel { scene, size, child: true }) => {
-            load_scene(scene.as_deref()).and_then(|s| rt::bench::first_pixel::child(s, size, adapter))
-        }
-        Command::Bench(BenchCommand::FirstPixel { scene, size, child: false }) => {
-            rt::bench::first_pixel::first_pixel(scene.as_deref(), size, adapter)
-        }
-        Command::Bench(BenchCommand::Denoise { scene, size, runs, spp }) => {
-            let options = rt::bench::DenoiseBenchOptions { size, runs, spp };
-            load_scene(scene.as_deref()).and_then(|s| rt::bench::denoise_bench(s, &options, adapter).map(|_| ()))
-        }
-        Command::Bench(BenchCommand::Accuracy(args)) => bench_accuracy(args, adapter),
-        Command::Bench(BenchCommand::Effects { scene, size, spp, repeats }) => {
-            load_scene(scene.as_deref()).and_then(|s| rt::bench::commands::effects(s, size, spp, repeats, adapter))
-        }
-        Command::Bench(BenchCommand::Fireflies(a)) => load_scene(a.scene.as_deref()).and_then(|s| {
-            let options =
-                rt::bench::FireflyOptions { size: (0, 0), samples: a.samples, seeds: a.seeds, clamp: a.clamp };
-            rt::bench::commands::fireflies(&s, options, a.size, a.out.as_deref(), adapter)
-        }),
-        Command::Bench(BenchCommand::Headline { out, size, spp, reference_spp, docs }) => {
-            let accuracy = rt::bench::AccuracyOptions { out, size, levels: spp, reference_spp, ..Default::default() };
-            rt::bench::commands::headline(accuracy, docs.then(|| PathBuf::from("docs/benchmarks.md")), adapter)
-        }
+        Command::Bench(command) => bench(command, adapter),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -16,6 +16,18 @@ pub enum SkyFeature {
     Environment,
 }
 
+impl SkyFeature {
+    pub fn of(sky: &Sky) -> Self {
+        match sky {
+            Sky::Black => SkyFeature::Black,
+            Sky::Uniform { sample_as_light: false, .. } => SkyFeature::Uniform,
+            Sky::Uniform { sample_as_light: true, .. } => SkyFeature::UniformLight,
+            Sky::Atmosphere(_) => SkyFeature::Atmosphere,
+            Sky::Environment(_) => SkyFeature::Environment,
+        }
+    }
+}
+
 /// What refraction the scene's materials need.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Transmission {
@@ -24,6 +36,19 @@ pub enum Transmission {
     Smooth,
     /// At least one rough interface, with this model (smooth ones are handled too).
     Rough(RoughTransmission),
+}
+
+impl Transmission {
+    /// What the materials that may transmit need; rough ones take `model`.
+    fn of(transmissive: &[&Material], model: RoughTransmission) -> Self {
+        if transmissive.is_empty() {
+            Transmission::None
+        } else if transmissive.iter().any(|m| m.alpha() >= ALPHA_DELTA) {
+            Transmission::Rough(model)
+        } else {
+            Transmission::Smooth
+        }
+    }
 }
 
 /// Which kinds of `[[light]]` lamps a scene has: each kind's code is in the pipeline only
@@ -178,24 +203,11 @@ impl FeatureSet {
         let materials_in_use = &geometry.materials_in_use;
         let rough = |m: &&Material| m.alpha() >= ALPHA_DELTA;
         let transmissive: Vec<&Material> = materials_in_use.iter().filter(|m| m.may_transmit()).collect();
-        let transmission = if transmissive.is_empty() {
-            Transmission::None
-        } else if transmissive.iter().any(rough) {
-            Transmission::Rough(settings.rough_transmission)
-        } else {
-            Transmission::Smooth
-        };
         Self {
             triangles: geometry.triangles,
             spheres: geometry.spheres,
             emission: materials_in_use.iter().any(|m| m.is_emissive()),
-            sky: match scene.sky {
-                Sky::Black => SkyFeature::Black,
-                Sky::Uniform { sample_as_light: false, .. } => SkyFeature::Uniform,
-                Sky::Uniform { sample_as_light: true, .. } => SkyFeature::UniformLight,
-                Sky::Atmosphere(_) => SkyFeature::Atmosphere,
-                Sky::Environment(_) => SkyFeature::Environment,
-            },
+            sky: SkyFeature::of(&scene.sky),
             sun: scene.sun.is_some(),
             // A metallic-roughness texture may make any texel a rough metal.
             glossy: materials_in_use.iter().any(|m| {
@@ -204,7 +216,7 @@ impl FeatureSet {
                     || !m.node_program.is_empty()
                     || m.coat_roughness * m.coat_roughness >= ALPHA_DELTA && m.coat > 0.0
             }),
-            transmission,
+            transmission: Transmission::of(&transmissive, settings.rough_transmission),
             media: transmissive.iter().any(|m| m.has_medium()),
             lamps: LampKinds::of(&scene.lights),
             // Alpha from a factor alone (a Mix Shader with Transparent) still reads the

@@ -48,12 +48,12 @@ pub fn run(
     live: &mut LiveScene,
     watcher: &mut FileWatcher,
     batches: &Receiver<Batch>,
-    options: HeadlessOptions,
+    mut options: HeadlessOptions,
     log: &mut ReloadLog,
     opened_at: Instant,
 ) -> Result<()> {
     live.session.set_pacing(PACING);
-    let mut denoise = options.denoiser.map(HeadlessDenoise::new);
+    let mut denoise = options.denoiser.take().map(HeadlessDenoise::new);
     let mut state = State { number: 0, since: opened_at, first_frame: None, written: false };
     let stop_file = options.frames_dir.join(STOP_FILE);
     let mut pending: Option<Batch> = None;
@@ -93,24 +93,7 @@ pub fn run(
             denoise.refine(session, state.number, log)?;
         }
         if session.converged() && !state.written {
-            let name = |suffix: &str| format!("frame-{:04}{suffix}.{}", state.number, options.format.extension());
-            let file = options.frames_dir.join(name(""));
-            let raw = session.image()?;
-            let raw_file = match &mut denoise {
-                Some(denoise) => {
-                    let clean = denoise.converged(session, state.number, log)?;
-                    write(session, &Image { pixels: clean, ..raw.clone() }, &file)?;
-                    let raw_file = options.frames_dir.join(name("-raw"));
-                    write(session, &raw, &raw_file)?;
-                    Some(raw_file)
-                }
-                None => {
-                    write(session, &raw, &file)?;
-                    None
-                }
-            };
-            let first_frame = state.first_frame.unwrap_or_default();
-            log.frame(state.number, session.samples(), &file, raw_file.as_deref(), first_frame, state.since.elapsed());
+            write_frame(session, &state, &options, denoise.as_mut(), log)?;
             state.written = true;
             if options.max_reloads.is_some_and(|max| state.number >= max) {
                 return Ok(());
@@ -124,6 +107,35 @@ pub fn run(
             }
         }
     }
+}
+
+/// Writes the converged frame (and, denoised, its raw image beside it) and logs it.
+fn write_frame(
+    session: &Session,
+    state: &State,
+    options: &HeadlessOptions,
+    denoise: Option<&mut HeadlessDenoise>,
+    log: &mut ReloadLog,
+) -> Result<()> {
+    let name = |suffix: &str| format!("frame-{:04}{suffix}.{}", state.number, options.format.extension());
+    let file = options.frames_dir.join(name(""));
+    let raw = session.image()?;
+    let raw_file = match denoise {
+        Some(denoise) => {
+            let clean = denoise.converged(session, state.number, log)?;
+            write(session, &Image { pixels: clean, ..raw.clone() }, &file)?;
+            let raw_file = options.frames_dir.join(name("-raw"));
+            write(session, &raw, &raw_file)?;
+            Some(raw_file)
+        }
+        None => {
+            write(session, &raw, &file)?;
+            None
+        }
+    };
+    let first_frame = state.first_frame.unwrap_or_default();
+    log.frame(state.number, session.samples(), &file, raw_file.as_deref(), first_frame, state.since.elapsed());
+    Ok(())
 }
 
 fn write(session: &Session, image: &Image, file: &Path) -> Result<()> {

@@ -31,15 +31,7 @@
 
 const ALPHA_DELTA: f32 = 1e-3;
 
-const LOBE_DIFFUSE: u32 = 0u;
-const LOBE_SPECULAR: u32 = 1u;
-const LOBE_REFLECTION: u32 = 2u;
-const LOBE_TRANSMISSION: u32 = 3u;
-// The coat, sampled before the other lobes (see `bsdf_sample`); its samples are labelled
-// LOBE_SPECULAR.
-const LOBE_COAT: u32 = 4u;
-// The sheen, sampled before the coat; its samples are labelled LOBE_DIFFUSE (as Cycles' are).
-const LOBE_SHEEN: u32 = 5u;
+// The lobes, LOBE_*, are shared constants (src/shared_constants.rs).
 
 struct ShadingContext {
     m: Material,

@@ -81,17 +81,8 @@ fn is_clear_glass(m: Material) -> bool {
 // produced the first one (top 8 bits).
 @group(1) @binding(1) var<storage, read_write> non_finite: array<u32>;
 
-// What produced a non-finite value first, recorded per pixel (src/render/sentinel.rs reads it).
-const EVENT_NONE: u32 = 0u;
-const EVENT_EMISSION: u32 = 1u;
-const EVENT_SKY: u32 = 2u;
-const EVENT_LIGHT_SAMPLE: u32 = 3u;
-const EVENT_MEDIUM: u32 = 4u;
-const EVENT_AIR: u32 = 5u;
-// EVENT_LOBE + lobe index (LOBE_* in bsdf.wgsl): the BSDF sample of that lobe.
-const EVENT_LOBE: u32 = 6u;
-
-// The first event of this sample that produced a non-finite value.
+// The first event of this sample that produced a non-finite value (EVENT_*, shared
+// constants), recorded per pixel.
 var<private> first_bad_event: u32;
 
 // Adds a contribution to the path's radiance, noting the event if the sum stops being finite.

@@ -15,28 +15,7 @@
 //#include "reflectance.wgsl"
 //#include "srgb.wgsl"
 
-const TEXTURE_SRGB: u32 = 1u;
-const WRAP_REPEAT: u32 = 0u;
-const WRAP_CLAMP: u32 = 1u;
-const WRAP_MIRROR: u32 = 2u;
-// Bits of Material.second_uv_set: the texture slots that read the second uv set.
-const UV1_BASE_COLOR: u32 = 1u;
-const UV1_METALLIC_ROUGHNESS: u32 = 2u;
-const UV1_EMISSION: u32 = 4u;
-const UV1_NORMAL: u32 = 8u;
-const UV1_COAT: u32 = 16u;
-const UV1_COAT_ROUGHNESS: u32 = 32u;
-const UV1_COAT_TINT: u32 = 64u;
-const UV1_SHEEN: u32 = 128u;
-const UV1_SHEEN_TINT: u32 = 256u;
-const UV1_ANISOTROPY: u32 = 512u;
-const UV1_SPECULAR_TINT: u32 = 1024u;
-const UV1_DIFFUSE_ROUGHNESS: u32 = 2048u;
-const UV1_THIN_FILM: u32 = 4096u;
-const UV1_TRANSMISSION: u32 = 8192u;
-const UV1_SPECULAR_LEVEL: u32 = 16384u;
-const UV1_IOR: u32 = 32768u;
-const UV1_COAT_NORMAL: u32 = 65536u;
+// TEXTURE_SRGB, WRAP_* and UV1_* are shared constants (src/shared_constants.rs).
 
 struct TexturePoint {
     uv: vec2f,

@@ -3,6 +3,8 @@
 //! `shared_constants.wgsl` ([`wgsl`]), so the two cannot differ: a shader that needs one
 //! includes that file (through `common.wgsl`) and declares none of its own.
 
+use crate::scene::slots;
+
 /// One shared constant as WGSL writes it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Value {
@@ -101,8 +103,60 @@ shared_constants! { PATHS;
     ROULETTE_START: u32 = 3;
 }
 
+shared_constants! { TEXTURES;
+    /// `GpuTexture::flags` bit 0: the texels are sRGB-encoded (`shaders/texture.wgsl`).
+    TEXTURE_SRGB: u32 = 1;
+    /// How a texture wraps in u (`GpuTexture::flags` bits 1–2) and in v (bits 3–4).
+    WRAP_REPEAT: u32 = 0;
+    WRAP_CLAMP: u32 = 1;
+    WRAP_MIRROR: u32 = 2;
+    /// Bits of `GpuMaterial::second_uv_set`: the texture slots (`scene::slots`) that read
+    /// the second uv set.
+    UV1_BASE_COLOR: u32 = 1 << slots::BASE_COLOR;
+    UV1_METALLIC_ROUGHNESS: u32 = 1 << slots::METALLIC_ROUGHNESS;
+    UV1_EMISSION: u32 = 1 << slots::EMISSION;
+    UV1_NORMAL: u32 = 1 << slots::NORMAL;
+    UV1_COAT: u32 = 1 << slots::COAT;
+    UV1_COAT_ROUGHNESS: u32 = 1 << slots::COAT_ROUGHNESS;
+    UV1_COAT_TINT: u32 = 1 << slots::COAT_TINT;
+    UV1_SHEEN: u32 = 1 << slots::SHEEN;
+    UV1_SHEEN_TINT: u32 = 1 << slots::SHEEN_TINT;
+    UV1_ANISOTROPY: u32 = 1 << slots::ANISOTROPY;
+    UV1_SPECULAR_TINT: u32 = 1 << slots::SPECULAR_TINT;
+    UV1_DIFFUSE_ROUGHNESS: u32 = 1 << slots::DIFFUSE_ROUGHNESS;
+    UV1_THIN_FILM: u32 = 1 << slots::THIN_FILM_THICKNESS;
+    UV1_TRANSMISSION: u32 = 1 << slots::TRANSMISSION;
+    UV1_SPECULAR_LEVEL: u32 = 1 << slots::SPECULAR_LEVEL;
+    UV1_IOR: u32 = 1 << slots::IOR;
+    UV1_COAT_NORMAL: u32 = 1 << slots::COAT_NORMAL;
+}
+
+shared_constants! { EVENTS;
+    /// What produced a sample's first non-finite value, recorded per pixel
+    /// (`shaders/integrator.wgsl`, read by `render::dropped`).
+    EVENT_NONE: u32 = 0;
+    EVENT_EMISSION: u32 = 1;
+    EVENT_SKY: u32 = 2;
+    EVENT_LIGHT_SAMPLE: u32 = 3;
+    EVENT_MEDIUM: u32 = 4;
+    EVENT_AIR: u32 = 5;
+    /// `EVENT_LOBE` + a lobe's index (`LOBE_*`): the BSDF sample of that lobe.
+    EVENT_LOBE: u32 = 6;
+    /// The BSDF's lobes (`shaders/bsdf.wgsl`).
+    LOBE_DIFFUSE: u32 = 0;
+    LOBE_SPECULAR: u32 = 1;
+    LOBE_REFLECTION: u32 = 2;
+    LOBE_TRANSMISSION: u32 = 3;
+    /// The coat, sampled before the other lobes (see `bsdf_sample`); its samples are
+    /// labelled `LOBE_SPECULAR`.
+    LOBE_COAT: u32 = 4;
+    /// The sheen, sampled before the coat; its samples are labelled `LOBE_DIFFUSE` (as
+    /// Cycles' are).
+    LOBE_SHEEN: u32 = 5;
+}
+
 /// Every group, in the order `shared_constants.wgsl` lists them.
-const ALL: [&[Shared]; 6] = [PANORAMA, TANGENTS, LIGHT_TREE, LAMPS, LINKS, PATHS];
+const ALL: [&[Shared]; 8] = [PANORAMA, TANGENTS, LIGHT_TREE, LAMPS, LINKS, PATHS, TEXTURES, EVENTS];
 
 /// The WGSL of every shared constant (what each means is said in this file).
 pub fn wgsl() -> String {

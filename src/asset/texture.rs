@@ -24,12 +24,13 @@ pub enum Wrap {
 }
 
 impl Wrap {
-    /// The code the shader reads (`WRAP_*` in `shaders/texture.wgsl`).
+    /// The code the shader reads (`WRAP_*`, shared constants).
     pub fn code(self) -> u32 {
+        use crate::shared_constants::{WRAP_CLAMP, WRAP_MIRROR, WRAP_REPEAT};
         match self {
-            Wrap::Repeat => 0,
-            Wrap::Clamp => 1,
-            Wrap::Mirror => 2,
+            Wrap::Repeat => WRAP_REPEAT,
+            Wrap::Clamp => WRAP_CLAMP,
+            Wrap::Mirror => WRAP_MIRROR,
         }
     }
 

@@ -9,6 +9,7 @@
 
 use crate::asset::TextureImage;
 use crate::layout::GpuTexture;
+use crate::shared_constants::TEXTURE_SRGB;
 use std::borrow::Cow;
 use std::collections::HashMap;
 
@@ -76,7 +77,9 @@ impl TextureStore {
                     width: t.width,
                     height: t.height,
                     levels: t.levels(),
-                    flags: reference.srgb as u32 | reference.wrap[0].code() << 1 | reference.wrap[1].code() << 3,
+                    flags: (reference.srgb as u32 * TEXTURE_SRGB)
+                        | (reference.wrap[0].code() << 1)
+                        | (reference.wrap[1].code() << 3),
                     // A degenerate transform reads one texel: the coarsest level, as a footprint of all of it.
                     transform_lod: if det != 0.0 { 0.5 * det.abs().log2() } else { f32::MAX },
                     _pad: [0; 2],

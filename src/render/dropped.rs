@@ -1,10 +1,14 @@
 //! What the renderer could not compute: samples dropped for being non-finite
 //! (with the event that produced the first per pixel) and traversal stack overflows.
 
+use crate::shared_constants::{
+    EVENT_AIR, EVENT_EMISSION, EVENT_LIGHT_SAMPLE, EVENT_LOBE, EVENT_MEDIUM, EVENT_SKY, LOBE_DIFFUSE, LOBE_REFLECTION,
+    LOBE_SPECULAR, LOBE_TRANSMISSION,
+};
 use std::fmt;
 
 /// The event that first produced a non-finite value in a sample
-/// (`EVENT_*` in `shaders/integrator.wgsl`).
+/// (`EVENT_*` in `crate::shared_constants`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum NonFiniteCause {
     Unknown,
@@ -22,16 +26,18 @@ pub enum NonFiniteCause {
 impl NonFiniteCause {
     pub fn from_code(code: u32) -> Self {
         match code {
-            1 => Self::Emission,
-            2 => Self::Sky,
-            3 => Self::LightSample,
-            4 => Self::Medium,
-            5 => Self::Air,
-            6 => Self::DiffuseLobe,
-            7 => Self::SpecularLobe,
-            8 => Self::ReflectionLobe,
-            9 => Self::TransmissionLobe,
-            _ => Self::Unknown,
+            EVENT_EMISSION => Self::Emission,
+            EVENT_SKY => Self::Sky,
+            EVENT_LIGHT_SAMPLE => Self::LightSample,
+            EVENT_MEDIUM => Self::Medium,
+            EVENT_AIR => Self::Air,
+            _ => match code.wrapping_sub(EVENT_LOBE) {
+                LOBE_DIFFUSE => Self::DiffuseLobe,
+                LOBE_SPECULAR => Self::SpecularLobe,
+                LOBE_REFLECTION => Self::ReflectionLobe,
+                LOBE_TRANSMISSION => Self::TransmissionLobe,
+                _ => Self::Unknown,
+            },
         }
     }
 }

@@ -35,39 +35,6 @@ fn each_slot_names_its_texture() {
 }
 
 #[test]
-fn the_shaders_uv_set_bits_are_the_slots() {
-    let wgsl = include_str!("../../shaders/texture.wgsl");
-    let bit = |name: &str| -> u32 {
-        let key = format!("const UV1_{name}: u32 = ");
-        let line = wgsl.lines().find(|l| l.starts_with(&key)).unwrap_or_else(|| panic!("no {key}"));
-        line[key.len()..].trim_end_matches("u;").parse().unwrap_or_else(|e| panic!("{line}: {e}"))
-    };
-    let shader = [
-        ("BASE_COLOR", slots::BASE_COLOR),
-        ("METALLIC_ROUGHNESS", slots::METALLIC_ROUGHNESS),
-        ("EMISSION", slots::EMISSION),
-        ("NORMAL", slots::NORMAL),
-        ("COAT", slots::COAT),
-        ("COAT_ROUGHNESS", slots::COAT_ROUGHNESS),
-        ("COAT_TINT", slots::COAT_TINT),
-        ("SHEEN", slots::SHEEN),
-        ("SHEEN_TINT", slots::SHEEN_TINT),
-        ("ANISOTROPY", slots::ANISOTROPY),
-        ("SPECULAR_TINT", slots::SPECULAR_TINT),
-        ("DIFFUSE_ROUGHNESS", slots::DIFFUSE_ROUGHNESS),
-        ("THIN_FILM", slots::THIN_FILM_THICKNESS),
-        ("TRANSMISSION", slots::TRANSMISSION),
-        ("SPECULAR_LEVEL", slots::SPECULAR_LEVEL),
-        ("IOR", slots::IOR),
-        ("COAT_NORMAL", slots::COAT_NORMAL),
-    ];
-    assert_eq!(shader.len(), slots::COUNT);
-    for (name, slot) in shader {
-        assert_eq!(bit(name), 1 << slot, "UV1_{name}");
-    }
-}
-
-#[test]
 fn layer_textures_come_back_from_their_slots() {
     let slots: [Option<u32>; LAYER_COUNT] = std::array::from_fn(|i| Some(i as u32 + 4));
     assert_eq!(LayerTextures::from_slots(slots).slots(), slots);

@@ -15,7 +15,7 @@
 //#include "reflectance.wgsl"
 //#include "srgb.wgsl"
 
-// TEXTURE_SRGB, WRAP_* and UV1_* are shared constants (src/shared_constants.rs).
+// TEXTURE_SRGB, TEXTURE_WRAP_*, WRAP_* and UV1_* are shared constants (src/shared_constants.rs).
 
 struct TexturePoint {
     uv: vec2f,
@@ -162,8 +162,8 @@ fn filter_level(t: Texture, level: u32, uv: vec2f) -> vec4f {
         w = max(w / 2u, 1u);
         h = max(h / 2u, 1u);
     }
-    let wrap_u = (t.flags >> 1u) & 3u;
-    let wrap_v = (t.flags >> 3u) & 3u;
+    let wrap_u = (t.flags >> TEXTURE_WRAP_U_SHIFT) & TEXTURE_WRAP_MASK;
+    let wrap_v = (t.flags >> TEXTURE_WRAP_V_SHIFT) & TEXTURE_WRAP_MASK;
     let x = wrap_coordinate(uv.x, wrap_u) * f32(w) - 0.5;
     let y = (1.0 - wrap_coordinate(uv.y, wrap_v)) * f32(h) - 0.5;
     let x0 = floor(x);

@@ -79,8 +79,12 @@ macro_rules! gpu_struct {
             const ALIGN: usize = {
                 let mut align = 1;
                 $(
-                    if <$ty as $crate::gpu_struct::WgslType>::ALIGN > align {
-                        align = <$ty as $crate::gpu_struct::WgslType>::ALIGN;
+                    let field_align = $crate::gpu_struct::field_align(
+                        stringify!($field),
+                        <$ty as $crate::gpu_struct::WgslType>::ALIGN,
+                    );
+                    if field_align > align {
+                        align = field_align;
                     }
                 )*
                 align
@@ -138,10 +142,12 @@ macro_rules! check_wgsl_layout {
             let mut end = 0usize;
             let mut align = 1usize;
             $(
-                let (field_align, field_size) = if $crate::gpu_struct::is_padding(stringify!($field)) {
-                    (4, std::mem::size_of::<$ty>())
+                let field_align =
+                    $crate::gpu_struct::field_align(stringify!($field), <$ty as $crate::gpu_struct::WgslType>::ALIGN);
+                let field_size = if $crate::gpu_struct::is_padding(stringify!($field)) {
+                    std::mem::size_of::<$ty>()
                 } else {
-                    (<$ty as $crate::gpu_struct::WgslType>::ALIGN, <$ty as $crate::gpu_struct::WgslType>::SIZE)
+                    <$ty as $crate::gpu_struct::WgslType>::SIZE
                 };
                 end = end.next_multiple_of(field_align);
                 assert!(
@@ -202,6 +208,12 @@ pub(crate) use gpu_struct_files;
 pub const fn is_padding(field: &str) -> bool {
     let b = field.as_bytes();
     b.len() >= 4 && b[0] == b'_' && b[1] == b'p' && b[2] == b'a' && b[3] == b'd'
+}
+
+/// WGSL's alignment of `field`, whose type's is `type_align`: a padding field's words are
+/// u32s, aligned to 4.
+pub const fn field_align(field: &str, type_align: usize) -> usize {
+    if is_padding(field) { 4 } else { type_align }
 }
 
 /// Appends the WGSL members of padding field `field` of `bytes` bytes: a u32 per word.

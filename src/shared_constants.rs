@@ -106,7 +106,12 @@ shared_constants! { PATHS;
 shared_constants! { TEXTURES;
     /// `GpuTexture::flags` bit 0: the texels are sRGB-encoded (`shaders/texture.wgsl`).
     TEXTURE_SRGB: u32 = 1;
-    /// How a texture wraps in u (`GpuTexture::flags` bits 1–2) and in v (bits 3–4).
+    /// Where `GpuTexture::flags` holds how the texture wraps in u and in v (`WRAP_*`, each
+    /// in the bits of `TEXTURE_WRAP_MASK`).
+    TEXTURE_WRAP_U_SHIFT: u32 = 1;
+    TEXTURE_WRAP_V_SHIFT: u32 = 3;
+    TEXTURE_WRAP_MASK: u32 = 3;
+    /// How a texture wraps.
     WRAP_REPEAT: u32 = 0;
     WRAP_CLAMP: u32 = 1;
     WRAP_MIRROR: u32 = 2;

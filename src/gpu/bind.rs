@@ -18,6 +18,15 @@ impl Binding {
             Binding::ReadWrite => wgpu::BufferBindingType::Storage { read_only: false },
         }
     }
+
+    /// The address space WGSL declares such a binding in.
+    pub fn wgsl_address_space(self) -> &'static str {
+        match self {
+            Binding::Uniform => "uniform",
+            Binding::ReadOnly => "storage, read",
+            Binding::ReadWrite => "storage, read_write",
+        }
+    }
 }
 
 /// A layout whose binding i is `bindings[i]`, seen by `visibility`.

@@ -30,16 +30,34 @@ macro_rules! scene_bindings {
         /// What each binding of group 0 is, in binding order.
         pub(super) const SCENE_BINDINGS: &[Binding] = &[$(Binding::$kind),*];
 
-        /// Every binding: (WGSL name, docs, kind, WGSL type, declaring file, flag).
+        /// Every binding, in binding order.
         const ROWS: &[Row] = &[$(
-            (stringify!($name), &[$($doc),*], Binding::$kind, $wgsl_type, $file, scene_bindings!(@flag $($flag)?))
+            Row {
+                name: stringify!($name),
+                docs: &[$($doc),*],
+                kind: Binding::$kind,
+                wgsl_type: $wgsl_type,
+                file: $file,
+                flag: scene_bindings!(@flag $($flag)?),
+            }
         ),*];
     };
     (@flag) => { None };
     (@flag $flag:literal) => { Some($flag) };
 }
 
-type Row = (&'static str, &'static [&'static str], Binding, &'static str, &'static str, Option<&'static str>);
+/// One binding of the scene group as WGSL declares it.
+struct Row {
+    /// The variable's name, also the buffer's.
+    name: &'static str,
+    docs: &'static [&'static str],
+    kind: Binding,
+    wgsl_type: &'static str,
+    /// The shader file (without `.wgsl`) that declares it.
+    file: &'static str,
+    /// The flag the declaration needs, if any.
+    flag: Option<&'static str>,
+}
 
 scene_bindings! {
     frame: Uniform "Frame" in "common",
@@ -82,15 +100,11 @@ scene_bindings! {
 /// declares, or `None` if it declares none.
 pub(super) fn declarations(file: &str) -> Option<String> {
     let mut out = String::new();
-    for (binding, &(name, docs, kind, ty, _, flag)) in ROWS.iter().enumerate().filter(|(_, row)| row.4 == file) {
-        crate::gpu_struct::push_comment(&mut out, "", docs);
-        let space = match kind {
-            Binding::Uniform => "uniform",
-            Binding::ReadOnly => "storage, read",
-            Binding::ReadWrite => "storage, read_write",
-        };
+    for (binding, row) in ROWS.iter().enumerate().filter(|(_, row)| row.file == file) {
+        crate::gpu_struct::push_comment(&mut out, "", row.docs);
+        let (space, name, ty) = (row.kind.wgsl_address_space(), row.name, row.wgsl_type);
         let declaration = format!("@group(0) @binding({binding}) var<{space}> {name}: {ty};\n");
-        match flag {
+        match row.flag {
             Some(flag) => out.push_str(&format!("//#if {flag}\n{declaration}//#endif\n")),
             None => out.push_str(&declaration),
         }

@@ -9,7 +9,7 @@
 
 use crate::asset::TextureImage;
 use crate::layout::GpuTexture;
-use crate::shared_constants::TEXTURE_SRGB;
+use crate::shared_constants::{TEXTURE_SRGB, TEXTURE_WRAP_U_SHIFT, TEXTURE_WRAP_V_SHIFT};
 use std::borrow::Cow;
 use std::collections::HashMap;
 
@@ -78,8 +78,8 @@ impl TextureStore {
                     height: t.height,
                     levels: t.levels(),
                     flags: (reference.srgb as u32 * TEXTURE_SRGB)
-                        | (reference.wrap[0].code() << 1)
-                        | (reference.wrap[1].code() << 3),
+                        | (reference.wrap[0].code() << TEXTURE_WRAP_U_SHIFT)
+                        | (reference.wrap[1].code() << TEXTURE_WRAP_V_SHIFT),
                     // A degenerate transform reads one texel: the coarsest level, as a footprint of all of it.
                     transform_lod: if det != 0.0 { 0.5 * det.abs().log2() } else { f32::MAX },
                     _pad: [0; 2],

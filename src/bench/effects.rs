@@ -8,7 +8,7 @@ use crate::bvh::BuildQuality;
 use crate::gpu::{GpuContext, GpuTimer};
 use crate::gpu::{median, ms};
 use crate::render::{RenderRequest, Session};
-use crate::scene::{FeatureSet, RoughTransmission, Scene, Transmission};
+use crate::scene::{FLAGS, FeatureSet, RoughTransmission, Scene, Transmission};
 use anyhow::Result;
 use indicatif::ProgressBar;
 use std::fmt::Write as _;
@@ -94,53 +94,20 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
         let sharp = FeatureSet { camera_motion: false, object_motion: false, ..own };
         v.push(("−motion (sharp)".to_string(), sharp));
     }
-    let mut force = |name: &str, on: bool, f: FeatureSet| {
-        if !on {
-            v.push((format!("+{name}"), f));
-        }
-    };
-    force("triangles", own.triangles, FeatureSet { triangles: true, ..own });
-    force("spheres", own.spheres, FeatureSet { spheres: true, ..own });
-    force("emission", own.emission, FeatureSet { emission: true, ..own });
-    force("sun", own.sun, FeatureSet { sun: true, ..own });
-    force("glossy", own.glossy, FeatureSet { glossy: true, ..own });
-    force("glass", own.transmission != Transmission::None, FeatureSet { transmission: Transmission::Smooth, ..own });
-    let rough_on = matches!(own.transmission, Transmission::Rough(_));
-    force("rough glass", rough_on, FeatureSet { transmission: Transmission::Rough(rough), ..own });
-    // Media live inside glass: forcing them on forces (at least smooth) glass too.
-    let glass = if own.transmission == Transmission::None { Transmission::Smooth } else { own.transmission };
-    force("media", own.media, FeatureSet { media: true, transmission: glass, ..own });
-    force("sheen", own.sheen, FeatureSet { sheen: true, ..own });
-    force("anisotropy", own.anisotropy, FeatureSet { anisotropy: true, ..own });
-    force("thin film", own.thin_film, FeatureSet { thin_film: true, ..own });
-    force("rough diffuse", own.rough_diffuse, FeatureSet { rough_diffuse: true, ..own });
-    // Smooth shading reads triangles' vertices and normals: forcing it on forces triangles too.
-    force("smooth normals", own.smooth_normals, FeatureSet { smooth_normals: true, triangles: true, ..own });
-    // The terminator shift reads the shaded instance's settings: triangles come with it.
-    force("terminator offset", own.terminator_offset, FeatureSet { terminator_offset: true, triangles: true, ..own });
-    // The holdout test of each shaded surface reads the instance's settings: triangles come with it.
-    force("holdout", own.holdout, FeatureSet { holdout: true, triangles: true, ..own });
-    // Motion blur's code where nothing moves: a time per sample, and the camera's frame or
-    // each instance's motion looked up at it.
-    force("camera motion", own.camera_motion, FeatureSet { camera_motion: true, ..own });
-    force("object motion", own.object_motion, FeatureSet { object_motion: true, ..own });
-    // Texture lookups alone, so that the normal maps' own share of their price shows.
-    force("textures", own.textures, FeatureSet { textures: true, ..own });
-    // Normal maps are texture lookups: forcing them on forces the texture code too.
-    force("normal maps", own.normal_maps, FeatureSet { normal_maps: true, textures: true, ..own });
-    force("second uv sets", own.uv_sets, FeatureSet { uv_sets: true, textures: true, ..own });
-    force("layer textures", own.layer_textures, FeatureSet { layer_textures: true, textures: true, ..own });
-    // The node programs' interpreter, present (its price where no material runs it).
-    force("node graphs", own.node_graphs, FeatureSet { node_graphs: true, textures: true, glossy: true, ..own });
-    // The coat's own normal map: the coat and the normal-map code come with it.
-    force(
-        "coat normal",
-        own.coat_normal,
-        FeatureSet { coat_normal: true, coat: true, normal_maps: true, textures: true, ..own },
-    );
-    force("uv tangents", own.uv_tangents, FeatureSet { uv_tangents: true, anisotropy: true, ..own });
-    // `rt render`'s exact sums beside the running means (asked for by the request, see `effects`).
-    force("exact sums", own.exact_sums, FeatureSet { exact_sums: true, ..own });
+    if own.transmission == Transmission::None {
+        v.push(("+glass".to_string(), FeatureSet { transmission: Transmission::Smooth, ..own }));
+    }
+    if !matches!(own.transmission, Transmission::Rough(_)) {
+        v.push(("+rough glass".to_string(), FeatureSet { transmission: Transmission::Rough(rough), ..own }));
+    }
+    // Each priced flag the scene lacks, with what its code needs (media their glass,
+    // normal maps the texture code).
+    for flag in FLAGS.iter().filter(|flag| flag.priced() && !(flag.get)(&own)) {
+        let mut forced = own;
+        (flag.set)(&mut forced, true);
+        forced.complete();
+        v.push((format!("+{}", flag.words()), forced));
+    }
     v
 }
 
@@ -213,45 +180,21 @@ mod tests {
     use super::*;
     use crate::scene::{Sampling, SkyFeature};
 
-    /// A scene without the effect (`all` with it turned off) is timed with it forced on too,
-    /// as variant `name` (the whole set again); one with it is not.
-    fn forced_once(name: &str, off: impl Fn(FeatureSet) -> FeatureSet) {
+    /// Every priced flag of the declaration: a scene without it (all features but it) is
+    /// timed with it forced on too, as variant `+name` (the whole set again); one with it is not.
+    #[test]
+    fn every_priced_flag_is_among_the_forced_effects() {
         let all = FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx);
-        let forced: Vec<_> =
-            variants(off(all), RoughTransmission::Ggx).into_iter().filter(|(n, _)| n == name).collect();
-        assert!(matches!(&forced[..], [(_, f)] if *f == all), "{name}: {forced:?}");
-        assert!(variants(all, RoughTransmission::Ggx).iter().all(|(n, _)| n != name), "{name}");
-    }
-
-    #[test]
-    fn thin_film_is_among_the_forced_effects() {
-        forced_once("+thin film", |f| FeatureSet { thin_film: false, ..f });
-    }
-
-    /// Likewise the rough (Oren-Nayar) diffuse.
-    #[test]
-    fn rough_diffuse_is_among_the_forced_effects() {
-        forced_once("+rough diffuse", |f| FeatureSet { rough_diffuse: false, ..f });
-    }
-
-    #[test]
-    fn coat_normal_is_among_the_forced_effects() {
-        forced_once("+coat normal", |f| FeatureSet { coat_normal: false, ..f });
-    }
-
-    #[test]
-    fn terminator_offset_is_among_the_forced_effects() {
-        forced_once("+terminator offset", |f| FeatureSet { terminator_offset: false, ..f });
-    }
-
-    #[test]
-    fn holdout_is_among_the_forced_effects() {
-        forced_once("+holdout", |f| FeatureSet { holdout: false, ..f });
-    }
-
-    #[test]
-    fn motion_is_among_the_forced_effects() {
-        forced_once("+camera motion", |f| FeatureSet { camera_motion: false, ..f });
-        forced_once("+object motion", |f| FeatureSet { object_motion: false, ..f });
+        for flag in FLAGS.iter().filter(|flag| flag.priced()) {
+            let (mut with, mut without) = (all, all);
+            (flag.set)(&mut with, true);
+            (flag.set)(&mut without, false);
+            let name = format!("+{}", flag.words());
+            let forced: Vec<_> =
+                variants(without, RoughTransmission::Ggx).into_iter().filter(|(n, _)| *n == name).collect();
+            assert!(matches!(&forced[..], [(_, f)] if *f == with), "{name}: {forced:?}");
+            assert!(variants(with, RoughTransmission::Ggx).iter().all(|(n, _)| *n != name), "{name}");
+        }
+        assert!(FLAGS.iter().filter(|flag| flag.priced()).count() > 20);
     }
 }

@@ -1,5 +1,6 @@
 //! Feature analysis: which effects a scene needs, so that the GPU runs only their code.
 
+use super::feature_flags::{self, Flag};
 use super::{
     Light, LightSampler, LightShape, Material, Microfacet, Projection, RoughTransmission, Sampling, Scene, Sky,
 };
@@ -82,92 +83,98 @@ impl LampKinds {
     pub const ALL: Self = Self { point: true, spot: true, area: true, sun: true };
 }
 
-/// The effects a scene calls for. Each one selects shader code; an absent
-/// effect's code is not in the pipeline that runs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct FeatureSet {
-    pub triangles: bool,
-    pub spheres: bool,
-    pub emission: bool,
-    pub sky: SkyFeature,
-    pub sun: bool,
-    /// GGX reflection: a rough `specular` or `reflection` lobe.
-    pub glossy: bool,
-    pub transmission: Transmission,
-    /// Absorption or emission inside transmissive materials.
-    pub media: bool,
-    /// `[[light]]` lamps, by kind.
-    pub lamps: LampKinds,
-    /// Image textures on some material (or a node graph, which reads the uvs they read).
-    pub textures: bool,
-    /// Shader node graphs drive some material's inputs (`asset::node_graph`).
-    pub node_graphs: bool,
-    /// Names the node programs' shapes whose code the pipeline specialises (the scene
-    /// geometry's `node_code`); 0: the node programs are interpreted.
-    pub node_code: u64,
-    /// Cut-outs: some material's alpha can remove parts of its surface, for every ray.
-    pub alpha_mask: bool,
-    /// Stochastic transparency: some material's opacity is a probability (glTF BLEND).
-    pub alpha_blend: bool,
-    /// Tangent-space normal maps on some material.
-    pub normal_maps: bool,
-    /// Some material's texture reads a mesh's second uv set.
-    pub uv_sets: bool,
-    pub sampling: Sampling,
-    /// A thin-lens camera: rays start across the aperture.
-    pub depth_of_field: bool,
-    /// A panoramic camera (equirectangular, fisheye, mirror ball).
-    pub panorama: bool,
-    /// Light sampling walks the light tree (`light_sampler = "tree"`, with lights to put in it).
-    pub light_tree: bool,
-    /// Albedo, normal and depth images beside the radiance (asked for by a render, not a scene).
-    pub aovs: bool,
-    /// Pixels stop taking samples once their noise is below a threshold (asked for by a render).
-    pub adaptive: bool,
-    /// Exact integer sums of the samples beside the running means, so that parts of a
-    /// render merge into the image one render gives (asked for by `rt render`).
-    pub exact_sums: bool,
-    /// Film › Transparent: camera rays that leave the scene add nothing and count as
-    /// uncovered (`[render] transparent`).
-    pub transparent_film: bool,
-    /// Cycles' multiscatter GGX (`[render] microfacet`) for the scene's rough lobes, metals
-    /// and glass.
-    pub multiscatter: bool,
-    /// Some diffuse lobe lies under a dielectric coating (`specular_ior_level`).
-    pub coating: bool,
-    /// Some material has a coat layer (`coat`).
-    pub coat: bool,
-    /// Some coat is shaded with a normal of its own (Principled's Coat Normal): a coat over
-    /// a normal map it does not share, or with a normal map of its own.
-    pub coat_normal: bool,
-    /// Some material has a sheen layer (`sheen`).
-    pub sheen: bool,
-    /// Some material's rough lobes are anisotropic (`anisotropy`).
-    pub anisotropy: bool,
-    /// Some material has a thin film (`thin_film_thickness`).
-    pub thin_film: bool,
-    /// Textures on some material's coat, sheen, anisotropy or specular tint.
-    pub layer_textures: bool,
-    /// Some anisotropic material follows its uv map's tangents (`tangent = "uv"`).
-    pub uv_tangents: bool,
-    /// Some diffuse lobe is Oren-Nayar (`diffuse_roughness`).
-    pub rough_diffuse: bool,
-    /// Triangles with interpolated normals shaded as Cycles shades them (in Cycles'
-    /// material model, `microfacet = "multiscatter"`): the shadow terminator offset,
-    /// directions judged by the geometry rather than folded, and Bump Map Correction.
-    pub smooth_normals: bool,
-    /// Some object has a Shadow Terminator Shading Offset: its lobes' cosines are shifted
-    /// towards the light (Cycles' `shift_cos_in`).
-    pub terminator_offset: bool,
-    /// Some material is (partly) a Holdout shader, or some object a holdout: the pixels'
-    /// alpha is counted, and held-out surfaces take from it.
-    pub holdout: bool,
-    /// Motion blur of the camera: it moves over the shutter; each sample has a time, at
-    /// which its camera ray starts.
-    pub camera_motion: bool,
-    /// Motion blur of objects: some instance moves over the shutter; each sample has a
-    /// time, at which every ray of its path sees the instances.
-    pub object_motion: bool,
+feature_flags::feature_set! {
+    /// The effects a scene calls for. Each one selects shader code; an absent
+    /// effect's code is not in the pipeline that runs. The flags are declared once, here
+    /// (`feature_flags`): each flag's name is its name in the shaders' `//#if` lines.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+    pub struct FeatureSet {
+        pub sky: SkyFeature,
+        pub transmission: Transmission,
+        /// `[[light]]` lamps, by kind.
+        pub lamps: LampKinds,
+        pub sampling: Sampling,
+        /// Names the node programs' shapes whose code the pipeline specialises (the scene
+        /// geometry's `node_code`); 0: the node programs are interpreted.
+        pub node_code: u64,
+    }
+    flags {
+        triangles: Effect;
+        spheres: Effect;
+        emission: Effect;
+        /// The sky's sun (`[sun]`).
+        sun: Effect;
+        /// GGX reflection: a rough `specular` or `reflection` lobe.
+        glossy: Effect;
+        /// Absorption or emission inside transmissive materials.
+        media: Effect needs glass;
+        /// Image textures on some material (or a node graph, which reads the uvs they read).
+        textures: Effect;
+        /// Shader node graphs drive some material's inputs (`asset::node_graph`).
+        node_graphs: Effect needs textures, glossy;
+        /// Cut-outs: some material's alpha can remove parts of its surface, for every ray.
+        alpha_mask: Effect needs textures;
+        /// Stochastic transparency: some material's opacity is a probability (glTF BLEND).
+        alpha_blend: Effect needs alpha_mask;
+        /// Tangent-space normal maps on some material.
+        normal_maps: Effect needs textures;
+        /// Some material's texture reads a mesh's second uv set.
+        uv_sets: Effect needs textures;
+        /// A thin-lens camera: rays start across the aperture.
+        depth_of_field: Setting;
+        /// A panoramic camera (equirectangular, fisheye, mirror ball).
+        panorama: Setting;
+        /// Light sampling walks the light tree (`light_sampler = "tree"`, with lights to put in it).
+        light_tree: Setting needs nee;
+        /// Albedo, normal and depth images beside the radiance (asked for by a render, not a scene).
+        aovs: Output;
+        /// Pixels stop taking samples once their noise is below a threshold (asked for by a render).
+        adaptive: Output;
+        /// Exact integer sums of the samples beside the running means, so that parts of a
+        /// render merge into the image one render gives (asked for by `rt render`).
+        exact_sums: PricedOutput;
+        /// Film › Transparent: camera rays that leave the scene add nothing and count as
+        /// uncovered (`[render] transparent`).
+        transparent_film: Output;
+        /// Cycles' multiscatter GGX (`[render] microfacet`) for the scene's rough lobes, metals
+        /// and glass.
+        multiscatter: Setting;
+        /// Some diffuse lobe lies under a dielectric coating (`specular_ior_level`).
+        coating: Effect;
+        /// Some material has a coat layer (`coat`).
+        coat: Effect;
+        /// Some coat is shaded with a normal of its own (Principled's Coat Normal): a coat over
+        /// a normal map it does not share, or with a normal map of its own.
+        coat_normal: Effect needs coat, normal_maps;
+        /// Some material has a sheen layer (`sheen`).
+        sheen: Effect;
+        /// Some material's rough lobes are anisotropic (`anisotropy`).
+        anisotropy: Effect;
+        /// Some material has a thin film (`thin_film_thickness`).
+        thin_film: Effect;
+        /// Textures on some material's coat, sheen, anisotropy or specular tint.
+        layer_textures: Effect needs textures;
+        /// Some anisotropic material follows its uv map's tangents (`tangent = "uv"`).
+        uv_tangents: Effect needs anisotropy;
+        /// Some diffuse lobe is Oren-Nayar (`diffuse_roughness`).
+        rough_diffuse: Effect;
+        /// Triangles with interpolated normals shaded as Cycles shades them (in Cycles'
+        /// material model, `microfacet = "multiscatter"`): the shadow terminator offset,
+        /// directions judged by the geometry rather than folded, and Bump Map Correction.
+        smooth_normals: Effect needs triangles;
+        /// Some object has a Shadow Terminator Shading Offset: its lobes' cosines are shifted
+        /// towards the light (Cycles' `shift_cos_in`).
+        terminator_offset: Effect needs triangles;
+        /// Some material is (partly) a Holdout shader, or some object a holdout: the pixels'
+        /// alpha is counted, and held-out surfaces take from it.
+        holdout: Effect;
+        /// Motion blur of the camera: it moves over the shutter; each sample has a time, at
+        /// which its camera ray starts.
+        camera_motion: Effect;
+        /// Motion blur of objects: some instance moves over the shutter; each sample has a
+        /// time, at which every ray of its path sees the instances.
+        object_motion: Effect;
+    }
 }
 
 /// The α below which a lobe is a perfect mirror or interface (`ALPHA_DELTA` in `shaders/bsdf.wgsl`).
@@ -269,47 +276,17 @@ impl FeatureSet {
 
     /// Every effect on: the pipeline a scene would run without specialisation.
     pub fn all(sky: SkyFeature, sampling: Sampling, rough: RoughTransmission) -> Self {
-        Self {
-            triangles: true,
-            spheres: true,
-            emission: true,
-            sky,
-            sun: true,
-            glossy: true,
-            transmission: Transmission::Rough(rough),
-            media: true,
-            lamps: LampKinds::ALL,
-            textures: true,
-            node_graphs: true,
-            node_code: 0,
-            alpha_mask: true,
-            alpha_blend: true,
-            normal_maps: true,
-            uv_sets: true,
-            sampling,
-            depth_of_field: true,
-            panorama: true,
-            light_tree: sampling == Sampling::Nee,
-            aovs: false,
-            adaptive: false,
-            exact_sums: false,
-            transparent_film: false,
-            multiscatter: true,
-            coating: true,
-            coat: true,
-            coat_normal: true,
-            sheen: true,
-            anisotropy: true,
-            thin_film: true,
-            layer_textures: true,
-            uv_tangents: true,
-            rough_diffuse: true,
-            smooth_normals: true,
-            terminator_offset: true,
-            holdout: true,
-            camera_motion: true,
-            object_motion: true,
+        let mut set = Self::with_flags_off(sky, Transmission::Rough(rough), LampKinds::ALL, sampling, 0);
+        for flag in FLAGS.iter().filter(|f| f.in_all_features()) {
+            (flag.set)(&mut set, true);
         }
+        // A flag whose needs the kept choices deny stays off (the light tree under resampling).
+        for flag in FLAGS {
+            if !set.needs_met(flag) {
+                (flag.set)(&mut set, false);
+            }
+        }
+        set
     }
 
     /// Whether the image has an alpha channel: a transparent film's, or one that holdouts
@@ -318,23 +295,57 @@ impl FeatureSet {
         self.transparent_film || self.holdout
     }
 
-    /// Whether the preprocessor flag `name` (as in `//#if name` in `shaders/`) is on.
+    /// Whether the preprocessor flag `name` (as in `//#if name` in `shaders/`) is on: one
+    /// of the set's flags, or one derived from them.
     pub fn flag(&self, name: &str) -> Option<bool> {
+        match feature_flags::named(name) {
+            Some(flag) => Some((flag.get)(self)),
+            None => self.derived_flag(name),
+        }
+    }
+
+    /// Whether `flag` is off, or on with everything it needs.
+    pub fn needs_met(&self, flag: &Flag) -> bool {
+        !(flag.get)(self) || flag.needs.iter().all(|need| self.flag(need) == Some(true))
+    }
+
+    /// Whether every flag that is on has what it needs: a set a scene's analysis can give.
+    pub fn consistent(&self) -> bool {
+        FLAGS.iter().all(|flag| self.needs_met(flag))
+    }
+
+    /// Turns on what the set's flags need (an alpha mask's textures, a medium's glass),
+    /// and what those need in turn.
+    pub fn complete(&mut self) {
+        while let Some(flag) = FLAGS.iter().find(|flag| !self.needs_met(flag)) {
+            for need in flag.needs {
+                self.turn_on(need);
+            }
+        }
+    }
+
+    /// Turns on the flag `name`: one of the set's own, smooth glass where there is none,
+    /// or next-event estimation.
+    fn turn_on(&mut self, name: &str) {
+        match (feature_flags::named(name), name) {
+            (Some(flag), _) => (flag.set)(self, true),
+            (None, "glass") if self.transmission == Transmission::None => self.transmission = Transmission::Smooth,
+            (None, "nee") => self.sampling = Sampling::Nee,
+            _ => {}
+        }
+    }
+
+    /// The flags made of others or of the fields that are not flags.
+    fn derived_flag(&self, name: &str) -> Option<bool> {
         Some(match name {
-            "triangles" => self.triangles,
-            "spheres" => self.spheres,
-            "emission" => self.emission,
             "sky_black" => self.sky == SkyFeature::Black,
             "sky_uniform" => matches!(self.sky, SkyFeature::Uniform | SkyFeature::UniformLight),
             "sky_uniform_light" => self.sky == SkyFeature::UniformLight,
             "sky_atmosphere" => self.sky == SkyFeature::Atmosphere,
             "sky_environment" => self.sky == SkyFeature::Environment,
-            "sun" => self.sun,
-            "glossy" => self.glossy,
             "glass" => self.transmission != Transmission::None,
             "rough_glass_ggx" => self.transmission == Transmission::Rough(RoughTransmission::Ggx),
             "rough_glass_cone" => self.transmission == Transmission::Rough(RoughTransmission::Cone),
-            "media" => self.media,
             "lamps" => self.lamps.any(),
             "lamp_point" => self.lamps.point,
             "lamp_spot" => self.lamps.spot,
@@ -342,43 +353,15 @@ impl FeatureSet {
             "lamp_round" => self.lamps.point || self.lamps.spot,
             "lamp_area" => self.lamps.area,
             "lamp_sun" => self.lamps.sun,
-            "textures" => self.textures,
-            "node_graphs" => self.node_graphs,
             // Specialised node code, appended to the module (`gpu::node_code`).
             "node_code" => self.node_graphs && self.node_code != 0,
-            "alpha_mask" => self.alpha_mask,
-            "alpha_blend" => self.alpha_blend,
-            "normal_maps" => self.normal_maps,
-            "uv_sets" => self.uv_sets,
             "nee" => self.sampling == Sampling::Nee,
-            "depth_of_field" => self.depth_of_field,
-            "panorama" => self.panorama,
-            "light_tree" => self.light_tree,
-            "aovs" => self.aovs,
-            "adaptive" => self.adaptive,
-            "exact_sums" => self.exact_sums,
-            "transparent_film" => self.transparent_film,
-            "multiscatter" => self.multiscatter,
-            "coating" => self.coating,
-            "coat" => self.coat,
-            "coat_normal" => self.coat_normal,
-            "sheen" => self.sheen,
-            "anisotropy" => self.anisotropy,
-            "thin_film" => self.thin_film,
-            "layer_textures" => self.layer_textures,
-            "uv_tangents" => self.uv_tangents,
             // Normal maps and uv tangents read the triangles' tangents.
             "tangent_frames" => self.normal_maps || self.uv_tangents,
-            "rough_diffuse" => self.rough_diffuse,
-            "smooth_normals" => self.smooth_normals,
-            "terminator_offset" => self.terminator_offset,
             // Surfaces whose lobes follow Cycles' rules (lobe_hemispheres.wgsl) exist.
             "cycles_lobe_rules" => self.normal_maps || self.smooth_normals,
-            "holdout" => self.holdout,
             // A time per sample.
             "motion" => self.camera_motion || self.object_motion,
-            "camera_motion" => self.camera_motion,
-            "object_motion" => self.object_motion,
             // Each instance's Shadow Terminator settings, read by both, and its holdout.
             "object_settings" => self.smooth_normals || self.terminator_offset || self.holdout,
             "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen || self.thin_film,
@@ -389,47 +372,12 @@ impl FeatureSet {
 
 impl fmt::Display for FeatureSet {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let mut parts = Vec::new();
-        for (on, name) in [
-            (self.triangles, "triangles"),
-            (self.spheres, "spheres"),
-            (self.emission, "emission"),
-            (self.sun, "sun"),
-            (self.glossy, "glossy"),
-            (self.media, "media"),
-            (self.depth_of_field, "depth-of-field"),
-            (self.panorama, "panorama"),
-            (self.textures, "textures"),
-            (self.node_graphs && self.node_code == 0, "node-graphs"),
-            (self.node_graphs && self.node_code != 0, "node-graphs=specialised"),
-            (self.alpha_mask, "alpha-mask"),
-            (self.light_tree, "light-tree"),
-            (self.alpha_blend, "alpha-blend"),
-            (self.normal_maps, "normal-maps"),
-            (self.uv_sets, "uv-sets"),
-            (self.aovs, "aovs"),
-            (self.adaptive, "adaptive"),
-            (self.exact_sums, "exact-sums"),
-            (self.transparent_film, "transparent-film"),
-            (self.multiscatter, "multiscatter"),
-            (self.coating, "coating"),
-            (self.coat, "coat"),
-            (self.coat_normal, "coat-normal"),
-            (self.sheen, "sheen"),
-            (self.anisotropy, "anisotropy"),
-            (self.thin_film, "thin-film"),
-            (self.layer_textures, "layer-textures"),
-            (self.uv_tangents, "uv-tangents"),
-            (self.rough_diffuse, "rough-diffuse"),
-            (self.smooth_normals, "smooth-normals"),
-            (self.terminator_offset, "terminator-offset"),
-            (self.holdout, "holdout"),
-            (self.camera_motion, "camera-motion"),
-            (self.object_motion, "object-motion"),
-        ] {
-            if on {
-                parts.push(name.to_string());
-            }
+        let mut parts: Vec<String> = FLAGS.iter().filter(|flag| (flag.get)(self)).map(Flag::label).collect();
+        if self.node_graphs
+            && self.node_code != 0
+            && let Some(graphs) = parts.iter_mut().find(|p| *p == "node-graphs")
+        {
+            graphs.push_str("=specialised");
         }
         match self.transmission {
             Transmission::None => {}
@@ -457,37 +405,5 @@ impl fmt::Display for FeatureSet {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::scene::MaterialTextures;
-
-    fn features_of(material: Material) -> FeatureSet {
-        let scene = crate::scene::default_scene().expect("the built-in scene");
-        let geometry = GeometrySummary { triangles: true, materials_in_use: vec![material], ..Default::default() };
-        FeatureSet::analyse(&scene, &geometry)
-    }
-
-    /// A coat over a normal map it does not share, or with one of its own, pays for the coat's
-    /// frame; a coat on the base's own map, a map without a coat or a bare coat do not.
-    #[test]
-    fn the_coat_normal_is_on_where_the_coats_normal_differs() {
-        let coat = Material { coat: 1.0, ..Default::default() };
-        let base_map = MaterialTextures { normal: Some(0), ..Default::default() };
-        let on = |m: Material| features_of(m).coat_normal;
-        assert!(on(Material { textures: base_map, ..coat.clone() }));
-        assert!(on(Material {
-            textures: MaterialTextures { coat_normal: Some(0), ..Default::default() },
-            ..coat.clone()
-        }));
-        let shared = MaterialTextures { coat_normal: Some(0), ..base_map };
-        assert!(!on(Material { textures: shared, ..coat.clone() }));
-        assert!(!on(Material { textures: base_map, ..Default::default() }));
-        assert!(!on(coat));
-        let own = features_of(Material {
-            coat: 1.0,
-            textures: MaterialTextures { coat_normal: Some(0), ..Default::default() },
-            ..Default::default()
-        });
-        assert!(own.normal_maps && own.textures && own.coat, "the coat's map runs the normal-map code: {own}");
-    }
-}
+#[path = "features_tests.rs"]
+mod tests;

@@ -4,13 +4,13 @@
 //! them compiles every two effects side by side, in far fewer pipelines than all
 //! combinations.
 
-use crate::scene::{FeatureSet, RoughTransmission, Sampling, SkyFeature, Transmission};
+use crate::scene::{FLAGS, FeatureSet, Flag, RoughTransmission, Sampling, SkyFeature, Transmission};
 
 /// One value of a dimension: how to give it to a set, and whether a set has it.
 struct Level {
     name: &'static str,
-    set: fn(&mut FeatureSet),
-    holds: fn(&FeatureSet) -> bool,
+    set: Box<dyn Fn(&mut FeatureSet)>,
+    holds: Box<dyn Fn(&FeatureSet) -> bool>,
 }
 
 /// A dimension of the feature space and the values it takes.
@@ -19,14 +19,24 @@ struct Factor {
     levels: Vec<Level>,
 }
 
-/// A boolean field as a factor of two levels.
-macro_rules! flag {
-    ($($field:ident).+) => {
+/// A boolean flag of the set's declaration as a factor of two levels.
+fn flag(flag: &'static Flag) -> Factor {
+    let level = |name, on: bool| Level {
+        name,
+        set: Box::new(move |f: &mut FeatureSet| (flag.set)(f, on)),
+        holds: Box::new(move |f: &FeatureSet| (flag.get)(f) == on),
+    };
+    Factor { name: flag.name, levels: vec![level("off", false), level("on", true)] }
+}
+
+/// A boolean field of the lamp kinds as a factor of two levels.
+macro_rules! lamp {
+    ($kind:ident) => {
         Factor {
-            name: stringify!($($field).+),
+            name: concat!("lamps.", stringify!($kind)),
             levels: vec![
-                Level { name: "off", set: |f| f.$($field).+ = false, holds: |f| !f.$($field).+ },
-                Level { name: "on", set: |f| f.$($field).+ = true, holds: |f| f.$($field).+ },
+                Level { name: "off", set: Box::new(|f| f.lamps.$kind = false), holds: Box::new(|f| !f.lamps.$kind) },
+                Level { name: "on", set: Box::new(|f| f.lamps.$kind = true), holds: Box::new(|f| f.lamps.$kind) },
             ],
         }
     };
@@ -37,91 +47,41 @@ macro_rules! choice {
     ($field:ident: $($name:literal => $value:expr),+ $(,)?) => {
         Factor {
             name: stringify!($field),
-            levels: vec![$(Level { name: $name, set: |f| f.$field = $value, holds: |f| f.$field == $value }),+],
+            levels: vec![$(Level {
+                name: $name,
+                set: Box::new(|f| f.$field = $value),
+                holds: Box::new(|f| f.$field == $value),
+            }),+],
         }
     };
 }
 
-/// Every dimension, each after those it depends on (textures before alpha masks).
+/// Every dimension: the fields that are not flags, then every declared flag.
 fn factors() -> Vec<Factor> {
-    vec![
-        flag!(triangles),
-        flag!(spheres),
-        flag!(emission),
+    let mut factors = vec![
         choice!(sky: "black" => SkyFeature::Black, "uniform" => SkyFeature::Uniform,
             "uniform_light" => SkyFeature::UniformLight,
             "atmosphere" => SkyFeature::Atmosphere, "environment" => SkyFeature::Environment),
-        flag!(sun),
-        flag!(glossy),
         choice!(transmission: "none" => Transmission::None, "smooth" => Transmission::Smooth,
             "ggx" => Transmission::Rough(RoughTransmission::Ggx), "cone" => Transmission::Rough(RoughTransmission::Cone)),
-        flag!(media),
-        flag!(lamps.point),
-        flag!(lamps.spot),
-        flag!(lamps.area),
-        flag!(lamps.sun),
-        flag!(textures),
-        flag!(node_graphs),
-        flag!(alpha_mask),
-        flag!(alpha_blend),
-        flag!(normal_maps),
-        flag!(uv_sets),
         choice!(sampling: "nee" => Sampling::Nee, "resampled" => Sampling::Resampled),
-        flag!(depth_of_field),
-        flag!(panorama),
-        flag!(light_tree),
-        flag!(aovs),
-        flag!(adaptive),
-        flag!(exact_sums),
-        flag!(transparent_film),
-        flag!(multiscatter),
-        flag!(coating),
-        flag!(coat),
-        flag!(coat_normal),
-        flag!(sheen),
-        flag!(anisotropy),
-        flag!(thin_film),
-        flag!(layer_textures),
-        flag!(uv_tangents),
-        flag!(rough_diffuse),
-        flag!(smooth_normals),
-        flag!(terminator_offset),
-        flag!(holdout),
-        flag!(camera_motion),
-        flag!(object_motion),
-    ]
+        lamp!(point),
+        lamp!(spot),
+        lamp!(area),
+        lamp!(sun),
+    ];
+    factors.extend(FLAGS.iter().map(flag));
+    factors
 }
 
-/// The rules `FeatureSet::analyse` obeys: what a scene can ask for together.
+/// What a scene can ask for together: every flag with what it needs, and some geometry.
 fn possible(f: &FeatureSet) -> bool {
-    let implies = |a: bool, b: bool| !a || b;
-    (f.triangles || f.spheres)
-        && implies(f.media, f.transmission != Transmission::None)
-        && implies(f.alpha_mask, f.textures)
-        && implies(f.alpha_blend, f.alpha_mask)
-        && implies(f.normal_maps, f.textures)
-        && implies(f.uv_sets, f.textures)
-        && implies(f.layer_textures, f.textures)
-        && implies(f.node_graphs, f.textures && f.glossy)
-        && implies(f.coat_normal, f.coat && f.normal_maps)
-        && implies(f.uv_tangents, f.anisotropy)
-        && implies(f.light_tree, f.sampling == Sampling::Nee)
+    (f.triangles || f.spheres) && f.consistent()
 }
 
 /// Turns on what the set's effects need (an alpha mask's textures, a medium's glass).
 fn complete(f: &mut FeatureSet) {
-    f.alpha_mask |= f.alpha_blend;
-    f.coat |= f.coat_normal;
-    f.normal_maps |= f.coat_normal;
-    f.textures |= f.alpha_mask || f.normal_maps || f.uv_sets || f.layer_textures || f.node_graphs;
-    f.glossy |= f.node_graphs;
-    f.anisotropy |= f.uv_tangents;
-    if f.media && f.transmission == Transmission::None {
-        f.transmission = Transmission::Smooth;
-    }
-    if f.light_tree {
-        f.sampling = Sampling::Nee;
-    }
+    f.complete();
     if !f.spheres {
         f.triangles = true;
     }

@@ -1,10 +1,11 @@
 use super::resolve::{include_of, kept_lines, resolve};
 use super::*;
-use crate::scene::{LampKinds, RoughTransmission, Sampling, SkyFeature, Transmission};
+use crate::scene::{FLAGS, LampKinds, RoughTransmission, Sampling, SkyFeature, Transmission};
 use std::collections::{BTreeSet, HashSet};
 use std::path::Path;
 
-/// A spread of feature sets: each flag on and off, in many combinations.
+/// A spread of feature sets: each declared flag on or off by a hash of the set's number
+/// and the flag's, then completed with what the flags need.
 fn feature_sets() -> Vec<FeatureSet> {
     let mut sets = Vec::new();
     for bits in 0..256u32 {
@@ -15,59 +16,25 @@ fn feature_sets() -> Vec<FeatureSet> {
             2 => Transmission::Rough(RoughTransmission::Ggx),
             _ => Transmission::Rough(RoughTransmission::Cone),
         };
-        sets.push(FeatureSet {
-            triangles: on(2) || !on(3),
-            spheres: on(3),
-            emission: on(4),
-            sky: match (on(5), on(2)) {
-                (true, _) => SkyFeature::Uniform,
-                (false, true) => SkyFeature::Atmosphere,
-                (false, false) if on(7) => SkyFeature::Environment,
-                (false, false) => SkyFeature::Black,
-            },
-            sun: on(6),
-            glossy: on(7),
-            transmission,
-            media: on(1) && transmission != Transmission::None,
-            // Lamp kinds cycle with the bits, each on and off with the others.
-            lamps: LampKinds {
-                point: bits % 3 == 1,
-                spot: bits % 5 == 2,
-                area: bits % 7 >= 5,
-                sun: (bits / 8) % 3 == 1,
-            },
-            textures: on(0) != on(4),
-            node_graphs: on(0) != on(4) && on(7) && on(1),
-            node_code: 0,
-            alpha_mask: on(0) != on(4) && on(6),
-            alpha_blend: on(0) != on(4) && on(6) && on(1),
-            normal_maps: on(0) != on(4) && on(7),
-            uv_sets: on(0) != on(4) && on(5),
-            sampling: if on(0) { Sampling::Nee } else { Sampling::Resampled },
-            depth_of_field: on(4) != on(6),
-            panorama: on(2) != on(5),
-            light_tree: on(0) && on(4) != on(7),
-            aovs: on(3) != on(7),
-            adaptive: on(1) != on(5),
-            exact_sums: on(2) != on(4),
-            transparent_film: on(2) != on(7),
-            multiscatter: on(7) != on(1),
-            coating: on(5) != on(7),
-            coat: on(3) != on(6),
-            // The coat's own normal comes with a coat and the normal maps' code.
-            coat_normal: on(3) != on(6) && on(0) != on(4) && on(7),
-            sheen: on(2) != on(5),
-            anisotropy: on(2) != on(6),
-            thin_film: on(1) != on(6),
-            layer_textures: on(0) != on(4) && on(3),
-            uv_tangents: on(2) != on(6) && on(1),
-            rough_diffuse: on(3) != on(5),
-            smooth_normals: on(1) != on(3),
-            terminator_offset: on(4) != on(5),
-            holdout: on(5) != on(6),
-            camera_motion: on(1) != on(7),
-            object_motion: on(0) != on(6),
-        });
+        let sky = match (on(5), on(2)) {
+            (true, _) => SkyFeature::Uniform,
+            (false, true) => SkyFeature::Atmosphere,
+            (false, false) if on(7) => SkyFeature::Environment,
+            (false, false) => SkyFeature::Black,
+        };
+        // Lamp kinds cycle with the bits, each on and off with the others.
+        let lamps =
+            LampKinds { point: bits % 3 == 1, spot: bits % 5 == 2, area: bits % 7 >= 5, sun: (bits / 8) % 3 == 1 };
+        let sampling = if on(0) { Sampling::Nee } else { Sampling::Resampled };
+        let mut set = FeatureSet::with_flags_off(sky, transmission, lamps, sampling, 0);
+        for (i, flag) in FLAGS.iter().enumerate() {
+            let hash =
+                (bits.wrapping_mul(0x9e37_79b9) ^ (i as u32).wrapping_mul(0x85eb_ca6b)).wrapping_mul(0xc2b2_ae35);
+            (flag.set)(&mut set, hash >> 31 == 1);
+        }
+        set.complete();
+        set.triangles |= !set.spheres;
+        sets.push(set);
     }
     sets
 }
@@ -76,48 +43,11 @@ fn all_on() -> FeatureSet {
     FeatureSet::all(SkyFeature::Uniform, Sampling::Nee, RoughTransmission::Ggx)
 }
 
+/// Triangles and nothing else.
 fn plain() -> FeatureSet {
-    FeatureSet {
-        triangles: true,
-        spheres: false,
-        emission: false,
-        sky: SkyFeature::Black,
-        sun: false,
-        glossy: false,
-        transmission: Transmission::None,
-        media: false,
-        lamps: LampKinds::default(),
-        textures: false,
-        node_graphs: false,
-        node_code: 0,
-        alpha_mask: false,
-        alpha_blend: false,
-        normal_maps: false,
-        uv_sets: false,
-        sampling: Sampling::Nee,
-        depth_of_field: false,
-        panorama: false,
-        light_tree: false,
-        aovs: false,
-        adaptive: false,
-        exact_sums: false,
-        transparent_film: false,
-        multiscatter: false,
-        coating: false,
-        coat: false,
-        coat_normal: false,
-        sheen: false,
-        anisotropy: false,
-        thin_film: false,
-        layer_textures: false,
-        uv_tangents: false,
-        rough_diffuse: false,
-        smooth_normals: false,
-        terminator_offset: false,
-        holdout: false,
-        camera_motion: false,
-        object_motion: false,
-    }
+    let none =
+        FeatureSet::with_flags_off(SkyFeature::Black, Transmission::None, LampKinds::default(), Sampling::Nee, 0);
+    FeatureSet { triangles: true, ..none }
 }
 
 /// Parses and validates `source`, then writes it as SPIR-V, as the Vulkan backend does:

@@ -185,42 +185,11 @@ fn shading_context(m: Material, n_shading: vec3f, n_geometric: vec3f, wo_world: 
     var ctx = ShadingContext(m, basis, vec3f(wo.xy, mu), to_local * n_geometric, alpha, eta, vec4f(0.0), smooth_lobe, vec3f(1.0), vec3f(1.0), vec3f(1.0), 1.0, vec3f(0.0), 0.0, vec3f(1.0), vec3f(1.0), 0.0, vec3f(0.0), vec2f(0.0), vec3f(1.0, 0.0, 0.0), 1.0);
     var specular_albedo = luminance(m.specular_tint);
     //#if multiscatter
-    ctx.metal_b = f82_b(metal_f0(m), min(m.specular_tint, vec3f(1.0)));
-    if rough {
-        // Without a coating, Cycles' constant Fresnel of a Glossy BSDF: its colour.
-        var specular_fss = m.specular_tint;
-        //#if coating
-        if m.coating_eta > 0.0 {
-            specular_fss = coating_average(m);
-        }
-        //#endif
-        ctx.energy_specular = reflection_energy(m.alpha, table_mu, specular_fss);
-        let metal_fss = mix(metal_f0(m), vec3f(1.0), 1.0 / 21.0) - ctx.metal_b / 126.0;
-        ctx.energy_reflection = reflection_energy(m.alpha, table_mu, metal_fss);
-        ctx.energy_transmission = dielectric_energy(m.alpha, table_mu, eta, sqrt(saturate(m.base_color)));
-    }
+    microfacet_energies(&ctx, rough, table_mu);
     //#endif
     //#if coating
     if m.coating_eta > 0.0 {
-        var darkening = vec3f(1.0);
-        //#if multiscatter
-        if rough {
-            darkening = ctx.energy_specular * ggx_albedo(m.alpha, table_mu);
-        }
-        //#endif
-        ctx.diffuse_kept = coating_transmittance(m, table_mu, darkening);
-        specular_albedo = luminance(mix(saturate(m.coating_f0 * m.specular_tint), vec3f(1.0), coating_fresnel_s(sqrt(m.alpha), table_mu, m.coating_eta)));
-        //#if thin_film
-        if has_thin_film(m) {
-            // Cycles has no albedo table for a film: its estimate is the film's Fresnel at
-            // mu; a partial film (glTF's factor) mixes the estimates with and without it.
-            let film = thin_film_coating(m, table_mu);
-            let albedo = film * darkening;
-            let kept = saturate(1.0 - max(max(albedo.x, albedo.y), albedo.z));
-            ctx.diffuse_kept = mix(ctx.diffuse_kept, kept, m.thin_film_weight);
-            specular_albedo = mix(specular_albedo, luminance(film), m.thin_film_weight);
-        }
-        //#endif
+        specular_albedo = coating_setup(&ctx, rough, table_mu);
     }
     //#endif
     var p = vec4f(m.diffuse * ctx.diffuse_kept * luminance(m.base_color), m.specular * specular_albedo, m.reflection * luminance(m.base_color), m.transmission);
@@ -229,34 +198,90 @@ fn shading_context(m: Material, n_shading: vec3f, n_geometric: vec3f, wo_world: 
     }
     let total = p.x + p.y + p.z + p.w;
     ctx.lobe_probability = select(vec4f(0.0), p / total, total > 0.0);
+    layer_probabilities(&ctx, total, table_mu, shades, wo_world, n_geometric);
+    return ctx;
+}
+
+//#if multiscatter
+// The multiscatter lobes' energies at the view's cos θ (`table_mu`): Cycles' albedo tables.
+fn microfacet_energies(ctx: ptr<function, ShadingContext>, rough: bool, table_mu: f32) {
+    let m = (*ctx).m;
+    (*ctx).metal_b = f82_b(metal_f0(m), min(m.specular_tint, vec3f(1.0)));
+    if rough {
+        // Without a coating, Cycles' constant Fresnel of a Glossy BSDF: its colour.
+        var specular_fss = m.specular_tint;
+        //#if coating
+        if m.coating_eta > 0.0 {
+            specular_fss = coating_average(m);
+        }
+        //#endif
+        (*ctx).energy_specular = reflection_energy(m.alpha, table_mu, specular_fss);
+        let metal_fss = mix(metal_f0(m), vec3f(1.0), 1.0 / 21.0) - (*ctx).metal_b / 126.0;
+        (*ctx).energy_reflection = reflection_energy(m.alpha, table_mu, metal_fss);
+        (*ctx).energy_transmission = dielectric_energy(m.alpha, table_mu, (*ctx).eta, sqrt(saturate(m.base_color)));
+    }
+}
+//#endif
+
+//#if coating
+// What a dielectric coating keeps of the diffuse lobe under it (`diffuse_kept`), and the
+// coating's albedo, which it returns: the specular lobe's sampling weight.
+fn coating_setup(ctx: ptr<function, ShadingContext>, rough: bool, table_mu: f32) -> f32 {
+    let m = (*ctx).m;
+    var darkening = vec3f(1.0);
+    //#if multiscatter
+    if rough {
+        darkening = (*ctx).energy_specular * ggx_albedo(m.alpha, table_mu);
+    }
+    //#endif
+    (*ctx).diffuse_kept = coating_transmittance(m, table_mu, darkening);
+    var specular_albedo = luminance(mix(saturate(m.coating_f0 * m.specular_tint), vec3f(1.0), coating_fresnel_s(sqrt(m.alpha), table_mu, m.coating_eta)));
+    //#if thin_film
+    if has_thin_film(m) {
+        // Cycles has no albedo table for a film: its estimate is the film's Fresnel at
+        // mu; a partial film (glTF's factor) mixes the estimates with and without it.
+        let film = thin_film_coating(m, table_mu);
+        let albedo = film * darkening;
+        let kept = saturate(1.0 - max(max(albedo.x, albedo.y), albedo.z));
+        (*ctx).diffuse_kept = mix((*ctx).diffuse_kept, kept, m.thin_film_weight);
+        specular_albedo = mix(specular_albedo, luminance(film), m.thin_film_weight);
+    }
+    //#endif
+    return specular_albedo;
+}
+//#endif
+
+// The coat's and the sheen's sampling probabilities against the lobes below them, whose
+// albedo is `total`.
+fn layer_probabilities(ctx: ptr<function, ShadingContext>, total: f32, table_mu: f32, shades: bool, wo_world: vec3f, n_geometric: vec3f) {
+    let m = (*ctx).m;
     // The albedo of what lies under the sheen, for its sampling probability.
     var below = total;
     //#if coat
     if m.coat > 0.0 {
         var coat_mu = table_mu;
         //#if coat_normal
-        coat_mu = coat_frame_setup(basis, wo_world, n_geometric);
+        coat_mu = coat_frame_setup((*ctx).basis, wo_world, n_geometric);
         //#endif
-        let coat_albedo = coat_setup(&ctx, coat_mu);
-        let rest = total * luminance(ctx.under_coat);
-        ctx.coat_probability = select(1.0, coat_albedo / (coat_albedo + rest), coat_albedo + rest > 0.0);
+        let coat_albedo = coat_setup(ctx, coat_mu);
+        let rest = total * luminance((*ctx).under_coat);
+        (*ctx).coat_probability = select(1.0, coat_albedo / (coat_albedo + rest), coat_albedo + rest > 0.0);
         below = coat_albedo + rest;
         if !shades {
             // The coat is a microfacet lobe too; what it takes from the layers below stays.
-            ctx.m.coat = 0.0;
-            ctx.coat_probability = 0.0;
+            (*ctx).m.coat = 0.0;
+            (*ctx).coat_probability = 0.0;
             below = rest;
         }
     }
     //#endif
     //#if sheen
     if m.sheen > 0.0 {
-        let sheen_albedo = sheen_setup(&ctx, m.coat);
-        let rest = below * ctx.under_sheen;
-        ctx.sheen_probability = select(0.0, sheen_albedo / (sheen_albedo + rest), sheen_albedo > 0.0);
+        let sheen_albedo = sheen_setup(ctx, m.coat);
+        let rest = below * (*ctx).under_sheen;
+        (*ctx).sheen_probability = select(0.0, sheen_albedo / (sheen_albedo + rest), sheen_albedo > 0.0);
     }
     //#endif
-    return ctx;
 }
 
 fn reflect_local(wo: vec3f, m: vec3f) -> vec3f {

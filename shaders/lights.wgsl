@@ -191,36 +191,52 @@ fn lifted_off_the_light(t: f32, error: f32, cos_light: f32) -> f32 {
 // light tree (unused without it); its distance ends just before the emitter's surface
 // (`lifted_off_the_light`).
 fn sample_emitter_at(e: Emitter, tree_selection: f32, p: vec3f, rng: ptr<function, Rng>) -> LightSample {
-    let none = LightSample(vec3f(0.0, 1.0, 0.0), 0.0, vec3f(0.0), 0.0, false);
     let u = rng_next2(rng);
     if (e.primitive & SPHERE_BIT) != 0u {
         //#if spheres
-        let s = spheres[e.primitive & ~SPHERE_BIT];
-        let omc = sphere_cone_one_minus_cos(p, s);
-        if omc <= 0.0 {
-            return none;
-        }
-        let one_minus_cos = u.x * omc;
-        let sin_t = sqrt(max(0.0, one_minus_cos * (2.0 - one_minus_cos)));
-        let phi = 2.0 * PI * u.y;
-        let axis = normalize(s.center - p);
-        let d = tangent_frame(axis) * vec3f(sin_t * cos(phi), sin_t * sin(phi), 1.0 - one_minus_cos);
-        let t = intersect_sphere(p, d, s.center, s.radius, s.k, INFINITY);
-        if t == INFINITY {
-            return none;
-        }
-        let m = materials[s.material];
-        let selection = emitter_selection_per_area(m.emission_luminance, tree_selection, 4.0 * PI * s.radius * s.radius);
-        // The radial normal on the viewer's side: a sphere seen from inside emits too.
-        let radial = normalize(p + t * d - s.center);
-        let towards = select(radial, -radial, dot(radial, d) > 0.0);
-        let emission = light_sampled_emission(m, m.emission, towards, -d);
-        let error = gamma(7.0) * (dot(abs(radial), abs(s.center)) + s.radius);
-        let before = lifted_off_the_light(t, error, abs(dot(radial, d)));
-        return LightSample(d, before, emission, sphere_emitter_pdf(p, s, selection), false);
+        return sample_sphere_emitter(e, tree_selection, p, u);
         //#endif
     }
     //#if triangles
+    return sample_triangle_emitter(e, tree_selection, p, u);
+    //#else
+    return LightSample(vec3f(0.0, 1.0, 0.0), 0.0, vec3f(0.0), 0.0, false);
+    //#endif
+}
+
+//#if spheres
+// A direction to emitting sphere `e` from `p`, uniform in the cone it fills (`u`).
+fn sample_sphere_emitter(e: Emitter, tree_selection: f32, p: vec3f, u: vec2f) -> LightSample {
+    let none = LightSample(vec3f(0.0, 1.0, 0.0), 0.0, vec3f(0.0), 0.0, false);
+    let s = spheres[e.primitive & ~SPHERE_BIT];
+    let omc = sphere_cone_one_minus_cos(p, s);
+    if omc <= 0.0 {
+        return none;
+    }
+    let one_minus_cos = u.x * omc;
+    let sin_t = sqrt(max(0.0, one_minus_cos * (2.0 - one_minus_cos)));
+    let phi = 2.0 * PI * u.y;
+    let axis = normalize(s.center - p);
+    let d = tangent_frame(axis) * vec3f(sin_t * cos(phi), sin_t * sin(phi), 1.0 - one_minus_cos);
+    let t = intersect_sphere(p, d, s.center, s.radius, s.k, INFINITY);
+    if t == INFINITY {
+        return none;
+    }
+    let m = materials[s.material];
+    let selection = emitter_selection_per_area(m.emission_luminance, tree_selection, 4.0 * PI * s.radius * s.radius);
+    // The radial normal on the viewer's side: a sphere seen from inside emits too.
+    let radial = normalize(p + t * d - s.center);
+    let towards = select(radial, -radial, dot(radial, d) > 0.0);
+    let emission = light_sampled_emission(m, m.emission, towards, -d);
+    let error = gamma(7.0) * (dot(abs(radial), abs(s.center)) + s.radius);
+    let before = lifted_off_the_light(t, error, abs(dot(radial, d)));
+    return LightSample(d, before, emission, sphere_emitter_pdf(p, s, selection), false);
+}
+//#endif
+
+//#if triangles
+// A point of emitting triangle `e`, uniform in its area (`u`), seen from `p`.
+fn sample_triangle_emitter(e: Emitter, tree_selection: f32, p: vec3f, u: vec2f) -> LightSample {
     let inst = instance_at(e.instance);
     let tri = triangles[e.primitive];
     let to_world = affine_inverse(inst.world_to_object).m;
@@ -232,7 +248,7 @@ fn sample_emitter_at(e: Emitter, tree_selection: f32, p: vec3f, rng: ptr<functio
     let to_light = q - p;
     let t = length(to_light);
     if t <= 0.0 {
-        return none;
+        return LightSample(vec3f(0.0, 1.0, 0.0), 0.0, vec3f(0.0), 0.0, false);
     }
     let d = to_light / t;
     let normal = cross(v1 - v0, v2 - v0);
@@ -263,27 +279,7 @@ fn sample_emitter_at(e: Emitter, tree_selection: f32, p: vec3f, rng: ptr<functio
     m = layer_textured_at(m, e.primitive, su * (1.0 - u.y), su * u.y);
     //#endif
     if m.coat > 0.0 {
-        // The coat's tint is seen along its normal as at a hit on this point (`emission_seen`).
-        let sh = shading[e.primitive];
-        let n_object = (1.0 - su) * sh.n0 + su * (1.0 - u.y) * sh.n1 + su * u.y * sh.n2;
-        let n_shading = normalize(transform_normal_to_world(inst.world_to_object, n_object));
-        // The coat's normal: its own map's, or where it shares the base's, that map's.
-        var coat = n_shading;
-        // The true normal, on the interpolated one's side (a mirroring instance flips the winding's).
-        let n_true = select(-n, n, dot(n, n_shading) >= 0.0);
-        //#if normal_maps
-        let b1 = su * (1.0 - u.y);
-        let b2 = su * u.y;
-        let at = Hit(t, HIT_TRIANGLE, e.primitive, e.instance, b1, b2);
-        //#if coat_normal
-        coat = coat_normal_mapped(m, at, n_shading, n_true, -d, triangle_uv(e.primitive, uv_set_of(m, UV1_COAT_NORMAL), b1, b2));
-        //#else
-        coat = normal_mapped(m, at, n_shading, n_true, -d, triangle_uv(e.primitive, uv_set_of(m, UV1_NORMAL), b1, b2));
-        //#endif
-        //#endif
-        // Turned to the side of the point lit, as the true normal is (see layered_emission.wgsl).
-        let side = select(-1.0, 1.0, dot(n_true, d) < 0.0);
-        emission = light_sampled_emission(m, emission, side * coat, -d);
+        emission = emission_under_coat(m, emission, e, inst, n, su, u.y, t, d);
     }
     //#endif
     let selection = emitter_selection_per_area(m.emission_luminance, tree_selection, 0.5 * length(normal));
@@ -291,10 +287,38 @@ fn sample_emitter_at(e: Emitter, tree_selection: f32, p: vec3f, rng: ptr<functio
     let error = gamma(7.0) * dot(abs(n), abs((1.0 - su) * v0) + abs(su * (1.0 - u.y) * v1) + abs(su * u.y * v2));
     let before = lifted_off_the_light(t, error, cos_light);
     return LightSample(d, before, emission, triangle_emitter_pdf(selection, t, cos_light), false);
-    //#else
-    return none;
-    //#endif
 }
+//#endif
+
+//#if coat
+//#if triangles
+// `emission` of the triangle's point (`su`, `v`: its sample) seen through the coat of
+// `m` from direction `d` at distance `t`; `n` is the triangle's true normal.
+fn emission_under_coat(m: Material, emission: vec3f, e: Emitter, inst: Instance, n: vec3f, su: f32, v: f32, t: f32, d: vec3f) -> vec3f {
+    // The coat's tint is seen along its normal as at a hit on this point (`emission_seen`).
+    let sh = shading[e.primitive];
+    let n_object = (1.0 - su) * sh.n0 + su * (1.0 - v) * sh.n1 + su * v * sh.n2;
+    let n_shading = normalize(transform_normal_to_world(inst.world_to_object, n_object));
+    // The coat's normal: its own map's, or where it shares the base's, that map's.
+    var coat = n_shading;
+    // The true normal, on the interpolated one's side (a mirroring instance flips the winding's).
+    let n_true = select(-n, n, dot(n, n_shading) >= 0.0);
+    //#if normal_maps
+    let b1 = su * (1.0 - v);
+    let b2 = su * v;
+    let at = Hit(t, HIT_TRIANGLE, e.primitive, e.instance, b1, b2);
+    //#if coat_normal
+    coat = coat_normal_mapped(m, at, n_shading, n_true, -d, triangle_uv(e.primitive, uv_set_of(m, UV1_COAT_NORMAL), b1, b2));
+    //#else
+    coat = normal_mapped(m, at, n_shading, n_true, -d, triangle_uv(e.primitive, uv_set_of(m, UV1_NORMAL), b1, b2));
+    //#endif
+    //#endif
+    // Turned to the side of the point lit, as the true normal is (see layered_emission.wgsl).
+    let side = select(-1.0, 1.0, dot(n_true, d) < 0.0);
+    return light_sampled_emission(m, emission, side * coat, -d);
+}
+//#endif
+//#endif
 
 fn sample_light(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
     let none = LightSample(vec3f(0.0, 1.0, 0.0), 0.0, vec3f(0.0), 0.0, false);

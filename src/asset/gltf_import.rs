@@ -47,6 +47,7 @@
 use super::gltf_extensions::{Film, Sheen, anisotropy, clearcoat, glossy, iridescence, sheen};
 use super::gltf_texture_transform::{of_info, of_normal};
 use super::gltf_textures::{ColorSpace, TextureLoader};
+use super::material_extras as extras;
 use super::{AssetError, MeshData};
 use crate::scene::{Material, MaterialTextures, Tangent, slots};
 use gltf::json::Value;
@@ -74,6 +75,7 @@ pub fn load(path: &Path) -> Result<MeshData, AssetError> {
     for (i, m) in document.materials().enumerate() {
         let name = m.name().map_or_else(|| format!("material_{i}"), str::to_owned);
         let material = gltf_material(&m, &document, &mut loader).map_err(|e| err(format!("material `{name}`: {e}")))?;
+        warn_of_unknown_extras(path, &name, &m);
         mesh.materials.push((name, material));
     }
     let count = mesh.materials.len();
@@ -124,7 +126,9 @@ fn gltf_material(
     // A channel of the indices' texture that an export leaves undriven has the material's own index.
     if material.textures.layers.ior.is_some() {
         let mut minimum = [material.ior, material.coat_ior, material.thin_film_ior];
-        for (i, key) in ["rt_ior_minimum", "rt_coat_ior_minimum", "rt_thin_film_ior_minimum"].into_iter().enumerate() {
+        for (i, key) in
+            [extras::IOR_MINIMUM, extras::COAT_IOR_MINIMUM, extras::THIN_FILM_IOR_MINIMUM].into_iter().enumerate()
+        {
             if let Some(v) = extra::<f32>(m.extras(), key)? {
                 minimum[i] = v;
             }
@@ -226,7 +230,7 @@ fn map_material_with(m: &gltf::Material, metallic: f32, transmission: f32) -> Re
     let dielectric = 1.0 - metallic;
     let strength = m.emissive_strength().unwrap_or(1.0);
     let diffuse = dielectric * (1.0 - transmission);
-    let level = match extra::<f32>(m.extras(), "rt_specular_ior_level")? {
+    let level = match extra::<f32>(m.extras(), extras::SPECULAR_IOR_LEVEL)? {
         Some(level) => level,
         None => m.specular().map_or(1.0, |s| s.specular_factor()) / 2.0,
     };
@@ -240,23 +244,25 @@ fn map_material_with(m: &gltf::Material, metallic: f32, transmission: f32) -> Re
         specular: 0.0,
         specular_ior_level: if diffuse > 0.0 { level.clamp(0.0, 1.0) } else { 0.0 },
         specular_tint: m.specular().map_or([1.0; 3], |s| s.specular_color_factor().map(|c| c.clamp(0.0, 1.0))),
-        coat: extra::<f32>(m.extras(), "rt_coat")?.unwrap_or(clearcoat.factor).clamp(0.0, 1.0),
-        coat_roughness: extra::<f32>(m.extras(), "rt_coat_roughness")?.unwrap_or(clearcoat.roughness).clamp(0.0, 1.0),
-        coat_ior: extra::<f32>(m.extras(), "rt_coat_ior")?.unwrap_or(1.5).max(1.0),
-        coat_tint: extra::<[f32; 3]>(m.extras(), "rt_coat_tint")?.unwrap_or([1.0; 3]).map(|c| c.clamp(0.0, 1.0)),
-        sheen: extra::<f32>(m.extras(), "rt_sheen")?.unwrap_or(sheen.weight).clamp(0.0, 1.0),
-        sheen_roughness: extra::<f32>(m.extras(), "rt_sheen_roughness")?.unwrap_or(sheen.roughness).clamp(0.0, 1.0),
-        sheen_tint: extra::<[f32; 3]>(m.extras(), "rt_sheen_tint")?.unwrap_or(sheen.tint).map(|c| c.clamp(0.0, 1.0)),
-        anisotropy: extra::<f32>(m.extras(), "rt_anisotropy")?.unwrap_or(anisotropy).clamp(0.0, 1.0),
-        anisotropy_rotation: extra::<f32>(m.extras(), "rt_anisotropy_rotation")?
+        coat: extra::<f32>(m.extras(), extras::COAT)?.unwrap_or(clearcoat.factor).clamp(0.0, 1.0),
+        coat_roughness: extra::<f32>(m.extras(), extras::COAT_ROUGHNESS)?
+            .unwrap_or(clearcoat.roughness)
+            .clamp(0.0, 1.0),
+        coat_ior: extra::<f32>(m.extras(), extras::COAT_IOR)?.unwrap_or(1.5).max(1.0),
+        coat_tint: extra::<[f32; 3]>(m.extras(), extras::COAT_TINT)?.unwrap_or([1.0; 3]).map(|c| c.clamp(0.0, 1.0)),
+        sheen: extra::<f32>(m.extras(), extras::SHEEN)?.unwrap_or(sheen.weight).clamp(0.0, 1.0),
+        sheen_roughness: extra::<f32>(m.extras(), extras::SHEEN_ROUGHNESS)?.unwrap_or(sheen.roughness).clamp(0.0, 1.0),
+        sheen_tint: extra::<[f32; 3]>(m.extras(), extras::SHEEN_TINT)?.unwrap_or(sheen.tint).map(|c| c.clamp(0.0, 1.0)),
+        anisotropy: extra::<f32>(m.extras(), extras::ANISOTROPY)?.unwrap_or(anisotropy).clamp(0.0, 1.0),
+        anisotropy_rotation: extra::<f32>(m.extras(), extras::ANISOTROPY_ROTATION)?
             .unwrap_or(anisotropy_rotation)
             .rem_euclid(1.0),
         thin_film_thickness: film.thickness,
         thin_film_ior: film.ior,
         thin_film_weight: film.weight,
         tangent: tangent(m)?,
-        diffuse_roughness: extra::<f32>(m.extras(), "rt_diffuse_roughness")?.unwrap_or(0.0).clamp(0.0, 1.0),
-        bump_map_correction: extra::<bool>(m.extras(), "rt_bump_map_correction")?.unwrap_or(true),
+        diffuse_roughness: extra::<f32>(m.extras(), extras::DIFFUSE_ROUGHNESS)?.unwrap_or(0.0).clamp(0.0, 1.0),
+        bump_map_correction: extra::<bool>(m.extras(), extras::BUMP_MAP_CORRECTION)?.unwrap_or(true),
         reflection: metallic,
         transmission: dielectric * transmission,
         ior: m.ior().unwrap_or(1.5),
@@ -264,15 +270,15 @@ fn map_material_with(m: &gltf::Material, metallic: f32, transmission: f32) -> Re
         emission: m.emissive_factor().map(|e| e * strength),
         absorption: m.volume().map_or([0.0; 3], |v| absorption(v.attenuation_color(), v.attenuation_distance())),
         volume_emission: volume_emission(m.extras())?,
-        node_program: match extra::<serde_json::Value>(m.extras(), "rt_node_graph")? {
+        node_program: match extra::<serde_json::Value>(m.extras(), extras::NODE_GRAPH)? {
             Some(graph) => node_program_or_constants(m, &graph),
             None => Vec::new(),
         },
-        mix_material: extra::<u32>(m.extras(), "rt_mix_material")?,
-        holdout: extra::<f32>(m.extras(), "rt_holdout")?.unwrap_or(0.0).clamp(0.0, 1.0),
+        mix_material: extra::<u32>(m.extras(), extras::MIX_MATERIAL)?,
+        holdout: extra::<f32>(m.extras(), extras::HOLDOUT)?.unwrap_or(0.0).clamp(0.0, 1.0),
         ..Material::default()
     };
-    Ok(match extra::<[f32; 3]>(m.extras(), "rt_glossy_color")? {
+    Ok(match extra::<[f32; 3]>(m.extras(), extras::GLOSSY_COLOR)? {
         Some(color) => glossy(material, color),
         None => material,
     })
@@ -293,7 +299,7 @@ fn node_program_or_constants(m: &gltf::Material, graph: &serde_json::Value) -> V
 /// frame, as Blender's importer links it), else "radial_z".
 fn tangent(m: &gltf::Material) -> Result<Tangent, String> {
     let textured = m.extension_value("KHR_materials_anisotropy").is_some_and(|a| a.get("anisotropyTexture").is_some());
-    match extra::<String>(m.extras(), "rt_tangent")?.as_deref() {
+    match extra::<String>(m.extras(), extras::TANGENT)?.as_deref() {
         None if textured => Ok(Tangent::Uv),
         None | Some("radial_z") => Ok(Tangent::RadialZ),
         Some("radial_x") => Ok(Tangent::RadialX),
@@ -317,7 +323,17 @@ fn absorption(color: [f32; 3], distance: f32) -> [f32; 3] {
 /// `extras.rt_volume_emission`: glTF has no field for light emitted inside a medium.
 /// Other tools' extras may hold anything, so only our own key is checked.
 fn volume_emission(extras: &gltf::json::Extras) -> Result<[f32; 3], String> {
-    Ok(extra(extras, "rt_volume_emission")?.unwrap_or([0.0; 3]))
+    Ok(extra(extras, extras::VOLUME_EMISSION)?.unwrap_or([0.0; 3]))
+}
+
+/// Warns of keys in `m`'s extras that look like rt's and are none it reads (an exporter's
+/// typo would otherwise leave a value silently unused).
+fn warn_of_unknown_extras(path: &Path, name: &str, m: &gltf::Material) {
+    let Some(raw) = m.extras() else { return };
+    let Ok(value) = serde_json::from_str::<serde_json::Value>(raw.get()) else { return };
+    for key in extras::unknown_keys(&value) {
+        log::warn!("{}: material `{name}`: {key} is not a key rt reads; it is left unused", path.display());
+    }
 }
 
 /// The rt value `key` of a material's `extras`, if there.

@@ -13,6 +13,7 @@
 use super::gltf_import::{extra, uv_set_bit};
 use super::gltf_texture_transform::{TextureUse, of_info, of_json};
 use super::gltf_textures::{ColorSpace, Reading, TextureLoader};
+use super::material_extras as extras;
 use crate::scene::LayerTextures;
 use crate::scene::slots::{
     ANISOTROPY, COAT, COAT_NORMAL, COAT_ROUGHNESS, COAT_TINT, DIFFUSE_ROUGHNESS, IOR, SHEEN, SHEEN_TINT,
@@ -115,13 +116,14 @@ pub(super) fn layer_textures(
             None => (from_extension(name, key)?, true),
         })
     };
-    let (sheen, sheen_of_gltf) = own_or_extension("rt_sheen_texture", "KHR_materials_sheen", "sheenRoughnessTexture")?;
-    let (sheen_tint, _) = own_or_extension("rt_sheen_tint_texture", "KHR_materials_sheen", "sheenColorTexture")?;
+    let (sheen, sheen_of_gltf) =
+        own_or_extension(extras::SHEEN_TEXTURE, "KHR_materials_sheen", "sheenRoughnessTexture")?;
+    let (sheen_tint, _) = own_or_extension(extras::SHEEN_TINT_TEXTURE, "KHR_materials_sheen", "sheenColorTexture")?;
     // glTF's anisotropy texture holds directions, which the shader turns into rotations
     // after filtering, as Blender's import of it does (a filtered rotation would turn the
     // wrong way between texels: 3.6% off Cycles on a block at a stripe's edge).
     let (anisotropy, anisotropy_of_gltf) =
-        own_or_extension("rt_anisotropy_texture", "KHR_materials_anisotropy", "anisotropyTexture")?;
+        own_or_extension(extras::ANISOTROPY_TEXTURE, "KHR_materials_anisotropy", "anisotropyTexture")?;
     let anisotropy_directions = anisotropy_of_gltf && anisotropy.is_some();
     let sheen_reading = if sheen_of_gltf { Reading::SheenRoughness } else { linear };
     let film_thickness = m
@@ -137,13 +139,13 @@ pub(super) fn layer_textures(
             COAT_ROUGHNESS,
             "clearcoat roughness",
         )?,
-        coat_tint: load(from_extras("rt_coat_tint_texture")?, srgb, COAT_TINT, "coat tint")?,
+        coat_tint: load(from_extras(extras::COAT_TINT_TEXTURE)?, srgb, COAT_TINT, "coat tint")?,
         sheen: load(sheen, sheen_reading, SHEEN, "sheen")?,
         sheen_tint: load(sheen_tint, srgb, SHEEN_TINT, "sheen tint")?,
         anisotropy: load(anisotropy, linear, ANISOTROPY, "anisotropy")?,
         specular_tint: load(specular_color, srgb, SPECULAR_TINT, "specular colour")?,
         diffuse_roughness: load(
-            from_extras("rt_diffuse_roughness_texture")?,
+            from_extras(extras::DIFFUSE_ROUGHNESS_TEXTURE)?,
             linear,
             DIFFUSE_ROUGHNESS,
             "diffuse roughness",
@@ -151,7 +153,7 @@ pub(super) fn layer_textures(
         thin_film_thickness: load(film_thickness, linear, THIN_FILM_THICKNESS, "iridescence thickness")?,
         transmission: load(transmission, linear, TRANSMISSION, "transmission")?,
         specular_level: load(specular_level, linear, SPECULAR_LEVEL, "specular")?,
-        ior: load(from_extras("rt_ior_texture")?, linear, IOR, "ior")?,
+        ior: load(from_extras(extras::IOR_TEXTURE)?, linear, IOR, "ior")?,
     };
     Ok(Layers { textures: layers, second_uv_set, anisotropy_directions })
 }

@@ -10,6 +10,7 @@ mod gltf_layer_textures;
 mod gltf_nodes;
 mod gltf_texture_transform;
 mod gltf_textures;
+pub mod material_extras;
 pub mod node_graph;
 pub mod node_kinds;
 pub mod node_program;

@@ -28,7 +28,8 @@ pub fn material_notes(path: &Path) -> Vec<(String, Vec<String>)> {
         .iter()
         .filter_map(|m| {
             let notes: Vec<String> = m
-                .pointer("/extras/rt_notes")?
+                .get("extras")?
+                .get(super::material_extras::NOTES)?
                 .as_array()?
                 .iter()
                 .filter_map(|n| n.as_str().map(String::from))

@@ -7,35 +7,7 @@
 
 //#include "node_step.bindings.wgsl"
 
-const NODE_OP_END: u32 = 0u;
-const NODE_OP_OUTPUT: u32 = 1u;
-const NODE_OP_CONVERT: u32 = 2u;
-const NODE_OP_COORDINATE: u32 = 3u;
-const NODE_OP_MATH: u32 = 4u;
-const NODE_OP_VECTOR_MATH: u32 = 5u;
-const NODE_OP_MIX: u32 = 6u;
-const NODE_OP_MAP_RANGE: u32 = 7u;
-const NODE_OP_CLAMP: u32 = 8u;
-const NODE_OP_INVERT: u32 = 9u;
-const NODE_OP_RAMP: u32 = 10u;
-const NODE_OP_SEPARATE: u32 = 11u;
-const NODE_OP_COMBINE: u32 = 12u;
-const NODE_OP_MAPPING: u32 = 13u;
-const NODE_OP_NOISE: u32 = 14u;
-const NODE_OP_CHECKER: u32 = 15u;
-const NODE_OP_GRADIENT: u32 = 16u;
-const NODE_OP_LAYER_WEIGHT: u32 = 17u;
-const NODE_OP_FRESNEL: u32 = 18u;
-const NODE_OP_HUE_SATURATION: u32 = 19u;
-const NODE_OP_BRIGHT_CONTRAST: u32 = 20u;
-const NODE_OP_GAMMA: u32 = 21u;
-const NODE_OP_WHITE_NOISE: u32 = 22u;
-const NODE_OP_VORONOI: u32 = 23u;
-const NODE_OP_WAVE: u32 = 24u;
-const NODE_OP_CURVES: u32 = 25u;
-const NODE_OP_MAGIC: u32 = 26u;
-const NODE_OP_BRICK: u32 = 27u;
-
+// The operations, NODE_OP_*, are shared constants (src/shared_constants.rs).
 const NODE_REGISTERS: u32 = 32u;
 const NODE_MAX_OPERANDS: u32 = 10u;
 const NODE_CONSTANT: u32 = 0x80000000u;

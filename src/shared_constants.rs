@@ -50,6 +50,39 @@ shared_constants! { TANGENTS;
     TANGENT_UV: u32 = 3;
 }
 
+shared_constants! { NODE_OPERATIONS;
+    /// A node program's operations (`asset::node_kinds`: which Blender node becomes which;
+    /// `shaders/node_step.wgsl` and `node_ops.wgsl` run them), in order.
+    NODE_OP_END: u32 = 0;
+    NODE_OP_OUTPUT: u32 = 1;
+    NODE_OP_CONVERT: u32 = 2;
+    NODE_OP_COORDINATE: u32 = 3;
+    NODE_OP_MATH: u32 = 4;
+    NODE_OP_VECTOR_MATH: u32 = 5;
+    NODE_OP_MIX: u32 = 6;
+    NODE_OP_MAP_RANGE: u32 = 7;
+    NODE_OP_CLAMP: u32 = 8;
+    NODE_OP_INVERT: u32 = 9;
+    NODE_OP_RAMP: u32 = 10;
+    NODE_OP_SEPARATE: u32 = 11;
+    NODE_OP_COMBINE: u32 = 12;
+    NODE_OP_MAPPING: u32 = 13;
+    NODE_OP_NOISE: u32 = 14;
+    NODE_OP_CHECKER: u32 = 15;
+    NODE_OP_GRADIENT: u32 = 16;
+    NODE_OP_LAYER_WEIGHT: u32 = 17;
+    NODE_OP_FRESNEL: u32 = 18;
+    NODE_OP_HUE_SATURATION: u32 = 19;
+    NODE_OP_BRIGHT_CONTRAST: u32 = 20;
+    NODE_OP_GAMMA: u32 = 21;
+    NODE_OP_WHITE_NOISE: u32 = 22;
+    NODE_OP_VORONOI: u32 = 23;
+    NODE_OP_WAVE: u32 = 24;
+    NODE_OP_CURVES: u32 = 25;
+    NODE_OP_MAGIC: u32 = 26;
+    NODE_OP_BRICK: u32 = 27;
+}
+
 shared_constants! { LIGHT_TREE;
     /// `GpuLightTreeNode::flags`: the node is a leaf.
     LIGHT_TREE_LEAF: u32 = 1;
@@ -161,7 +194,7 @@ shared_constants! { EVENTS;
 }
 
 /// Every group, in the order `shared_constants.wgsl` lists them.
-const ALL: [&[Shared]; 8] = [PANORAMA, TANGENTS, LIGHT_TREE, LAMPS, LINKS, PATHS, TEXTURES, EVENTS];
+const ALL: [&[Shared]; 9] = [PANORAMA, TANGENTS, NODE_OPERATIONS, LIGHT_TREE, LAMPS, LINKS, PATHS, TEXTURES, EVENTS];
 
 /// The WGSL of every shared constant (what each means is said in this file).
 pub fn wgsl() -> String {

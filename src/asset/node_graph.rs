@@ -6,7 +6,7 @@
 //! ```text
 //! word 0        where the constants start, from the program's first word
 //! instructions  [op | mode << 8 | flags << 24, output register, n, n operands, e, e extra words]
-//! OP_END
+//! NODE_OP_END
 //! constants     vec4s, read by operands with CONSTANT set
 //! ```
 //!
@@ -126,9 +126,9 @@ pub fn compile(graph: &NodeGraph) -> Result<Vec<u32>, String> {
             ));
         };
         let operand = c.operand(input)?;
-        c.instruction(node_kinds::OP_OUTPUT, mode as u32, 0, 0, &[operand], &[]);
+        c.instruction(node_kinds::NODE_OP_OUTPUT, mode as u32, 0, 0, &[operand], &[]);
     }
-    c.code.push(node_kinds::OP_END);
+    c.code.push(node_kinds::NODE_OP_END);
     c.code[0] = c.code.len() as u32;
     c.code.extend(c.constants.iter().map(|v| v.to_bits()));
     Ok(c.code)
@@ -203,7 +203,7 @@ impl Compiler<'_> {
                     _ => return Ok(source),
                 };
                 let out = self.allocate(1)?;
-                self.instruction(node_kinds::OP_CONVERT, convert, 0, out, &[source], &[]);
+                self.instruction(node_kinds::NODE_OP_CONVERT, convert, 0, out, &[source], &[]);
                 self.hold(out, 1);
                 Ok(out)
             }
@@ -242,7 +242,7 @@ impl Compiler<'_> {
             Emit::Coordinates(first) => {
                 let out = self.allocate(1)?;
                 let extra = if first + output as u32 == 0 { self.texture_space() } else { Vec::new() };
-                self.instruction(node_kinds::OP_COORDINATE, first + output as u32, 0, out, &[], &extra);
+                self.instruction(node_kinds::NODE_OP_COORDINATE, first + output as u32, 0, out, &[], &extra);
                 let reads = self.reads(index, kind.outputs[output]);
                 self.hold(out, reads);
                 Ok(out)
@@ -262,9 +262,9 @@ impl Compiler<'_> {
                 }
                 let mode = node_kinds::mode(&node.kind, &node.settings)?;
                 let extra = match op {
-                    node_kinds::OP_RAMP => ramp_table(&node.settings)?,
-                    node_kinds::OP_CURVES => curve_table(&node.settings)?,
-                    node_kinds::OP_BRICK => brick_amounts(&node.settings)?,
+                    node_kinds::NODE_OP_RAMP => ramp_table(&node.settings)?,
+                    node_kinds::NODE_OP_CURVES => curve_table(&node.settings)?,
+                    node_kinds::NODE_OP_BRICK => brick_amounts(&node.settings)?,
                     _ => Vec::new(),
                 };
                 let out = self.allocate(kind.outputs.len() as u32)?;
@@ -373,15 +373,15 @@ mod tests {
         );
         let program = compile_json(&g).unwrap();
         let ops: Vec<u32> = instructions(&program).iter().map(|w| w & 0xff).collect();
-        assert_eq!(ops, [node_kinds::OP_COORDINATE, node_kinds::OP_NOISE, node_kinds::OP_OUTPUT]);
-        assert_eq!(program[program[0] as usize - 1], node_kinds::OP_END);
+        assert_eq!(ops, [node_kinds::NODE_OP_COORDINATE, node_kinds::NODE_OP_NOISE, node_kinds::NODE_OP_OUTPUT]);
+        assert_eq!(program[program[0] as usize - 1], node_kinds::NODE_OP_END);
     }
 
     /// The first word of each instruction.
     fn instructions(program: &[u32]) -> Vec<u32> {
         let mut at = 1;
         let mut out = Vec::new();
-        while program[at] != node_kinds::OP_END {
+        while program[at] != node_kinds::NODE_OP_END {
             out.push(program[at]);
             let operands = program[at + 2] as usize;
             let extra = program[at + 3 + operands] as usize;
@@ -397,7 +397,7 @@ mod tests {
             json!({ "roughness": { "link": [0, "Color"], "from": "RGBA", "to": "VALUE" } }),
         );
         let ops: Vec<u32> = instructions(&compile_json(&g).unwrap()).iter().map(|w| w & 0xff).collect();
-        assert_eq!(ops, [node_kinds::OP_CONVERT, node_kinds::OP_OUTPUT]);
+        assert_eq!(ops, [node_kinds::NODE_OP_CONVERT, node_kinds::NODE_OP_OUTPUT]);
     }
 
     #[test]

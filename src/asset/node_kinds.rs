@@ -1,77 +1,33 @@
 //! The shader nodes rt evaluates on the GPU: for each of Blender's node types, the
 //! program operation it becomes, its inputs in operand order and its outputs in register
-//! order, and how its settings become the operation's mode and flags. The operations are
-//! `shaders/node_step.wgsl`'s `NODE_OP_*`; a unit test checks that both agree, and
-//! another that `blender/rt_blender/rt_node_graph.py` exports exactly these nodes.
+//! order, and how its settings become the operation's mode and flags. The operations'
+//! numbers are shared constants (`NODE_OP_*`, `src/shared_constants.rs`), the same in the
+//! shaders; a unit test checks that `blender/rt_blender/rt_node_graph.py` exports exactly
+//! these nodes.
 
 use serde_json::{Map, Value};
 
-pub const OP_END: u32 = 0;
-pub const OP_OUTPUT: u32 = 1;
-pub const OP_CONVERT: u32 = 2;
-pub const OP_COORDINATE: u32 = 3;
-pub const OP_MATH: u32 = 4;
-pub const OP_VECTOR_MATH: u32 = 5;
-pub const OP_MIX: u32 = 6;
-pub const OP_MAP_RANGE: u32 = 7;
-pub const OP_CLAMP: u32 = 8;
-pub const OP_INVERT: u32 = 9;
-pub const OP_RAMP: u32 = 10;
-pub const OP_SEPARATE: u32 = 11;
-pub const OP_COMBINE: u32 = 12;
-pub const OP_MAPPING: u32 = 13;
-pub const OP_NOISE: u32 = 14;
-pub const OP_CHECKER: u32 = 15;
-pub const OP_GRADIENT: u32 = 16;
-pub const OP_LAYER_WEIGHT: u32 = 17;
-pub const OP_FRESNEL: u32 = 18;
-pub const OP_HUE_SATURATION: u32 = 19;
-pub const OP_BRIGHT_CONTRAST: u32 = 20;
-pub const OP_GAMMA: u32 = 21;
-pub const OP_WHITE_NOISE: u32 = 22;
-pub const OP_VORONOI: u32 = 23;
-pub const OP_WAVE: u32 = 24;
-pub const OP_CURVES: u32 = 25;
-pub const OP_MAGIC: u32 = 26;
-pub const OP_BRICK: u32 = 27;
+pub use crate::shared_constants::{
+    NODE_OP_BRICK, NODE_OP_BRIGHT_CONTRAST, NODE_OP_CHECKER, NODE_OP_CLAMP, NODE_OP_COMBINE, NODE_OP_CONVERT,
+    NODE_OP_COORDINATE, NODE_OP_CURVES, NODE_OP_END, NODE_OP_FRESNEL, NODE_OP_GAMMA, NODE_OP_GRADIENT,
+    NODE_OP_HUE_SATURATION, NODE_OP_INVERT, NODE_OP_LAYER_WEIGHT, NODE_OP_MAGIC, NODE_OP_MAP_RANGE, NODE_OP_MAPPING,
+    NODE_OP_MATH, NODE_OP_MIX, NODE_OP_NOISE, NODE_OP_OUTPUT, NODE_OP_RAMP, NODE_OP_SEPARATE, NODE_OP_VECTOR_MATH,
+    NODE_OP_VORONOI, NODE_OP_WAVE, NODE_OP_WHITE_NOISE,
+};
 
-/// Every operation by its WGSL name, for the check against the shader.
-pub const OPERATIONS: [(&str, u32); 28] = [
-    ("END", OP_END),
-    ("OUTPUT", OP_OUTPUT),
-    ("CONVERT", OP_CONVERT),
-    ("COORDINATE", OP_COORDINATE),
-    ("MATH", OP_MATH),
-    ("VECTOR_MATH", OP_VECTOR_MATH),
-    ("MIX", OP_MIX),
-    ("MAP_RANGE", OP_MAP_RANGE),
-    ("CLAMP", OP_CLAMP),
-    ("INVERT", OP_INVERT),
-    ("RAMP", OP_RAMP),
-    ("SEPARATE", OP_SEPARATE),
-    ("COMBINE", OP_COMBINE),
-    ("MAPPING", OP_MAPPING),
-    ("NOISE", OP_NOISE),
-    ("CHECKER", OP_CHECKER),
-    ("GRADIENT", OP_GRADIENT),
-    ("LAYER_WEIGHT", OP_LAYER_WEIGHT),
-    ("FRESNEL", OP_FRESNEL),
-    ("HUE_SATURATION", OP_HUE_SATURATION),
-    ("BRIGHT_CONTRAST", OP_BRIGHT_CONTRAST),
-    ("GAMMA", OP_GAMMA),
-    ("WHITE_NOISE", OP_WHITE_NOISE),
-    ("VORONOI", OP_VORONOI),
-    ("WAVE", OP_WAVE),
-    ("CURVES", OP_CURVES),
-    ("MAGIC", OP_MAGIC),
-    ("BRICK", OP_BRICK),
-];
+/// Every operation by its name in the shader (`VORONOI` for `NODE_OP_VORONOI`), in order.
+pub fn operations() -> impl Iterator<Item = (&'static str, u32)> {
+    crate::shared_constants::NODE_OPERATIONS.iter().filter_map(|c| match c.value {
+        crate::shared_constants::Value::U32(op) => Some((c.name.strip_prefix("NODE_OP_")?, op)),
+        crate::shared_constants::Value::F32(_) => None,
+    })
+}
 
-/// `OP_CONVERT` modes: a colour to a value (its luminance), a vector to one (the mean).
+/// `NODE_OP_CONVERT` modes: a colour to a value (its luminance), a vector to one (the mean).
 pub const CONVERT_COLOR_TO_VALUE: u32 = 0;
 pub const CONVERT_VECTOR_TO_VALUE: u32 = 1;
 
-/// The material inputs a graph can drive (`OP_OUTPUT` modes); `mix_factor` is a Mix
+/// The material inputs a graph can drive (`NODE_OP_OUTPUT` modes); `mix_factor` is a Mix
 /// Shader's factor, the probability of the material's `mix_material` at a point.
 pub const TARGETS: [&str; 5] = ["base_color", "roughness", "metallic", "emission", "mix_factor"];
 
@@ -197,7 +153,7 @@ pub const RAMP_TABLE_SIZE: usize = 257;
 pub enum Emit {
     /// One operation writing its outputs to consecutive registers.
     Operation(u32),
-    /// Each output used is its own `OP_COORDINATE` of mode `first + its index`.
+    /// Each output used is its own `NODE_OP_COORDINATE` of mode `first + its index`.
     Coordinates(u32),
     /// A constant: the node's own value (`settings.value`).
     Constant,
@@ -249,47 +205,47 @@ pub const KINDS: [Kind; 35] = [
             "Ray Depth",
         ],
     },
-    op("MATH", OP_MATH, &["Value", "Value_001", "Value_002"], &["Value"]),
-    op("VECT_MATH", OP_VECTOR_MATH, &["Vector", "Vector_001", "Vector_002", "Scale"], &["Vector", "Value"]),
-    op("MIX", OP_MIX, &["Factor", "A", "B"], &["Result"]),
-    op("MIX_RGB", OP_MIX, &["Fac", "Color1", "Color2"], &["Color"]),
-    op("MAP_RANGE", OP_MAP_RANGE, &["Value", "From Min", "From Max", "To Min", "To Max", "Steps"], &["Result"]),
-    op("CLAMP", OP_CLAMP, &["Value", "Min", "Max"], &["Result"]),
-    op("INVERT", OP_INVERT, &["Fac", "Color"], &["Color"]),
-    op("VALTORGB", OP_RAMP, &["Fac"], &["Color", "Alpha"]),
-    op("CURVE_RGB", OP_CURVES, &["Fac", "Color"], &["Color"]),
-    op("CURVE_VEC", OP_CURVES, &["Fac", "Vector"], &["Vector"]),
-    op("CURVE_FLOAT", OP_CURVES, &["Factor", "Value"], &["Value"]),
-    op("RGBTOBW", OP_CONVERT, &["Color"], &["Val"]),
-    op("SEPXYZ", OP_SEPARATE, &["Vector"], &["X", "Y", "Z"]),
-    op("SEPARATE_COLOR", OP_SEPARATE, &["Color"], &["Red", "Green", "Blue"]),
-    op("COMBXYZ", OP_COMBINE, &["X", "Y", "Z"], &["Vector"]),
-    op("COMBINE_COLOR", OP_COMBINE, &["Red", "Green", "Blue"], &["Color"]),
-    op("MAPPING", OP_MAPPING, &["Vector", "Location", "Rotation", "Scale"], &["Vector"]),
+    op("MATH", NODE_OP_MATH, &["Value", "Value_001", "Value_002"], &["Value"]),
+    op("VECT_MATH", NODE_OP_VECTOR_MATH, &["Vector", "Vector_001", "Vector_002", "Scale"], &["Vector", "Value"]),
+    op("MIX", NODE_OP_MIX, &["Factor", "A", "B"], &["Result"]),
+    op("MIX_RGB", NODE_OP_MIX, &["Fac", "Color1", "Color2"], &["Color"]),
+    op("MAP_RANGE", NODE_OP_MAP_RANGE, &["Value", "From Min", "From Max", "To Min", "To Max", "Steps"], &["Result"]),
+    op("CLAMP", NODE_OP_CLAMP, &["Value", "Min", "Max"], &["Result"]),
+    op("INVERT", NODE_OP_INVERT, &["Fac", "Color"], &["Color"]),
+    op("VALTORGB", NODE_OP_RAMP, &["Fac"], &["Color", "Alpha"]),
+    op("CURVE_RGB", NODE_OP_CURVES, &["Fac", "Color"], &["Color"]),
+    op("CURVE_VEC", NODE_OP_CURVES, &["Fac", "Vector"], &["Vector"]),
+    op("CURVE_FLOAT", NODE_OP_CURVES, &["Factor", "Value"], &["Value"]),
+    op("RGBTOBW", NODE_OP_CONVERT, &["Color"], &["Val"]),
+    op("SEPXYZ", NODE_OP_SEPARATE, &["Vector"], &["X", "Y", "Z"]),
+    op("SEPARATE_COLOR", NODE_OP_SEPARATE, &["Color"], &["Red", "Green", "Blue"]),
+    op("COMBXYZ", NODE_OP_COMBINE, &["X", "Y", "Z"], &["Vector"]),
+    op("COMBINE_COLOR", NODE_OP_COMBINE, &["Red", "Green", "Blue"], &["Color"]),
+    op("MAPPING", NODE_OP_MAPPING, &["Vector", "Location", "Rotation", "Scale"], &["Vector"]),
     op(
         "TEX_NOISE",
-        OP_NOISE,
+        NODE_OP_NOISE,
         &["Vector", "W", "Scale", "Detail", "Roughness", "Lacunarity", "Offset", "Gain", "Distortion"],
         &["Fac", "Color"],
     ),
-    op("TEX_CHECKER", OP_CHECKER, &["Vector", "Color1", "Color2", "Scale"], &["Color", "Fac"]),
-    op("TEX_GRADIENT", OP_GRADIENT, &["Vector"], &["Color", "Fac"]),
-    op("LAYER_WEIGHT", OP_LAYER_WEIGHT, &["Blend", "Normal"], &["Fresnel", "Facing"]),
-    op("FRESNEL", OP_FRESNEL, &["IOR", "Normal"], &["Fac"]),
-    op("HUE_SAT", OP_HUE_SATURATION, &["Hue", "Saturation", "Value", "Fac", "Color"], &["Color"]),
-    op("BRIGHTCONTRAST", OP_BRIGHT_CONTRAST, &["Color", "Bright", "Contrast"], &["Color"]),
-    op("GAMMA", OP_GAMMA, &["Color", "Gamma"], &["Color"]),
-    op("TEX_WHITE_NOISE", OP_WHITE_NOISE, &["Vector", "W"], &["Value", "Color"]),
+    op("TEX_CHECKER", NODE_OP_CHECKER, &["Vector", "Color1", "Color2", "Scale"], &["Color", "Fac"]),
+    op("TEX_GRADIENT", NODE_OP_GRADIENT, &["Vector"], &["Color", "Fac"]),
+    op("LAYER_WEIGHT", NODE_OP_LAYER_WEIGHT, &["Blend", "Normal"], &["Fresnel", "Facing"]),
+    op("FRESNEL", NODE_OP_FRESNEL, &["IOR", "Normal"], &["Fac"]),
+    op("HUE_SAT", NODE_OP_HUE_SATURATION, &["Hue", "Saturation", "Value", "Fac", "Color"], &["Color"]),
+    op("BRIGHTCONTRAST", NODE_OP_BRIGHT_CONTRAST, &["Color", "Bright", "Contrast"], &["Color"]),
+    op("GAMMA", NODE_OP_GAMMA, &["Color", "Gamma"], &["Color"]),
+    op("TEX_WHITE_NOISE", NODE_OP_WHITE_NOISE, &["Vector", "W"], &["Value", "Color"]),
     op(
         "TEX_WAVE",
-        OP_WAVE,
+        NODE_OP_WAVE,
         &["Vector", "Scale", "Distortion", "Detail", "Detail Scale", "Detail Roughness", "Phase Offset"],
         &["Color", "Fac"],
     ),
-    op("TEX_MAGIC", OP_MAGIC, &["Vector", "Scale", "Distortion"], &["Color", "Fac"]),
+    op("TEX_MAGIC", NODE_OP_MAGIC, &["Vector", "Scale", "Distortion"], &["Color", "Fac"]),
     op(
         "TEX_BRICK",
-        OP_BRICK,
+        NODE_OP_BRICK,
         &[
             "Vector",
             "Color1",
@@ -306,7 +262,7 @@ pub const KINDS: [Kind; 35] = [
     ),
     op(
         "TEX_VORONOI",
-        OP_VORONOI,
+        NODE_OP_VORONOI,
         &["Vector", "W", "Scale", "Detail", "Roughness", "Lacunarity", "Smoothness", "Exponent", "Randomness"],
         &["Distance", "Color", "Position", "W", "Radius"],
     ),
@@ -316,8 +272,9 @@ pub const KINDS: [Kind; 35] = [
 /// the program layout's version; caches of programs compiled otherwise are stale.
 pub fn compiler_signature() -> String {
     let kinds: Vec<_> = KINDS.iter().map(|k| (k.name, k.inputs, k.outputs)).collect();
+    let ops: Vec<_> = operations().collect();
     format!(
-        "node programs {} {} {OPERATIONS:?} {MATH_OPERATIONS:?} {VECTOR_MATH_OPERATIONS:?} {BLEND_TYPES:?} {RAMP_TABLE_SIZE} {kinds:?} {VORONOI_FEATURES:?} {VORONOI_METRICS:?} {NOISE_DIMENSIONS:?} {WAVE_TYPES:?} {WAVE_BANDS:?} {WAVE_RINGS:?} {WAVE_PROFILES:?}",
+        "node programs {} {} {ops:?} {MATH_OPERATIONS:?} {VECTOR_MATH_OPERATIONS:?} {BLEND_TYPES:?} {RAMP_TABLE_SIZE} {kinds:?} {VORONOI_FEATURES:?} {VORONOI_METRICS:?} {NOISE_DIMENSIONS:?} {WAVE_TYPES:?} {WAVE_BANDS:?} {WAVE_RINGS:?} {WAVE_PROFILES:?}",
         super::node_graph::FORMAT_VERSION,
         super::node_graph::COMPILER_VERSION
     )
@@ -444,15 +401,13 @@ fn mix_mode(settings: &Map<String, Value>) -> Result<Mode, String> {
 mod tests {
     use super::*;
 
-    /// The shader's `NODE_OP_*` constants are these operations.
+    /// The operations are numbered 0, 1, 2, … in order, each with its name.
     #[test]
-    fn operations_agree_with_the_shader() {
-        let wgsl = include_str!("../../shaders/node_step.wgsl");
-        for (name, value) in OPERATIONS {
-            let line = format!("const NODE_OP_{name}: u32 = {value}u;");
-            assert!(wgsl.contains(&line), "node_step.wgsl lacks `{line}`");
-        }
-        assert_eq!(wgsl.matches("const NODE_OP_").count(), OPERATIONS.len());
+    fn operations_are_numbered_in_order() {
+        let all: Vec<(&str, u32)> = operations().collect();
+        assert_eq!(all.len(), 28);
+        assert!(all.iter().enumerate().all(|(i, (name, op))| *op == i as u32 && !name.is_empty()));
+        assert_eq!(all[23], ("VORONOI", NODE_OP_VORONOI));
     }
 
     /// The exporter follows exactly the node types rt evaluates, with the same outputs.

@@ -41,10 +41,10 @@ pub fn instructions(program: &[u32]) -> Result<Vec<Instruction>, String> {
     let mut at = 1;
     loop {
         let op = word(at)? & 0xff;
-        if op == node_kinds::OP_END {
+        if op == node_kinds::NODE_OP_END {
             return Ok(out);
         }
-        if !node_kinds::OPERATIONS.iter().any(|(_, o)| *o == op) {
+        if !node_kinds::operations().any(|(_, o)| o == op) {
             return Err(format!("unknown operation {op} at word {at}"));
         }
         let register = word(at + 1)?;
@@ -103,10 +103,10 @@ mod tests {
     // with constants 0 to 2 into register 1, that register to the base colour.
     fn checker(color: f32) -> Vec<u32> {
         let mut p = vec![0];
-        p.extend([node_kinds::OP_COORDINATE, 0, 0, 6, 0, 0, 0, 0, 0, 0]);
-        p.extend([node_kinds::OP_CHECKER, 1, 4, 0, CONSTANT, CONSTANT | 1, CONSTANT | 2, 0]);
-        p.extend([node_kinds::OP_OUTPUT, 0, 1, 1, 0]);
-        p.push(node_kinds::OP_END);
+        p.extend([node_kinds::NODE_OP_COORDINATE, 0, 0, 6, 0, 0, 0, 0, 0, 0]);
+        p.extend([node_kinds::NODE_OP_CHECKER, 1, 4, 0, CONSTANT, CONSTANT | 1, CONSTANT | 2, 0]);
+        p.extend([node_kinds::NODE_OP_OUTPUT, 0, 1, 1, 0]);
+        p.push(node_kinds::NODE_OP_END);
         p[0] = p.len() as u32;
         for v in [color, 0.0, 0.0, 1.0, 0.5, 0.5, 0.5, 1.0, 20.0, 20.0, 20.0, 20.0] {
             p.push(v.to_bits());
@@ -119,8 +119,11 @@ mod tests {
         let p = checker(0.8);
         let read = instructions(&p).unwrap();
         assert_eq!(read.len(), 3);
-        assert_eq!((read[0].op(), read[0].at, read[0].extra, read[0].extra_len), (node_kinds::OP_COORDINATE, 1, 5, 6));
-        assert_eq!((read[1].op(), read[1].at, read[1].out), (node_kinds::OP_CHECKER, 11, 1));
+        assert_eq!(
+            (read[0].op(), read[0].at, read[0].extra, read[0].extra_len),
+            (node_kinds::NODE_OP_COORDINATE, 1, 5, 6)
+        );
+        assert_eq!((read[1].op(), read[1].at, read[1].out), (node_kinds::NODE_OP_CHECKER, 11, 1));
         assert_eq!(read[1].operands, vec![0, CONSTANT, CONSTANT | 1, CONSTANT | 2]);
         assert_eq!(read[2].operands, vec![1]);
     }
@@ -129,7 +132,7 @@ mod tests {
     fn a_value_is_not_part_of_the_shape_and_an_operation_is() {
         assert_eq!(shape(&checker(0.8)), shape(&checker(0.1)));
         let mut other = checker(0.8);
-        other[11] = node_kinds::OP_GRADIENT;
+        other[11] = node_kinds::NODE_OP_GRADIENT;
         assert_ne!(shape(&checker(0.8)), shape(&other));
     }
 

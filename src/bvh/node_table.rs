@@ -80,12 +80,25 @@ impl NodeTable {
 mod tests {
     use super::*;
     use crate::asset::node_graph::CONSTANT;
-    use crate::asset::node_kinds::{OP_END, OP_MATH, OP_OUTPUT};
+    use crate::asset::node_kinds::{NODE_OP_END, NODE_OP_MATH, NODE_OP_OUTPUT};
 
     // Math operation `mode` of constants 0 and 1 into the roughness.
     fn math(mode: u32, value: f32) -> Material {
-        let mut p =
-            vec![0, OP_MATH | mode << 8, 0, 2, CONSTANT, CONSTANT | 1, 0, OP_OUTPUT | 1 << 8, 0, 1, 0, 0, OP_END];
+        let mut p = vec![
+            0,
+            NODE_OP_MATH | mode << 8,
+            0,
+            2,
+            CONSTANT,
+            CONSTANT | 1,
+            0,
+            NODE_OP_OUTPUT | 1 << 8,
+            0,
+            1,
+            0,
+            0,
+            NODE_OP_END,
+        ];
         p[0] = p.len() as u32;
         p.extend([value, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0].map(f32::to_bits));
         Material { node_program: p, ..Material::default() }

@@ -8,7 +8,7 @@
 //! pipeline; a new shape does.
 
 use crate::asset::node_graph::MAX_OPERANDS;
-use crate::asset::node_kinds::OPERATIONS;
+use crate::asset::node_kinds::operations;
 use crate::asset::node_program::{Instruction, instructions};
 use crate::bvh::SceneGeometry;
 use std::fmt::Write;
@@ -48,7 +48,7 @@ pub fn generate(shapes: &[Vec<u32>]) -> String {
 
 /// The name of operation `op` (`NODE_OP_NAME`, `node_op_name` in the shader).
 fn operation_name(op: u32) -> Option<&'static str> {
-    OPERATIONS.iter().find(|(_, o)| *o == op).map(|(name, _)| *name)
+    operations().find(|(_, o)| *o == op).map(|(name, _)| name)
 }
 
 /// `step` as a WGSL `NodeStep` of constants, its extra words found from the program's start.
@@ -83,7 +83,7 @@ mod tests {
     #[test]
     fn every_operation_has_its_function() {
         let wgsl = include_str!("../../shaders/node_ops.wgsl");
-        for (name, _) in &OPERATIONS[2..] {
+        for (name, _) in operations().skip(2) {
             let head = format!("fn node_op_{}(start: u32, step: NodeStep, p: NodePoint)", name.to_lowercase());
             assert!(wgsl.contains(&head), "node_ops.wgsl lacks `{head}`");
         }

@@ -110,12 +110,12 @@ fn every_pair_of_effects_assembles_to_valid_wgsl() {
 #[test]
 fn specialised_node_code_is_valid_wgsl() {
     use crate::asset::node_graph::CONSTANT;
-    use crate::asset::node_kinds::{OP_END, OP_OUTPUT, OPERATIONS};
+    use crate::asset::node_kinds::{NODE_OP_END, NODE_OP_OUTPUT, operations};
     let mut program = vec![0];
-    for (_, op) in &OPERATIONS[2..] {
-        program.extend([*op, 0, 1, CONSTANT, 0]);
+    for (_, op) in operations().skip(2) {
+        program.extend([op, 0, 1, CONSTANT, 0]);
     }
-    program.extend([OP_OUTPUT, 0, 1, 0, 0, OP_END]);
+    program.extend([NODE_OP_OUTPUT, 0, 1, 0, 0, NODE_OP_END]);
     program[0] = program.len() as u32;
     program.extend([0; 4]);
     let features = FeatureSet { node_code: 1, ..all_on() };

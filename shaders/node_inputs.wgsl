@@ -178,7 +178,9 @@ fn node_layer_weight(blend_in: f32, n: vec3f, p: NodePoint) -> vec2f {
     return vec2f(fresnel, 1.0 - facing);
 }
 
-fn node_noise(start: u32, step: NodeStep, kind: u32, normalize: bool) -> vec4f {
+// Noise Texture: mode = type | dimensions' index << 4 (node_kinds' NOISE_TYPES and
+// NOISE_DIMENSIONS); the vector and W are scaled, 1D reads W, 2D the vector's x and y.
+fn node_noise(start: u32, step: NodeStep, mode: u32, normalize: bool) -> vec4f {
     let scale = node_in(start, step, 2u).x;
     let s = NoiseSettings(
         clamp(node_in(start, step, 3u).x, 0.0, 15.0),
@@ -186,10 +188,20 @@ fn node_noise(start: u32, step: NodeStep, kind: u32, normalize: bool) -> vec4f {
         node_in(start, step, 5u).x,
         node_in(start, step, 6u).x,
         node_in(start, step, 7u).x,
-        kind,
+        mode & 15u,
         normalize,
+        (mode >> 4u) + 1u,
     );
-    return noise_texture_3d(node_in(start, step, 0u).xyz * scale, node_in(start, step, 8u).x, s);
+    let v = node_in(start, step, 0u).xyz * scale;
+    let w = node_in(start, step, 1u).x * scale;
+    var co: vec4f;
+    switch s.dimensions {
+        case 1u: { co = vec4f(w, 0.0, 0.0, 0.0); }
+        case 2u: { co = vec4f(v.xy, 0.0, 0.0); }
+        case 4u: { co = vec4f(v, w); }
+        default: { co = vec4f(v, 0.0); }
+    }
+    return noise_texture(co, node_in(start, step, 8u).x, s);
 }
 
 // Voronoi Texture: mode = feature | metric << 4 (node_kinds' VORONOI_FEATURES, _METRICS).

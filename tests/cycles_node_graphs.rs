@@ -70,6 +70,13 @@ fn noise_of_every_kind_ramps_and_checkers_match_cycles() {
     check_channels("graph_noise", 1e-3);
 }
 
+/// Noise of 1, 2 and 4 dimensions: every fractal type, distortion, colour, W linked and
+/// constant (1D reads W only, 2D the vector's x and y).
+#[test]
+fn noise_of_one_two_and_four_dimensions_matches_cycles() {
+    check_channels("graph_noise_dimensions", 1e-3);
+}
+
 #[test]
 fn every_math_operation_matches_cycles() {
     check_channels("graph_math", 1e-3);

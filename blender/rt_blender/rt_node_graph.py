@@ -79,7 +79,7 @@ EVALUATED_SETTINGS = {
     "TEX_MAGIC": {"turbulence_depth": None},
     "TEX_BRICK": {"offset": None, "offset_frequency": None, "squash": None, "squash_frequency": None},
     "MAPPING": {"vector_type": None},
-    "TEX_NOISE": {"noise_dimensions": {"3D"}, "noise_type": None, "normalize": None},
+    "TEX_NOISE": {"noise_dimensions": None, "noise_type": None, "normalize": None},
     "TEX_GRADIENT": {"gradient_type": None},
 }
 # Texture nodes' unlinked Vector, as in Cycles: the Generated coordinates (White Noise's is 0).

@@ -342,12 +342,12 @@ pub fn mode(name: &str, settings: &Map<String, Value>) -> Result<Mode, String> {
         "SEPARATE_COLOR" | "COMBINE_COLOR" => plain(choice(settings, "mode", &COLOR_MODES)?),
         "TEX_WHITE_NOISE" => plain(choice(settings, "noise_dimensions", &NOISE_DIMENSIONS)?),
         "MAPPING" => plain(choice(settings, "vector_type", &MAPPING_TYPES)?),
-        "TEX_NOISE" => {
-            if text(settings, "noise_dimensions")? != "3D" {
-                return Err("only 3D noise is evaluated yet".into());
-            }
-            Ok(Mode { mode: choice(settings, "noise_type", &NOISE_TYPES)?, flags: flag(settings, "normalize") as u32 })
-        }
+        // Mode: the type | the dimensions' index << 4.
+        "TEX_NOISE" => Ok(Mode {
+            mode: choice(settings, "noise_type", &NOISE_TYPES)?
+                | choice(settings, "noise_dimensions", &NOISE_DIMENSIONS)? << 4,
+            flags: flag(settings, "normalize") as u32,
+        }),
         "TEX_GRADIENT" => plain(choice(settings, "gradient_type", &GRADIENT_TYPES)?),
         "TEX_WAVE" => {
             let kind = choice(settings, "wave_type", &WAVE_TYPES)?;

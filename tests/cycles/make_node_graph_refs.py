@@ -4,7 +4,7 @@ compares rt against them).
     /work/main/.venv-bpy/bin/python tests/cycles/make_node_graph_refs.py [--spp 1024] [NAME...]
 
 The per-node scenes (`graph_noise`, `graph_math`, `graph_color`, `graph_vector`,
-`graph_convert`, `graph_brick`, `graph_white_noise`, `graph_shading` and the other textures) are a 4 x 4 grid of tiles seen from above by an orthographic camera, under
+`graph_convert`, `graph_brick`, `graph_white_noise`, `graph_noise_dimensions`, `graph_shading` and the other textures) are a 4 x 4 grid of tiles seen from above by an orthographic camera, under
 a black world; each tile only emits, its Emission colour the output of a small node graph
 (its own material), so a pixel is the graph's mean value over the pixel: the comparison
 tests the nodes and nothing else. `graph_shading`'s tiles are smooth spheres, for the nodes
@@ -113,9 +113,10 @@ def grid_scene(name, builders, shape="plane"):
     return scene
 
 
-def noise(tree, vector=None, noise_type="FBM", normalize=True, **inputs):
-    node = new(tree, "ShaderNodeTexNoise", inputs, noise_dimensions="3D", noise_type=noise_type, normalize=normalize)
-    if vector is not None:
+def noise(tree, vector=None, noise_type="FBM", normalize=True, dimensions="3D", **inputs):
+    node = new(tree, "ShaderNodeTexNoise", inputs, noise_dimensions=dimensions, noise_type=noise_type,
+               normalize=normalize)
+    if vector is not None and dimensions != "1D":
         tree.links.new(vector, node.inputs["Vector"])
     return node
 
@@ -491,6 +492,42 @@ WHITE_NOISE = [lambda t, d=d, o=o, s=s: white_noise(t, d, o, s) for d in ("1D", 
                for o, s in (("Color", 4.0), ("Value", 6.0))]
 
 
+def noise_of(dimensions, which="Fac", noise_type="FBM", w=None, show=None, **inputs):
+    """Noise of 1, 2 or 4 dimensions over the object coordinates; W from `w` (a function of
+    the tree) or the x coordinate × 3; `show` = (scale, offset) for values of any sign."""
+    def build(t):
+        w_socket = w(t) if w else math_node(t, "MULTIPLY", new(t, "ShaderNodeSeparateXYZ", {"Vector": coords(t)}).outputs["X"], 3.0)
+        node = noise(t, coords(t), noise_type, dimensions=dimensions, W=w_socket, **inputs)
+        out = node.outputs[which]
+        return shown(t, out, *show) if show else out
+    return build
+
+
+def y_plus(offset):
+    return lambda t: math_node(t, "ADD", new(t, "ShaderNodeSeparateXYZ", {"Vector": coords(t)}).outputs["Y"], offset)
+
+
+NOISE_DIMENSIONS = [
+    noise_of("1D", Scale=2.0, Detail=3.0),
+    noise_of("1D", "Color", Scale=1.5, Detail=2.0, Distortion=1.5),
+    noise_of("1D", noise_type="RIDGED_MULTIFRACTAL", show=(0.3, 0.0), Scale=2.0, Detail=3.5, Offset=1.0, Gain=2.0),
+    noise_of("1D", normalize=False, show=(0.5, 0.5), Scale=2.5, Detail=4.5, Roughness=0.6),
+    noise_of("2D", Scale=3.0, Detail=2.0),
+    noise_of("2D", "Color", Scale=2.0, Detail=1.0, Distortion=2.0),
+    noise_of("2D", noise_type="MULTIFRACTAL", show=(0.3, 0.0), Scale=2.0, Detail=3.5),
+    noise_of("2D", noise_type="HETERO_TERRAIN", show=(0.3, 0.0), Scale=2.0, Detail=3.5, Offset=0.8),
+    noise_of("4D", w=lambda t: 0.7, Scale=3.0, Detail=2.0),
+    noise_of("4D", "Color", w=y_plus(0.3), Scale=2.0, Detail=1.5, Distortion=1.2),
+    noise_of("4D", noise_type="HYBRID_MULTIFRACTAL", show=(0.3, 0.0), Scale=2.0, Detail=3.5, Offset=0.5, Gain=1.5),
+    noise_of("4D", noise_type="RIDGED_MULTIFRACTAL", w=y_plus(-1.1), show=(0.3, 0.0), Scale=1.5, Detail=2.5,
+             Offset=1.0, Gain=2.0),
+    noise_of("1D", "Color", w=y_plus(0.0), Scale=4.0, Detail=6.0, Roughness=0.35, Lacunarity=3.1),
+    noise_of("2D", normalize=False, show=(0.5, 0.5), Scale=1.5, Detail=6.0, Roughness=0.35, Lacunarity=3.1),
+    noise_of("4D", "Color", normalize=False, w=lambda t: -2.4, Scale=2.5, Detail=0.0),
+    noise_of("2D", "Color", noise_type="HETERO_TERRAIN", show=(0.2, 0.1), Scale=1.0, Detail=2.0, Distortion=0.7),
+]
+
+
 def procedural_material(name, build):
     material = bpy.data.materials.new(name)
     tree = material.node_tree
@@ -616,6 +653,7 @@ SCENES = {
     "graph_magic": lambda: grid_scene("magic", MAGIC),
     "graph_brick": lambda: grid_scene("brick", BRICK),
     "graph_white_noise": lambda: grid_scene("white_noise", WHITE_NOISE),
+    "graph_noise_dimensions": lambda: grid_scene("noise_dimensions", NOISE_DIMENSIONS),
     "graph_shading": lambda: grid_scene("shading", SHADING, shape="sphere"),
     "graph_material": material_scene,
     "graph_mix": mix_scene,

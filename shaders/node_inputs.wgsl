@@ -9,6 +9,7 @@
 //#include "node_noise.wgsl"
 //#include "node_math.wgsl"
 //#include "node_voronoi.wgsl"
+//#include "node_spectrum.wgsl"
 
 // Texture Coordinate (modes 0-3: Generated, Normal, UV, Object) and Geometry (4-8:
 // Position, Normal, True Normal, Incoming, Backfacing). Generated's texture space is in

@@ -144,6 +144,8 @@ fn node_vector_math(operation: u32, a: vec3f, b: vec3f, c: vec3f, scale: f32) ->
         case 24u: { return vec4f(sin(a), 0.0); }
         case 25u: { return vec4f(cos(a), 0.0); }
         case 26u: { return vec4f(tan(a), 0.0); }
+        case 27u: { return vec4f(safe_powf(a.x, b.x), safe_powf(a.y, b.y), safe_powf(a.z, b.z), 0.0); }
+        case 28u: { return vec4f(sign(a), 0.0); }
         default: { return vec4f(0.0); }
     }
 }
@@ -190,6 +192,34 @@ fn hsv_to_rgb(hsv: vec3f) -> vec3f {
         case 4: { return vec3f(t, p, v); }
         default: { return vec3f(v, p, q); }
     }
+}
+
+// Cycles' rgb_to_hsl and hsl_to_rgb (util/color.h).
+fn rgb_to_hsl(rgb: vec3f) -> vec3f {
+    let cmax = max(rgb.x, max(rgb.y, rgb.z));
+    let cmin = min(rgb.x, min(rgb.y, rgb.z));
+    let l = min(1.0, (cmax + cmin) / 2.0);
+    if cmax == cmin {
+        return vec3f(0.0, 0.0, l);
+    }
+    let cdelta = cmax - cmin;
+    let s = select(cdelta / (cmax + cmin), cdelta / (2.0 - cmax - cmin), l > 0.5);
+    var h: f32;
+    if cmax == rgb.x {
+        h = (rgb.y - rgb.z) / cdelta + select(0.0, 6.0, rgb.y < rgb.z);
+    } else if cmax == rgb.y {
+        h = (rgb.z - rgb.x) / cdelta + 2.0;
+    } else {
+        h = (rgb.x - rgb.y) / cdelta + 4.0;
+    }
+    return vec3f(h / 6.0, s, l);
+}
+
+fn hsl_to_rgb(hsl: vec3f) -> vec3f {
+    let h = hsl.x;
+    let n = clamp(vec3f(abs(h * 6.0 - 3.0) - 1.0, 2.0 - abs(h * 6.0 - 2.0), 2.0 - abs(h * 6.0 - 4.0)), vec3f(0.0), vec3f(1.0));
+    let chroma = (1.0 - abs(2.0 * hsl.z - 1.0)) * hsl.y;
+    return (n - 0.5) * chroma + hsl.z;
 }
 
 // Hue, Saturation, Value and Color blends (svm_mix_hue, _sat, _val, _color).

@@ -33,6 +33,7 @@ fn node_instruction(start: u32, step: NodeStep, p: NodePoint) {
         case NODE_OP_LAYER_WEIGHT: { node_op_layer_weight(start, step, p); }
         case NODE_OP_FRESNEL: { node_op_fresnel(start, step, p); }
         case NODE_OP_BRICK: { node_op_brick(start, step, p); }
+        case NODE_OP_SPECTRUM: { node_op_spectrum(start, step, p); }
         default: {}
     }
 }
@@ -97,8 +98,13 @@ fn node_op_ramp(start: u32, step: NodeStep, p: NodePoint) {
 
 fn node_op_separate(start: u32, step: NodeStep, p: NodePoint) {
     let a = node_in(start, step, 0u);
-    // Mode 1: Separate Color in HSV.
-    let c = select(a.xyz, rgb_to_hsv(a.xyz), step.mode == 1u);
+    // Mode 1: Separate Color in HSV, 2 in HSL.
+    var c = a.xyz;
+    switch step.mode {
+        case 1u: { c = rgb_to_hsv(a.xyz); }
+        case 2u: { c = rgb_to_hsl(a.xyz); }
+        default: {}
+    }
     node_store(step.out, vec4f(c.x));
     node_store(step.out + 1u, vec4f(c.y));
     node_store(step.out + 2u, vec4f(c.z));
@@ -106,8 +112,13 @@ fn node_op_separate(start: u32, step: NodeStep, p: NodePoint) {
 
 fn node_op_combine(start: u32, step: NodeStep, p: NodePoint) {
     let a = node_in(start, step, 0u);
-    let c = vec3f(a.x, node_in(start, step, 1u).x, node_in(start, step, 2u).x);
-    node_store(step.out, vec4f(select(c, hsv_to_rgb(c), step.mode == 1u), 1.0));
+    var c = vec3f(a.x, node_in(start, step, 1u).x, node_in(start, step, 2u).x);
+    switch step.mode {
+        case 1u: { c = hsv_to_rgb(c); }
+        case 2u: { c = hsl_to_rgb(c); }
+        default: {}
+    }
+    node_store(step.out, vec4f(c, 1.0));
 }
 
 fn node_op_hue_saturation(start: u32, step: NodeStep, p: NodePoint) {
@@ -232,4 +243,11 @@ fn node_op_brick(start: u32, step: NodeStep, p: NodePoint) {
     }
     node_store(step.out, vec4f(color * (1.0 - b.y) + node_in(start, step, 3u).xyz * b.y, 1.0));
     node_store(step.out + 1u, vec4f(b.y));
+}
+
+// Blackbody (mode 0: the temperature in kelvin) or Wavelength (mode 1: nanometres).
+fn node_op_spectrum(start: u32, step: NodeStep, p: NodePoint) {
+    let a = node_in(start, step, 0u).x;
+    let c = select(blackbody_rec709(a), wavelength_rec709(a), step.mode == 1u);
+    node_store(step.out, vec4f(max(c, vec3f(0.0)), 1.0));
 }

@@ -81,6 +81,7 @@ shared_constants! { NODE_OPERATIONS;
     NODE_OP_CURVES: u32 = 25;
     NODE_OP_MAGIC: u32 = 26;
     NODE_OP_BRICK: u32 = 27;
+    NODE_OP_SPECTRUM: u32 = 28;
 }
 
 shared_constants! { LIGHT_TREE;

@@ -70,6 +70,13 @@ fn noise_of_every_kind_ramps_and_checkers_match_cycles() {
     check_channels("graph_noise", 1e-3);
 }
 
+/// Blackbody across its fit's pieces and ends, Wavelength across the visible range and
+/// past its ends, Vector Math's Power and Sign, and colours combined and separated in HSL.
+#[test]
+fn blackbody_wavelength_and_hsl_match_cycles() {
+    check_channels("graph_spectrum", 1e-3);
+}
+
 /// Noise of 1, 2 and 4 dimensions: every fractal type, distortion, colour, W linked and
 /// constant (1D reads W only, 2D the vector's x and y).
 #[test]

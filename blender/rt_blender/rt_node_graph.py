@@ -50,6 +50,8 @@ EVALUATED = {
     "TEX_WAVE": ("Color", "Fac"),
     "TEX_MAGIC": ("Color", "Fac"),
     "TEX_BRICK": ("Color", "Fac"),
+    "BLACKBODY": ("Color",),
+    "WAVELENGTH": ("Color",),
 }
 
 BLEND_TYPES = {"MIX", "DARKEN", "MULTIPLY", "BURN", "LIGHTEN", "SCREEN", "DODGE", "ADD", "OVERLAY", "SOFT_LIGHT",
@@ -57,7 +59,7 @@ BLEND_TYPES = {"MIX", "DARKEN", "MULTIPLY", "BURN", "LIGHTEN", "SCREEN", "DODGE"
 VECTOR_MATH_OPERATIONS = {"ADD", "SUBTRACT", "MULTIPLY", "DIVIDE", "MULTIPLY_ADD", "CROSS_PRODUCT", "PROJECT",
                           "REFLECT", "REFRACT", "FACEFORWARD", "DOT_PRODUCT", "DISTANCE", "LENGTH", "SCALE",
                           "NORMALIZE", "ABSOLUTE", "MINIMUM", "MAXIMUM", "FLOOR", "CEIL", "FRACTION", "MODULO",
-                          "WRAP", "SNAP", "SINE", "COSINE", "TANGENT"}
+                          "WRAP", "SNAP", "SINE", "COSINE", "TANGENT", "POWER", "SIGN"}
 # The settings each node type writes, and the values of them rt evaluates (None: any).
 EVALUATED_SETTINGS = {
     "MATH": {"operation": None, "use_clamp": None},
@@ -71,8 +73,8 @@ EVALUATED_SETTINGS = {
     "CURVE_RGB": {},
     "CURVE_VEC": {},
     "CURVE_FLOAT": {},
-    "SEPARATE_COLOR": {"mode": {"RGB", "HSV"}},
-    "COMBINE_COLOR": {"mode": {"RGB", "HSV"}},
+    "SEPARATE_COLOR": {"mode": None},
+    "COMBINE_COLOR": {"mode": None},
     "TEX_WHITE_NOISE": {"noise_dimensions": None},
     "TEX_VORONOI": {"voronoi_dimensions": {"3D"}, "feature": None, "distance": None, "normalize": None},
     "TEX_WAVE": {"wave_type": None, "bands_direction": None, "rings_direction": None, "wave_profile": None},

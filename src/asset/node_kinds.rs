@@ -11,8 +11,8 @@ pub use crate::shared_constants::{
     NODE_OP_BRICK, NODE_OP_BRIGHT_CONTRAST, NODE_OP_CHECKER, NODE_OP_CLAMP, NODE_OP_COMBINE, NODE_OP_CONVERT,
     NODE_OP_COORDINATE, NODE_OP_CURVES, NODE_OP_END, NODE_OP_FRESNEL, NODE_OP_GAMMA, NODE_OP_GRADIENT,
     NODE_OP_HUE_SATURATION, NODE_OP_INVERT, NODE_OP_LAYER_WEIGHT, NODE_OP_MAGIC, NODE_OP_MAP_RANGE, NODE_OP_MAPPING,
-    NODE_OP_MATH, NODE_OP_MIX, NODE_OP_NOISE, NODE_OP_OUTPUT, NODE_OP_RAMP, NODE_OP_SEPARATE, NODE_OP_VECTOR_MATH,
-    NODE_OP_VORONOI, NODE_OP_WAVE, NODE_OP_WHITE_NOISE,
+    NODE_OP_MATH, NODE_OP_MIX, NODE_OP_NOISE, NODE_OP_OUTPUT, NODE_OP_RAMP, NODE_OP_SEPARATE, NODE_OP_SPECTRUM,
+    NODE_OP_VECTOR_MATH, NODE_OP_VORONOI, NODE_OP_WAVE, NODE_OP_WHITE_NOISE,
 };
 
 /// Every operation by its name in the shader (`VORONOI` for `NODE_OP_VORONOI`), in order.
@@ -77,7 +77,7 @@ pub const MATH_OPERATIONS: [&str; 41] = [
 ];
 
 /// Vector Math's, in the order of `node_vector_math` in the shader.
-pub const VECTOR_MATH_OPERATIONS: [&str; 27] = [
+pub const VECTOR_MATH_OPERATIONS: [&str; 29] = [
     "ADD",
     "SUBTRACT",
     "MULTIPLY",
@@ -105,6 +105,8 @@ pub const VECTOR_MATH_OPERATIONS: [&str; 27] = [
     "SINE",
     "COSINE",
     "TANGENT",
+    "POWER",
+    "SIGN",
 ];
 
 pub const BLEND_TYPES: [&str; 19] = [
@@ -128,7 +130,7 @@ pub const BLEND_TYPES: [&str; 19] = [
     "VALUE",
     "COLOR",
 ];
-const COLOR_MODES: [&str; 2] = ["RGB", "HSV"];
+const COLOR_MODES: [&str; 3] = ["RGB", "HSV", "HSL"];
 const WAVE_TYPES: [&str; 2] = ["BANDS", "RINGS"];
 const WAVE_BANDS: [&str; 4] = ["X", "Y", "Z", "DIAGONAL"];
 const WAVE_RINGS: [&str; 4] = ["X", "Y", "Z", "SPHERICAL"];
@@ -173,7 +175,7 @@ const fn op(name: &'static str, op: u32, inputs: &'static [&'static str], output
     Kind { name, emit: Emit::Operation(op), inputs, outputs }
 }
 
-pub const KINDS: [Kind; 35] = [
+pub const KINDS: [Kind; 37] = [
     Kind { name: "VALUE", emit: Emit::Constant, inputs: &[], outputs: &["Value"] },
     Kind { name: "RGB", emit: Emit::Constant, inputs: &[], outputs: &["Color"] },
     Kind {
@@ -221,6 +223,8 @@ pub const KINDS: [Kind; 35] = [
     op("SEPARATE_COLOR", NODE_OP_SEPARATE, &["Color"], &["Red", "Green", "Blue"]),
     op("COMBXYZ", NODE_OP_COMBINE, &["X", "Y", "Z"], &["Vector"]),
     op("COMBINE_COLOR", NODE_OP_COMBINE, &["Red", "Green", "Blue"], &["Color"]),
+    op("BLACKBODY", NODE_OP_SPECTRUM, &["Temperature"], &["Color"]),
+    op("WAVELENGTH", NODE_OP_SPECTRUM, &["Wavelength"], &["Color"]),
     op("MAPPING", NODE_OP_MAPPING, &["Vector", "Location", "Rotation", "Scale"], &["Vector"]),
     op(
         "TEX_NOISE",
@@ -339,6 +343,8 @@ pub fn mode(name: &str, settings: &Map<String, Value>) -> Result<Mode, String> {
             flags: (text(settings, "extend")? == "EXTRAPOLATED") as u32,
         }),
         "RGBTOBW" => plain(CONVERT_COLOR_TO_VALUE),
+        // Mode 1: a wavelength, not a temperature.
+        "WAVELENGTH" => plain(1),
         "SEPARATE_COLOR" | "COMBINE_COLOR" => plain(choice(settings, "mode", &COLOR_MODES)?),
         "TEX_WHITE_NOISE" => plain(choice(settings, "noise_dimensions", &NOISE_DIMENSIONS)?),
         "MAPPING" => plain(choice(settings, "vector_type", &MAPPING_TYPES)?),
@@ -405,7 +411,7 @@ mod tests {
     #[test]
     fn operations_are_numbered_in_order() {
         let all: Vec<(&str, u32)> = operations().collect();
-        assert_eq!(all.len(), 28);
+        assert_eq!(all.len(), 29);
         assert!(all.iter().enumerate().all(|(i, (name, op))| *op == i as u32 && !name.is_empty()));
         assert_eq!(all[23], ("VORONOI", NODE_OP_VORONOI));
     }

@@ -97,6 +97,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("node_perlin.wgsl"),
     shader!("node_ops.wgsl"),
     shader!("node_program.wgsl"),
+    shader!("node_spectrum.wgsl"),
     shader!("node_step.wgsl"),
     shader!("node_voronoi.wgsl"),
     shader!("normal_map.wgsl"),

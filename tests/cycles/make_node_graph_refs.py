@@ -4,7 +4,7 @@ compares rt against them).
     /work/main/.venv-bpy/bin/python tests/cycles/make_node_graph_refs.py [--spp 1024] [NAME...]
 
 The per-node scenes (`graph_noise`, `graph_math`, `graph_color`, `graph_vector`,
-`graph_convert`, `graph_brick`, `graph_white_noise`, `graph_noise_dimensions`, `graph_shading` and the other textures) are a 4 x 4 grid of tiles seen from above by an orthographic camera, under
+`graph_convert`, `graph_brick`, `graph_white_noise`, `graph_noise_dimensions`, `graph_spectrum`, `graph_shading` and the other textures) are a 4 x 4 grid of tiles seen from above by an orthographic camera, under
 a black world; each tile only emits, its Emission colour the output of a small node graph
 (its own material), so a pixel is the graph's mean value over the pixel: the comparison
 tests the nodes and nothing else. `graph_shading`'s tiles are smooth spheres, for the nodes
@@ -528,6 +528,80 @@ NOISE_DIMENSIONS = [
 ]
 
 
+def along_x(t, middle, half_width):
+    """middle + half_width × the object's x (−1…1 on a tile)."""
+    x = new(t, "ShaderNodeSeparateXYZ", {"Vector": coords(t)}).outputs["X"]
+    return math_node(t, "MULTIPLY_ADD", x, half_width, middle)
+
+
+def blackbody(t, middle, half_width):
+    return new(t, "ShaderNodeBlackbody", {"Temperature": along_x(t, middle, half_width)}).outputs["Color"]
+
+
+def wavelength(t, middle, half_width):
+    return new(t, "ShaderNodeWavelength", {"Wavelength": along_x(t, middle, half_width)}).outputs["Color"]
+
+
+def vector_op(t, operation, a, b=(0.0, 0.0, 0.0), c=(0.0, 0.0, 0.0)):
+    return new(t, "ShaderNodeVectorMath", {"Vector": a, "Vector_001": b, "Vector_002": c},
+               operation=operation).outputs["Vector"]
+
+
+def vector_shown(t, v):
+    """|0.3 v + 0.5| per component: a vector of any sign made a visible colour."""
+    return vector_op(t, "ABSOLUTE", vector_op(t, "MULTIPLY_ADD", v, (0.3, 0.3, 0.3), (0.5, 0.5, 0.5)))
+
+
+def spread(t):
+    """(2x, 2y, 1.5 (x + y)) of the object's coordinates."""
+    x, y, _ = xyz(t, coords(t), 1.0)
+    return rgb(t, math_node(t, "MULTIPLY", x, 2.0), math_node(t, "MULTIPLY", y, 2.0),
+               math_node(t, "MULTIPLY", math_node(t, "ADD", x, y), 1.5))
+
+
+def hsl_combined(t):
+    x, y, _ = xyz(t, coords(t), 1.0)
+    hue = math_node(t, "MULTIPLY_ADD", x, 0.5, 0.5)
+    lightness = math_node(t, "MULTIPLY_ADD", y, 0.6, 0.5)
+    node = new(t, "ShaderNodeCombineColor", {"Red": hue, "Green": 0.8, "Blue": lightness}, mode="HSL")
+    return node.outputs["Color"]
+
+
+def hsl_separated(t, colour):
+    parts = new(t, "ShaderNodeSeparateColor", {"Color": colour}, mode="HSL").outputs
+    return rgb(t, parts[0], parts[1], parts[2])
+
+
+def gradient_colour(t):
+    """A colour that changes hue and brightness over the tile, above 1 at a corner."""
+    x, y, _ = xyz(t, coords(t), 1.0)
+    return rgb(t, math_node(t, "MULTIPLY_ADD", x, 0.7, 0.6), math_node(t, "MULTIPLY_ADD", y, 0.5, 0.4),
+               math_node(t, "MULTIPLY_ADD", math_node(t, "MULTIPLY", x, y), 0.4, 0.3))
+
+
+SPECTRUM = [
+    lambda t: blackbody(t, 1000.0, 500.0),
+    lambda t: blackbody(t, 2500.0, 1000.0),
+    lambda t: blackbody(t, 5000.0, 2000.0),
+    lambda t: blackbody(t, 10000.0, 3000.0),
+    lambda t: wavelength(t, 400.0, 30.0),
+    lambda t: wavelength(t, 480.0, 40.0),
+    lambda t: wavelength(t, 580.0, 50.0),
+    lambda t: wavelength(t, 720.0, 70.0),
+    lambda t: vector_shown(t, vector_op(t, "POWER", spread(t), (0.5, 2.0, 3.0))),
+    lambda t: vector_shown(t, vector_op(t, "POWER", (1.5, 0.7, 2.0), spread(t))),
+    lambda t: vector_shown(t, vector_op(t, "SIGN", spread(t))),
+    lambda t: hsl_combined(t),
+    lambda t: hsl_separated(t, gradient_colour(t)),
+    lambda t: new(t, "ShaderNodeCombineColor", {c: s for c, s in zip(("Red", "Green", "Blue"),
+              new(t, "ShaderNodeSeparateColor", {"Color": gradient_colour(t)}, mode="HSL").outputs)},
+                  mode="HSL").outputs["Color"],
+    lambda t: blackbody(t, 790.0, 20.0),
+    lambda t: new(t, "ShaderNodeBlackbody", {"Temperature": math_node(
+        t, "MULTIPLY_ADD", noise(t, coords(t), Scale=3.0).outputs["Fac"], 9000.0, 1000.0)}).outputs["Color"],
+]
+
+
 def procedural_material(name, build):
     material = bpy.data.materials.new(name)
     tree = material.node_tree
@@ -654,6 +728,7 @@ SCENES = {
     "graph_brick": lambda: grid_scene("brick", BRICK),
     "graph_white_noise": lambda: grid_scene("white_noise", WHITE_NOISE),
     "graph_noise_dimensions": lambda: grid_scene("noise_dimensions", NOISE_DIMENSIONS),
+    "graph_spectrum": lambda: grid_scene("spectrum", SPECTRUM),
     "graph_shading": lambda: grid_scene("shading", SHADING, shape="sphere"),
     "graph_material": material_scene,
     "graph_mix": mix_scene,

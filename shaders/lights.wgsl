@@ -271,7 +271,7 @@ fn sample_triangle_emitter(e: Emitter, tree_selection: f32, p: vec3f, u: vec2f) 
         let n_shading = normalize(transform_normal_to_world(inst.world_to_object, n_object));
         var lit = m;
         lit.emission = emission;
-        emission = node_graph_material(lit, node_point_on_triangle(inst, e.primitive, b1, b2, q, n_shading, -d)).emission;
+        emission = node_graph_material(lit, node_point_on_triangle(e.instance, inst, e.primitive, b1, b2, q, n_shading, -d)).emission;
     }
     //#endif
     //#if coat

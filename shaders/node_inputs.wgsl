@@ -29,7 +29,26 @@ fn node_coordinate(mode: u32, p: NodePoint, extra: u32) -> vec4f {
         case 6u: { return vec4f(p.true_normal, 0.0); }
         case 7u: { return vec4f(p.incoming, 0.0); }
         case 8u: { return vec4f(select(0.0, 1.0, p.backfacing)); }
+        case 19u, 20u, 21u, 22u: { return node_object_info(mode - 19u, p); }
         default: { return vec4f(node_light_path(mode - 9u, p)); }
+    }
+}
+
+// Object Info's Location, Color, Alpha and Random (node_kinds' order) of the point's
+// object: a sphere's are those of an object at the origin with the defaults.
+fn node_object_info(output: u32, p: NodePoint) -> vec4f {
+    var settings = ObjectSettings(0.0, 1.0, 0u, 0.0, vec4f(1.0));
+    var location = vec3f(0.0);
+    if p.instance != NODE_NO_OBJECT {
+        settings = object_settings[p.instance];
+        let to_world = affine_inverse(instance_at(p.instance).world_to_object).m;
+        location = vec3f(to_world[0].w, to_world[1].w, to_world[2].w);
+    }
+    switch output {
+        case 0u: { return vec4f(blender_axes(location), 0.0); }
+        case 1u: { return vec4f(settings.color.xyz, 1.0); }
+        case 2u: { return vec4f(settings.color.w); }
+        default: { return vec4f(settings.random); }
     }
 }
 

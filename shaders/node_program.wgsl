@@ -89,7 +89,7 @@ fn node_mix_second(m: Material, out: NodeOutputs, path_key: u32, bounce: u32) ->
 // The point on triangle `triangle` of instance `inst` at barycentrics (b1, b2), world
 // position `position`, seen from direction `incoming` (towards the viewer, rt's axes),
 // with its shading normal `normal` (world, rt's axes, before normal maps).
-fn node_point_on_triangle(inst: Instance, triangle: u32, b1: f32, b2: f32, position: vec3f, normal: vec3f, incoming: vec3f) -> NodePoint {
+fn node_point_on_triangle(instance: u32, inst: Instance, triangle: u32, b1: f32, b2: f32, position: vec3f, normal: vec3f, incoming: vec3f) -> NodePoint {
     let tri = triangles[triangle];
     let sh = shading[triangle];
     let b0 = 1.0 - b1 - b2;
@@ -106,13 +106,14 @@ fn node_point_on_triangle(inst: Instance, triangle: u32, b1: f32, b2: f32, posit
     p.uv = triangle_uv(triangle, 0u, b1, b2);
     p.backfacing = backfacing;
     p.ray_from = NODE_RAY_NONE;
+    p.instance = instance;
     return p;
 }
 
 // A hit's point: on a triangle, or on a sphere (whose object space is the world's).
 fn node_point_at(hit: Hit, surface: Surface, normal: vec3f, incoming: vec3f) -> NodePoint {
     if hit.kind == HIT_TRIANGLE {
-        return node_point_on_triangle(instance_at(hit.instance), hit.primitive, hit.b1, hit.b2, surface.position, normal, incoming);
+        return node_point_on_triangle(hit.instance, instance_at(hit.instance), hit.primitive, hit.b1, hit.b2, surface.position, normal, incoming);
     }
     let backfacing = dot(surface.geometric_normal, incoming) < 0.0;
     let side = select(1.0, -1.0, backfacing);
@@ -125,5 +126,6 @@ fn node_point_at(hit: Hit, surface: Surface, normal: vec3f, incoming: vec3f) -> 
     p.incoming = blender_axes(incoming);
     p.backfacing = backfacing;
     p.ray_from = NODE_RAY_NONE;
+    p.instance = NODE_NO_OBJECT;
     return p;
 }

@@ -36,7 +36,11 @@ struct NodePoint {
     singular: bool,
     ray_length: f32,
     ray_depth: f32,
+    // The instance the point is on (Object Info), or NODE_NO_OBJECT (a sphere).
+    instance: u32,
 }
+
+const NODE_NO_OBJECT: u32 = 0xffffffffu;
 
 // What a ray found the point by: from the camera, after a lobe (LOBE_* + 1), or none of
 // these (a light sample's point: every Light Path flag off, as Cycles evaluates emission).

@@ -271,7 +271,8 @@ gpu_struct! {
 
 gpu_struct! {
     /// An instance's settings that shading reads (see GpuObjectSettings): its Shadow Terminator
-    /// offsets for smooth shading and the terminator shift, and whether the object is a holdout;
+    /// offsets for smooth shading and the terminator shift, whether the object is a holdout,
+    /// and what Object Info nodes read;
     /// beside the instances, so that traversal's records stay small.
     #[derive(Debug, PartialEq)]
     pub struct GpuObjectSettings as "ObjectSettings" {
@@ -282,23 +283,27 @@ gpu_struct! {
         /// 1: Blender's Holdout (the object's or its collection's): the camera sees through
         /// it to nothing, and the pixel's alpha loses what it covers; other rays see it as it is.
         pub holdout: u32,
-        pub _pad0: u32,
+        /// Object Info's Random, in [0, 1].
+        pub random: f32,
+        /// Object Info's Color (RGB) and Alpha.
+        pub color: [f32; 4],
     }
 }
 
 impl Default for GpuObjectSettings {
     fn default() -> Self {
-        Self::new(crate::scene::ShadowTerminator::default(), false)
+        Self::new(crate::scene::ShadowTerminator::default(), false, crate::scene::ObjectInfo::default())
     }
 }
 
 impl GpuObjectSettings {
-    pub fn new(t: crate::scene::ShadowTerminator, holdout: bool) -> Self {
+    pub fn new(t: crate::scene::ShadowTerminator, holdout: bool, info: crate::scene::ObjectInfo) -> Self {
         Self {
             geometry_offset: t.geometry_offset,
             frequency_multiplier: t.frequency_multiplier(),
             holdout: u32::from(holdout),
-            _pad0: 0,
+            random: info.random,
+            color: info.color,
         }
     }
 }

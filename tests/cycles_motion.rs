@@ -93,6 +93,7 @@ fn instance_files_carry_motion_as_the_scene_file_does() {
         materials: vec![],
         shadow_terminator: sphere.shadow_terminator,
         holdout: false,
+        info: sphere.info,
     });
     let (from_file, features) = render_request(scene, size);
     assert!(features.object_motion);

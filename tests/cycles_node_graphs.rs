@@ -77,6 +77,13 @@ fn blackbody_wavelength_and_hsl_match_cycles() {
     check_channels("graph_spectrum", 1e-3);
 }
 
+/// Object Info: Random of differently named objects (non-ASCII names too, as Cycles hashes
+/// their bytes), Object Color and Alpha, Location.
+#[test]
+fn object_info_matches_cycles() {
+    check_channels("graph_object_info", 1e-3);
+}
+
 /// Noise of 1, 2 and 4 dimensions: every fractal type, distortion, colour, W linked and
 /// constant (1D reads W only, 2D the vector's x and y).
 #[test]

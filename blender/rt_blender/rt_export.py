@@ -1621,6 +1621,37 @@ def object_settings_toml(settings):
     return shadow_terminator_toml(settings[:2]) + ("holdout = true\n" if settings[2] else "")
 
 
+def lookup3_final(a, b, c):
+    """Bob Jenkins' lookup3 `final` on 32-bit words (Cycles' util/hash.h); returns c."""
+    def rot(x, k):
+        return ((x << k) | (x >> (32 - k))) & 0xFFFFFFFF
+    for x, y, z, k in ((2, 1, 0, 14), (0, 2, 1, 11), (1, 0, 2, 25), (2, 1, 0, 16), (0, 2, 1, 4), (1, 0, 2, 14),
+                       (2, 1, 0, 24)):
+        w = [a, b, c]
+        w[x] = ((w[x] ^ w[y]) - rot(w[y], k)) & 0xFFFFFFFF
+        a, b, c = w
+    return c
+
+
+def object_random(name):
+    """Object Info's Random of an object named `name`, as Cycles sets it for an object that
+    is not an instance: hash_uint2(hash_string(name), 0) over 2^32 - 1, in float32."""
+    h = 0
+    for byte in name.encode("utf-8"):
+        h = (h * 37 + byte) & 0xFFFFFFFF  # the UTF-8 bytes as unsigned (found against Cycles)
+    seed = (0xDEADBEEF + (2 << 2) + 13) & 0xFFFFFFFF
+    random_id = lookup3_final((seed + h) & 0xFFFFFFFF, seed, seed)
+    return float(np.float32(random_id) * (np.float32(1.0) / np.float32(0xFFFFFFFF)))
+
+
+def object_info_toml(obj):
+    """The scene-file keys of what Object Info reads of `obj`: its Random, and its Object
+    Color when not Blender's white."""
+    color = [float(c) for c in obj.color]
+    text = f"random = {fmt(object_random(obj.name))}\n"
+    return text + (f"object_color = {vec(color)}\n" if color != [1.0, 1.0, 1.0, 1.0] else "")
+
+
 def shadow_terminator_toml(terminator):
     """The scene-file keys of Shadow Terminator settings other than the defaults."""
     keys = ("shadow_terminator_geometry_offset", "shadow_terminator_shading_offset")
@@ -2109,7 +2140,7 @@ def scene_toml(scene, export, scene_path, objects):
         asset = os.path.relpath(os.path.join(export.out_dir, folder), scene_dir).replace(os.sep, "/")
         rows = [m[r][c] for r in range(4) for c in range(4)]
         rows[12:16] = [0.0, 0.0, 0.0, 1.0]
-        terminator = object_settings_toml(object_settings(obj, export.view_layer))
+        terminator = object_settings_toml(object_settings(obj, export.view_layer)) + object_info_toml(obj)
         motion = ""
         if obj.name in _motion:
             motion = f"motion = [{', '.join(vec(rt_rows_of(k)) for k in _motion[obj.name])}]\n"

@@ -50,6 +50,7 @@ EVALUATED = {
     "TEX_WAVE": ("Color", "Fac"),
     "TEX_MAGIC": ("Color", "Fac"),
     "TEX_BRICK": ("Color", "Fac"),
+    "OBJECT_INFO": ("Location", "Color", "Alpha", "Random"),
     "BLACKBODY": ("Color",),
     "WAVELENGTH": ("Color",),
 }

@@ -175,7 +175,7 @@ const fn op(name: &'static str, op: u32, inputs: &'static [&'static str], output
     Kind { name, emit: Emit::Operation(op), inputs, outputs }
 }
 
-pub const KINDS: [Kind; 37] = [
+pub const KINDS: [Kind; 38] = [
     Kind { name: "VALUE", emit: Emit::Constant, inputs: &[], outputs: &["Value"] },
     Kind { name: "RGB", emit: Emit::Constant, inputs: &[], outputs: &["Color"] },
     Kind {
@@ -206,6 +206,12 @@ pub const KINDS: [Kind; 37] = [
             "Ray Length",
             "Ray Depth",
         ],
+    },
+    Kind {
+        name: "OBJECT_INFO",
+        emit: Emit::Coordinates(19),
+        inputs: &[],
+        outputs: &["Location", "Color", "Alpha", "Random"],
     },
     op("MATH", NODE_OP_MATH, &["Value", "Value_001", "Value_002"], &["Value"]),
     op("VECT_MATH", NODE_OP_VECTOR_MATH, &["Vector", "Vector_001", "Vector_002", "Scale"], &["Vector", "Value"]),

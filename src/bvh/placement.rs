@@ -171,7 +171,7 @@ impl<'m> Placement<'m> {
         let records = &file.records;
         self.instances.reserve(records.len());
         self.object_settings.reserve(records.len());
-        let settings = GpuObjectSettings::new(set.shadow_terminator, set.holdout);
+        let settings = GpuObjectSettings::new(set.shadow_terminator, set.holdout, set.info);
         self.boxes.reserve(records.len());
         self.instance_mesh.reserve(records.len());
         for (index, r) in records.iter().enumerate() {

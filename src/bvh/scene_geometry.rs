@@ -348,7 +348,7 @@ impl<'m> Placed<'m> {
                 Some(_) => scene_material(scene, &m.material)?,
                 None => NO_MATERIAL,
             };
-            let settings = GpuObjectSettings::new(m.shadow_terminator, m.holdout);
+            let settings = GpuObjectSettings::new(m.shadow_terminator, m.holdout, m.info);
             placement.place(mesh_of_path[&m.asset], &m.object_to_world, material_override, settings, m.motion.as_ref());
         }
         for set in &scene.instance_sets {

@@ -362,8 +362,9 @@ impl FeatureSet {
             "cycles_lobe_rules" => self.normal_maps || self.smooth_normals,
             // A time per sample.
             "motion" => self.camera_motion || self.object_motion,
-            // Each instance's Shadow Terminator settings, read by both, and its holdout.
-            "object_settings" => self.smooth_normals || self.terminator_offset || self.holdout,
+            // Each instance's Shadow Terminator settings, read by both, its holdout, and
+            // what Object Info nodes read.
+            "object_settings" => self.smooth_normals || self.terminator_offset || self.holdout || self.node_graphs,
             "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen || self.thin_film,
             _ => return None,
         })

@@ -11,6 +11,7 @@ mod light;
 mod material;
 mod material_textures;
 mod motion;
+mod object_info;
 mod panorama;
 mod parse;
 mod schema;
@@ -29,6 +30,7 @@ pub use light::{AreaShape, Light, LightShape};
 pub use material::{Material, Tangent, luminance, srgb_decode, srgb_encode};
 pub use material_textures::{LAYER_COUNT, LayerTextures, MaterialTextures, UvSet, slots};
 pub use motion::{Decomposed, MAX_CAMERA_MOTION_KEYS, MAX_MOTION_KEYS, Motion, interpolate};
+pub use object_info::ObjectInfo;
 pub use panorama::Panorama;
 pub use parse::{SceneError, hint as did_you_mean, load, parse};
 pub use shadow_terminator::ShadowTerminator;
@@ -195,6 +197,8 @@ pub struct MeshInstance {
     /// where it sees this object, and the pixel's alpha loses it; reflections, shadows and
     /// light bounced from it stay.
     pub holdout: bool,
+    /// Its Object Color and Random, for Object Info nodes.
+    pub info: ObjectInfo,
     /// Its transforms over the shutter (`motion`): motion blur; `None`: it stands still.
     pub motion: Option<Motion>,
 }
@@ -213,6 +217,8 @@ pub struct InstanceSet {
     pub shadow_terminator: ShadowTerminator,
     /// Every instance of the file is a holdout (see [`MeshInstance::holdout`]).
     pub holdout: bool,
+    /// The Object Color and Random of every instance of the file.
+    pub info: ObjectInfo,
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -205,6 +205,9 @@ pub(super) struct Mesh {
     pub shadow_terminator_shading_offset: Option<f32>,
     #[serde(default)]
     pub holdout: bool,
+    /// Object Info's Color (RGBA) and Random.
+    pub object_color: Option<[f32; 4]>,
+    pub random: Option<f32>,
 }
 
 /// One asset placed by an instance file (`.rtinst`).
@@ -221,6 +224,9 @@ pub(super) struct Instances {
     pub shadow_terminator_shading_offset: Option<f32>,
     #[serde(default)]
     pub holdout: bool,
+    /// Object Info's Color (RGBA) and Random.
+    pub object_color: Option<[f32; 4]>,
+    pub random: Option<f32>,
 }
 
 #[derive(Clone, Copy, Deserialize)]

@@ -5,7 +5,9 @@ use super::environment;
 use super::light;
 use super::parse::{SceneError, Seg, Seg::*, Source, hint};
 use super::schema::{self, File, Scale, SkyKind};
-use super::{InstanceSet, Material, MeshInstance, RenderSettings, Scene, ShadowTerminator, Sky, Sphere, Sun};
+use super::{
+    InstanceSet, Material, MeshInstance, ObjectInfo, RenderSettings, Scene, ShadowTerminator, Sky, Sphere, Sun,
+};
 use glam::{Mat3, Mat4, Vec3};
 use std::path::Path;
 
@@ -99,6 +101,7 @@ fn mesh(
             m.shadow_terminator_shading_offset,
         )?,
         holdout: m.holdout,
+        info: ObjectInfo::validate(src, &p, m.object_color, m.random)?,
         motion: m.motion.as_deref().map(|keys| super::motion::validate_keys(src, &p, keys)).transpose()?,
     })
 }
@@ -143,6 +146,7 @@ fn instance_set(
         file: base_dir.join(&set.file),
         materials: set.materials,
         holdout: set.holdout,
+        info: ObjectInfo::validate(src, &p, set.object_color, set.random)?,
     })
 }
 

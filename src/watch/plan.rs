@@ -348,6 +348,7 @@ mod tests {
             object_to_world: glam::Mat4::IDENTITY,
             shadow_terminator: Default::default(),
             holdout: false,
+            info: Default::default(),
             motion: None,
         });
         let mut new_prints = prints(1);
@@ -378,6 +379,7 @@ mod tests {
             materials: vec![],
             shadow_terminator: Default::default(),
             holdout: false,
+            info: Default::default(),
         });
         let with_file = |hash: u8| {
             let mut p = prints(1);

@@ -4,7 +4,7 @@ compares rt against them).
     /work/main/.venv-bpy/bin/python tests/cycles/make_node_graph_refs.py [--spp 1024] [NAME...]
 
 The per-node scenes (`graph_noise`, `graph_math`, `graph_color`, `graph_vector`,
-`graph_convert`, `graph_brick`, `graph_white_noise`, `graph_noise_dimensions`, `graph_spectrum`, `graph_shading` and the other textures) are a 4 x 4 grid of tiles seen from above by an orthographic camera, under
+`graph_convert`, `graph_brick`, `graph_white_noise`, `graph_noise_dimensions`, `graph_spectrum`, `graph_object_info`, `graph_shading` and the other textures) are a 4 x 4 grid of tiles seen from above by an orthographic camera, under
 a black world; each tile only emits, its Emission colour the output of a small node graph
 (its own material), so a pixel is the graph's mean value over the pixel: the comparison
 tests the nodes and nothing else. `graph_shading`'s tiles are smooth spheres, for the nodes
@@ -602,6 +602,32 @@ SPECTRUM = [
 ]
 
 
+def object_info(t, which):
+    return new(t, "ShaderNodeObjectInfo").outputs[which]
+
+
+OBJECT_INFO = (
+    [lambda t: object_info(t, "Random")] * 6
+    + [lambda t: ramp(t, object_info(t, "Random"), "LINEAR", STOPS)] * 2
+    + [lambda t: object_info(t, "Color")] * 3
+    + [lambda t: math_node(t, "MULTIPLY_ADD", object_info(t, "Alpha"), 0.8, 0.1)]
+    + [lambda t: vector_shown(t, object_info(t, "Location"))] * 4
+)
+
+
+def object_info_scene():
+    """Object Info: Random of differently named tiles (plain and through a ramp), their
+    Object Colors and Alpha, and their Locations."""
+    scene = grid_scene("object_info", OBJECT_INFO)
+    colours = {8: (0.9, 0.3, 0.1, 1.0), 9: (0.2, 0.7, 0.4, 0.5), 10: (0.1, 0.2, 0.95, 0.25), 11: (0.5, 0.5, 0.5, 0.3)}
+    for i, colour in colours.items():
+        bpy.data.objects[f"tile_{i}"].color = colour
+    names = {0: "Rock.001", 1: "Rock.002", 2: "crate", 3: "Ünïcode tile", 4: "a", 5: "tile with a long name 12345"}
+    for i, name in names.items():
+        bpy.data.objects[f"tile_{i}"].name = name
+    return scene
+
+
 def procedural_material(name, build):
     material = bpy.data.materials.new(name)
     tree = material.node_tree
@@ -729,6 +755,7 @@ SCENES = {
     "graph_white_noise": lambda: grid_scene("white_noise", WHITE_NOISE),
     "graph_noise_dimensions": lambda: grid_scene("noise_dimensions", NOISE_DIMENSIONS),
     "graph_spectrum": lambda: grid_scene("spectrum", SPECTRUM),
+    "graph_object_info": object_info_scene,
     "graph_shading": lambda: grid_scene("shading", SHADING, shape="sphere"),
     "graph_material": material_scene,
     "graph_mix": mix_scene,

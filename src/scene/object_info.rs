@@ -1,0 +1,34 @@
+//! What Blender's Object Info node reads of an object besides its place: its Object Color
+//! (RGBA, Object › Viewport Display › Color) and its Random number, as Cycles sets it
+//! (`hash_uint2(hash_string(name), 0)` over 2³² − 1 for an object, the depsgraph's
+//! `random_id` for an instance). Scene keys `object_color` and `random` of a `[[mesh]]`
+//! or `[[instances]]` entry.
+
+use super::parse::{SceneError, Seg, Source};
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ObjectInfo {
+    pub color: [f32; 4],
+    /// In [0, 1].
+    pub random: f32,
+}
+
+impl Default for ObjectInfo {
+    fn default() -> Self {
+        Self { color: [1.0; 4], random: 0.0 }
+    }
+}
+
+impl ObjectInfo {
+    pub(super) fn validate(
+        src: &Source,
+        p: &[Seg],
+        color: Option<[f32; 4]>,
+        random: Option<f32>,
+    ) -> Result<Self, SceneError> {
+        let info = Self { color: color.unwrap_or([1.0; 4]), random: random.unwrap_or(0.0) };
+        src.finite(p, "object_color", &info.color)?;
+        src.check(p, "random", &[info.random], "in [0, 1]", |r| (0.0..=1.0).contains(&r))?;
+        Ok(info)
+    }
+}

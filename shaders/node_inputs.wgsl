@@ -37,18 +37,22 @@ fn node_coordinate(mode: u32, p: NodePoint, extra: u32) -> vec4f {
 // Object Info's Location, Color, Alpha and Random (node_kinds' order) of the point's
 // object: a sphere's are those of an object at the origin with the defaults.
 fn node_object_info(output: u32, p: NodePoint) -> vec4f {
-    var settings = ObjectSettings(0.0, 1.0, 0u, 0.0, vec4f(1.0));
+    var random = 0.0;
+    var color = vec4f(1.0);
     var location = vec3f(0.0);
     if p.instance != NODE_NO_OBJECT {
-        settings = object_settings[p.instance];
+        random = object_settings[p.instance].random;
+        //#if object_colors
+        color = object_colors[p.instance];
+        //#endif
         let to_world = affine_inverse(instance_at(p.instance).world_to_object).m;
         location = vec3f(to_world[0].w, to_world[1].w, to_world[2].w);
     }
     switch output {
         case 0u: { return vec4f(blender_axes(location), 0.0); }
-        case 1u: { return vec4f(settings.color.xyz, 1.0); }
-        case 2u: { return vec4f(settings.color.w); }
-        default: { return vec4f(settings.random); }
+        case 1u: { return vec4f(color.xyz, 1.0); }
+        case 2u: { return vec4f(color.w); }
+        default: { return vec4f(random); }
     }
 }
 

@@ -272,7 +272,7 @@ gpu_struct! {
 gpu_struct! {
     /// An instance's settings that shading reads (see GpuObjectSettings): its Shadow Terminator
     /// offsets for smooth shading and the terminator shift, whether the object is a holdout,
-    /// and what Object Info nodes read;
+    /// and Object Info's Random;
     /// beside the instances, so that traversal's records stay small.
     #[derive(Debug, PartialEq)]
     pub struct GpuObjectSettings as "ObjectSettings" {
@@ -283,10 +283,9 @@ gpu_struct! {
         /// 1: Blender's Holdout (the object's or its collection's): the camera sees through
         /// it to nothing, and the pixel's alpha loses what it covers; other rays see it as it is.
         pub holdout: u32,
-        /// Object Info's Random, in [0, 1].
+        /// Object Info's Random, in [0, 1] (its Color is in the instances' colours, which
+        /// only scenes with coloured objects bind).
         pub random: f32,
-        /// Object Info's Color (RGB) and Alpha.
-        pub color: [f32; 4],
     }
 }
 
@@ -303,7 +302,6 @@ impl GpuObjectSettings {
             frequency_multiplier: t.frequency_multiplier(),
             holdout: u32::from(holdout),
             random: info.random,
-            color: info.color,
         }
     }
 }

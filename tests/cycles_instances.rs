@@ -63,3 +63,16 @@ fn objects_showing_one_mesh_with_other_materials_share_one_asset_and_match_cycle
     assert_eq!((file.records.len(), file.material_sets.len(), file.material_sets.slot_count()), (9, 2, 2));
     check("overrides");
 }
+
+#[test]
+fn object_info_of_instances_and_objects_matches_cycles() {
+    // Each scattered pebble has its own Random (from the depsgraph's random_id), each
+    // tinted cube its Object Color; the instance files carry them.
+    let folder = repo().join("tests/cycles/scenes/instances_object_info");
+    let pebbles =
+        rt::asset::rtinst::read(&folder.join("scene_instances/pebble.rtinst")).unwrap_or_else(|e| panic!("{e}"));
+    let mut randoms: Vec<f32> = pebbles.info.iter().map(|i| i.random).collect();
+    randoms.dedup();
+    assert_eq!(randoms.len(), pebbles.records.len(), "the pebbles' Random values are not each their own");
+    check("object_info");
+}

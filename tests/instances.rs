@@ -141,8 +141,8 @@ fn bad_instance_files_are_errors_that_name_the_file_and_the_instance() {
     let truncated = geometry_error(&dir, &asset, &good[..good.len() - 3], "[\"red\", \"lamp\"]");
     assert!(
         truncated.contains(
-            "bad.rtinst: size is 129 bytes but its header (2 instances, 0 material sets of 0 slots, 0 motion keys) \
-             implies 132"
+            "bad.rtinst: size is 133 bytes but its header (2 instances, 0 material sets of 0 slots, 0 motion keys, \
+             object info 0) implies 136"
         ),
         "{truncated}"
     );
@@ -150,7 +150,7 @@ fn bad_instance_files_are_errors_that_name_the_file_and_the_instance() {
     let mut lying = good.clone();
     lying[12..16].copy_from_slice(&u32::MAX.to_le_bytes());
     let lying = geometry_error(&dir, &asset, &lying, "[]");
-    assert!(lying.contains("bad.rtinst: size is 132 bytes but its header (4294967295 instances"), "{lying}");
+    assert!(lying.contains("bad.rtinst: size is 136 bytes but its header (4294967295 instances"), "{lying}");
 
     let mut nan = vec![InstanceRecord::new(&Mat4::IDENTITY, 0); 3];
     nan[2].rows[7] = f32::NAN;

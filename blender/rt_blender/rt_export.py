@@ -45,7 +45,7 @@ owner_name = rt_shader_nodes.owner_name
 RTMESH_MAGIC = b"RTMESH\0\0"
 RTMESH_VERSION = 3
 RTINST_MAGIC = b"RTINST\0\0"
-RTINST_VERSION = 2
+RTINST_VERSION = 4
 RTINST_OWN_MATERIALS = 0xFFFFFFFF
 RTINST_MATERIAL_SET = 0x80000000
 
@@ -1391,6 +1391,7 @@ class InstancedMesh:
         self.rows = None  # their rt matrix rows, an (n, 12) array, once invertible ones are kept
         self.codes = []  # each instance's .rtinst material
         self.terminators = []  # each instance's shadow_terminator(object)
+        self.infos = []  # each instance's Object Info: (random, r, g, b, a)
 
     def material(self, m):
         key = m.name if m else ""
@@ -1520,6 +1521,7 @@ def add_instances(export, depsgraph):
         entry.codes.append(code)
         # Cycles takes an instance's holdout from what instances it.
         entry.terminators.append(object_settings(inst.parent or obj, depsgraph.view_layer, obj))
+        entry.infos.append((instance_random(inst.random_id),) + tuple(float(c) for c in obj.color))
     for entry in meshes.values():
         if entry is None or not entry.matrices:
             continue
@@ -1529,6 +1531,7 @@ def add_instances(export, depsgraph):
         entry.rows = rows[invertible]
         entry.codes = [c for c, keep in zip(entry.codes, invertible) if keep]
         entry.terminators = [t for t, keep in zip(entry.terminators, invertible) if keep]
+        entry.infos = [t for t, keep in zip(entry.infos, invertible) if keep]
         if not entry.codes:
             continue
         folder = export.store(entry.base, entry.rtmesh, entry.gltf(), entry.textures.images, entry.triangles)
@@ -1547,6 +1550,7 @@ class Placements:
         self.rows = []
         self.codes = []
         self.sets = []
+        self.infos = []
 
     def __len__(self):
         return len(self.codes)
@@ -1560,19 +1564,22 @@ class Placements:
         renumber = [RTINST_MATERIAL_SET | self.sets.index(s) for s in entry.sets]
         self.rows.append(entry.rows[keep])
         codes = [c for c, k in zip(entry.codes, keep) if k]
+        self.infos += [i for i, k in zip(entry.infos, keep) if k]
         self.codes += [c if c == RTINST_OWN_MATERIALS else renumber[c & ~RTINST_MATERIAL_SET] for c in codes]
 
 
 def rtinst_bytes(placements):
-    """The instance file (version 2): magic, version, instance, slot and set counts, the
-    material sets, then (12 f32, u32) per instance."""
+    """The instance file (version 4): magic, version, instance, slot and set counts, no
+    motion keys and each instance's Object Info, the material sets, (12 f32, u32) per
+    instance, then (random, r, g, b, a) per instance."""
     records = np.zeros(len(placements), dtype=[("rows", "<f4", 12), ("material", "<u4")])
     records["rows"] = np.concatenate(placements.rows).astype(np.float32)
     records["material"] = np.asarray(placements.codes, dtype=np.uint32)
     slots = placements.slots if placements.sets else 0
-    header = struct.pack("<4I", RTINST_VERSION, len(placements), slots, len(placements.sets))
+    header = struct.pack("<6I", RTINST_VERSION, len(placements), slots, len(placements.sets), 0, 1)
     sets = np.asarray(placements.sets, dtype="<u4").tobytes()
-    return RTINST_MAGIC + header + sets + records.tobytes()
+    infos = np.asarray(placements.infos, dtype="<f4").reshape(len(placements), 5)
+    return RTINST_MAGIC + header + sets + records.tobytes() + infos.tobytes()
 
 
 def instances_toml(export, scene_path):
@@ -1640,8 +1647,13 @@ def object_random(name):
     for byte in name.encode("utf-8"):
         h = (h * 37 + byte) & 0xFFFFFFFF  # the UTF-8 bytes as unsigned (found against Cycles)
     seed = (0xDEADBEEF + (2 << 2) + 13) & 0xFFFFFFFF
-    random_id = lookup3_final((seed + h) & 0xFFFFFFFF, seed, seed)
-    return float(np.float32(random_id) * (np.float32(1.0) / np.float32(0xFFFFFFFF)))
+    return instance_random(lookup3_final((seed + h) & 0xFFFFFFFF, seed, seed))
+
+
+def instance_random(random_id):
+    """Object Info's Random of an instance: its depsgraph `random_id` over 2^32 - 1, as
+    Cycles sets it."""
+    return float(np.float32(random_id & 0xFFFFFFFF) * (np.float32(1.0) / np.float32(0xFFFFFFFF)))
 
 
 def object_info_toml(obj):

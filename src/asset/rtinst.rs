@@ -3,7 +3,8 @@
 //!
 //! ```text
 //! bytes 0..8   magic b"RTINST\0\0"
-//! u32 version (=3) · u32 instance_count · u32 slot_count · u32 set_count · u32 motion_keys
+//! u32 version (=4) · u32 instance_count · u32 slot_count · u32 set_count · u32 motion_keys
+//! · u32 object_info
 //! set_count × slot_count × u32   material sets: for each slot (the material index that
 //!                                the asset's triangles carry), an index into the asset's
 //!                                own materials (its `.gltf` `materials`)
@@ -18,30 +19,39 @@
 //!              evenly spaced times from the shutter's opening to its closing (as the
 //!              scene file's `motion`), the instances in order; motion_keys is 0 (none)
 //!              or 2 to 129
+//! object_info (0 or 1) × instance_count × {
+//!     f32      Object Info's Random, in [0, 1]
+//!     f32[4]   Object Info's Color and Alpha
+//! }            (without them, every instance has its scene entry's `random` and
+//!              `object_color`)
 //! ```
 //!
-//! Little-endian, no padding: 28 + 4 × slot_count × set_count + (52 + 48 × motion_keys) ×
-//! instance_count bytes exactly. Version 2 files (a 24-byte header without motion_keys, no
-//! motion) and version 1 files (a 16-byte header: magic, version, instance_count; no sets)
-//! are read too. The size is checked against the header before anything is allocated,
+//! Little-endian, no padding: 32 + 4 × slot_count × set_count + (52 + 48 × motion_keys +
+//! 20 × object_info) × instance_count bytes exactly. Version 3 files (a 28-byte header
+//! without object_info), version 2 files (24 bytes, without motion_keys either) and version
+//! 1 files (a 16-byte header: magic, version, instance_count; no sets) are read too. The size is checked against the header before anything is allocated,
 //! and every matrix must be finite and invertible (an error names the file and the
 //! instance's index).
 
 use super::AssetError;
+use crate::scene::ObjectInfo;
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat3, Mat4, Vec3, Vec4};
 use std::path::Path;
 
 pub const MAGIC: [u8; 8] = *b"RTINST\0\0";
-pub const VERSION: u32 = 3;
-/// The header of version 3; version 2's is 24 bytes (no motion_keys), version 1's 16 (no
-/// slot and set counts either).
-pub const HEADER_BYTES: u64 = 28;
+pub const VERSION: u32 = 4;
+/// The header of version 4; version 3's is 28 bytes (no object_info), version 2's 24 (no
+/// motion_keys), version 1's 16 (no slot and set counts either).
+pub const HEADER_BYTES: u64 = 32;
+const HEADER_BYTES_V3: u64 = 28;
 const HEADER_BYTES_V2: u64 = 24;
 const HEADER_BYTES_V1: u64 = 16;
 pub const RECORD_BYTES: u64 = 52;
 /// One motion key: the top three rows of a matrix.
 const KEY_BYTES: u64 = 48;
+/// One instance's Object Info: Random and Color (RGBA).
+const INFO_BYTES: u64 = 20;
 /// The material of an instance that keeps its asset's own materials.
 pub const OWN_MATERIALS: u32 = u32::MAX;
 /// Marks a record's material as `MATERIAL_SET | k`: material set `k` of its file.
@@ -94,6 +104,8 @@ pub struct InstanceFile {
     /// Motion blur: `motion_keys` matrices per instance (0: none), each as a record's rows.
     pub motion_keys: u32,
     pub motion: Vec<[f32; 12]>,
+    /// Each instance's Object Info, or none (the scene entry's for all).
+    pub info: Vec<ObjectInfo>,
 }
 
 impl InstanceFile {
@@ -175,6 +187,7 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<InstanceFile, AssetError> {
     let header = match version {
         1 => HEADER_BYTES_V1,
         2 => HEADER_BYTES_V2,
+        3 => HEADER_BYTES_V3,
         VERSION => HEADER_BYTES,
         _ => return fail(format!("unsupported .rtinst version {version} (this rt reads versions 1 to {VERSION})")),
     };
@@ -182,28 +195,34 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<InstanceFile, AssetError> {
         return fail(format!("truncated: {} bytes is shorter than the {header}-byte .rtinst header", bytes.len()));
     }
     let word = |offset: u64| if offset < header { u32_at(bytes, offset as usize) } else { 0 };
-    let (slot_count, set_count, motion_keys) = (word(16), word(20), word(24));
+    let (slot_count, set_count, motion_keys, object_info) = (word(16), word(20), word(24), word(28));
     if motion_keys == 1 || motion_keys as usize > crate::scene::MAX_MOTION_KEYS {
         let most = crate::scene::MAX_MOTION_KEYS;
         return fail(format!("motion_keys must be 0 (no motion) or 2 to {most}, got {motion_keys}"));
     }
+    if object_info > 1 {
+        return fail(format!("object_info must be 0 (none) or 1 (each instance's), got {object_info}"));
+    }
     // Checked before anything is allocated: a header cannot make rt reserve memory the
     // file does not back (in u128: the counts' product can pass u64).
     let set_bytes = 4 * slot_count as u128 * set_count as u128;
-    let record_bytes = (RECORD_BYTES + KEY_BYTES * motion_keys as u64) as u128;
+    let record_bytes = (RECORD_BYTES + KEY_BYTES * motion_keys as u64 + INFO_BYTES * object_info as u64) as u128;
     let expected = header as u128 + set_bytes + record_bytes * count as u128;
     if bytes.len() as u128 != expected {
         return fail(format!(
             "size is {} bytes but its header ({count} instances, {set_count} material sets of {slot_count} slots, \
-             {motion_keys} motion keys) implies {expected} (truncated or corrupt)",
+             {motion_keys} motion keys, object info {object_info}) implies {expected} (truncated or corrupt)",
             bytes.len()
         ));
     }
     let records_at = header as usize + set_bytes as usize;
     let motion_at = records_at + RECORD_BYTES as usize * count as usize;
+    let info_at = motion_at + (KEY_BYTES * motion_keys as u64) as usize * count as usize;
     let indices: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes[header as usize..records_at]);
     let records: Vec<InstanceRecord> = bytemuck::pod_collect_to_vec(&bytes[records_at..motion_at]);
-    let motion: Vec<[f32; 12]> = bytemuck::pod_collect_to_vec(&bytes[motion_at..]);
+    let motion: Vec<[f32; 12]> = bytemuck::pod_collect_to_vec(&bytes[motion_at..info_at]);
+    let info = object_infos(&bytemuck::pod_collect_to_vec::<u8, [f32; 5]>(&bytes[info_at..]))
+        .map_err(|m| AssetError::new(path, m))?;
     for (index, r) in records.iter().enumerate() {
         if let Some(problem) = matrix_problem(&r.object_to_world()) {
             return fail(format!("instance {index}: its matrix {problem}: {:?}", r.rows));
@@ -216,7 +235,21 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<InstanceFile, AssetError> {
             return fail(format!("instance {index}: its motion key {k} {problem}: {rows:?}"));
         }
     }
-    Ok(InstanceFile { records, material_sets: MaterialSets { slot_count, indices }, motion_keys, motion })
+    Ok(InstanceFile { records, material_sets: MaterialSets { slot_count, indices }, motion_keys, motion, info })
+}
+
+/// The instances' Object Info from (random, r, g, b, a) each, checked.
+fn object_infos(words: &[[f32; 5]]) -> Result<Vec<ObjectInfo>, String> {
+    let mut infos = Vec::with_capacity(words.len());
+    for (index, w) in words.iter().enumerate() {
+        if !w.iter().all(|v| v.is_finite()) || !(0.0..=1.0).contains(&w[0]) {
+            return Err(format!(
+                "instance {index}: its object info {w:?} is not a random in [0, 1] and a finite colour"
+            ));
+        }
+        infos.push(ObjectInfo { random: w[0], color: [w[1], w[2], w[3], w[4]] });
+    }
+    Ok(infos)
 }
 
 /// Reads a `.rtinst` file; see [`parse`].
@@ -238,17 +271,36 @@ pub fn encode_moving(
     motion_keys: u32,
     motion: &[[f32; 12]],
 ) -> Vec<u8> {
-    let set_bytes = 4 * sets.indices.len() as u64;
-    let motion_bytes = KEY_BYTES * motion.len() as u64;
-    let mut out =
-        Vec::with_capacity((HEADER_BYTES + set_bytes + RECORD_BYTES * records.len() as u64 + motion_bytes) as usize);
+    encode_file(&InstanceFile {
+        records: records.to_vec(),
+        material_sets: sets.clone(),
+        motion_keys,
+        motion: motion.to_vec(),
+        info: Vec::new(),
+    })
+}
+
+/// The bytes of `file` as a `.rtinst` (its `info` empty or one per record).
+pub fn encode_file(file: &InstanceFile) -> Vec<u8> {
+    let sets = &file.material_sets;
+    let info: Vec<[f32; 5]> =
+        file.info.iter().map(|i| [i.random, i.color[0], i.color[1], i.color[2], i.color[3]]).collect();
+    let mut out = Vec::with_capacity(
+        HEADER_BYTES as usize
+            + 4 * sets.indices.len()
+            + size_of_val(file.records.as_slice())
+            + 48 * file.motion.len()
+            + 20 * info.len(),
+    );
     out.extend_from_slice(&MAGIC);
-    for word in [VERSION, records.len() as u32, sets.slot_count, sets.len() as u32, motion_keys] {
+    let count = file.records.len() as u32;
+    for word in [VERSION, count, sets.slot_count, sets.len() as u32, file.motion_keys, u32::from(!info.is_empty())] {
         out.extend_from_slice(&word.to_le_bytes());
     }
     out.extend_from_slice(bytemuck::cast_slice(&sets.indices));
-    out.extend_from_slice(bytemuck::cast_slice(records));
-    out.extend_from_slice(bytemuck::cast_slice(motion));
+    out.extend_from_slice(bytemuck::cast_slice(&file.records));
+    out.extend_from_slice(bytemuck::cast_slice(&file.motion));
+    out.extend_from_slice(bytemuck::cast_slice(&info));
     out
 }
 
@@ -261,154 +313,5 @@ pub fn write(path: &Path, records: &[InstanceRecord], sets: &MaterialSets) -> Re
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn error(bytes: &[u8]) -> String {
-        match parse(Path::new("t.rtinst"), bytes) {
-            Ok(_) => panic!("parsed"),
-            Err(e) => e.to_string(),
-        }
-    }
-
-    fn two() -> Vec<InstanceRecord> {
-        let a = Mat4::from_scale_rotation_translation(
-            Vec3::new(1.0, 2.0, 0.5),
-            glam::Quat::from_rotation_y(0.7),
-            Vec3::new(3.0, -1.0, 2.0),
-        );
-        vec![InstanceRecord::new(&a, OWN_MATERIALS), InstanceRecord::new(&Mat4::IDENTITY, 3)]
-    }
-
-    fn plain(records: &[InstanceRecord]) -> Vec<u8> {
-        encode(records, &MaterialSets::default())
-    }
-
-    /// `records` as version 1 wrote them: no slot and set counts, no sets.
-    fn version_1(records: &[InstanceRecord]) -> Vec<u8> {
-        let mut out = MAGIC.to_vec();
-        out.extend_from_slice(&1u32.to_le_bytes());
-        out.extend_from_slice(&(records.len() as u32).to_le_bytes());
-        out.extend_from_slice(bytemuck::cast_slice(records));
-        out
-    }
-
-    #[test]
-    fn round_trips_matrices_materials_and_material_sets() {
-        let sets = MaterialSets::new(2, &[vec![1, 0], vec![2, 2]]).expect("sets");
-        let mut records = two();
-        records[1].material = MATERIAL_SET | 1;
-        let bytes = encode(&records, &sets);
-        assert_eq!(bytes.len(), 28 + 4 * 4 + 2 * 52);
-        let back = parse(Path::new("t.rtinst"), &bytes).expect("parses");
-        assert_eq!(back.records, records);
-        assert_eq!(back.material_sets, sets);
-        assert_eq!(
-            (back.material_sets.len(), back.material_sets.get(1), back.material_sets.get(2)),
-            (2, Some(&[2, 2][..]), None)
-        );
-        let back = back.records;
-        let m = back[0].object_to_world();
-        assert!((m.transform_point3(Vec3::ZERO) - Vec3::new(3.0, -1.0, 2.0)).length() < 1e-6);
-        assert_eq!(m.row(3), Vec4::W);
-        // Row-major on disk: the translation is the fourth float of each row.
-        assert_eq!([back[0].rows[3], back[0].rows[7], back[0].rows[11]], [3.0, -1.0, 2.0]);
-        assert!(MaterialSets::new(2, &[vec![1]]).is_none());
-    }
-
-    /// `records` and `sets` as version 2 wrote them: no motion_keys.
-    fn version_2(records: &[InstanceRecord], sets: &MaterialSets) -> Vec<u8> {
-        let mut out = MAGIC.to_vec();
-        for word in [2, records.len() as u32, sets.slot_count, sets.len() as u32] {
-            out.extend_from_slice(&word.to_le_bytes());
-        }
-        out.extend_from_slice(bytemuck::cast_slice(&sets.indices));
-        out.extend_from_slice(bytemuck::cast_slice(records));
-        out
-    }
-
-    #[test]
-    fn version_2_files_are_read_as_they_were() {
-        let sets = MaterialSets::new(1, &[vec![0]]).expect("sets");
-        let back = parse(Path::new("t.rtinst"), &version_2(&two(), &sets)).expect("parses");
-        assert_eq!((back.records, back.material_sets, back.motion_keys), (two(), sets, 0));
-    }
-
-    #[test]
-    fn motion_keys_round_trip_and_bad_ones_are_refused() {
-        let keys = |x: f32| [Mat4::IDENTITY, Mat4::from_translation(Vec3::new(x, 0.0, 0.0))];
-        let rows = |m: &Mat4| InstanceRecord::new(m, 0).rows;
-        let motion: Vec<[f32; 12]> = [1.0, 2.0].iter().flat_map(|&x| keys(x).map(|m| rows(&m))).collect();
-        let bytes = encode_moving(&two(), &MaterialSets::default(), 2, &motion);
-        assert_eq!(bytes.len(), 28 + 2 * (52 + 2 * 48));
-        let back = parse(Path::new("t.rtinst"), &bytes).expect("parses");
-        assert_eq!(back.motion_of(1).map(|m| m.keys().to_vec()), Some(keys(2.0).to_vec()));
-        assert_eq!(parse(Path::new("t.rtinst"), &plain(&two())).expect("parses").motion_of(0), None);
-        let mut one_key = bytes.clone();
-        one_key[24] = 1;
-        assert!(error(&one_key).contains("motion_keys must be 0 (no motion) or 2 to 129, got 1"));
-        let mut flat = motion.clone();
-        flat[3][0] = 0.0;
-        let message = error(&encode_moving(&two(), &MaterialSets::default(), 2, &flat));
-        assert!(message.contains("instance 1: its motion key 1 is singular"), "{message}");
-    }
-
-    #[test]
-    fn version_1_files_are_read_as_they_were() {
-        let back = parse(Path::new("t.rtinst"), &version_1(&two())).expect("parses");
-        assert_eq!((back.records, back.material_sets), (two(), MaterialSets::default()));
-        let mut bytes = version_1(&two());
-        bytes.pop();
-        assert!(error(&bytes).contains("implies 120"), "{}", error(&bytes));
-    }
-
-    #[test]
-    fn a_header_that_lies_about_its_size_is_refused_before_allocating() {
-        let mut bytes = plain(&two());
-        bytes.pop();
-        assert!(error(&bytes).contains("implies 132"), "{}", error(&bytes));
-        // Four billion instances claimed by a 28-byte file: refused on the size alone.
-        let mut bytes = plain(&[]);
-        bytes[12..16].copy_from_slice(&4_000_000_000u32.to_le_bytes());
-        let message = error(&bytes);
-        assert!(message.starts_with("t.rtinst: size is 28 bytes"), "{message}");
-        assert!(message.contains("4000000000 instances"), "{message}");
-        // As many sets of as many slots: 2⁶⁶ bytes claimed, counted without overflow.
-        let mut bytes = plain(&[]);
-        bytes[16..24].copy_from_slice(&[0xff; 8]);
-        let message = error(&bytes);
-        assert!(message.contains("4294967295 material sets of 4294967295 slots"), "{message}");
-        // A version 3 header cut short.
-        assert!(error(&plain(&[])[..20]).contains("shorter than the 28-byte"));
-    }
-
-    #[test]
-    fn bad_magic_version_and_matrices_are_named() {
-        assert!(error(b"short").contains("truncated"));
-        let good = plain(&two());
-        let mut bytes = good.clone();
-        bytes[0] = b'X';
-        assert!(error(&bytes).contains("bad magic"));
-        let mut bytes = good.clone();
-        bytes[8] = 4;
-        assert!(error(&bytes).contains("unsupported .rtinst version 4"));
-
-        let mut records = two();
-        records[1].rows[5] = f32::NAN;
-        let message = error(&plain(&records));
-        assert!(message.contains("instance 1: its matrix is not finite"), "{message}");
-        let mut records = two();
-        records[1].rows[0..3].copy_from_slice(&[0.0, 0.0, 0.0]);
-        let message = error(&plain(&records));
-        assert!(message.contains("instance 1: its matrix is singular"), "{message}");
-        // A millimetre scale is fine; a scale of zero, or columns that nearly coincide, are not.
-        let mm = [InstanceRecord::new(&Mat4::from_scale(Vec3::splat(1e-3)), OWN_MATERIALS)];
-        assert!(parse(Path::new("t.rtinst"), &plain(&mm)).is_ok());
-        let flat = [InstanceRecord::new(&Mat4::from_scale(Vec3::new(1.0, 1.0, 0.0)), OWN_MATERIALS)];
-        assert!(error(&plain(&flat)).contains("instance 0: its matrix is singular"));
-        let mut sheared = two();
-        sheared[1].rows[0..3].copy_from_slice(&[1.0, 1.0, 0.0]);
-        sheared[1].rows[4..7].copy_from_slice(&[0.0, 1e-7, 0.0]);
-        assert!(error(&plain(&sheared)).contains("instance 1: its matrix is singular"));
-    }
-}
+#[path = "rtinst_tests.rs"]
+mod tests;

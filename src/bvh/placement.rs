@@ -42,8 +42,11 @@ pub(super) struct Placement<'m> {
     meshes: &'m [LoadedMesh],
     slots: &'m [MeshSlot],
     pub instances: Vec<GpuInstance>,
-    /// Each instance's Shadow Terminator settings and holdout.
+    /// Each instance's Shadow Terminator settings, holdout and Random.
     pub object_settings: Vec<GpuObjectSettings>,
+    /// Each instance's Object Color, and whether some is not white.
+    pub object_colors: Vec<[f32; 4]>,
+    pub coloured: bool,
     /// Some instance has a Shading Offset (the terminator shift's code is needed).
     pub shading_offsets: bool,
     /// Some instance is a holdout.
@@ -73,6 +76,8 @@ impl<'m> Placement<'m> {
             slots,
             instances: Vec::new(),
             object_settings: Vec::new(),
+            object_colors: Vec::new(),
+            coloured: false,
             shading_offsets: false,
             held_out: false,
             motion_matrices: Vec::new(),
@@ -87,14 +92,15 @@ impl<'m> Placement<'m> {
     }
 
     /// Places mesh `mesh_index` at `object_to_world` (invertible), with the material
-    /// table index `material_override` or `NO_MATERIAL`, with its object's settings, and
+    /// table index `material_override` or `NO_MATERIAL`, with its object's settings and
+    /// Object Color, and
     /// moving through `motion` over the shutter if it moves. Empty meshes place nothing.
     pub fn place(
         &mut self,
         mesh_index: usize,
         object_to_world: &Mat4,
         material_override: u32,
-        settings: GpuObjectSettings,
+        settings: (GpuObjectSettings, [f32; 4]),
         motion: Option<&Motion>,
     ) {
         let base = self.slots[mesh_index].material_base;
@@ -128,7 +134,7 @@ impl<'m> Placement<'m> {
         object_to_world: &Mat4,
         material_override: u32,
         material_base: u32,
-        settings: GpuObjectSettings,
+        (settings, color): (GpuObjectSettings, [f32; 4]),
     ) -> bool {
         let mesh = &self.meshes[mesh_index];
         if mesh.triangle_count == 0 {
@@ -150,6 +156,8 @@ impl<'m> Placement<'m> {
             material_override,
         });
         self.object_settings.push(settings);
+        self.object_colors.push(color);
+        self.coloured |= color != [1.0; 4];
         self.shading_offsets |= settings.frequency_multiplier > 1.0;
         self.held_out |= settings.holdout != 0;
         true
@@ -201,7 +209,9 @@ impl<'m> Placement<'m> {
                     }
                 },
             };
-            if self.place_with_base(mesh_index, &r.object_to_world(), material, base, settings)
+            let info = file.info.get(index).copied().unwrap_or(set.info);
+            let settings = GpuObjectSettings { random: info.random, ..settings };
+            if self.place_with_base(mesh_index, &r.object_to_world(), material, base, (settings, info.color))
                 && let Some(motion) = file.motion_of(index)
             {
                 self.set_moving(mesh_index, &motion);

@@ -33,8 +33,10 @@ pub struct SceneGeometry {
     /// triangles of meshes that have none.
     pub second_uvs: Vec<GpuTriangleUvs>,
     pub instances: Vec<GpuInstance>,
-    /// Each instance's Shadow Terminator settings and holdout, in the instances' order.
+    /// Each instance's Shadow Terminator settings, holdout and Random, in the instances' order.
     pub object_settings: Vec<GpuObjectSettings>,
+    /// Each instance's Object Color, in the instances' order; empty when all are white.
+    pub object_colors: Vec<[f32; 4]>,
     /// Some instance has a Shadow Terminator Shading Offset.
     pub shading_offsets: bool,
     /// Some instance is a holdout.
@@ -124,6 +126,7 @@ impl SceneGeometry {
             smooth_normals: self.smooth_normals,
             shading_offsets: self.shading_offsets,
             held_out: self.held_out,
+            object_colors: !self.object_colors.is_empty(),
             moving: !self.motion_matrices.is_empty(),
             moving_lights: self.moving_lights,
             node_code: self.node_code,
@@ -148,6 +151,7 @@ impl SceneGeometry {
         let top_nodes = self.nodes.len() - self.tlas_root as usize;
         self.instances.len() * size_of::<GpuInstance>()
             + self.object_settings.len() * size_of::<GpuObjectSettings>()
+            + self.object_colors.len() * size_of::<[f32; 4]>()
             + self.motion_matrices.len() * size_of::<GpuMotionMatrix>()
             + self.spheres.len() * size_of::<GpuSphere>()
             + top_nodes * size_of::<GpuBvhNode>()
@@ -189,6 +193,8 @@ impl SceneGeometry {
         let Placement {
             mut instances,
             object_settings,
+            object_colors,
+            coloured,
             shading_offsets,
             held_out,
             motion_matrices,
@@ -220,6 +226,7 @@ impl SceneGeometry {
             second_uvs,
             instances,
             object_settings,
+            object_colors: if coloured { object_colors } else { Vec::new() },
             shading_offsets,
             held_out,
             moving_lights,
@@ -349,6 +356,7 @@ impl<'m> Placed<'m> {
                 None => NO_MATERIAL,
             };
             let settings = GpuObjectSettings::new(m.shadow_terminator, m.holdout, m.info);
+            let settings = (settings, m.info.color);
             placement.place(mesh_of_path[&m.asset], &m.object_to_world, material_override, settings, m.motion.as_ref());
         }
         for set in &scene.instance_sets {

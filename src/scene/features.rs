@@ -168,6 +168,9 @@ feature_flags::feature_set! {
         /// Some material is (partly) a Holdout shader, or some object a holdout: the pixels'
         /// alpha is counted, and held-out surfaces take from it.
         holdout: Effect;
+        /// Some object's Object Color is not white: Object Info nodes read the instances'
+        /// colours (white otherwise).
+        object_colors: Setting needs node_graphs;
         /// Motion blur of the camera: it moves over the shutter; each sample has a time, at
         /// which its camera ray starts.
         camera_motion: Effect;
@@ -192,6 +195,8 @@ pub struct GeometrySummary {
     pub shading_offsets: bool,
     /// Some placed instance is a holdout.
     pub held_out: bool,
+    /// Some placed instance's Object Color is not white.
+    pub object_colors: bool,
     /// Some placed instance moves over the shutter.
     pub moving: bool,
     /// Some emissive instance moves over the shutter: lights are sampled by power, not the tree.
@@ -269,6 +274,7 @@ impl FeatureSet {
             smooth_normals: geometry.smooth_normals && settings.microfacet == Microfacet::Multiscatter,
             terminator_offset: geometry.shading_offsets,
             holdout: geometry.held_out || materials_in_use.iter().any(|m| m.holdout > 0.0),
+            object_colors: geometry.object_colors && materials_in_use.iter().any(|m| !m.node_program.is_empty()),
             camera_motion: scene.camera.motion.is_some(),
             object_motion: geometry.moving,
         }

@@ -15,6 +15,9 @@ not run Cycles: commit both.
   with the points' rotations) of an icosphere over one plane, whose faces stay as
   realized geometry; a hair particle system rendering a cone as its object over another;
   and a small plane whose nodes output only instances of the cone (its faces are gone).
+- object_info: a geometry-nodes scatter of a pebble whose colour is Object Info's Random
+  through a ramp (each instance its own), two cubes coloured by their Object Color,
+  instanced twice, and a plain object coloured by its Random.
 - overrides: one two-slot slab mesh (a grey body, a blue top) shown by three objects of a
   collection, one with its own materials, one with an object-linked red top, one with an
   object-linked emissive body, the collection instanced three times, rotated: one asset
@@ -197,7 +200,54 @@ def build_overrides(scene):
     return Vector((0.0, -8.0, 6.0)), Vector((0.0, 0.0, 0.3)), 35.0
 
 
-SCENES = {"collections": build_collections, "scatter": build_scatter, "overrides": build_overrides}
+def by_object_info(name, output):
+    """`diffuse` whose base colour is Object Info's `output`: Random through a ramp of three
+    colours, or the object's Color."""
+    material = diffuse(name, (0.5, 0.5, 0.5))
+    tree = material.node_tree
+    info = tree.nodes.new("ShaderNodeObjectInfo")
+    colour = info.outputs["Color"]
+    if output == "Random":
+        ramp = tree.nodes.new("ShaderNodeValToRGB")
+        elements = ramp.color_ramp.elements
+        elements[0].color, elements[1].color = (0.9, 0.1, 0.1, 1.0), (0.1, 0.2, 0.9, 1.0)
+        elements.new(0.5).color = (0.1, 0.8, 0.2, 1.0)
+        tree.links.new(info.outputs["Random"], ramp.inputs["Fac"])
+        colour = ramp.outputs["Color"]
+    tree.links.new(colour, tree.nodes["Principled BSDF"].inputs["Base Color"])
+    return material
+
+
+def build_object_info(scene):
+    ground("floor", 12.0, (0.0, 0.0, -0.01), (0.6, 0.6, 0.6))
+    sources = hidden_collection(scene, "sources")
+    bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=1, radius=0.5)
+    pebble = bpy.context.object
+    pebble.name = pebble.data.name = "pebble"
+    pebble.data.materials.append(by_object_info("by_random", "Random"))
+    move_to(pebble, sources)
+    bed = ground("bed", 2.6, (-1.2, 0.3, 0.0), (0.7, 0.7, 0.7))
+    scatter_modifier(bed, pebble, 5.0, 0.45)
+    # Objects with their own Object Color, instanced twice; one plain object by its name.
+    coloured = hidden_collection(scene, "coloured")
+    for k, colour in enumerate([(0.9, 0.6, 0.1, 1.0), (0.2, 0.7, 0.9, 1.0)]):
+        bpy.ops.mesh.primitive_cube_add(size=0.5, location=(0.7 * k, 0.0, 0.25))
+        cube = bpy.context.object
+        cube.name = f"tinted_{k}"
+        cube.color = colour
+        cube.data.materials.append(by_object_info(f"by_colour_{k}", "Color"))
+        move_to(cube, coloured)
+    collection_instance("tinted_a", coloured, (1.0, -0.8, 0.0), (0.0, 0.0, 0.3), (1.0,) * 3, scene.collection)
+    collection_instance("tinted_b", coloured, (1.3, 0.9, 0.0), (0.0, 0.0, -0.5), (0.8,) * 3, scene.collection)
+    bpy.ops.mesh.primitive_cube_add(size=0.6, location=(-0.2, -1.6, 0.3))
+    plain = bpy.context.object
+    plain.name = "Plain object"
+    plain.data.materials.append(by_object_info("plain_by_random", "Random"))
+    return Vector((0.0, -6.5, 5.5)), Vector((0.0, 0.0, 0.2)), 35.0
+
+
+SCENES = {"collections": build_collections, "scatter": build_scatter, "overrides": build_overrides,
+          "object_info": build_object_info}
 
 
 def add_camera(scene, location, target, lens):

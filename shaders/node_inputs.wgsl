@@ -24,14 +24,30 @@ fn node_coordinate(mode: u32, p: NodePoint, extra: u32) -> vec4f {
         case 1u: { return vec4f(p.object_normal, 0.0); }
         case 2u: { return vec4f(p.uv, 0.0, 0.0); }
         case 3u: { return vec4f(p.object, 0.0); }
-        case 4u: { return vec4f(p.position, 0.0); }
-        case 5u: { return vec4f(p.normal, 0.0); }
-        case 6u: { return vec4f(p.true_normal, 0.0); }
-        case 7u: { return vec4f(p.incoming, 0.0); }
-        case 8u: { return vec4f(select(0.0, 1.0, p.backfacing)); }
-        case 19u, 20u, 21u, 22u: { return node_object_info(mode - 19u, p); }
-        default: { return vec4f(node_light_path(mode - 9u, p)); }
+        case 4u, 5u: { return vec4f(node_camera_coordinates(mode == 5u, p), 0.0); }
+        // Reflection: the direction towards the viewer mirrored about the normal.
+        case 6u: { return vec4f(2.0 * dot(p.normal, p.incoming) * p.normal - p.incoming, 0.0); }
+        case 7u: { return vec4f(p.position, 0.0); }
+        case 8u: { return vec4f(p.normal, 0.0); }
+        case 9u: { return vec4f(p.true_normal, 0.0); }
+        case 10u: { return vec4f(p.incoming, 0.0); }
+        case 11u: { return vec4f(select(0.0, 1.0, p.backfacing)); }
+        case 22u, 23u, 24u, 25u: { return node_object_info(mode - 22u, p); }
+        default: { return vec4f(node_light_path(mode - 12u, p)); }
     }
+}
+
+// Texture Coordinate's Camera (the point in Cycles' camera space: x right, y up, z along
+// the view, metres) or, with `window`, Window (where the point is on the image, 0 to 1
+// from the bottom left; z 0).
+fn node_camera_coordinates(window: bool, p: NodePoint) -> vec3f {
+    let d = rt_axes(p.position) - frame.camera_position;
+    let camera = vec3f(dot(d, frame.camera_right), dot(d, frame.camera_up), dot(d, frame.camera_forward));
+    if !window {
+        return camera;
+    }
+    let plane = select(camera.xy / camera.z, camera.xy, frame.orthographic != 0u);
+    return vec3f(0.5 + 0.5 * (plane - frame.view_shift) / frame.view_half_extent, 0.0);
 }
 
 // Object Info's Location, Color, Alpha and Random (node_kinds' order) of the point's

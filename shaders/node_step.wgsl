@@ -63,6 +63,11 @@ fn blender_axes(v: vec3f) -> vec3f {
     return vec3f(v.x, -v.z, v.y);
 }
 
+// The inverse of blender_axes.
+fn rt_axes(v: vec3f) -> vec3f {
+    return vec3f(v.x, v.z, -v.y);
+}
+
 fn node_word_f(at: u32) -> f32 {
     return bitcast<f32>(node_programs[at]);
 }

@@ -77,6 +77,13 @@ fn blackbody_wavelength_and_hsl_match_cycles() {
     check_channels("graph_spectrum", 1e-3);
 }
 
+/// Texture Coordinate's Camera, Window and Reflection on spheres seen in perspective
+/// through a shifted lens.
+#[test]
+fn camera_window_and_reflection_coordinates_match_cycles() {
+    check_channels("graph_camera", 1e-3);
+}
+
 /// Object Info: Random of differently named objects (non-ASCII names too, as Cycles hashes
 /// their bytes), Object Color and Alpha, Location.
 #[test]

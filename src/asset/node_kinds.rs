@@ -182,17 +182,17 @@ pub const KINDS: [Kind; 38] = [
         name: "TEX_COORD",
         emit: Emit::Coordinates(0),
         inputs: &[],
-        outputs: &["Generated", "Normal", "UV", "Object"],
+        outputs: &["Generated", "Normal", "UV", "Object", "Camera", "Window", "Reflection"],
     },
     Kind {
         name: "NEW_GEOMETRY",
-        emit: Emit::Coordinates(4),
+        emit: Emit::Coordinates(7),
         inputs: &[],
         outputs: &["Position", "Normal", "True Normal", "Incoming", "Backfacing"],
     },
     Kind {
         name: "LIGHT_PATH",
-        emit: Emit::Coordinates(9),
+        emit: Emit::Coordinates(12),
         inputs: &[],
         outputs: &[
             "Is Camera Ray",
@@ -209,7 +209,7 @@ pub const KINDS: [Kind; 38] = [
     },
     Kind {
         name: "OBJECT_INFO",
-        emit: Emit::Coordinates(19),
+        emit: Emit::Coordinates(22),
         inputs: &[],
         outputs: &["Location", "Color", "Alpha", "Random"],
     },

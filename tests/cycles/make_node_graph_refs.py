@@ -4,7 +4,7 @@ compares rt against them).
     /work/main/.venv-bpy/bin/python tests/cycles/make_node_graph_refs.py [--spp 1024] [NAME...]
 
 The per-node scenes (`graph_noise`, `graph_math`, `graph_color`, `graph_vector`,
-`graph_convert`, `graph_brick`, `graph_white_noise`, `graph_noise_dimensions`, `graph_spectrum`, `graph_object_info`, `graph_shading` and the other textures) are a 4 x 4 grid of tiles seen from above by an orthographic camera, under
+`graph_convert`, `graph_brick`, `graph_white_noise`, `graph_noise_dimensions`, `graph_spectrum`, `graph_object_info`, `graph_camera`, `graph_shading` and the other textures) are a 4 x 4 grid of tiles seen from above by an orthographic camera, under
 a black world; each tile only emits, its Emission colour the output of a small node graph
 (its own material), so a pixel is the graph's mean value over the pixel: the comparison
 tests the nodes and nothing else. `graph_shading`'s tiles are smooth spheres, for the nodes
@@ -602,6 +602,28 @@ SPECTRUM = [
 ]
 
 
+def texture_coordinate(t, which, scale=1.0, offset=(0.0, 0.0, 0.0)):
+    """Texture Coordinate's `which` × `scale` + `offset`."""
+    return vector_op(t, "MULTIPLY_ADD", coords(t, which), (scale,) * 3, offset)
+
+
+CAMERA_COORDINATES = (
+    [lambda t: vector_shown(t, texture_coordinate(t, "Camera", 0.25))] * 4
+    + [lambda t: coords(t, "Window")] * 4
+    + [lambda t: vector_op(t, "FRACTION", texture_coordinate(t, "Window", 6.0))] * 4
+    + [lambda t: vector_shown(t, coords(t, "Reflection"))] * 4
+)
+
+
+def camera_scene():
+    """Texture Coordinate's Camera, Window and Reflection on spheres seen in perspective
+    through a shifted lens."""
+    scene = grid_scene("camera", CAMERA_COORDINATES, shape="sphere")
+    camera = cycles.camera(scene, (0.5, -9.0, 7.0), 52.0)
+    camera.data.lens, camera.data.shift_x, camera.data.shift_y = 30.0, 0.06, -0.04
+    return scene
+
+
 def object_info(t, which):
     return new(t, "ShaderNodeObjectInfo").outputs[which]
 
@@ -756,6 +778,7 @@ SCENES = {
     "graph_noise_dimensions": lambda: grid_scene("noise_dimensions", NOISE_DIMENSIONS),
     "graph_spectrum": lambda: grid_scene("spectrum", SPECTRUM),
     "graph_object_info": object_info_scene,
+    "graph_camera": camera_scene,
     "graph_shading": lambda: grid_scene("shading", SHADING, shape="sphere"),
     "graph_material": material_scene,
     "graph_mix": mix_scene,

@@ -59,7 +59,9 @@ fn node_object_info(output: u32, p: NodePoint) -> vec4f {
     if p.instance != NODE_NO_OBJECT {
         random = object_settings[p.instance].random;
         //#if object_colors
-        color = object_colors[p.instance];
+        // The colours follow the settings (SceneGeometry::object_settings).
+        let c = object_settings[arrayLength(&object_settings) / 2u + p.instance];
+        color = vec4f(c.geometry_offset, c.frequency_multiplier, bitcast<f32>(c.holdout), c.random);
         //#endif
         let to_world = affine_inverse(instance_at(p.instance).world_to_object).m;
         location = vec3f(to_world[0].w, to_world[1].w, to_world[2].w);

@@ -33,10 +33,13 @@ pub struct SceneGeometry {
     /// triangles of meshes that have none.
     pub second_uvs: Vec<GpuTriangleUvs>,
     pub instances: Vec<GpuInstance>,
-    /// Each instance's Shadow Terminator settings, holdout and Random, in the instances' order.
+    /// Each instance's Shadow Terminator settings, holdout and Random, in the instances'
+    /// order; then, when some object is not white, each instance's Object Color (RGBA in
+    /// the record's four words: the colours share the settings' binding, since lavapipe
+    /// binds at most 29 storage buffers per stage and the atmosphere's pipeline had 29).
     pub object_settings: Vec<GpuObjectSettings>,
-    /// Each instance's Object Color, in the instances' order; empty when all are white.
-    pub object_colors: Vec<[f32; 4]>,
+    /// Some instance's Object Color is not white (its colours follow the settings).
+    pub object_colors: bool,
     /// Some instance has a Shadow Terminator Shading Offset.
     pub shading_offsets: bool,
     /// Some instance is a holdout.
@@ -126,7 +129,7 @@ impl SceneGeometry {
             smooth_normals: self.smooth_normals,
             shading_offsets: self.shading_offsets,
             held_out: self.held_out,
-            object_colors: !self.object_colors.is_empty(),
+            object_colors: self.object_colors,
             moving: !self.motion_matrices.is_empty(),
             moving_lights: self.moving_lights,
             node_code: self.node_code,
@@ -151,7 +154,6 @@ impl SceneGeometry {
         let top_nodes = self.nodes.len() - self.tlas_root as usize;
         self.instances.len() * size_of::<GpuInstance>()
             + self.object_settings.len() * size_of::<GpuObjectSettings>()
-            + self.object_colors.len() * size_of::<[f32; 4]>()
             + self.motion_matrices.len() * size_of::<GpuMotionMatrix>()
             + self.spheres.len() * size_of::<GpuSphere>()
             + top_nodes * size_of::<GpuBvhNode>()
@@ -225,8 +227,8 @@ impl SceneGeometry {
             tangents,
             second_uvs,
             instances,
-            object_settings,
-            object_colors: if coloured { object_colors } else { Vec::new() },
+            object_settings: with_colors(object_settings, coloured.then_some(&object_colors)),
+            object_colors: coloured,
             shading_offsets,
             held_out,
             moving_lights,
@@ -417,4 +419,18 @@ pub fn asset_paths(scene: &Scene) -> Vec<PathBuf> {
     let mut seen = std::collections::HashSet::new();
     let placed = scene.meshes.iter().map(|m| &m.asset).chain(scene.instance_sets.iter().map(|s| &s.asset));
     placed.filter(|a| seen.insert(*a)).cloned().collect()
+}
+
+/// The instances' settings, followed by their Object Colors if given (one record each:
+/// red, green, blue and alpha in its four words).
+fn with_colors(mut settings: Vec<GpuObjectSettings>, colors: Option<&Vec<[f32; 4]>>) -> Vec<GpuObjectSettings> {
+    for c in colors.into_iter().flatten() {
+        settings.push(GpuObjectSettings {
+            geometry_offset: c[0],
+            frequency_multiplier: c[1],
+            holdout: c[2].to_bits(),
+            random: c[3],
+        });
+    }
+    settings
 }

@@ -53,9 +53,8 @@ fn storage<T: Pod + Default>(ctx: &GpuContext, label: &str, data: &[T], extra: w
 }
 
 /// The geometry's buffers: (top-level nodes, triangles, shading, instances, top-level primitives,
-/// spheres, bottom-level nodes, tangents, second uvs, object_settings, object colours, motion keys).
+/// spheres, bottom-level nodes, tangents, second uvs, object_settings, motion keys).
 type GeometryBuffers = (
-    wgpu::Buffer,
     wgpu::Buffer,
     wgpu::Buffer,
     wgpu::Buffer,
@@ -83,7 +82,6 @@ fn geometry_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<Geomet
         storage(ctx, "tangents", &geometry.tangents, none),
         storage(ctx, "second uvs", &geometry.second_uvs, none),
         storage(ctx, "object_settings", &geometry.object_settings, none),
-        storage(ctx, "object colours", &geometry.object_colors, none),
         storage(ctx, "motion matrices", &geometry.motion_matrices, none),
     ))
 }
@@ -134,7 +132,6 @@ impl SceneBuffers {
             tangent_frames,
             second_uvs,
             object_settings,
-            object_colors,
             motion_matrices,
         ) = geometry_buffers(ctx, geometry)?;
         let (materials, emitters, node_programs) = material_buffers(ctx, geometry);
@@ -170,7 +167,6 @@ impl SceneBuffers {
             microfacet_tables: storage(ctx, "microfacet tables", &microfacet_tables(), wgpu::BufferUsages::empty()),
             second_uvs,
             object_settings,
-            object_colors,
             node_programs,
             motion_matrices,
         };
@@ -198,7 +194,6 @@ impl SceneBuffers {
             d.tangent_frames,
             d.second_uvs,
             d.object_settings,
-            d.object_colors,
             d.motion_matrices,
         ) = geometry_buffers(ctx, geometry)?;
         (d.materials, d.emitters, d.node_programs) = material_buffers(ctx, geometry);
@@ -269,7 +264,6 @@ fn check_sizes(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<()> {
         ("second uvs", std::mem::size_of_val(geometry.second_uvs.as_slice())),
         ("instances", std::mem::size_of_val(geometry.instances.as_slice())),
         ("instance settings", std::mem::size_of_val(geometry.object_settings.as_slice())),
-        ("instance colours", std::mem::size_of_val(geometry.object_colors.as_slice())),
         ("motion matrices", std::mem::size_of_val(geometry.motion_matrices.as_slice())),
         ("emitters", std::mem::size_of_val(geometry.emitters.as_slice())),
         ("node programs", std::mem::size_of_val(geometry.node_programs.as_slice())),

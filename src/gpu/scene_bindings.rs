@@ -90,8 +90,6 @@ scene_bindings! {
     second_uvs: ReadOnly "array<TriangleUvs>" in "common" if "uv_sets",
     /// Per-instance settings that shading reads (Shadow Terminator, holdout).
     object_settings: ReadOnly "array<ObjectSettings>" in "common" if "object_settings",
-    /// Per-instance Object Color (RGBA), for Object Info nodes.
-    object_colors: ReadOnly "array<vec4f>" in "common" if "object_colors",
     /// The materials' node programs (`crate::asset::node_graph`).
     node_programs: ReadOnly "array<u32>" in "node_step",
     /// The moving instances' transforms over the shutter (`shaders/motion.wgsl`).

@@ -169,7 +169,7 @@ feature_flags::feature_set! {
         /// alpha is counted, and held-out surfaces take from it.
         holdout: Effect;
         /// Some object's Object Color is not white: Object Info nodes read the instances'
-        /// colours (white otherwise).
+        /// colours, after their settings (white otherwise).
         object_colors: Setting needs node_graphs;
         /// Motion blur of the camera: it moves over the shutter; each sample has a time, at
         /// which its camera ray starts.

@@ -26,7 +26,6 @@ pub fn image_key(session: &Session) -> Result<String> {
     pod("second uvs", bytemuck::cast_slice(&g.second_uvs));
     pod("instances", bytemuck::cast_slice(&g.instances));
     pod("object settings", bytemuck::cast_slice(&g.object_settings));
-    pod("object colours", bytemuck::cast_slice(&g.object_colors));
     pod("motion matrices", bytemuck::cast_slice(&g.motion_matrices));
     pod("tlas", bytemuck::cast_slice(&g.tlas_primitives));
     pod("spheres", bytemuck::cast_slice(&g.spheres));

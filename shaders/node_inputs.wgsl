@@ -53,24 +53,24 @@ fn node_camera_coordinates(window: bool, p: NodePoint) -> vec3f {
 // Object Info's Location, Color, Alpha and Random (node_kinds' order) of the point's
 // object: a sphere's are those of an object at the origin with the defaults.
 fn node_object_info(output: u32, p: NodePoint) -> vec4f {
-    var random = 0.0;
-    var color = vec4f(1.0);
-    var location = vec3f(0.0);
-    if p.instance != NODE_NO_OBJECT {
-        random = object_settings[p.instance].random;
-        //#if object_colors
-        // The colours follow the settings (SceneGeometry::object_settings).
-        let c = object_settings[arrayLength(&object_settings) / 2u + p.instance];
-        color = vec4f(c.geometry_offset, c.frequency_multiplier, bitcast<f32>(c.holdout), c.random);
-        //#endif
-        let to_world = affine_inverse(instance_at(p.instance).world_to_object).m;
-        location = vec3f(to_world[0].w, to_world[1].w, to_world[2].w);
+    if p.instance == NODE_NO_OBJECT {
+        return select(vec4f(1.0), vec4f(0.0), output == 0u || output == 3u);
     }
     switch output {
-        case 0u: { return vec4f(blender_axes(location), 0.0); }
-        case 1u: { return vec4f(color.xyz, 1.0); }
-        case 2u: { return vec4f(color.w); }
-        default: { return vec4f(random); }
+        case 0u: {
+            let to_world = affine_inverse(instance_at(p.instance).world_to_object).m;
+            return vec4f(blender_axes(vec3f(to_world[0].w, to_world[1].w, to_world[2].w)), 0.0);
+        }
+        case 1u, 2u: {
+            var color = vec4f(1.0);
+            //#if object_colors
+            // The colours follow the settings (SceneGeometry::object_settings).
+            let c = object_settings[arrayLength(&object_settings) / 2u + p.instance];
+            color = vec4f(c.geometry_offset, c.frequency_multiplier, bitcast<f32>(c.holdout), c.random);
+            //#endif
+            return select(vec4f(color.xyz, 1.0), vec4f(color.w), output == 2u);
+        }
+        default: { return vec4f(object_settings[p.instance].random); }
     }
 }
 

@@ -283,8 +283,8 @@ gpu_struct! {
         /// 1: Blender's Holdout (the object's or its collection's): the camera sees through
         /// it to nothing, and the pixel's alpha loses what it covers; other rays see it as it is.
         pub holdout: u32,
-        /// Object Info's Random, in [0, 1] (its Color is in the instances' colours, which
-        /// only scenes with coloured objects bind).
+        /// Object Info's Random, in [0, 1] (its Color follows the settings in the same
+        /// buffer when some object is coloured, see `SceneGeometry::object_settings`).
         pub random: f32,
     }
 }

@@ -1632,8 +1632,8 @@ def lookup3_final(a, b, c):
     """Bob Jenkins' lookup3 `final` on 32-bit words (Cycles' util/hash.h); returns c."""
     def rot(x, k):
         return ((x << k) | (x >> (32 - k))) & 0xFFFFFFFF
-    for x, y, z, k in ((2, 1, 0, 14), (0, 2, 1, 11), (1, 0, 2, 25), (2, 1, 0, 16), (0, 2, 1, 4), (1, 0, 2, 14),
-                       (2, 1, 0, 24)):
+    # Each step: word x ^= word y, then x -= y rotated by k.
+    for x, y, k in ((2, 1, 14), (0, 2, 11), (1, 0, 25), (2, 1, 16), (0, 2, 4), (1, 0, 14), (2, 1, 24)):
         w = [a, b, c]
         w[x] = ((w[x] ^ w[y]) - rot(w[y], k)) & 0xFFFFFFFF
         a, b, c = w

@@ -289,8 +289,8 @@ pub fn encode_file(file: &InstanceFile) -> Vec<u8> {
         HEADER_BYTES as usize
             + 4 * sets.indices.len()
             + size_of_val(file.records.as_slice())
-            + 48 * file.motion.len()
-            + 20 * info.len(),
+            + KEY_BYTES as usize * file.motion.len()
+            + INFO_BYTES as usize * info.len(),
     );
     out.extend_from_slice(&MAGIC);
     let count = file.records.len() as u32;

@@ -44,9 +44,8 @@ pub(super) struct Placement<'m> {
     pub instances: Vec<GpuInstance>,
     /// Each instance's Shadow Terminator settings, holdout and Random.
     pub object_settings: Vec<GpuObjectSettings>,
-    /// Each instance's Object Color, and whether some is not white.
+    /// Each instance's Object Color.
     pub object_colors: Vec<[f32; 4]>,
-    pub coloured: bool,
     /// Some instance has a Shading Offset (the terminator shift's code is needed).
     pub shading_offsets: bool,
     /// Some instance is a holdout.
@@ -77,7 +76,6 @@ impl<'m> Placement<'m> {
             instances: Vec::new(),
             object_settings: Vec::new(),
             object_colors: Vec::new(),
-            coloured: false,
             shading_offsets: false,
             held_out: false,
             motion_matrices: Vec::new(),
@@ -157,7 +155,6 @@ impl<'m> Placement<'m> {
         });
         self.object_settings.push(settings);
         self.object_colors.push(color);
-        self.coloured |= color != [1.0; 4];
         self.shading_offsets |= settings.frequency_multiplier > 1.0;
         self.held_out |= settings.holdout != 0;
         true

@@ -196,7 +196,6 @@ impl SceneGeometry {
             mut instances,
             object_settings,
             object_colors,
-            coloured,
             shading_offsets,
             held_out,
             motion_matrices,
@@ -227,8 +226,8 @@ impl SceneGeometry {
             tangents,
             second_uvs,
             instances,
-            object_settings: with_colors(object_settings, coloured.then_some(&object_colors)),
-            object_colors: coloured,
+            object_colors: coloured(&object_colors),
+            object_settings: with_colors(object_settings, &object_colors),
             shading_offsets,
             held_out,
             moving_lights,
@@ -421,10 +420,18 @@ pub fn asset_paths(scene: &Scene) -> Vec<PathBuf> {
     placed.filter(|a| seen.insert(*a)).cloned().collect()
 }
 
-/// The instances' settings, followed by their Object Colors if given (one record each:
-/// red, green, blue and alpha in its four words).
-fn with_colors(mut settings: Vec<GpuObjectSettings>, colors: Option<&Vec<[f32; 4]>>) -> Vec<GpuObjectSettings> {
-    for c in colors.into_iter().flatten() {
+/// Whether some instance's Object Color is not white.
+fn coloured(colors: &[[f32; 4]]) -> bool {
+    colors.iter().any(|c| *c != [1.0; 4])
+}
+
+/// The instances' settings, followed by their Object Colors when some is not white (one
+/// record each: red, green, blue and alpha in its four words).
+fn with_colors(mut settings: Vec<GpuObjectSettings>, colors: &[[f32; 4]]) -> Vec<GpuObjectSettings> {
+    if !coloured(colors) {
+        return settings;
+    }
+    for c in colors {
         settings.push(GpuObjectSettings {
             geometry_offset: c[0],
             frequency_multiplier: c[1],

@@ -26,7 +26,8 @@ impl ObjectInfo {
         color: Option<[f32; 4]>,
         random: Option<f32>,
     ) -> Result<Self, SceneError> {
-        let info = Self { color: color.unwrap_or([1.0; 4]), random: random.unwrap_or(0.0) };
+        let default = Self::default();
+        let info = Self { color: color.unwrap_or(default.color), random: random.unwrap_or(default.random) };
         src.finite(p, "object_color", &info.color)?;
         src.check(p, "random", &[info.random], "in [0, 1]", |r| (0.0..=1.0).contains(&r))?;
         Ok(info)

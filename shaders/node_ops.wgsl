@@ -3,6 +3,7 @@
 // src/gpu/node_code.rs), and Output.
 
 //#include "node_inputs.wgsl"
+//#include "node_bump.wgsl"
 
 // Runs one instruction (not END or OUTPUT) at `at`, whose extra words start at `extra`.
 fn node_instruction(start: u32, step: NodeStep, p: NodePoint) {
@@ -34,6 +35,7 @@ fn node_instruction(start: u32, step: NodeStep, p: NodePoint) {
         case NODE_OP_FRESNEL: { node_op_fresnel(start, step, p); }
         case NODE_OP_BRICK: { node_op_brick(start, step, p); }
         case NODE_OP_SPECTRUM: { node_op_spectrum(start, step, p); }
+        case NODE_OP_BUMP: { node_op_bump(start, step, p); }
         default: {}
     }
 }
@@ -44,8 +46,23 @@ fn node_op_convert(start: u32, step: NodeStep, p: NodePoint) {
     node_store(step.out, vec4f(select(dot(a.xyz, vec3f(1.0 / 3.0)), dot(a.xyz, NODE_LUMINANCE), step.mode == 0u)));
 }
 
+// Flags 1 and 2: at a Bump's step along x or y, its filter width the operand.
 fn node_op_coordinate(start: u32, step: NodeStep, p: NodePoint) {
-    node_store(step.out, node_coordinate(step.mode, p, step.extra));
+    var at = p;
+    if step.flags != 0u {
+        at = node_point_stepped(p, step.flags, node_in(start, step, 0u).x);
+    }
+    node_store(step.out, node_coordinate(step.mode, at, step.extra));
+}
+
+// Operands: Strength, Distance, Filter Width, the heights at the point and its steps along
+// x and y, Normal; flags: inverted.
+fn node_op_bump(start: u32, step: NodeStep, p: NodePoint) {
+    let h = vec3f(node_in(start, step, 3u).x, node_in(start, step, 4u).x, node_in(start, step, 5u).x);
+    let distance = select(1.0, -1.0, step.flags != 0u) * node_in(start, step, 1u).x;
+    let n = node_normal(node_in(start, step, 6u).xyz, p);
+    let bumped = node_bump(p, h, node_in(start, step, 2u).x, node_in(start, step, 0u).x, distance, n);
+    node_store(step.out, vec4f(bumped, 0.0));
 }
 
 fn node_op_math(start: u32, step: NodeStep, p: NodePoint) {
@@ -226,7 +243,8 @@ fn node_op_output(start: u32, step: NodeStep, outputs: ptr<function, NodeOutputs
         case 1u: { (*outputs).roughness = v.x; }
         case 2u: { (*outputs).metallic = v.x; }
         case 3u: { (*outputs).emission = v.xyz; }
-        default: { (*outputs).mix_factor = v.x; }
+        case 4u: { (*outputs).mix_factor = v.x; }
+        default: { (*outputs).normal = v.xyz; }
     }
 }
 

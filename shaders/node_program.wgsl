@@ -107,6 +107,7 @@ fn node_point_on_triangle(instance: u32, inst: Instance, triangle: u32, b1: f32,
     p.backfacing = backfacing;
     p.ray_from = NODE_RAY_NONE;
     p.instance = instance;
+    node_surface_steps(&p, inst, triangle, b1, b2, true_normal);
     return p;
 }
 
@@ -127,5 +128,6 @@ fn node_point_at(hit: Hit, surface: Surface, normal: vec3f, incoming: vec3f) -> 
     p.backfacing = backfacing;
     p.ray_from = NODE_RAY_NONE;
     p.instance = NODE_NO_OBJECT;
+    node_sphere_steps(&p, surface.geometric_normal);
     return p;
 }

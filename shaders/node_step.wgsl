@@ -38,6 +38,17 @@ struct NodePoint {
     ray_depth: f32,
     // The instance the point is on (Object Info), or NODE_NO_OBJECT (a sphere).
     instance: u32,
+    // Where a Bump reads its height (node_surface_steps): two orthogonal unit directions
+    // along the surface (world), what a step of unit length along each moves the object
+    // space point and the uv by, and the footprint (the ray cone's width there), which a
+    // Bump's Filter Width scales into its step; 0 where there is none (a light sample).
+    step_x: vec3f,
+    step_y: vec3f,
+    object_step_x: vec3f,
+    object_step_y: vec3f,
+    uv_step_x: vec2f,
+    uv_step_y: vec2f,
+    footprint: f32,
 }
 
 const NODE_NO_OBJECT: u32 = 0xffffffffu;
@@ -48,12 +59,15 @@ const NODE_RAY_CAMERA: u32 = 0u;
 const NODE_RAY_NONE: u32 = 255u;
 
 // What a program sets: `driven` bit i for target i (node_kinds::TARGETS).
+const NODE_DRIVES_NORMAL: u32 = 32u;
 struct NodeOutputs {
     base_color: vec3f,
     roughness: f32,
     emission: vec3f,
     metallic: f32,
     mix_factor: f32,
+    // World, Blender's axes, on the viewer's side.
+    normal: vec3f,
     driven: u32,
 }
 
@@ -103,5 +117,5 @@ fn node_store(slot: u32, value: vec4f) {
 }
 
 fn node_outputs_none() -> NodeOutputs {
-    return NodeOutputs(vec3f(0.0), 0.0, vec3f(0.0), 0.0, 0.0, 0u);
+    return NodeOutputs(vec3f(0.0), 0.0, vec3f(0.0), 0.0, 0.0, vec3f(0.0), 0u);
 }

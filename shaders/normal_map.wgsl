@@ -37,10 +37,16 @@ fn normal_mapped(m: Material, hit: Hit, shading_normal: vec3f, geometric_normal:
     if all(mapped == vec3f(0.0)) {
         return shading_normal;
     }
+    return mapped_normal_bent(mapped, geometric_normal, wo);
+}
+
+// `mapped` (outward, world, unit: a map's or a Bump node's) kept for the diffuse lobe and
+// returned bent as Cycles bends the specular lobes' normal (see `unbent_mapped_normal`).
+fn mapped_normal_bent(mapped: vec3f, geometric_normal: vec3f, wo: vec3f) -> vec3f {
     unbent_mapped_normal = mapped;
     // Bent on the viewer's side, then turned back outward.
     let side = select(-1.0, 1.0, dot(geometric_normal, wo) >= 0.0);
-    return side * valid_for_reflection(side * unbent_mapped_normal, side * geometric_normal, wo);
+    return side * valid_for_reflection(side * mapped, side * geometric_normal, wo);
 }
 
 // The normal (outward, world space, unit) that map `texture`, its x and y scaled by

@@ -53,6 +53,8 @@ struct SeenMaterial {
     shading_normal: vec3f,
     n_unmapped: vec3f,
     coat_normal: vec3f,
+    // Whether a node graph set the normal (a Bump node's), which is then shaded as a map's.
+    graph_normal: bool,
 }
 
 // The material seen at `hit` by a ray along `direction` whose cone is `cone_width` wide
@@ -60,7 +62,7 @@ struct SeenMaterial {
 // coins and Light Path node read.
 fn material_seen(hit: Hit, surface: Surface, direction: vec3f, cone_width: f32, path_key: u32, bounce: u32, ray_from: u32, ray_singular: bool) -> SeenMaterial {
     var m = materials[surface.material];
-    var seen = SeenMaterial(m, surface.shading_normal, surface.shading_normal, surface.shading_normal);
+    var seen = SeenMaterial(m, surface.shading_normal, surface.shading_normal, surface.shading_normal, false);
     //#if textures
     let cos_hit = max(abs(dot(surface.geometric_normal, direction)), 1e-4);
     // The uv and its footprint, only where the material reads a texture: it costs a
@@ -84,8 +86,17 @@ fn material_seen(hit: Hit, surface: Surface, direction: vec3f, cone_width: f32, 
         point.singular = ray_singular;
         point.ray_length = hit.t;
         point.ray_depth = f32(bounce);
+        point.footprint = cone_width;
         let graph = run_node_program(m.node_program, point);
         m = node_graph_applied(m, graph);
+        //#if normal_maps
+        if (graph.driven & NODE_DRIVES_NORMAL) != 0u {
+            // The graph's normal is on the viewer's side, as Cycles' N.
+            let outward = select(1.0, -1.0, point.backfacing) * rt_axes(graph.normal);
+            seen.shading_normal = mapped_normal_bent(outward, surface.geometric_normal, -direction);
+            seen.graph_normal = true;
+        }
+        //#endif
         if node_mix_second(m, graph, path_key, bounce) {
             m = textured_material(materials[m.mix_material], texture_at, log2(cone_width / cos_hit));
             if m.node_program != NO_PROGRAM {
@@ -122,7 +133,7 @@ fn shading_normal_at(seen: SeenMaterial, hit: Hit, surface: Surface, direction: 
     var mapped = false;
     //#if normal_maps
     let side = select(-1.0, 1.0, entering);
-    mapped = m.normal_texture != NO_TEXTURE;
+    mapped = m.normal_texture != NO_TEXTURE || seen.graph_normal;
     set_unmapped_normal(side * seen.n_unmapped, mapped, side * diffuse_mapped_normal());
     //#endif
     //#if coat_normal

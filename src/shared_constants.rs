@@ -82,6 +82,7 @@ shared_constants! { NODE_OPERATIONS;
     NODE_OP_MAGIC: u32 = 26;
     NODE_OP_BRICK: u32 = 27;
     NODE_OP_SPECTRUM: u32 = 28;
+    NODE_OP_BUMP: u32 = 29;
 }
 
 shared_constants! { LIGHT_TREE;

@@ -70,7 +70,13 @@ fn the_exporter_writes_second_uv_maps_and_bakes_procedural_sockets() {
     let objects = report["objects_after_instanced_bake"].as_array().expect("object names");
     assert!(objects.iter().all(|o| !o.as_str().unwrap_or("").starts_with("rt_bake")), "{objects:?}");
 
-    // A Bump node fed by the noise into Normal: Cycles' NORMAL pass in tangent space becomes
+    // A Bump node fed by the noise into Normal is a node graph rt evaluates: nothing baked.
+    let bump_graph = load_mesh(&out.join("bump_graph/assets/Plane")).unwrap_or_else(|e| panic!("{e}"));
+    let material = &bump_graph.materials[0].1;
+    assert!(material.textures.normal.is_none() && bump_graph.textures.is_empty(), "the Bump's graph is not baked");
+    assert!(rt::asset::node_program::drives(&material.node_program, "normal"), "the graph sets the normal");
+
+    // A Bump node fed by a Gabor Texture into Normal: Cycles' NORMAL pass in tangent space becomes
     // a normal map of strength 1 that tilts the normal (x and y away from 0.5 somewhere),
     // facing out (z above 0.5 everywhere); the node tree is as it was.
     let bumped = load_mesh(&out.join("bump/assets/Plane")).unwrap_or_else(|e| panic!("{e}"));

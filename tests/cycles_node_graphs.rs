@@ -21,12 +21,13 @@ const REFERENCE_SPP: f64 = 1024.0;
 const SPP: u32 = 64;
 const BLOCK: usize = 8;
 
-fn load(name: &str) -> (rt::render::Image, Vec<[f32; 3]>) {
+/// rt's render of scene `name` with paths of `max_bounces` (Cycles' Max Bounces + 1: rt
+/// counts the surface the camera sees), and Cycles' image.
+fn load(name: &str, max_bounces: u32) -> (rt::render::Image, Vec<[f32; 3]>) {
     let dir = repo().join(format!("tests/cycles/scenes/{name}"));
     let scene = rt::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
     let (w, h) = (scene.render.width, scene.render.height);
-    // The tiles only emit: one bounce finds nothing more.
-    let ours = render(scene, w, h, SPP, 1);
+    let ours = render(scene, w, h, SPP, max_bounces);
     let file = repo().join(format!("tests/cycles/{name}.exr"));
     let reference = image::open(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display())).into_rgb32f();
     (ours, reference.pixels().map(|p| p.0).collect())
@@ -36,7 +37,13 @@ fn load(name: &str) -> (rt::render::Image, Vec<[f32; 3]>) {
 /// standard error of luminance, scaled to the channel by its share of the block's
 /// luminance and by both renders' sample counts), with `floor` for blocks without noise.
 fn check_channels(name: &str, floor: f32) {
-    let (ours, reference) = load(name);
+    // The tiles only emit: one bounce finds nothing more.
+    check_channels_of(name, floor, 1);
+}
+
+/// `check_channels` of a scene lit by lamps, rendered with `max_bounces`.
+fn check_channels_of(name: &str, floor: f32, max_bounces: u32) {
+    let (ours, reference) = load(name, max_bounces);
     let (w, h) = (ours.width as usize, ours.height as usize);
     let noise_scale = (1.0 + SPP as f64 / REFERENCE_SPP).sqrt();
     let mut worst = (0.0f64, String::new());
@@ -96,6 +103,16 @@ fn object_info_matches_cycles() {
 #[test]
 fn noise_of_one_two_and_four_dimensions_matches_cycles() {
     check_channels("graph_noise_dimensions", 1e-3);
+}
+
+/// Bump nodes under a low sun: heights of noise on Object, Generated and Camera coordinates,
+/// a wave on the UVs, the Position's sine, Magic and Voronoi; inverted, at half strength,
+/// chained, into a Diffuse BSDF, under a metal, read by Layer Weight, on a turned and
+/// stretched tile and on smooth spheres, in perspective.
+#[test]
+fn bump_nodes_match_cycles() {
+    // Cycles' one bounce: light that neighbours throw at each other.
+    check_channels_of("graph_bump", 1e-3, 2);
 }
 
 #[test]

@@ -53,6 +53,7 @@ EVALUATED = {
     "OBJECT_INFO": ("Location", "Color", "Alpha", "Random"),
     "BLACKBODY": ("Color",),
     "WAVELENGTH": ("Color",),
+    "BUMP": ("Normal",),
 }
 
 BLEND_TYPES = {"MIX", "DARKEN", "MULTIPLY", "BURN", "LIGHTEN", "SCREEN", "DODGE", "ADD", "OVERLAY", "SOFT_LIGHT",
@@ -84,6 +85,7 @@ EVALUATED_SETTINGS = {
     "MAPPING": {"vector_type": None},
     "TEX_NOISE": {"noise_dimensions": None, "noise_type": None, "normalize": None},
     "TEX_GRADIENT": {"gradient_type": None},
+    "BUMP": {"invert": None},
 }
 # Texture nodes' unlinked Vector, as in Cycles: the Generated coordinates (White Noise's is 0).
 DEFAULT_VECTOR = {"TEX_NOISE": ("TEX_COORD", "Generated"), "TEX_CHECKER": ("TEX_COORD", "Generated"),
@@ -93,12 +95,12 @@ DEFAULT_VECTOR = {"TEX_NOISE": ("TEX_COORD", "Generated"), "TEX_CHECKER": ("TEX_
 # Shader inputs a graph can drive: rt's material input, the socket's type there.
 TARGETS = {
     "BSDF_PRINCIPLED": {"Base Color": "base_color", "Roughness": "roughness", "Metallic": "metallic",
-                        "Emission Color": "emission"},
-    "BSDF_DIFFUSE": {"Color": "base_color", "Roughness": None},
+                        "Emission Color": "emission", "Normal": "normal"},
+    "BSDF_DIFFUSE": {"Color": "base_color", "Roughness": None, "Normal": "normal"},
     "EMISSION": {"Color": "emission"},
 }
 TARGET_TYPES = {"base_color": "RGBA", "roughness": "VALUE", "metallic": "VALUE", "emission": "RGBA",
-                "mix_factor": "VALUE"}
+                "mix_factor": "VALUE", "normal": "VECTOR"}
 # Shaders a Mix Shader with a graph-driven factor may mix: each becomes a material of its own.
 MIXABLE = {"BSDF_PRINCIPLED", "BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS", "HOLDOUT"}
 # What a driven socket's own value becomes in the glTF factors: the part the graph scales.
@@ -182,6 +184,7 @@ class GraphWriter:
     def __init__(self):
         self.nodes = []
         self.index = {}
+        self.heights = 0  # how many Bump nodes' Height the node being added feeds
 
     def add(self, node, groups):
         key = (tuple(g.name for g in groups), node.name)
@@ -189,13 +192,19 @@ class GraphWriter:
             return self.index[key]
         if node.type not in EVALUATED:
             raise Unevaluated(f"{node.name} ({node.type})")
+        if node.type == "BUMP" and (self.heights or node.inputs["Filter Width"].is_linked):
+            # rt reads a Bump's height a step away with a constant width, and not a Bump's in another's.
+            raise Unevaluated(f"{node.name} (BUMP) in another Bump's Height, or its Filter Width linked")
         entry = {"name": node.name, "type": node.type, "settings": settings_of(node), "inputs": {}}
         self.index[key] = len(self.nodes)
         self.nodes.append(entry)
         for socket in node.inputs:
             if not socket.enabled:
                 continue
+            height = node.type == "BUMP" and socket.identifier == "Height"
+            self.heights += height
             value = self.input(socket, groups)
+            self.heights -= height
             if value is None and node.type in DEFAULT_VECTOR and socket.identifier == "Vector":
                 kind, output = DEFAULT_VECTOR[node.type]
                 value = {"link": [self.default_vector(kind), output], "from": "VECTOR", "to": "VECTOR"}
@@ -247,7 +256,7 @@ class GraphWriter:
         return {"link": [index, socket_key(socket)], "from": socket_type(socket), "to": to_type}
 
 
-IMAGE_NODES = {"TEX_IMAGE", "TEX_ENVIRONMENT", "NORMAL_MAP", "BUMP"}
+IMAGE_NODES = {"TEX_IMAGE", "TEX_ENVIRONMENT", "NORMAL_MAP"}
 
 
 def tree_has_image(tree):

@@ -14,6 +14,7 @@ pub mod material_extras;
 pub mod node_graph;
 pub mod node_kinds;
 pub mod node_program;
+pub mod node_shift;
 pub mod notes;
 pub mod obj_import;
 pub mod rtinst;

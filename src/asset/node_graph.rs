@@ -10,16 +10,19 @@
 //! constants     vec4s, read by operands with CONSTANT set
 //! ```
 //!
-//! An operand is a register, or `CONSTANT | i`: the program's i-th constant.
+//! An operand is a register, or `CONSTANT | i`: the program's i-th constant. A coordinate
+//! instruction with flags 1 or 2 reads the point a step along the surface's x or y axis, its
+//! one operand the Bump's Filter Width (`node_shift`).
 
 use super::node_kinds::{self, Emit, Kind};
+use super::node_shift::{self, Shift};
 use serde::Deserialize;
 use serde_json::{Map, Value};
 use std::collections::{BTreeMap, HashMap};
 
 pub const FORMAT_VERSION: u32 = 1;
 /// The compiler's own version: caches of programs an earlier compiler wrote are rebuilt.
-pub const COMPILER_VERSION: u32 = 3;
+pub const COMPILER_VERSION: u32 = 4;
 /// An operand that reads a constant, not a register.
 pub const CONSTANT: u32 = 0x8000_0000;
 /// Registers of the interpreter (`NODE_REGISTERS` in the shader).
@@ -108,15 +111,18 @@ pub fn compile_json(json: &Value) -> Result<Vec<u32>, String> {
 }
 
 pub fn compile(graph: &NodeGraph) -> Result<Vec<u32>, String> {
+    let positional = node_shift::positional(graph);
     let mut c = Compiler {
         graph,
         code: vec![0],
         constants: Vec::new(),
         busy: [false; REGISTERS as usize],
         remaining: HashMap::new(),
-        uses: uses(graph),
+        uses: node_shift::uses(graph, &positional),
+        positional,
         done: HashMap::new(),
         open: Vec::new(),
+        filter_widths: HashMap::new(),
     };
     for (target, input) in &graph.outputs {
         let Some(mode) = node_kinds::TARGETS.iter().position(|t| t == target) else {
@@ -125,7 +131,7 @@ pub fn compile(graph: &NodeGraph) -> Result<Vec<u32>, String> {
                 node_kinds::TARGETS.join(", ")
             ));
         };
-        let operand = c.operand(input)?;
+        let operand = c.operand(input, Shift::At)?;
         c.instruction(node_kinds::NODE_OP_OUTPUT, mode as u32, 0, 0, &[operand], &[]);
     }
     c.code.push(node_kinds::NODE_OP_END);
@@ -142,12 +148,16 @@ struct Compiler<'g> {
     busy: [bool; REGISTERS as usize],
     /// Reads left of each busy register: it is free again after its last.
     remaining: HashMap<u32, u32>,
-    /// How many links read each (node, output), over the nodes the outputs reach.
-    uses: HashMap<(usize, String), u32>,
-    /// The operand of each (node, output) already compiled.
-    done: HashMap<(usize, String), u32>,
+    /// How many links read each (node, output, shift), over the nodes the outputs reach.
+    uses: HashMap<(usize, String, Shift), u32>,
+    /// Whether each node's value depends on where the point is (`node_shift::positional`).
+    positional: Vec<bool>,
+    /// The operand of each (node, output, shift) already compiled.
+    done: HashMap<(usize, String, Shift), u32>,
     /// The nodes being compiled, to find cycles.
     open: Vec<usize>,
+    /// Each Bump's Filter Width, the constant its steps' coordinates read.
+    filter_widths: HashMap<usize, u32>,
 }
 
 impl Compiler<'_> {
@@ -192,11 +202,11 @@ impl Compiler<'_> {
         self.busy[register as usize] = reads > 0;
     }
 
-    fn operand(&mut self, input: &Input) -> Result<u32, String> {
+    fn operand(&mut self, input: &Input, shift: Shift) -> Result<u32, String> {
         match input {
             Input::Value { value } => Ok(self.constant(value.vec4()?)),
             Input::Link { link: (node, output), from, to } => {
-                let source = self.output(*node, output)?;
+                let source = self.output(*node, output, shift)?;
                 let convert = match (from, to) {
                     (SocketType::Color, SocketType::Value) => node_kinds::CONVERT_COLOR_TO_VALUE,
                     (SocketType::Vector, SocketType::Value) => node_kinds::CONVERT_VECTOR_TO_VALUE,
@@ -210,9 +220,11 @@ impl Compiler<'_> {
         }
     }
 
-    /// The operand holding output `output` of node `index`, compiling the node first.
-    fn output(&mut self, index: usize, output: &str) -> Result<u32, String> {
-        if let Some(&operand) = self.done.get(&(index, output.to_owned())) {
+    /// The operand holding output `output` of node `index` computed at `shift` (at the
+    /// point, for a node that does not depend on where it is), compiling the node first.
+    fn output(&mut self, index: usize, output: &str, shift: Shift) -> Result<u32, String> {
+        let shift = node_shift::effective(&self.positional, index, shift);
+        if let Some(&operand) = self.done.get(&(index, output.to_owned(), shift)) {
             return Ok(operand);
         }
         let graph = self.graph;
@@ -225,14 +237,21 @@ impl Compiler<'_> {
         let position = kind.outputs.iter().position(|o| *o == output);
         let position = position.ok_or_else(|| located(format!("it has no output `{output}` that rt evaluates")))?;
         self.open.push(index);
-        let compiled = self.node(index, node, kind, position).map_err(located);
+        let compiled = self.node(index, node, kind, position, shift).map_err(located);
         self.open.pop();
         let operand = compiled?;
-        self.done.insert((index, output.to_owned()), operand);
+        self.done.insert((index, output.to_owned(), shift), operand);
         Ok(operand)
     }
 
-    fn node(&mut self, index: usize, node: &GraphNode, kind: &Kind, output: usize) -> Result<u32, String> {
+    fn node(
+        &mut self,
+        index: usize,
+        node: &GraphNode,
+        kind: &Kind,
+        output: usize,
+        shift: Shift,
+    ) -> Result<u32, String> {
         match kind.emit {
             Emit::Constant => {
                 let value = node.settings.get("value").ok_or("its value is missing")?;
@@ -242,11 +261,18 @@ impl Compiler<'_> {
             Emit::Coordinates(first) => {
                 let out = self.allocate(1)?;
                 let extra = if first + output as u32 == 0 { self.texture_space() } else { Vec::new() };
-                self.instruction(node_kinds::NODE_OP_COORDINATE, first + output as u32, 0, out, &[], &extra);
-                let reads = self.reads(index, kind.outputs[output]);
+                // A step away, the coordinate reads its Bump's Filter Width.
+                let width = match shift {
+                    Shift::At => Vec::new(),
+                    Shift::Along { bump, .. } => vec![self.filter_widths[&bump]],
+                };
+                let (op, mode) = (node_kinds::NODE_OP_COORDINATE, first + output as u32);
+                self.instruction(op, mode, shift.flags(), out, &width, &extra);
+                let reads = self.reads(index, kind.outputs[output], shift);
                 self.hold(out, reads);
                 Ok(out)
             }
+            Emit::Bump => self.bump(index, node, shift),
             Emit::Operation(op) => {
                 if let Some(unknown) = node.inputs.keys().find(|k| !kind.inputs.contains(&k.as_str())) {
                     return Err(format!("it has no input `{unknown}` that rt reads"));
@@ -254,7 +280,7 @@ impl Compiler<'_> {
                 let mut operands = Vec::with_capacity(kind.inputs.len());
                 for key in kind.inputs {
                     operands.push(match node.inputs.get(*key) {
-                        Some(input) => self.operand(input)?,
+                        Some(input) => self.operand(input, shift)?,
                         // Inputs the exporter leaves out read 0 (the shader takes a zero
                         // normal for the shading point's own).
                         None => self.constant([0.0; 4]),
@@ -270,8 +296,8 @@ impl Compiler<'_> {
                 let out = self.allocate(kind.outputs.len() as u32)?;
                 self.instruction(op, mode.mode, mode.flags, out, &operands, &extra);
                 for (i, name) in kind.outputs.iter().enumerate() {
-                    self.done.insert((index, (*name).to_owned()), out + i as u32);
-                    let reads = self.reads(index, name);
+                    self.done.insert((index, (*name).to_owned(), shift), out + i as u32);
+                    let reads = self.reads(index, name, shift);
                     self.hold(out + i as u32, reads);
                 }
                 Ok(out + output as u32)
@@ -279,8 +305,49 @@ impl Compiler<'_> {
         }
     }
 
-    fn reads(&self, node: usize, output: &str) -> u32 {
-        self.uses.get(&(node, output.to_owned())).copied().unwrap_or(0)
+    /// Bump (Cycles' `svm_node_set_bump`): its Height at the point and a step along each of
+    /// the surface's two axes, the steps Filter Width times the point's footprint; operands
+    /// Strength, Distance, Filter Width, the three heights, Normal.
+    fn bump(&mut self, index: usize, node: &GraphNode, shift: Shift) -> Result<u32, String> {
+        if shift != Shift::At {
+            return Err("it feeds another Bump's Height, which rt does not evaluate".into());
+        }
+        if let Some(unknown) = node
+            .inputs
+            .keys()
+            .find(|k| !["Strength", "Distance", "Filter Width", "Height", "Normal"].contains(&k.as_str()))
+        {
+            return Err(format!("it has no input `{unknown}` that rt reads"));
+        }
+        let width = match node.inputs.get("Filter Width") {
+            Some(Input::Value { value }) => value.vec4()?,
+            Some(Input::Link { .. }) => return Err("its Filter Width is linked; rt reads a constant one".into()),
+            None => [0.1; 4],
+        };
+        let width = self.constant(width);
+        self.filter_widths.insert(index, width);
+        let read = |c: &mut Self, key: &str, at: Shift, default: f32| match node.inputs.get(key) {
+            Some(input) => c.operand(input, at),
+            None => Ok(c.constant([default; 4])),
+        };
+        let strength = read(self, "Strength", Shift::At, 1.0)?;
+        let distance = read(self, "Distance", Shift::At, 1.0)?;
+        let centre = read(self, "Height", Shift::At, 1.0)?;
+        let x = read(self, "Height", Shift::Along { bump: index, axis: 1 }, 1.0)?;
+        let y = read(self, "Height", Shift::Along { bump: index, axis: 2 }, 1.0)?;
+        // No Normal: the zero vector, which the shader reads as the point's own.
+        let normal = read(self, "Normal", Shift::At, 0.0)?;
+        let mode = node_kinds::mode(&node.kind, &node.settings)?;
+        let out = self.allocate(1)?;
+        let operands = [strength, distance, width, centre, x, y, normal];
+        self.instruction(node_kinds::NODE_OP_BUMP, mode.mode, mode.flags, out, &operands, &[]);
+        let reads = self.reads(index, "Normal", Shift::At);
+        self.hold(out, reads);
+        Ok(out)
+    }
+
+    fn reads(&self, node: usize, output: &str, shift: Shift) -> u32 {
+        self.uses.get(&(node, output.to_owned(), shift)).copied().unwrap_or(0)
     }
 
     /// Generated = (P − location) / (2 size) + ½ per axis, as Cycles maps a mesh's texture space.
@@ -293,23 +360,6 @@ impl Compiler<'_> {
         let offset = [0, 1, 2].map(|i| 0.5 - location[i] * scale[i]);
         scale.iter().chain(offset.iter()).map(|v| v.to_bits()).collect()
     }
-}
-
-/// How many links read each (node, output), counting only the nodes that the graph's
-/// outputs reach (a node nothing reads is never compiled, so its reads never come).
-fn uses(graph: &NodeGraph) -> HashMap<(usize, String), u32> {
-    let mut uses: HashMap<(usize, String), u32> = HashMap::new();
-    let mut seen = vec![false; graph.nodes.len()];
-    let mut stack: Vec<&Input> = graph.outputs.values().collect();
-    while let Some(input) = stack.pop() {
-        let Input::Link { link: (node, output), .. } = input else { continue };
-        *uses.entry((*node, output.clone())).or_default() += 1;
-        if let Some(n) = graph.nodes.get(*node).filter(|_| !seen[*node]) {
-            seen[*node] = true;
-            stack.extend(n.inputs.values());
-        }
-    }
-    uses
 }
 
 /// Checks that `program` is one the shader can walk ([`super::node_program::instructions`]).
@@ -353,103 +403,5 @@ fn ramp_table(settings: &Map<String, Value>) -> Result<Vec<u32>, String> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use serde_json::json;
-
-    fn graph(nodes: Value, outputs: Value) -> Value {
-        json!({ "version": 1, "nodes": nodes, "outputs": outputs })
-    }
-
-    #[test]
-    fn a_noise_into_the_base_colour_compiles_to_coordinate_noise_output() {
-        let g = graph(
-            json!([
-                { "name": "Texture Coordinate", "type": "TEX_COORD" },
-                { "name": "Noise", "type": "TEX_NOISE", "settings": { "noise_dimensions": "3D", "noise_type": "FBM", "normalize": true },
-                  "inputs": { "Vector": { "link": [0, "Object"], "from": "VECTOR", "to": "VECTOR" }, "Scale": { "value": 5.0 } } }
-            ]),
-            json!({ "base_color": { "link": [1, "Color"], "from": "RGBA", "to": "RGBA" } }),
-        );
-        let program = compile_json(&g).unwrap();
-        let ops: Vec<u32> = instructions(&program).iter().map(|w| w & 0xff).collect();
-        assert_eq!(ops, [node_kinds::NODE_OP_COORDINATE, node_kinds::NODE_OP_NOISE, node_kinds::NODE_OP_OUTPUT]);
-        assert_eq!(program[program[0] as usize - 1], node_kinds::NODE_OP_END);
-    }
-
-    /// The first word of each instruction.
-    fn instructions(program: &[u32]) -> Vec<u32> {
-        let mut at = 1;
-        let mut out = Vec::new();
-        while program[at] != node_kinds::NODE_OP_END {
-            out.push(program[at]);
-            let operands = program[at + 2] as usize;
-            let extra = program[at + 3 + operands] as usize;
-            at += 4 + operands + extra;
-        }
-        out
-    }
-
-    #[test]
-    fn a_colour_read_as_a_value_is_converted() {
-        let g = graph(
-            json!([{ "name": "RGB", "type": "RGB", "settings": { "value": [0.2, 0.4, 0.6, 1.0] } }]),
-            json!({ "roughness": { "link": [0, "Color"], "from": "RGBA", "to": "VALUE" } }),
-        );
-        let ops: Vec<u32> = instructions(&compile_json(&g).unwrap()).iter().map(|w| w & 0xff).collect();
-        assert_eq!(ops, [node_kinds::NODE_OP_CONVERT, node_kinds::NODE_OP_OUTPUT]);
-    }
-
-    #[test]
-    fn errors_name_the_node_and_what_is_wrong() {
-        let cycle = graph(
-            json!([{ "name": "Loop", "type": "MATH", "settings": { "operation": "ADD" },
-                     "inputs": { "Value": { "link": [0, "Value"], "from": "VALUE", "to": "VALUE" } } }]),
-            json!({ "roughness": { "link": [0, "Value"], "from": "VALUE", "to": "VALUE" } }),
-        );
-        let e = compile_json(&cycle).unwrap_err();
-        assert!(e.contains("node `Loop` (MATH)") && e.contains("cycle"), "{e}");
-        let unknown = graph(
-            json!([{ "name": "Sky", "type": "TEX_SKY" }]),
-            json!({ "base_color": { "link": [0, "Color"], "from": "RGBA", "to": "RGBA" } }),
-        );
-        let e = compile_json(&unknown).unwrap_err();
-        assert!(e.contains("`Sky` (TEX_SKY)") && e.contains("does not evaluate"), "{e}");
-        let operation = graph(
-            json!([{ "name": "M", "type": "MATH", "settings": { "operation": "NOPE" } }]),
-            json!({ "metallic": { "link": [0, "Value"], "from": "VALUE", "to": "VALUE" } }),
-        );
-        let e = compile_json(&operation).unwrap_err();
-        assert!(e.contains("operation `NOPE`"), "{e}");
-        let newer = json!({ "version": 2, "nodes": [], "outputs": {} });
-        assert!(compile_json(&newer).unwrap_err().contains("format version 2"));
-        let missing =
-            graph(json!([]), json!({ "roughness": { "link": [3, "Value"], "from": "VALUE", "to": "VALUE" } }));
-        assert!(compile_json(&missing).unwrap_err().contains("node 3"));
-    }
-
-    /// Registers are reused: a value's register is free once its last reader has run, so a
-    /// chain of 200 maths fits; 40 values that all stay to be read again do not.
-    #[test]
-    fn registers_are_reused_and_a_graph_too_wide_for_them_is_refused() {
-        let math = |i: usize, inputs: Value| json!({ "name": format!("M{i}"), "type": "MATH", "settings": { "operation": "ADD" }, "inputs": inputs });
-        let link = |i: usize| json!({ "link": [i, "Value"], "from": "VALUE", "to": "VALUE" });
-        let mut chain = vec![math(0, json!({}))];
-        chain.extend((1..200).map(|i| math(i, json!({ "Value": link(i - 1) }))));
-        let program = compile_json(&graph(Value::Array(chain), json!({ "roughness": link(199) }))).unwrap();
-        check_program(&program).unwrap();
-        assert_eq!(instructions(&program).len(), 201);
-
-        // 40 leaves summed by one chain: each leaf is free once added.
-        let mut wide: Vec<Value> = (0..40).map(|i| math(i, json!({ "Value": { "value": i as f32 } }))).collect();
-        wide.push(math(40, json!({ "Value": link(0), "Value_001": link(1) })));
-        wide.extend((41..79).map(|i| math(i, json!({ "Value": link(i - 1), "Value_001": link(i - 39) }))));
-        check_program(&compile_json(&graph(Value::Array(wide.clone()), json!({ "roughness": link(78) }))).unwrap())
-            .unwrap();
-        // Summed again by a second chain after the first: all 40 are live at once.
-        wide.push(math(79, json!({ "Value": link(78), "Value_001": link(0) })));
-        wide.extend((80..119).map(|i| math(i, json!({ "Value": link(i - 1), "Value_001": link(i - 79) }))));
-        let e = compile_json(&graph(Value::Array(wide), json!({ "roughness": link(118) }))).unwrap_err();
-        assert!(e.contains("registers"), "{e}");
-    }
-}
+#[path = "node_graph_tests.rs"]
+mod tests;

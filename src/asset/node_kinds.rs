@@ -8,8 +8,8 @@
 use serde_json::{Map, Value};
 
 pub use crate::shared_constants::{
-    NODE_OP_BRICK, NODE_OP_BRIGHT_CONTRAST, NODE_OP_CHECKER, NODE_OP_CLAMP, NODE_OP_COMBINE, NODE_OP_CONVERT,
-    NODE_OP_COORDINATE, NODE_OP_CURVES, NODE_OP_END, NODE_OP_FRESNEL, NODE_OP_GAMMA, NODE_OP_GRADIENT,
+    NODE_OP_BRICK, NODE_OP_BRIGHT_CONTRAST, NODE_OP_BUMP, NODE_OP_CHECKER, NODE_OP_CLAMP, NODE_OP_COMBINE,
+    NODE_OP_CONVERT, NODE_OP_COORDINATE, NODE_OP_CURVES, NODE_OP_END, NODE_OP_FRESNEL, NODE_OP_GAMMA, NODE_OP_GRADIENT,
     NODE_OP_HUE_SATURATION, NODE_OP_INVERT, NODE_OP_LAYER_WEIGHT, NODE_OP_MAGIC, NODE_OP_MAP_RANGE, NODE_OP_MAPPING,
     NODE_OP_MATH, NODE_OP_MIX, NODE_OP_NOISE, NODE_OP_OUTPUT, NODE_OP_RAMP, NODE_OP_SEPARATE, NODE_OP_SPECTRUM,
     NODE_OP_VECTOR_MATH, NODE_OP_VORONOI, NODE_OP_WAVE, NODE_OP_WHITE_NOISE,
@@ -28,8 +28,9 @@ pub const CONVERT_COLOR_TO_VALUE: u32 = 0;
 pub const CONVERT_VECTOR_TO_VALUE: u32 = 1;
 
 /// The material inputs a graph can drive (`NODE_OP_OUTPUT` modes); `mix_factor` is a Mix
-/// Shader's factor, the probability of the material's `mix_material` at a point.
-pub const TARGETS: [&str; 5] = ["base_color", "roughness", "metallic", "emission", "mix_factor"];
+/// Shader's factor, the probability of the material's `mix_material` at a point; `normal`
+/// the shading normal (a Bump node's).
+pub const TARGETS: [&str; 6] = ["base_color", "roughness", "metallic", "emission", "mix_factor", "normal"];
 
 /// Math's operations, Blender's identifiers in the order of `node_math` in the shader.
 pub const MATH_OPERATIONS: [&str; 41] = [
@@ -159,6 +160,9 @@ pub enum Emit {
     Coordinates(u32),
     /// A constant: the node's own value (`settings.value`).
     Constant,
+    /// Bump: `NODE_OP_BUMP` of the height at the point and a step away along two
+    /// directions of the surface, its Height's graph compiled for each (`node_bump`).
+    Bump,
 }
 
 pub struct Kind {
@@ -175,7 +179,7 @@ const fn op(name: &'static str, op: u32, inputs: &'static [&'static str], output
     Kind { name, emit: Emit::Operation(op), inputs, outputs }
 }
 
-pub const KINDS: [Kind; 38] = [
+pub const KINDS: [Kind; 39] = [
     Kind { name: "VALUE", emit: Emit::Constant, inputs: &[], outputs: &["Value"] },
     Kind { name: "RGB", emit: Emit::Constant, inputs: &[], outputs: &["Color"] },
     Kind {
@@ -276,6 +280,12 @@ pub const KINDS: [Kind; 38] = [
         &["Vector", "W", "Scale", "Detail", "Roughness", "Lacunarity", "Smoothness", "Exponent", "Randomness"],
         &["Distance", "Color", "Position", "W", "Radius"],
     ),
+    Kind {
+        name: "BUMP",
+        emit: Emit::Bump,
+        inputs: &["Strength", "Distance", "Filter Width", "Height", "Normal"],
+        outputs: &["Normal"],
+    },
 ];
 
 /// What a compiled program depends on besides its graph: the operations, their modes and
@@ -351,6 +361,8 @@ pub fn mode(name: &str, settings: &Map<String, Value>) -> Result<Mode, String> {
         "RGBTOBW" => plain(CONVERT_COLOR_TO_VALUE),
         // Mode 1: a wavelength, not a temperature.
         "WAVELENGTH" => plain(1),
+        // Flags: the height inverted.
+        "BUMP" => Ok(Mode { mode: 0, flags: flag(settings, "invert") as u32 }),
         "SEPARATE_COLOR" | "COMBINE_COLOR" => plain(choice(settings, "mode", &COLOR_MODES)?),
         "TEX_WHITE_NOISE" => plain(choice(settings, "noise_dimensions", &NOISE_DIMENSIONS)?),
         "MAPPING" => plain(choice(settings, "vector_type", &MAPPING_TYPES)?),
@@ -417,7 +429,7 @@ mod tests {
     #[test]
     fn operations_are_numbered_in_order() {
         let all: Vec<(&str, u32)> = operations().collect();
-        assert_eq!(all.len(), 29);
+        assert_eq!(all.len(), 30);
         assert!(all.iter().enumerate().all(|(i, (name, op))| *op == i as u32 && !name.is_empty()));
         assert_eq!(all[23], ("VORONOI", NODE_OP_VORONOI));
     }

@@ -95,6 +95,13 @@ pub fn shape(program: &[u32]) -> Result<Vec<u32>, String> {
     Ok(shape)
 }
 
+/// Whether `program` sets material input `target` (one of `node_kinds::TARGETS`).
+pub fn drives(program: &[u32], target: &str) -> bool {
+    let Some(mode) = node_kinds::TARGETS.iter().position(|t| *t == target) else { return false };
+    let output = |i: &Instruction| i.op() == node_kinds::NODE_OP_OUTPUT && (i.word >> 8) & 0xffff == mode as u32;
+    instructions(program).is_ok_and(|all| all.iter().any(output))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -126,6 +133,17 @@ mod tests {
         assert_eq!((read[1].op(), read[1].at, read[1].out), (node_kinds::NODE_OP_CHECKER, 11, 1));
         assert_eq!(read[1].operands, vec![0, CONSTANT, CONSTANT | 1, CONSTANT | 2]);
         assert_eq!(read[2].operands, vec![1]);
+    }
+
+    #[test]
+    fn what_a_program_drives_is_read_from_its_outputs() {
+        assert!(drives(&checker(0.8), "base_color"));
+        assert!(!drives(&checker(0.8), "normal"));
+        assert!(!drives(&checker(0.8), "no such input"));
+        // The shader tests the normal's bit by name.
+        let normal = 1u32 << node_kinds::TARGETS.iter().position(|t| *t == "normal").unwrap();
+        let wgsl = include_str!("../../shaders/node_step.wgsl");
+        assert!(wgsl.contains(&format!("const NODE_DRIVES_NORMAL: u32 = {normal}u;")));
     }
 
     #[test]

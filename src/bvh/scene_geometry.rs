@@ -10,6 +10,7 @@ use super::pack::{LoadedMesh, build_all_in_memory, load_or_pack_all};
 use super::placement::{MeshSlot, Placement, with_bases};
 use super::scene_lights::SceneLights;
 use super::top_level::TopLevel;
+use crate::asset::node_program;
 use crate::layout::*;
 use crate::scene::{GeometrySummary, Material, Scene};
 use anyhow::{Result, bail};
@@ -133,6 +134,7 @@ impl SceneGeometry {
             moving: !self.motion_matrices.is_empty(),
             moving_lights: self.moving_lights,
             node_code: self.node_code,
+            graph_normals: self.materials_in_use.iter().any(|m| node_program::drives(&m.node_program, "normal")),
             materials_in_use: self.materials_in_use.clone(),
         }
     }

@@ -98,6 +98,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("node_ops.wgsl"),
     shader!("node_program.wgsl"),
     shader!("node_spectrum.wgsl"),
+    shader!("node_bump.wgsl"),
     shader!("node_step.wgsl"),
     shader!("node_voronoi.wgsl"),
     shader!("normal_map.wgsl"),

@@ -203,6 +203,8 @@ pub struct GeometrySummary {
     pub moving_lights: bool,
     /// Names the node programs' shapes when the pipeline specialises them (0: the interpreter).
     pub node_code: u64,
+    /// Some material in use has a node graph that sets its normal (a Bump node).
+    pub graph_normals: bool,
     /// Every material some triangle or sphere uses (an asset's own materials may
     /// emit or refract).
     pub materials_in_use: Vec<Material>,
@@ -239,7 +241,7 @@ impl FeatureSet {
             node_code: geometry.node_code,
             alpha_mask: materials_in_use.iter().any(|m| m.textures.has_alpha()),
             alpha_blend: materials_in_use.iter().any(|m| m.textures.alpha_blend),
-            normal_maps: materials_in_use.iter().any(|m| m.textures.has_normal_map()),
+            normal_maps: materials_in_use.iter().any(|m| m.textures.has_normal_map()) || geometry.graph_normals,
             uv_sets: materials_in_use.iter().any(|m| m.textures.uses_second_uv_set()),
             sampling: settings.sampling,
             depth_of_field: scene.camera.depth_of_field.is_some(),

@@ -5,8 +5,9 @@ map) and `baked_noise` with its noise turned into a Gabor Texture (which rt does
 evaluate) with --bake (32 texels) and without; `baked_noise` as it is, whose noise rt
 evaluates as a node graph (nothing baked, even with --bake); then, with --bake, the Gabor
 plane seen only through two collection instances (its collection excluded from the view
-layer), and a plane whose Normal is a Bump node fed by the noise. Writes report.json with
-what the node trees looked like around the bake."""
+layer), and a plane whose Normal is a Bump node fed by a Gabor Texture; a Bump fed by the
+noise, which rt evaluates as a node graph (nothing baked). Writes report.json with what
+the node trees looked like around the bake."""
 
 import json
 import os
@@ -92,6 +93,11 @@ bump.inputs["Strength"].default_value = 0.5
 bump.inputs["Distance"].default_value = 0.2  # Blender 5.0 defaults to 0.001: no visible tilt
 tree.links.new(noise.outputs["Fac"], bump.inputs["Height"])
 tree.links.new(bump.outputs["Normal"], bsdf.inputs["Normal"])
+rt_export.export_scene(scene, os.path.join(out, "bump_graph", "assets"),
+                       os.path.join(out, "bump_graph", "scene.toml"), bake_size=32)
+gabor = tree.nodes.new("ShaderNodeTexGabor")
+gabor.inputs["Scale"].default_value = 4.0
+tree.links.new(gabor.outputs["Value"], bump.inputs["Height"])
 report["bump_before"] = tree_shape(material)
 rt_export.export_scene(scene, os.path.join(out, "bump", "assets"), os.path.join(out, "bump", "scene.toml"),
                             bake_size=32)

@@ -10,7 +10,8 @@ a black world; each tile only emits, its Emission colour the output of a small n
 tests the nodes and nothing else. `graph_shading`'s tiles are smooth spheres, for the nodes
 that read the normal and the view. `graph_material` is a whole procedural material, a
 sphere and a floor whose Principled inputs come from noise, ramps, checkers and maths, lit
-by a uniform world. Every scene is exported with blender/rt_export.py into
+by a uniform world. `graph_bump` is a grid of tiles and spheres whose Normal is a Bump
+node of many heights, lit by a low sun and seen in perspective. Every scene is exported with blender/rt_export.py into
 tests/cycles/scenes/NAME/ and rendered into tests/cycles/NAME.exr. CI does not run Cycles:
 commit both.
 """
@@ -89,19 +90,26 @@ def emission_material(name, build):
     return material
 
 
+def add_tile(i, shape, segments=32):
+    """Tile `i` of the grid (row by row from the top left): a 2 × 2 plane, or a smooth
+    sphere of radius 1 and `segments` around; returns the object."""
+    x = (i % GRID - (GRID - 1) / 2) * PITCH
+    y = ((GRID - 1) / 2 - i // GRID) * PITCH
+    if shape == "plane":
+        bpy.ops.mesh.primitive_plane_add(size=2.0, location=(x, y, 0.0))
+    else:
+        bpy.ops.mesh.primitive_uv_sphere_add(radius=1.0, segments=segments, ring_count=segments // 2,
+                                             location=(x, y, 0.0))
+        bpy.ops.object.shade_smooth()
+    return bpy.context.active_object
+
+
 def grid_scene(name, builders, shape="plane"):
     scene = cycles.new_scene()
     cycles.set_up(scene, SIZE, bounces=1)
     cycles.uniform_world(scene, (0.0, 0.0, 0.0))
     for i, build in enumerate(builders):
-        x = (i % GRID - (GRID - 1) / 2) * PITCH
-        y = ((GRID - 1) / 2 - i // GRID) * PITCH
-        if shape == "plane":
-            bpy.ops.mesh.primitive_plane_add(size=2.0, location=(x, y, 0.0))
-        else:
-            bpy.ops.mesh.primitive_uv_sphere_add(radius=1.0, segments=32, ring_count=16, location=(x, y, 0.0))
-            bpy.ops.object.shade_smooth()
-        obj = bpy.context.active_object
+        obj = add_tile(i, shape)
         obj.name = f"tile_{i}"
         obj.data.materials.append(emission_material(f"{name}_{i}", build))
     camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
@@ -678,6 +686,110 @@ def floor_inputs(t, bsdf):
     t.links.new(output(mix, "Result_Color"), bsdf.inputs["Base Color"])
 
 
+def bump(t, height, normal=None, **inputs):
+    """A Bump node of `height` (a socket) with `inputs` (Distance 0.1 unless given)."""
+    props = {k: inputs.pop(k) for k in list(inputs) if k[0].islower()}
+    node = new(t, "ShaderNodeBump", {"Height": height, "Distance": 0.1, **inputs}, **props)
+    if normal is not None:
+        t.links.new(normal, node.inputs["Normal"])
+    return node.outputs["Normal"]
+
+
+def bumped(height, **inputs):
+    """A Principled material's builder: its Normal a Bump of the socket `height(t)` gives."""
+    return lambda t, b: t.links.new(bump(t, height(t), **inputs), b.inputs["Normal"])
+
+
+def bumped_noise(which="Object", scale=4.0, detail=2.0, **inputs):
+    return bumped(lambda t: noise(t, coords(t, which), Scale=scale, Detail=detail).outputs["Fac"], **inputs)
+
+
+def metal(t, b):
+    b.inputs["Metallic"].default_value, b.inputs["Roughness"].default_value = 1.0, 0.25
+    bumped_noise(scale=3.0, Distance=0.15)(t, b)
+
+
+def chained(t, b):
+    first = bump(t, noise(t, coords(t), Scale=6.0, Detail=1.0).outputs["Fac"], Distance=0.05)
+    second = bump(t, wave(t, Scale=2.0), normal=first, Distance=0.04)
+    t.links.new(second, b.inputs["Normal"])
+
+
+def facing_of_bump(t, b):
+    normal = bump(t, noise(t, coords(t), Scale=3.0, Detail=1.0).outputs["Fac"], Distance=0.2)
+    t.links.new(normal, b.inputs["Normal"])
+    facing = new(t, "ShaderNodeLayerWeight", {"Blend": 0.3, "Normal": normal}).outputs["Facing"]
+    t.links.new(ramp(t, facing, "LINEAR", STOPS), b.inputs["Base Color"])
+
+
+def diffuse_bumped(name):
+    material = bpy.data.materials.new(name)
+    tree = material.node_tree
+    tree.nodes.clear()
+    out = tree.nodes.new("ShaderNodeOutputMaterial")
+    diffuse = new(tree, "ShaderNodeBsdfDiffuse", {"Color": (0.7, 0.6, 0.4, 1.0)})
+    tree.links.new(bump(tree, voronoi(tree, "Distance", Scale=3.0), Distance=0.15), diffuse.inputs["Normal"])
+    tree.links.new(diffuse.outputs[0], out.inputs["Surface"])
+    return material
+
+
+def uv_wave(t):
+    node = new(t, "ShaderNodeTexWave", {"Scale": 3.0, "Phase Offset": 0.5})
+    t.links.new(coords(t, "UV"), node.inputs["Vector"])
+    return node.outputs["Fac"]
+
+
+def sine_of_position(t):
+    x = output(new(t, "ShaderNodeSeparateXYZ", {"Vector": new(t, "ShaderNodeNewGeometry").outputs["Position"]}), "X")
+    return math_node(t, "SINE", math_node(t, "MULTIPLY", x, 6.0))
+
+
+# Each tile's material (a function of its name) and shape; tile 10 is turned and stretched.
+BUMP = [
+    (bumped_noise(), "plane"),
+    (bumped_noise(invert=True), "plane"),
+    (bumped_noise(Strength=0.4, Distance=0.3), "plane"),
+    (bumped_noise("Generated", scale=3.0, detail=0.0, Distance=0.3), "plane"),
+    (bumped(uv_wave, Distance=0.05), "plane"),
+    (bumped(sine_of_position, Distance=0.04), "plane"),
+    (bumped(lambda t: texture(t, "ShaderNodeTexMagic", "Fac", True, 2.0, {"turbulence_depth": 2}), Distance=0.05),
+     "plane"),
+    (chained, "plane"),
+    (None, "plane"),
+    (metal, "plane"),
+    (bumped_noise(scale=2.0, Distance=0.2), "plane"),
+    (bumped_noise("Camera", scale=1.5, Distance=0.2), "plane"),
+    (facing_of_bump, "plane"),
+    (bumped_noise(scale=3.0, Distance=0.1), "sphere"),
+    (bumped_noise(scale=4.0, detail=1.0, Distance=-0.15), "sphere"),
+    (bumped(lambda t: texture(t, "ShaderNodeTexVoronoi", "Distance", True, 2.5, {"feature": "F1"}), Distance=0.2),
+     "sphere"),
+]
+
+
+def bump_scene():
+    """Bump nodes lit by a low sun: heights of noise on every coordinate, waves on UVs, the
+    Position's sine, Magic, Voronoi; inverted, half strength, chained into another Bump,
+    into a Diffuse BSDF, under a metal, read by Layer Weight, on a turned and stretched
+    tile and on smooth spheres; seen in perspective, so the steps follow the footprint."""
+    scene = cycles.new_scene()
+    cycles.set_up(scene, SIZE, bounces=1)
+    cycles.uniform_world(scene, (0.04, 0.04, 0.05))
+    for i, (build, shape) in enumerate(BUMP):
+        obj = add_tile(i, shape, segments=48)
+        if i == 10:
+            obj.rotation_euler, obj.scale = (0.0, 0.0, math.radians(30.0)), (0.9, 0.45, 1.0)
+        name = f"bump_{i}"
+        obj.data.materials.append(diffuse_bumped(name) if build is None else procedural_material(name, build))
+    sun = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
+    sun.data.energy, sun.data.angle = 3.0, math.radians(1.0)
+    sun.rotation_euler = (math.radians(55.0), 0.0, math.radians(35.0))
+    scene.collection.objects.link(sun)
+    camera = cycles.camera(scene, (0.0, 0.0, 10.0), 0.0)
+    camera.data.lens = 40.0
+    return scene
+
+
 def mix_material(name, fac, first, second):
     """A Mix Shader of `first` and `second` (functions of the tree giving a shader node), its
     factor from `fac` (a function of the tree giving a socket)."""
@@ -783,6 +895,7 @@ SCENES = {
     "graph_material": material_scene,
     "graph_mix": mix_scene,
     "graph_light_path": light_path_scene,
+    "graph_bump": bump_scene,
 }
 
 

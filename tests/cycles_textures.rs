@@ -127,7 +127,8 @@ fn blenders_gltf_export_of_a_mapping_node_per_texture_matches_cycles() {
     check_scene("mappings", "scene_blender_gltf.toml");
 }
 
-// A Noise Texture into Base Color, exported with `--bake` (512 × 512 texels over the
+// A Noise Texture on coordinates a Vector Rotate turns (a node rt does not evaluate; a
+// plain noise is a node graph rt runs itself) into Base Color, exported with `--bake` (512 × 512 texels over the
 // plane, about 12 a pixel), against Cycles' render of the procedural material itself.
 // Cycles evaluates the noise exactly at every sample, rt filters the baked image over
 // each ray's footprint (a mip level), and the two differ by more than the noise, which
@@ -339,7 +340,7 @@ fn exporter_writes_layer_textures_with_unit_factors() {
     assert_ne!(extras["rt_sheen_texture"]["index"], extras["rt_sheen_tint_texture"]["index"], "{extras}");
 }
 
-// A Bump node fed by a Noise Texture into Normal of a sunlit glossy plane, exported with
+// A Bump node fed by a Gabor Texture (which rt does not evaluate) into Normal of a sunlit glossy plane, exported with
 // `--bake` (Cycles' NORMAL pass in tangent space, 512 × 512 texels) and read by rt as a
 // normal map, against Cycles' render of the procedural bump itself; bounds as above.
 #[test]

@@ -1,9 +1,9 @@
 """Exports two scenes of tests/cycles/make_texture_refs.py with blender/rt_export.py into
 the folder given as the first argument, for tests/blender_uv_sets.rs: `uv_sets` (a
 texture on the second uv map, one on the first), `mappings` (two Mapping nodes on one uv
-map) and `baked_noise` with its noise turned into a Gabor Texture (which rt does not
-evaluate) with --bake (32 texels) and without; `baked_noise` as it is, whose noise rt
-evaluates as a node graph (nothing baked, even with --bake); then, with --bake, the Gabor
+map) and `baked_noise` (a noise on coordinates turned by Vector Rotate, which rt does not
+evaluate) with --bake (32 texels) and without; `baked_noise` of a Noise Texture, which rt evaluates as a node graph
+(nothing baked, even with --bake); then, with --bake, the turned noise's
 plane seen only through two collection instances (its collection excluded from the view
 layer), and a plane whose Normal is a Bump node fed by a Gabor Texture; a Bump fed by the
 noise, which rt evaluates as a node graph (nothing baked). Writes report.json with what
@@ -31,24 +31,14 @@ refs.scene_mappings(scene)
 rt_export.export_scene(scene, os.path.join(out, "mappings", "assets"), os.path.join(out, "mappings", "scene.toml"))
 
 
-
-def gabor_instead(material):
-    """The material's base colour from a Gabor Texture: a node rt does not evaluate."""
-    tree = material.node_tree
-    gabor = tree.nodes.new("ShaderNodeTexGabor")
-    gabor.inputs["Scale"].default_value = 4.0
-    tree.links.new(gabor.outputs["Value"], tree.nodes["Principled BSDF"].inputs["Base Color"])
-
-
 scene = refs.reset()
-refs.scene_baked_noise(scene)
+refs.scene_baked_noise(scene, texture="noise")
 rt_export.export_scene(scene, os.path.join(out, "graph", "assets"), os.path.join(out, "graph", "scene.toml"),
                        bake_size=32)
 
 scene = refs.reset()
 refs.scene_baked_noise(scene)
 material = bpy.data.materials["noise"]
-gabor_instead(material)
 
 
 def tree_shape(m):
@@ -65,7 +55,6 @@ report["images"] = len(bpy.data.images)
 rt_export.export_scene(scene, os.path.join(out, "unbaked", "assets"), os.path.join(out, "unbaked", "scene.toml"))
 scene = refs.reset()
 refs.scene_baked_noise(scene)
-gabor_instead(bpy.data.materials["noise"])
 plane = bpy.data.objects["plane"]
 hidden = bpy.data.collections.new("hidden")
 scene.collection.children.link(hidden)
@@ -83,7 +72,7 @@ rt_export.export_scene(scene, os.path.join(out, "instanced", "assets"),
 report["objects_after_instanced_bake"] = sorted(o.name for o in bpy.data.objects)
 
 scene = refs.reset()
-refs.scene_baked_noise(scene)
+refs.scene_baked_noise(scene, texture="noise")
 material = bpy.data.materials["noise"]
 tree = material.node_tree
 bsdf = tree.nodes["Principled BSDF"]

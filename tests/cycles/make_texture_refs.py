@@ -303,42 +303,57 @@ def scene_mappings(scene):
     camera(scene, (0.0, -3.0, 1.2), (0.0, 0.0, 0.0), 40.0)
 
 
-def scene_baked_noise(scene):
-    """A Noise Texture (procedural, in the plane's generated coordinates) into Base Color
-    of a sunlit plane: Cycles renders the procedural material, rt the exporter's bake of
-    it (`--bake`, BAKE_SIZES texels a side)."""
-    uniform_world(scene, (0.3, 0.3, 0.3))
-    m, tree, bsdf = principled("noise")
-    bsdf.inputs["Roughness"].default_value = 1.0
+def procedural(tree, texture):
+    """A Noise Texture's Color on coordinates turned by a Vector Rotate node (a node rt does
+    not evaluate, so the exporter bakes it with `--bake`) or, with `texture` "noise", on its
+    own coordinates (which rt evaluates as a node graph)."""
     noise = tree.nodes.new("ShaderNodeTexNoise")
     noise.inputs["Scale"].default_value = 4.0
     noise.inputs["Detail"].default_value = 2.0
-    tree.links.new(noise.outputs["Color"], bsdf.inputs["Base Color"])
+    if texture == "rotated":
+        rotate = tree.nodes.new("ShaderNodeVectorRotate")
+        rotate.rotation_type = "Z_AXIS"
+        rotate.inputs["Angle"].default_value = 0.3
+        tree.links.new(tree.nodes.new("ShaderNodeTexCoord").outputs["Generated"], rotate.inputs["Vector"])
+        tree.links.new(rotate.outputs["Vector"], noise.inputs["Vector"])
+    return noise.outputs["Color"]
+
+
+def scene_baked_noise(scene, texture="rotated"):
+    """A procedural texture (`procedural`, in the plane's generated coordinates) into Base
+    Color of a sunlit plane: Cycles renders the procedural material, rt the exporter's bake
+    of it (`--bake`, BAKE_SIZES texels a side)."""
+    uniform_world(scene, (0.3, 0.3, 0.3))
+    m, tree, bsdf = principled("noise")
+    bsdf.inputs["Roughness"].default_value = 1.0
+    tree.links.new(procedural(tree, texture), bsdf.inputs["Base Color"])
     add_object(scene, "plane", bpy.ops.mesh.primitive_plane_add, m, size=2.0, rotation=(math.radians(60), 0, 0))
     sun(scene, (math.radians(30.0), 0.0, math.radians(20.0)))
     camera(scene, (0.0, -3.0, 1.2), (0.0, 0.0, 0.0), 40.0)
 
 
 def scene_baked_bump(scene):
-    """A Bump node fed by a Noise Texture into the Normal of a sunlit glossy plane: Cycles
-    renders the procedural bump, rt the exporter's bake of Cycles' NORMAL pass in tangent
-    space (`--bake`, BAKE_SIZES texels a side) read as a normal map."""
+    """A Bump node fed by a Gabor Texture (which rt does not evaluate) into the Normal of a
+    sunlit glossy plane: Cycles renders the procedural bump, rt the exporter's bake of
+    Cycles' NORMAL pass in tangent space (`--bake`, BAKE_SIZES texels a side) read as a
+    normal map. (A Bump of a Noise Texture is a node graph rt evaluates: graph_bump.)"""
     uniform_world(scene, (0.3, 0.3, 0.3))
     m, tree, bsdf = principled("bumpy")
     bsdf.inputs["Base Color"].default_value = (0.6, 0.6, 0.6, 1.0)
     bsdf.inputs["Roughness"].default_value = 0.5
     bsdf.inputs["Specular IOR Level"].default_value = 0.5
-    noise = tree.nodes.new("ShaderNodeTexNoise")
-    noise.inputs["Scale"].default_value = 3.0
-    noise.inputs["Detail"].default_value = 1.0
+    gabor = tree.nodes.new("ShaderNodeTexGabor")
+    gabor.inputs["Scale"].default_value = 2.0
     bump = tree.nodes.new("ShaderNodeBump")
     bump.inputs["Strength"].default_value = 1.0
-    bump.inputs["Distance"].default_value = 0.2
-    tree.links.new(noise.outputs["Fac"], bump.inputs["Height"])
+    bump.inputs["Distance"].default_value = 0.05
+    tree.links.new(gabor.outputs["Value"], bump.inputs["Height"])
     tree.links.new(bump.outputs["Normal"], bsdf.inputs["Normal"])
     add_object(scene, "plane", bpy.ops.mesh.primitive_plane_add, m, size=2.0, rotation=(math.radians(60), 0, 0))
     sun(scene, (math.radians(40.0), 0.0, math.radians(20.0)))
     camera(scene, (0.0, -3.0, 1.2), (0.0, 0.0, 0.0), 40.0)
+
+
 def stripes(n, period, a, b, axis=1):
     """(n, n, 4) opaque stripes of values a and b, `period` texels wide, across x (axis 1) or y (0)."""
     i = np.mgrid[0:n, 0:n][axis]

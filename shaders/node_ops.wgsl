@@ -86,11 +86,25 @@ fn node_op_mix(start: u32, step: NodeStep, p: NodePoint) {
     node_store(step.out, node_mix(step.mode, step.flags, a, node_in(start, step, 1u), node_in(start, step, 2u)));
 }
 
+// Flags: clamped (1), of vectors (2: each component mapped, Cycles' vector Map Range).
 fn node_op_map_range(start: u32, step: NodeStep, p: NodePoint) {
-    let a = node_in(start, step, 0u);
-    let v = node_map_range(step.mode, step.flags != 0u, a.x, node_in(start, step, 1u).x, node_in(start, step, 2u).x,
-        node_in(start, step, 3u).x, node_in(start, step, 4u).x, node_in(start, step, 5u).x);
-    node_store(step.out, vec4f(v));
+    let value = node_in(start, step, 0u);
+    let from_min = node_in(start, step, 1u);
+    let from_max = node_in(start, step, 2u);
+    let to_min = node_in(start, step, 3u);
+    let to_max = node_in(start, step, 4u);
+    let steps = node_in(start, step, 5u);
+    let clamped = (step.flags & 1u) != 0u;
+    if (step.flags & 2u) == 0u {
+        node_store(step.out, vec4f(node_map_range(step.mode, clamped, value.x, from_min.x, from_max.x, to_min.x, to_max.x, steps.x)));
+        return;
+    }
+    var v = vec3f(0.0);
+    for (var c = 0; c < 3; c++) {
+        // A component whose range is empty is To Min's (the float node's is 0).
+        v[c] = select(node_map_range(step.mode, clamped, value[c], from_min[c], from_max[c], to_min[c], to_max[c], steps[c]), to_min[c], from_min[c] == from_max[c]);
+    }
+    node_store(step.out, vec4f(v, 0.0));
 }
 
 fn node_op_clamp(start: u32, step: NodeStep, p: NodePoint) {

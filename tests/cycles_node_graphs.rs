@@ -157,6 +157,13 @@ fn white_noise_of_every_dimension_matches_cycles() {
     check_channels("graph_white_noise", 1e-3);
 }
 
+/// Map Range of vectors: every interpolation, clamped or not, reversed ranges, steps per
+/// component (none among them), components whose range is empty, read as a value.
+#[test]
+fn map_range_of_vectors_matches_cycles() {
+    check_channels("graph_map_range", 1e-3);
+}
+
 #[test]
 fn map_range_clamp_and_converters_match_cycles() {
     check_channels("graph_convert", 1e-3);

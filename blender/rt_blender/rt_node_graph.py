@@ -69,7 +69,7 @@ EVALUATED_SETTINGS = {
     "MIX": {"data_type": {"FLOAT", "VECTOR", "RGBA"}, "blend_type": None, "clamp_factor": None,
             "clamp_result": None, "factor_mode": None},
     "MIX_RGB": {"blend_type": BLEND_TYPES, "use_clamp": None},
-    "MAP_RANGE": {"data_type": {"FLOAT"}, "interpolation_type": None, "clamp": None},
+    "MAP_RANGE": {"data_type": {"FLOAT", "FLOAT_VECTOR"}, "interpolation_type": None, "clamp": None},
     "CLAMP": {"clamp_type": None},
     "VALTORGB": {},
     "CURVE_RGB": {},
@@ -87,6 +87,10 @@ EVALUATED_SETTINGS = {
     "TEX_GRADIENT": {"gradient_type": None},
     "BUMP": {"invert": None},
 }
+MAP_RANGE_VECTOR_SOCKETS = {(False, "Vector"): "Value", (False, "From_Min_FLOAT3"): "From Min",
+                            (False, "From_Max_FLOAT3"): "From Max", (False, "To_Min_FLOAT3"): "To Min",
+                            (False, "To_Max_FLOAT3"): "To Max", (False, "Steps_FLOAT3"): "Steps",
+                            (True, "Vector"): "Result"}
 # Texture nodes' unlinked Vector, as in Cycles: the Generated coordinates (White Noise's is 0).
 DEFAULT_VECTOR = {"TEX_NOISE": ("TEX_COORD", "Generated"), "TEX_CHECKER": ("TEX_COORD", "Generated"),
                   "TEX_GRADIENT": ("TEX_COORD", "Generated"), "TEX_VORONOI": ("TEX_COORD", "Generated"),
@@ -119,11 +123,15 @@ def socket_type(socket):
 
 def socket_key(socket):
     """The name rt knows a socket by: its identifier, stable across Blender's versions (whose
-    names change: Fac became Factor), the Mix node's without the data type's suffix."""
+    names change: Fac became Factor), the Mix node's without the data type's suffix, a vector
+    Map Range's as the float one's."""
     key = socket.identifier
     if socket.node.type == "MIX":
         for suffix in ("_Float", "_Vector", "_Color"):
             key = key.removesuffix(suffix)
+    if socket.node.type == "MAP_RANGE":
+        # A Map Range of vectors has the float one's sockets (From_Min_FLOAT3 is From Min).
+        key = MAP_RANGE_VECTOR_SOCKETS.get((socket.is_output, key), key)
     return key
 
 

@@ -141,6 +141,7 @@ const VORONOI_METRICS: [&str; 4] = ["EUCLIDEAN", "MANHATTAN", "CHEBYCHEV", "MINK
 
 const MIX_DATA_TYPES: [&str; 3] = ["FLOAT", "VECTOR", "RGBA"];
 const MAP_RANGE_INTERPOLATIONS: [&str; 4] = ["LINEAR", "STEPPED", "SMOOTHSTEP", "SMOOTHERSTEP"];
+const MAP_RANGE_DATA_TYPES: [&str; 2] = ["FLOAT", "FLOAT_VECTOR"];
 const CLAMP_TYPES: [&str; 2] = ["MINMAX", "RANGE"];
 const MAPPING_TYPES: [&str; 4] = ["POINT", "TEXTURE", "VECTOR", "NORMAL"];
 /// White Noise's dimensions, its mode.
@@ -342,15 +343,11 @@ pub fn mode(name: &str, settings: &Map<String, Value>) -> Result<Mode, String> {
             // The legacy node clamps its factor always; its Clamp is the result's.
             flags: 1 | (flag(settings, "use_clamp") as u32) << 1 | 2 << 2,
         }),
-        "MAP_RANGE" => {
-            if text(settings, "data_type")? != "FLOAT" {
-                return Err("a Map Range of vectors is not evaluated yet".into());
-            }
-            Ok(Mode {
-                mode: choice(settings, "interpolation_type", &MAP_RANGE_INTERPOLATIONS)?,
-                flags: flag(settings, "clamp") as u32,
-            })
-        }
+        // Flags: clamped, and (2) of vectors.
+        "MAP_RANGE" => Ok(Mode {
+            mode: choice(settings, "interpolation_type", &MAP_RANGE_INTERPOLATIONS)?,
+            flags: flag(settings, "clamp") as u32 | choice(settings, "data_type", &MAP_RANGE_DATA_TYPES)? << 1,
+        }),
         "CLAMP" => plain(choice(settings, "clamp_type", &CLAMP_TYPES)?),
         "VALTORGB" => Ok(Mode { mode: 0, flags: (text(settings, "interpolation")? != "CONSTANT") as u32 }),
         // Mode 1: a float curve; flags: extrapolated beyond the curves' range.

@@ -4,7 +4,7 @@ compares rt against them).
     /work/main/.venv-bpy/bin/python tests/cycles/make_node_graph_refs.py [--spp 1024] [NAME...]
 
 The per-node scenes (`graph_noise`, `graph_math`, `graph_color`, `graph_vector`,
-`graph_convert`, `graph_brick`, `graph_white_noise`, `graph_noise_dimensions`, `graph_spectrum`, `graph_object_info`, `graph_camera`, `graph_shading` and the other textures) are a 4 x 4 grid of tiles seen from above by an orthographic camera, under
+`graph_convert`, `graph_map_range`, `graph_brick`, `graph_white_noise`, `graph_noise_dimensions`, `graph_spectrum`, `graph_object_info`, `graph_camera`, `graph_shading` and the other textures) are a 4 x 4 grid of tiles seen from above by an orthographic camera, under
 a black world; each tile only emits, its Emission colour the output of a small node graph
 (its own material), so a pixel is the graph's mean value over the pixel: the comparison
 tests the nodes and nothing else. `graph_shading`'s tiles are smooth spheres, for the nodes
@@ -271,6 +271,34 @@ def map_range(t, interpolation, clamp, reverse=False):
                                           "To Max": 0.9, "Steps": 4.0},
                data_type="FLOAT", interpolation_type=interpolation, clamp=clamp)
     return output(node, "Result")
+
+
+def vector_map_range(t, interpolation, clamp=True, lo=(-1.0, -1.0, -1.0), hi=(1.0, 1.0, 1.0),
+                     to=((0.1, 0.2, 0.3), (0.9, 0.8, 0.7)), steps=(2.0, 4.0, 6.0)):
+    """A Map Range of vectors of the Object coordinates × 1.3."""
+    node = new(t, "ShaderNodeMapRange", data_type="FLOAT_VECTOR", interpolation_type=interpolation, clamp=clamp)
+    for key, value in (("From_Min_FLOAT3", lo), ("From_Max_FLOAT3", hi), ("To_Min_FLOAT3", to[0]),
+                       ("To_Max_FLOAT3", to[1]), ("Steps_FLOAT3", steps)):
+        input_socket(node, key).default_value = value
+    t.links.new(texture_coordinate(t, "Object", 1.3), input_socket(node, "Vector"))
+    return output(node, "Vector")
+
+
+MAP_RANGE = [
+    lambda t: vector_map_range(t, "LINEAR"),
+    lambda t: vector_map_range(t, "LINEAR", clamp=False, to=((0.3, 0.2, 0.1), (0.6, 0.7, 0.8))),
+    lambda t: vector_map_range(t, "LINEAR", lo=(0.8, -1.0, 0.5), hi=(-0.6, 1.0, -0.5)),
+    lambda t: vector_map_range(t, "LINEAR", to=((0.9, 0.1, 0.6), (0.1, 0.9, 0.2))),
+    lambda t: vector_map_range(t, "STEPPED"),
+    lambda t: vector_map_range(t, "STEPPED", clamp=False, steps=(1.0, 0.0, 3.0)),
+    lambda t: vector_map_range(t, "SMOOTHSTEP"),
+    lambda t: vector_map_range(t, "SMOOTHERSTEP", lo=(0.7, 0.7, -0.7), hi=(-0.7, -0.2, 0.7)),
+    # Components whose range is empty.
+    lambda t: vector_map_range(t, "LINEAR", lo=(0.0, -1.0, 0.5), hi=(0.0, 1.0, 0.5)),
+    lambda t: vector_map_range(t, "SMOOTHSTEP", clamp=False, lo=(0.3, 0.3, -1.0), hi=(0.3, 1.0, 1.0)),
+    # Read as a value: the mean of its components.
+    lambda t: math_node(t, "ADD", vector_map_range(t, "LINEAR"), 0.0),
+]
 
 
 def converters(t):
@@ -896,6 +924,7 @@ SCENES = {
     "graph_mix": mix_scene,
     "graph_light_path": light_path_scene,
     "graph_bump": bump_scene,
+    "graph_map_range": lambda: grid_scene("map_range", MAP_RANGE),
 }
 
 

@@ -104,7 +104,6 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("normal_map.wgsl"),
     shader!("oren_nayar.wgsl"),
     shader!("panorama.wgsl"),
-    shader!("path_steps.wgsl"),
     shader!("surface.wgsl"),
     shader!("terminator_offset.wgsl"),
     shader!("holdout.wgsl"),

@@ -272,11 +272,9 @@ impl Compiler<'_> {
                 self.hold(out, reads);
                 Ok(out)
             }
-            Emit::Bump => self.bump(index, node, shift),
+            Emit::Bump => self.bump(index, node, kind, shift),
             Emit::Operation(op) => {
-                if let Some(unknown) = node.inputs.keys().find(|k| !kind.inputs.contains(&k.as_str())) {
-                    return Err(format!("it has no input `{unknown}` that rt reads"));
-                }
+                known_inputs(node, kind)?;
                 let mut operands = Vec::with_capacity(kind.inputs.len());
                 for key in kind.inputs {
                     operands.push(match node.inputs.get(*key) {
@@ -308,17 +306,11 @@ impl Compiler<'_> {
     /// Bump (Cycles' `svm_node_set_bump`): its Height at the point and a step along each of
     /// the surface's two axes, the steps Filter Width times the point's footprint; operands
     /// Strength, Distance, Filter Width, the three heights, Normal.
-    fn bump(&mut self, index: usize, node: &GraphNode, shift: Shift) -> Result<u32, String> {
+    fn bump(&mut self, index: usize, node: &GraphNode, kind: &Kind, shift: Shift) -> Result<u32, String> {
         if shift != Shift::At {
             return Err("it feeds another Bump's Height, which rt does not evaluate".into());
         }
-        if let Some(unknown) = node
-            .inputs
-            .keys()
-            .find(|k| !["Strength", "Distance", "Filter Width", "Height", "Normal"].contains(&k.as_str()))
-        {
-            return Err(format!("it has no input `{unknown}` that rt reads"));
-        }
+        known_inputs(node, kind)?;
         let width = match node.inputs.get("Filter Width") {
             Some(Input::Value { value }) => value.vec4()?,
             Some(Input::Link { .. }) => return Err("its Filter Width is linked; rt reads a constant one".into()),
@@ -359,6 +351,14 @@ impl Compiler<'_> {
         let scale = size.map(|s| if s != 0.0 { 0.5 / s } else { 0.0 });
         let offset = [0, 1, 2].map(|i| 0.5 - location[i] * scale[i]);
         scale.iter().chain(offset.iter()).map(|v| v.to_bits()).collect()
+    }
+}
+
+/// Refuses an input of `node` that its kind does not read.
+fn known_inputs(node: &GraphNode, kind: &Kind) -> Result<(), String> {
+    match node.inputs.keys().find(|k| !kind.inputs.contains(&k.as_str())) {
+        Some(unknown) => Err(format!("it has no input `{unknown}` that rt reads")),
+        None => Ok(()),
     }
 }
 

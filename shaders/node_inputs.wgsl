@@ -246,7 +246,8 @@ fn node_noise(start: u32, step: NodeStep, mode: u32, normalize: bool) -> vec4f {
     return noise_texture(co, node_in(start, step, 8u).x, s);
 }
 
-// Voronoi Texture: mode = feature | metric << 4 (node_kinds' VORONOI_FEATURES, _METRICS).
+// Voronoi Texture: mode = feature | metric << 4 | (dimensions - 1) << 8 (node_kinds'
+// VORONOI_FEATURES, _METRICS, NOISE_DIMENSIONS).
 fn node_voronoi(start: u32, step: NodeStep, mode: u32, normalize: bool) -> VoronoiResult {
     let p = VoronoiParams(
         node_in(start, step, 2u).x,
@@ -259,9 +260,10 @@ fn node_voronoi(start: u32, step: NodeStep, mode: u32, normalize: bool) -> Voron
         0.0,
         normalize,
         mode & 15u,
-        mode >> 4u,
+        (mode >> 4u) & 15u,
+        (mode >> 8u) + 1u,
     );
-    return voronoi_texture(node_in(start, step, 0u).xyz, p);
+    return voronoi_texture(node_in(start, step, 0u).xyz, node_in(start, step, 1u).x, p);
 }
 
 // A Brick Texture's settings: its sockets' values and its node's properties.

@@ -176,7 +176,7 @@ fn node_op_voronoi(start: u32, step: NodeStep, p: NodePoint) {
     node_store(step.out, vec4f(v.distance));
     node_store(step.out + 1u, vec4f(v.color, 1.0));
     node_store(step.out + 2u, vec4f(v.position, 0.0));
-    node_store(step.out + 3u, vec4f(0.0));
+    node_store(step.out + 3u, vec4f(v.w));
     node_store(step.out + 4u, vec4f(v.radius));
 }
 

@@ -135,6 +135,13 @@ fn voronoi_of_every_feature_and_metric_matches_cycles() {
     check_channels("graph_voronoi", 1e-3);
 }
 
+/// Voronoi of 1, 2 and 4 dimensions: each feature, metrics, fractal octaves, W read (1D and
+/// 4D) and W written (a 1D point's position, a 4D point's fourth component), Position.
+#[test]
+fn voronoi_of_one_two_and_four_dimensions_matches_cycles() {
+    check_channels("graph_voronoi_dimensions", 1e-3);
+}
+
 #[test]
 fn waves_of_every_kind_match_cycles() {
     check_channels("graph_wave", 1e-3);

@@ -78,7 +78,7 @@ EVALUATED_SETTINGS = {
     "SEPARATE_COLOR": {"mode": None},
     "COMBINE_COLOR": {"mode": None},
     "TEX_WHITE_NOISE": {"noise_dimensions": None},
-    "TEX_VORONOI": {"voronoi_dimensions": {"3D"}, "feature": None, "distance": None, "normalize": None},
+    "TEX_VORONOI": {"voronoi_dimensions": None, "feature": None, "distance": None, "normalize": None},
     "TEX_WAVE": {"wave_type": None, "bands_direction": None, "rings_direction": None, "wave_profile": None},
     "TEX_MAGIC": {"turbulence_depth": None},
     "TEX_BRICK": {"offset": None, "offset_frequency": None, "squash": None, "squash_frequency": None},

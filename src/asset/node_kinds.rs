@@ -392,13 +392,13 @@ pub fn mode(name: &str, settings: &Map<String, Value>) -> Result<Mode, String> {
             };
             plain(frequency("offset_frequency")? | frequency("squash_frequency")? << 8)
         }
+        // Mode: the feature | the metric << 4 | the dimensions' index << 8.
         "TEX_VORONOI" => {
-            if text(settings, "voronoi_dimensions")? != "3D" {
-                return Err("only 3D Voronoi is evaluated yet".into());
-            }
             let feature = choice(settings, "feature", &VORONOI_FEATURES)?;
             Ok(Mode {
-                mode: feature | choice(settings, "distance", &VORONOI_METRICS)? << 4,
+                mode: feature
+                    | choice(settings, "distance", &VORONOI_METRICS)? << 4
+                    | choice(settings, "voronoi_dimensions", &NOISE_DIMENSIONS)? << 8,
                 flags: flag(settings, "normalize") as u32,
             })
         }

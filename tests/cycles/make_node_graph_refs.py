@@ -420,12 +420,31 @@ SHADING = [
 ]
 
 
-def voronoi(t, which, vector=True, feature="F1", distance="EUCLIDEAN", normalize=False, **inputs):
-    node = new(t, "ShaderNodeTexVoronoi", {"Scale": 4.0, **inputs}, voronoi_dimensions="3D", feature=feature,
-               distance=distance, normalize=normalize)
-    if vector:
+def voronoi(t, which, vector=True, feature="F1", distance="EUCLIDEAN", normalize=False, dimensions="3D", w=None,
+            **inputs):
+    w_input = {"W": w(t)} if w is not None and dimensions in ("1D", "4D") else {}
+    node = new(t, "ShaderNodeTexVoronoi", {"Scale": 4.0, **inputs, **w_input}, voronoi_dimensions=dimensions,
+               feature=feature, distance=distance, normalize=normalize)
+    if vector and dimensions != "1D":
         t.links.new(coords(t), node.inputs["Vector"])
     return output(node, which)
+
+
+def x_times(factor):
+    return lambda t: math_node(t, "MULTIPLY", new(t, "ShaderNodeSeparateXYZ", {"Vector": coords(t)}).outputs["X"], factor)
+
+
+def voronoi_of(dimensions, which="Distance", show=None, w=x_times(1.5), **settings):
+    """Voronoi of 1, 2 or 4 dimensions over the object coordinates (W from `w`); `show` =
+    (scale, offset) for values outside 0…1."""
+    def build(t):
+        out = voronoi(t, which, dimensions=dimensions, w=w, **settings)
+        return shown(t, out, *show) if show else out
+    return build
+
+
+def fraction(t, vector):
+    return new(t, "ShaderNodeVectorMath", {"Vector": vector}, operation="FRACTION").outputs[0]
 
 
 VORONOI = [
@@ -561,6 +580,26 @@ NOISE_DIMENSIONS = [
     noise_of("2D", normalize=False, show=(0.5, 0.5), Scale=1.5, Detail=6.0, Roughness=0.35, Lacunarity=3.1),
     noise_of("4D", "Color", normalize=False, w=lambda t: -2.4, Scale=2.5, Detail=0.0),
     noise_of("2D", "Color", noise_type="HETERO_TERRAIN", show=(0.2, 0.1), Scale=1.0, Detail=2.0, Distortion=0.7),
+]
+
+
+VORONOI_DIMENSIONS = [
+    voronoi_of("1D"),
+    voronoi_of("1D", "Color", feature="F2", Scale=3.0),
+    voronoi_of("1D", "W", show=(0.3, 0.5)),
+    voronoi_of("1D", feature="SMOOTH_F1", Smoothness=0.8, Detail=1.5, Roughness=0.6),
+    voronoi_of("1D", feature="DISTANCE_TO_EDGE", show=(2.0, 0.0)),
+    voronoi_of("1D", "Radius", feature="N_SPHERE_RADIUS", show=(1.5, 0.0), Randomness=0.7),
+    voronoi_of("2D", normalize=True, Detail=2.0, Roughness=0.5),
+    voronoi_of("2D", "Color", feature="F2", distance="MANHATTAN"),
+    lambda t: fraction(t, voronoi(t, "Position", dimensions="2D")),
+    voronoi_of("2D", "Color", feature="SMOOTH_F1", distance="CHEBYCHEV", Smoothness=0.5),
+    voronoi_of("2D", feature="DISTANCE_TO_EDGE", show=(2.0, 0.0)),
+    voronoi_of("2D", "Distance", distance="MINKOWSKI", show=(0.4, 0.0), Exponent=1.5),
+    voronoi_of("4D", w=lambda t: 0.7, Scale=3.0),
+    voronoi_of("4D", "Color", feature="F2", w=y_plus(0.3), Scale=2.5),
+    voronoi_of("4D", "W", show=(0.5, 0.5), w=y_plus(-0.4), Scale=2.0),
+    voronoi_of("4D", "Radius", feature="N_SPHERE_RADIUS", show=(1.5, 0.0), Scale=2.0),
 ]
 
 
@@ -925,6 +964,7 @@ SCENES = {
     "graph_light_path": light_path_scene,
     "graph_bump": bump_scene,
     "graph_map_range": lambda: grid_scene("map_range", MAP_RANGE),
+    "graph_voronoi_dimensions": lambda: grid_scene("voronoi_dimensions", VORONOI_DIMENSIONS),
 }
 
 

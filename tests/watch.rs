@@ -134,6 +134,64 @@ fn each_edit_is_one_reload_of_the_right_kind() {
     watch.stop();
 }
 
+/// A plane whose emission is a node graph (a 1D Voronoi of the x coordinate times a Math
+/// node), seen from above.
+const GRAPH_SCENE: &str = r#"[render]
+max_bounces = 1
+
+[camera]
+position = [0.0, 10.0, 0.0]
+look_at = [0.0, 0.0, 0.0]
+up = [0.0, 0.0, -1.0]
+projection = "orthographic"
+ortho_scale = 2.2
+
+[sky]
+kind = "uniform"
+color = [0.0, 0.0, 0.0]
+
+[[mesh]]
+asset = "assets/Plane"
+"#;
+
+/// A value edited in a node graph (a Voronoi's Scale) is a write to the program table: the
+/// reload builds no pipeline (no `features=`) and the frame is the edited scene's image; a
+/// new shape (the Math node's operation) builds one.
+#[test]
+fn a_node_value_edit_builds_no_pipeline() {
+    let dir = temp_dir("watch-node-value");
+    let _ = std::fs::remove_dir_all(dir.join("frames"));
+    let asset = dir.join("assets/Plane");
+    std::fs::create_dir_all(&asset).expect("asset folder");
+    let source = common::repo().join("tests/cycles/scenes/graph_voronoi_dimensions/assets/Plane");
+    for file in ["Plane.gltf", "Plane.rtmesh"] {
+        std::fs::copy(source.join(file), asset.join(file)).expect("copy the asset");
+    }
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, GRAPH_SCENE).expect("scene");
+    let gltf = asset.join("Plane.gltf");
+    let original = std::fs::read_to_string(&gltf).expect("glTF");
+    let mut watch = Watcher::start(&scene, &dir.join("frames"), SPP, SIZE, &[]);
+    watch.wait_for("frame #0 ");
+
+    let scaled = original.replacen("\"value\": 4.0", "\"value\": 7.0", 1);
+    assert!(scaled != original, "the Voronoi's Scale is in the glTF");
+    save_by_rename(&gltf, &scaled);
+    let reload = watch.wait_for("reload #1 ");
+    assert!(!reload.contains("features="), "a value edit built a pipeline: {reload}");
+    watch.wait_for("frame #1 ");
+    let expected = render(rt::scene::parse(GRAPH_SCENE, "scene.toml", &dir).expect("scene"), SIZE, SIZE, SPP, 1);
+    assert!(watch.frame(1) == expected.pixels, "the frame is not the edited graph's image");
+    assert!(watch.frame(1) != watch.frame(0), "the Scale changed, the image did not");
+
+    save_by_rename(&gltf, &scaled.replacen("\"MULTIPLY\"", "\"ADD\"", 1));
+    let reload = watch.wait_for("reload #2 ");
+    assert!(reload.contains("features="), "a new shape needs its pipeline: {reload}");
+    watch.wait_for("frame #2 ");
+    assert!(watch.frame(2) != watch.frame(1), "the Math node adds now, the image did not change");
+    watch.stop();
+}
+
 #[test]
 fn a_burst_of_saves_is_coalesced_and_ends_on_the_last_state() {
     let (_dir, scene, frames) = project("watch-burst");

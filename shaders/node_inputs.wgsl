@@ -8,7 +8,7 @@
 //#include "node_step.wgsl"
 //#include "node_noise.wgsl"
 //#include "node_math.wgsl"
-//#include "node_voronoi.wgsl"
+//#include "node_voronoi_dimensions.wgsl"
 //#include "node_spectrum.wgsl"
 
 // Texture Coordinate (modes 0-3: Generated, Normal, UV, Object) and Geometry (4-8:
@@ -246,10 +246,11 @@ fn node_noise(start: u32, step: NodeStep, mode: u32, normalize: bool) -> vec4f {
     return noise_texture(co, node_in(start, step, 8u).x, s);
 }
 
-// Voronoi Texture: mode = feature | metric << 4 | (dimensions - 1) << 8 (node_kinds'
-// VORONOI_FEATURES, _METRICS, NOISE_DIMENSIONS).
-fn node_voronoi(start: u32, step: NodeStep, mode: u32, normalize: bool) -> VoronoiResult {
-    let p = VoronoiParams(
+// Voronoi Texture's settings: mode = feature | metric << 4 | (dimensions - 1) << 8
+// (node_kinds' VORONOI_FEATURES, _METRICS, NOISE_DIMENSIONS); operands Vector, W, Scale,
+// Detail, Roughness, Lacunarity, Smoothness, Exponent, Randomness.
+fn node_voronoi_params(start: u32, step: NodeStep) -> VoronoiParams {
+    return VoronoiParams(
         node_in(start, step, 2u).x,
         node_in(start, step, 3u).x,
         node_in(start, step, 4u).x,
@@ -258,12 +259,11 @@ fn node_voronoi(start: u32, step: NodeStep, mode: u32, normalize: bool) -> Voron
         node_in(start, step, 7u).x,
         node_in(start, step, 8u).x,
         0.0,
-        normalize,
-        mode & 15u,
-        (mode >> 4u) & 15u,
-        (mode >> 8u) + 1u,
+        step.flags != 0u,
+        step.mode & 15u,
+        (step.mode >> 4u) & 15u,
+        (step.mode >> 8u) + 1u,
     );
-    return voronoi_texture(node_in(start, step, 0u).xyz, node_in(start, step, 1u).x, p);
 }
 
 // A Brick Texture's settings: its sockets' values and its node's properties.

@@ -36,6 +36,7 @@ fn node_instruction(start: u32, step: NodeStep, p: NodePoint) {
         case NODE_OP_BRICK: { node_op_brick(start, step, p); }
         case NODE_OP_SPECTRUM: { node_op_spectrum(start, step, p); }
         case NODE_OP_BUMP: { node_op_bump(start, step, p); }
+        case NODE_OP_VORONOI_DIMENSIONS: { node_op_voronoi_dimensions(start, step, p); }
         default: {}
     }
 }
@@ -172,7 +173,15 @@ fn node_op_gamma(start: u32, step: NodeStep, p: NodePoint) {
 }
 
 fn node_op_voronoi(start: u32, step: NodeStep, p: NodePoint) {
-    let v = node_voronoi(start, step, step.mode, step.flags != 0u);
+    node_voronoi_store(step, voronoi_texture(node_in(start, step, 0u).xyz, node_voronoi_params(start, step)));
+}
+
+fn node_op_voronoi_dimensions(start: u32, step: NodeStep, p: NodePoint) {
+    let params = node_voronoi_params(start, step);
+    node_voronoi_store(step, voronoi_texture_of_dimensions(node_in(start, step, 0u).xyz, node_in(start, step, 1u).x, params));
+}
+
+fn node_voronoi_store(step: NodeStep, v: VoronoiResult) {
     node_store(step.out, vec4f(v.distance));
     node_store(step.out + 1u, vec4f(v.color, 1.0));
     node_store(step.out + 2u, vec4f(v.position, 0.0));

@@ -1,9 +1,7 @@
-// Blender's Voronoi Texture of 1 to 4 dimensions, as Cycles computes it (kernel/svm/voronoi.h,
-// Apache-2.0, Blender Foundation; smooth F1 and distance to edge after Inigo Quilez, MIT):
-// the same feature points from the same hashes of the cell (lookup3 of the cell's float in
-// 1D, Cycles' signed PCG 2D/3D/4D of the integer cell above), so the same cells, with the
-// fractal octaves of Blender 4.1 on. A point of d dimensions is a vec4f whose first d
-// components are used (the others stay 0); the cells around it are walked in Cycles' order.
+// Blender's Voronoi Texture in 3D, as Cycles computes it (kernel/svm/voronoi.h, Apache-2.0,
+// Blender Foundation; smooth F1 and distance to edge after Inigo Quilez, MIT): the same
+// feature points from the same hash of the integer cell (Cycles' signed PCG 3D), so the
+// same cells, with the fractal octaves of Blender 4.1 on.
 
 //#include "node_noise.wgsl"
 //#include "node_math.wgsl"
@@ -20,53 +18,32 @@ struct VoronoiParams {
     normalize: bool,
     // 0 F1, 1 F2, 2 smooth F1, 3 distance to edge, 4 n-sphere radius.
     feature: u32,
-    // 0 Euclidean, 1 Manhattan, 2 Chebychev, 3 Minkowski (1D measures |a - b| whatever it is).
+    // 0 Euclidean, 1 Manhattan, 2 Chebychev, 3 Minkowski.
     metric: u32,
-    // 1 to 4.
+    // 1 to 4 (node_voronoi_dimensions.wgsl); this file's code is 3D's.
     dimensions: u32,
 }
 
 struct VoronoiOctave {
     distance: f32,
     color: vec3f,
-    position: vec4f,
+    position: vec3f,
 }
 
-// The components a point of `d` dimensions uses.
-fn voronoi_used(d: u32) -> vec4<bool> {
-    return vec4<bool>(true, d > 1u, d > 2u, d > 3u);
-}
-
-// How far the walk goes from the cell along each axis: `reach` along the used ones.
-fn voronoi_reach(d: u32, reach: i32) -> vec4i {
-    return select(vec4i(0), vec4i(reach), voronoi_used(d));
-}
-
-fn voronoi_distance(a: vec4f, b: vec4f, p: VoronoiParams) -> f32 {
+fn voronoi_distance(a: vec3f, b: vec3f, p: VoronoiParams) -> f32 {
     let d = abs(a - b);
     switch p.metric {
-        case 1u: { return d.x + d.y + d.z + d.w; }
-        case 2u: { return max(max(d.x, d.y), max(d.z, d.w)); }
+        case 1u: { return d.x + d.y + d.z; }
+        case 2u: { return max(d.x, max(d.y, d.z)); }
         case 3u: {
-            let e = select(vec4f(0.0), pow(d, vec4f(p.exponent)), voronoi_used(p.dimensions));
-            return pow(e.x + e.y + e.z + e.w, 1.0 / p.exponent);
+            let e = pow(d, vec3f(p.exponent));
+            return pow(e.x + e.y + e.z, 1.0 / p.exponent);
         }
-        default: { return length(a - b); }
+        default: { return distance(a, b); }
     }
 }
 
-// Cycles' hash_pcg2d_i and hash_pcg4d_i (signed, wrapping, arithmetic shifts), in [0, 1];
-// hash_int3_to_float3 is PCG 3D's.
-fn hash_int2_to_float2(k: vec2i) -> vec2f {
-    var v = k * 1664525 + 1013904223;
-    v.x += v.y * 1664525;
-    v.y += v.x * 1664525;
-    v = v ^ (v >> vec2u(16u));
-    v.x += v.y * 1664525;
-    v.y += v.x * 1664525;
-    return vec2f(v & vec2i(0x7fffffff)) * (1.0 / 2147483647.0);
-}
-
+// Cycles' hash_pcg3d_i: PCG 3D on signed integers (wrapping, arithmetic shifts), in [0, 1].
 fn hash_int3_to_float3(k: vec3i) -> vec3f {
     var v = k * 1664525 + 1013904223;
     v.x += v.y * v.z;
@@ -79,158 +56,100 @@ fn hash_int3_to_float3(k: vec3i) -> vec3f {
     return vec3f(v & vec3i(0x7fffffff)) * (1.0 / 2147483647.0);
 }
 
-fn hash_int4_to_float4(k: vec4i) -> vec4f {
-    var v = k * 1664525 + 1013904223;
-    v.x += v.y * v.w;
-    v.y += v.z * v.x;
-    v.z += v.x * v.y;
-    v.w += v.y * v.z;
-    v = v ^ (v >> vec4u(16u));
-    v.x += v.y * v.w;
-    v.y += v.z * v.x;
-    v.z += v.x * v.y;
-    v.w += v.y * v.z;
-    return vec4f(v & vec4i(0x7fffffff)) * (1.0 / 2147483647.0);
+fn voronoi_cell_hash(cell: vec3f, offset: vec3f) -> vec3f {
+    return hash_int3_to_float3(vec3i(cell + offset));
 }
 
-// Where in cell `c` its feature point lies, in [0, 1] per used component.
-fn voronoi_cell_hash(c: vec4f, d: u32) -> vec4f {
-    switch d {
-        case 1u: { return vec4f(hash_float_to_float(c.x), 0.0, 0.0, 0.0); }
-        case 2u: { return vec4f(hash_int2_to_float2(vec2i(c.xy)), 0.0, 0.0); }
-        case 4u: { return hash_int4_to_float4(vec4i(c)); }
-        default: { return vec4f(hash_int3_to_float3(vec3i(c.xyz)), 0.0); }
-    }
+fn voronoi_point(cell: vec3f, offset: vec3f, p: VoronoiParams) -> vec3f {
+    return offset + voronoi_cell_hash(cell, offset) * p.randomness;
 }
 
-// Cell `c`'s colour (hash_float_to_float3, hash_int2/3/4_to_float3).
-fn voronoi_cell_color(c: vec4f, d: u32) -> vec3f {
-    switch d {
-        case 1u: {
-            return vec3f(hash_float_to_float(c.x), hash_float2_to_float(vec2f(c.x, 1.0)), hash_float2_to_float(vec2f(c.x, 2.0)));
-        }
-        case 2u: { return hash_int3_to_float3(vec3i(vec2i(c.xy), 0)); }
-        case 4u: { return hash_int4_to_float4(vec4i(c)).xyz; }
-        default: { return hash_int3_to_float3(vec3i(c.xyz)); }
-    }
-}
-
-fn voronoi_point(cell: vec4f, offset: vec4f, p: VoronoiParams) -> vec4f {
-    return offset + voronoi_cell_hash(cell + offset, p.dimensions) * p.randomness;
-}
-
-fn voronoi_f1_f2(p: VoronoiParams, coord: vec4f, second: bool) -> VoronoiOctave {
+fn voronoi_f1_f2(p: VoronoiParams, coord: vec3f, second: bool) -> VoronoiOctave {
     let cell = floor(coord);
     let local = coord - cell;
-    let r = voronoi_reach(p.dimensions, 1);
     var d1 = 3.402823466e38;
     var d2 = 3.402823466e38;
-    var o1 = vec4f(0.0);
-    var o2 = vec4f(0.0);
-    var p1 = vec4f(0.0);
-    var p2 = vec4f(0.0);
-    for (var u = -r.w; u <= r.w; u++) {
-        for (var k = -r.z; k <= r.z; k++) {
-            for (var j = -r.y; j <= r.y; j++) {
-                for (var i = -r.x; i <= r.x; i++) {
-                    let offset = vec4f(f32(i), f32(j), f32(k), f32(u));
-                    let point = voronoi_point(cell, offset, p);
-                    let d = voronoi_distance(point, local, p);
-                    if d < d1 {
-                        d2 = d1;
-                        o2 = o1;
-                        p2 = p1;
-                        d1 = d;
-                        o1 = offset;
-                        p1 = point;
-                    } else if d < d2 {
-                        d2 = d;
-                        o2 = offset;
-                        p2 = point;
-                    }
+    var o1 = vec3f(0.0);
+    var o2 = vec3f(0.0);
+    var p1 = vec3f(0.0);
+    var p2 = vec3f(0.0);
+    for (var k = -1; k <= 1; k++) {
+        for (var j = -1; j <= 1; j++) {
+            for (var i = -1; i <= 1; i++) {
+                let offset = vec3f(f32(i), f32(j), f32(k));
+                let point = voronoi_point(cell, offset, p);
+                let d = voronoi_distance(point, local, p);
+                if d < d1 {
+                    d2 = d1;
+                    o2 = o1;
+                    p2 = p1;
+                    d1 = d;
+                    o1 = offset;
+                    p1 = point;
+                } else if d < d2 {
+                    d2 = d;
+                    o2 = offset;
+                    p2 = point;
                 }
             }
         }
     }
     if second {
-        return VoronoiOctave(d2, voronoi_cell_color(cell + o2, p.dimensions), p2 + cell);
+        return VoronoiOctave(d2, voronoi_cell_hash(cell, o2), p2 + cell);
     }
-    return VoronoiOctave(d1, voronoi_cell_color(cell + o1, p.dimensions), p1 + cell);
+    return VoronoiOctave(d1, voronoi_cell_hash(cell, o1), p1 + cell);
 }
 
-fn voronoi_smooth_f1(p: VoronoiParams, coord: vec4f) -> VoronoiOctave {
+fn voronoi_smooth_f1(p: VoronoiParams, coord: vec3f) -> VoronoiOctave {
     let cell = floor(coord);
     let local = coord - cell;
-    let r = voronoi_reach(p.dimensions, 2);
     var smooth_distance = 0.0;
     var smooth_color = vec3f(0.0);
-    var smooth_position = vec4f(0.0);
+    var smooth_position = vec3f(0.0);
     var h = -1.0;
-    for (var u = -r.w; u <= r.w; u++) {
-        for (var k = -r.z; k <= r.z; k++) {
-            for (var j = -r.y; j <= r.y; j++) {
-                for (var i = -r.x; i <= r.x; i++) {
-                    let offset = vec4f(f32(i), f32(j), f32(k), f32(u));
-                    let point = voronoi_point(cell, offset, p);
-                    let d = voronoi_distance(point, local, p);
-                    h = select(node_smoothstep(0.0, 1.0, 0.5 + 0.5 * (smooth_distance - d) / p.smoothness), 1.0, h == -1.0);
-                    var correction = p.smoothness * h * (1.0 - h);
-                    smooth_distance = mix(smooth_distance, d, h) - correction;
-                    correction /= 1.0 + 3.0 * p.smoothness;
-                    smooth_color = mix(smooth_color, voronoi_cell_color(cell + offset, p.dimensions), vec3f(h)) - correction;
-                    smooth_position = mix(smooth_position, point, vec4f(h)) - correction;
-                }
+    for (var k = -2; k <= 2; k++) {
+        for (var j = -2; j <= 2; j++) {
+            for (var i = -2; i <= 2; i++) {
+                let offset = vec3f(f32(i), f32(j), f32(k));
+                let point = voronoi_point(cell, offset, p);
+                let d = voronoi_distance(point, local, p);
+                h = select(node_smoothstep(0.0, 1.0, 0.5 + 0.5 * (smooth_distance - d) / p.smoothness), 1.0, h == -1.0);
+                var correction = p.smoothness * h * (1.0 - h);
+                smooth_distance = mix(smooth_distance, d, h) - correction;
+                correction /= 1.0 + 3.0 * p.smoothness;
+                smooth_color = mix(smooth_color, voronoi_cell_hash(cell, offset), vec3f(h)) - correction;
+                smooth_position = mix(smooth_position, point, vec3f(h)) - correction;
             }
         }
     }
-    // The unused components of the position stay 0, as Cycles' narrower vectors.
-    let used = select(vec4f(0.0), vec4f(1.0), voronoi_used(p.dimensions));
-    return VoronoiOctave(smooth_distance, smooth_color, (cell + smooth_position) * used);
+    return VoronoiOctave(smooth_distance, smooth_color, cell + smooth_position);
 }
 
-// 1D's distance to the edge: to the midpoints between the cell's point and its neighbours'.
-fn voronoi_distance_to_edge_1d(p: VoronoiParams, coord: f32) -> f32 {
+fn voronoi_distance_to_edge(p: VoronoiParams, coord: vec3f) -> f32 {
     let cell = floor(coord);
     let local = coord - cell;
-    let middle = hash_float_to_float(cell) * p.randomness;
-    let left = -1.0 + hash_float_to_float(cell - 1.0) * p.randomness;
-    let right = 1.0 + hash_float_to_float(cell + 1.0) * p.randomness;
-    return min(abs((middle + left) / 2.0 - local), abs((middle + right) / 2.0 - local));
-}
-
-fn voronoi_distance_to_edge(p: VoronoiParams, coord: vec4f) -> f32 {
-    if p.dimensions == 1u {
-        return voronoi_distance_to_edge_1d(p, coord.x);
-    }
-    let cell = floor(coord);
-    let local = coord - cell;
-    let r = voronoi_reach(p.dimensions, 1);
-    var to_closest = vec4f(0.0);
+    var to_closest = vec3f(0.0);
     var nearest = 3.402823466e38;
-    for (var u = -r.w; u <= r.w; u++) {
-        for (var k = -r.z; k <= r.z; k++) {
-            for (var j = -r.y; j <= r.y; j++) {
-                for (var i = -r.x; i <= r.x; i++) {
-                    let to_point = voronoi_point(cell, vec4f(f32(i), f32(j), f32(k), f32(u)), p) - local;
-                    let d = dot(to_point, to_point);
-                    if d < nearest {
-                        nearest = d;
-                        to_closest = to_point;
-                    }
+    for (var k = -1; k <= 1; k++) {
+        for (var j = -1; j <= 1; j++) {
+            for (var i = -1; i <= 1; i++) {
+                let to_point = voronoi_point(cell, vec3f(f32(i), f32(j), f32(k)), p) - local;
+                let d = dot(to_point, to_point);
+                if d < nearest {
+                    nearest = d;
+                    to_closest = to_point;
                 }
             }
         }
     }
     var edge = 3.402823466e38;
-    for (var u = -r.w; u <= r.w; u++) {
-        for (var k = -r.z; k <= r.z; k++) {
-            for (var j = -r.y; j <= r.y; j++) {
-                for (var i = -r.x; i <= r.x; i++) {
-                    let to_point = voronoi_point(cell, vec4f(f32(i), f32(j), f32(k), f32(u)), p) - local;
-                    let across = to_point - to_closest;
-                    if dot(across, across) > 0.0001 {
-                        edge = min(edge, dot((to_closest + to_point) / 2.0, normalize(across)));
-                    }
+    for (var k = -1; k <= 1; k++) {
+        for (var j = -1; j <= 1; j++) {
+            for (var i = -1; i <= 1; i++) {
+                let to_point = voronoi_point(cell, vec3f(f32(i), f32(j), f32(k)), p) - local;
+                let across = to_point - to_closest;
+                if dot(across, across) > 0.0001 {
+                    edge = min(edge, dot((to_closest + to_point) / 2.0, normalize(across)));
                 }
             }
         }
@@ -238,44 +157,39 @@ fn voronoi_distance_to_edge(p: VoronoiParams, coord: vec4f) -> f32 {
     return edge;
 }
 
-fn voronoi_n_sphere_radius(p: VoronoiParams, coord: vec4f) -> f32 {
+fn voronoi_n_sphere_radius(p: VoronoiParams, coord: vec3f) -> f32 {
     let cell = floor(coord);
     let local = coord - cell;
-    let r = voronoi_reach(p.dimensions, 1);
-    var closest = vec4f(0.0);
-    var closest_offset = vec4f(0.0);
+    var closest = vec3f(0.0);
+    var closest_offset = vec3f(0.0);
     var nearest = 3.402823466e38;
-    for (var u = -r.w; u <= r.w; u++) {
-        for (var k = -r.z; k <= r.z; k++) {
-            for (var j = -r.y; j <= r.y; j++) {
-                for (var i = -r.x; i <= r.x; i++) {
-                    let offset = vec4f(f32(i), f32(j), f32(k), f32(u));
-                    let point = voronoi_point(cell, offset, p);
-                    let d = distance(point, local);
-                    if d < nearest {
-                        nearest = d;
-                        closest = point;
-                        closest_offset = offset;
-                    }
+    for (var k = -1; k <= 1; k++) {
+        for (var j = -1; j <= 1; j++) {
+            for (var i = -1; i <= 1; i++) {
+                let offset = vec3f(f32(i), f32(j), f32(k));
+                let point = voronoi_point(cell, offset, p);
+                let d = distance(point, local);
+                if d < nearest {
+                    nearest = d;
+                    closest = point;
+                    closest_offset = offset;
                 }
             }
         }
     }
     nearest = 3.402823466e38;
-    var next = vec4f(0.0);
-    for (var u = -r.w; u <= r.w; u++) {
-        for (var k = -r.z; k <= r.z; k++) {
-            for (var j = -r.y; j <= r.y; j++) {
-                for (var i = -r.x; i <= r.x; i++) {
-                    if i == 0 && j == 0 && k == 0 && u == 0 {
-                        continue;
-                    }
-                    let point = voronoi_point(cell, vec4f(f32(i), f32(j), f32(k), f32(u)) + closest_offset, p);
-                    let d = distance(closest, point);
-                    if d < nearest {
-                        nearest = d;
-                        next = point;
-                    }
+    var next = vec3f(0.0);
+    for (var k = -1; k <= 1; k++) {
+        for (var j = -1; j <= 1; j++) {
+            for (var i = -1; i <= 1; i++) {
+                if i == 0 && j == 0 && k == 0 {
+                    continue;
+                }
+                let point = voronoi_point(cell, vec3f(f32(i), f32(j), f32(k)) + closest_offset, p);
+                let d = distance(closest, point);
+                if d < nearest {
+                    nearest = d;
+                    next = point;
                 }
             }
         }
@@ -283,7 +197,7 @@ fn voronoi_n_sphere_radius(p: VoronoiParams, coord: vec4f) -> f32 {
     return distance(next, closest) / 2.0;
 }
 
-fn voronoi_octave(p: VoronoiParams, coord: vec4f) -> VoronoiOctave {
+fn voronoi_octave(p: VoronoiParams, coord: vec3f) -> VoronoiOctave {
     if p.feature == 2u && p.smoothness != 0.0 {
         return voronoi_smooth_f1(p, coord);
     }
@@ -291,11 +205,11 @@ fn voronoi_octave(p: VoronoiParams, coord: vec4f) -> VoronoiOctave {
 }
 
 // The octaves summed as fBM noise sums them, positions blended (fractal_voronoi_x_fx).
-fn fractal_voronoi(p: VoronoiParams, coord: vec4f) -> VoronoiOctave {
+fn fractal_voronoi(p: VoronoiParams, coord: vec3f) -> VoronoiOctave {
     var amplitude = 1.0;
     var max_amplitude = 0.0;
     var scale = 1.0;
-    var out = VoronoiOctave(0.0, vec3f(0.0), vec4f(0.0));
+    var out = VoronoiOctave(0.0, vec3f(0.0), vec3f(0.0));
     let zero_input = p.detail == 0.0 || p.roughness == 0.0;
     for (var i = 0; f32(i) <= ceil(p.detail); i++) {
         let octave = voronoi_octave(p, coord * scale);
@@ -308,7 +222,7 @@ fn fractal_voronoi(p: VoronoiParams, coord: vec4f) -> VoronoiOctave {
             max_amplitude += amplitude;
             out.distance += octave.distance * amplitude;
             out.color += octave.color * amplitude;
-            out.position = mix(out.position, octave.position / scale, vec4f(amplitude));
+            out.position = mix(out.position, octave.position / scale, vec3f(amplitude));
             scale *= p.lacunarity;
             amplitude *= p.roughness;
         } else {
@@ -317,7 +231,7 @@ fn fractal_voronoi(p: VoronoiParams, coord: vec4f) -> VoronoiOctave {
                 max_amplitude = mix(max_amplitude, max_amplitude + amplitude, remainder);
                 out.distance = mix(out.distance, out.distance + octave.distance * amplitude, remainder);
                 out.color = mix(out.color, out.color + octave.color * amplitude, vec3f(remainder));
-                out.position = mix(out.position, mix(out.position, octave.position / scale, vec4f(amplitude)), vec4f(remainder));
+                out.position = mix(out.position, mix(out.position, octave.position / scale, vec3f(amplitude)), vec3f(remainder));
             }
         }
     }
@@ -325,11 +239,11 @@ fn fractal_voronoi(p: VoronoiParams, coord: vec4f) -> VoronoiOctave {
         out.distance /= max_amplitude * p.max_distance;
         out.color /= max_amplitude;
     }
-    out.position = select(vec4f(0.0), out.position / p.scale, p.scale != 0.0);
+    out.position = safe_divide3(out.position, vec3f(p.scale));
     return out;
 }
 
-fn fractal_voronoi_distance_to_edge(p: VoronoiParams, coord: vec4f) -> f32 {
+fn fractal_voronoi_distance_to_edge(p: VoronoiParams, coord: vec3f) -> f32 {
     var amplitude = 1.0;
     var max_amplitude = p.max_distance;
     var scale = 1.0;
@@ -359,8 +273,7 @@ fn fractal_voronoi_distance_to_edge(p: VoronoiParams, coord: vec4f) -> f32 {
     return select(d, d / max_amplitude, p.normalize);
 }
 
-// The Voronoi Texture at `v` (and `w`, read by 1D and 4D; not yet scaled): its Distance,
-// Color, Position, W and Radius.
+// The Voronoi Texture at `coord` (not yet scaled): its Distance, Color, Position and Radius.
 struct VoronoiResult {
     distance: f32,
     color: vec3f,
@@ -369,24 +282,13 @@ struct VoronoiResult {
     radius: f32,
 }
 
-fn voronoi_texture(v: vec3f, w: f32, params: VoronoiParams) -> VoronoiResult {
+fn voronoi_texture(coord_in: vec3f, params: VoronoiParams) -> VoronoiResult {
     var p = params;
     p.detail = clamp(p.detail, 0.0, 15.0);
     p.roughness = clamp(p.roughness, 0.0, 1.0);
     p.randomness = clamp(p.randomness, 0.0, 1.0);
     p.smoothness = clamp(p.smoothness / 2.0, 0.0, 0.5);
-    var coord: vec4f;
-    switch p.dimensions {
-        case 1u: {
-            coord = vec4f(w, 0.0, 0.0, 0.0);
-            // 1D measures |a - b|, which Manhattan's sum of one component is.
-            p.metric = 1u;
-        }
-        case 2u: { coord = vec4f(v.xy, 0.0, 0.0); }
-        case 4u: { coord = vec4f(v, w); }
-        default: { coord = vec4f(v, 0.0); }
-    }
-    coord *= p.scale;
+    let coord = coord_in * p.scale;
     let reach = 0.5 + 0.5 * p.randomness;
     if p.feature == 3u {
         p.max_distance = reach;
@@ -395,12 +297,7 @@ fn voronoi_texture(v: vec3f, w: f32, params: VoronoiParams) -> VoronoiResult {
     if p.feature == 4u {
         return VoronoiResult(0.0, vec3f(0.0), vec3f(0.0), 0.0, voronoi_n_sphere_radius(p, coord));
     }
-    let corner = select(vec4f(0.0), vec4f(reach), voronoi_used(p.dimensions));
-    p.max_distance = voronoi_distance(vec4f(0.0), corner, p) * select(1.0, 2.0, p.feature == 1u);
+    p.max_distance = voronoi_distance(vec3f(0.0), vec3f(reach), p) * select(1.0, 2.0, p.feature == 1u);
     let out = fractal_voronoi(p, coord);
-    // Cycles' position of a 1D point is (0, 0, 0, w), of a 2D one (x, y, 0, 0).
-    if p.dimensions == 1u {
-        return VoronoiResult(out.distance, out.color, vec3f(0.0), out.position.x, 0.0);
-    }
-    return VoronoiResult(out.distance, out.color, out.position.xyz, out.position.w, 0.0);
+    return VoronoiResult(out.distance, out.color, out.position, 0.0, 0.0);
 }

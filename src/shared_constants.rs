@@ -83,6 +83,7 @@ shared_constants! { NODE_OPERATIONS;
     NODE_OP_BRICK: u32 = 27;
     NODE_OP_SPECTRUM: u32 = 28;
     NODE_OP_BUMP: u32 = 29;
+    NODE_OP_VORONOI_DIMENSIONS: u32 = 30;
 }
 
 shared_constants! { LIGHT_TREE;

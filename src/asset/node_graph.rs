@@ -285,6 +285,7 @@ impl Compiler<'_> {
                     });
                 }
                 let mode = node_kinds::mode(&node.kind, &node.settings)?;
+                let op = node_kinds::operation(&node.kind, op, &node.settings)?;
                 let extra = match op {
                     node_kinds::NODE_OP_RAMP => ramp_table(&node.settings)?,
                     node_kinds::NODE_OP_CURVES => curve_table(&node.settings)?,

@@ -12,7 +12,7 @@ pub use crate::shared_constants::{
     NODE_OP_CONVERT, NODE_OP_COORDINATE, NODE_OP_CURVES, NODE_OP_END, NODE_OP_FRESNEL, NODE_OP_GAMMA, NODE_OP_GRADIENT,
     NODE_OP_HUE_SATURATION, NODE_OP_INVERT, NODE_OP_LAYER_WEIGHT, NODE_OP_MAGIC, NODE_OP_MAP_RANGE, NODE_OP_MAPPING,
     NODE_OP_MATH, NODE_OP_MIX, NODE_OP_NOISE, NODE_OP_OUTPUT, NODE_OP_RAMP, NODE_OP_SEPARATE, NODE_OP_SPECTRUM,
-    NODE_OP_VECTOR_MATH, NODE_OP_VORONOI, NODE_OP_WAVE, NODE_OP_WHITE_NOISE,
+    NODE_OP_VECTOR_MATH, NODE_OP_VORONOI, NODE_OP_VORONOI_DIMENSIONS, NODE_OP_WAVE, NODE_OP_WHITE_NOISE,
 };
 
 /// Every operation by its name in the shader (`VORONOI` for `NODE_OP_VORONOI`), in order.
@@ -305,6 +305,15 @@ pub fn kind(name: &str) -> Option<&'static Kind> {
     KINDS.iter().find(|k| k.name == name)
 }
 
+/// The operation a node of `kind` with these settings becomes: its kind's, but a Voronoi of
+/// 1, 2 or 4 dimensions has code of its own (3D's own code compiles and runs faster).
+pub fn operation(kind: &str, op: u32, settings: &Map<String, Value>) -> Result<u32, String> {
+    if kind == "TEX_VORONOI" && text(settings, "voronoi_dimensions")? != "3D" {
+        return Ok(NODE_OP_VORONOI_DIMENSIONS);
+    }
+    Ok(op)
+}
+
 /// An operation's mode and flags from the node's settings.
 pub struct Mode {
     pub mode: u32,
@@ -426,9 +435,10 @@ mod tests {
     #[test]
     fn operations_are_numbered_in_order() {
         let all: Vec<(&str, u32)> = operations().collect();
-        assert_eq!(all.len(), 30);
+        assert_eq!(all.len(), 31);
         assert!(all.iter().enumerate().all(|(i, (name, op))| *op == i as u32 && !name.is_empty()));
         assert_eq!(all[23], ("VORONOI", NODE_OP_VORONOI));
+        assert_eq!(all[30], ("VORONOI_DIMENSIONS", NODE_OP_VORONOI_DIMENSIONS));
     }
 
     /// The exporter follows exactly the node types rt evaluates, with the same outputs.

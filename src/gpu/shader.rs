@@ -101,6 +101,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("node_bump.wgsl"),
     shader!("node_step.wgsl"),
     shader!("node_voronoi.wgsl"),
+    shader!("node_voronoi_dimensions.wgsl"),
     shader!("normal_map.wgsl"),
     shader!("oren_nayar.wgsl"),
     shader!("panorama.wgsl"),

@@ -59,6 +59,7 @@
 //#if exact_sums
 //#include "exact_sums.wgsl"
 //#endif
+//#include "path_steps.wgsl"
 
 // The mean of a colour's channels: how much of the pixel a path of this throughput
 // stands for (Cycles' `average`, as it counts transparency).
@@ -259,16 +260,14 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
     // A pixel's angle seen from the camera (view_half_extent is the image plane's half size
     // at distance 1); an orthographic camera's rays do not spread.
     let cone_spread = select(2.0 * frame.view_half_extent.y / f32(frame.height), 0.0, frame.orthographic != 0u);
-    var cone_width: f32;
     //#endif
+    var cone_width: f32;
     // The sample's identity (its random stream's start: pixel, sample and seed) for the
     // coins of blended surfaces and of Mix Shaders.
     var path_key: u32;
-    //#if node_graphs
     // What the path's last ray came from, for the Light Path node (NODE_RAY_*).
     var ray_from: u32;
     var ray_singular: bool;
-    //#endif
     loop {
         if starting {
             starting = false;
@@ -334,27 +333,7 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
             continue;
         }
         //#endif
-        //#if lamps
-        // Lamps are not in the BVH: the path meets those before the surface and goes on.
-        // (Seen through a medium, they skip its absorption.)
-        let lamp_light = lamps_seen(origin, direction, min(hit.t, ray_t_max), hit.kind == HIT_NONE, bsdf_pdf, bounce == 0u);
-        gather(&radiance, throughput * lamp_light, EVENT_EMISSION);
-        //#if aovs
-        if bounce == 0u {
-            aov_emission_seen(lamp_light);
-        }
-        //#endif
-        //#endif
-        //#if media
-        let segment = integrate_segment(medium_absorption, medium_emission, hit.t);
-        gather(&radiance, throughput * segment.radiance, EVENT_MEDIUM);
-        attenuate(&throughput, segment.transmittance, EVENT_MEDIUM);
-        //#endif
-        //#if aovs
-        if bounce == 0u && hit.kind != HIT_NONE {
-            aov_first_hit(hit.t, origin + direction * hit.t);
-        }
-        //#endif
+        light_along_the_ray(&radiance, &throughput, hit, origin, direction, ray_t_max, bsdf_pdf, bounce, medium_absorption, medium_emission);
         if hit.kind == HIT_NONE {
             //#if transparent_film
             // Film › Transparent: the background the camera sees adds nothing, and the
@@ -368,20 +347,7 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
                 continue;
             }
             //#endif
-            //#if sky_environment
-            gather(&radiance, throughput * environment_seen(direction, bsdf_pdf), EVENT_SKY);
-            //#endif
-            //#if sky_uniform_light
-            gather(&radiance, throughput * uniform_sky_seen(bsdf_pdf), EVENT_SKY);
-            //#endif
-            //#if !sky_environment
-            //#if !sky_uniform_light
-            gather(&radiance, throughput * sky_radiance(origin, direction), EVENT_SKY);
-            //#endif
-            //#endif
-            //#if sun
-            gather(&radiance, throughput * sun_seen(origin, direction, bsdf_pdf), EVENT_SKY);
-            //#endif
+            background_seen(&radiance, throughput, origin, direction, bsdf_pdf);
             sample_finished = true;
             continue;
         }
@@ -391,59 +357,12 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         attenuate(&throughput, air.transmittance, EVENT_AIR);
         //#endif
         var surface = surface_at(hit, origin, direction);
-        var m = materials[surface.material];
-        //#if normal_maps
-        // Whether a node graph set the normal (a Bump node's), which is then shaded as a map's.
-        var graph_normal = false;
-        //#endif
         //#if textures
         cone_width += cone_spread * hit.t;
-        let cos_hit = max(abs(dot(surface.geometric_normal, direction)), 1e-4);
-        // The uv and its footprint, only where the material reads a texture: it costs a
-        // triangle's vertices, its uvs and an instance's inverse transform.
-        var texture_at: TexturePoint;
-        if has_textures(m) {
-            texture_at = texture_point(hit);
-        }
-        //#if node_graphs
-        // A graph reads the interpolated normal, as Cycles' nodes read N, not a normal map's.
-        let node_normal = surface.shading_normal;
         //#endif
-        //#if normal_maps
-        let n_unmapped = surface.shading_normal;
-        surface.shading_normal = normal_mapped(m, hit, n_unmapped, surface.geometric_normal, -direction, slot_uv(m, UV1_NORMAL, texture_at));
-        //#endif
-        //#if coat_normal
-        let coat_normal = coat_normal_mapped(m, hit, n_unmapped, surface.geometric_normal, -direction, slot_uv(m, UV1_COAT_NORMAL, texture_at));
-        //#endif
-        m = textured_material(m, texture_at, log2(cone_width / cos_hit));
-        //#if node_graphs
-        if m.node_program != NO_PROGRAM {
-            var point = node_point_at(hit, surface, node_normal, -direction);
-            point.ray_from = ray_from;
-            point.singular = ray_singular;
-            point.ray_length = hit.t;
-            point.ray_depth = f32(bounce);
-            point.footprint = cone_width;
-            let graph = run_node_program(m.node_program, point);
-            m = node_graph_applied(m, graph);
-            //#if normal_maps
-            if (graph.driven & NODE_DRIVES_NORMAL) != 0u {
-                // The graph's normal is on the viewer's side, as Cycles' N.
-                let outward = select(1.0, -1.0, point.backfacing) * rt_axes(graph.normal);
-                surface.shading_normal = mapped_normal_bent(outward, surface.geometric_normal, -direction);
-                graph_normal = true;
-            }
-            //#endif
-            if node_mix_second(m, graph, path_key, bounce) {
-                m = textured_material(materials[m.mix_material], texture_at, log2(cone_width / cos_hit));
-                if m.node_program != NO_PROGRAM {
-                    m = node_graph_material(m, point);
-                }
-            }
-        }
-        //#endif
-        //#endif
+        var m = materials[surface.material];
+        let seen = material_seen(&m, hit, surface, direction, cone_width, path_key, bounce, ray_from, ray_singular);
+        surface.shading_normal = seen.shading_normal;
         //#if holdout
         let held_out = held_out_share(m, hit, transparent_background);
         if held_out > 0.0 {
@@ -462,7 +381,7 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         //#if emission
         var coat_layer_normal = surface.shading_normal;
         //#if coat_normal
-        coat_layer_normal = coat_normal;
+        coat_layer_normal = seen.coat_normal;
         //#endif
         let layer_side = select(-1.0, 1.0, dot(surface.geometric_normal, direction) < 0.0);
         let layers = mapped_layer_normals(m, surface.shading_normal, coat_layer_normal, layer_side);
@@ -482,29 +401,7 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         // The viewer is outside when the ray meets the outward normal head on.
         let entering = dot(surface.geometric_normal, direction) < 0.0;
         let n_geometric = select(-surface.geometric_normal, surface.geometric_normal, entering);
-        var n_shading = select(-surface.shading_normal, surface.shading_normal, entering);
-        var mapped = false;
-        //#if normal_maps
-        let side = select(-1.0, 1.0, entering);
-        mapped = m.normal_texture != NO_TEXTURE || graph_normal;
-        set_unmapped_normal(side * n_unmapped, mapped, side * diffuse_mapped_normal());
-        //#endif
-        //#if coat_normal
-        set_coat_normal(side * coat_normal, side * n_unmapped, side * coat_normal_before_bending());
-        //#endif
-        //#if smooth_normals
-        var n_interpolated = n_shading;
-        //#if normal_maps
-        n_interpolated = side * n_unmapped;
-        //#endif
-        n_shading = set_smooth_shading(m, hit, n_interpolated, n_shading, n_geometric, -direction, mapped);
-        //#endif
-        //#if terminator_offset
-        set_terminator_shift(hit);
-        //#endif
-        //#if anisotropy
-        set_surface_tangent(hit, surface.position, m.tangent);
-        //#endif
+        let n_shading = shading_normal_at(m, seen, hit, surface, direction, entering, n_geometric);
         let ctx = shading_context(m, n_shading, n_geometric, -direction, entering);
         //#if aovs
         if bounce == 1u {
@@ -545,11 +442,7 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
             }
             //#endif
             if bounce > ROULETTE_START {
-                let survival = min(max(throughput.x, max(throughput.y, throughput.z)), 0.95);
-                if rng_next(&rng) >= survival {
-                    path_ended = true;
-                }
-                throughput /= survival;
+                path_ended = !survives_roulette(&throughput, &rng);
             }
             origin = offset_ray_origin(surface.position, surface.position_error, select(-n_geometric, n_geometric, dot(s.direction, n_geometric) > 0.0));
             direction = s.direction;

@@ -103,6 +103,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("node_voronoi.wgsl"),
     shader!("node_voronoi_dimensions.wgsl"),
     shader!("normal_map.wgsl"),
+    shader!("path_steps.wgsl"),
     shader!("oren_nayar.wgsl"),
     shader!("panorama.wgsl"),
     shader!("surface.wgsl"),

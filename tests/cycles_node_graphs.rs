@@ -142,6 +142,13 @@ fn voronoi_of_one_two_and_four_dimensions_matches_cycles() {
     check_channels("graph_voronoi_dimensions", 1e-3);
 }
 
+/// Emission strengths a graph drives, on Emission shaders and a black Principled's
+/// emission, alone and with a driven colour (their product).
+#[test]
+fn driven_emission_strengths_match_cycles() {
+    check_channels("graph_emission_strength", 1e-3);
+}
+
 #[test]
 fn waves_of_every_kind_match_cycles() {
     check_channels("graph_wave", 1e-3);

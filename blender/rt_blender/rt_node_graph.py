@@ -99,16 +99,17 @@ DEFAULT_VECTOR = {"TEX_NOISE": ("TEX_COORD", "Generated"), "TEX_CHECKER": ("TEX_
 # Shader inputs a graph can drive: rt's material input, the socket's type there.
 TARGETS = {
     "BSDF_PRINCIPLED": {"Base Color": "base_color", "Roughness": "roughness", "Metallic": "metallic",
-                        "Emission Color": "emission", "Normal": "normal"},
+                        "Emission Color": "emission", "Emission Strength": "emission", "Normal": "normal"},
     "BSDF_DIFFUSE": {"Color": "base_color", "Roughness": None, "Normal": "normal"},
-    "EMISSION": {"Color": "emission"},
+    "EMISSION": {"Color": "emission", "Strength": "emission"},
 }
 TARGET_TYPES = {"base_color": "RGBA", "roughness": "VALUE", "metallic": "VALUE", "emission": "RGBA",
                 "mix_factor": "VALUE", "normal": "VECTOR"}
 # Shaders a Mix Shader with a graph-driven factor may mix: each becomes a material of its own.
 MIXABLE = {"BSDF_PRINCIPLED", "BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS", "HOLDOUT"}
 # What a driven socket's own value becomes in the glTF factors: the part the graph scales.
-NEUTRAL = {"Metallic": 0.0, "Emission Color": (1.0, 1.0, 1.0, 1.0), "Color": (1.0, 1.0, 1.0, 1.0)}
+NEUTRAL = {"Metallic": 0.0, "Emission Color": (1.0, 1.0, 1.0, 1.0), "Color": (1.0, 1.0, 1.0, 1.0),
+           "Emission Strength": 1.0, "Strength": 1.0}
 # Entries of a ramp's table, at 0, 1/256, ..., 1, as Cycles bakes it.
 RAMP_TABLE_SIZE = 257
 
@@ -237,6 +238,15 @@ class GraphWriter:
             return {"value": numbers(socket.default_value)}
         return self.output(links[0].from_socket, groups, to_type)
 
+    def product(self, a, b):
+        """A node of rt's own multiplying what feeds `a` and `b` (as colours): an emission's
+        colour and strength, both driven."""
+        vector = [{**x, "to": "VECTOR"} if "link" in x else x for x in (a, b)]
+        self.nodes.append({"name": f"rt product {len(self.nodes)}", "type": "VECT_MATH",
+                           "settings": {"operation": "MULTIPLY"},
+                           "inputs": {"Vector": vector[0], "Vector_001": vector[1]}})
+        return {"link": [len(self.nodes) - 1, "Vector"], "from": "VECTOR", "to": "RGBA"}
+
     def output(self, socket, groups, to_type):
         node = socket.node
         if node.type == "REROUTE":
@@ -340,7 +350,10 @@ def material_graph(shader, mix_factor=None):
     outputs = {}
     for name, target in TARGETS.get(shader.type, {}).items():
         if target is not None and drives(shader, name):
-            outputs[target] = writer.input(shader.inputs[name], (), TARGET_TYPES[target])
+            value = writer.input(shader.inputs[name], (), TARGET_TYPES[target])
+            # The glTF keeps the factors the graph scales: both parts of an emission driven
+            # are their product, a strength alone scales the colour there.
+            outputs[target] = writer.product(outputs[target], value) if target in outputs else value
     if mix_factor is not None:
         outputs["mix_factor"] = writer.input(mix_factor, (), "VALUE")
     if not outputs:

@@ -104,14 +104,24 @@ def add_tile(i, shape, segments=32):
     return bpy.context.active_object
 
 
-def grid_scene(name, builders, shape="plane"):
+def shader_material(name, build):
+    """A material whose Surface is the shader output `build(tree)` gives."""
+    material = bpy.data.materials.new(name)
+    tree = material.node_tree
+    tree.nodes.clear()
+    out = tree.nodes.new("ShaderNodeOutputMaterial")
+    tree.links.new(build(tree), out.inputs["Surface"])
+    return material
+
+
+def grid_scene(name, builders, shape="plane", make=emission_material):
     scene = cycles.new_scene()
     cycles.set_up(scene, SIZE, bounces=1)
     cycles.uniform_world(scene, (0.0, 0.0, 0.0))
     for i, build in enumerate(builders):
         obj = add_tile(i, shape)
         obj.name = f"tile_{i}"
-        obj.data.materials.append(emission_material(f"{name}_{i}", build))
+        obj.data.materials.append(make(f"{name}_{i}", build))
     camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
     camera.data.type = "ORTHO"
     camera.data.ortho_scale = GRID * PITCH
@@ -603,6 +613,44 @@ VORONOI_DIMENSIONS = [
 ]
 
 
+def glow(color=(1.0, 0.5, 0.2, 1.0), strength=None, principled=False):
+    """An Emission shader (or a black Principled's emission) of `color` (a value or a
+    function of the tree) and `strength` (a function of the tree)."""
+    def build(t):
+        c = color(t) if callable(color) else color
+        if principled:
+            node = new(t, "ShaderNodeBsdfPrincipled", {"Base Color": (0.0, 0.0, 0.0, 1.0), "Emission Color": c,
+                                                        "Emission Strength": strength(t), "Specular IOR Level": 0.0})
+        else:
+            node = new(t, "ShaderNodeEmission", {"Color": c, "Strength": strength(t)})
+        return node.outputs[0]
+    return build
+
+
+def value_of(t, value):
+    node = new(t, "ShaderNodeValue")
+    node.outputs[0].default_value = value
+    return node.outputs[0]
+
+
+EMISSION_STRENGTH = [
+    glow(strength=lambda t: math_node(t, "MULTIPLY", noise(t, coords(t), Scale=3.0, Detail=2.0).outputs["Fac"], 3.0)),
+    glow(strength=lambda t: gradient(t, "LINEAR", coords(t)).outputs["Fac"]),
+    glow(color=lambda t: new(t, "ShaderNodeTexChecker", {"Scale": 4.0}).outputs["Color"],
+         strength=lambda t: math_node(t, "ADD", voronoi(t, "Distance"), 0.2)),
+    glow(color=(0.2, 0.6, 1.0, 1.0), strength=lambda t: value_of(t, 1.7)),
+    glow(strength=lambda t: math_node(t, "MULTIPLY", noise(t, coords(t), Scale=2.0).outputs["Fac"], 2.5),
+         principled=True),
+    glow(color=(0.3, 1.0, 0.4, 1.0), strength=lambda t: gradient(t, "SPHERICAL", coords(t)).outputs["Fac"],
+         principled=True),
+    glow(color=lambda t: gradient_colour(t), strength=lambda t: math_node(t, "ADD", noise(t, coords(t), Scale=5.0).outputs["Fac"], 0.5),
+         principled=True),
+    glow(color=lambda t: noise(t, coords(t), Scale=3.0).outputs["Color"],
+         strength=lambda t: math_node(t, "MULTIPLY_ADD", new(t, "ShaderNodeTexChecker", {"Scale": 3.0}).outputs["Fac"],
+                                      1.5, 0.5)),
+]
+
+
 def along_x(t, middle, half_width):
     """middle + half_width × the object's x (−1…1 on a tile)."""
     x = new(t, "ShaderNodeSeparateXYZ", {"Vector": coords(t)}).outputs["X"]
@@ -965,6 +1013,7 @@ SCENES = {
     "graph_bump": bump_scene,
     "graph_map_range": lambda: grid_scene("map_range", MAP_RANGE),
     "graph_voronoi_dimensions": lambda: grid_scene("voronoi_dimensions", VORONOI_DIMENSIONS),
+    "graph_emission_strength": lambda: grid_scene("emission_strength", EMISSION_STRENGTH, make=shader_material),
 }
 
 

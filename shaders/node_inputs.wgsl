@@ -33,6 +33,11 @@ fn node_coordinate(mode: u32, p: NodePoint, extra: u32) -> vec4f {
         case 10u: { return vec4f(p.incoming, 0.0); }
         case 11u: { return vec4f(select(0.0, 1.0, p.backfacing)); }
         case 22u, 23u, 24u, 25u: { return node_object_info(mode - 22u, p); }
+        // Camera Data: the direction from the camera to the point (in camera space), its
+        // depth along the view and its distance.
+        case 26u: { return vec4f(normalize(node_camera_coordinates(false, p)), 0.0); }
+        case 27u: { return vec4f(node_camera_coordinates(false, p).z); }
+        case 28u: { return vec4f(length(node_camera_coordinates(false, p))); }
         default: { return vec4f(node_light_path(mode - 12u, p)); }
     }
 }

@@ -149,6 +149,13 @@ fn driven_emission_strengths_match_cycles() {
     check_channels("graph_emission_strength", 1e-3);
 }
 
+/// Camera Data's View Vector, View Z Depth and View Distance, in perspective through a
+/// shifted lens.
+#[test]
+fn camera_data_matches_cycles() {
+    check_channels("graph_camera_data", 1e-3);
+}
+
 #[test]
 fn waves_of_every_kind_match_cycles() {
     check_channels("graph_wave", 1e-3);

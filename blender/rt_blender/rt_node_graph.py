@@ -51,6 +51,7 @@ EVALUATED = {
     "TEX_MAGIC": ("Color", "Fac"),
     "TEX_BRICK": ("Color", "Fac"),
     "OBJECT_INFO": ("Location", "Color", "Alpha", "Random"),
+    "CAMERA": ("View Vector", "View Z Depth", "View Distance"),
     "BLACKBODY": ("Color",),
     "WAVELENGTH": ("Color",),
     "BUMP": ("Normal",),

@@ -180,7 +180,7 @@ const fn op(name: &'static str, op: u32, inputs: &'static [&'static str], output
     Kind { name, emit: Emit::Operation(op), inputs, outputs }
 }
 
-pub const KINDS: [Kind; 39] = [
+pub const KINDS: [Kind; 40] = [
     Kind { name: "VALUE", emit: Emit::Constant, inputs: &[], outputs: &["Value"] },
     Kind { name: "RGB", emit: Emit::Constant, inputs: &[], outputs: &["Color"] },
     Kind {
@@ -217,6 +217,12 @@ pub const KINDS: [Kind; 39] = [
         emit: Emit::Coordinates(22),
         inputs: &[],
         outputs: &["Location", "Color", "Alpha", "Random"],
+    },
+    Kind {
+        name: "CAMERA",
+        emit: Emit::Coordinates(26),
+        inputs: &[],
+        outputs: &["View Vector", "View Z Depth", "View Distance"],
     },
     op("MATH", NODE_OP_MATH, &["Value", "Value_001", "Value_002"], &["Value"]),
     op("VECT_MATH", NODE_OP_VECTOR_MATH, &["Vector", "Vector_001", "Vector_002", "Scale"], &["Vector", "Value"]),

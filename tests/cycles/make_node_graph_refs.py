@@ -747,6 +747,27 @@ def camera_scene():
     return scene
 
 
+def camera_data(t, which):
+    return new(t, "ShaderNodeCameraData").outputs[which]
+
+
+CAMERA_DATA = (
+    [lambda t: vector_shown(t, camera_data(t, "View Vector"))] * 4
+    + [lambda t: math_node(t, "FRACT", math_node(t, "MULTIPLY", camera_data(t, "View Z Depth"), 0.8))] * 4
+    + [lambda t: math_node(t, "FRACT", math_node(t, "MULTIPLY", camera_data(t, "View Distance"), 1.3))] * 4
+    + [lambda t: ramp(t, math_node(t, "SUBTRACT", camera_data(t, "View Distance"), camera_data(t, "View Z Depth")),
+                      "LINEAR", STOPS)] * 4
+)
+
+
+def camera_data_scene():
+    """The Camera Data node on spheres seen in perspective through a shifted lens."""
+    scene = grid_scene("camera_data", CAMERA_DATA, shape="sphere")
+    camera = cycles.camera(scene, (0.5, -9.0, 7.0), 52.0)
+    camera.data.lens, camera.data.shift_x, camera.data.shift_y = 30.0, 0.06, -0.04
+    return scene
+
+
 def object_info(t, which):
     return new(t, "ShaderNodeObjectInfo").outputs[which]
 
@@ -1014,6 +1035,7 @@ SCENES = {
     "graph_map_range": lambda: grid_scene("map_range", MAP_RANGE),
     "graph_voronoi_dimensions": lambda: grid_scene("voronoi_dimensions", VORONOI_DIMENSIONS),
     "graph_emission_strength": lambda: grid_scene("emission_strength", EMISSION_STRENGTH, make=shader_material),
+    "graph_camera_data": camera_data_scene,
 }
 
 

@@ -55,6 +55,55 @@ fn node_camera_coordinates(window: bool, p: NodePoint) -> vec3f {
     return vec3f(0.5 + 0.5 * (plane - frame.view_shift) / frame.view_half_extent, 0.0);
 }
 
+// Vector Transform (Cycles' svm_node_vector_transform): `v` as a point, vector or normal
+// (mode & 3: 0, 1, 2) from one space (mode >> 2 & 3) to another (mode >> 4): 0 world and 1
+// object (Blender's axes), 2 Cycles' camera space (x right, y up, z along the view).
+// Normals go by the inverse transposes and are normalised; a sphere's object space is the
+// world's.
+fn node_vector_transform(mode: u32, v: vec3f, p: NodePoint) -> vec3f {
+    let space_from = (mode >> 2u) & 3u;
+    let space_to = mode >> 4u;
+    if space_from == space_to {
+        return v;
+    }
+    return node_from_world(mode & 3u, space_to, node_to_world(mode & 3u, space_from, v, p), p);
+}
+
+// `v` of `kind` in space `space_from`, in rt's world (rt's axes).
+fn node_to_world(kind: u32, space_from: u32, v: vec3f, p: NodePoint) -> vec3f {
+    if space_from == 2u {
+        let d = frame.camera_right * v.x + frame.camera_up * v.y + frame.camera_forward * v.z;
+        return select(select(frame.camera_position + d, d, kind == 1u), normalize(d), kind == 2u);
+    }
+    let w = rt_axes(v);
+    if space_from == 0u || p.instance == NODE_NO_OBJECT {
+        return w;
+    }
+    let world_to_object = instance_at(p.instance).world_to_object;
+    if kind == 2u {
+        return normalize(transform_normal_to_world(world_to_object, w));
+    }
+    let to_world = affine_inverse(world_to_object).m;
+    return select(transform_point(to_world, w), transform_vector(to_world, w), kind == 1u);
+}
+
+// `w` of `kind` in rt's world, in space `space_to`.
+fn node_from_world(kind: u32, space_to: u32, w: vec3f, p: NodePoint) -> vec3f {
+    if space_to == 2u {
+        let d = select(w - frame.camera_position, w, kind != 0u);
+        let c = vec3f(dot(d, frame.camera_right), dot(d, frame.camera_up), dot(d, frame.camera_forward));
+        return select(c, normalize(c), kind == 2u);
+    }
+    if space_to == 0u || p.instance == NODE_NO_OBJECT {
+        return blender_axes(w);
+    }
+    let world_to_object = instance_at(p.instance).world_to_object;
+    if kind == 2u {
+        return blender_axes(normalize(transform_normal_to_world(affine_inverse(world_to_object).m, w)));
+    }
+    return blender_axes(select(transform_point(world_to_object, w), transform_vector(world_to_object, w), kind == 1u));
+}
+
 // Object Info's Location, Color, Alpha and Random (node_kinds' order) of the point's
 // object: a sphere's are those of an object at the origin with the defaults.
 fn node_object_info(output: u32, p: NodePoint) -> vec4f {

@@ -37,6 +37,7 @@ fn node_instruction(start: u32, step: NodeStep, p: NodePoint) {
         case NODE_OP_SPECTRUM: { node_op_spectrum(start, step, p); }
         case NODE_OP_BUMP: { node_op_bump(start, step, p); }
         case NODE_OP_VORONOI_DIMENSIONS: { node_op_voronoi_dimensions(start, step, p); }
+        case NODE_OP_VECTOR_TRANSFORM: { node_op_vector_transform(start, step, p); }
         default: {}
     }
 }
@@ -221,6 +222,10 @@ fn node_op_mapping(start: u32, step: NodeStep, p: NodePoint) {
     let a = node_in(start, step, 0u);
     let v = node_mapping(step.mode, a.xyz, node_in(start, step, 1u).xyz, node_in(start, step, 2u).xyz, node_in(start, step, 3u).xyz);
     node_store(step.out, vec4f(v, 0.0));
+}
+
+fn node_op_vector_transform(start: u32, step: NodeStep, p: NodePoint) {
+    node_store(step.out, vec4f(node_vector_transform(step.mode, node_in(start, step, 0u).xyz, p), 0.0));
 }
 
 fn node_op_noise(start: u32, step: NodeStep, p: NodePoint) {

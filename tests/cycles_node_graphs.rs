@@ -156,6 +156,13 @@ fn camera_data_matches_cycles() {
     check_channels("graph_camera_data", 1e-3);
 }
 
+/// Vector Transform of points, vectors and normals between world, object and camera space,
+/// on spheres turned and stretched (normals by the inverse transposes).
+#[test]
+fn vector_transforms_match_cycles() {
+    check_channels("graph_vector_transform", 1e-3);
+}
+
 #[test]
 fn waves_of_every_kind_match_cycles() {
     check_channels("graph_wave", 1e-3);

@@ -12,7 +12,8 @@ pub use crate::shared_constants::{
     NODE_OP_CONVERT, NODE_OP_COORDINATE, NODE_OP_CURVES, NODE_OP_END, NODE_OP_FRESNEL, NODE_OP_GAMMA, NODE_OP_GRADIENT,
     NODE_OP_HUE_SATURATION, NODE_OP_INVERT, NODE_OP_LAYER_WEIGHT, NODE_OP_MAGIC, NODE_OP_MAP_RANGE, NODE_OP_MAPPING,
     NODE_OP_MATH, NODE_OP_MIX, NODE_OP_NOISE, NODE_OP_OUTPUT, NODE_OP_RAMP, NODE_OP_SEPARATE, NODE_OP_SPECTRUM,
-    NODE_OP_VECTOR_MATH, NODE_OP_VORONOI, NODE_OP_VORONOI_DIMENSIONS, NODE_OP_WAVE, NODE_OP_WHITE_NOISE,
+    NODE_OP_VECTOR_MATH, NODE_OP_VECTOR_TRANSFORM, NODE_OP_VORONOI, NODE_OP_VORONOI_DIMENSIONS, NODE_OP_WAVE,
+    NODE_OP_WHITE_NOISE,
 };
 
 /// Every operation by its name in the shader (`VORONOI` for `NODE_OP_VORONOI`), in order.
@@ -144,6 +145,8 @@ const MAP_RANGE_INTERPOLATIONS: [&str; 4] = ["LINEAR", "STEPPED", "SMOOTHSTEP", 
 const MAP_RANGE_DATA_TYPES: [&str; 2] = ["FLOAT", "FLOAT_VECTOR"];
 const CLAMP_TYPES: [&str; 2] = ["MINMAX", "RANGE"];
 const MAPPING_TYPES: [&str; 4] = ["POINT", "TEXTURE", "VECTOR", "NORMAL"];
+const TRANSFORM_TYPES: [&str; 3] = ["POINT", "VECTOR", "NORMAL"];
+const TRANSFORM_SPACES: [&str; 3] = ["WORLD", "OBJECT", "CAMERA"];
 /// White Noise's dimensions, its mode.
 const NOISE_DIMENSIONS: [&str; 4] = ["1D", "2D", "3D", "4D"];
 const NOISE_TYPES: [&str; 5] = ["FBM", "MULTIFRACTAL", "HYBRID_MULTIFRACTAL", "RIDGED_MULTIFRACTAL", "HETERO_TERRAIN"];
@@ -180,7 +183,7 @@ const fn op(name: &'static str, op: u32, inputs: &'static [&'static str], output
     Kind { name, emit: Emit::Operation(op), inputs, outputs }
 }
 
-pub const KINDS: [Kind; 40] = [
+pub const KINDS: [Kind; 41] = [
     Kind { name: "VALUE", emit: Emit::Constant, inputs: &[], outputs: &["Value"] },
     Kind { name: "RGB", emit: Emit::Constant, inputs: &[], outputs: &["Color"] },
     Kind {
@@ -224,6 +227,7 @@ pub const KINDS: [Kind; 40] = [
         inputs: &[],
         outputs: &["View Vector", "View Z Depth", "View Distance"],
     },
+    op("VECT_TRANSFORM", NODE_OP_VECTOR_TRANSFORM, &["Vector"], &["Vector"]),
     op("MATH", NODE_OP_MATH, &["Value", "Value_001", "Value_002"], &["Value"]),
     op("VECT_MATH", NODE_OP_VECTOR_MATH, &["Vector", "Vector_001", "Vector_002", "Scale"], &["Vector", "Value"]),
     op("MIX", NODE_OP_MIX, &["Factor", "A", "B"], &["Result"]),
@@ -301,7 +305,7 @@ pub fn compiler_signature() -> String {
     let kinds: Vec<_> = KINDS.iter().map(|k| (k.name, k.inputs, k.outputs)).collect();
     let ops: Vec<_> = operations().collect();
     format!(
-        "node programs {} {} {ops:?} {MATH_OPERATIONS:?} {VECTOR_MATH_OPERATIONS:?} {BLEND_TYPES:?} {RAMP_TABLE_SIZE} {kinds:?} {VORONOI_FEATURES:?} {VORONOI_METRICS:?} {NOISE_DIMENSIONS:?} {WAVE_TYPES:?} {WAVE_BANDS:?} {WAVE_RINGS:?} {WAVE_PROFILES:?}",
+        "node programs {} {} {ops:?} {MATH_OPERATIONS:?} {VECTOR_MATH_OPERATIONS:?} {TRANSFORM_TYPES:?} {TRANSFORM_SPACES:?} {BLEND_TYPES:?} {RAMP_TABLE_SIZE} {kinds:?} {VORONOI_FEATURES:?} {VORONOI_METRICS:?} {NOISE_DIMENSIONS:?} {WAVE_TYPES:?} {WAVE_BANDS:?} {WAVE_RINGS:?} {WAVE_PROFILES:?}",
         super::node_graph::FORMAT_VERSION,
         super::node_graph::COMPILER_VERSION
     )
@@ -378,6 +382,12 @@ pub fn mode(name: &str, settings: &Map<String, Value>) -> Result<Mode, String> {
         "SEPARATE_COLOR" | "COMBINE_COLOR" => plain(choice(settings, "mode", &COLOR_MODES)?),
         "TEX_WHITE_NOISE" => plain(choice(settings, "noise_dimensions", &NOISE_DIMENSIONS)?),
         "MAPPING" => plain(choice(settings, "vector_type", &MAPPING_TYPES)?),
+        // Mode: the type | the space from << 2 | the space to << 4.
+        "VECT_TRANSFORM" => plain(
+            choice(settings, "vector_type", &TRANSFORM_TYPES)?
+                | choice(settings, "convert_from", &TRANSFORM_SPACES)? << 2
+                | choice(settings, "convert_to", &TRANSFORM_SPACES)? << 4,
+        ),
         // Mode: the type | the dimensions' index << 4.
         "TEX_NOISE" => Ok(Mode {
             mode: choice(settings, "noise_type", &NOISE_TYPES)?
@@ -441,7 +451,7 @@ mod tests {
     #[test]
     fn operations_are_numbered_in_order() {
         let all: Vec<(&str, u32)> = operations().collect();
-        assert_eq!(all.len(), 31);
+        assert_eq!(all.len(), 32);
         assert!(all.iter().enumerate().all(|(i, (name, op))| *op == i as u32 && !name.is_empty()));
         assert_eq!(all[23], ("VORONOI", NODE_OP_VORONOI));
         assert_eq!(all[30], ("VORONOI_DIMENSIONS", NODE_OP_VORONOI_DIMENSIONS));

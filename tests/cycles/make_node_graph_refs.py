@@ -768,6 +768,49 @@ def camera_data_scene():
     return scene
 
 
+def transformed(t, v, kind, source, target, scale=1.0):
+    """A Vector Transform of `v` (a socket, or a function of the tree) × `scale`, shown."""
+    node = new(t, "ShaderNodeVectorTransform", {"Vector": v(t) if callable(v) else v}, vector_type=kind,
+               convert_from=source, convert_to=target)
+    return vector_shown(t, vector_op(t, "MULTIPLY", node.outputs[0], (scale,) * 3) if scale != 1.0 else node.outputs[0])
+
+
+def geometry(t, which):
+    return new(t, "ShaderNodeNewGeometry").outputs[which]
+
+
+VECTOR_TRANSFORM = [
+    lambda t: transformed(t, geometry(t, "Position"), "POINT", "WORLD", "OBJECT"),
+    lambda t: transformed(t, coords(t, "Object"), "POINT", "OBJECT", "WORLD", 0.3),
+    lambda t: transformed(t, geometry(t, "Position"), "POINT", "WORLD", "CAMERA", 0.1),
+    lambda t: transformed(t, coords(t, "Camera"), "POINT", "CAMERA", "WORLD", 0.3),
+    lambda t: transformed(t, coords(t, "Object"), "POINT", "OBJECT", "CAMERA", 0.1),
+    lambda t: transformed(t, coords(t, "Camera"), "POINT", "CAMERA", "OBJECT"),
+    lambda t: transformed(t, (0.3, 0.5, 0.8), "VECTOR", "WORLD", "OBJECT"),
+    lambda t: transformed(t, (0.3, 0.5, 0.8), "VECTOR", "OBJECT", "WORLD"),
+    lambda t: transformed(t, geometry(t, "Incoming"), "VECTOR", "WORLD", "CAMERA"),
+    lambda t: transformed(t, (0.2, -0.4, 0.9), "VECTOR", "CAMERA", "WORLD"),
+    lambda t: transformed(t, (0.2, -0.4, 0.9), "VECTOR", "CAMERA", "OBJECT"),
+    lambda t: transformed(t, geometry(t, "Normal"), "NORMAL", "WORLD", "OBJECT"),
+    lambda t: transformed(t, coords(t, "Normal"), "NORMAL", "OBJECT", "WORLD"),
+    lambda t: transformed(t, geometry(t, "Normal"), "NORMAL", "WORLD", "CAMERA"),
+    lambda t: transformed(t, (0.0, 0.6, 0.8), "NORMAL", "CAMERA", "WORLD"),
+    lambda t: transformed(t, coords(t, "Normal"), "NORMAL", "OBJECT", "CAMERA"),
+]
+
+
+def vector_transform_scene():
+    """Vector Transform of points, vectors and normals between world, object and camera
+    space, on spheres turned and stretched, in perspective through a shifted lens."""
+    scene = grid_scene("vector_transform", VECTOR_TRANSFORM, shape="sphere")
+    for i, obj in enumerate(o for o in scene.objects if o.name.startswith("tile_")):
+        obj.rotation_euler = (0.4 * (i % 3), 0.3 + 0.2 * (i % 4), 0.5 * (i % 5))
+        obj.scale = (0.9, 0.75, 1.1) if i % 2 else (0.8, 0.8, 0.8)
+    camera = cycles.camera(scene, (0.5, -9.0, 7.0), 52.0)
+    camera.data.lens, camera.data.shift_x, camera.data.shift_y = 30.0, 0.06, -0.04
+    return scene
+
+
 def object_info(t, which):
     return new(t, "ShaderNodeObjectInfo").outputs[which]
 
@@ -1036,6 +1079,7 @@ SCENES = {
     "graph_voronoi_dimensions": lambda: grid_scene("voronoi_dimensions", VORONOI_DIMENSIONS),
     "graph_emission_strength": lambda: grid_scene("emission_strength", EMISSION_STRENGTH, make=shader_material),
     "graph_camera_data": camera_data_scene,
+    "graph_vector_transform": vector_transform_scene,
 }
 
 

@@ -163,6 +163,13 @@ fn vector_transforms_match_cycles() {
     check_channels("graph_vector_transform", 1e-3);
 }
 
+/// The Normal node: its direction normalised, and its Dot with a normal, a point and the
+/// incoming direction (each normalised first, as Cycles does).
+#[test]
+fn the_normal_node_matches_cycles() {
+    check_channels("graph_normal_node", 1e-3);
+}
+
 #[test]
 fn waves_of_every_kind_match_cycles() {
     check_channels("graph_wave", 1e-3);

@@ -241,6 +241,26 @@ class GraphWriter:
             return {"value": numbers(socket.default_value)}
         return self.output(links[0].from_socket, groups, to_type)
 
+    def vector_math(self, operation, a, b=None):
+        """A Vector Math node of rt's own on what feeds `a` (and `b`); its index."""
+        inputs = {"Vector": a} if b is None else {"Vector": a, "Vector_001": b}
+        self.nodes.append({"name": f"rt {operation.lower()} {len(self.nodes)}", "type": "VECT_MATH",
+                           "settings": {"operation": operation}, "inputs": inputs})
+        return len(self.nodes) - 1
+
+    def normal_node(self, node, socket, groups, to_type):
+        """The Normal node as Cycles' svm_node_normal, in Vector Math nodes: its direction
+        (its output's own value) normalised, and the dot product of that with its input
+        normalised."""
+        direction = self.vector_math("NORMALIZE", {"value": numbers(node.outputs["Normal"].default_value)})
+        if socket.identifier == "Normal":
+            return {"link": [direction, "Vector"], "from": "VECTOR", "to": to_type}
+        normal = self.input(node.inputs["Normal"], groups, "VECTOR")
+        normalised = self.vector_math("NORMALIZE", normal)
+        dot = self.vector_math("DOT_PRODUCT", {"link": [normalised, "Vector"], "from": "VECTOR", "to": "VECTOR"},
+                               {"link": [direction, "Vector"], "from": "VECTOR", "to": "VECTOR"})
+        return {"link": [dot, "Value"], "from": "VALUE", "to": to_type}
+
     def product(self, a, b):
         """A node of rt's own multiplying what feeds `a` and `b` (as colours): an emission's
         colour and strength, both driven."""
@@ -271,6 +291,8 @@ class GraphWriter:
                 raise Unevaluated(f"{node.name} (GROUP_INPUT) outside a group")
             index = list(node.outputs).index(socket)
             return self.input(groups[-1].inputs[index], groups[:-1], to_type)
+        if node.type == "NORMAL":
+            return self.normal_node(node, socket, groups, to_type)
         if node.type in EVALUATED and socket_key(socket) not in EVALUATED[node.type]:
             raise Unevaluated(f"{node.name} ({node.type}) output {socket.name}")
         index = self.add(node, groups)

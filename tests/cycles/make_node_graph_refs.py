@@ -741,10 +741,7 @@ CAMERA_COORDINATES = (
 def camera_scene():
     """Texture Coordinate's Camera, Window and Reflection on spheres seen in perspective
     through a shifted lens."""
-    scene = grid_scene("camera", CAMERA_COORDINATES, shape="sphere")
-    camera = cycles.camera(scene, (0.5, -9.0, 7.0), 52.0)
-    camera.data.lens, camera.data.shift_x, camera.data.shift_y = 30.0, 0.06, -0.04
-    return scene
+    return camera_scene_of("camera", CAMERA_COORDINATES)
 
 
 def camera_data(t, which):
@@ -760,12 +757,17 @@ CAMERA_DATA = (
 )
 
 
-def camera_data_scene():
-    """The Camera Data node on spheres seen in perspective through a shifted lens."""
-    scene = grid_scene("camera_data", CAMERA_DATA, shape="sphere")
+def camera_scene_of(name, builders):
+    """Spheres of `builders` seen in perspective through a shifted lens."""
+    scene = grid_scene(name, builders, shape="sphere")
     camera = cycles.camera(scene, (0.5, -9.0, 7.0), 52.0)
     camera.data.lens, camera.data.shift_x, camera.data.shift_y = 30.0, 0.06, -0.04
     return scene
+
+
+def camera_data_scene():
+    """The Camera Data node on spheres seen in perspective through a shifted lens."""
+    return camera_scene_of("camera_data", CAMERA_DATA)
 
 
 def transformed(t, v, kind, source, target, scale=1.0):
@@ -802,13 +804,27 @@ VECTOR_TRANSFORM = [
 def vector_transform_scene():
     """Vector Transform of points, vectors and normals between world, object and camera
     space, on spheres turned and stretched, in perspective through a shifted lens."""
-    scene = grid_scene("vector_transform", VECTOR_TRANSFORM, shape="sphere")
+    scene = camera_scene_of("vector_transform", VECTOR_TRANSFORM)
     for i, obj in enumerate(o for o in scene.objects if o.name.startswith("tile_")):
         obj.rotation_euler = (0.4 * (i % 3), 0.3 + 0.2 * (i % 4), 0.5 * (i % 5))
         obj.scale = (0.9, 0.75, 1.1) if i % 2 else (0.8, 0.8, 0.8)
-    camera = cycles.camera(scene, (0.5, -9.0, 7.0), 52.0)
-    camera.data.lens, camera.data.shift_x, camera.data.shift_y = 30.0, 0.06, -0.04
     return scene
+
+
+def normal_node(t, direction, which="Dot", normal=None):
+    node = new(t, "ShaderNodeNormal", {} if normal is None else {"Normal": normal})
+    node.outputs["Normal"].default_value = direction
+    return node.outputs[which]
+
+
+NORMAL_NODE = [
+    lambda t: normal_node(t, (0.0, -0.6, 0.8), normal=geometry(t, "Normal")),
+    lambda t: normal_node(t, (0.5, 0.5, 0.2), normal=geometry(t, "Normal")),
+    lambda t: shown(t, normal_node(t, (-0.3, 0.2, 0.9), normal=coords(t, "Object")), 0.5, 0.5),
+    lambda t: vector_shown(t, normal_node(t, (1.0, 2.0, -2.0), "Normal")),
+    lambda t: ramp(t, normal_node(t, (0.2, -0.9, 0.4), normal=geometry(t, "Incoming")), "LINEAR", STOPS),
+    lambda t: math_node(t, "ABSOLUTE", normal_node(t, (0.0, 0.0, 1.0))),
+]
 
 
 def object_info(t, which):
@@ -1080,6 +1096,7 @@ SCENES = {
     "graph_emission_strength": lambda: grid_scene("emission_strength", EMISSION_STRENGTH, make=shader_material),
     "graph_camera_data": camera_data_scene,
     "graph_vector_transform": vector_transform_scene,
+    "graph_normal_node": lambda: camera_scene_of("normal_node", NORMAL_NODE),
 }
 
 

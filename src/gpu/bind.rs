@@ -19,6 +19,16 @@ impl Binding {
         }
     }
 
+    /// How many of `bindings` are storage buffers.
+    pub const fn storage_buffers(bindings: &[Binding]) -> u32 {
+        let (mut i, mut count) = (0, 0);
+        while i < bindings.len() {
+            count += !matches!(bindings[i], Binding::Uniform) as u32;
+            i += 1;
+        }
+        count
+    }
+
     /// The address space WGSL declares such a binding in.
     pub fn wgsl_address_space(self) -> &'static str {
         match self {

@@ -21,11 +21,18 @@ pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     sequential_layout(device, "scene", wgpu::ShaderStages::COMPUTE, SCENE_BINDINGS)
 }
 
-/// Layout of the atmosphere's group: its parameters (uniform) and its tables
-/// (storage, read-only to render, written by the table passes).
+/// The atmosphere's group: its parameters and its tables (read-only to render, written by
+/// the table passes).
+pub const SKY_BINDINGS: [Binding; 2] = [Binding::Uniform, Binding::ReadOnly];
+
+/// The integrator's group 1: accumulation, AOVs, adaptive sampling's counts, the lanes'
+/// chunk counters and the exact sums.
+pub const ACCUMULATION_BUFFERS: usize = 7;
+
+/// Layout of the atmosphere's group ([`SKY_BINDINGS`], its tables writable to the table passes).
 pub fn sky_bind_group_layout(device: &wgpu::Device, tables_writable: bool) -> wgpu::BindGroupLayout {
-    let tables = if tables_writable { Binding::ReadWrite } else { Binding::ReadOnly };
-    sequential_layout(device, "sky", wgpu::ShaderStages::COMPUTE, &[Binding::Uniform, tables])
+    let tables = if tables_writable { Binding::ReadWrite } else { SKY_BINDINGS[1] };
+    sequential_layout(device, "sky", wgpu::ShaderStages::COMPUTE, &[SKY_BINDINGS[0], tables])
 }
 
 /// Layout of group 1: `count` read-write storage buffers (accumulation, or trace rays and hits).

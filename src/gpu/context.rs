@@ -2,6 +2,8 @@
 //! wgpu's default handler panics on an error no scope caught; rt's records it, and the
 //! next [`GpuContext::wait`] (or [`GpuContext::take_error`]) returns it as an `Err`.
 
+use super::bind::Binding;
+use super::scene_bindings::SCENE_BINDINGS;
 use anyhow::{Context as _, Result, anyhow, bail};
 use std::path::Path;
 use std::sync::{Arc, Mutex};
@@ -20,12 +22,16 @@ pub struct GpuContext {
     errors: Arc<Mutex<Vec<String>>>,
 }
 
-/// Storage buffers the integrator binds in one stage: 21 in the scene group (see
-/// `shaders/common.wgsl`, the instances' Shadow Terminator settings and the node programs among them; the
-/// microfacet tables' in `shaders/microfacet_tables.wgsl`, the motion keys' in `shaders/motion.wgsl`), 7 of the accumulation (with
-/// AOVs, adaptive sampling's counts, the lanes' chunk counters and the exact sums) and the
-/// atmosphere's tables. lavapipe offers 32, the NVIDIA driver far more.
-const STORAGE_BUFFERS_NEEDED: u32 = 29;
+/// Storage buffers the integrator binds in one stage, counted from the groups' declarations:
+/// the scene's (`super::scene_bindings`), the accumulation's and the atmosphere's. lavapipe
+/// offers 32, the NVIDIA driver far more.
+const STORAGE_BUFFERS_NEEDED: u32 = Binding::storage_buffers(SCENE_BINDINGS)
+    + super::buffers::ACCUMULATION_BUFFERS as u32
+    + Binding::storage_buffers(&super::buffers::SKY_BINDINGS);
+
+// lavapipe, the driver of machines without a GPU (CI's), offers 32: a binding past that is
+// a build error, not a failure on the first such machine.
+const _: () = assert!(STORAGE_BUFFERS_NEEDED <= 32, "more storage buffers in one stage than lavapipe offers");
 
 const NO_ADAPTER_HELP: &str = "no GPU adapter found. rt needs Vulkan; on a machine without a GPU, \
 install Mesa's CPU driver (lavapipe): `sudo apt-get install mesa-vulkan-drivers`";

@@ -41,7 +41,7 @@ impl PipelineCache {
             scene_layout: scene_bind_group_layout(&ctx.device),
             // Means, non-finite counts, lane scratch, AOVs, adaptive sampling's counts, the
             // lanes' chunk counters, exact sums.
-            accumulation_layout: io_bind_group_layout(&ctx.device, 7),
+            accumulation_layout: io_bind_group_layout(&ctx.device, super::buffers::ACCUMULATION_BUFFERS),
             trace_layout: io_bind_group_layout(&ctx.device, 2),
             sky_layout: sky_bind_group_layout(&ctx.device, false),
             files: ShaderFiles::BuiltIn,

@@ -380,7 +380,6 @@ pub fn mode(name: &str, settings: &Map<String, Value>) -> Result<Mode, String> {
         // Flags: the height inverted.
         "BUMP" => Ok(Mode { mode: 0, flags: flag(settings, "invert") as u32 }),
         "SEPARATE_COLOR" | "COMBINE_COLOR" => plain(choice(settings, "mode", &COLOR_MODES)?),
-        "TEX_WHITE_NOISE" => plain(choice(settings, "noise_dimensions", &NOISE_DIMENSIONS)?),
         "MAPPING" => plain(choice(settings, "vector_type", &MAPPING_TYPES)?),
         // Mode: the type | the space from << 2 | the space to << 4.
         "VECT_TRANSFORM" => plain(
@@ -388,6 +387,16 @@ pub fn mode(name: &str, settings: &Map<String, Value>) -> Result<Mode, String> {
                 | choice(settings, "convert_from", &TRANSFORM_SPACES)? << 2
                 | choice(settings, "convert_to", &TRANSFORM_SPACES)? << 4,
         ),
+        name if name.starts_with("TEX_") => texture_mode(name, settings),
+        _ => plain(0),
+    }
+}
+
+/// The mode of texture node type `name` with `settings`.
+fn texture_mode(name: &str, settings: &Map<String, Value>) -> Result<Mode, String> {
+    let plain = |mode| Ok(Mode { mode, flags: 0 });
+    match name {
+        "TEX_WHITE_NOISE" => plain(choice(settings, "noise_dimensions", &NOISE_DIMENSIONS)?),
         // Mode: the type | the dimensions' index << 4.
         "TEX_NOISE" => Ok(Mode {
             mode: choice(settings, "noise_type", &NOISE_TYPES)?

@@ -93,26 +93,7 @@ fn blender_scene_exports_packs_and_renders() {
         assert_eq!(mesh.indices.len() as u64, object["triangles"].as_u64().expect("count"), "{name}: triangles");
     }
 
-    // The vertex farthest along a fixed direction lands where Blender has it, in Y-up.
-    let suzanne = asset("suzanne");
-    let to_world = instance_matrix(&scene, "suzanne");
-    let direction = Vec3::new(0.3, 0.5, 0.7);
-    let farthest = |points: &mut dyn Iterator<Item = Vec3>| {
-        points.max_by(|a, b| a.dot(direction).total_cmp(&b.dot(direction))).expect("vertices")
-    };
-    let ours = farthest(&mut suzanne.positions.iter().map(|p| to_world.transform_point3(Vec3::from(*p))));
-    let blender = expected["objects"]["suzanne"]["world_positions"].as_array().expect("positions");
-    let theirs = farthest(&mut blender.iter().map(y_up));
-    assert!(ours.distance(theirs) < 1e-4, "known vertex: rt {ours} vs Blender {theirs}");
-
-    let glass = &suzanne.materials[0].1;
-    assert_eq!((glass.transmission, glass.diffuse, glass.reflection), (1.0, 0.0, 0.0), "{glass:?}");
-    assert!((glass.ior - 1.45).abs() < 1e-6 && (glass.roughness - 0.05).abs() < 1e-6, "{glass:?}");
-    let lamp = &asset("lamp").materials[0].1;
-    assert!(!glass.bump_map_correction && lamp.bump_map_correction, "Bump Map Correction: off on the glass only");
-    for (got, want) in lamp.emission.iter().zip([5.0, 2.5, 1.25]) {
-        assert!((got - want).abs() < 1e-5, "lamp emission {:?}", lamp.emission);
-    }
+    suzanne_and_lamp_come_through(&asset("suzanne"), &asset("lamp"), &scene, &expected);
 
     cameras_come_through(&python, &out, &expected, &scene);
     assert_eq!(scene.sky, rt::scene::Sky::Uniform { color: Vec3::new(0.2, 0.25, 0.3), sample_as_light: false });
@@ -144,6 +125,29 @@ fn blender_scene_exports_packs_and_renders() {
 
     live_export_writes_only_what_changed(&python, &script, &out);
     let _ = std::fs::remove_dir_all(&out);
+}
+
+/// Suzanne's vertex farthest along a fixed direction lands where Blender has it, in Y-up;
+/// her glass and the lamp's emission are Blender's.
+fn suzanne_and_lamp_come_through(suzanne: &MeshData, lamp: &MeshData, scene: &Scene, expected: &Value) {
+    let to_world = instance_matrix(scene, "suzanne");
+    let direction = Vec3::new(0.3, 0.5, 0.7);
+    let farthest = |points: &mut dyn Iterator<Item = Vec3>| {
+        points.max_by(|a, b| a.dot(direction).total_cmp(&b.dot(direction))).expect("vertices")
+    };
+    let ours = farthest(&mut suzanne.positions.iter().map(|p| to_world.transform_point3(Vec3::from(*p))));
+    let blender = expected["objects"]["suzanne"]["world_positions"].as_array().expect("positions");
+    let theirs = farthest(&mut blender.iter().map(y_up));
+    assert!(ours.distance(theirs) < 1e-4, "known vertex: rt {ours} vs Blender {theirs}");
+
+    let glass = &suzanne.materials[0].1;
+    assert_eq!((glass.transmission, glass.diffuse, glass.reflection), (1.0, 0.0, 0.0), "{glass:?}");
+    assert!((glass.ior - 1.45).abs() < 1e-6 && (glass.roughness - 0.05).abs() < 1e-6, "{glass:?}");
+    let lamp = &lamp.materials[0].1;
+    assert!(!glass.bump_map_correction && lamp.bump_map_correction, "Bump Map Correction: off on the glass only");
+    for (got, want) in lamp.emission.iter().zip([5.0, 2.5, 1.25]) {
+        assert!((got - want).abs() < 1e-5, "lamp emission {:?}", lamp.emission);
+    }
 }
 
 /// The camera's position, view, roll, lens, shift and depth of field, an orthographic one
@@ -225,7 +229,7 @@ fn cameras_come_through(python: &Path, out: &Path, expected: &Value, scene: &Sce
 
 /// Each lamp's type, colour, power (exposure and "Normalize" folded in), shape and
 /// placement, against the raw Blender values.
-fn check_lights(scene: &rt::scene::Scene, expected: &Value) {
+fn check_lights(scene: &Scene, expected: &Value) {
     use rt::scene::{AreaShape, LightShape};
     assert_eq!(scene.lights.len(), 4, "one [[light]] per lamp");
     let close =

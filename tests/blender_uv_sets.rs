@@ -7,6 +7,7 @@ use crate::common;
 use common::temp_dir;
 use rt::asset::load_mesh;
 use serde_json::Value;
+use std::path::Path;
 
 #[test]
 fn the_exporter_writes_second_uv_maps_and_bakes_procedural_sockets() {
@@ -14,9 +15,24 @@ fn the_exporter_writes_second_uv_maps_and_bakes_procedural_sockets() {
     let log = common::run_bpy_script("uv_sets_bake.py", &out);
     let report: Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).expect("report")).expect("JSON");
+    second_uv_maps_and_mappings(&out, &log);
+    graphs_are_not_baked(&out, &log);
+    procedural_sockets_are_baked(&out, &log, &report);
+    bumps_are_baked_into_normal_maps(&out, &log, &report);
+}
 
+fn load(out: &Path, scene: &str) -> rt::asset::MeshData {
+    load_mesh(&out.join(scene).join("assets/Plane")).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The red channel of a baked 32 × 32 texture.
+fn reds(texels: &[u32]) -> Vec<u8> {
+    texels[..32 * 32].iter().map(|t| t.to_le_bytes()[0]).collect()
+}
+
+fn second_uv_maps_and_mappings(out: &Path, log: &str) {
     // The base colour reads the UV Map node's map (the mesh's second set), the roughness the default one.
-    let mesh = load_mesh(&out.join("uv_sets/assets/Plane")).unwrap_or_else(|e| panic!("{e}"));
+    let mesh = load(out, "uv_sets");
     let textures = &mesh.materials[0].1.textures;
     assert!(textures.reads_second_uv_set(0) && !textures.reads_second_uv_set(1), "{textures:?}");
     let (first, second) = (mesh.uvs.expect("uvs"), mesh.second_uvs.expect("the second uv map"));
@@ -24,7 +40,7 @@ fn the_exporter_writes_second_uv_maps_and_bakes_procedural_sockets() {
 
     // Two Mapping nodes on one uv map: each texture its own transform, Blender's Mapping
     // (rotation · scale + location) as rt reads it; the uvs as Blender has them (the plane's 0 and 1).
-    let mapped = load_mesh(&out.join("mappings/assets/Plane")).unwrap_or_else(|e| panic!("{e}"));
+    let mapped = load(out, "mappings");
     let textures = &mapped.materials[0].1.textures;
     let transform = |slot: Option<u32>| mapped.textures[slot.expect("a texture") as usize].uv_transform;
     let (s, c) = 20f32.to_radians().sin_cos();
@@ -39,49 +55,54 @@ fn the_exporter_writes_second_uv_maps_and_bakes_procedural_sockets() {
     let uvs = mapped.uvs.expect("uvs");
     assert!(uvs.iter().flatten().all(|&x| x == 0.0 || x == 1.0), "{uvs:?}");
     assert!(!log.contains("different Mapping nodes"), "{log}");
+}
 
+fn graphs_are_not_baked(out: &Path, log: &str) {
     // A Noise Texture into Base Color is a node graph rt evaluates: nothing baked, nothing warned.
-    let graph = load_mesh(&out.join("graph/assets/Plane")).unwrap_or_else(|e| panic!("{e}"));
+    let graph = load(out, "graph");
     assert!(graph.materials[0].1.textures.base_color.is_none());
     assert!(!graph.materials[0].1.node_program.is_empty(), "the noise is a node program");
     // The log's bakes are the turned noise's below (a plane and its instances): none is the graph's.
     assert_eq!(log.matches("noise: baked Base Color (TEX_NOISE)").count(), 2, "{log}");
     assert_eq!(log.matches("linked to TEX_NOISE").count(), 1, "only the unbaked export warns: {log}");
 
+    // A Bump node fed by the noise into Normal is a node graph rt evaluates: nothing baked.
+    let bump_graph = load(out, "bump_graph");
+    let material = &bump_graph.materials[0].1;
+    assert!(material.textures.normal.is_none() && bump_graph.textures.is_empty(), "the Bump's graph is not baked");
+    assert!(rt::asset::node_program::drives(&material.node_program, "normal"), "the graph sets the normal");
+}
+
+fn procedural_sockets_are_baked(out: &Path, log: &str, report: &Value) {
     // Baked: the turned noise is a base colour texture that varies; the node tree is as it was.
-    let baked = load_mesh(&out.join("baked/assets/Plane")).unwrap_or_else(|e| panic!("{e}"));
+    let baked = load(out, "baked");
     let index = baked.materials[0].1.textures.base_color.expect("a baked base colour texture") as usize;
     let image = &baked.textures[index];
     assert_eq!((image.width, image.height), (32, 32));
-    let reds: Vec<u8> = image.texels[..32 * 32].iter().map(|t| t.to_le_bytes()[0]).collect();
-    assert!(reds.iter().max() > reds.iter().min(), "the bake is not a constant");
+    let red = reds(&image.texels);
+    assert!(red.iter().max() > red.iter().min(), "the bake is not a constant");
     assert_eq!(report["before"], report["after"], "the bake leaves the node tree as it was");
     assert!(log.contains("noise: baked Base Color (TEX_NOISE) into 32x32 texels"), "{log}");
     // Without --bake the socket keeps its own value, with the warning.
-    let unbaked = load_mesh(&out.join("unbaked/assets/Plane")).unwrap_or_else(|e| panic!("{e}"));
+    let unbaked = load(out, "unbaked");
     assert!(unbaked.materials[0].1.textures.base_color.is_none());
     assert!(log.contains("Base Color is linked to TEX_NOISE, which rt cannot follow"), "{log}");
 
     // Seen only through collection instances (its own collection excluded), the plane is
     // baked on a stand-in object, which is gone afterwards.
-    let instanced = load_mesh(&out.join("instanced/assets/Plane")).unwrap_or_else(|e| panic!("{e}"));
+    let instanced = load(out, "instanced");
     let index = instanced.materials[0].1.textures.base_color.expect("the instanced plane's baked base colour");
-    let reds: Vec<u8> =
-        instanced.textures[index as usize].texels[..32 * 32].iter().map(|t| t.to_le_bytes()[0]).collect();
-    assert!(reds.iter().max() > reds.iter().min(), "the instances' bake is not a constant");
+    let red = reds(&instanced.textures[index as usize].texels);
+    assert!(red.iter().max() > red.iter().min(), "the instances' bake is not a constant");
     let objects = report["objects_after_instanced_bake"].as_array().expect("object names");
     assert!(objects.iter().all(|o| !o.as_str().unwrap_or("").starts_with("rt_bake")), "{objects:?}");
+}
 
-    // A Bump node fed by the noise into Normal is a node graph rt evaluates: nothing baked.
-    let bump_graph = load_mesh(&out.join("bump_graph/assets/Plane")).unwrap_or_else(|e| panic!("{e}"));
-    let material = &bump_graph.materials[0].1;
-    assert!(material.textures.normal.is_none() && bump_graph.textures.is_empty(), "the Bump's graph is not baked");
-    assert!(rt::asset::node_program::drives(&material.node_program, "normal"), "the graph sets the normal");
-
+fn bumps_are_baked_into_normal_maps(out: &Path, log: &str, report: &Value) {
     // A Bump node fed by a Gabor Texture into Normal: Cycles' NORMAL pass in tangent space becomes
     // a normal map of strength 1 that tilts the normal (x and y away from 0.5 somewhere),
     // facing out (z above 0.5 everywhere); the node tree is as it was.
-    let bumped = load_mesh(&out.join("bump/assets/Plane")).unwrap_or_else(|e| panic!("{e}"));
+    let bumped = load(out, "bump");
     let textures = &bumped.materials[0].1.textures;
     let index = textures.normal.expect("a baked normal map") as usize;
     assert_eq!(textures.normal_scale, 1.0);

@@ -408,24 +408,10 @@ fn peak_mib(pid: u32) -> f64 {
     kib / 1024.0
 }
 
-/// A client that writes camera lines as fast as it can (reading frames all the while)
-/// must not grow rt's memory: each newer camera replaces the one still waiting. Then a
-/// bad line is answered at once, and rt exits soon after its input closes.
-#[test]
-fn a_client_flooding_camera_lines_keeps_rt_small_and_answering() {
-    use std::sync::Arc;
-    use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-    use std::sync::mpsc::{RecvTimeoutError, channel};
-    let dir = temp_dir("stream-flood");
-    let scene = scene(&dir, 0.1);
-    let stderr = dir.join("rt.stderr");
-    let mut rt = rt_stream(&scene, 100_000, &[], &stderr);
-    let pid = rt.id();
-    let mut input = rt.stdin.take().expect("stdin");
-    let mut output = BufReader::new(rt.stdout.take().expect("stdout"));
-    // rt's lines, frames' bytes skipped, arrive through a channel: the test never blocks
-    // on a read, so an rt that stops answering fails it instead of hanging it.
-    let (lines, received) = channel::<String>();
+/// rt's lines, frames' bytes skipped, through a channel: a test never blocks on a read, so an
+/// rt that stops answering fails it instead of hanging it.
+fn lines_of(mut output: BufReader<std::process::ChildStdout>) -> std::sync::mpsc::Receiver<String> {
+    let (lines, received) = std::sync::mpsc::channel::<String>();
     std::thread::spawn(move || {
         let mut line = String::new();
         while output.read_line(&mut line).is_ok_and(|n| n > 0) {
@@ -440,19 +426,45 @@ fn a_client_flooding_camera_lines_keeps_rt_small_and_answering() {
             }
         }
     });
+    received
+}
+
+/// Writes camera lines into `input` as fast as it takes them until `stop`, counting them in
+/// `sent`; gives `input` back.
+fn flood(
+    mut input: std::process::ChildStdin,
+    stop: std::sync::Arc<std::sync::atomic::AtomicBool>,
+    sent: std::sync::Arc<std::sync::atomic::AtomicU64>,
+) -> std::thread::JoinHandle<std::process::ChildStdin> {
+    use std::sync::atomic::Ordering;
+    std::thread::spawn(move || {
+        let batch: String = (0..64)
+            .map(|i| format!("camera view=1,0,0,{},0,1,0,0,0,0,1,-5,0,0,0,1 fov=30\n", i as f32 * 1e-3))
+            .collect();
+        while !stop.load(Ordering::Relaxed) && input.write_all(batch.as_bytes()).is_ok() {
+            sent.fetch_add(64, Ordering::Relaxed);
+        }
+        input
+    })
+}
+
+/// A client that writes camera lines as fast as it can (reading frames all the while)
+/// must not grow rt's memory: each newer camera replaces the one still waiting. Then a
+/// bad line is answered at once, and rt exits soon after its input closes.
+#[test]
+fn a_client_flooding_camera_lines_keeps_rt_small_and_answering() {
+    use std::sync::Arc;
+    use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+    use std::sync::mpsc::RecvTimeoutError;
+    let dir = temp_dir("stream-flood");
+    let scene = scene(&dir, 0.1);
+    let stderr = dir.join("rt.stderr");
+    let mut rt = rt_stream(&scene, 100_000, &[], &stderr);
+    let pid = rt.id();
+    let input = rt.stdin.take().expect("stdin");
+    let received = lines_of(BufReader::new(rt.stdout.take().expect("stdout")));
     let (stop, sent) = (Arc::new(AtomicBool::new(false)), Arc::new(AtomicU64::new(0)));
-    let writer = {
-        let (stop, sent) = (stop.clone(), sent.clone());
-        std::thread::spawn(move || {
-            let batch: String = (0..64)
-                .map(|i| format!("camera view=1,0,0,{},0,1,0,0,0,0,1,-5,0,0,0,1 fov=30\n", i as f32 * 1e-3))
-                .collect();
-            while !stop.load(Ordering::Relaxed) && input.write_all(batch.as_bytes()).is_ok() {
-                sent.fetch_add(64, Ordering::Relaxed);
-            }
-            input
-        })
-    };
+    let writer = flood(input, stop.clone(), sent.clone());
     let mut frames = 0u32;
     let flood_end = Instant::now() + Duration::from_secs(10);
     while Instant::now() < flood_end {

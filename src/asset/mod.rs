@@ -13,6 +13,7 @@ mod gltf_textures;
 pub mod material_extras;
 pub mod node_graph;
 pub mod node_kinds;
+mod node_modes;
 pub mod node_program;
 pub mod node_shift;
 pub mod notes;

@@ -46,13 +46,17 @@ fn node_coordinate(mode: u32, p: NodePoint, extra: u32) -> vec4f {
 // the view, metres) or, with `window`, Window (where the point is on the image, 0 to 1
 // from the bottom left; z 0).
 fn node_camera_coordinates(window: bool, p: NodePoint) -> vec3f {
-    let d = rt_axes(p.position) - frame.camera_position;
-    let camera = vec3f(dot(d, frame.camera_right), dot(d, frame.camera_up), dot(d, frame.camera_forward));
+    let camera = camera_space(rt_axes(p.position) - frame.camera_position);
     if !window {
         return camera;
     }
     let plane = select(camera.xy / camera.z, camera.xy, frame.orthographic != 0u);
     return vec3f(0.5 + 0.5 * (plane - frame.view_shift) / frame.view_half_extent, 0.0);
+}
+
+// A direction of rt's world in Cycles' camera space (x right, y up, z along the view).
+fn camera_space(d: vec3f) -> vec3f {
+    return vec3f(dot(d, frame.camera_right), dot(d, frame.camera_up), dot(d, frame.camera_forward));
 }
 
 // Vector Transform (Cycles' svm_node_vector_transform): `v` as a point, vector or normal
@@ -90,8 +94,7 @@ fn node_to_world(kind: u32, space_from: u32, v: vec3f, p: NodePoint) -> vec3f {
 // `w` of `kind` in rt's world, in space `space_to`.
 fn node_from_world(kind: u32, space_to: u32, w: vec3f, p: NodePoint) -> vec3f {
     if space_to == 2u {
-        let d = select(w - frame.camera_position, w, kind != 0u);
-        let c = vec3f(dot(d, frame.camera_right), dot(d, frame.camera_up), dot(d, frame.camera_forward));
+        let c = camera_space(select(w - frame.camera_position, w, kind != 0u));
         return select(c, normalize(c), kind == 2u);
     }
     if space_to == 0u || p.instance == NODE_NO_OBJECT {

@@ -50,7 +50,7 @@ fn background_seen(radiance: ptr<function, vec3f>, throughput: vec3f, origin: ve
 
 // The normals a hit's maps give: the shading normal, the one before the normal map and
 // the coat's.
-struct SeenMaterial {
+struct SeenNormals {
     shading_normal: vec3f,
     n_unmapped: vec3f,
     coat_normal: vec3f,
@@ -62,8 +62,8 @@ struct SeenMaterial {
 // there: `m`, the material the surface names, made what its textures and node graph make
 // it, and the normals its maps give. `path_key`, `bounce`, `ray_from` and `ray_singular`
 // are what a node graph's coins and Light Path node read.
-fn material_seen(m: ptr<function, Material>, hit: Hit, surface: Surface, direction: vec3f, cone_width: f32, path_key: u32, bounce: u32, ray_from: u32, ray_singular: bool) -> SeenMaterial {
-    var seen = SeenMaterial(surface.shading_normal, surface.shading_normal, surface.shading_normal, false);
+fn material_seen(m: ptr<function, Material>, hit: Hit, surface: Surface, direction: vec3f, cone_width: f32, path_key: u32, bounce: u32, ray_from: u32, ray_singular: bool) -> SeenNormals {
+    var seen = SeenNormals(surface.shading_normal, surface.shading_normal, surface.shading_normal, false);
     //#if textures
     let cos_hit = max(abs(dot(surface.geometric_normal, direction)), 1e-4);
     // The uv and its footprint, only where the material reads a texture: it costs a
@@ -113,7 +113,7 @@ fn material_seen(m: ptr<function, Material>, hit: Hit, surface: Surface, directi
 // The normal the hit is shaded with, on the viewer's side (`entering`), and the state the
 // lobes read beside it: the normal before its map, the coat's, Cycles' smooth-shading
 // correction, the terminator shift and the anisotropic tangent.
-fn shading_normal_at(m: Material, seen: SeenMaterial, hit: Hit, surface: Surface, direction: vec3f, entering: bool, n_geometric: vec3f) -> vec3f {
+fn shading_normal_at(m: Material, seen: SeenNormals, hit: Hit, surface: Surface, direction: vec3f, entering: bool, n_geometric: vec3f) -> vec3f {
     var n_shading = select(-surface.shading_normal, surface.shading_normal, entering);
     var mapped = false;
     //#if normal_maps

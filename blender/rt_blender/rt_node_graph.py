@@ -265,10 +265,7 @@ class GraphWriter:
         """A node of rt's own multiplying what feeds `a` and `b` (as colours): an emission's
         colour and strength, both driven."""
         vector = [{**x, "to": "VECTOR"} if "link" in x else x for x in (a, b)]
-        self.nodes.append({"name": f"rt product {len(self.nodes)}", "type": "VECT_MATH",
-                           "settings": {"operation": "MULTIPLY"},
-                           "inputs": {"Vector": vector[0], "Vector_001": vector[1]}})
-        return {"link": [len(self.nodes) - 1, "Vector"], "from": "VECTOR", "to": "RGBA"}
+        return {"link": [self.vector_math("MULTIPLY", *vector), "Vector"], "from": "VECTOR", "to": "RGBA"}
 
     def output(self, socket, groups, to_type):
         node = socket.node

@@ -453,10 +453,6 @@ def voronoi_of(dimensions, which="Distance", show=None, w=x_times(1.5), **settin
     return build
 
 
-def fraction(t, vector):
-    return new(t, "ShaderNodeVectorMath", {"Vector": vector}, operation="FRACTION").outputs[0]
-
-
 VORONOI = [
     lambda t: voronoi(t, "Distance", vector=False),
     lambda t: voronoi(t, "Color"),
@@ -561,7 +557,7 @@ def noise_of(dimensions, which="Fac", noise_type="FBM", w=None, show=None, **inp
     """Noise of 1, 2 or 4 dimensions over the object coordinates; W from `w` (a function of
     the tree) or the x coordinate × 3; `show` = (scale, offset) for values of any sign."""
     def build(t):
-        w_socket = w(t) if w else math_node(t, "MULTIPLY", new(t, "ShaderNodeSeparateXYZ", {"Vector": coords(t)}).outputs["X"], 3.0)
+        w_socket = w(t) if w else x_times(3.0)(t)
         node = noise(t, coords(t), noise_type, dimensions=dimensions, W=w_socket, **inputs)
         out = node.outputs[which]
         return shown(t, out, *show) if show else out
@@ -602,7 +598,7 @@ VORONOI_DIMENSIONS = [
     voronoi_of("1D", "Radius", feature="N_SPHERE_RADIUS", show=(1.5, 0.0), Randomness=0.7),
     voronoi_of("2D", normalize=True, Detail=2.0, Roughness=0.5),
     voronoi_of("2D", "Color", feature="F2", distance="MANHATTAN"),
-    lambda t: fraction(t, voronoi(t, "Position", dimensions="2D")),
+    lambda t: vector_op(t, "FRACTION", voronoi(t, "Position", dimensions="2D")),
     voronoi_of("2D", "Color", feature="SMOOTH_F1", distance="CHEBYCHEV", Smoothness=0.5),
     voronoi_of("2D", feature="DISTANCE_TO_EDGE", show=(2.0, 0.0)),
     voronoi_of("2D", "Distance", distance="MINKOWSKI", show=(0.4, 0.0), Exponent=1.5),

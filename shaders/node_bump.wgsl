@@ -36,10 +36,16 @@ fn node_surface_steps(p: ptr<function, NodePoint>, inst: Instance, triangle: u32
             (*p).step_x = blender_axes(world);
             (*p).object_step_x = blender_axes(object);
             (*p).uv_step_x = uv;
+            //#if attributes
+            (*p).barycentric_step_x = d;
+            //#endif
         } else {
             (*p).step_y = blender_axes(world);
             (*p).object_step_y = blender_axes(object);
             (*p).uv_step_y = uv;
+            //#if attributes
+            (*p).barycentric_step_y = d;
+            //#endif
         }
     }
 }
@@ -69,10 +75,16 @@ fn node_point_stepped(p: NodePoint, axis: u32, width: f32) -> NodePoint {
         q.position += s * p.step_x;
         q.object += s * p.object_step_x;
         q.uv += s * p.uv_step_x;
+        //#if attributes
+        q.barycentrics += s * p.barycentric_step_x;
+        //#endif
     } else {
         q.position += s * p.step_y;
         q.object += s * p.object_step_y;
         q.uv += s * p.uv_step_y;
+        //#if attributes
+        q.barycentrics += s * p.barycentric_step_y;
+        //#endif
     }
     return q;
 }

@@ -4,6 +4,7 @@
 
 //#include "node_inputs.wgsl"
 //#include "node_bump.wgsl"
+//#include "node_attribute.wgsl"
 
 // Runs one instruction (not END or OUTPUT) at `at`, whose extra words start at `extra`.
 fn node_instruction(start: u32, step: NodeStep, p: NodePoint) {
@@ -38,6 +39,7 @@ fn node_instruction(start: u32, step: NodeStep, p: NodePoint) {
         case NODE_OP_BUMP: { node_op_bump(start, step, p); }
         case NODE_OP_VORONOI_DIMENSIONS: { node_op_voronoi_dimensions(start, step, p); }
         case NODE_OP_VECTOR_TRANSFORM: { node_op_vector_transform(start, step, p); }
+        case NODE_OP_ATTRIBUTE: { node_op_attribute(start, step, p); }
         default: {}
     }
 }
@@ -55,6 +57,17 @@ fn node_op_coordinate(start: u32, step: NodeStep, p: NodePoint) {
         at = node_point_stepped(p, step.flags, node_in(start, step, 0u).x);
     }
     node_store(step.out, node_coordinate(step.mode, at, step.extra));
+}
+
+// Attribute and Color Attribute (node_attribute.wgsl). Mode: what it reads | data << 2; its extra word, the attribute's number; flags 1 and 2:
+// at a Bump's step along x or y, its filter width the operand.
+fn node_op_attribute(start: u32, step: NodeStep, p: NodePoint) {
+    var at = p;
+    if step.flags != 0u {
+        at = node_point_stepped(p, step.flags, node_in(start, step, 0u).x);
+    }
+    let a = node_attribute_at(at, node_programs[step.extra]);
+    node_store(step.out, node_attribute_output(step.mode & 3u, step.mode >> 2u, a));
 }
 
 // Operands: Strength, Distance, Filter Width, the heights at the point and its steps along

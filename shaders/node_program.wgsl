@@ -107,6 +107,10 @@ fn node_point_on_triangle(instance: u32, inst: Instance, triangle: u32, b1: f32,
     p.backfacing = backfacing;
     p.ray_from = NODE_RAY_NONE;
     p.instance = instance;
+    //#if attributes
+    p.triangle = triangle;
+    p.barycentrics = vec2f(b1, b2);
+    //#endif
     node_surface_steps(&p, inst, triangle, b1, b2, true_normal);
     return p;
 }

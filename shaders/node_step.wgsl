@@ -49,6 +49,14 @@ struct NodePoint {
     uv_step_x: vec2f,
     uv_step_y: vec2f,
     footprint: f32,
+    //#if attributes
+    // The triangle (in the scene's table) and the point's barycentrics of its second and
+    // third corners there, and what a Bump's unit steps move them by (attributes).
+    triangle: u32,
+    barycentrics: vec2f,
+    barycentric_step_x: vec2f,
+    barycentric_step_y: vec2f,
+    //#endif
 }
 
 const NODE_NO_OBJECT: u32 = 0xffffffffu;

@@ -26,6 +26,7 @@ gpu_struct_files!(
     GpuMaterial,
     GpuTriangleTangents,
     GpuTriangleUvs,
+    GpuTriangleAttribute,
     GpuTexture,
     GpuEmitter,
     GpuLamp,
@@ -458,6 +459,18 @@ gpu_struct! {
         pub uv0: [f32; 2],
         pub uv1: [f32; 2],
         pub uv2: [f32; 2],
+    }
+}
+
+gpu_struct! {
+    /// One named mesh attribute (`MeshData::attributes`) at a triangle's vertices; each
+    /// triangle has the scene's most attributes per mesh of them, in order (zero past a
+    /// mesh's own); only for scenes whose node graphs read attributes.
+    #[derive(Debug, Default, PartialEq)]
+    pub struct GpuTriangleAttribute as "TriangleAttribute" {
+        pub a0: [f32; 4],
+        pub a1: [f32; 4],
+        pub a2: [f32; 4],
     }
 }
 

@@ -85,6 +85,7 @@ shared_constants! { NODE_OPERATIONS;
     NODE_OP_BUMP: u32 = 29;
     NODE_OP_VORONOI_DIMENSIONS: u32 = 30;
     NODE_OP_VECTOR_TRANSFORM: u32 = 31;
+    NODE_OP_ATTRIBUTE: u32 = 32;
 }
 
 shared_constants! { LIGHT_TREE;

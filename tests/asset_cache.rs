@@ -127,8 +127,8 @@ fn broken_rtmesh_is_an_error_naming_the_file() {
 
     expect_source_error(&folder, &good[..good.len() - 7], "truncated or corrupt");
     let mut other_version = good.clone();
-    other_version[8] = 4;
-    expect_source_error(&folder, &other_version, "unsupported .rtmesh version 4");
+    other_version[8] = 5;
+    expect_source_error(&folder, &other_version, "unsupported .rtmesh version 5");
     // The top bit of the last triangle's last index: far past the vertex count.
     let mut flipped = good.clone();
     let last_index = good.len() - 4 * 992 - 1;

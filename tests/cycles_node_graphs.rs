@@ -170,6 +170,22 @@ fn the_normal_node_matches_cycles() {
     check_channels("graph_normal_node", 1e-3);
 }
 
+/// Attribute and Color Attribute of every kind Cycles reads (`make_attribute_refs.py`):
+/// byte and float colours on points and corners, a value, a vector, an integer on faces, a
+/// boolean, the uv map, the mesh's default colour, names the mesh lacks, an attribute as a
+/// texture's coordinates.
+#[test]
+fn attributes_match_cycles() {
+    check_channels("graph_attributes", 1e-3);
+}
+
+/// A Bump of a point attribute, alone and plus a noise, on spheres under a low sun: the
+/// attribute read a step away along the surface, as Cycles' `svm_node_attr_bump_dx`.
+#[test]
+fn a_bump_of_an_attribute_matches_cycles() {
+    check_channels_of("graph_attributes_bump", 1e-3, 3);
+}
+
 #[test]
 fn waves_of_every_kind_match_cycles() {
     check_channels("graph_wave", 1e-3);

@@ -37,13 +37,13 @@ import numpy as np
 from bpy.app.handlers import persistent
 from mathutils import Matrix, Vector
 
-from . import rt_node_graph, rt_shader_nodes
+from . import rt_attributes, rt_node_graph, rt_shader_nodes
 TEXTURE_SOCKETS = rt_shader_nodes.TEXTURE_SOCKETS
 linked_node, rgb, socket_value = rt_shader_nodes.linked_node, rt_shader_nodes.rgb, rt_shader_nodes.socket_value
 owner_name = rt_shader_nodes.owner_name
 
 RTMESH_MAGIC = b"RTMESH\0\0"
-RTMESH_VERSION = 3
+RTMESH_VERSION = 4
 RTINST_MAGIC = b"RTINST\0\0"
 RTINST_VERSION = 4
 RTINST_OWN_MATERIALS = 0xFFFFFFFF
@@ -90,12 +90,13 @@ def to_rt(v):
     return np.stack([v[:, 0], v[:, 2], -v[:, 1]], axis=1)
 
 
-def mesh_arrays(mesh, material_count, second_uv_map=None):
+def mesh_arrays(mesh, material_count, second_uv_map=None, attributes=()):
     """Positions, normals, uvs, tangents (per vertex, rt axes), triangle indices and material
     indices of an evaluated mesh. Corners that share all of them share a vertex. The uvs
     are the map Cycles reads by default (see `default_uv_map`), as they are (a Mapping node
     in front of a texture is that texture's KHR_texture_transform); `second_uv_map`, a
-    map's name, adds that map as the second set."""
+    map's name, adds that map as the second set; `attributes`, names of the mesh's
+    attributes, add them in that order (rt_attributes)."""
     mesh.calc_loop_triangles()
     tri_count = len(mesh.loop_triangles)
     corners = np.empty(tri_count * 3, np.int32)
@@ -116,17 +117,30 @@ def mesh_arrays(mesh, material_count, second_uv_map=None):
         mesh.calc_normals_split()
         mesh.loops.foreach_get("normal", normals)
 
-    columns = [to_rt(co.reshape(-1, 3)[corner_vertex[corners]]), to_rt(normals.reshape(-1, 3)[corners])]
-    has_uvs = len(mesh.uv_layers) > 0
-    second = has_uvs and second_uv_map is not None and second_uv_map in mesh.uv_layers
-    if has_uvs:
-        columns.append(corner_uv_array(mesh, default_uv_map(mesh), corners))
+    columns = {"positions": to_rt(co.reshape(-1, 3)[corner_vertex[corners]]),
+               "normals": to_rt(normals.reshape(-1, 3)[corners])}
+    if len(mesh.uv_layers) > 0:
+        columns["uvs"] = corner_uv_array(mesh, default_uv_map(mesh), corners)
         tangents = mesh_tangents(mesh, loop_count)
         if tangents is not None:
-            columns.append(np.concatenate([to_rt(tangents[:, :3]), tangents[:, 3:4]], axis=1)[corners])
-    if second:
-        columns.append(corner_uv_array(mesh, second_uv_map, corners))
-    records = np.ascontiguousarray(np.concatenate(columns, axis=1), dtype=np.float32)
+            columns["tangents"] = np.concatenate([to_rt(tangents[:, :3]), tangents[:, 3:4]], axis=1)[corners]
+        if second_uv_map is not None and second_uv_map in mesh.uv_layers:
+            columns["second_uvs"] = corner_uv_array(mesh, second_uv_map, corners)
+    if attributes:
+        faces = np.empty(tri_count, np.int32)
+        mesh.loop_triangles.foreach_get("polygon_index", faces)
+        for k, name in enumerate(attributes):
+            columns[k] = rt_attributes.corner_values(mesh, name, corners, corner_vertex, faces)
+    vertices, indices = shared_vertices(columns)
+    arrays = {key: vertices.get(key) for key in ("positions", "normals", "uvs", "tangents", "second_uvs")}
+    arrays["attributes"] = [vertices[k] for k in range(len(attributes))]
+    return {**arrays, "indices": indices, "materials": materials}
+
+
+def shared_vertices(columns):
+    """({key: per-vertex array}, triangle indices) of per-corner arrays: corners that agree
+    on every one of them share a vertex."""
+    records = np.ascontiguousarray(np.concatenate(list(columns.values()), axis=1), dtype=np.float32)
     keys = records.view(np.dtype((np.void, records.itemsize * records.shape[1]))).ravel()
     _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
     # Vertices in order of first use, which keeps neighbours near each other in memory.
@@ -135,15 +149,8 @@ def mesh_arrays(mesh, material_count, second_uv_map=None):
     rank[order] = np.arange(len(order))
     vertices = records[first[order]]
     indices = rank[inverse.ravel()].astype(np.uint32).reshape(-1, 3)
-    return {
-        "positions": vertices[:, 0:3],
-        "normals": vertices[:, 3:6],
-        "uvs": vertices[:, 6:8] if has_uvs else None,
-        "tangents": vertices[:, 8:12] if has_uvs and tangents is not None else None,
-        "second_uvs": vertices[:, -2:] if second else None,
-        "indices": indices,
-        "materials": materials,
-    }
+    bounds = np.cumsum([0] + [c.shape[1] for c in columns.values()])
+    return {key: vertices[:, bounds[i]:bounds[i + 1]] for i, key in enumerate(columns)}, indices
 
 
 def default_uv_map(mesh):
@@ -178,6 +185,7 @@ def rtmesh_bytes(arrays):
     """Contract 1: magic, version, flags, counts, then the sections, little-endian."""
     flags = 1 | (2 if arrays["uvs"] is not None else 0) | (4 if arrays.get("tangents") is not None else 0)
     flags |= 8 if arrays.get("second_uvs") is not None else 0
+    flags |= len(arrays.get("attributes", ())) << 4
     header = RTMESH_MAGIC + struct.pack(
         "<4I", RTMESH_VERSION, flags, len(arrays["positions"]), len(arrays["indices"])
     )
@@ -188,6 +196,7 @@ def rtmesh_bytes(arrays):
         sections.append(arrays["tangents"].astype("<f4"))
     if arrays.get("second_uvs") is not None:
         sections.append(arrays["second_uvs"].astype("<f4"))
+    sections += [values.astype("<f4") for values in arrays.get("attributes", ())]
     sections += [arrays["indices"].astype("<u4"), arrays["materials"].astype("<u4")]
     return header + b"".join(np.ascontiguousarray(s).tobytes() for s in sections)
 
@@ -1265,7 +1274,9 @@ def export_mesh(mesh, materials, textures):
                                                     rt_node_graph.texture_space(mesh))
     uv_maps = uv_maps_of(mesh)
     second = second_uv_map(uv_maps, gltf_materials)
-    arrays = mesh_arrays(mesh, len(materials), second)
+    read, default_color = rt_attributes.attributes_read(mesh, gltf_materials)
+    rt_attributes.number_attributes(gltf_materials, read, default_color)
+    arrays = mesh_arrays(mesh, len(materials), second, list(read))
     gltf = gltf_text(assign_uv_sets(uv_maps, gltf_materials, second), thickness, textures)
     return rtmesh_bytes(arrays), gltf, textures.images, len(arrays["indices"])
 
@@ -1382,7 +1393,9 @@ class InstancedMesh:
         # Material sets shown later use the own materials' second uv set.
         self.uv_maps = uv_maps_of(mesh)
         self.second_uv_map = second_uv_map(self.uv_maps, [self.exported[i] for i in own])
-        arrays = mesh_arrays(mesh, len(materials), self.second_uv_map)
+        # So do their attributes.
+        self.attributes = rt_attributes.attributes_read(mesh, [self.exported[i] for i in own])
+        arrays = mesh_arrays(mesh, len(materials), self.second_uv_map, list(self.attributes[0]))
         self.rtmesh = rtmesh_bytes(arrays)
         self.triangles = len(arrays["indices"])
         self.slots = len(materials)
@@ -1414,6 +1427,7 @@ class InstancedMesh:
 
     def gltf(self):
         materials = rt_node_graph.finish_materials(self.exported, self.texture_space)
+        rt_attributes.number_attributes(materials, *self.attributes)
         materials = assign_uv_sets(self.uv_maps, materials, self.second_uv_map)
         return gltf_text(materials, self.thickness, self.textures)
 

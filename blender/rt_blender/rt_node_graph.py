@@ -56,6 +56,8 @@ EVALUATED = {
     "BLACKBODY": ("Color",),
     "WAVELENGTH": ("Color",),
     "BUMP": ("Normal",),
+    "ATTRIBUTE": ("Color", "Vector", "Fac", "Alpha"),
+    "VERTEX_COLOR": ("Color", "Alpha"),
 }
 
 BLEND_TYPES = {"MIX", "DARKEN", "MULTIPLY", "BURN", "LIGHTEN", "SCREEN", "DODGE", "ADD", "OVERLAY", "SOFT_LIGHT",
@@ -89,6 +91,8 @@ EVALUATED_SETTINGS = {
     "TEX_NOISE": {"noise_dimensions": None, "noise_type": None, "normalize": None},
     "TEX_GRADIENT": {"gradient_type": None},
     "BUMP": {"invert": None},
+    "ATTRIBUTE": {"attribute_type": {"GEOMETRY"}, "attribute_name": None},
+    "VERTEX_COLOR": {"layer_name": None},
 }
 MAP_RANGE_VECTOR_SOCKETS = {(False, "Vector"): "Value", (False, "From_Min_FLOAT3"): "From Min",
                             (False, "From_Max_FLOAT3"): "From Max", (False, "To_Min_FLOAT3"): "To Min",

@@ -48,6 +48,10 @@ pub struct MeshData {
     /// The same of the second uv set, for normal maps that read it: MikkTSpace's, made at
     /// load (no file carries them). Only with `second_uvs`.
     pub second_tangents: Option<Vec<[f32; 4]>>,
+    /// Per-vertex named attributes (Blender's colour and generic attributes) that the
+    /// materials' node graphs read by number: a colour's linear RGBA, a vector's xyz, a
+    /// value in x (`.rtmesh` version 4).
+    pub attributes: Vec<Vec<[f32; 4]>>,
     pub indices: Vec<[u32; 3]>,
     /// Index into `materials` for each triangle.
     pub material_ids: Vec<u32>,
@@ -180,6 +184,7 @@ fn load_rtmesh(path: &Path, materials_path: &Path) -> Result<MeshData, AssetErro
         second_uvs: geometry.second_uvs,
         tangents: geometry.tangents,
         second_tangents: None,
+        attributes: geometry.attributes,
         indices: geometry.indices,
         material_ids: geometry.material_ids,
         materials,
@@ -246,12 +251,31 @@ impl MeshData {
             }
         }
 
+        for (k, attribute) in self.attributes.iter().enumerate() {
+            if attribute.len() != vertex_count {
+                return fail(format!("{} values of attribute {k} for {vertex_count} vertices", attribute.len()));
+            }
+            if let Some((i, bad)) = first_non_finite(attribute) {
+                return fail(format!("vertex {i} has a non-finite value of attribute {k} ({bad:?})"));
+            }
+        }
+
         if self.indices.is_empty() {
             return fail("contains no triangles".into());
         }
         for (t, tri) in self.indices.iter().enumerate() {
             if let Some(&v) = tri.iter().find(|&&v| v as usize >= vertex_count) {
                 return fail(format!("triangle {t} refers to vertex {v} but there are only {vertex_count} vertices"));
+            }
+        }
+
+        for (name, material) in &self.materials {
+            let read = node_program::attributes_read(&material.node_program);
+            if let Some(slot) = read.into_iter().find(|&s| s as usize >= self.attributes.len()) {
+                return fail(format!(
+                    "material `{name}` reads attribute {slot}, but the mesh has {} attributes (export it again)",
+                    self.attributes.len()
+                ));
             }
         }
 
@@ -342,6 +366,26 @@ mod tests {
     #[test]
     fn validate_accepts_a_triangle() {
         triangle().validate(Path::new("m.obj")).expect("valid");
+    }
+
+    /// A material that reads an attribute the mesh lacks, or attributes of the wrong length
+    /// or not finite, are refused with the material and the attribute named.
+    #[test]
+    fn validate_checks_the_attributes_and_who_reads_them() {
+        let graph = serde_json::json!({ "version": 1,
+            "nodes": [{ "name": "A", "type": "ATTRIBUTE", "settings": { "slot": 1, "data": "FLOAT3" } }],
+            "outputs": { "base_color": { "link": [0, "Color"], "from": "RGBA", "to": "RGBA" } } });
+        let mut mesh = triangle();
+        mesh.materials[0].1.node_program = node_graph::compile_json(&graph).expect("compiles");
+        mesh.attributes = vec![vec![[0.5; 4]; 3]];
+        let e = validate_error(&mesh);
+        assert!(e.contains("material `default` reads attribute 1, but the mesh has 1 attributes"), "{e}");
+        mesh.attributes.push(vec![[0.5; 4]; 2]);
+        assert!(validate_error(&mesh).contains("2 values of attribute 1 for 3 vertices"));
+        mesh.attributes[1].push([f32::NAN; 4]);
+        assert!(validate_error(&mesh).contains("vertex 2 has a non-finite value of attribute 1"));
+        mesh.attributes[1][2] = [0.0; 4];
+        mesh.validate(Path::new("m.obj")).expect("valid");
     }
 
     #[test]

@@ -22,7 +22,7 @@ use std::collections::{BTreeMap, HashMap};
 
 pub const FORMAT_VERSION: u32 = 1;
 /// The compiler's own version: caches of programs an earlier compiler wrote are rebuilt.
-pub const COMPILER_VERSION: u32 = 5;
+pub const COMPILER_VERSION: u32 = 6;
 /// An operand that reads a constant, not a register.
 pub const CONSTANT: u32 = 0x8000_0000;
 /// Registers of the interpreter (`NODE_REGISTERS` in the shader).
@@ -259,19 +259,11 @@ impl Compiler<'_> {
                 Ok(self.constant(numbers.vec4()?))
             }
             Emit::Coordinates(first) => {
-                let out = self.allocate(1)?;
                 let extra = if first + output as u32 == 0 { self.texture_space() } else { Vec::new() };
-                // A step away, the coordinate reads its Bump's Filter Width.
-                let width = match shift {
-                    Shift::At => Vec::new(),
-                    Shift::Along { bump, .. } => vec![self.filter_widths[&bump]],
-                };
                 let (op, mode) = (node_kinds::NODE_OP_COORDINATE, first + output as u32);
-                self.instruction(op, mode, shift.flags(), out, &width, &extra);
-                let reads = self.reads(index, kind.outputs[output], shift);
-                self.hold(out, reads);
-                Ok(out)
+                self.positional(index, kind.outputs[output], shift, (op, mode), &extra)
             }
+            Emit::Attribute => self.attribute(index, node, kind.outputs[output], shift),
             Emit::Bump => self.bump(index, node, kind, shift),
             Emit::Operation(op) => {
                 known_inputs(node, kind)?;
@@ -302,6 +294,43 @@ impl Compiler<'_> {
                 Ok(out + output as u32)
             }
         }
+    }
+
+    /// An instruction `(op, mode)` that reads the point (or, a step away, the point its
+    /// Bump's Filter Width steps to, its one operand) into a register of its own.
+    fn positional(
+        &mut self,
+        index: usize,
+        output: &str,
+        shift: Shift,
+        code: (u32, u32),
+        extra: &[u32],
+    ) -> Result<u32, String> {
+        let out = self.allocate(1)?;
+        let width = match shift {
+            Shift::At => Vec::new(),
+            Shift::Along { bump, .. } => vec![self.filter_widths[&bump]],
+        };
+        self.instruction(code.0, code.1, shift.flags(), out, &width, extra);
+        let reads = self.reads(index, output, shift);
+        self.hold(out, reads);
+        Ok(out)
+    }
+
+    /// Attribute and Color Attribute (Cycles' `svm_node_attr`, `svm_node_vertex_color`):
+    /// the mesh's attribute number `slot`; where the mesh has no attribute of that name
+    /// (no `slot`), what Cycles reads then: zeros, and an Attribute node's Alpha 1.
+    fn attribute(&mut self, index: usize, node: &GraphNode, output: &str, shift: Shift) -> Result<u32, String> {
+        let Some(slot) = node.settings.get("slot").filter(|s| !s.is_null()) else {
+            let alpha = output == "Alpha" && node.kind == "ATTRIBUTE";
+            return Ok(self.constant([if alpha { 1.0 } else { 0.0 }; 4]));
+        };
+        let slot = slot
+            .as_u64()
+            .filter(|&s| s < crate::asset::rtmesh::MAX_ATTRIBUTES as u64)
+            .ok_or_else(|| format!("its attribute number {slot} is not one a mesh can carry"))?;
+        let mode = node_kinds::attribute_mode(output, &node.settings)?;
+        self.positional(index, output, shift, (node_kinds::NODE_OP_ATTRIBUTE, mode), &[slot as u32])
     }
 
     /// Bump (Cycles' `svm_node_set_bump`): its Height at the point and a step along each of

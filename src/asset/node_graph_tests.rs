@@ -136,3 +136,30 @@ fn a_bump_compiles_its_height_at_the_point_and_two_steps() {
         .unwrap_err();
     assert!(e.contains("Filter Width is linked"), "{e}");
 }
+
+/// An attribute the mesh has is read by number, its kind in the mode; one it lacks is what
+/// Cycles reads then (an Attribute's Alpha 1, a Color Attribute's 0); a number no mesh can
+/// carry is refused.
+#[test]
+fn attributes_are_read_by_number_or_folded_when_missing() {
+    let read = |settings: Value, kind: &str, output: &str| {
+        compile_json(&graph(
+            json!([{ "name": "Attr", "type": kind, "settings": settings }]),
+            json!({ "roughness": { "link": [0, output], "from": "VALUE", "to": "VALUE" } }),
+        ))
+    };
+    let program = read(json!({ "slot": 3, "data": "FLOAT4" }), "ATTRIBUTE", "Alpha").unwrap();
+    assert_eq!(instructions(&program)[0], node_kinds::NODE_OP_ATTRIBUTE | (2 | 3 << 2) << 8);
+    assert_eq!(super::super::node_program::attributes_read(&program), [3]);
+
+    for (kind, alpha) in [("ATTRIBUTE", 1.0f32), ("VERTEX_COLOR", 0.0)] {
+        let program = read(json!({ "slot": null, "data": "FLOAT" }), kind, "Alpha").unwrap();
+        let ops: Vec<u32> = instructions(&program).iter().map(|w| w & 0xff).collect();
+        assert_eq!(ops, [node_kinds::NODE_OP_OUTPUT], "{kind}");
+        assert_eq!(f32::from_bits(program[program[0] as usize]), alpha, "{kind}");
+    }
+    let e = read(json!({ "slot": 40, "data": "FLOAT" }), "ATTRIBUTE", "Fac").unwrap_err();
+    assert!(e.contains("node `Attr` (ATTRIBUTE)") && e.contains("attribute number 40"), "{e}");
+    let e = read(json!({ "slot": 0, "data": "MATRIX" }), "ATTRIBUTE", "Fac").unwrap_err();
+    assert!(e.contains("data `MATRIX`"), "{e}");
+}

@@ -5,19 +5,19 @@
 //! shaders; a unit test checks that `blender/rt_blender/rt_node_graph.py` exports exactly
 //! these nodes.
 
-pub use super::node_modes::{Mode, mode, operation};
 use super::node_modes::{
-    NOISE_DIMENSIONS, TRANSFORM_SPACES, TRANSFORM_TYPES, VORONOI_FEATURES, VORONOI_METRICS, WAVE_BANDS, WAVE_PROFILES,
-    WAVE_RINGS, WAVE_TYPES,
+    ATTRIBUTE_DATA, NOISE_DIMENSIONS, TRANSFORM_SPACES, TRANSFORM_TYPES, VORONOI_FEATURES, VORONOI_METRICS, WAVE_BANDS,
+    WAVE_PROFILES, WAVE_RINGS, WAVE_TYPES,
 };
+pub use super::node_modes::{Mode, attribute_mode, mode, operation};
 
 pub use crate::shared_constants::{
-    NODE_OP_BRICK, NODE_OP_BRIGHT_CONTRAST, NODE_OP_BUMP, NODE_OP_CHECKER, NODE_OP_CLAMP, NODE_OP_COMBINE,
-    NODE_OP_CONVERT, NODE_OP_COORDINATE, NODE_OP_CURVES, NODE_OP_END, NODE_OP_FRESNEL, NODE_OP_GAMMA, NODE_OP_GRADIENT,
-    NODE_OP_HUE_SATURATION, NODE_OP_INVERT, NODE_OP_LAYER_WEIGHT, NODE_OP_MAGIC, NODE_OP_MAP_RANGE, NODE_OP_MAPPING,
-    NODE_OP_MATH, NODE_OP_MIX, NODE_OP_NOISE, NODE_OP_OUTPUT, NODE_OP_RAMP, NODE_OP_SEPARATE, NODE_OP_SPECTRUM,
-    NODE_OP_VECTOR_MATH, NODE_OP_VECTOR_TRANSFORM, NODE_OP_VORONOI, NODE_OP_VORONOI_DIMENSIONS, NODE_OP_WAVE,
-    NODE_OP_WHITE_NOISE,
+    NODE_OP_ATTRIBUTE, NODE_OP_BRICK, NODE_OP_BRIGHT_CONTRAST, NODE_OP_BUMP, NODE_OP_CHECKER, NODE_OP_CLAMP,
+    NODE_OP_COMBINE, NODE_OP_CONVERT, NODE_OP_COORDINATE, NODE_OP_CURVES, NODE_OP_END, NODE_OP_FRESNEL, NODE_OP_GAMMA,
+    NODE_OP_GRADIENT, NODE_OP_HUE_SATURATION, NODE_OP_INVERT, NODE_OP_LAYER_WEIGHT, NODE_OP_MAGIC, NODE_OP_MAP_RANGE,
+    NODE_OP_MAPPING, NODE_OP_MATH, NODE_OP_MIX, NODE_OP_NOISE, NODE_OP_OUTPUT, NODE_OP_RAMP, NODE_OP_SEPARATE,
+    NODE_OP_SPECTRUM, NODE_OP_VECTOR_MATH, NODE_OP_VECTOR_TRANSFORM, NODE_OP_VORONOI, NODE_OP_VORONOI_DIMENSIONS,
+    NODE_OP_WAVE, NODE_OP_WHITE_NOISE,
 };
 
 /// Every operation by its name in the shader (`VORONOI` for `NODE_OP_VORONOI`), in order.
@@ -150,6 +150,9 @@ pub enum Emit {
     /// Bump: `NODE_OP_BUMP` of the height at the point and a step away along two
     /// directions of the surface, its Height's graph compiled for each (`node_bump`).
     Bump,
+    /// Each output used is its own `NODE_OP_ATTRIBUTE` reading the mesh's attribute
+    /// `settings.slot` (the exporter numbers the mesh's), or a constant where it has none.
+    Attribute,
 }
 
 pub struct Kind {
@@ -166,7 +169,7 @@ const fn op(name: &'static str, op: u32, inputs: &'static [&'static str], output
     Kind { name, emit: Emit::Operation(op), inputs, outputs }
 }
 
-pub const KINDS: [Kind; 41] = [
+pub const KINDS: [Kind; 43] = [
     Kind { name: "VALUE", emit: Emit::Constant, inputs: &[], outputs: &["Value"] },
     Kind { name: "RGB", emit: Emit::Constant, inputs: &[], outputs: &["Color"] },
     Kind {
@@ -210,6 +213,8 @@ pub const KINDS: [Kind; 41] = [
         inputs: &[],
         outputs: &["View Vector", "View Z Depth", "View Distance"],
     },
+    Kind { name: "ATTRIBUTE", emit: Emit::Attribute, inputs: &[], outputs: &["Color", "Vector", "Fac", "Alpha"] },
+    Kind { name: "VERTEX_COLOR", emit: Emit::Attribute, inputs: &[], outputs: &["Color", "Alpha"] },
     op("VECT_TRANSFORM", NODE_OP_VECTOR_TRANSFORM, &["Vector"], &["Vector"]),
     op("MATH", NODE_OP_MATH, &["Value", "Value_001", "Value_002"], &["Value"]),
     op("VECT_MATH", NODE_OP_VECTOR_MATH, &["Vector", "Vector_001", "Vector_002", "Scale"], &["Vector", "Value"]),
@@ -288,7 +293,7 @@ pub fn compiler_signature() -> String {
     let kinds: Vec<_> = KINDS.iter().map(|k| (k.name, k.inputs, k.outputs)).collect();
     let ops: Vec<_> = operations().collect();
     format!(
-        "node programs {} {} {ops:?} {MATH_OPERATIONS:?} {VECTOR_MATH_OPERATIONS:?} {TRANSFORM_TYPES:?} {TRANSFORM_SPACES:?} {BLEND_TYPES:?} {RAMP_TABLE_SIZE} {kinds:?} {VORONOI_FEATURES:?} {VORONOI_METRICS:?} {NOISE_DIMENSIONS:?} {WAVE_TYPES:?} {WAVE_BANDS:?} {WAVE_RINGS:?} {WAVE_PROFILES:?}",
+        "node programs {} {} {ops:?} {MATH_OPERATIONS:?} {VECTOR_MATH_OPERATIONS:?} {TRANSFORM_TYPES:?} {TRANSFORM_SPACES:?} {BLEND_TYPES:?} {RAMP_TABLE_SIZE} {kinds:?} {VORONOI_FEATURES:?} {VORONOI_METRICS:?} {NOISE_DIMENSIONS:?} {WAVE_TYPES:?} {WAVE_BANDS:?} {WAVE_RINGS:?} {WAVE_PROFILES:?} {ATTRIBUTE_DATA:?}",
         super::node_graph::FORMAT_VERSION,
         super::node_graph::COMPILER_VERSION
     )

@@ -6,7 +6,7 @@ use super::*;
 #[test]
 fn operations_are_numbered_in_order() {
     let all: Vec<(&str, u32)> = operations().collect();
-    assert_eq!(all.len(), 32);
+    assert_eq!(all.len(), 33);
     assert!(all.iter().enumerate().all(|(i, (name, op))| *op == i as u32 && !name.is_empty()));
     assert_eq!(all[23], ("VORONOI", NODE_OP_VORONOI));
     assert_eq!(all[30], ("VORONOI_DIMENSIONS", NODE_OP_VORONOI_DIMENSIONS));

@@ -21,6 +21,9 @@ pub(super) const CLAMP_TYPES: [&str; 2] = ["MINMAX", "RANGE"];
 pub(super) const MAPPING_TYPES: [&str; 4] = ["POINT", "TEXTURE", "VECTOR", "NORMAL"];
 pub(super) const TRANSFORM_TYPES: [&str; 3] = ["POINT", "VECTOR", "NORMAL"];
 pub(super) const TRANSFORM_SPACES: [&str; 3] = ["WORLD", "OBJECT", "CAMERA"];
+/// What an attribute's values are (Cycles' `NodeAttributeType`): a value, two, three (a
+/// vector) or four (a colour's RGBA); a value is also an integer or a boolean.
+pub(super) const ATTRIBUTE_DATA: [&str; 4] = ["FLOAT", "FLOAT2", "FLOAT3", "FLOAT4"];
 /// White Noise's dimensions, its mode.
 pub(super) const NOISE_DIMENSIONS: [&str; 4] = ["1D", "2D", "3D", "4D"];
 pub(super) const NOISE_TYPES: [&str; 5] =
@@ -35,6 +38,18 @@ pub fn operation(kind: &str, op: u32, settings: &Map<String, Value>) -> Result<u
         return Ok(NODE_OP_VORONOI_DIMENSIONS);
     }
     Ok(op)
+}
+
+/// `NODE_OP_ATTRIBUTE`'s mode for `output` of an Attribute or Color Attribute node: what
+/// it reads (0 the colour or vector, 1 Fac, 2 Alpha) | the attribute's data << 2.
+pub fn attribute_mode(output: &str, settings: &Map<String, Value>) -> Result<u32, String> {
+    let data = choice(settings, "data", &ATTRIBUTE_DATA)?;
+    let read = match output {
+        "Fac" => 1,
+        "Alpha" => 2,
+        _ => 0,
+    };
+    Ok(read | data << 2)
 }
 
 /// An operation's mode and flags from the node's settings.

@@ -102,6 +102,18 @@ pub fn drives(program: &[u32], target: &str) -> bool {
     instructions(program).is_ok_and(|all| all.iter().any(output))
 }
 
+/// The attribute numbers `program` reads (its Attribute and Color Attribute nodes).
+pub fn attributes_read(program: &[u32]) -> Vec<u32> {
+    let reads = |i: &Instruction| i.op() == node_kinds::NODE_OP_ATTRIBUTE && i.extra_len > 0;
+    let all = instructions(program).unwrap_or_default();
+    all.iter().filter(|i| reads(i)).filter_map(|i| program.get(i.extra as usize).copied()).collect()
+}
+
+/// Whether `program` reads a mesh attribute.
+pub fn reads_attributes(program: &[u32]) -> bool {
+    !attributes_read(program).is_empty()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

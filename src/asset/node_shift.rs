@@ -43,7 +43,7 @@ pub fn positional(graph: &NodeGraph) -> Vec<bool> {
         let node = &graph.nodes[i];
         let own = match node_kinds::kind(&node.kind).map(|k| &k.emit) {
             Some(Emit::Coordinates(_)) => matches!(node.kind.as_str(), "TEX_COORD" | "NEW_GEOMETRY" | "CAMERA"),
-            Some(Emit::Bump) => true,
+            Some(Emit::Bump | Emit::Attribute) => true,
             _ => false,
         };
         let read = node.inputs.values().any(|input| match input {

@@ -2,17 +2,22 @@
 //!
 //! ```text
 //! bytes 0..8   magic b"RTMESH\0\0"
-//! u32 version (=3) · u32 flags (bit0 normals, bit1 uvs, bit2 tangents, bit3 second uvs) · u32 vertex_count · u32 triangle_count
+//! u32 version (=4) · u32 flags (bit0 normals, bit1 uvs, bit2 tangents, bit3 second uvs, bits 4-7 attribute count) · u32 vertex_count · u32 triangle_count
 //! f32[3] × vertex_count     positions (object space, metres, Y up)
 //! f32[3] × vertex_count     normals            (if bit0)
 //! f32[2] × vertex_count     uvs                (if bit1)
 //! f32[4] × vertex_count     tangents           (if bit2: xyz MikkTSpace tangent, w bitangent sign ±1)
 //! f32[2] × vertex_count     second uvs         (if bit3, with bit1: glTF TEXCOORD_1, Blender's second uv map)
+//! f32[4] × vertex_count     attribute k        (for k below the attribute count: a named mesh attribute
+//!                                              the materials' Attribute and Color Attribute nodes read,
+//!                                              as Cycles reads it: a colour's linear RGBA, a vector's
+//!                                              xyz, a value in x; the exporter numbers them)
 //! u32[3] × triangle_count   indices
 //! u32    × triangle_count   material index into the sibling .gltf's `materials` array
 //! ```
 //!
-//! Version 1 files (no tangents flag) and version 2 files (no second uvs flag) are still read.
+//! Version 1 files (no tangents flag), version 2 files (no second uvs flag) and version 3
+//! files (no attributes) are still read.
 //!
 //! Little-endian, no padding. Sections are copied with bytemuck, which reads them as
 //! the host's byte order: rt runs on little-endian machines only (as wgpu's GPUs do).
@@ -21,15 +26,20 @@ use super::{AssetError, MeshData};
 use std::path::Path;
 
 pub const MAGIC: [u8; 8] = *b"RTMESH\0\0";
-pub const VERSION: u32 = 3;
+pub const VERSION: u32 = 4;
 /// The oldest version this rt reads: version 1 differs only in having no tangents,
-/// version 2 in having no second uvs.
+/// version 2 in having no second uvs, version 3 in having no attributes.
 const OLDEST_VERSION: u32 = 1;
 const HEADER_BYTES: u64 = 24;
 const FLAG_NORMALS: u32 = 1;
 const FLAG_UVS: u32 = 2;
 const FLAG_TANGENTS: u32 = 4;
 const FLAG_SECOND_UVS: u32 = 8;
+/// Bits 4-7 of the flags: how many attributes follow the second uvs.
+const ATTRIBUTE_COUNT_SHIFT: u32 = 4;
+const ATTRIBUTE_COUNT_MASK: u32 = 0xf << ATTRIBUTE_COUNT_SHIFT;
+/// The most attributes an `.rtmesh` carries.
+pub const MAX_ATTRIBUTES: usize = 15;
 
 /// Geometry read from a `.rtmesh`: everything but the materials, which live in the
 /// sibling `.gltf`.
@@ -39,8 +49,13 @@ pub struct RtMesh {
     pub uvs: Option<Vec<[f32; 2]>>,
     pub tangents: Option<Vec<[f32; 4]>>,
     pub second_uvs: Option<Vec<[f32; 2]>>,
+    pub attributes: Vec<Vec<[f32; 4]>>,
     pub indices: Vec<[u32; 3]>,
     pub material_ids: Vec<u32>,
+}
+
+fn attribute_count(flags: u32) -> u32 {
+    (flags & ATTRIBUTE_COUNT_MASK) >> ATTRIBUTE_COUNT_SHIFT
 }
 
 /// The size a header implies, in u64 so that no count can overflow it.
@@ -50,7 +65,8 @@ fn implied_size(flags: u32, vertices: u32, triangles: u32) -> u64 {
         + bytes_if(FLAG_NORMALS, 12)
         + bytes_if(FLAG_UVS, 8)
         + bytes_if(FLAG_TANGENTS, 16)
-        + bytes_if(FLAG_SECOND_UVS, 8);
+        + bytes_if(FLAG_SECOND_UVS, 8)
+        + 16 * attribute_count(flags) as u64;
     HEADER_BYTES + per_vertex * vertices as u64 + 16 * triangles as u64
 }
 
@@ -78,12 +94,13 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<RtMesh, AssetError> {
     let known = match version {
         1 => FLAG_NORMALS | FLAG_UVS,
         2 => FLAG_NORMALS | FLAG_UVS | FLAG_TANGENTS,
-        _ => FLAG_NORMALS | FLAG_UVS | FLAG_TANGENTS | FLAG_SECOND_UVS,
+        3 => FLAG_NORMALS | FLAG_UVS | FLAG_TANGENTS | FLAG_SECOND_UVS,
+        _ => FLAG_NORMALS | FLAG_UVS | FLAG_TANGENTS | FLAG_SECOND_UVS | ATTRIBUTE_COUNT_MASK,
     };
     if flags & !known != 0 {
         return fail(format!(
             "unknown flags {flags:#x} for version {version} (known: bit 0 normals, bit 1 uvs, bit 2 tangents \
-             from version 2, bit 3 second uvs from version 3)"
+             from version 2, bit 3 second uvs from version 3, bits 4-7 attributes from version 4)"
         ));
     }
     if flags & FLAG_SECOND_UVS != 0 && flags & FLAG_UVS == 0 {
@@ -112,9 +129,10 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<RtMesh, AssetError> {
     let uvs = (flags & FLAG_UVS != 0).then(|| bytemuck::pod_collect_to_vec(take(8 * v)));
     let tangents = (flags & FLAG_TANGENTS != 0).then(|| bytemuck::pod_collect_to_vec(take(16 * v)));
     let second_uvs = (flags & FLAG_SECOND_UVS != 0).then(|| bytemuck::pod_collect_to_vec(take(8 * v)));
+    let attributes = (0..attribute_count(flags)).map(|_| bytemuck::pod_collect_to_vec(take(16 * v))).collect();
     let indices = bytemuck::pod_collect_to_vec(take(12 * t));
     let material_ids = bytemuck::pod_collect_to_vec(take(4 * t));
-    Ok(RtMesh { positions, normals, uvs, tangents, second_uvs, indices, material_ids })
+    Ok(RtMesh { positions, normals, uvs, tangents, second_uvs, attributes, indices, material_ids })
 }
 
 /// Reads a `.rtmesh` file's geometry; see [`parse`].
@@ -128,7 +146,8 @@ pub fn encode(mesh: &MeshData) -> Vec<u8> {
     let flags = mesh.normals.as_ref().map_or(0, |_| FLAG_NORMALS)
         | mesh.uvs.as_ref().map_or(0, |_| FLAG_UVS)
         | mesh.tangents.as_ref().map_or(0, |_| FLAG_TANGENTS)
-        | mesh.second_uvs.as_ref().filter(|_| mesh.uvs.is_some()).map_or(0, |_| FLAG_SECOND_UVS);
+        | mesh.second_uvs.as_ref().filter(|_| mesh.uvs.is_some()).map_or(0, |_| FLAG_SECOND_UVS)
+        | (mesh.attributes.len() as u32) << ATTRIBUTE_COUNT_SHIFT;
     let (v, t) = (mesh.positions.len() as u32, mesh.indices.len() as u32);
     let mut out = Vec::with_capacity(implied_size(flags, v, t) as usize);
     out.extend_from_slice(&MAGIC);
@@ -148,6 +167,9 @@ pub fn encode(mesh: &MeshData) -> Vec<u8> {
     if let (Some(second_uvs), Some(_)) = (&mesh.second_uvs, &mesh.uvs) {
         out.extend_from_slice(bytemuck::cast_slice(second_uvs));
     }
+    for attribute in &mesh.attributes {
+        out.extend_from_slice(bytemuck::cast_slice(attribute));
+    }
     out.extend_from_slice(bytemuck::cast_slice(&mesh.indices));
     out.extend_from_slice(bytemuck::cast_slice(&mesh.material_ids));
     out
@@ -157,6 +179,9 @@ pub fn encode(mesh: &MeshData) -> Vec<u8> {
 pub fn write(path: &Path, mesh: &MeshData) -> Result<(), AssetError> {
     if u32::try_from(mesh.positions.len()).is_err() || u32::try_from(mesh.indices.len()).is_err() {
         return Err(AssetError::new(path, "more than 2^32 vertices or triangles do not fit an .rtmesh"));
+    }
+    if mesh.attributes.len() > MAX_ATTRIBUTES {
+        return Err(AssetError::new(path, format!("more than {MAX_ATTRIBUTES} attributes do not fit an .rtmesh")));
     }
     Ok(crate::files::write_atomically(path, &encode(mesh))?)
 }
@@ -174,6 +199,7 @@ mod tests {
             tangents: Some(vec![[1.0, 0.0, 0.0, -1.0]; 4]),
             second_uvs: Some(vec![[0.5, 0.0], [1.0, 0.5], [0.5, 1.0], [0.0, 0.5]]),
             second_tangents: None,
+            attributes: vec![vec![[0.25, 0.5, 1.0, 0.5]; 4], vec![[2.0, 0.0, 0.0, 1.0]; 4]],
             indices: vec![[0, 1, 2], [0, 2, 3]],
             material_ids: vec![0, 1],
             materials: vec![("a".into(), Material::default()), ("b".into(), Material::default())],
@@ -189,20 +215,22 @@ mod tests {
     fn round_trips_every_section() {
         let mesh = quad();
         let bytes = encode(&mesh);
-        assert_eq!(bytes.len(), 24 + 4 * 56 + 2 * 16);
+        assert_eq!(bytes.len(), 24 + 4 * (56 + 2 * 16) + 2 * 16);
         let back = parse(Path::new("m.rtmesh"), &bytes).expect("parses");
         assert_eq!(back.positions, mesh.positions);
         assert_eq!(back.normals, mesh.normals);
         assert_eq!(back.uvs, mesh.uvs);
         assert_eq!(back.tangents, mesh.tangents);
         assert_eq!(back.second_uvs, mesh.second_uvs);
+        assert_eq!(back.attributes, mesh.attributes);
         assert_eq!(back.indices, mesh.indices);
         assert_eq!(back.material_ids, mesh.material_ids);
 
-        let bare = MeshData { normals: None, uvs: None, tangents: None, second_uvs: None, ..quad() };
+        let bare =
+            MeshData { normals: None, uvs: None, tangents: None, second_uvs: None, attributes: Vec::new(), ..quad() };
         let back = parse(Path::new("m.rtmesh"), &encode(&bare)).expect("parses");
         assert!(back.normals.is_none() && back.uvs.is_none() && back.tangents.is_none());
-        assert!(back.second_uvs.is_none());
+        assert!(back.second_uvs.is_none() && back.attributes.is_empty());
         assert_eq!(back.indices, bare.indices);
     }
 
@@ -230,11 +258,11 @@ mod tests {
         bytes[0] = b'X';
         assert!(error(&bytes).contains("bad magic"));
         let mut bytes = good.clone();
-        bytes[8] = 4;
-        assert!(error(&bytes).contains("unsupported .rtmesh version 4"));
+        bytes[8] = 5;
+        assert!(error(&bytes).contains("unsupported .rtmesh version 5"));
         let mut bytes = good.clone();
-        bytes[12] = 31;
-        assert!(error(&bytes).contains("unknown flags 0x1f"));
+        bytes[13] = 1;
+        assert!(error(&bytes).contains("unknown flags 0x12f"), "{}", error(&bytes));
         let mut bytes = good;
         bytes[12] = 8 | 1;
         assert!(error(&bytes).contains("second uvs (bit 3) without uvs"), "{}", error(&bytes));
@@ -242,15 +270,28 @@ mod tests {
 
     /// A version 1 file: the header says 1 and there is no tangents section.
     fn version_1(mesh: &MeshData) -> Vec<u8> {
-        let mut bytes = encode(&MeshData { tangents: None, second_uvs: None, ..mesh.clone() });
+        let mut bytes = encode(&MeshData { tangents: None, second_uvs: None, attributes: Vec::new(), ..mesh.clone() });
         bytes[8..12].copy_from_slice(&1u32.to_le_bytes());
         bytes
     }
 
     #[test]
+    fn version_3_files_are_still_read() {
+        let mesh = quad();
+        let mut bytes = encode(&MeshData { attributes: Vec::new(), ..mesh.clone() });
+        bytes[8..12].copy_from_slice(&3u32.to_le_bytes());
+        let back = parse(Path::new("m.rtmesh"), &bytes).expect("version 3 parses");
+        assert_eq!((back.second_uvs, back.attributes), (mesh.second_uvs.clone(), Vec::new()));
+
+        // Bits 4-7 meant nothing in version 3.
+        bytes[12] |= 0x10;
+        assert!(error(&bytes).contains("unknown flags 0x1f for version 3"), "{}", error(&bytes));
+    }
+
+    #[test]
     fn version_2_files_are_still_read() {
         let mesh = quad();
-        let mut bytes = encode(&MeshData { second_uvs: None, ..mesh.clone() });
+        let mut bytes = encode(&MeshData { second_uvs: None, attributes: Vec::new(), ..mesh.clone() });
         bytes[8..12].copy_from_slice(&2u32.to_le_bytes());
         let back = parse(Path::new("m.rtmesh"), &bytes).expect("version 2 parses");
         assert_eq!((back.tangents, back.second_uvs), (mesh.tangents.clone(), None));

@@ -2,7 +2,7 @@
 //! render loads it with a read and a copy instead of importing and building again.
 //!
 //! ```text
-//! header (312 bytes, see `Header`): magic b"RTBVH\0\0\0", format version, header size,
+//! header (328 bytes, see `Header`): magic b"RTBVH\0\0\0", format version, header size,
 //!     BLAKE3 of the source files, of the build parameters, and of the whole file
 //!     (with this checksum field zeroed), the node layout's name, the mesh's bounds,
 //!     vertex and triangle counts of the source, BvhStats, and the section table
@@ -29,6 +29,8 @@
 //!                 some material's texture reads keeps it (version 6 on)
 //!     programs    per material, u32 length then that many u32s: its compiled shader node
 //!                 graph (`asset::node_graph`), length 0 for none (version 12 on)
+//!     attributes  GpuTriangleAttribute × m × a: each triangle's a named attributes, one
+//!                 after another, or none (version 14 on)
 //! ```
 //!
 //! Textures are decoded and their mips built at pack time, so a render never decodes
@@ -50,7 +52,9 @@ use super::mesh_bvh::{BuildQuality, MeshBvh};
 use super::node::BvhStats;
 use super::wide_node::NODE_LAYOUT;
 use crate::asset::{AssetError, AssetFiles, TextureImage};
-use crate::layout::{GpuTriangle, GpuTriangleShading, GpuTriangleTangents, GpuTriangleUvs, GpuWideNode};
+use crate::layout::{
+    GpuTriangle, GpuTriangleAttribute, GpuTriangleShading, GpuTriangleTangents, GpuTriangleUvs, GpuWideNode,
+};
 use crate::scene::Material;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
@@ -60,7 +64,7 @@ use std::path::Path;
 use std::time::Duration;
 
 pub const MAGIC: [u8; 8] = *b"RTBVH\0\0\0";
-pub const FORMAT_VERSION: u32 = 13;
+pub const FORMAT_VERSION: u32 = 14;
 const ALIGN: u64 = 16;
 
 #[repr(C)]
@@ -80,7 +84,8 @@ const TEXELS: usize = 6;
 const TANGENTS: usize = 7;
 const SECOND_UVS: usize = 8;
 const PROGRAMS: usize = 9;
-const SECTION_COUNT: usize = 10;
+const ATTRIBUTES: usize = 10;
+const SECTION_COUNT: usize = 11;
 
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
@@ -250,6 +255,7 @@ pub fn encode(mesh: &PackedMesh, source_hash: [u8; 32], params_hash: [u8; 32]) -
         bytemuck::cast_slice(&mesh.bvh.tangents),
         bytemuck::cast_slice(&mesh.bvh.second_uvs),
         bytemuck::cast_slice(&programs),
+        bytemuck::cast_slice(&mesh.bvh.attributes),
     ];
     let mut sections = [Section::default(); SECTION_COUNT];
     let mut offset = align(HEADER_BYTES);
@@ -318,7 +324,9 @@ pub fn read(path: &Path, source_hash: [u8; 32], params_hash: [u8; 32]) -> Result
     let textures = cached_texture::decode(&texture_table, section(TEXELS)).map_err(invalid)?;
     let tangents: Vec<GpuTriangleTangents> = bytemuck::cast_slice(section(TANGENTS)).to_vec();
     let second_uvs: Vec<GpuTriangleUvs> = bytemuck::cast_slice(section(SECOND_UVS)).to_vec();
+    let attributes: Vec<GpuTriangleAttribute> = bytemuck::cast_slice(section(ATTRIBUTES)).to_vec();
     check_triangle_extras(&tangents, &second_uvs, triangles.len()).map_err(invalid)?;
+    check_attributes(&attributes, triangles.len()).map_err(invalid)?;
     check_contents(&nodes, &triangles, &shading, materials, names.len(), bounds).map_err(invalid)?;
     check_material_links(materials, textures.len()).map_err(invalid)?;
 
@@ -334,6 +342,7 @@ pub fn read(path: &Path, source_hash: [u8; 32], params_hash: [u8; 32]) -> Result
         shading,
         tangents,
         second_uvs,
+        attributes,
         bounds_min: Vec3::from_array(header.bounds_min),
         bounds_max: Vec3::from_array(header.bounds_max),
         stats,
@@ -410,6 +419,19 @@ fn check_triangle_extras(
     }
     if let Some(i) = second_uvs.iter().position(|t| ![t.uv0, t.uv1, t.uv2].into_iter().flatten().all(f32::is_finite)) {
         return Err(format!("triangle {i} has a non-finite texture coordinate of set 1"));
+    }
+    Ok(())
+}
+
+/// Attributes, where present, are a whole number per triangle, no more than a mesh
+/// carries, and finite.
+fn check_attributes(attributes: &[GpuTriangleAttribute], triangles: usize) -> Result<(), String> {
+    let whole = triangles > 0 && attributes.len().is_multiple_of(triangles);
+    if !attributes.is_empty() && (!whole || attributes.len() / triangles > crate::asset::rtmesh::MAX_ATTRIBUTES) {
+        return Err(format!("{} triangle attributes for {triangles} triangles", attributes.len()));
+    }
+    if let Some(i) = attributes.iter().position(|t| ![t.a0, t.a1, t.a2].into_iter().flatten().all(f32::is_finite)) {
+        return Err(format!("triangle attribute {i} is not finite"));
     }
     Ok(())
 }

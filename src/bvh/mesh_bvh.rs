@@ -3,7 +3,9 @@
 use super::node::BvhStats;
 use super::wide_node::{convert_cwbvh, wide_stats};
 use crate::asset::MeshData;
-use crate::layout::{GpuTriangle, GpuTriangleShading, GpuTriangleTangents, GpuTriangleUvs, GpuWideNode};
+use crate::layout::{
+    GpuTriangle, GpuTriangleAttribute, GpuTriangleShading, GpuTriangleTangents, GpuTriangleUvs, GpuWideNode,
+};
 use crate::scene::UvSet;
 use glam::{Vec3, Vec3A};
 use obvhs::{BvhBuildParams, cwbvh::CwBvh, triangle::Triangle};
@@ -43,6 +45,9 @@ pub struct MeshBvh {
     /// Per triangle (in `triangles`' order): the second uv set, empty unless some
     /// material of the mesh reads it (see `asset::load_mesh`).
     pub second_uvs: Vec<GpuTriangleUvs>,
+    /// Per triangle (in `triangles`' order), the mesh's attributes one after another
+    /// (`attribute_count` of them each).
+    pub attributes: Vec<GpuTriangleAttribute>,
     pub bounds_min: Vec3,
     pub bounds_max: Vec3,
     pub stats: BvhStats,
@@ -50,6 +55,11 @@ pub struct MeshBvh {
 }
 
 impl MeshBvh {
+    /// How many attributes each triangle has.
+    pub fn attribute_count(&self) -> usize {
+        self.attributes.len().checked_div(self.triangles.len()).unwrap_or(0)
+    }
+
     /// Whether some triangle has a vertex normal other than its face's: a face without
     /// normals stores its own at each vertex, so a flat-shaded mesh has none.
     pub fn has_interpolated_normals(&self) -> bool {
@@ -111,10 +121,20 @@ impl MeshBvh {
                 .collect(),
             None => Vec::new(),
         };
+        let attributes = order
+            .iter()
+            .flat_map(|&i| {
+                let corners = mesh.indices[i as usize];
+                mesh.attributes.iter().map(move |values| {
+                    let [a0, a1, a2] = corners.map(|k| values[k as usize]);
+                    GpuTriangleAttribute { a0, a1, a2 }
+                })
+            })
+            .collect();
         let (bounds_min, bounds_max) = bounds(&mesh.positions);
         let stats = wide_stats(&nodes);
         let build_time = start.elapsed();
-        Self { nodes, triangles, shading, tangents, second_uvs, bounds_min, bounds_max, stats, build_time }
+        Self { nodes, triangles, shading, tangents, second_uvs, attributes, bounds_min, bounds_max, stats, build_time }
     }
 }
 

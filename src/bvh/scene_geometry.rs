@@ -3,7 +3,7 @@
 
 use super::emitter_table::EmissiveTriangles;
 use super::light_tree::LightTree;
-use super::mesh_bvh::BuildQuality;
+use super::mesh_bvh::{BuildQuality, MeshBvh};
 use super::node::BvhStats;
 use super::node_table::NodeTable;
 use super::pack::{LoadedMesh, build_all_in_memory, load_or_pack_all};
@@ -33,6 +33,9 @@ pub struct SceneGeometry {
     /// Per triangle, the second uv set: empty when no mesh keeps one, else zero for the
     /// triangles of meshes that have none.
     pub second_uvs: Vec<GpuTriangleUvs>,
+    /// Per triangle, the most attributes a mesh has, one after another: empty when no mesh
+    /// has any, else zero past a mesh's own.
+    pub attributes: Vec<GpuTriangleAttribute>,
     pub instances: Vec<GpuInstance>,
     /// Each instance's Shadow Terminator settings, holdout and Random, in the instances'
     /// order; then, when some object is not white, each instance's Object Color (RGBA in
@@ -135,6 +138,8 @@ impl SceneGeometry {
             moving_lights: self.moving_lights,
             node_code: self.node_code,
             graph_normals: self.materials_in_use.iter().any(|m| node_program::drives(&m.node_program, "normal")),
+            attributes_read: !self.attributes.is_empty()
+                && self.materials_in_use.iter().any(|m| node_program::reads_attributes(&m.node_program)),
             materials_in_use: self.materials_in_use.clone(),
         }
     }
@@ -148,6 +153,7 @@ impl SceneGeometry {
             + self.shading.len() * size_of::<GpuTriangleShading>()
             + self.tangents.len() * size_of::<GpuTriangleTangents>()
             + self.second_uvs.len() * size_of::<GpuTriangleUvs>()
+            + self.attributes.len() * size_of::<GpuTriangleAttribute>()
     }
 
     /// GPU bytes that grow with the instances and spheres: their records, the top
@@ -190,7 +196,7 @@ impl SceneGeometry {
         if let Some(a) = asset_paths(scene).iter().find(|a| !mesh_of_path.contains_key(*a)) {
             bail!("{}: the asset {} was not loaded", scene.origin, a.display());
         }
-        let MeshArrays { wide_nodes, triangles, shading, tangents, second_uvs, slots, mut materials } =
+        let MeshArrays { wide_nodes, triangles, shading, tangents, second_uvs, attributes, slots, mut materials } =
             MeshArrays::of(scene, &meshes);
         let placed = Placed::of(scene, &meshes, &slots, &mut materials, &mesh_of_path)?;
         let Placed { placement, mut in_use, entries, boxes, spheres } = placed;
@@ -227,6 +233,7 @@ impl SceneGeometry {
             shading,
             tangents,
             second_uvs,
+            attributes,
             instances,
             object_colors: coloured(&object_colors),
             object_settings: with_colors(object_settings, &object_colors),
@@ -277,6 +284,7 @@ struct MeshArrays {
     shading: Vec<GpuTriangleShading>,
     tangents: Vec<GpuTriangleTangents>,
     second_uvs: Vec<GpuTriangleUvs>,
+    attributes: Vec<GpuTriangleAttribute>,
     slots: Vec<MeshSlot>,
     materials: Vec<Material>,
 }
@@ -291,9 +299,11 @@ impl MeshArrays {
             shading: Vec::new(),
             tangents: Vec::new(),
             second_uvs: Vec::new(),
+            attributes: Vec::new(),
             slots: Vec::new(),
             materials,
         };
+        let attribute_stride = meshes.iter().map(|m| m.bvh.attribute_count()).max().unwrap_or(0);
         let any_tangents = meshes.iter().any(|m| !m.bvh.tangents.is_empty());
         let any_second_uvs = meshes.iter().any(|m| !m.bvh.second_uvs.is_empty());
         // Each mesh's textures follow the previous meshes' in the scene's texture table.
@@ -315,6 +325,7 @@ impl MeshArrays {
             if any_second_uvs {
                 extend_or_zero(&mut arrays.second_uvs, &mesh.bvh.second_uvs, count);
             }
+            extend_attributes(&mut arrays.attributes, &mesh.bvh, attribute_stride);
             let material_base = arrays.materials.len() as u32;
             arrays.materials.extend(mesh.materials.iter().map(|(_, m)| with_bases(m, texture_base, material_base)));
             texture_base += mesh.textures.len() as u32;
@@ -329,6 +340,23 @@ fn extend_or_zero<T: Copy + Default>(all: &mut Vec<T>, mesh: &[T], count: usize)
     match mesh.is_empty() {
         true => all.resize(count, T::default()),
         false => all.extend_from_slice(mesh),
+    }
+}
+
+/// A mesh's triangles' attributes after the previous meshes', each triangle's padded with
+/// zeros to `stride`.
+fn extend_attributes(all: &mut Vec<GpuTriangleAttribute>, mesh: &MeshBvh, stride: usize) {
+    let own = mesh.attribute_count();
+    if stride == 0 {
+        return;
+    }
+    if own == 0 {
+        all.resize(all.len() + mesh.triangles.len() * stride, GpuTriangleAttribute::default());
+        return;
+    }
+    for triangle in mesh.attributes.chunks_exact(own) {
+        all.extend_from_slice(triangle);
+        all.resize(all.len() + stride - own, GpuTriangleAttribute::default());
     }
 }
 

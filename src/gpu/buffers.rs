@@ -60,8 +60,9 @@ fn storage<T: Pod + Default>(ctx: &GpuContext, label: &str, data: &[T], extra: w
 }
 
 /// The geometry's buffers: (top-level nodes, triangles, shading, instances, top-level primitives,
-/// spheres, bottom-level nodes, tangents, second uvs, object_settings, motion keys).
+/// spheres, bottom-level nodes, tangents, second uvs, object_settings, motion keys, attributes).
 type GeometryBuffers = (
+    wgpu::Buffer,
     wgpu::Buffer,
     wgpu::Buffer,
     wgpu::Buffer,
@@ -90,6 +91,7 @@ fn geometry_buffers(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<Geomet
         storage(ctx, "second uvs", &geometry.second_uvs, none),
         storage(ctx, "object_settings", &geometry.object_settings, none),
         storage(ctx, "motion matrices", &geometry.motion_matrices, none),
+        storage(ctx, "attributes", &geometry.attributes, none),
     ))
 }
 
@@ -140,6 +142,7 @@ impl SceneBuffers {
             second_uvs,
             object_settings,
             motion_matrices,
+            attributes,
         ) = geometry_buffers(ctx, geometry)?;
         let (materials, emitters, node_programs) = material_buffers(ctx, geometry);
         let frame = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -176,6 +179,7 @@ impl SceneBuffers {
             object_settings,
             node_programs,
             motion_matrices,
+            attributes,
         };
         let bind_group = bind_group(ctx, "scene", layout, &data.bindings());
         Ok(Self { data, bind_group, sky_bind_group: None })
@@ -202,6 +206,7 @@ impl SceneBuffers {
             d.second_uvs,
             d.object_settings,
             d.motion_matrices,
+            d.attributes,
         ) = geometry_buffers(ctx, geometry)?;
         (d.materials, d.emitters, d.node_programs) = material_buffers(ctx, geometry);
         (d.lamps, d.lamp_info) = lamp_buffers(ctx, geometry);
@@ -269,6 +274,7 @@ fn check_sizes(ctx: &GpuContext, geometry: &SceneGeometry) -> Result<()> {
         ("triangle shading", std::mem::size_of_val(geometry.shading.as_slice())),
         ("triangle tangents", std::mem::size_of_val(geometry.tangents.as_slice())),
         ("second uvs", std::mem::size_of_val(geometry.second_uvs.as_slice())),
+        ("attributes", std::mem::size_of_val(geometry.attributes.as_slice())),
         ("instances", std::mem::size_of_val(geometry.instances.as_slice())),
         ("instance settings", std::mem::size_of_val(geometry.object_settings.as_slice())),
         ("motion matrices", std::mem::size_of_val(geometry.motion_matrices.as_slice())),

@@ -94,6 +94,8 @@ scene_bindings! {
     node_programs: ReadOnly "array<u32>" in "node_step",
     /// The moving instances' transforms over the shutter (`shaders/motion.wgsl`).
     motion_matrices: ReadOnly "array<MotionMatrix>" in "motion",
+    /// Per triangle, the meshes' named attributes (`SceneGeometry::attributes`).
+    attributes: ReadOnly "array<TriangleAttribute>" in "node_attribute" if "attributes",
 }
 
 /// The WGSL declarations of the bindings that shader file `file` (without `.wgsl`)

@@ -99,6 +99,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("node_program.wgsl"),
     shader!("node_spectrum.wgsl"),
     shader!("node_bump.wgsl"),
+    shader!("node_attribute.wgsl"),
     shader!("node_step.wgsl"),
     shader!("node_voronoi.wgsl"),
     shader!("node_voronoi_dimensions.wgsl"),

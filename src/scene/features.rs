@@ -120,6 +120,8 @@ feature_flags::feature_set! {
         normal_maps: Effect needs textures;
         /// Some material's texture reads a mesh's second uv set.
         uv_sets: Effect needs textures;
+        /// Some node graph reads a mesh's named attributes (Attribute, Color Attribute).
+        attributes: Effect needs node_graphs;
         /// A thin-lens camera: rays start across the aperture.
         depth_of_field: Setting;
         /// A panoramic camera (equirectangular, fisheye, mirror ball).
@@ -205,6 +207,8 @@ pub struct GeometrySummary {
     pub node_code: u64,
     /// Some material in use has a node graph that sets its normal (a Bump node).
     pub graph_normals: bool,
+    /// Some mesh has named attributes and some node graph in use reads them.
+    pub attributes_read: bool,
     /// Every material some triangle or sphere uses (an asset's own materials may
     /// emit or refract).
     pub materials_in_use: Vec<Material>,
@@ -243,6 +247,7 @@ impl FeatureSet {
             alpha_blend: materials_in_use.iter().any(|m| m.textures.alpha_blend),
             normal_maps: materials_in_use.iter().any(|m| m.textures.has_normal_map()) || geometry.graph_normals,
             uv_sets: materials_in_use.iter().any(|m| m.textures.uses_second_uv_set()),
+            attributes: geometry.attributes_read,
             sampling: settings.sampling,
             depth_of_field: scene.camera.depth_of_field.is_some(),
             panorama: matches!(scene.camera.projection, Projection::Panoramic { .. }),

@@ -1,0 +1,117 @@
+"""A mesh's named attributes for rt, for rt_export.py: the colour and generic attributes
+that the materials' Attribute and Color Attribute nodes read, numbered per mesh and
+written into the `.rtmesh` (version 4) as Cycles reads them (docs/shader-nodes.md).
+
+Cycles reads an attribute's values at a triangle's corners and interpolates them: a byte
+colour decoded from sRGB per corner, a float colour as it is, a vector or uv map as its
+components, an integer or boolean as a value. Blender's `color` of a colour attribute is
+already linear, so every kind travels as four floats per corner.
+"""
+
+import sys
+
+import numpy as np
+
+# What Cycles reads each of Blender's data types as (rt's `ATTRIBUTE_DATA`, src/asset/node_modes.rs),
+# and the property and component count Blender's Python API gives its values by.
+DATA = {
+    "FLOAT": ("FLOAT", "value", 1, np.float32),
+    "INT": ("FLOAT", "value", 1, np.int32),
+    "INT8": ("FLOAT", "value", 1, np.int32),
+    "BOOLEAN": ("FLOAT", "value", 1, bool),
+    "FLOAT2": ("FLOAT2", "vector", 2, np.float32),
+    "FLOAT_VECTOR": ("FLOAT3", "vector", 3, np.float32),
+    "FLOAT_COLOR": ("FLOAT4", "color", 4, np.float32),
+    "BYTE_COLOR": ("FLOAT4", "color", 4, np.float32),
+}
+# Domains Cycles interpolates over a triangle (edges' attributes it does not read).
+DOMAINS = {"POINT", "CORNER", "FACE"}
+# The most attributes an `.rtmesh` carries.
+MAX_ATTRIBUTES = 15
+NODE_TYPES = ("ATTRIBUTE", "VERTEX_COLOR")
+
+
+def log(message):
+    print(f"rt_export: {message}", file=sys.stderr)
+
+
+def default_color_name(mesh):
+    """The colour attribute an unnamed Color Attribute node reads: the mesh's render one."""
+    name = getattr(mesh.attributes, "default_color_name", "") or ""
+    if not name and len(mesh.color_attributes):
+        index = getattr(mesh.color_attributes, "render_color_index", 0)
+        name = mesh.color_attributes[max(index, 0)].name
+    return name
+
+
+def readable(mesh, name):
+    """The mesh's attribute `name` if Cycles reads it, else None."""
+    attribute = mesh.attributes.get(name) if name else None
+    if attribute is None or attribute.domain not in DOMAINS or attribute.data_type not in DATA:
+        return None
+    return attribute
+
+
+def attribute_nodes(gltf_materials):
+    """The Attribute and Color Attribute nodes of the materials' graphs, with their material."""
+    for material in gltf_materials:
+        graph = material.get("extras", {}).get("rt_node_graph") or {}
+        for node in graph.get("nodes", ()):
+            if node["type"] in NODE_TYPES:
+                yield material, node
+
+
+def node_attribute_name(node, default_color):
+    settings = node["settings"]
+    if node["type"] == "VERTEX_COLOR":
+        return settings.get("layer_name") or default_color
+    return settings.get("attribute_name", "")
+
+
+def attributes_read(mesh, gltf_materials):
+    """{name: rt's data kind} of the attributes of `mesh` that the materials' graphs read, in
+    the order rt numbers them, and the name an unnamed Color Attribute reads."""
+    default_color = default_color_name(mesh)
+    read = {}
+    for material, node in attribute_nodes(gltf_materials):
+        name = node_attribute_name(node, default_color)
+        attribute = readable(mesh, name)
+        if attribute is None or name in read:
+            continue
+        if len(read) == MAX_ATTRIBUTES:
+            log(f"{material['name']}: {node['name']} reads attribute {name!r}; rt carries {MAX_ATTRIBUTES} "
+                f"attributes of a mesh and reads it as missing")
+            continue
+        read[name] = DATA[attribute.data_type][0]
+    return read, default_color
+
+
+def number_attributes(gltf_materials, read, default_color):
+    """Gives each Attribute and Color Attribute node of the materials' graphs the number of
+    the attribute it reads (`slot`) and its kind (`data`); a node whose attribute the mesh
+    lacks (or rt does not carry) gets no number, and reads what Cycles reads then."""
+    names = list(read)
+    for material, node in attribute_nodes(gltf_materials):
+        name = node_attribute_name(node, default_color)
+        settings = node["settings"]
+        if name in read:
+            settings["slot"], settings["data"] = names.index(name), read[name]
+            continue
+        settings["slot"], settings["data"] = None, "FLOAT"
+        log(f"{material['name']}: {node['name']} reads attribute {name!r}, which the mesh does not have "
+            f"(or not on points, corners or faces); it reads zero as in Cycles")
+
+
+def corner_values(mesh, name, corners, corner_vertex, triangle_faces):
+    """Attribute `name`'s values at each triangle corner, four floats each."""
+    attribute = mesh.attributes[name]
+    _, key, width, dtype = DATA[attribute.data_type]
+    raw = np.empty(len(attribute.data) * width, dtype)
+    attribute.data.foreach_get(key, raw)
+    values = np.zeros((len(attribute.data), 4), np.float32)
+    values[:, :width] = raw.reshape(-1, width).astype(np.float32)
+    if attribute.domain == "POINT":
+        return values[corner_vertex[corners]]
+    if attribute.domain == "CORNER":
+        return values[corners]
+    return np.repeat(values[triangle_faces], 3, axis=0)

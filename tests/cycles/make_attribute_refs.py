@@ -1,0 +1,154 @@
+"""Cycles references for the Attribute and Color Attribute nodes (tests/cycles_node_graphs.rs
+compares rt against them).
+
+    /work/main/.venv-bpy/bin/python tests/cycles/make_attribute_refs.py [--spp 1024] [NAME...]
+
+`graph_attributes` is make_node_graph_refs.py's grid of emitting tiles, each tile a plane of
+8 × 8 quads carrying attributes of every kind Cycles reads: a byte colour and a float colour
+on points and on corners (which differ across a face's edges), a value, a vector, an
+integer on faces, a boolean, the uv map, and names the mesh lacks; each tile's emission is
+one output of one node. `graph_attributes_bump` is a row of spheres lit by a low sun, whose
+Normal is a Bump of an attribute (alone and plus a noise). Each scene is exported with
+blender/rt_export.py into tests/cycles/scenes/NAME/ and rendered into
+tests/cycles/NAME.exr. CI does not run Cycles: commit both.
+"""
+
+import math
+
+import bpy
+import numpy as np
+
+import cycles_reference as cycles
+from make_node_graph_refs import GRID, PITCH, SIZE, STOPS, emission_material, math_node, new, noise, output, ramp, \
+    vector_shown
+
+
+def attribute(t, name, which="Color"):
+    return output(new(t, "ShaderNodeAttribute", attribute_type="GEOMETRY", attribute_name=name), which)
+
+
+def color_attribute(t, name, which="Color"):
+    return output(new(t, "ShaderNodeVertexColor", layer_name=name), which)
+
+
+def set_attribute(mesh, name, kind, domain, key, values):
+    layer = mesh.attributes.new(name, kind, domain)
+    layer.data.foreach_set(key, np.ascontiguousarray(values).ravel())
+
+
+def paint(mesh):
+    """The attributes every tile's mesh carries, functions of where each point is."""
+    co = np.empty(len(mesh.vertices) * 3, np.float32)
+    mesh.vertices.foreach_get("co", co)
+    co = co.reshape(-1, 3)
+    x, y = co[:, 0], co[:, 1]
+    corner_vertex = np.empty(len(mesh.loops), np.int32)
+    mesh.loops.foreach_get("vertex_index", corner_vertex)
+    corner_face = np.repeat(np.arange(len(mesh.polygons)), [len(p.vertices) for p in mesh.polygons])
+    ones = np.ones_like(x)
+    byte = np.stack([0.5 + 0.5 * np.sin(3.0 * x), 0.5 + 0.5 * np.cos(2.0 * y), 0.5 + 0.4 * x * y, 0.3 + 0.3 * (x + 1)], 1)
+    set_attribute(mesh, "Col", "BYTE_COLOR", "POINT", "color", np.clip(byte, 0.0, 1.0))
+    # Per corner: each face's corners differ from its neighbours' at the same point.
+    cx, cy, cf = x[corner_vertex], y[corner_vertex], corner_face.astype(np.float32)
+    corner = np.stack([0.2 + 0.1 * (cf % 7), 0.5 + 0.4 * cx, 0.5 - 0.4 * cy, 0.2 + 0.1 * (cf % 5)], 1)
+    set_attribute(mesh, "Paint", "FLOAT_COLOR", "CORNER", "color", corner)
+    set_attribute(mesh, "height", "FLOAT", "POINT", "value", 0.5 + 0.45 * np.sin(2.5 * x + 1.0) * np.cos(1.7 * y))
+    set_attribute(mesh, "offset", "FLOAT_VECTOR", "POINT", "vector", np.stack([x, y * 0.5, x * y + 1.0], 1))
+    set_attribute(mesh, "face_id", "INT", "FACE", "value", np.arange(len(mesh.polygons), dtype=np.int32) % 9)
+    set_attribute(mesh, "flag", "BOOLEAN", "POINT", "value", (x + y > 0.3) & (ones > 0))
+    mesh.attributes.default_color_name = "Paint"
+
+
+def add_painted_tile(i):
+    x = (i % GRID - (GRID - 1) / 2) * PITCH
+    y = ((GRID - 1) / 2 - i // GRID) * PITCH
+    bpy.ops.mesh.primitive_grid_add(x_subdivisions=8, y_subdivisions=8, size=2.0, location=(x, y, 0.0))
+    obj = bpy.context.active_object
+    paint(obj.data)
+    return obj
+
+
+ATTRIBUTES = [
+    lambda t: color_attribute(t, ""),
+    lambda t: color_attribute(t, "Col"),
+    lambda t: math_node(t, "MULTIPLY_ADD", color_attribute(t, "Col", "Alpha"), 0.8, 0.1),
+    lambda t: ramp(t, attribute(t, "height", "Fac"), "LINEAR", STOPS),
+    lambda t: attribute(t, "height"),
+    lambda t: vector_shown(t, attribute(t, "offset", "Vector")),
+    lambda t: math_node(t, "MULTIPLY_ADD", attribute(t, "offset", "Fac"), 0.3, 0.4),
+    lambda t: attribute(t, "UVMap", "Vector"),
+    lambda t: attribute(t, "UVMap", "Fac"),
+    lambda t: math_node(t, "MULTIPLY", attribute(t, "face_id", "Fac"), 0.1),
+    lambda t: math_node(t, "MULTIPLY_ADD", attribute(t, "flag", "Fac"), 0.6, 0.2),
+    lambda t: attribute(t, "Paint", "Alpha"),
+    lambda t: attribute(t, "Paint", "Fac"),
+    lambda t: math_node(t, "ADD", attribute(t, "nope", "Alpha"), attribute(t, "nope", "Fac")),
+    lambda t: math_node(t, "ADD", color_attribute(t, "nope", "Alpha"), 0.3),
+    lambda t: output(noise(t, attribute(t, "offset", "Vector"), Scale=2.0, Detail=2.0), "Fac"),
+]
+
+
+def attribute_scene():
+    scene = cycles.new_scene()
+    cycles.set_up(scene, SIZE, bounces=1)
+    cycles.uniform_world(scene, (0.0, 0.0, 0.0))
+    for i, build in enumerate(ATTRIBUTES):
+        obj = add_painted_tile(i)
+        obj.name = f"tile_{i}"
+        obj.data.materials.append(emission_material(f"attributes_{i}", build))
+    camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
+    camera.data.type = "ORTHO"
+    camera.data.ortho_scale = GRID * PITCH
+    camera.location = (0.0, 0.0, 10.0)
+    scene.collection.objects.link(camera)
+    scene.camera = camera
+    return scene
+
+
+def bumped_by_attribute(name, height):
+    material = bpy.data.materials.new(name)
+    tree = material.node_tree
+    bsdf = tree.nodes["Principled BSDF"]
+    bsdf.inputs["Base Color"].default_value = (0.8, 0.8, 0.8, 1.0)
+    bsdf.inputs["Roughness"].default_value = 0.4
+    bump = new(tree, "ShaderNodeBump", {"Height": height(tree), "Strength": 1.0, "Distance": 0.3})
+    tree.links.new(bump.outputs["Normal"], bsdf.inputs["Normal"])
+    return material
+
+
+def bump_scene():
+    """Spheres whose Normal is a Bump of a point attribute (ripples of the height), alone
+    and plus a noise, lit by a low sun."""
+    scene = cycles.new_scene()
+    cycles.set_up(scene, 128, 64, bounces=2)
+    cycles.uniform_world(scene, (0.05, 0.05, 0.05))
+    heights = [
+        lambda t: attribute(t, "ripple", "Fac"),
+        lambda t: math_node(t, "ADD", attribute(t, "ripple", "Fac"),
+                            output(noise(t, None, Scale=3.0, Detail=1.0), "Fac")),
+    ]
+    for i, height in enumerate(heights):
+        bpy.ops.mesh.primitive_uv_sphere_add(radius=1.0, segments=64, ring_count=32, location=(2.3 * i - 1.15, 0, 1))
+        bpy.ops.object.shade_smooth()
+        mesh = bpy.context.active_object.data
+        co = np.empty(len(mesh.vertices) * 3, np.float32)
+        mesh.vertices.foreach_get("co", co)
+        co = co.reshape(-1, 3)
+        set_attribute(mesh, "ripple", "FLOAT", "POINT", "value", 0.5 + 0.5 * np.sin(9.0 * co[:, 2] + 3.0 * co[:, 0]))
+        mesh.materials.append(bumped_by_attribute(f"ripple_{i}", height))
+    sun = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
+    sun.data.energy = 3.0
+    sun.rotation_euler = (math.radians(60.0), 0.0, math.radians(40.0))
+    scene.collection.objects.link(sun)
+    cycles.camera(scene, (0.0, -6.0, 1.0), 90.0)
+    return scene
+
+
+SCENES = {
+    "graph_attributes": attribute_scene,
+    "graph_attributes_bump": bump_scene,
+}
+
+
+if __name__ == "__main__":
+    cycles.make(__doc__, 1024, SCENES)

@@ -25,3 +25,16 @@ fn the_exporter_declares_the_same_nodes() {
     let count = declared.take_while(|l| !l.starts_with('}')).count();
     assert_eq!(count, KINDS.len());
 }
+
+/// The attribute kinds the exporter writes (`rt_attributes.DATA`) are the ones rt reads.
+#[test]
+fn the_exporter_writes_attribute_kinds_rt_reads() {
+    let python = include_str!("../../blender/rt_blender/rt_attributes.py");
+    let table = python.lines().skip_while(|l| !l.starts_with("DATA = {")).skip(1);
+    let rows: Vec<&str> = table.take_while(|l| !l.starts_with('}')).collect();
+    assert!(rows.len() >= 8, "rt_attributes.py's DATA");
+    for row in rows {
+        let kind = row.split('(').nth(1).and_then(|r| r.split('"').nth(1)).unwrap_or_default();
+        assert!(super::ATTRIBUTE_DATA.contains(&kind), "{row}: `{kind}` is not one of {:?}", super::ATTRIBUTE_DATA);
+    }
+}

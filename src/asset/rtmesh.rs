@@ -268,6 +268,17 @@ mod tests {
         assert!(error(&bytes).contains("second uvs (bit 3) without uvs"), "{}", error(&bytes));
     }
 
+    /// The exporter writes the version this rt writes, and carries no more attributes than
+    /// a file holds (both are written in Python too).
+    #[test]
+    fn the_exporter_writes_this_version_and_attribute_limit() {
+        let export = include_str!("../../blender/rt_blender/rt_export.py");
+        assert!(export.contains(&format!("\nRTMESH_VERSION = {VERSION}\n")), "rt_export.py's RTMESH_VERSION");
+        assert!(export.contains(&format!("\nRTINST_VERSION = {}\n", super::super::rtinst::VERSION)));
+        let attributes = include_str!("../../blender/rt_blender/rt_attributes.py");
+        assert!(attributes.contains(&format!("\nMAX_ATTRIBUTES = {MAX_ATTRIBUTES}\n")), "rt_attributes.py");
+    }
+
     /// A version 1 file: the header says 1 and there is no tangents section.
     fn version_1(mesh: &MeshData) -> Vec<u8> {
         let mut bytes = encode(&MeshData { tangents: None, second_uvs: None, attributes: Vec::new(), ..mesh.clone() });

@@ -60,6 +60,11 @@
 //#include "exact_sums.wgsl"
 //#endif
 //#include "path_steps.wgsl"
+//#if sky_graph
+//#if node_graphs
+//#include "sky_graph.wgsl"
+//#endif
+//#endif
 
 // The mean of a colour's channels: how much of the pixel a path of this throughput
 // stands for (Cycles' `average`, as it counts transparency).
@@ -161,6 +166,22 @@ fn uniform_sky_seen(bsdf_pdf: f32) -> vec3f {
     //#endif
     return frame.sky_color * weight;
 }
+//#endif
+
+//#if sky_graph
+//#if node_graphs
+// The world seen by a ray that leaves the scene, MIS-weighted against light sampling after
+// a BSDF sample (the world is light-sampled uniformly over the sphere).
+fn graph_sky_seen(direction: vec3f, bsdf_pdf: f32, ray_from: u32, singular: bool, depth: u32) -> vec3f {
+    var weight = 1.0;
+    //#if nee
+    if bsdf_pdf > 0.0 {
+        weight = power_heuristic(bsdf_pdf, frame.sky_light_share / (4.0 * PI));
+    }
+    //#endif
+    return graph_sky_radiance(direction, ray_from, singular, depth) * weight;
+}
+//#endif
 //#endif
 
 //#if sky_environment
@@ -346,6 +367,11 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
                 sample_finished = true;
                 continue;
             }
+            //#endif
+            //#if sky_graph
+            //#if node_graphs
+            gather(&radiance, throughput * graph_sky_seen(direction, bsdf_pdf, ray_from, ray_singular, bounce), EVENT_SKY);
+            //#endif
             //#endif
             background_seen(&radiance, throughput, origin, direction, bsdf_pdf);
             sample_finished = true;

@@ -37,6 +37,11 @@
 //#if sky_atmosphere
 //#include "atmosphere_sky.wgsl"
 //#endif
+//#if sky_graph
+//#if node_graphs
+//#include "sky_graph.wgsl"
+//#endif
+//#endif
 //#if sky_environment
 //#include "environment.wgsl"
 //#endif
@@ -65,9 +70,14 @@ fn non_environment_share() -> f32 {
     //#if sky_uniform_light
     return 1.0 - frame.sky_light_share;
     //#endif
+    //#if sky_graph
+    return 1.0 - frame.sky_light_share;
+    //#endif
     //#if !sky_environment
     //#if !sky_uniform_light
+    //#if !sky_graph
     return 1.0;
+    //#endif
     //#endif
     //#endif
 }
@@ -320,6 +330,14 @@ fn emission_under_coat(m: Material, emission: vec3f, e: Emitter, inst: Instance,
 //#endif
 //#endif
 
+// A direction uniformly over the unit sphere, from two uniform numbers.
+fn uniform_sphere_direction(u: vec2f) -> vec3f {
+    let z = 1.0 - 2.0 * u.x;
+    let r = sqrt(max(0.0, 1.0 - z * z));
+    let phi = 2.0 * PI * u.y;
+    return vec3f(r * cos(phi), r * sin(phi), z);
+}
+
 fn sample_light(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
     let none = LightSample(vec3f(0.0, 1.0, 0.0), 0.0, vec3f(0.0), 0.0, false);
     //#if sky_environment
@@ -331,12 +349,19 @@ fn sample_light(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
     //#if sky_uniform_light
     // Uniformly over the sphere: a constant sky has no brighter part to aim for.
     if rng_next(rng) < frame.sky_light_share {
-        let u = rng_next2(rng);
-        let z = 1.0 - 2.0 * u.x;
-        let r = sqrt(max(0.0, 1.0 - z * z));
-        let phi = 2.0 * PI * u.y;
-        let d = vec3f(r * cos(phi), r * sin(phi), z);
+        let d = uniform_sphere_direction(rng_next2(rng));
         return LightSample(d, INFINITY, frame.sky_color, frame.sky_light_share / (4.0 * PI), false);
+    }
+    //#endif
+    //#if sky_graph
+    // The world's graph, uniformly over the sphere, evaluated as a light sample sees it.
+    if rng_next(rng) < frame.sky_light_share {
+        let d = uniform_sphere_direction(rng_next2(rng));
+        var radiance = vec3f(0.0);
+        //#if node_graphs
+        radiance = graph_sky_radiance(d, NODE_RAY_NONE, false, 0u);
+        //#endif
+        return LightSample(d, INFINITY, radiance, frame.sky_light_share / (4.0 * PI), false);
     }
     //#endif
     // Below, the choice among the other lights (their shares without the environment's part).

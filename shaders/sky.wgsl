@@ -21,4 +21,8 @@ fn sky_radiance(origin: vec3f, direction: vec3f) -> vec3f {
     //#if sky_black
     return vec3f(0.0);
     //#endif
+    // The world's graph is run where the path leaves the scene (graph_sky_seen).
+    //#if sky_graph
+    return vec3f(0.0);
+    //#endif
 }

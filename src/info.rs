@@ -22,6 +22,7 @@ pub fn print_inputs(scene: Option<&Path>, quality: BuildQuality) -> Result<()> {
     let caches = geometry.meshes.iter().filter_map(|m| AssetFiles::resolve(&m.path).ok()?.cache_path());
     let environment = match &scene.sky {
         crate::scene::Sky::Environment(e) => Some(e.image.clone()),
+        crate::scene::Sky::Graph(g) => Some(g.graph.clone()),
         _ => None,
     };
     for path in caches.chain(environment) {

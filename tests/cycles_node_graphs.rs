@@ -186,6 +186,15 @@ fn a_bump_of_an_attribute_matches_cycles() {
     check_channels_of("graph_attributes_bump", 1e-3, 3);
 }
 
+/// A World whose Background is a node graph (`make_world_refs.py`): a sky gradient with
+/// noise clouds lighting spheres and a floor, the camera seeing another colour (Light
+/// Path's Is Camera Ray); and the same gradient beside a sun lamp.
+#[test]
+fn world_graphs_match_cycles() {
+    check_channels_of("graph_world", 1e-3, 5);
+    check_channels_of("graph_world_sun", 1e-3, 5);
+}
+
 #[test]
 fn waves_of_every_kind_match_cycles() {
     check_channels("graph_wave", 1e-3);

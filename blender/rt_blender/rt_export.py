@@ -2022,6 +2022,17 @@ def environment_toml(background, texture, export, scene_dir):
     return text + "\n"
 
 
+def world_graph_toml(graph, export, scene_dir):
+    """`[sky] kind = "graph"`: the World's graph written beside the assets under a name of
+    its content's hash."""
+    data = json.dumps(graph, indent=1, sort_keys=True).encode("utf-8")
+    path = os.path.join(export.out_dir, "world", f"world-{blake(data)}.json")
+    if write_if_changed(path, data):
+        export.written.append(path)
+    graph_path = os.path.relpath(path, scene_dir).replace(os.sep, "/")
+    return f'[sky]\nkind = "graph"\ngraph = {json.dumps(graph_path)}\n\n'
+
+
 def environment_texture(background):
     """The Environment Texture (equirectangular, with an image) behind a Background node, or None."""
     node = linked_node(background.inputs["Color"])
@@ -2056,6 +2067,11 @@ def sky_toml(scene, export=None, scene_dir=None):
             if export is None:
                 return '[sky]\nkind = "environment"\n\n'
             return environment_toml(background, texture, export, scene_dir)
+        graph = rt_node_graph.world_graph(background)
+        if graph is not None:
+            if export is None:
+                return '[sky]\nkind = "graph"\n\n'
+            return world_graph_toml(graph, export, scene_dir)
         strength = float(socket_value(background, "Strength", 1.0))
         color = [c * strength for c in rgb(socket_value(background, "Color", (0, 0, 0)))]
     return f'[sky]\nkind = "uniform"\ncolor = {vec(max(c, 0.0) for c in color)}\n\n'

@@ -387,6 +387,21 @@ def material_graph(shader, mix_factor=None):
     return {"version": FORMAT_VERSION, "nodes": writer.nodes, "outputs": outputs}
 
 
+def world_graph(background):
+    """The graph of a World's Background whose Color or Strength a graph rt evaluates drives
+    (and nothing it does not), or None: its `emission` is the colour times the strength.
+    A World's Generated and Object coordinates are the direction itself (Cycles'
+    `shader_setup_from_background`): a texture space of centre and half-size 1/2."""
+    sockets = (background.inputs["Color"], background.inputs["Strength"])
+    linked = [s for s in sockets if s.is_linked]
+    if not linked or not all(evaluated(s) for s in linked):
+        return None
+    writer = GraphWriter()
+    emission = writer.product(writer.input(sockets[0], (), "RGBA"), writer.input(sockets[1], (), "VALUE"))
+    return {"version": FORMAT_VERSION, "nodes": writer.nodes, "outputs": {"emission": emission},
+            "texture_space": {"location": [0.5, 0.5, 0.5], "size": [0.5, 0.5, 0.5]}}
+
+
 def texture_space(mesh):
     """A mesh's texture space, which Generated coordinates are relative to."""
     return {"location": [float(v) for v in mesh.texspace_location], "size": [float(v) for v in mesh.texspace_size]}

@@ -20,6 +20,7 @@ mod scene_geometry;
 mod scene_lights;
 mod top_level;
 mod wide_node;
+mod world_graph;
 
 pub use mesh_bvh::{BuildQuality, MeshBvh};
 pub use node::{BvhStats, convert_bvh2, stats};

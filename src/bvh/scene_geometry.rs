@@ -200,6 +200,11 @@ impl SceneGeometry {
             MeshArrays::of(scene, &meshes);
         let placed = Placed::of(scene, &meshes, &slots, &mut materials, &mesh_of_path)?;
         let Placed { placement, mut in_use, entries, boxes, spheres } = placed;
+        // The world's graph, if any, is the last material (`shaders/sky_graph.wgsl`).
+        if let Some(world) = super::world_graph::material(scene)? {
+            materials.push(world);
+            in_use.push(true);
+        }
         let Placement {
             mut instances,
             object_settings,

@@ -100,6 +100,7 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("node_spectrum.wgsl"),
     shader!("node_bump.wgsl"),
     shader!("node_attribute.wgsl"),
+    shader!("sky_graph.wgsl"),
     shader!("node_step.wgsl"),
     shader!("node_voronoi.wgsl"),
     shader!("node_voronoi_dimensions.wgsl"),

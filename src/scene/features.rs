@@ -15,6 +15,8 @@ pub enum SkyFeature {
     Atmosphere,
     /// An equirectangular image, light-sampled by next-event estimation.
     Environment,
+    /// A World's node graph, evaluated by the rays that leave the scene.
+    Graph,
 }
 
 impl SkyFeature {
@@ -25,6 +27,7 @@ impl SkyFeature {
             Sky::Uniform { sample_as_light: true, .. } => SkyFeature::UniformLight,
             Sky::Atmosphere(_) => SkyFeature::Atmosphere,
             Sky::Environment(_) => SkyFeature::Environment,
+            Sky::Graph(_) => SkyFeature::Graph,
         }
     }
 }
@@ -356,6 +359,7 @@ impl FeatureSet {
             "sky_uniform_light" => self.sky == SkyFeature::UniformLight,
             "sky_atmosphere" => self.sky == SkyFeature::Atmosphere,
             "sky_environment" => self.sky == SkyFeature::Environment,
+            "sky_graph" => self.sky == SkyFeature::Graph,
             "glass" => self.transmission != Transmission::None,
             "rough_glass_ggx" => self.transmission == Transmission::Rough(RoughTransmission::Ggx),
             "rough_glass_cone" => self.transmission == Transmission::Rough(RoughTransmission::Cone),

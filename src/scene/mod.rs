@@ -171,6 +171,20 @@ pub enum Sky {
     Atmosphere(Atmosphere),
     /// An equirectangular image (HDRI) around the scene.
     Environment(Environment),
+    /// A World whose Background a shader node graph drives.
+    Graph(WorldGraph),
+}
+
+/// `[sky] kind = "graph"`: a World's Background whose colour and strength a shader node
+/// graph gives per direction (sky gradients, Light Path tricks), evaluated by every ray
+/// that leaves the scene as Cycles evaluates a World's shader.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WorldGraph {
+    /// The graph (`rt_node_graph`, its `emission` output the Background's radiance), a
+    /// JSON file resolved against the scene's folder.
+    pub graph: PathBuf,
+    /// Next-event estimation samples the world (uniformly over the sphere); on by default.
+    pub sample_as_light: bool,
 }
 
 #[derive(Clone, Debug, PartialEq)]

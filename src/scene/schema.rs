@@ -147,6 +147,8 @@ pub(super) struct Sky {
     pub rotation_deg: Option<[f32; 3]>,
     pub importance_sampling: Option<bool>,
     pub color_space: Option<String>,
+    /// Only for `kind = "graph"` (see `scene::WorldGraph`).
+    pub graph: Option<String>,
 }
 
 /// A grey level or an RGB triple.
@@ -173,6 +175,7 @@ pub(super) enum SkyKind {
     Uniform,
     Atmosphere,
     Environment,
+    Graph,
 }
 
 #[derive(Deserialize)]

@@ -168,12 +168,12 @@ fn unknown_keys_suggest_in_every_table() {
         [[mesh]] | asset = "a" | [[mesh]] | asset = "b" | materal = "m" => 5:1: unknown key `materal` in mesh 2; did you mean `material`?
         [[sphere]] | radious = 1 => 2:1: unknown key `radious` in sphere 1; did you mean `radius`?
         | meshes = [] => 2:1: unknown key `meshes` in the top-level table; did you mean `mesh`?
-        [sky] | kind = "uniform" | hue = 1 => 3:1: unknown key `hue` in [sky]; expected one of `kind`, `color`, `sample_as_light`, `turbidity`, `rayleigh_scale`, `mie_g`, `mie_absorption`, `ozone`, `ground_albedo`, `ground_altitude_m`, `multiple_scattering`, `steps`, `transmittance_lut`, `multiple_scattering_lut`, `image`, `strength`, `rotation_deg`, `importance_sampling`, `color_space`
+        [sky] | kind = "uniform" | hue = 1 => 3:1: unknown key `hue` in [sky]; expected one of `kind`, `color`, `sample_as_light`, `turbidity`, `rayleigh_scale`, `mie_g`, `mie_absorption`, `ozone`, `ground_albedo`, `ground_altitude_m`, `multiple_scattering`, `steps`, `transmittance_lut`, `multiple_scattering_lut`, `image`, `strength`, `rotation_deg`, `importance_sampling`, `color_space`, `graph`
         [sky] | kind = "atmosphere" | turbidty = 2 => 3:1: unknown key `turbidty` in [sky]; did you mean `turbidity`?
         [sky] | kind = "atmosphere" | ground_albeda = 0.2 => 3:1: unknown key `ground_albeda` in [sky]; did you mean `ground_albedo`?
         sky = { kind = "black", colour = [1, 1, 1] } => 1:25: unknown key `colour` in [sky]; did you mean `color`?
         [sky] | kind = "atmosfere" => 2:8: [sky]: unknown kind `atmosfere`; did you mean `atmosphere`?
-        [sky] | kind = "grey" => 2:8: [sky]: unknown kind `grey`; expected one of `black`, `uniform`, `atmosphere`, `environment`
+        [sky] | kind = "grey" => 2:8: [sky]: unknown kind `grey`; expected one of `black`, `uniform`, `atmosphere`, `environment`, `graph`
         [materials.m] | tangent = "radial_w" => 2:11: [materials.m]: unknown tangent `radial_w`; did you mean `radial_z`?
     "#,
     );

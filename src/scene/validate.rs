@@ -7,6 +7,7 @@ use super::parse::{SceneError, Seg, Seg::*, Source, hint};
 use super::schema::{self, File, Scale, SkyKind};
 use super::{
     InstanceSet, Material, MeshInstance, ObjectInfo, RenderSettings, Scene, ShadowTerminator, Sky, Sphere, Sun,
+    WorldGraph,
 };
 use glam::{Mat3, Mat4, Vec3};
 use std::path::Path;
@@ -155,12 +156,14 @@ fn sky(src: &Source, sky: Option<schema::Sky>, base_dir: &Path) -> Result<Sky, S
     let Some(sky) = sky else {
         return Ok(Sky::Black);
     };
-    if sky.kind != SkyKind::Uniform
-        && let Some(key) = [("color", sky.color.is_some()), ("sample_as_light", sky.sample_as_light.is_some())]
-            .iter()
-            .find_map(|&(key, on)| on.then_some(key))
-    {
-        return Err(src.error(&p, key, "only applies to kind = \"uniform\""));
+    if sky.kind != SkyKind::Uniform && sky.color.is_some() {
+        return Err(src.error(&p, "color", "only applies to kind = \"uniform\""));
+    }
+    if !matches!(sky.kind, SkyKind::Uniform | SkyKind::Graph) && sky.sample_as_light.is_some() {
+        return Err(src.error(&p, "sample_as_light", "only applies to kind = \"uniform\" or \"graph\""));
+    }
+    if sky.kind != SkyKind::Graph && sky.graph.is_some() {
+        return Err(src.error(&p, "graph", "only applies to kind = \"graph\""));
     }
     if sky.kind != SkyKind::Atmosphere
         && let Some(key) = atmosphere::keys_present(&sky)
@@ -176,6 +179,13 @@ fn sky(src: &Source, sky: Option<schema::Sky>, base_dir: &Path) -> Result<Sky, S
         SkyKind::Black => Sky::Black,
         SkyKind::Atmosphere => Sky::Atmosphere(atmosphere::validate(src, &p, &sky)?),
         SkyKind::Environment => Sky::Environment(environment::validate(src, &p, &sky, base_dir)?),
+        SkyKind::Graph => match sky.graph.as_deref() {
+            None | Some("") => return Err(src.error(&p, "graph", "must name the world's node graph (.json)")),
+            Some(name) => Sky::Graph(WorldGraph {
+                graph: base_dir.join(name),
+                sample_as_light: sky.sample_as_light.unwrap_or(true),
+            }),
+        },
         SkyKind::Uniform => {
             let color = sky.color.unwrap_or([1.0; 3]);
             src.check(&p, "color", &color, "non-negative", |c| c >= 0.0)?;

@@ -14,7 +14,7 @@
 //! Materials, placement and assets can also change the feature set (glass appears, the
 //! last sphere goes); that is found when the geometry is reassembled.
 
-use crate::scene::{LampKinds, RenderSettings, Scene};
+use crate::scene::{LampKinds, RenderSettings, Scene, Sky};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -127,6 +127,10 @@ pub fn plan(old: &Scene, new: &Scene, old_assets: &AssetPrints, new_assets: &Ass
         changes.push(Change::Sky);
         if std::mem::discriminant(&old.sky) != std::mem::discriminant(&new.sky) {
             changes.push(Change::Features);
+        }
+        // The world's graph is the material table's last material.
+        if [&old.sky, &new.sky].iter().any(|s| matches!(s, Sky::Graph(_))) {
+            changes.push(Change::Materials);
         }
     }
     settings(&old.render, &new.render, &mut changes);
@@ -275,6 +279,17 @@ mod tests {
             [Change::Sky]
         );
         assert_eq!(kind_after(|s| s.sky = Sky::Black).changes, [Change::Sky, Change::Features]);
+    }
+
+    /// The world's graph lives in the material table: another graph re-uploads it.
+    #[test]
+    fn a_world_graph_is_a_material() {
+        let graph = |name: &str| Sky::Graph(crate::scene::WorldGraph { graph: name.into(), sample_as_light: true });
+        assert_eq!(kind_after(|s| s.sky = graph("a.json")).changes, [Change::Sky, Change::Features, Change::Materials]);
+        let old = edited(|s| s.sky = graph("a.json"));
+        let reload = plan(&old, &edited(|s| s.sky = graph("b.json")), &prints(1), &prints(1), false);
+        assert_eq!(reload.changes, [Change::Sky, Change::Materials]);
+        assert!(reload.reassembles());
     }
 
     #[test]

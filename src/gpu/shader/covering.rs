@@ -61,7 +61,8 @@ fn factors() -> Vec<Factor> {
     let mut factors = vec![
         choice!(sky: "black" => SkyFeature::Black, "uniform" => SkyFeature::Uniform,
             "uniform_light" => SkyFeature::UniformLight,
-            "atmosphere" => SkyFeature::Atmosphere, "environment" => SkyFeature::Environment),
+            "atmosphere" => SkyFeature::Atmosphere, "environment" => SkyFeature::Environment,
+            "graph" => SkyFeature::Graph),
         choice!(transmission: "none" => Transmission::None, "smooth" => Transmission::Smooth,
             "ggx" => Transmission::Rough(RoughTransmission::Ggx), "cone" => Transmission::Rough(RoughTransmission::Cone)),
         choice!(sampling: "nee" => Sampling::Nee, "resampled" => Sampling::Resampled),

@@ -175,7 +175,7 @@ fn every_shader_file_is_built_in_and_used_by_a_program() {
     let built_in: BTreeSet<String> = ALL_PARTS.iter().map(|(name, _)| name.to_string()).collect();
     assert_eq!(on_disk, built_in, "the files of shaders/ and the built-in ones differ");
     let mut used = BTreeSet::new();
-    for sky in [SkyFeature::Uniform, SkyFeature::Atmosphere, SkyFeature::Environment] {
+    for sky in [SkyFeature::Uniform, SkyFeature::Atmosphere, SkyFeature::Environment, SkyFeature::Graph] {
         for sampling in [Sampling::Nee, Sampling::Resampled] {
             for rough in [RoughTransmission::Ggx, RoughTransmission::Cone] {
                 // AOVs, adaptive sampling and exact sums are asked for by a render, not in the set of effects.

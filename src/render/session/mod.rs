@@ -264,6 +264,11 @@ impl<'a> Session<'a> {
                 !self.geometry.emitters.is_empty() || self.scene.sun.is_some() || !self.scene.lights.is_empty();
             frame.sky_light_share = crate::sky::light_share(sample_as_light && color.max_element() > 0.0, other_lights);
         }
+        if let Sky::Graph(world) = &self.scene.sky {
+            let other_lights =
+                !self.geometry.emitters.is_empty() || self.scene.sun.is_some() || !self.scene.lights.is_empty();
+            frame.sky_light_share = crate::sky::light_share(world.sample_as_light, other_lights);
+        }
         sun::set_sun(&mut frame, self.scene.sun.as_ref(), !self.geometry.emitters.is_empty());
         frame.emitter_count = self.geometry.emitters.len() as u32;
         frame.emitter_total_power = self.geometry.emitter_total_power;

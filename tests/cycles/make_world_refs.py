@@ -1,0 +1,80 @@
+"""Cycles references for Worlds whose Background a node graph drives (tests/cycles_node_graphs.rs
+compares rt against them).
+
+    /work/main/.venv-bpy/bin/python tests/cycles/make_world_refs.py [--spp 1024] [NAME...]
+
+`graph_world` lights a diffuse sphere, a rough metal sphere and a floor by a sky gradient (a
+Color Ramp of the direction's height) with noise clouds, times a strength; the camera sees
+another colour where the world is seen directly (Light Path's Is Camera Ray), as artists
+light with one sky and show another. `graph_world_sun` is the same gradient beside a sun
+lamp, so that light samples share between the two. Each scene is exported with
+blender/rt_export.py into tests/cycles/scenes/NAME/ and rendered into tests/cycles/NAME.exr.
+CI does not run Cycles: commit both.
+"""
+
+import math
+
+import bpy
+
+import cycles_reference as cycles
+from make_node_graph_refs import math_node, new, noise, output, ramp
+
+SKY_STOPS = [(0.0, (0.9, 0.55, 0.3, 1.0)), (0.35, (0.55, 0.7, 0.95, 1.0)), (1.0, (0.15, 0.3, 0.85, 1.0))]
+
+
+def sky_graph(world, camera_colour=None, strength=1.5):
+    """The world's Background: a ramp of the direction's height plus noise clouds; the camera
+    sees `camera_colour` where it sees the world, if given."""
+    tree = world.node_tree
+    background = tree.nodes["Background"]
+    direction = new(tree, "ShaderNodeTexCoord").outputs["Generated"]
+    height = new(tree, "ShaderNodeSeparateXYZ", {"Vector": direction}).outputs["Z"]
+    sky = ramp(tree, math_node(tree, "MULTIPLY_ADD", height, 0.8, 0.2), "LINEAR", SKY_STOPS)
+    clouds = output(noise(tree, direction, Scale=3.0, Detail=2.0), "Fac")
+    cloudy = new(tree, "ShaderNodeMix", {"Factor_Float": math_node(tree, "MULTIPLY", clouds, 0.6, clamp=True),
+                                         "A_Color": sky, "B_Color": (1.0, 1.0, 1.0, 1.0)}, data_type="RGBA")
+    colour = output(cloudy, "Result_Color")
+    if camera_colour is not None:
+        seen = new(tree, "ShaderNodeMix", {"Factor_Float": new(tree, "ShaderNodeLightPath").outputs["Is Camera Ray"],
+                                           "A_Color": colour, "B_Color": camera_colour}, data_type="RGBA")
+        colour = output(seen, "Result_Color")
+    tree.links.new(colour, background.inputs["Color"])
+    background.inputs["Strength"].default_value = strength
+
+
+def objects():
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=0.8, segments=48, ring_count=24, location=(-0.9, 0.0, 0.8))
+    bpy.ops.object.shade_smooth()
+    bpy.context.active_object.data.materials.append(cycles.principled("matte", (0.8, 0.8, 0.8), Roughness=1.0))
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=0.8, segments=48, ring_count=24, location=(0.9, 0.0, 0.8))
+    bpy.ops.object.shade_smooth()
+    bpy.context.active_object.data.materials.append(
+        cycles.principled("metal", (0.9, 0.8, 0.6), Metallic=1.0, Roughness=0.3))
+    bpy.ops.mesh.primitive_plane_add(size=10.0)
+    bpy.context.active_object.data.materials.append(cycles.principled("floor", (0.5, 0.5, 0.5), Roughness=1.0))
+
+
+def world_scene(sun=False):
+    scene = cycles.new_scene()
+    cycles.set_up(scene, 96, bounces=4)
+    world = bpy.data.worlds.new("sky")
+    scene.world = world
+    sky_graph(world, camera_colour=None if sun else (0.2, 0.2, 0.25, 1.0), strength=0.8 if sun else 1.5)
+    objects()
+    if sun:
+        light = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
+        light.data.energy = 2.0
+        light.rotation_euler = (math.radians(50.0), 0.0, math.radians(30.0))
+        scene.collection.objects.link(light)
+    cycles.camera(scene, (0.0, -5.0, 1.6), 80.0)
+    return scene
+
+
+SCENES = {
+    "graph_world": world_scene,
+    "graph_world_sun": lambda: world_scene(sun=True),
+}
+
+
+if __name__ == "__main__":
+    cycles.make(__doc__, 1024, SCENES)

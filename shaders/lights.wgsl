@@ -281,7 +281,10 @@ fn sample_triangle_emitter(e: Emitter, tree_selection: f32, p: vec3f, u: vec2f) 
         let n_shading = normalize(transform_normal_to_world(inst.world_to_object, n_object));
         var lit = m;
         lit.emission = emission;
-        emission = node_graph_material(lit, node_point_on_triangle(e.instance, inst, e.primitive, b1, b2, q, n_shading, -d)).emission;
+        let graph = run_node_program(m.node_program, node_point_on_triangle(e.instance, inst, e.primitive, b1, b2, q, n_shading, -d));
+        // Of a Mix Shader, only its first shader emits (the exporter puts it first): the
+        // light is its share of the point.
+        emission = node_graph_applied(lit, graph).emission * node_first_share(m, graph);
     }
     //#endif
     //#if coat

@@ -74,6 +74,16 @@ fn node_graph_applied(material: Material, out: NodeOutputs) -> Material {
     return m;
 }
 
+// The share of a Mix Shader's point that is its first material (1 for a material that
+// mixes nothing): what a light sample of it weighs its emission by, where a ray that
+// meets it tosses `node_mix_second`'s coin.
+fn node_first_share(m: Material, out: NodeOutputs) -> f32 {
+    if m.mix_material == NO_MATERIAL || (out.driven & 16u) == 0u {
+        return 1.0;
+    }
+    return 1.0 - clamp(out.mix_factor, 0.0, 1.0);
+}
+
 // Whether a Mix Shader's shading point is its second material (`mix_material`), with the
 // probability its factor gives (Cycles weighs both closures; one picked by its weight is the
 // same in expectation). The coin is a hash of the path and the bounce: no draw of the

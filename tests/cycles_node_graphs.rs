@@ -195,6 +195,14 @@ fn world_graphs_match_cycles() {
     check_channels_of("graph_world_sun", 1e-3, 5);
 }
 
+/// Mix Shaders of an emitting shader and a BSDF by a noise's or a gradient's factor
+/// (`make_emitting_mix_refs.py`), the emitting one first or second, lighting a floor and
+/// each other: light samples weigh the emission by the first shader's share.
+#[test]
+fn mix_shaders_of_emitting_shaders_match_cycles() {
+    check_channels_of("graph_mix_emission", 1e-3, 5);
+}
+
 #[test]
 fn waves_of_every_kind_match_cycles() {
     check_channels("graph_wave", 1e-3);

@@ -822,7 +822,8 @@ def gltf_material(material, thickness, textures=None, shader=None):
         # Cycles' Glossy BSDF: GGX without Fresnel, tinted by its colour; glTF has no such lobe
         # (its factors above describe a metal of that colour for other readers).
         out["extras"]["rt_glossy_color"] = [max(c, 0.0) for c in s.glossy]
-    graph = rt_node_graph.material_graph(shader, top.inputs["Fac"] if parts else None) if material else None
+    swapped = bool(parts) and parts[2]
+    graph = rt_node_graph.material_graph(shader, top.inputs["Fac"] if parts else None, swapped) if material else None
     if graph is not None:
         out["extras"]["rt_node_graph"] = graph
     if parts:

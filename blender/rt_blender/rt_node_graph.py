@@ -113,7 +113,7 @@ TARGETS = {
 TARGET_TYPES = {"base_color": "RGBA", "roughness": "VALUE", "metallic": "VALUE", "emission": "RGBA",
                 "mix_factor": "VALUE", "normal": "VECTOR"}
 # Shaders a Mix Shader with a graph-driven factor may mix: each becomes a material of its own.
-MIXABLE = {"BSDF_PRINCIPLED", "BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS", "HOLDOUT"}
+MIXABLE = {"BSDF_PRINCIPLED", "BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS", "HOLDOUT", "EMISSION"}
 # What a driven socket's own value becomes in the glTF factors: the part the graph scales.
 NEUTRAL = {"Metallic": 0.0, "Emission Color": (1.0, 1.0, 1.0, 1.0), "Color": (1.0, 1.0, 1.0, 1.0),
            "Emission Strength": 1.0, "Strength": 1.0}
@@ -350,9 +350,17 @@ def shader_of(socket):
     return node
 
 
+def emits(part):
+    """Whether shader `part` emits (an Emission shader, a Principled BSDF's emission)."""
+    strength = part.inputs.get("Strength" if part.type == "EMISSION" else "Emission Strength")
+    return strength is not None and (strength.is_linked or strength.default_value > 0.0)
+
+
 def mix_parts(shader):
-    """(first, second) shader of a Mix Shader whose Fac a graph drives and whose shaders rt
-    renders one by one (none emitting, none with a Normal input linked), or None."""
+    """(first, second, swapped) shaders of a Mix Shader whose Fac a graph drives and whose
+    shaders rt renders one by one (none with a Normal input linked, at most one emitting),
+    or None. The emitting one comes first, so that the material its triangles name is the
+    one light sampling finds (`swapped`: it was the second, and the factor is 1 − Fac)."""
     if shader is None or shader.type != "MIX_SHADER" or not evaluated(shader.inputs["Fac"]):
         return None
     parts = (shader_of(shader.inputs[1]), shader_of(shader.inputs[2]))
@@ -360,16 +368,19 @@ def mix_parts(shader):
         if part is None or part.type not in MIXABLE or part.mute:
             return None
         normal = part.inputs.get("Normal")
-        strength = part.inputs.get("Emission Strength")
-        if (normal is not None and normal.is_linked) or (strength is not None and (
-                strength.is_linked or strength.default_value > 0.0)):
+        if normal is not None and normal.is_linked:
             return None
-    return parts
+    if emits(parts[0]) and emits(parts[1]):
+        return None
+    if emits(parts[1]):
+        return parts[1], parts[0], True
+    return parts[0], parts[1], False
 
 
-def material_graph(shader, mix_factor=None):
+def material_graph(shader, mix_factor=None, swapped=False):
     """`extras.rt_node_graph` for the shader linked to a material's output (or one of a Mix
-    Shader's, whose factor socket `mix_factor` drives the choice between them), or None."""
+    Shader's, whose factor socket `mix_factor` drives the choice between them, 1 − it when
+    its shaders are `swapped`), or None."""
     if shader is None or (shader.type not in TARGETS and mix_factor is None):
         return None
     writer = GraphWriter()
@@ -382,6 +393,11 @@ def material_graph(shader, mix_factor=None):
             outputs[target] = writer.product(outputs[target], value) if target in outputs else value
     if mix_factor is not None:
         outputs["mix_factor"] = writer.input(mix_factor, (), "VALUE")
+        if swapped:
+            writer.nodes.append({"name": f"rt one minus {len(writer.nodes)}", "type": "MATH",
+                                 "settings": {"operation": "SUBTRACT", "use_clamp": False},
+                                 "inputs": {"Value": {"value": 1.0}, "Value_001": outputs["mix_factor"]}})
+            outputs["mix_factor"] = {"link": [len(writer.nodes) - 1, "Value"], "from": "VALUE", "to": "VALUE"}
     if not outputs:
         return None
     return {"version": FORMAT_VERSION, "nodes": writer.nodes, "outputs": outputs}

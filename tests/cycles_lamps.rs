@@ -66,6 +66,14 @@ fn several_coloured_lamps_match_cycles() {
     check("several", Sampling::Nee, 128);
 }
 
+/// Lamps coloured by a blackbody Temperature, as Cycles colours them: each colour channel
+/// on its own (the colour barely changes luminance).
+#[test]
+fn lamps_of_a_blackbody_temperature_match_cycles() {
+    let name = "temperature";
+    compare(name, Sampling::Nee, 128, LightSampler::Power).check_channels(&format!("{name} Nee 128 spp"), "Cycles");
+}
+
 // Without light sampling only lamps with a shape light anything: BSDF rays must find
 // them (the point, spot and sun here have a radius or an angle).
 

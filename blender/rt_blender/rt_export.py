@@ -1866,6 +1866,15 @@ def lamp_area(obj):
     return math.pi * math.sin(half) ** 2 if half > 0.0 else 1.0
 
 
+def lamp_color(data):
+    """A lamp's colour as Cycles lights with it: times its blackbody Temperature's colour
+    (Blender's `temperature_color`, linear) when that is on."""
+    color = list(data.color)
+    if getattr(data, "use_temperature", False):
+        color = [c * t for c, t in zip(color, data.temperature_color)]
+    return color
+
+
 def light_toml(obj):
     """One lamp as a [[light]]: Blender's units, its matrix with the lamp's local frame kept
     (it shines along local -Z), only the world turned Y-up."""
@@ -1873,7 +1882,6 @@ def light_toml(obj):
     kind = LAMP_TYPES[data.type]
     for unsupported, what in (
         (getattr(data, "use_nodes", False), "a node tree (its emission nodes are ignored)"),
-        (getattr(data, "use_temperature", False), "a blackbody temperature (its colour is used)"),
         (not getattr(data, "use_shadow", True), "shadows off"),
         (data.type == "AREA" and data.spread < math.pi - 1e-6, "a spread under 180 degrees"),
     ):
@@ -1882,7 +1890,7 @@ def light_toml(obj):
     power = data.energy * 2.0 ** getattr(data, "exposure", 0.0)
     if not getattr(data, "normalize", True):
         power *= lamp_area(obj)
-    lines = [f"# {obj.name}", "[[light]]", f'type = "{kind}"', f"color = {vec(data.color)}"]
+    lines = [f"# {obj.name}", "[[light]]", f'type = "{kind}"', f"color = {vec(lamp_color(data))}"]
     lines.append(f"{'strength' if kind == 'sun' else 'power'} = {fmt(power)}")
     if kind in ("point", "spot"):
         lines.append(f"radius = {fmt(data.shadow_soft_size)}")

@@ -1,6 +1,7 @@
 //! rt's image against a reference renderer's (Mitsuba 3, Cycles) of the same scene:
 //! the global mean and every 8×8 block's mean of luminance must agree within bounds
-//! derived from the noise at the sample counts used.
+//! derived from the noise at the sample counts used, and with [`Comparison::check_channels`]
+//! those of each colour channel too (so that a hue error cannot pass for a right luminance).
 
 use super::luminance;
 use rt::render::Image;
@@ -17,6 +18,16 @@ pub enum Noiseless {
     Relative(f64),
 }
 
+/// How far the colour channels are apart, each on its own (red, green, blue).
+pub struct Channels {
+    /// The largest |difference of the global means| over its standard error.
+    pub global_z: f64,
+    pub worst_block_z: f64,
+    /// (x, y) of the worst block, with its mean of `worst_channel` in rt and in the reference.
+    pub worst_block: (usize, usize, f64, f64),
+    pub worst_channel: &'static str,
+}
+
 pub struct Comparison {
     pub ours_mean: f64,
     pub reference_mean: f64,
@@ -26,6 +37,8 @@ pub struct Comparison {
     pub worst_block_z: f64,
     /// (x, y) of the worst block, with its mean luminance in rt and in the reference.
     pub worst_block: (usize, usize, f64, f64),
+    /// The same of the colour channels, each on its own.
+    pub channels: Channels,
     /// Every block's mean luminance in rt and in the reference, and the standard error of
     /// their difference.
     pub blocks: Vec<(f64, f64, f64)>,
@@ -48,49 +61,139 @@ pub fn compare_with(ours: &Image, reference: &Path, reference_spp: f64, noiseles
     let reference: Vec<[f32; 3]> = image.pixels().map(|p| p.0).collect();
     let noise_scale = (1.0 + ours.samples as f64 / reference_spp).sqrt();
 
-    let n = ours.pixels.len() as f64;
-    let ours_mean = ours.pixels.iter().map(|p| luminance(*p)).sum::<f64>() / n;
-    let reference_mean = reference.iter().map(|p| luminance(*p)).sum::<f64>() / n;
-    let global_sigma = ours.std_error.iter().map(|e| (*e as f64).powi(2)).sum::<f64>().sqrt() / n * noise_scale;
-    let global_z = (ours_mean - reference_mean).abs() / global_sigma.max(1e-12);
-
-    let mut worst_block_z: f64 = 0.0;
-    let mut worst_block = (0, 0, 0.0, 0.0);
+    let everything: Vec<usize> = (0..ours.pixels.len()).collect();
+    let global = Region::of(ours, &reference, &everything, noise_scale);
+    let global_z = |channels: std::ops::Range<usize>| {
+        channels.map(|c| (global.ours[c] - global.reference[c]).abs() / global.sigma[c].max(1e-12)).fold(0.0, f64::max)
+    };
+    let mut luminance = Worst::default();
+    let mut colour = Worst::default();
     let mut blocks = Vec::new();
     for by in 0..h / BLOCK {
         for bx in 0..w / BLOCK {
-            let (mut a, mut b, mut var) = (0.0, 0.0, 0.0);
-            for y in by * BLOCK..(by + 1) * BLOCK {
-                for x in bx * BLOCK..(bx + 1) * BLOCK {
-                    let i = y * w + x;
-                    a += luminance(ours.pixels[i]);
-                    b += luminance(reference[i]);
-                    var += (ours.std_error[i] as f64).powi(2);
+            let pixels: Vec<usize> = (by * BLOCK..(by + 1) * BLOCK)
+                .flat_map(|y| (bx * BLOCK..(bx + 1) * BLOCK).map(move |x| y * w + x))
+                .collect();
+            let block = Region::of(ours, &reference, &pixels, noise_scale);
+            blocks.push((block.ours[0], block.reference[0], block.sigma[0]));
+            luminance.take(&block, block.worst_z(noiseless, 0..1), (bx, by));
+            colour.take(&block, block.worst_z(noiseless, 1..4), (bx, by));
+        }
+    }
+    Comparison {
+        ours_mean: global.ours[0],
+        reference_mean: global.reference[0],
+        global_z: global_z(0..1),
+        worst_block_z: luminance.z,
+        worst_block: luminance.block,
+        channels: Channels {
+            global_z: global_z(1..4),
+            worst_block_z: colour.z,
+            worst_block: colour.block,
+            worst_channel: CHANNELS[colour.channel],
+        },
+        blocks,
+        global_sigma: global.sigma[0],
+    }
+}
+
+/// The worst block so far: its z, where it is with its means, and in which channel.
+#[derive(Default)]
+struct Worst {
+    z: f64,
+    block: (usize, usize, f64, f64),
+    channel: usize,
+}
+
+impl Worst {
+    fn take(&mut self, region: &Region, (z, channel): (f64, usize), (bx, by): (usize, usize)) {
+        if z > self.z {
+            *self = Worst { z, block: (bx, by, region.ours[channel], region.reference[channel]), channel };
+        }
+    }
+}
+
+/// How closely a colour channel's means agree beyond the noise, relative to themselves:
+/// Cycles sums its samples in f32, and both renderers tabulate some functions (thin-film
+/// interference, microfacet albedos); blocks of little noise resolve a part in 10³. A hue
+/// error is some per cent.
+const CHANNEL_PRECISION: f64 = 1e-3;
+
+/// What a comparison reads: luminance, then each colour channel.
+const CHANNELS: [&str; 4] = ["luminance", "red", "green", "blue"];
+
+/// The means of a set of pixels in rt and in the reference, luminance then R, G, B, and
+/// the standard error of each difference: rt's error of luminance (rt measures no other),
+/// scaled to a channel pixel by pixel by the channel's share of the reference pixel's
+/// luminance (at least 1: a channel is never held closer than luminance is).
+struct Region {
+    ours: [f64; 4],
+    reference: [f64; 4],
+    sigma: [f64; 4],
+}
+
+impl Region {
+    fn of(ours: &Image, reference: &[[f32; 3]], pixels: &[usize], noise_scale: f64) -> Self {
+        let n = pixels.len() as f64;
+        let mean = |image: &dyn Fn(usize) -> [f32; 3]| {
+            let mut m = [0.0f64; 4];
+            for &i in pixels {
+                let p = image(i);
+                m[0] += luminance(p);
+                for c in 0..3 {
+                    m[1 + c] += p[c] as f64;
                 }
             }
-            let count = (BLOCK * BLOCK) as f64;
-            let sigma = var.sqrt() / count * noise_scale;
-            let diff = (a - b).abs() / count;
-            blocks.push((a / count, b / count, sigma));
-            // Blocks with no noise at all (background, emitters seen directly) must match to rounding.
+            m.map(|v| v / n)
+        };
+        let ours_mean = mean(&|i| ours.pixels[i]);
+        let reference_mean = mean(&|i| reference[i]);
+        // Each pixel's error of luminance, scaled to a channel by that channel's share of the
+        // reference pixel's luminance (at least 1).
+        let mut variance = [0.0f64; 4];
+        for &i in pixels {
+            let error = (ours.std_error[i] as f64).powi(2);
+            let lum = luminance(reference[i]).max(1e-12);
+            variance[0] += error;
+            for c in 0..3 {
+                variance[1 + c] += error * (reference[i][c] as f64 / lum).max(1.0).powi(2);
+            }
+        }
+        let sigma = variance.map(|v| v.sqrt() / n * noise_scale);
+        let sigma = [0, 1, 2, 3].map(|c| match c {
+            0 => sigma[0],
+            _ => sigma[c].hypot(CHANNEL_PRECISION * reference_mean[c].abs()),
+        });
+        Self { ours: ours_mean, reference: reference_mean, sigma }
+    }
+
+    /// The largest difference over its standard error, and its channel; a channel without
+    /// noise (background, emitters seen directly) must match within `noiseless`.
+    fn worst_z(&self, noiseless: Noiseless, channels: std::ops::Range<usize>) -> (f64, usize) {
+        let mut worst = (0.0, channels.start);
+        for c in channels {
+            let diff = (self.ours[c] - self.reference[c]).abs();
+            // A channel's bound is luminance's scaled by its share, plus its precision (a 0.125
+            // background reads 0.12504 in Cycles).
+            let share = if c == 0 { 1.0 } else { (self.reference[c] / self.reference[0].max(1e-12)).max(1.0) };
+            let rounding = if c == 0 { 0.0 } else { CHANNEL_PRECISION * self.reference[c].abs() };
             let within = match noiseless {
-                Noiseless::Absolute(bound) => diff < bound,
-                Noiseless::Relative(fraction) => diff <= fraction * (b / count).abs(),
+                Noiseless::Absolute(bound) => diff < bound * share + rounding,
+                Noiseless::Relative(fraction) => diff <= fraction * self.reference[c].abs() + rounding,
             };
-            let z = if sigma > 0.0 {
-                diff / sigma
+            let z = if self.sigma[c] > 0.0 {
+                diff / self.sigma[c]
             } else if within {
                 0.0
             } else {
                 f64::INFINITY
             };
-            if z > worst_block_z {
-                worst_block_z = z;
-                worst_block = (bx, by, a / count, b / count);
+            if z > worst.0 {
+                worst = (z, c);
             }
         }
+        worst
     }
-    Comparison { ours_mean, reference_mean, global_z, worst_block_z, worst_block, blocks, global_sigma }
 }
 
 impl Comparison {
@@ -100,13 +203,18 @@ impl Comparison {
 
     fn print(&self, name: &str, against: &str) {
         let (bx, by, a, b) = self.worst_block;
+        let c = &self.channels;
+        let (cx, cy, ca, cb) = c.worst_block;
         println!(
-            "{name:22} mean {:.5} vs {against} {:.5}: {:+.3}% ({:.2} σ); worst 8x8 block ({bx}, {by}): {a:.5} vs {b:.5}, {:.2} σ",
+            "{name:22} mean {:.5} vs {against} {:.5}: {:+.3}% ({:.2} σ); worst 8x8 block ({bx}, {by}): {a:.5} vs {b:.5}, {:.2} σ; channels: global {:.2} σ, worst block ({cx}, {cy}) in {}: {ca:.5} vs {cb:.5}, {:.2} σ",
             self.ours_mean,
             self.reference_mean,
             100.0 * self.relative_mean_error(),
             self.global_z,
-            self.worst_block_z
+            self.worst_block_z,
+            c.global_z,
+            c.worst_channel,
+            c.worst_block_z
         );
     }
 
@@ -139,6 +247,19 @@ impl Comparison {
         self.print(name, against);
         assert!(self.global_z <= 4.0, "{name}: global mean is {:.2} σ from {against}'s", self.global_z);
         assert!(self.worst_block_z <= 5.0, "{name}: a block is {:.2} σ from {against}'s", self.worst_block_z);
+    }
+
+    /// [`Self::check`], and the same bounds for each colour channel on its own.
+    pub fn check_channels(&self, name: &str, against: &str) {
+        self.check(name, against);
+        let c = &self.channels;
+        assert!(c.global_z <= 4.0, "{name}: a channel's global mean is {:.2} σ from {against}'s", c.global_z);
+        assert!(
+            c.worst_block_z <= 5.0,
+            "{name}: a block's {} is {:.2} σ from {against}'s",
+            c.worst_channel,
+            c.worst_block_z
+        );
     }
 }
 

@@ -3,7 +3,8 @@
     /work/main/.venv-bpy/bin/python tests/cycles/make_refs.py [--spp 4096] [NAME ...]
 
 Each scene is built here in bpy (a diffuse floor and wall, a box and a ball; one kind
-of lamp per scene, and one with several coloured lamps under a grey sky), rendered by
+of lamp per scene, one with several coloured lamps under a grey sky, one of lamps with a
+blackbody Temperature), rendered by
 Cycles at 64x64 into tests/cycles/NAME.exr (linear, 32-bit), and exported with
 blender/rt_export.py into tests/cycles/scenes/NAME/ (NAME.toml and its assets). CI
 does not run Cycles: it compares rt against the committed files.
@@ -98,7 +99,16 @@ def several():
     lamp("SUN", "sun", (0.0, 0.0, 5.0), (-1.0, 2.0, 0.0), energy=0.6, angle=0.0, color=(1.0, 0.95, 0.8))
 
 
-SCENES = {"point": point, "spot": spot, "area": area, "sun": sun, "several": several}
+def temperature():
+    """Lamps coloured by Blender's blackbody Temperature (a warm bulb, a tinted daylight panel)."""
+    room((0.0, 0.0, 0.0))
+    lamp("POINT", "warm", (-0.6, -0.9, 1.8), energy=120.0, shadow_soft_size=0.1, use_temperature=True,
+         temperature=2700.0)
+    lamp("AREA", "daylight", (0.8, -0.4, 2.3), (0.5, 0.2, 0.0), energy=150.0, shape="SQUARE", size=0.7,
+         use_temperature=True, temperature=6500.0, color=(1.0, 0.85, 0.85))
+
+
+SCENES = {"point": point, "spot": spot, "area": area, "sun": sun, "several": several, "temperature": temperature}
 
 
 def set_up(scene):

@@ -21,7 +21,12 @@ pub fn install() {
             if let Some(signal) = signals.forever().next() {
                 super::output::remove_temporaries_in_progress();
                 eprintln!("rt: interrupted (signal {signal}); partial files removed");
-                std::process::exit(128 + signal);
+                let _ = std::io::Write::flush(&mut std::io::stdout());
+                // `_exit`, not `exit`: exit's handlers tear down the GPU driver while the
+                // render threads still use it, which NVIDIA's Vulkan driver answers with a
+                // segmentation fault instead of the signal's status.
+                // SAFETY: ends the process at once; nothing after it runs.
+                unsafe { libc::_exit(128 + signal) };
             }
         });
         if let Err(e) = spawned {

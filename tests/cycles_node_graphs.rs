@@ -179,6 +179,13 @@ fn attributes_match_cycles() {
     check_channels("graph_attributes", 1e-3);
 }
 
+/// Geometry's Random Per Island (Cycles' hash of each island's root vertex, which the
+/// exporter computes per face): two meshes of eight islands, plain and through a ramp.
+#[test]
+fn random_per_island_matches_cycles() {
+    check_channels("graph_random_per_island", 1e-3);
+}
+
 /// A Bump of a point attribute, alone and plus a noise, on spheres under a low sun: the
 /// attribute read a step away along the surface, as Cycles' `svm_node_attr_bump_dx`.
 #[test]

@@ -12,6 +12,9 @@ import sys
 
 import numpy as np
 
+from . import rt_node_graph
+from .rt_hash import hash_uint, instance_random
+
 # What Cycles reads each of Blender's data types as (rt's `ATTRIBUTE_DATA`, src/asset/node_modes.rs),
 # and the property and component count Blender's Python API gives its values by.
 DATA = {
@@ -29,6 +32,9 @@ DOMAINS = {"POINT", "CORNER", "FACE"}
 # The most attributes an `.rtmesh` carries.
 MAX_ATTRIBUTES = 15
 NODE_TYPES = ("ATTRIBUTE", "VERTEX_COLOR")
+# Geometry's Random Per Island, which Cycles computes per mesh: an attribute the exporter
+# makes (rt_node_graph reads that output as an Attribute node of this name).
+ISLAND = rt_node_graph.ISLAND
 
 
 def log(message):
@@ -45,7 +51,9 @@ def default_color_name(mesh):
 
 
 def readable(mesh, name):
-    """The mesh's attribute `name` if Cycles reads it, else None."""
+    """The mesh's attribute `name` if Cycles reads it, else None (`True` for ISLAND)."""
+    if name == ISLAND:
+        return True
     attribute = mesh.attributes.get(name) if name else None
     if attribute is None or attribute.domain not in DOMAINS or attribute.data_type not in DATA:
         return None
@@ -82,7 +90,7 @@ def attributes_read(mesh, gltf_materials):
             log(f"{material['name']}: {node['name']} reads attribute {name!r}; rt carries {MAX_ATTRIBUTES} "
                 f"attributes of a mesh and reads it as missing")
             continue
-        read[name] = DATA[attribute.data_type][0]
+        read[name] = "FLOAT" if name == ISLAND else DATA[attribute.data_type][0]
     return read, default_color
 
 
@@ -102,8 +110,45 @@ def number_attributes(gltf_materials, read, default_color):
             f"(or not on points, corners or faces); it reads zero as in Cycles")
 
 
+def island_randoms(mesh):
+    """Each face's Random Per Island, as Cycles' attr_create_random_per_island makes it: the
+    vertices joined along every edge in the mesh's order (Cycles' DisjointSet, union by
+    rank), each face the hash of its island's root."""
+    parents = list(range(len(mesh.vertices)))
+    ranks = [0] * len(mesh.vertices)
+
+    def find(x):
+        root = x
+        while parents[root] != root:
+            root = parents[root]
+        while parents[x] != root:
+            parents[x], x = root, parents[x]
+        return root
+
+    edges = np.empty(len(mesh.edges) * 2, np.int32)
+    mesh.edges.foreach_get("vertices", edges)
+    for x, y in edges.reshape(-1, 2).tolist():
+        x, y = find(x), find(y)
+        if x == y:
+            continue
+        if ranks[x] < ranks[y]:
+            x, y = y, x
+        parents[y] = x
+        if ranks[x] == ranks[y]:
+            ranks[x] += 1
+    first = np.empty(len(mesh.polygons), np.int32)
+    mesh.polygons.foreach_get("loop_start", first)
+    corner_vertex = np.empty(len(mesh.loops), np.int32)
+    mesh.loops.foreach_get("vertex_index", corner_vertex)
+    return np.array([instance_random(hash_uint(find(v))) for v in corner_vertex[first].tolist()], np.float32)
+
+
 def corner_values(mesh, name, corners, corner_vertex, triangle_faces):
     """Attribute `name`'s values at each triangle corner, four floats each."""
+    if name == ISLAND:
+        values = np.zeros((len(mesh.polygons), 4), np.float32)
+        values[:, 0] = island_randoms(mesh)
+        return np.repeat(values[triangle_faces], 3, axis=0)
     attribute = mesh.attributes[name]
     _, key, width, dtype = DATA[attribute.data_type]
     raw = np.empty(len(attribute.data) * width, dtype)

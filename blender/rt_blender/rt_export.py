@@ -38,6 +38,7 @@ from bpy.app.handlers import persistent
 from mathutils import Matrix, Vector
 
 from . import rt_attributes, rt_node_graph, rt_shader_nodes
+from .rt_hash import instance_random, lookup3_final
 TEXTURE_SOCKETS = rt_shader_nodes.TEXTURE_SOCKETS
 linked_node, rgb, socket_value = rt_shader_nodes.linked_node, rt_shader_nodes.rgb, rt_shader_nodes.socket_value
 owner_name = rt_shader_nodes.owner_name
@@ -1643,18 +1644,6 @@ def object_settings_toml(settings):
     return shadow_terminator_toml(settings[:2]) + ("holdout = true\n" if settings[2] else "")
 
 
-def lookup3_final(a, b, c):
-    """Bob Jenkins' lookup3 `final` on 32-bit words (Cycles' util/hash.h); returns c."""
-    def rot(x, k):
-        return ((x << k) | (x >> (32 - k))) & 0xFFFFFFFF
-    # Each step: word x ^= word y, then x -= y rotated by k.
-    for x, y, k in ((2, 1, 14), (0, 2, 11), (1, 0, 25), (2, 1, 16), (0, 2, 4), (1, 0, 14), (2, 1, 24)):
-        w = [a, b, c]
-        w[x] = ((w[x] ^ w[y]) - rot(w[y], k)) & 0xFFFFFFFF
-        a, b, c = w
-    return c
-
-
 def object_random(name):
     """Object Info's Random of an object named `name`, as Cycles sets it for an object that
     is not an instance: hash_uint2(hash_string(name), 0) over 2^32 - 1, in float32."""
@@ -1663,12 +1652,6 @@ def object_random(name):
         h = (h * 37 + byte) & 0xFFFFFFFF  # the UTF-8 bytes as unsigned (found against Cycles)
     seed = (0xDEADBEEF + (2 << 2) + 13) & 0xFFFFFFFF
     return instance_random(lookup3_final((seed + h) & 0xFFFFFFFF, seed, seed))
-
-
-def instance_random(random_id):
-    """Object Info's Random of an instance: its depsgraph `random_id` over 2^32 - 1, as
-    Cycles sets it."""
-    return float(np.float32(random_id & 0xFFFFFFFF) * (np.float32(1.0) / np.float32(0xFFFFFFFF)))
 
 
 def object_info_toml(obj):

@@ -11,6 +11,8 @@ that path too, which warns and names the node.
 """
 
 FORMAT_VERSION = 1
+# The attribute the exporter makes of Geometry's Random Per Island (rt_attributes).
+ISLAND = ".rt.random_per_island"
 
 # Node types rt evaluates, and their outputs in rt's register order (src/asset/node_kinds.rs
 # declares the same; a test checks both).
@@ -265,6 +267,16 @@ class GraphWriter:
                                {"link": [direction, "Vector"], "from": "VECTOR", "to": "VECTOR"})
         return {"link": [dot, "Value"], "from": "VALUE", "to": to_type}
 
+    def island_random(self, to_type):
+        """Geometry's Random Per Island: an Attribute node of rt's own reading the value the
+        exporter computes per face (rt_attributes.ISLAND)."""
+        key = ((), "rt random per island")
+        if key not in self.index:
+            self.index[key] = len(self.nodes)
+            self.nodes.append({"name": key[1], "type": "ATTRIBUTE", "inputs": {},
+                               "settings": {"attribute_type": "GEOMETRY", "attribute_name": ISLAND}})
+        return {"link": [self.index[key], "Fac"], "from": "VALUE", "to": to_type}
+
     def product(self, a, b):
         """A node of rt's own multiplying what feeds `a` and `b` (as colours): an emission's
         colour and strength, both driven."""
@@ -294,6 +306,8 @@ class GraphWriter:
             return self.input(groups[-1].inputs[index], groups[:-1], to_type)
         if node.type == "NORMAL":
             return self.normal_node(node, socket, groups, to_type)
+        if node.type == "NEW_GEOMETRY" and socket.identifier == "Random Per Island":
+            return self.island_random(to_type)
         if node.type in EVALUATED and socket_key(socket) not in EVALUATED[node.type]:
             raise Unevaluated(f"{node.name} ({node.type}) output {socket.name}")
         index = self.add(node, groups)

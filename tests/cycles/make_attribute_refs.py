@@ -8,7 +8,8 @@ compares rt against them).
 on points and on corners (which differ across a face's edges), a value, a vector, an
 integer on faces, a boolean, the uv map, and names the mesh lacks; each tile's emission is
 one output of one node. `graph_attributes_bump` is a row of spheres lit by a low sun, whose
-Normal is a Bump of an attribute (alone and plus a noise). Each scene is exported with
+Normal is a Bump of an attribute (alone and plus a noise). `graph_random_per_island` is
+Geometry's Random Per Island of two meshes of eight islands each. Each scene is exported with
 blender/rt_export.py into tests/cycles/scenes/NAME/ and rendered into
 tests/cycles/NAME.exr. CI does not run Cycles: commit both.
 """
@@ -144,9 +145,43 @@ def bump_scene():
     return scene
 
 
+def island_scene():
+    """Geometry's Random Per Island of one mesh of 16 islands (tiles of 2 × 2 quads, each
+    turned, joined into one object in turn), and of the same through a ramp on a second."""
+    scene = cycles.new_scene()
+    cycles.set_up(scene, SIZE, bounces=1)
+    cycles.uniform_world(scene, (0.0, 0.0, 0.0))
+    for half, show in enumerate((lambda t, r: r, lambda t, r: ramp(t, r, "LINEAR", STOPS))):
+        tiles = []
+        for i in range(8):
+            i += 8 * half
+            x = (i % GRID - (GRID - 1) / 2) * PITCH
+            y = ((GRID - 1) / 2 - i // GRID) * PITCH
+            bpy.ops.mesh.primitive_grid_add(x_subdivisions=2, y_subdivisions=2, size=1.4, location=(x, y, 0.0),
+                                            rotation=(0.0, 0.0, 0.3 * i))
+            tiles.append(bpy.context.active_object)
+        bpy.ops.object.select_all(action="DESELECT")
+        for tile in tiles:
+            tile.select_set(True)
+        bpy.context.view_layer.objects.active = tiles[0]
+        bpy.ops.object.join()
+        obj = bpy.context.active_object
+        obj.name = f"islands_{half}"
+        obj.data.materials.append(emission_material(
+            f"islands_{half}", lambda t, show=show: show(t, new(t, "ShaderNodeNewGeometry").outputs["Random Per Island"])))
+    camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
+    camera.data.type = "ORTHO"
+    camera.data.ortho_scale = GRID * PITCH
+    camera.location = (0.0, 0.0, 10.0)
+    scene.collection.objects.link(camera)
+    scene.camera = camera
+    return scene
+
+
 SCENES = {
     "graph_attributes": attribute_scene,
     "graph_attributes_bump": bump_scene,
+    "graph_random_per_island": island_scene,
 }
 
 

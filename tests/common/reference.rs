@@ -118,6 +118,9 @@ impl Worst {
 /// interference, microfacet albedos); blocks of little noise resolve a part in 10³. A hue
 /// error is some per cent.
 const CHANNEL_PRECISION: f64 = 1e-3;
+/// The same near black, where a relative precision is none: Cycles' held-out and shadowed
+/// pixels leave a few 10⁻⁵ (luminance's own noiseless bound is 10⁻⁵).
+const CHANNEL_FLOOR: f64 = 1e-5;
 
 /// What a comparison reads: luminance, then each colour channel.
 const CHANNELS: [&str; 4] = ["luminance", "red", "green", "blue"];
@@ -162,7 +165,7 @@ impl Region {
         let sigma = variance.map(|v| v.sqrt() / n * noise_scale);
         let sigma = [0, 1, 2, 3].map(|c| match c {
             0 => sigma[0],
-            _ => sigma[c].hypot(CHANNEL_PRECISION * reference_mean[c].abs()),
+            _ => sigma[c].hypot(CHANNEL_PRECISION * reference_mean[c].abs()).hypot(CHANNEL_FLOOR),
         });
         Self { ours: ours_mean, reference: reference_mean, sigma }
     }

@@ -20,7 +20,7 @@ import bpy
 import numpy as np
 
 import cycles_reference as cycles
-from make_node_graph_refs import GRID, PITCH, SIZE, STOPS, emission_material, math_node, new, noise, output, ramp, \
+from make_node_graph_refs import GRID, PITCH, STOPS, dark_grid, emission_material, math_node, new, noise, output, ramp, \
     vector_shown
 
 
@@ -90,19 +90,11 @@ ATTRIBUTES = [
 
 
 def attribute_scene():
-    scene = cycles.new_scene()
-    cycles.set_up(scene, SIZE, bounces=1)
-    cycles.uniform_world(scene, (0.0, 0.0, 0.0))
+    scene = dark_grid()
     for i, build in enumerate(ATTRIBUTES):
         obj = add_painted_tile(i)
         obj.name = f"tile_{i}"
         obj.data.materials.append(emission_material(f"attributes_{i}", build))
-    camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
-    camera.data.type = "ORTHO"
-    camera.data.ortho_scale = GRID * PITCH
-    camera.location = (0.0, 0.0, 10.0)
-    scene.collection.objects.link(camera)
-    scene.camera = camera
     return scene
 
 
@@ -148,9 +140,7 @@ def bump_scene():
 def island_scene():
     """Geometry's Random Per Island of one mesh of 16 islands (tiles of 2 × 2 quads, each
     turned, joined into one object in turn), and of the same through a ramp on a second."""
-    scene = cycles.new_scene()
-    cycles.set_up(scene, SIZE, bounces=1)
-    cycles.uniform_world(scene, (0.0, 0.0, 0.0))
+    scene = dark_grid()
     for half, show in enumerate((lambda t, r: r, lambda t, r: ramp(t, r, "LINEAR", STOPS))):
         tiles = []
         for i in range(8):
@@ -169,12 +159,6 @@ def island_scene():
         obj.name = f"islands_{half}"
         obj.data.materials.append(emission_material(
             f"islands_{half}", lambda t, show=show: show(t, new(t, "ShaderNodeNewGeometry").outputs["Random Per Island"])))
-    camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
-    camera.data.type = "ORTHO"
-    camera.data.ortho_scale = GRID * PITCH
-    camera.location = (0.0, 0.0, 10.0)
-    scene.collection.objects.link(camera)
-    scene.camera = camera
     return scene
 
 

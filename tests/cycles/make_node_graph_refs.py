@@ -115,13 +115,20 @@ def shader_material(name, build):
 
 
 def grid_scene(name, builders, shape="plane", make=emission_material):
-    scene = cycles.new_scene()
-    cycles.set_up(scene, SIZE, bounces=1)
-    cycles.uniform_world(scene, (0.0, 0.0, 0.0))
+    scene = dark_grid()
     for i, build in enumerate(builders):
         obj = add_tile(i, shape)
         obj.name = f"tile_{i}"
         obj.data.materials.append(make(f"{name}_{i}", build))
+    return scene
+
+
+def dark_grid():
+    """An empty scene under a black world, seen from above by an orthographic camera that
+    frames the grid of tiles (`add_tile`)."""
+    scene = cycles.new_scene()
+    cycles.set_up(scene, SIZE, bounces=1)
+    cycles.uniform_world(scene, (0.0, 0.0, 0.0))
     camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
     camera.data.type = "ORTHO"
     camera.data.ortho_scale = GRID * PITCH

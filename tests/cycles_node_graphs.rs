@@ -186,6 +186,13 @@ fn random_per_island_matches_cycles() {
     check_channels("graph_random_per_island", 1e-3);
 }
 
+/// Geometry's Parametric ((1 − u − v, u, 0) over each triangle, which the exporter writes as
+/// corner values): itself, through a ramp, and the distance to a triangle's edges.
+#[test]
+fn parametric_matches_cycles() {
+    check_channels("graph_parametric", 1e-3);
+}
+
 /// A Bump of a point attribute, alone and plus a noise, on spheres under a low sun: the
 /// attribute read a step away along the surface, as Cycles' `svm_node_attr_bump_dx`.
 #[test]

@@ -32,9 +32,12 @@ DOMAINS = {"POINT", "CORNER", "FACE"}
 # The most attributes an `.rtmesh` carries.
 MAX_ATTRIBUTES = 15
 NODE_TYPES = ("ATTRIBUTE", "VERTEX_COLOR")
-# Geometry's Random Per Island, which Cycles computes per mesh: an attribute the exporter
-# makes (rt_node_graph reads that output as an Attribute node of this name).
+# Geometry's Random Per Island and Parametric, which Cycles computes per mesh: attributes
+# the exporter makes (rt_node_graph reads those outputs as Attribute nodes of these names).
 ISLAND = rt_node_graph.ISLAND
+PARAMETRIC = rt_node_graph.PARAMETRIC
+# Parametric at a triangle's corners: interpolated, (1 − u − v, u, 0) as Cycles' NODE_GEOM_uv.
+PARAMETRIC_CORNERS = np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0]], np.float32)
 
 
 def log(message):
@@ -51,8 +54,8 @@ def default_color_name(mesh):
 
 
 def readable(mesh, name):
-    """The mesh's attribute `name` if Cycles reads it, else None (`True` for ISLAND)."""
-    if name == ISLAND:
+    """The mesh's attribute `name` if Cycles reads it, else None (`True` for those made here)."""
+    if name in (ISLAND, PARAMETRIC):
         return True
     attribute = mesh.attributes.get(name) if name else None
     if attribute is None or attribute.domain not in DOMAINS or attribute.data_type not in DATA:
@@ -90,7 +93,7 @@ def attributes_read(mesh, gltf_materials):
             log(f"{material['name']}: {node['name']} reads attribute {name!r}; rt carries {MAX_ATTRIBUTES} "
                 f"attributes of a mesh and reads it as missing")
             continue
-        read[name] = "FLOAT" if name == ISLAND else DATA[attribute.data_type][0]
+        read[name] = {ISLAND: "FLOAT", PARAMETRIC: "FLOAT3"}.get(name) or DATA[attribute.data_type][0]
     return read, default_color
 
 
@@ -145,6 +148,8 @@ def island_randoms(mesh):
 
 def corner_values(mesh, name, corners, corner_vertex, triangle_faces):
     """Attribute `name`'s values at each triangle corner, four floats each."""
+    if name == PARAMETRIC:
+        return np.tile(PARAMETRIC_CORNERS, (len(triangle_faces), 1))
     if name == ISLAND:
         values = np.zeros((len(mesh.polygons), 4), np.float32)
         values[:, 0] = island_randoms(mesh)

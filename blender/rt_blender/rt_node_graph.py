@@ -11,8 +11,11 @@ that path too, which warns and names the node.
 """
 
 FORMAT_VERSION = 1
-# The attribute the exporter makes of Geometry's Random Per Island (rt_attributes).
+# The attributes the exporter makes of Geometry's Random Per Island and Parametric
+# (rt_attributes), and the output of the Attribute node each is read through.
 ISLAND = ".rt.random_per_island"
+PARAMETRIC = ".rt.parametric"
+MADE_ATTRIBUTES = {"Random Per Island": (ISLAND, "Fac", "VALUE"), "Parametric": (PARAMETRIC, "Vector", "VECTOR")}
 
 # Node types rt evaluates, and their outputs in rt's register order (src/asset/node_kinds.rs
 # declares the same; a test checks both).
@@ -267,15 +270,15 @@ class GraphWriter:
                                {"link": [direction, "Vector"], "from": "VECTOR", "to": "VECTOR"})
         return {"link": [dot, "Value"], "from": "VALUE", "to": to_type}
 
-    def island_random(self, to_type):
-        """Geometry's Random Per Island: an Attribute node of rt's own reading the value the
-        exporter computes per face (rt_attributes.ISLAND)."""
-        key = ((), "rt random per island")
+    def made_attribute(self, what, name, output, from_type, to_type):
+        """Geometry's Random Per Island or Parametric (`what`): an Attribute node of rt's own
+        reading attribute `name`, which the exporter computes per face or corner (rt_attributes)."""
+        key = ((), f"rt {what.lower()}")
         if key not in self.index:
             self.index[key] = len(self.nodes)
             self.nodes.append({"name": key[1], "type": "ATTRIBUTE", "inputs": {},
-                               "settings": {"attribute_type": "GEOMETRY", "attribute_name": ISLAND}})
-        return {"link": [self.index[key], "Fac"], "from": "VALUE", "to": to_type}
+                               "settings": {"attribute_type": "GEOMETRY", "attribute_name": name}})
+        return {"link": [self.index[key], output], "from": from_type, "to": to_type}
 
     def product(self, a, b):
         """A node of rt's own multiplying what feeds `a` and `b` (as colours): an emission's
@@ -306,8 +309,8 @@ class GraphWriter:
             return self.input(groups[-1].inputs[index], groups[:-1], to_type)
         if node.type == "NORMAL":
             return self.normal_node(node, socket, groups, to_type)
-        if node.type == "NEW_GEOMETRY" and socket.identifier == "Random Per Island":
-            return self.island_random(to_type)
+        if node.type == "NEW_GEOMETRY" and socket.identifier in MADE_ATTRIBUTES:
+            return self.made_attribute(socket.identifier, *MADE_ATTRIBUTES[socket.identifier], to_type)
         if node.type in EVALUATED and socket_key(socket) not in EVALUATED[node.type]:
             raise Unevaluated(f"{node.name} ({node.type}) output {socket.name}")
         index = self.add(node, groups)

@@ -9,7 +9,8 @@ on points and on corners (which differ across a face's edges), a value, a vector
 integer on faces, a boolean, the uv map, and names the mesh lacks; each tile's emission is
 one output of one node. `graph_attributes_bump` is a row of spheres lit by a low sun, whose
 Normal is a Bump of an attribute (alone and plus a noise). `graph_random_per_island` is
-Geometry's Random Per Island of two meshes of eight islands each. Each scene is exported with
+Geometry's Random Per Island of two meshes of eight islands each, `graph_parametric` its
+Parametric on tiles of quads. Each scene is exported with
 blender/rt_export.py into tests/cycles/scenes/NAME/ and rendered into
 tests/cycles/NAME.exr. CI does not run Cycles: commit both.
 """
@@ -162,10 +163,42 @@ def island_scene():
     return scene
 
 
+def parametric(t):
+    return new(t, "ShaderNodeNewGeometry").outputs["Parametric"]
+
+
+def edges(t):
+    """The smallest of a triangle's three parametric coordinates: 0 on its edges."""
+    x, y, _ = [new(t, "ShaderNodeSeparateXYZ", {"Vector": parametric(t)}).outputs[i] for i in range(3)]
+    third = math_node(t, "SUBTRACT", math_node(t, "SUBTRACT", 1.0, x), y)
+    return math_node(t, "MINIMUM", math_node(t, "MINIMUM", x, y), third)
+
+
+PARAMETRIC = [
+    parametric,
+    lambda t: ramp(t, new(t, "ShaderNodeSeparateXYZ", {"Vector": parametric(t)}).outputs["Y"], "LINEAR", STOPS),
+    lambda t: ramp(t, math_node(t, "MULTIPLY", edges(t), 3.0), "LINEAR", STOPS),
+    lambda t: math_node(t, "MULTIPLY", edges(t), 4.0),
+]
+
+
+def parametric_scene():
+    """Geometry's Parametric on tiles of 3 × 3 quads: itself, its Y through a ramp, and the
+    distance to a triangle's edges (the smallest of the three coordinates)."""
+    scene = dark_grid()
+    for i, build in enumerate(PARAMETRIC):
+        x = (i % GRID - (GRID - 1) / 2) * PITCH
+        y = ((GRID - 1) / 2 - i // GRID) * PITCH
+        bpy.ops.mesh.primitive_grid_add(x_subdivisions=3, y_subdivisions=3, size=2.0, location=(x, y, 0.0))
+        bpy.context.active_object.data.materials.append(emission_material(f"parametric_{i}", build))
+    return scene
+
+
 SCENES = {
     "graph_attributes": attribute_scene,
     "graph_attributes_bump": bump_scene,
     "graph_random_per_island": island_scene,
+    "graph_parametric": parametric_scene,
 }
 
 

@@ -37,7 +37,7 @@ import numpy as np
 from bpy.app.handlers import persistent
 from mathutils import Matrix, Vector
 
-from . import rt_attributes, rt_node_graph, rt_shader_nodes
+from . import rt_attributes, rt_shader_graphs, rt_shader_nodes
 from .rt_hash import instance_random, lookup3_final
 TEXTURE_SOCKETS = rt_shader_nodes.TEXTURE_SOCKETS
 linked_node, rgb, socket_value = rt_shader_nodes.linked_node, rt_shader_nodes.rgb, rt_shader_nodes.socket_value
@@ -505,7 +505,7 @@ def principled_surface(material):
 def needs_bake(socket):
     """Whether `texture_channel` cannot follow what feeds `socket` (through Separate Color
     too, or for Normal a Normal Map node), and no node graph rt evaluates drives it."""
-    if rt_node_graph.drives(socket.node, socket.name):
+    if rt_shader_graphs.drives(socket.node, socket.name):
         return False
     source = linked_node(socket)
     if source is not None and source.type == "NORMAL_MAP" and socket.name == "Normal":
@@ -770,12 +770,12 @@ def gltf_material(material, thickness, textures=None, shader=None):
     applies glTF's defaults to absent ones. Its textures go into `textures`. The surface
     shader is mapped onto rt's model by rt_shader_nodes (which warns about what it cannot
     map). A Mix Shader whose factor a node graph drives is its first shader, with the second
-    as another material (`_rt_mix`, see rt_node_graph.finish_materials); `shader` is the
+    as another material (`_rt_mix`, see rt_shader_graphs.finish_materials); `shader` is the
     shader to read instead of the output's."""
     name = material.name if material else "default"
     output = active_output(material.node_tree, "OUTPUT_MATERIAL") if material and material.node_tree else None
     top = linked_node(output.inputs["Surface"]) if output else None
-    parts = rt_node_graph.mix_parts(top) if shader is None else None
+    parts = rt_shader_graphs.mix_parts(top) if shader is None else None
     shader = shader or (parts[0] if parts else top)
     if material is None:
         s = rt_shader_nodes.Surface()
@@ -824,7 +824,7 @@ def gltf_material(material, thickness, textures=None, shader=None):
         # (its factors above describe a metal of that colour for other readers).
         out["extras"]["rt_glossy_color"] = [max(c, 0.0) for c in s.glossy]
     swapped = bool(parts) and parts[2]
-    graph = rt_node_graph.material_graph(shader, top.inputs["Fac"] if parts else None, swapped) if material else None
+    graph = rt_shader_graphs.material_graph(shader, top.inputs["Fac"] if parts else None, swapped) if material else None
     if graph is not None:
         out["extras"]["rt_node_graph"] = graph
     if parts:
@@ -833,7 +833,7 @@ def gltf_material(material, thickness, textures=None, shader=None):
     found, film_range, ior_ranges = {}, None, {}
     if textures is not None and surface is not None:
         # A socket a node graph drives is not followed into a texture (nor baked).
-        found = {name: None if rt_node_graph.drives(surface, name) else texture_channel(material, surface, name,
+        found = {name: None if rt_shader_graphs.drives(surface, name) else texture_channel(material, surface, name,
                                                                                            textures.baker)
                  for name in TEXTURE_SOCKETS if name != FILM_SOCKET and name not in IOR_SOCKETS}
         # The coat's own normal map (not baked: a Bump node there is warned about), unless it is
@@ -1272,8 +1272,8 @@ def export_mesh(mesh, materials, textures):
     mesh shown with `materials`, its images collected by `textures`. The materials come
     first: the uv maps their textures read choose the second uv set."""
     thickness = mesh_thickness(mesh)
-    gltf_materials = rt_node_graph.finish_materials([gltf_material(m, thickness, textures) for m in materials],
-                                                    rt_node_graph.texture_space(mesh))
+    gltf_materials = rt_shader_graphs.finish_materials([gltf_material(m, thickness, textures) for m in materials],
+                                                    rt_shader_graphs.texture_space(mesh))
     uv_maps = uv_maps_of(mesh)
     second = second_uv_map(uv_maps, gltf_materials)
     read, default_color = rt_attributes.attributes_read(mesh, gltf_materials)
@@ -1388,7 +1388,7 @@ class InstancedMesh:
         self.base = base
         self.textures = Textures(base, baker)
         self.thickness = mesh_thickness(mesh)
-        self.texture_space = rt_node_graph.texture_space(mesh)
+        self.texture_space = rt_shader_graphs.texture_space(mesh)
         self.index = {}  # material name -> index in the asset's materials
         self.exported = []  # glTF materials, the asset's own first
         own = [self.material(m) for m in materials]
@@ -1428,7 +1428,7 @@ class InstancedMesh:
         return RTINST_MATERIAL_SET | self.sets.index(indices)
 
     def gltf(self):
-        materials = rt_node_graph.finish_materials(self.exported, self.texture_space)
+        materials = rt_shader_graphs.finish_materials(self.exported, self.texture_space)
         rt_attributes.number_attributes(materials, *self.attributes)
         materials = assign_uv_sets(self.uv_maps, materials, self.second_uv_map)
         return gltf_text(materials, self.thickness, self.textures)
@@ -2059,7 +2059,7 @@ def sky_toml(scene, export=None, scene_dir=None):
             if export is None:
                 return '[sky]\nkind = "environment"\n\n'
             return environment_toml(background, texture, export, scene_dir)
-        graph = rt_node_graph.world_graph(background)
+        graph = rt_shader_graphs.world_graph(background)
         if graph is not None:
             if export is None:
                 return '[sky]\nkind = "graph"\n\n'

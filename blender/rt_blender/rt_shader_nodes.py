@@ -32,7 +32,7 @@ import sys
 
 import numpy as np
 
-from . import rt_node_graph
+from . import rt_shader_graphs
 
 # Inputs of a Principled BSDF that rt_export.py follows into textures: the base ones and
 # the layered lobes' (LAYER_SOCKETS).
@@ -89,9 +89,9 @@ def socket_value(node, name, default):
     socket = node.inputs.get(name)
     if socket is None:
         return default
-    if socket.is_linked and rt_node_graph.drives(node, name):
+    if socket.is_linked and rt_shader_graphs.drives(node, name):
         # rt evaluates the graph per shading point; the factor is what the graph scales.
-        return rt_node_graph.NEUTRAL.get(name, socket.default_value)
+        return rt_shader_graphs.NEUTRAL.get(name, socket.default_value)
     source = linked_node(socket)
     if source is not None:
         if source.type in {"RGB", "VALUE"}:

@@ -85,6 +85,7 @@ mod tests {
         let exporter = [
             include_str!("../../blender/rt_blender/rt_export.py"),
             include_str!("../../blender/rt_blender/rt_node_graph.py"),
+            include_str!("../../blender/rt_blender/rt_shader_graphs.py"),
             include_str!("../../blender/rt_blender/rt_shader_nodes.py"),
         ]
         .concat();

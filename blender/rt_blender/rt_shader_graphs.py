@@ -1,0 +1,160 @@
+"""Which inputs of a material's shaders (and of a World's Background) a node graph rt
+evaluates drives, and those graphs, for rt_export.py: a Principled's or Diffuse BSDF's
+inputs, an Emission's, a Mix Shader's factor with its two shaders, a Background's colour and
+strength. The graphs themselves are written by rt_node_graph.GraphWriter.
+"""
+
+from .rt_node_graph import FORMAT_VERSION, GraphWriter, Unevaluated
+
+# Shader inputs a graph can drive: rt's material input, the socket's type there.
+TARGETS = {
+    "BSDF_PRINCIPLED": {"Base Color": "base_color", "Roughness": "roughness", "Metallic": "metallic",
+                        "Emission Color": "emission", "Emission Strength": "emission", "Normal": "normal"},
+    "BSDF_DIFFUSE": {"Color": "base_color", "Roughness": None, "Normal": "normal"},
+    "EMISSION": {"Color": "emission", "Strength": "emission"},
+}
+TARGET_TYPES = {"base_color": "RGBA", "roughness": "VALUE", "metallic": "VALUE", "emission": "RGBA",
+                "mix_factor": "VALUE", "normal": "VECTOR"}
+# Shaders a Mix Shader with a graph-driven factor may mix: each becomes a material of its own.
+MIXABLE = {"BSDF_PRINCIPLED", "BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS", "HOLDOUT", "EMISSION"}
+# What a driven socket's own value becomes in the glTF factors: the part the graph scales.
+NEUTRAL = {"Metallic": 0.0, "Emission Color": (1.0, 1.0, 1.0, 1.0), "Color": (1.0, 1.0, 1.0, 1.0),
+           "Emission Strength": 1.0, "Strength": 1.0}
+
+IMAGE_NODES = {"TEX_IMAGE", "TEX_ENVIRONMENT", "NORMAL_MAP"}
+
+
+def tree_has_image(tree):
+    return any(n.type in IMAGE_NODES or (n.type == "GROUP" and n.node_tree and tree_has_image(n.node_tree))
+               for n in tree.nodes)
+
+
+def contains_image(socket, seen=None):
+    """Whether an Image or Environment Texture feeds `socket` (rt_export follows those)."""
+    seen = set() if seen is None else seen
+    for link in socket.links:
+        node = link.from_node
+        if node.name in seen:
+            continue
+        seen.add(node.name)
+        if node.type in IMAGE_NODES or (node.type == "GROUP" and node.node_tree and tree_has_image(node.node_tree)):
+            return True
+        if any(contains_image(s, seen) for s in node.inputs):
+            return True
+    return False
+
+
+def drives(node, name):
+    """Whether a graph rt evaluates drives input `name` of shader `node`."""
+    socket = node.inputs.get(name)
+    if socket is None or not socket.is_linked or name not in TARGETS.get(node.type, {}):
+        return False
+    return TARGETS[node.type][name] is not None and evaluated(socket)
+
+
+def evaluated(socket):
+    """Whether a graph rt evaluates feeds `socket` (linked, no image, every node evaluated)."""
+    if not socket.is_linked or contains_image(socket):
+        return False
+    try:
+        GraphWriter().input(socket, ())
+    except Unevaluated:
+        return False
+    return True
+
+
+def shader_of(socket):
+    """The shader node linked to a shader socket, through reroutes."""
+    node = socket.links[0].from_node if socket.is_linked else None
+    while node is not None and node.type == "REROUTE":
+        node = node.inputs[0].links[0].from_node if node.inputs[0].is_linked else None
+    return node
+
+
+def emits(part):
+    """Whether shader `part` emits (an Emission shader, a Principled BSDF's emission)."""
+    strength = part.inputs.get("Strength" if part.type == "EMISSION" else "Emission Strength")
+    return strength is not None and (strength.is_linked or strength.default_value > 0.0)
+
+
+def mix_parts(shader):
+    """(first, second, swapped) shaders of a Mix Shader whose Fac a graph drives and whose
+    shaders rt renders one by one (none with a Normal input linked, at most one emitting),
+    or None. The emitting one comes first, so that the material its triangles name is the
+    one light sampling finds (`swapped`: it was the second, and the factor is 1 − Fac)."""
+    if shader is None or shader.type != "MIX_SHADER" or not evaluated(shader.inputs["Fac"]):
+        return None
+    parts = (shader_of(shader.inputs[1]), shader_of(shader.inputs[2]))
+    for part in parts:
+        if part is None or part.type not in MIXABLE or part.mute:
+            return None
+        normal = part.inputs.get("Normal")
+        if normal is not None and normal.is_linked:
+            return None
+    if emits(parts[0]) and emits(parts[1]):
+        return None
+    if emits(parts[1]):
+        return parts[1], parts[0], True
+    return parts[0], parts[1], False
+
+
+def material_graph(shader, mix_factor=None, swapped=False):
+    """`extras.rt_node_graph` for the shader linked to a material's output (or one of a Mix
+    Shader's, whose factor socket `mix_factor` drives the choice between them, 1 − it when
+    its shaders are `swapped`), or None."""
+    if shader is None or (shader.type not in TARGETS and mix_factor is None):
+        return None
+    writer = GraphWriter()
+    outputs = {}
+    for name, target in TARGETS.get(shader.type, {}).items():
+        if target is not None and drives(shader, name):
+            value = writer.input(shader.inputs[name], (), TARGET_TYPES[target])
+            # The glTF keeps the factors the graph scales: both parts of an emission driven
+            # are their product, a strength alone scales the colour there.
+            outputs[target] = writer.product(outputs[target], value) if target in outputs else value
+    if mix_factor is not None:
+        outputs["mix_factor"] = writer.input(mix_factor, (), "VALUE")
+        if swapped:
+            writer.nodes.append({"name": f"rt one minus {len(writer.nodes)}", "type": "MATH",
+                                 "settings": {"operation": "SUBTRACT", "use_clamp": False},
+                                 "inputs": {"Value": {"value": 1.0}, "Value_001": outputs["mix_factor"]}})
+            outputs["mix_factor"] = {"link": [len(writer.nodes) - 1, "Value"], "from": "VALUE", "to": "VALUE"}
+    if not outputs:
+        return None
+    return {"version": FORMAT_VERSION, "nodes": writer.nodes, "outputs": outputs}
+
+
+def world_graph(background):
+    """The graph of a World's Background whose Color or Strength a graph rt evaluates drives
+    (and nothing it does not), or None: its `emission` is the colour times the strength.
+    A World's Generated and Object coordinates are the direction itself (Cycles'
+    `shader_setup_from_background`): a texture space of centre and half-size 1/2."""
+    sockets = (background.inputs["Color"], background.inputs["Strength"])
+    linked = [s for s in sockets if s.is_linked]
+    if not linked or not all(evaluated(s) for s in linked):
+        return None
+    writer = GraphWriter()
+    emission = writer.product(writer.input(sockets[0], (), "RGBA"), writer.input(sockets[1], (), "VALUE"))
+    return {"version": FORMAT_VERSION, "nodes": writer.nodes, "outputs": {"emission": emission},
+            "texture_space": {"location": [0.5, 0.5, 0.5], "size": [0.5, 0.5, 0.5]}}
+
+
+def texture_space(mesh):
+    """A mesh's texture space, which Generated coordinates are relative to."""
+    return {"location": [float(v) for v in mesh.texspace_location], "size": [float(v) for v in mesh.texspace_size]}
+
+
+def finish_materials(materials, space):
+    """The glTF materials of one mesh, made final: each Mix Shader's second material
+    (`_rt_mix`) appended and named by the first's `rt_mix_material`, and every graph given
+    the mesh's texture space `space`."""
+    for m in list(materials):
+        second = m.pop("_rt_mix", None)
+        if second is not None:
+            m["extras"]["rt_mix_material"] = len(materials)
+            materials.append(second)
+    for m in materials:
+        graph = m.get("extras", {}).get("rt_node_graph")
+        if graph is not None:
+            graph["texture_space"] = space
+    return materials

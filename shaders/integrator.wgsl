@@ -154,17 +154,23 @@ fn sun_seen(origin: vec3f, direction: vec3f, bsdf_pdf: f32) -> vec3f {
 }
 //#endif
 
+// The MIS weight of a sky that light sampling picks uniformly over the sphere, seen by a
+// ray that leaves the scene after a BSDF sample of density `bsdf_pdf` (0 for the camera's
+// rays and delta lobes, which light sampling cannot find).
+fn uniform_sky_weight(bsdf_pdf: f32) -> f32 {
+    //#if nee
+    if bsdf_pdf > 0.0 {
+        return power_heuristic(bsdf_pdf, uniform_sky_light_pdf());
+    }
+    //#endif
+    return 1.0;
+}
+
 //#if sky_uniform_light
 // The uniform sky seen by a ray that leaves the scene, MIS-weighted against light
 // sampling after a BSDF sample, as `environment_seen` below.
 fn uniform_sky_seen(bsdf_pdf: f32) -> vec3f {
-    var weight = 1.0;
-    //#if nee
-    if bsdf_pdf > 0.0 {
-        weight = power_heuristic(bsdf_pdf, frame.sky_light_share / (4.0 * PI));
-    }
-    //#endif
-    return frame.sky_color * weight;
+    return frame.sky_color * uniform_sky_weight(bsdf_pdf);
 }
 //#endif
 
@@ -173,13 +179,7 @@ fn uniform_sky_seen(bsdf_pdf: f32) -> vec3f {
 // The world seen by a ray that leaves the scene, MIS-weighted against light sampling after
 // a BSDF sample (the world is light-sampled uniformly over the sphere).
 fn graph_sky_seen(direction: vec3f, bsdf_pdf: f32, ray_from: u32, singular: bool, depth: u32) -> vec3f {
-    var weight = 1.0;
-    //#if nee
-    if bsdf_pdf > 0.0 {
-        weight = power_heuristic(bsdf_pdf, frame.sky_light_share / (4.0 * PI));
-    }
-    //#endif
-    return graph_sky_radiance(direction, ray_from, singular, depth) * weight;
+    return graph_sky_radiance(direction, ray_from, singular, depth) * uniform_sky_weight(bsdf_pdf);
 }
 //#endif
 //#endif

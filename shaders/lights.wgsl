@@ -333,6 +333,12 @@ fn emission_under_coat(m: Material, emission: vec3f, e: Emitter, inst: Instance,
 //#endif
 //#endif
 
+// The density of a light sample of a sky sampled uniformly over the sphere, which takes
+// `sky_light_share` of the light samples.
+fn uniform_sky_light_pdf() -> f32 {
+    return frame.sky_light_share / (4.0 * PI);
+}
+
 // A direction uniformly over the unit sphere, from two uniform numbers.
 fn uniform_sphere_direction(u: vec2f) -> vec3f {
     let z = 1.0 - 2.0 * u.x;
@@ -353,7 +359,7 @@ fn sample_light(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
     // Uniformly over the sphere: a constant sky has no brighter part to aim for.
     if rng_next(rng) < frame.sky_light_share {
         let d = uniform_sphere_direction(rng_next2(rng));
-        return LightSample(d, INFINITY, frame.sky_color, frame.sky_light_share / (4.0 * PI), false);
+        return LightSample(d, INFINITY, frame.sky_color, uniform_sky_light_pdf(), false);
     }
     //#endif
     //#if sky_graph
@@ -364,7 +370,7 @@ fn sample_light(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
         //#if node_graphs
         radiance = graph_sky_radiance(d, NODE_RAY_NONE, false, 0u);
         //#endif
-        return LightSample(d, INFINITY, radiance, frame.sky_light_share / (4.0 * PI), false);
+        return LightSample(d, INFINITY, radiance, uniform_sky_light_pdf(), false);
     }
     //#endif
     // Below, the choice among the other lights (their shares without the environment's part).

@@ -36,6 +36,7 @@ NODE_TYPES = ("ATTRIBUTE", "VERTEX_COLOR")
 # the exporter makes (rt_node_graph reads those outputs as Attribute nodes of these names).
 ISLAND = rt_node_graph.ISLAND
 PARAMETRIC = rt_node_graph.PARAMETRIC
+MADE = {ISLAND: "FLOAT", PARAMETRIC: "FLOAT3"}
 # Parametric at a triangle's corners: interpolated, (1 − u − v, u, 0) as Cycles' NODE_GEOM_uv.
 PARAMETRIC_CORNERS = np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0]], np.float32)
 
@@ -55,7 +56,7 @@ def default_color_name(mesh):
 
 def readable(mesh, name):
     """The mesh's attribute `name` if Cycles reads it, else None (`True` for those made here)."""
-    if name in (ISLAND, PARAMETRIC):
+    if name in MADE:
         return True
     attribute = mesh.attributes.get(name) if name else None
     if attribute is None or attribute.domain not in DOMAINS or attribute.data_type not in DATA:
@@ -93,7 +94,7 @@ def attributes_read(mesh, gltf_materials):
             log(f"{material['name']}: {node['name']} reads attribute {name!r}; rt carries {MAX_ATTRIBUTES} "
                 f"attributes of a mesh and reads it as missing")
             continue
-        read[name] = {ISLAND: "FLOAT", PARAMETRIC: "FLOAT3"}.get(name) or DATA[attribute.data_type][0]
+        read[name] = MADE.get(name) or DATA[attribute.data_type][0]
     return read, default_color
 
 
@@ -153,15 +154,17 @@ def corner_values(mesh, name, corners, corner_vertex, triangle_faces):
     if name == ISLAND:
         values = np.zeros((len(mesh.polygons), 4), np.float32)
         values[:, 0] = island_randoms(mesh)
-        return np.repeat(values[triangle_faces], 3, axis=0)
-    attribute = mesh.attributes[name]
-    _, key, width, dtype = DATA[attribute.data_type]
-    raw = np.empty(len(attribute.data) * width, dtype)
-    attribute.data.foreach_get(key, raw)
-    values = np.zeros((len(attribute.data), 4), np.float32)
-    values[:, :width] = raw.reshape(-1, width).astype(np.float32)
-    if attribute.domain == "POINT":
+        domain = "FACE"
+    else:
+        attribute = mesh.attributes[name]
+        _, key, width, dtype = DATA[attribute.data_type]
+        raw = np.empty(len(attribute.data) * width, dtype)
+        attribute.data.foreach_get(key, raw)
+        values = np.zeros((len(attribute.data), 4), np.float32)
+        values[:, :width] = raw.reshape(-1, width).astype(np.float32)
+        domain = attribute.domain
+    if domain == "POINT":
         return values[corner_vertex[corners]]
-    if attribute.domain == "CORNER":
+    if domain == "CORNER":
         return values[corners]
     return np.repeat(values[triangle_faces], 3, axis=0)

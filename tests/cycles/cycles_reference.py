@@ -115,6 +115,18 @@ def camera(scene, location, tilt_deg):
     return obj
 
 
+def sun(scene, energy, rotation_deg, **settings):
+    """A Sun lamp of `energy` (W/m²) turned by the XYZ Euler angles `rotation_deg`, its other
+    settings by name."""
+    obj = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
+    obj.data.energy = energy
+    for key, value in settings.items():
+        setattr(obj.data, key, value)
+    obj.rotation_euler = [math.radians(a) for a in rotation_deg]
+    scene.collection.objects.link(obj)
+    return obj
+
+
 def principled(name, colour, **inputs):
     """A Principled BSDF of Base Color `colour`, its other inputs by name."""
     material = bpy.data.materials.new(name)

@@ -15,7 +15,6 @@ blender/rt_export.py into tests/cycles/scenes/NAME/ and rendered into
 tests/cycles/NAME.exr. CI does not run Cycles: commit both.
 """
 
-import math
 
 import bpy
 import numpy as np
@@ -130,10 +129,7 @@ def bump_scene():
         co = co.reshape(-1, 3)
         set_attribute(mesh, "ripple", "FLOAT", "POINT", "value", 0.5 + 0.5 * np.sin(9.0 * co[:, 2] + 3.0 * co[:, 0]))
         mesh.materials.append(bumped_by_attribute(f"ripple_{i}", height))
-    sun = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
-    sun.data.energy = 3.0
-    sun.rotation_euler = (math.radians(60.0), 0.0, math.radians(40.0))
-    scene.collection.objects.link(sun)
+    cycles.sun(scene, 3.0, (60.0, 0.0, 40.0))
     cycles.camera(scene, (0.0, -6.0, 1.0), 90.0)
     return scene
 

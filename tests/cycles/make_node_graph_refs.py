@@ -979,10 +979,7 @@ def bump_scene():
             obj.rotation_euler, obj.scale = (0.0, 0.0, math.radians(30.0)), (0.9, 0.45, 1.0)
         name = f"bump_{i}"
         obj.data.materials.append(diffuse_bumped(name) if build is None else procedural_material(name, build))
-    sun = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
-    sun.data.energy, sun.data.angle = 3.0, math.radians(1.0)
-    sun.rotation_euler = (math.radians(55.0), 0.0, math.radians(35.0))
-    scene.collection.objects.link(sun)
+    cycles.sun(scene, 3.0, (55.0, 0.0, 35.0), angle=math.radians(1.0))
     camera = cycles.camera(scene, (0.0, 0.0, 10.0), 0.0)
     camera.data.lens = 40.0
     return scene

@@ -12,7 +12,6 @@ blender/rt_export.py into tests/cycles/scenes/NAME/ and rendered into tests/cycl
 CI does not run Cycles: commit both.
 """
 
-import math
 
 import bpy
 
@@ -62,10 +61,7 @@ def world_scene(sun=False):
     sky_graph(world, camera_colour=None if sun else (0.2, 0.2, 0.25, 1.0), strength=0.8 if sun else 1.5)
     objects()
     if sun:
-        light = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
-        light.data.energy = 2.0
-        light.rotation_euler = (math.radians(50.0), 0.0, math.radians(30.0))
-        scene.collection.objects.link(light)
+        cycles.sun(scene, 2.0, (50.0, 0.0, 30.0))
     cycles.camera(scene, (0.0, -5.0, 1.6), 80.0)
     return scene
 

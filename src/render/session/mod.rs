@@ -258,16 +258,17 @@ impl<'a> Session<'a> {
             ..Default::default()
         };
         camera::set_camera(&mut frame, &self.scene.camera, request.width, request.height);
-        if let Sky::Uniform { color, sample_as_light } = self.scene.sky {
-            frame.sky_color = color.to_array();
-            let other_lights =
-                !self.geometry.emitters.is_empty() || self.scene.sun.is_some() || !self.scene.lights.is_empty();
-            frame.sky_light_share = crate::sky::light_share(sample_as_light && color.max_element() > 0.0, other_lights);
-        }
-        if let Sky::Graph(world) = &self.scene.sky {
-            let other_lights =
-                !self.geometry.emitters.is_empty() || self.scene.sun.is_some() || !self.scene.lights.is_empty();
-            frame.sky_light_share = crate::sky::light_share(world.sample_as_light, other_lights);
+        // A sky sampled uniformly as a light shares the light samples with the other lights.
+        let other_lights =
+            !self.geometry.emitters.is_empty() || self.scene.sun.is_some() || !self.scene.lights.is_empty();
+        match &self.scene.sky {
+            Sky::Uniform { color, sample_as_light } => {
+                frame.sky_color = color.to_array();
+                let emits = *sample_as_light && color.max_element() > 0.0;
+                frame.sky_light_share = crate::sky::light_share(emits, other_lights);
+            }
+            Sky::Graph(world) => frame.sky_light_share = crate::sky::light_share(world.sample_as_light, other_lights),
+            _ => {}
         }
         sun::set_sun(&mut frame, self.scene.sun.as_ref(), !self.geometry.emitters.is_empty());
         frame.emitter_count = self.geometry.emitters.len() as u32;

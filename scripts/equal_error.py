@@ -10,7 +10,7 @@ Mitsuba sees it through rt's own translation (`rt bench mitsuba-scene`, the firs
 binary's), the one `rt bench compare` and the tests' references use: the same path length
 (`max_depth` = rt's bounces + 1), Russian roulette from the same vertex and by the same
 rule, the same box pixel filter, emitters that emit from both faces as rt's do (see
-src/bench/mitsuba_scene.rs).
+crates/rt-bench/src/mitsuba_scene.rs).
 
 For each renderer (each rt binary given, and Mitsuba with each of its samplers) the scene
 is rendered at 1, 2, 4, ... samples per pixel, twice with other seeds, after a warm-up;

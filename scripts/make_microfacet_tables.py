@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Bakes rt's microfacet albedo tables (src/gpu/microfacet_tables.bin).
+"""Bakes rt's microfacet albedo tables (crates/rt/src/gpu/microfacet_tables.bin).
 
 The tables are Cycles' (Blender 4.x/5.x `intern/cycles/app/cycles_precompute.cpp`), with
 the same definitions, sizes, grids and layout, so that rt's energy compensation reads the
@@ -156,4 +156,4 @@ def main(path):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else "src/gpu/microfacet_tables.bin")
+    main(sys.argv[1] if len(sys.argv) > 1 else "crates/rt/src/gpu/microfacet_tables.bin")

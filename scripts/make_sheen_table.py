@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes rt's sheen table (src/gpu/sheen_ltc.bin) from Cycles' source.
+"""Writes rt's sheen table (crates/rt/src/gpu/sheen_ltc.bin) from Cycles' source.
 
 The table is Cycles' `table_sheen_ltc` (Blender 4.x/5.x, `intern/cycles/scene/shader.tables`,
 Apache-2.0, Copyright Blender Foundation): the fit by Zeltner, Burley and Chiang

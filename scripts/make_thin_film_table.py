@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes rt's thin-film table (src/gpu/thin_film_table.bin) from Cycles' source.
+"""Writes rt's thin-film table (crates/rt/src/gpu/thin_film_table.bin) from Cycles' source.
 
 Cycles 5.0 (`intern/cycles/scene/shader.cpp`, `ShaderManager::compute_thin_film_table`) turns
 its precomputed `table_thin_film_cmf` (`intern/cycles/scene/shader.tables`, Apache-2.0,

@@ -14,9 +14,6 @@ use cli::args::{Cli, Command};
 use cli::commands::{bench, pack, watch};
 use cli::render::{StrictFinding, merge, render};
 
-/// The version and the commit rt was built from.
-pub(crate) const VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), " (commit ", env!("RT_COMMIT"), ")");
-
 /// The exit status of a render that `--strict` rejects.
 pub(crate) const EXIT_STRICT: u8 = 3;
 
@@ -41,6 +38,7 @@ fn init_logging(json: bool) {
 
 fn main() -> ExitCode {
     rt::gpu::ensure_runtime_dir();
+    rt::progress::set_meters(&cli::meters::TerminalBars);
     let cli = Cli::parse();
     let json = matches!(&cli.command, Command::Render(args) if args.progress == Progress::Json);
     init_logging(json);
@@ -55,7 +53,7 @@ fn main() -> ExitCode {
             load_scene(scene.as_deref()).and_then(|s| rt::info::print_info(s, quality, adapter))
         }
         Command::Doctor => {
-            rt::doctor::findings(VERSION, adapter).iter().for_each(|f| println!("{f}"));
+            rt::doctor::findings(rt::VERSION, adapter).iter().for_each(|f| println!("{f}"));
             Ok(())
         }
         Command::Bench(command) => bench(command, adapter),

@@ -5,14 +5,14 @@ use crate::common;
 
 use common::paired;
 use common::{gpu, repo, temp_dir, write};
-use rt::bench::knobs::select;
-use rt::bench::model::log_log_slope;
-use rt::bench::reference::{ReferenceOrigin, ReferenceSettings, obtain, reference_trial};
-use rt::bench::report::{MEASUREMENT_COLUMNS, SETTING_COLUMNS};
-use rt::bench::sweep::{SweepOptions, run};
 use rt::bvh::BuildQuality;
 use rt::gpu::GpuTimer;
 use rt::render::{RenderRequest, Session};
+use rt_bench::knobs::select;
+use rt_bench::model::log_log_slope;
+use rt_bench::reference::{ReferenceOrigin, ReferenceSettings, obtain, reference_trial};
+use rt_bench::report::{MEASUREMENT_COLUMNS, SETTING_COLUMNS};
+use rt_bench::sweep::{SweepOptions, run};
 use std::path::Path;
 
 #[test]
@@ -156,7 +156,7 @@ fn report_files_are_written_and_parse() {
     let out = temp_dir("report");
     let scene = rt::scene::default_scene().unwrap_or_else(|e| panic!("{e}"));
     let options = common::small_accuracy_options(&["sampling", "samples-per-dispatch"], out.clone());
-    let summary = rt::bench::accuracy(gpu(), &scene, &options).unwrap_or_else(|e| panic!("{e:#}"));
+    let summary = rt_bench::accuracy(gpu(), &scene, &options).unwrap_or_else(|e| panic!("{e:#}"));
     let report = std::fs::read_to_string(&summary.report).expect("report.md");
     assert!(report.contains(&gpu().adapter_info.name), "the report names the adapter");
     assert!(report.contains("## sampling") && report.contains("## samples-per-dispatch"));
@@ -191,7 +191,7 @@ fn clean_image_knob_sets_adaptive_and_denoise_together() {
     let labels: Vec<&str> = knobs[0].settings.iter().map(|s| s.label.as_str()).collect();
     assert_eq!(labels, ["raw", "adaptive", "denoised", "adaptive+denoised"]);
     let scene = rt::scene::default_scene().unwrap_or_else(|e| panic!("{e}"));
-    let base = rt::bench::knobs::Trial::baseline(&scene, (32, 32));
+    let base = rt_bench::knobs::Trial::baseline(&scene, (32, 32));
     let applied: Vec<(bool, bool, bool)> = knobs[0]
         .settings
         .iter()
@@ -212,7 +212,7 @@ fn clean_image_report_prices_each_way_to_both_targets() {
     let out = temp_dir("clean-image");
     let scene = rt::scene::default_scene().unwrap_or_else(|e| panic!("{e}"));
     let options = common::small_accuracy_options(&["clean-image"], out.clone());
-    let summary = rt::bench::accuracy(gpu(), &scene, &options).unwrap_or_else(|e| panic!("{e:#}"));
+    let summary = rt_bench::accuracy(gpu(), &scene, &options).unwrap_or_else(|e| panic!("{e:#}"));
     let report = std::fs::read_to_string(&summary.report).expect("report.md");
     let section: Vec<&str> = report.lines().skip_while(|l| *l != "## clean-image").collect();
     assert!(!section.is_empty() && !report.contains("cannot denoise"), "no clean-image section:\n{report}");

@@ -46,8 +46,8 @@ fn sixteen_samples_denoised_beat_more_samples_raw() {
         );
         assert!(denoised_error < raw_error, "{name}: denoised 16 spp {denoised_error:.2} vs raw 32 spp {raw_error:.2}");
         // The perceptual figure agrees: SSIM of the display luma against the converged image.
-        let luma = |pixels: &[[f32; 3]]| rt::bench::metrics::display_luma(pixels, 0.0);
-        let ssim = |pixels: &[[f32; 3]]| rt::bench::ssim::ssim(&luma(pixels), &luma(&converged), 64, 64);
+        let luma = |pixels: &[[f32; 3]]| rt_bench::metrics::display_luma(pixels, 0.0);
+        let ssim = |pixels: &[[f32; 3]]| rt_bench::ssim::ssim(&luma(pixels), &luma(&converged), 64, 64);
         let (raw_ssim, denoised_ssim, noisy_ssim) = (ssim(&raw_4x.pixels), ssim(&denoised), ssim(&few.pixels));
         eprintln!("{name}: SSIM 16 spp {noisy_ssim:.4}, 16 spp denoised {denoised_ssim:.4}, 64 spp {raw_ssim:.4}");
         assert!(
@@ -165,7 +165,7 @@ fn bench_accuracy_has_denoise_and_adaptive_knobs() {
     let out = temp_dir("bench-knobs");
     let scene = rt::scene::default_scene().unwrap_or_else(|e| panic!("{e}"));
     let options = common::small_accuracy_options(&["denoise", "adaptive"], out.clone());
-    let summary = rt::bench::accuracy(common::gpu(), &scene, &options).unwrap_or_else(|e| panic!("{e:#}"));
+    let summary = rt_bench::accuracy(common::gpu(), &scene, &options).unwrap_or_else(|e| panic!("{e:#}"));
     let report = std::fs::read_to_string(&summary.report).expect("report.md");
     for section in ["## denoise", "## adaptive", "| on |", "| 0.05 |", "time to SSIM 0.99", "| raw needs |"] {
         assert!(report.contains(section), "no {section:?} in the report:\n{report}");

@@ -1,4 +1,5 @@
-//! rt's fuzzing harness on the stable toolchain: every target of `rt::fuzz` runs its
+//! rt's fuzzing harness on the stable toolchain: every target of `rt::fuzz` (and the
+//! viewport stream's, `rt_watch::stream::FUZZ_TARGET`) runs its
 //! regressions (`fuzz/regressions/TARGET/`, inputs that once failed) and its corpus
 //! (`fuzz/corpus/TARGET/`), then mutants of them until its time is up. Each input must
 //! give an error or a result, never a panic; finish within [`HANG`]; and never hold more
@@ -13,7 +14,7 @@
 //! for a crash that kills the process); copied into `fuzz/regressions/TARGET/`, it runs
 //! first from then on. For a coverage-guided run, see `fuzz/README.md`.
 
-use rt::fuzz::{Target, Workspace, mutate, seeds, targets};
+use rt::fuzz::{Target, Workspace, mutate, seeds};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 use std::collections::HashSet;
@@ -164,6 +165,11 @@ fn fuzz(target: &Target, seconds: f64, seed: u64, watch: &Watch) -> Summary {
     summary
 }
 
+/// Every target: the renderer's parsers and the viewport stream's.
+fn targets() -> Vec<&'static Target> {
+    rt::fuzz::targets().iter().chain([&rt_watch::stream::FUZZ_TARGET]).collect()
+}
+
 fn write_seeds() {
     for target in targets() {
         let dir = repo().join("fuzz/corpus").join(target.name);
@@ -191,7 +197,7 @@ fn main() {
     let seed = number("RT_FUZZ_SEED", 1.0) as u64;
     let chosen = std::env::var("RT_FUZZ_TARGETS").ok();
     let picked: Vec<&'static Target> = targets()
-        .iter()
+        .into_iter()
         .filter(|t| chosen.as_deref().is_none_or(|c| c.split(',').any(|n| n.trim() == t.name)))
         .collect();
     let threads = std::thread::available_parallelism().map_or(2, |n| n.get()).min(picked.len().max(1));

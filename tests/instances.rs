@@ -357,7 +357,7 @@ fn an_edited_instance_file_re_places_instances_without_repacking_the_mesh() {
     let scene_path = dir.join("scene.toml");
     let text = format!("{HEADER}[[instances]]\nasset = {asset:?}\nfile = \"spheres.rtinst\"\nmaterials = [\"red\"]\n");
     write(&scene_path, &text);
-    let options = rt::watch::WatchOptions {
+    let options = rt_watch::WatchOptions {
         scene: scene_path,
         quality: BuildQuality::Medium,
         shader_dir: None,
@@ -366,7 +366,7 @@ fn an_edited_instance_file_re_places_instances_without_repacking_the_mesh() {
         format: rt::render::ImageFormat::Exr,
         max_reloads: None,
     };
-    let mut live = rt::watch::LiveScene::open(gpu(), &options).unwrap_or_else(|e| panic!("{e:#}"));
+    let mut live = rt_watch::LiveScene::open(gpu(), &options).unwrap_or_else(|e| panic!("{e:#}"));
     assert!(live.watched_files().contains(&file), "the instance file is not watched");
     let before = live.session.geometry().bounds_min;
     let mesh_before = live.session.geometry().meshes[0].provenance;

@@ -1,7 +1,7 @@
 //! Normal maps through the whole pipeline on the GPU, against the closed form: a flat
 //! diffuse quad whose normal map tilts its normal by a known angle, lit by the sun
 //! alone, has radiance ρ · cos(mapped normal, sun) · G, with G Cycles' bump shadowing
-//! (see `bump_shadowing` in `shaders/bsdf.wgsl`). The quad's glTF has no tangents, so
+//! (see `bump_shadowing` in `crates/rt/shaders/bsdf.wgsl`). The quad's glTF has no tangents, so
 //! they come from MikkTSpace at import; tilting towards u and towards v, with the sun on
 //! either side, checks the tangent, the bitangent's sign and the map's decoding.
 

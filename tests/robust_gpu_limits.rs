@@ -83,14 +83,14 @@ fn a_watch_edit_beyond_the_limit_keeps_the_last_good_image() {
         .stderr(Stdio::piped())
         .spawn()
         .expect("start rt watch");
-    let log = frames.join(rt::watch::LOG_FILE);
+    let log = frames.join(rt_watch::LOG_FILE);
     wait_for(&log, "frame #0 ", &mut child);
     save(text(side, side));
     let error = wait_for(&log, "binds at most", &mut child);
     assert!(error.contains("million pixels"), "{error}");
     save(text(8, 4));
     wait_for(&log, "frame #1 ", &mut child);
-    std::fs::write(frames.join(rt::watch::STOP_FILE), "").expect("stop");
+    std::fs::write(frames.join(rt_watch::STOP_FILE), "").expect("stop");
     let out = child.wait_with_output().expect("rt watch ends");
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{stderr}");

@@ -250,7 +250,7 @@ fn dev_mode_reloads_shaders_and_survives_a_broken_one() {
     let (dir, scene, frames) = project("watch-dev");
     let shaders = dir.join("shaders");
     std::fs::create_dir_all(&shaders).expect("shaders folder");
-    for entry in std::fs::read_dir(common::repo().join("shaders")).expect("shaders/") {
+    for entry in std::fs::read_dir(common::repo().join("crates/rt/shaders")).expect("crates/rt/shaders/") {
         let path = entry.expect("entry").path();
         std::fs::copy(&path, shaders.join(path.file_name().expect("name"))).expect("copy shader");
     }
@@ -282,7 +282,7 @@ fn the_window_shows_what_a_headless_render_writes() {
         .arg(&scene)
         .output()
         .expect("run rt watch under xvfb-run");
-    let log = std::fs::read_to_string(frames.join(rt::watch::LOG_FILE)).unwrap_or_default();
+    let log = std::fs::read_to_string(frames.join(rt_watch::LOG_FILE)).unwrap_or_default();
     assert!(output.status.success(), "rt watch: {}\n{log}\n{}", output.status, String::from_utf8_lossy(&output.stderr));
     let presented: u64 = log
         .lines()

@@ -111,7 +111,7 @@ mod with_open_image_denoise {
     }
 
     fn log(frames: &Path) -> Vec<String> {
-        let text = std::fs::read_to_string(frames.join(rt::watch::LOG_FILE)).unwrap_or_default();
+        let text = std::fs::read_to_string(frames.join(rt_watch::LOG_FILE)).unwrap_or_default();
         text.lines().map(str::to_owned).collect()
     }
 
@@ -128,7 +128,7 @@ mod with_open_image_denoise {
     }
 
     fn stop(child: Child, frames: &Path) {
-        std::fs::write(frames.join(rt::watch::STOP_FILE), "").expect("stop file");
+        std::fs::write(frames.join(rt_watch::STOP_FILE), "").expect("stop file");
         let out = child.wait_with_output().expect("wait for rt watch");
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert!(out.status.success() && !stderr.contains("panicked"), "rt watch: {}\n{stderr}", out.status);

@@ -15,7 +15,7 @@ import numpy as np
 from . import rt_node_graph
 from .rt_hash import hash_uint, instance_random
 
-# What Cycles reads each of Blender's data types as (rt's `ATTRIBUTE_DATA`, src/asset/node_modes.rs),
+# What Cycles reads each of Blender's data types as (rt's `ATTRIBUTE_DATA`, crates/rt/src/asset/node_modes.rs),
 # and the property and component count Blender's Python API gives its values by.
 DATA = {
     "FLOAT": ("FLOAT", "value", 1, np.float32),

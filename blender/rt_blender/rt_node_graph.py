@@ -17,7 +17,7 @@ ISLAND = ".rt.random_per_island"
 PARAMETRIC = ".rt.parametric"
 MADE_ATTRIBUTES = {"Random Per Island": (ISLAND, "Fac", "VALUE"), "Parametric": (PARAMETRIC, "Vector", "VECTOR")}
 
-# Node types rt evaluates, and their outputs in rt's register order (src/asset/node_kinds.rs
+# Node types rt evaluates, and their outputs in rt's register order (crates/rt/src/asset/node_kinds.rs
 # declares the same; a test checks both).
 EVALUATED = {
     "VALUE": ("Value",),

@@ -1,9 +1,9 @@
 //! The command line's options: the commands and what `rt render` and `rt watch` take.
 
 use super::bench_args::BenchCommand;
-use crate::VERSION;
 use anyhow::{Context, Result};
 use clap::{Args, Parser, Subcommand};
+use rt::VERSION;
 use rt::bvh::BuildQuality;
 use rt::denoise::DenoiseDevice;
 use rt::render::{ImageFormat, Progress, RenderFlags};
@@ -244,8 +244,9 @@ pub(crate) struct WatchArgs {
     /// Stop once the frame of this reload is written (0: the first state's).
     #[arg(long)]
     pub(crate) max_reloads: Option<u32>,
-    /// Read shaders from this folder and reload them when they change.
-    #[arg(long, value_name = "SHADERS_DIR", num_args = 0..=1, default_missing_value = "shaders")]
+    /// Read shaders from this folder and reload them when they change (alone: the
+    /// repository's `crates/rt/shaders`, from its root).
+    #[arg(long, value_name = "SHADERS_DIR", num_args = 0..=1, default_missing_value = "crates/rt/shaders")]
     pub(crate) dev: Option<PathBuf>,
     #[arg(long, value_enum, default_value_t)]
     pub(crate) quality: BuildQuality,

@@ -16,7 +16,7 @@ pub(crate) fn watch(args: WatchArgs, adapter: Option<&str>) -> Result<()> {
         true => Some(Denoiser::new(args.denoise_device).context("--denoise")?),
         false => None,
     };
-    let options = rt::watch::WatchOptions {
+    let options = rt_watch::WatchOptions {
         scene: args.scene,
         quality: args.quality,
         shader_dir: args.dev,
@@ -35,20 +35,20 @@ pub(crate) fn watch(args: WatchArgs, adapter: Option<&str>) -> Result<()> {
     if args.stream {
         let ctx = GpuContext::new(adapter)?;
         eprintln!("GPU: {}", ctx.describe());
-        rt::watch::stream::run(&ctx, &options, args.socket.as_deref())
+        rt_watch::stream::run(&ctx, &options, args.socket.as_deref())
     } else if args.headless {
         let ctx = GpuContext::new(adapter)?;
         eprintln!("GPU: {}", ctx.describe());
-        rt::watch::run_headless(&ctx, &options, None, denoiser)
+        rt_watch::run_headless(&ctx, &options, None, denoiser)
     } else {
-        rt::watch::run_window(adapter, options, denoiser)
+        rt_watch::run_window(adapter, options, denoiser)
     }
 }
 
 pub(crate) fn bench_accuracy(args: AccuracyArgs, adapter: Option<&str>) -> Result<()> {
     let scene = load_scene(args.scene.as_deref())?;
     let stem = args.scene.as_deref().and_then(Path::file_stem).map_or("cornell_box".into(), |s| s.to_string_lossy());
-    let options = rt::bench::AccuracyOptions {
+    let options = rt_bench::AccuracyOptions {
         knobs: args.knobs,
         out: args.out.unwrap_or_else(|| Path::new("out/bench").join(&*stem)),
         cache: args.cache,
@@ -62,7 +62,7 @@ pub(crate) fn bench_accuracy(args: AccuracyArgs, adapter: Option<&str>) -> Resul
         budget_seconds: args.budget_ms.map(|ms| ms / 1e3),
         progress: true,
     };
-    rt::bench::commands::accuracy(&scene, &options, adapter)
+    rt_bench::commands::accuracy(&scene, &options, adapter)
 }
 
 pub(crate) fn pack(paths: &[PathBuf], quality: BuildQuality, force: bool) -> Result<()> {
@@ -71,8 +71,8 @@ pub(crate) fn pack(paths: &[PathBuf], quality: BuildQuality, force: bool) -> Res
         bail!("no assets (asset folders, .rtmesh, .gltf, .glb or .obj files) under the given paths");
     }
     let bar = rt::bvh::pack::asset_bar(assets.len(), "packing");
-    let results = rt::bvh::pack::parallel_map(&assets, &bar, |a| rt::bvh::pack::pack(a, quality, force));
-    bar.finish_and_clear();
+    let results = rt::bvh::pack::parallel_map(&assets, bar.as_ref(), |a| rt::bvh::pack::pack(a, quality, force));
+    bar.finish();
     let mut failures = 0;
     for result in results {
         match result {
@@ -99,51 +99,50 @@ pub(crate) fn pack(paths: &[PathBuf], quality: BuildQuality, force: bool) -> Res
 pub(crate) fn bench(command: BenchCommand, adapter: Option<&str>) -> Result<()> {
     match command {
         BenchCommand::Throughput { scene, size, runs, spp, sample_lanes } => {
-            let options = rt::bench::ThroughputOptions { size, runs, spp, lanes: sample_lanes, rays: true };
-            load_scene(scene.as_deref()).and_then(|s| rt::bench::throughput(s, &options, adapter))
+            let options = rt_bench::ThroughputOptions { size, runs, spp, lanes: sample_lanes, rays: true };
+            load_scene(scene.as_deref()).and_then(|s| rt_bench::throughput(s, &options, adapter))
         }
         BenchCommand::Instances { counts, size, runs, spp } => {
-            rt::bench::instances(&rt::bench::InstanceScaleOptions { counts, size, runs, spp }, adapter)
+            rt_bench::instances(&rt_bench::InstanceScaleOptions { counts, size, runs, spp }, adapter)
         }
         BenchCommand::Compare { scenes, size, spp, runs, sampler, python, variant } => {
             let root = PathBuf::new();
-            let options = rt::bench::CompareOptions { scenes, size, spp, runs, python, variant, sampler, root };
-            rt::bench::compare(&options, adapter)
+            let options = rt_bench::CompareOptions { scenes, size, spp, runs, python, variant, sampler, root };
+            rt_bench::compare(&options, adapter)
         }
         BenchCommand::MitsubaScene { scene, out, size } => {
-            load_scene(Some(&scene)).and_then(|s| rt::bench::mitsuba_scene::write(&s, size, &out))
+            load_scene(Some(&scene)).and_then(|s| rt_bench::mitsuba_scene::write(&s, size, &out))
         }
         BenchCommand::Sky { scene, size, spp } => {
-            load_scene(Some(&scene)).and_then(|s| rt::bench::sky(s, size, spp, adapter))
+            load_scene(Some(&scene)).and_then(|s| rt_bench::sky(s, size, spp, adapter))
         }
         BenchCommand::WatchLatency { asset, size, runs } => {
-            rt::watch::latency::watch_latency(&asset, size, runs, adapter)
+            rt_watch::latency::watch_latency(&asset, size, runs, adapter)
         }
         BenchCommand::StreamLatency { scene, asset, size, runs } => {
-            rt::watch::stream::latency::stream_latency(scene.as_deref(), &asset, size, runs, adapter)
+            rt_watch::stream::latency::stream_latency(scene.as_deref(), &asset, size, runs, adapter)
         }
         BenchCommand::FirstPixel { scene, size, child: true } => {
-            load_scene(scene.as_deref()).and_then(|s| rt::bench::first_pixel::child(s, size, adapter))
+            load_scene(scene.as_deref()).and_then(|s| rt_bench::first_pixel::child(s, size, adapter))
         }
         BenchCommand::FirstPixel { scene, size, child: false } => {
-            rt::bench::first_pixel::first_pixel(scene.as_deref(), size, adapter)
+            rt_bench::first_pixel::first_pixel(scene.as_deref(), size, adapter)
         }
         BenchCommand::Denoise { scene, size, runs, spp } => {
-            let options = rt::bench::DenoiseBenchOptions { size, runs, spp };
-            load_scene(scene.as_deref()).and_then(|s| rt::bench::denoise_bench(s, &options, adapter).map(|_| ()))
+            let options = rt_bench::DenoiseBenchOptions { size, runs, spp };
+            load_scene(scene.as_deref()).and_then(|s| rt_bench::denoise_bench(s, &options, adapter).map(|_| ()))
         }
         BenchCommand::Accuracy(args) => bench_accuracy(args, adapter),
         BenchCommand::Effects { scene, size, spp, repeats } => {
-            load_scene(scene.as_deref()).and_then(|s| rt::bench::commands::effects(s, size, spp, repeats, adapter))
+            load_scene(scene.as_deref()).and_then(|s| rt_bench::commands::effects(s, size, spp, repeats, adapter))
         }
         BenchCommand::Fireflies(a) => load_scene(a.scene.as_deref()).and_then(|s| {
-            let options =
-                rt::bench::FireflyOptions { size: (0, 0), samples: a.samples, seeds: a.seeds, clamp: a.clamp };
-            rt::bench::commands::fireflies(&s, options, a.size, a.out.as_deref(), adapter)
+            let options = rt_bench::FireflyOptions { size: (0, 0), samples: a.samples, seeds: a.seeds, clamp: a.clamp };
+            rt_bench::commands::fireflies(&s, options, a.size, a.out.as_deref(), adapter)
         }),
         BenchCommand::Headline { out, size, spp, reference_spp, docs } => {
-            let accuracy = rt::bench::AccuracyOptions { out, size, levels: spp, reference_spp, ..Default::default() };
-            rt::bench::commands::headline(accuracy, docs.then(|| PathBuf::from("docs/benchmarks.md")), adapter)
+            let accuracy = rt_bench::AccuracyOptions { out, size, levels: spp, reference_spp, ..Default::default() };
+            rt_bench::commands::headline(accuracy, docs.then(|| PathBuf::from("docs/benchmarks.md")), adapter)
         }
     }
 }

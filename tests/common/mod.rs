@@ -242,8 +242,8 @@ impl TestRng {
 
 /// `rt bench accuracy` of `knobs` at its smallest useful size (32×24, levels 1, 2 and 4 spp,
 /// one repeat, a 16-spp reference), its report in `out`.
-pub fn small_accuracy_options(knobs: &[&str], out: PathBuf) -> rt::bench::AccuracyOptions {
-    rt::bench::AccuracyOptions {
+pub fn small_accuracy_options(knobs: &[&str], out: PathBuf) -> rt_bench::AccuracyOptions {
+    rt_bench::AccuracyOptions {
         knobs: knobs.iter().map(|k| k.to_string()).collect(),
         out,
         size: Some((32, 24)),

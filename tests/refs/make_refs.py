@@ -8,7 +8,7 @@
 
 Each `tests/refs/scenes/NAME.toml` (an rt scene) is translated by rt itself
 (`rt bench mitsuba-scene`: the one translation, which `rt bench compare` renders too;
-src/bench/mitsuba_scene.rs says how each part maps) and rendered to
+crates/rt-bench/src/mitsuba_scene.rs says how each part maps) and rendered to
 `tests/refs/NAME.exr`. `tests/mitsuba_validation.rs` renders the same TOML with rt and
 compares.
 """

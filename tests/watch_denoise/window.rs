@@ -127,7 +127,7 @@ impl Drop for X {
 }
 
 fn log(frames: &Path) -> String {
-    std::fs::read_to_string(frames.join(rt::watch::LOG_FILE)).unwrap_or_default()
+    std::fs::read_to_string(frames.join(rt_watch::LOG_FILE)).unwrap_or_default()
 }
 
 #[test]
@@ -164,7 +164,7 @@ fn the_window_shows_the_denoise_says_so_and_n_toggles_it() {
     x.press(window, keysym::XK_n);
     x.wait_for_title(&mut rt, "said denoised after N again", |t| t.ends_with(" | denoised"));
 
-    std::fs::write(frames.join(rt::watch::STOP_FILE), "").expect("stop file");
+    std::fs::write(frames.join(rt_watch::STOP_FILE), "").expect("stop file");
     let out = rt.wait_with_output().expect("wait for rt watch");
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success() && !stderr.contains("panicked"), "rt watch: {}\n{stderr}", out.status);

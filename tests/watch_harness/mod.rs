@@ -39,7 +39,7 @@ impl Watcher {
     }
 
     pub fn log(&self) -> Vec<String> {
-        std::fs::read_to_string(self.frames.join(rt::watch::LOG_FILE))
+        std::fs::read_to_string(self.frames.join(rt_watch::LOG_FILE))
             .unwrap_or_default()
             .lines()
             .map(str::to_owned)
@@ -72,7 +72,7 @@ impl Watcher {
     }
 
     pub fn stop(mut self) {
-        std::fs::write(self.frames.join(rt::watch::STOP_FILE), "").expect("stop file");
+        std::fs::write(self.frames.join(rt_watch::STOP_FILE), "").expect("stop file");
         let status = self.child.wait().expect("wait for rt watch");
         assert!(status.success(), "rt watch: {status}\n{}", self.stderr());
         assert!(!self.stderr().contains("panicked"), "rt watch panicked:\n{}", self.stderr());
@@ -81,7 +81,7 @@ impl Watcher {
 
 impl Drop for Watcher {
     fn drop(&mut self) {
-        let _ = std::fs::write(self.frames.join(rt::watch::STOP_FILE), "");
+        let _ = std::fs::write(self.frames.join(rt_watch::STOP_FILE), "");
         let _ = self.child.kill();
         let _ = std::fs::remove_file(&self.stderr);
     }

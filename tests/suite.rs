@@ -46,6 +46,7 @@ mod cycles_textures;
 mod denoise;
 mod docs;
 mod environment;
+mod exporter_srgb;
 mod farm;
 mod frames;
 mod furnace;

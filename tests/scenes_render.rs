@@ -6,12 +6,7 @@ use common::{render, repo};
 
 #[test]
 fn every_scene_renders_finite() {
-    let mut scenes: Vec<_> = std::fs::read_dir(repo().join("scenes"))
-        .expect("scenes/")
-        .map(|e| e.expect("entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    scenes.sort();
+    let scenes = common::scene_files();
     // The scenes README and the gallery show must be among those rendered here.
     for name in [
         "cornell_box",

@@ -63,6 +63,17 @@ pub fn trace_ray(o: glam::DVec3, d: glam::DVec3) -> rt::layout::GpuTraceRay {
     }
 }
 
+/// The scene files of `scenes/`, sorted.
+pub fn scene_files() -> Vec<PathBuf> {
+    let mut scenes: Vec<_> = std::fs::read_dir(repo().join("scenes"))
+        .expect("scenes/")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    scenes.sort();
+    scenes
+}
+
 pub fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }

@@ -193,6 +193,13 @@ fn parametric_matches_cycles() {
     check_channels("graph_parametric", 1e-3);
 }
 
+/// Geometry's Pointiness (computed per vertex by the exporter as Cycles does, duplicates
+/// welded) of six solids, plain and through a ramp, and of a cube of unconnected faces.
+#[test]
+fn pointiness_matches_cycles() {
+    check_channels("graph_pointiness", 1e-3);
+}
+
 /// A Bump of a point attribute, alone and plus a noise, on spheres under a low sun: the
 /// attribute read a step away along the surface, as Cycles' `svm_node_attr_bump_dx`.
 #[test]

@@ -32,11 +32,13 @@ DOMAINS = {"POINT", "CORNER", "FACE"}
 # The most attributes an `.rtmesh` carries.
 MAX_ATTRIBUTES = 15
 NODE_TYPES = ("ATTRIBUTE", "VERTEX_COLOR")
-# Geometry's Random Per Island and Parametric, which Cycles computes per mesh: attributes
-# the exporter makes (rt_node_graph reads those outputs as Attribute nodes of these names).
+# Geometry's Random Per Island, Parametric and Pointiness, which Cycles computes per mesh:
+# attributes the exporter makes (rt_node_graph reads those outputs as Attribute nodes of
+# these names).
 ISLAND = rt_node_graph.ISLAND
 PARAMETRIC = rt_node_graph.PARAMETRIC
-MADE = {ISLAND: "FLOAT", PARAMETRIC: "FLOAT3"}
+POINTINESS = rt_node_graph.POINTINESS
+MADE = {ISLAND: "FLOAT", PARAMETRIC: "FLOAT3", POINTINESS: "FLOAT"}
 # Parametric at a triangle's corners: interpolated, (1 − u − v, u, 0) as Cycles' NODE_GEOM_uv.
 PARAMETRIC_CORNERS = np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0]], np.float32)
 
@@ -147,6 +149,52 @@ def island_randoms(mesh):
     return np.array([instance_random(hash_uint(find(v))) for v in corner_vertex[first].tolist()], np.float32)
 
 
+def welded_vertices(co):
+    """Each vertex's stand-in among those at its very position: the lowest index, as Cycles'
+    pointiness welds duplicates (its search by coordinate sums ends at the first of them)."""
+    _, first, group = np.unique(co, axis=0, return_index=True, return_inverse=True)
+    return first[group.ravel()]
+
+
+def pointiness(mesh):
+    """Each vertex's Pointiness as Cycles' attr_create_pointiness makes it: duplicates welded,
+    the angle between a vertex's welded normal and the mean direction of its edges over π,
+    then the mean of that and its edge neighbours' (a second ring, roughly)."""
+    count = len(mesh.vertices)
+    co = np.empty(count * 3, np.float32)
+    mesh.vertices.foreach_get("co", co)
+    co = co.reshape(-1, 3).astype(np.float64)
+    normals = np.empty(count * 3, np.float32)
+    mesh.vertex_normals.foreach_get("vector", normals)
+    welded = welded_vertices(co.astype(np.float32))
+    normal = np.zeros((count, 3))
+    np.add.at(normal, welded, normals.reshape(-1, 3))
+    length = np.linalg.norm(normal, axis=1, keepdims=True)
+    normal = np.divide(normal, length, out=np.zeros_like(normal), where=length > 0.0)
+    edges = np.empty(len(mesh.edges) * 2, np.int32)
+    mesh.edges.foreach_get("vertices", edges)
+    edges = welded[edges.reshape(-1, 2)]
+    # Each edge once, whichever way round, in the order Blender lists them first.
+    _, first = np.unique(np.sort(edges, axis=1), axis=0, return_index=True)
+    v0, v1 = edges[np.sort(first)].T
+    step = co[v1] - co[v0]
+    length = np.linalg.norm(step, axis=1, keepdims=True)
+    step = np.divide(step, length, out=np.zeros_like(step), where=length > 0.0)
+    along, neighbours = np.zeros((count, 3)), np.zeros(count)
+    np.add.at(along, v0, step)
+    np.add.at(along, v1, -step)
+    np.add.at(neighbours, v0, 1.0)
+    np.add.at(neighbours, v1, 1.0)
+    mean = along / np.maximum(neighbours, 1.0)[:, None]
+    raw = np.arccos(np.clip(np.sum(normal * mean, axis=1), -1.0, 1.0)) / np.pi
+    raw[(neighbours == 0) | (welded != np.arange(count))] = 0.0
+    blurred = raw.copy()
+    np.add.at(blurred, v0, raw[v1])
+    np.add.at(blurred, v1, raw[v0])
+    blurred /= neighbours + 1.0
+    return blurred[welded].astype(np.float32)
+
+
 def corner_values(mesh, name, corners, corner_vertex, triangle_faces):
     """Attribute `name`'s values at each triangle corner, four floats each."""
     if name == PARAMETRIC:
@@ -155,6 +203,10 @@ def corner_values(mesh, name, corners, corner_vertex, triangle_faces):
         values = np.zeros((len(mesh.polygons), 4), np.float32)
         values[:, 0] = island_randoms(mesh)
         domain = "FACE"
+    elif name == POINTINESS:
+        values = np.zeros((len(mesh.vertices), 4), np.float32)
+        values[:, 0] = pointiness(mesh)
+        domain = "POINT"
     else:
         attribute = mesh.attributes[name]
         _, key, width, dtype = DATA[attribute.data_type]

@@ -11,11 +11,16 @@ that path too, which warns and names the node.
 """
 
 FORMAT_VERSION = 1
-# The attributes the exporter makes of Geometry's Random Per Island and Parametric
-# (rt_attributes), and the output of the Attribute node each is read through.
+# The attributes the exporter makes of Geometry's Random Per Island, Parametric and
+# Pointiness (rt_attributes), and the output of the Attribute node each is read through.
 ISLAND = ".rt.random_per_island"
 PARAMETRIC = ".rt.parametric"
-MADE_ATTRIBUTES = {"Random Per Island": (ISLAND, "Fac", "VALUE"), "Parametric": (PARAMETRIC, "Vector", "VECTOR")}
+POINTINESS = ".rt.pointiness"
+MADE_ATTRIBUTES = {
+    "Random Per Island": (ISLAND, "Fac", "VALUE"),
+    "Parametric": (PARAMETRIC, "Vector", "VECTOR"),
+    "Pointiness": (POINTINESS, "Fac", "VALUE"),
+}
 
 # Node types rt evaluates, and their outputs in rt's register order (crates/rt/src/asset/node_kinds.rs
 # declares the same; a test checks both).
@@ -257,8 +262,9 @@ class GraphWriter:
         return {"link": [dot, "Value"], "from": "VALUE", "to": to_type}
 
     def made_attribute(self, what, name, output, from_type, to_type):
-        """Geometry's Random Per Island or Parametric (`what`): an Attribute node of rt's own
-        reading attribute `name`, which the exporter computes per face or corner (rt_attributes)."""
+        """Geometry's Random Per Island, Parametric or Pointiness (`what`): an Attribute node of
+        rt's own reading attribute `name`, which the exporter computes per face, corner or
+        point (rt_attributes)."""
         key = ((), f"rt {what.lower()}")
         if key not in self.index:
             self.index[key] = len(self.nodes)

@@ -10,7 +10,8 @@ integer on faces, a boolean, the uv map, and names the mesh lacks; each tile's e
 one output of one node. `graph_attributes_bump` is a row of spheres lit by a low sun, whose
 Normal is a Bump of an attribute (alone and plus a noise). `graph_random_per_island` is
 Geometry's Random Per Island of two meshes of eight islands each, `graph_parametric` its
-Parametric on tiles of quads. Each scene is exported with
+Parametric on tiles of quads, `graph_pointiness` its Pointiness of solids seen from above
+(one a cube of unconnected faces, whose duplicate vertices Cycles welds). Each scene is exported with
 blender/rt_export.py into tests/cycles/scenes/NAME/ and rendered into
 tests/cycles/NAME.exr. CI does not run Cycles: commit both.
 """
@@ -190,11 +191,73 @@ def parametric_scene():
     return scene
 
 
+def pointiness(t):
+    return new(t, "ShaderNodeNewGeometry").outputs["Pointiness"]
+
+
+def stretched_pointiness(t):
+    """Pointiness (0.5 on flat ground) stretched fourfold, through a ramp: red where concave,
+    green where flat, blue where convex."""
+    return ramp(t, math_node(t, "MULTIPLY_ADD", pointiness(t), 4.0, -1.6), "LINEAR", STOPS)
+
+
+def subdivided(add, levels):
+    """The solid `add` makes, smoothed by a Subdivision Surface modifier of `levels`."""
+    def made():
+        add()
+        modifier = bpy.context.active_object.modifiers.new("subdivision", "SUBSURF")
+        # Cycles renders the render levels; the exporter evaluates the viewport's.
+        modifier.levels = modifier.render_levels = levels
+    return made
+
+
+def unconnected_cube(size):
+    """A cube whose six faces have four vertices each of their own."""
+    h = size / 2
+    corners = [(x, y, z) for x in (-h, h) for y in (-h, h) for z in (-h, h)]
+    faces = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+    verts = [corners[i] for face in faces for i in face]
+    mesh = bpy.data.meshes.new("unconnected_cube")
+    mesh.from_pydata(verts, [], [tuple(range(4 * f, 4 * f + 4)) for f in range(6)])
+    obj = bpy.data.objects.new("unconnected_cube", mesh)
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+SOLIDS = [
+    lambda: bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=2, radius=0.9),
+    subdivided(lambda: bpy.ops.mesh.primitive_cube_add(size=1.3), 2),
+    lambda: bpy.ops.mesh.primitive_torus_add(major_radius=0.65, minor_radius=0.3, major_segments=24,
+                                             minor_segments=12),
+    lambda: bpy.ops.mesh.primitive_monkey_add(size=1.6),
+    subdivided(lambda: bpy.ops.mesh.primitive_cone_add(vertices=12, radius1=0.9, depth=1.2), 1),
+    subdivided(lambda: bpy.ops.mesh.primitive_cylinder_add(vertices=10, radius=0.8, depth=0.8), 2),
+]
+
+
+def pointiness_scene():
+    """Geometry's Pointiness of six solids through a ramp, of the first three as it is, and of
+    a cube of unconnected faces through the ramp, seen from above."""
+    scene = dark_grid()
+    shown = [(add, stretched_pointiness) for add in SOLIDS] + [(add, pointiness) for add in SOLIDS[:3]]
+    shown.append((lambda: unconnected_cube(1.2), stretched_pointiness))
+    for i, (add, show) in enumerate(shown):
+        x = (i % GRID - (GRID - 1) / 2) * PITCH
+        y = ((GRID - 1) / 2 - i // GRID) * PITCH
+        made = add()
+        obj = made if isinstance(made, bpy.types.Object) else bpy.context.active_object
+        obj.location = (x, y, 0.0)
+        obj.rotation_euler = (0.4, 0.3, 0.2 * i)
+        obj.data.materials.append(emission_material(f"pointiness_{i}", show))
+    return scene
+
+
 SCENES = {
     "graph_attributes": attribute_scene,
     "graph_attributes_bump": bump_scene,
     "graph_random_per_island": island_scene,
     "graph_parametric": parametric_scene,
+    "graph_pointiness": pointiness_scene,
 }
 
 

@@ -2186,8 +2186,40 @@ def scene_toml(scene, export, scene_path, objects):
 # --- the export -------------------------------------------------------------------
 
 
+def render_modifiers(scene):
+    """Sets the scene's modifiers as a render evaluates them (Cycles renders a Subdivision
+    Surface's or Multiresolution's render levels, and the modifiers shown in renders); returns
+    what puts them back. Objects whose modifiers cannot be set (linked from a library) keep
+    the viewport's, with a warning."""
+    saved = []
+    for obj in scene.objects:
+        for modifier in obj.modifiers:
+            levels = getattr(modifier, "render_levels", None)
+            if modifier.show_viewport == modifier.show_render and getattr(modifier, "levels", levels) == levels:
+                continue
+            try:
+                saved.append((modifier, modifier.show_viewport, getattr(modifier, "levels", None)))
+                modifier.show_viewport = modifier.show_render
+                if levels is not None:
+                    modifier.levels = levels
+            except (AttributeError, TypeError, RuntimeError) as e:
+                log(f"{obj.name}: modifier {modifier.name} keeps its viewport settings ({e})")
+
+    def restore():
+        for modifier, shown, levels in saved:
+            modifier.show_viewport = shown
+            if levels is not None:
+                modifier.levels = levels
+        if saved:
+            bpy.context.view_layer.update()
+
+    if saved:
+        bpy.context.view_layer.update()
+    return restore
+
+
 def export_scene(scene, out_dir, scene_path=None, only=None, previous=None, bake_size=0, depsgraph=None,
-                 frame_set=None, carry=None, motion_blur=True):
+                 frame_set=None, carry=None, motion_blur=True, as_rendered=True):
     """Exports every mesh object `depsgraph` shows into `out_dir`, and the scene TOML to
     `scene_path` if given. F12 passes the render's depsgraph (render visibility and
     render-level modifiers count), the viewport its own (the viewport's); without one,
@@ -2201,7 +2233,9 @@ def export_scene(scene, out_dir, scene_path=None, only=None, previous=None, bake
     False leaves it alone (live exports, which run from Blender's update handlers, where
     changing the frame would start another update). With `carry`, the
     export of another frame into the same `out_dir`, meshes go to the folder that already
-    holds the same bytes (see `export_frames`)."""
+    holds the same bytes (see `export_frames`). Without a depsgraph, modifiers are evaluated
+    as a render evaluates them (`render_modifiers`) unless `as_rendered` is False (live
+    exports: they must not change the scene)."""
     global _shown, _depsgraph, _motion
     _shown = shown_objects(depsgraph) if depsgraph is not None else None
     _depsgraph = depsgraph
@@ -2211,6 +2245,7 @@ def export_scene(scene, out_dir, scene_path=None, only=None, previous=None, bake
         frame_set = lambda frame, subframe: scene.frame_set(frame, subframe=subframe)  # noqa: E731
     current = (scene.frame_current, scene.frame_subframe)
     shutter = (shutter_centre(scene), frame_set) if blur else None
+    restore = render_modifiers(scene) if depsgraph is None and as_rendered else (lambda: None)
     if depsgraph is None:
         depsgraph = bpy.context.evaluated_depsgraph_get()
     try:
@@ -2220,6 +2255,7 @@ def export_scene(scene, out_dir, scene_path=None, only=None, previous=None, bake
     finally:
         if blur:
             frame_set(*current)
+        restore()
         _shown = _depsgraph = None
         _motion = {}
 
@@ -2351,7 +2387,8 @@ def live_export(scene):
     only = changed_objects(scene) if previous is not None else None
     scene_path = settings.scene_file if settings.write_scene else None
     # Sharp, as the viewport: a live export runs from handlers, where the frame must not move.
-    export = export_scene(scene, bpy.path.abspath(settings.out_dir), scene_path, only, previous, motion_blur=False)
+    export = export_scene(scene, bpy.path.abspath(settings.out_dir), scene_path, only, previous, motion_blur=False,
+                          as_rendered=False)
     _last_export[scene.name] = export
     for key in _changes:
         _changes[key].clear()

@@ -133,6 +133,8 @@ def build(out):
     bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, "pano.blend"), copy=True)
     scene.camera = camera
 
+    # What renders: the subdivision's render levels (2), not the viewport's 1 saved above.
+    suzanne.modifiers["subdivision"].levels = suzanne.modifiers["subdivision"].render_levels
     depsgraph = bpy.context.evaluated_depsgraph_get()
     expected = {"objects": {}}
     for obj in (suzanne, plane, lamp, probe):

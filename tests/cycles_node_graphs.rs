@@ -216,6 +216,14 @@ fn world_graphs_match_cycles() {
     check_channels_of("graph_world_sun", 1e-3, 5);
 }
 
+/// A World of Texture Coordinate's Window and Camera (`make_world_refs.py`), seen directly
+/// and in a metal sphere through a turned and rolled camera: the direction placed at the
+/// camera, as Cycles does for the World.
+#[test]
+fn a_world_of_window_and_camera_coordinates_matches_cycles() {
+    check_channels_of("graph_world_camera", 1e-3, 5);
+}
+
 /// Mix Shaders of an emitting shader and a BSDF by a noise's or a gradient's factor
 /// (`make_emitting_mix_refs.py`), the emitting one first or second, lighting a floor and
 /// each other: light samples weigh the emission by the first shader's share.

@@ -7,7 +7,9 @@ compares rt against them).
 Color Ramp of the direction's height) with noise clouds, times a strength; the camera sees
 another colour where the world is seen directly (Light Path's Is Camera Ray), as artists
 light with one sky and show another. `graph_world_sun` is the same gradient beside a sun
-lamp, so that light samples share between the two. Each scene is exported with
+lamp, so that light samples share between the two. `graph_world_camera` is a World of
+Texture Coordinate's Window (a checker) and Camera (a ramp of its x), seen directly and in a
+metal sphere, which Cycles places at the camera. Each scene is exported with
 blender/rt_export.py into tests/cycles/scenes/NAME/ and rendered into tests/cycles/NAME.exr.
 CI does not run Cycles: commit both.
 """
@@ -41,6 +43,33 @@ def sky_graph(world, camera_colour=None, strength=1.5):
     background.inputs["Strength"].default_value = strength
 
 
+def camera_graph(world):
+    """The world's Background: a checker of where a direction falls on the image (Window)
+    over a ramp of its x in camera space (Camera)."""
+    tree = world.node_tree
+    coordinates = new(tree, "ShaderNodeTexCoord")
+    checker = new(tree, "ShaderNodeTexChecker", {"Scale": 6.0, "Color1": (0.9, 0.85, 0.3, 1.0),
+                                                  "Color2": (0.1, 0.1, 0.1, 1.0)})
+    tree.links.new(coordinates.outputs["Window"], checker.inputs["Vector"])
+    x = new(tree, "ShaderNodeSeparateXYZ", {"Vector": coordinates.outputs["Camera"]}).outputs["X"]
+    across = ramp(tree, math_node(tree, "MULTIPLY_ADD", x, 0.5, 0.5), "LINEAR", SKY_STOPS)
+    mixed = new(tree, "ShaderNodeMix", {"Factor_Float": output(checker, "Fac"), "A_Color": across,
+                                        "B_Color": output(checker, "Color")}, data_type="RGBA")
+    tree.links.new(output(mixed, "Result_Color"), tree.nodes["Background"].inputs["Color"])
+
+
+def camera_scene():
+    scene = cycles.new_scene()
+    cycles.set_up(scene, 96, bounces=4)
+    world = bpy.data.worlds.new("window")
+    scene.world = world
+    camera_graph(world)
+    objects()
+    # Turned and rolled, so that camera space is not the world's.
+    cycles.camera(scene, (0.3, -5.0, 1.2), 80.0).rotation_euler[1:] = (0.12, 0.15)
+    return scene
+
+
 def objects():
     bpy.ops.mesh.primitive_uv_sphere_add(radius=0.8, segments=48, ring_count=24, location=(-0.9, 0.0, 0.8))
     bpy.ops.object.shade_smooth()
@@ -69,6 +98,7 @@ def world_scene(sun=False):
 SCENES = {
     "graph_world": world_scene,
     "graph_world_sun": lambda: world_scene(sun=True),
+    "graph_world_camera": camera_scene,
 }
 
 

@@ -24,7 +24,7 @@ fn node_coordinate(mode: u32, p: NodePoint, extra: u32) -> vec4f {
         case 1u: { return vec4f(p.object_normal, 0.0); }
         case 2u: { return vec4f(p.uv, 0.0, 0.0); }
         case 3u: { return vec4f(p.object, 0.0); }
-        case 4u, 5u: { return vec4f(node_camera_coordinates(mode == 5u, p), 0.0); }
+        case 4u, 5u: { return vec4f(node_camera_coordinates(mode == 5u, node_texture_point(p)), 0.0); }
         // Reflection: the direction towards the viewer mirrored about the normal.
         case 6u: { return vec4f(2.0 * dot(p.normal, p.incoming) * p.normal - p.incoming, 0.0); }
         case 7u: { return vec4f(p.position, 0.0); }
@@ -35,18 +35,30 @@ fn node_coordinate(mode: u32, p: NodePoint, extra: u32) -> vec4f {
         case 22u, 23u, 24u, 25u: { return node_object_info(mode - 22u, p); }
         // Camera Data: the direction from the camera to the point (in camera space), its
         // depth along the view and its distance.
-        case 26u: { return vec4f(normalize(node_camera_coordinates(false, p)), 0.0); }
-        case 27u: { return vec4f(node_camera_coordinates(false, p).z); }
-        case 28u: { return vec4f(length(node_camera_coordinates(false, p))); }
+        case 26u: { return vec4f(normalize(node_camera_coordinates(false, rt_axes(p.position))), 0.0); }
+        case 27u: { return vec4f(node_camera_coordinates(false, rt_axes(p.position)).z); }
+        case 28u: { return vec4f(length(node_camera_coordinates(false, rt_axes(p.position)))); }
         default: { return vec4f(node_light_path(mode - 12u, p)); }
     }
 }
 
-// Texture Coordinate's Camera (the point in Cycles' camera space: x right, y up, z along
+// The point Texture Coordinate's Camera and Window see (rt's axes): the World's direction
+// placed at the camera, as Cycles does (Camera Data takes the direction as a point).
+fn node_texture_point(p: NodePoint) -> vec3f {
+    var point = rt_axes(p.position);
+    //#if sky_graph
+    if p.background {
+        point += frame.camera_position;
+    }
+    //#endif
+    return point;
+}
+
+// Texture Coordinate's Camera (`point` in Cycles' camera space: x right, y up, z along
 // the view, metres) or, with `window`, Window (where the point is on the image, 0 to 1
 // from the bottom left; z 0).
-fn node_camera_coordinates(window: bool, p: NodePoint) -> vec3f {
-    let camera = camera_space(rt_axes(p.position) - frame.camera_position);
+fn node_camera_coordinates(window: bool, point: vec3f) -> vec3f {
+    let camera = camera_space(point - frame.camera_position);
     if !window {
         return camera;
     }

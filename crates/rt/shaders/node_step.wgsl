@@ -57,6 +57,10 @@ struct NodePoint {
     barycentric_step_x: vec2f,
     barycentric_step_y: vec2f,
     //#endif
+    //#if sky_graph
+    // The World's point: `position` is a direction, seen from the camera (Cycles' P + camera).
+    background: bool,
+    //#endif
 }
 
 const NODE_NO_OBJECT: u32 = 0xffffffffu;

@@ -24,6 +24,7 @@ fn graph_sky_radiance(direction: vec3f, ray_from: u32, singular: bool, depth: u3
     p.ray_length = 3.4e38;
     p.ray_depth = f32(depth);
     p.instance = NODE_NO_OBJECT;
+    p.background = true;
     let out = run_node_program(materials[arrayLength(&materials) - 1u].node_program, p);
     return select(vec3f(0.0), out.emission, (out.driven & 8u) != 0u);
 }

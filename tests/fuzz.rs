@@ -1,5 +1,5 @@
-//! rt's fuzzing harness on the stable toolchain: every target of `rt::fuzz` (and the
-//! viewport stream's, `rt_watch::stream::FUZZ_TARGET`) runs its
+//! rt's fuzzing harness on the stable toolchain: every target (`rt_watch::stream::fuzz_targets`:
+//! `rt::fuzz`'s and the viewport stream's) runs its
 //! regressions (`fuzz/regressions/TARGET/`, inputs that once failed) and its corpus
 //! (`fuzz/corpus/TARGET/`), then mutants of them until its time is up. Each input must
 //! give an error or a result, never a panic; finish within [`HANG`]; and never hold more
@@ -165,13 +165,8 @@ fn fuzz(target: &Target, seconds: f64, seed: u64, watch: &Watch) -> Summary {
     summary
 }
 
-/// Every target: the renderer's parsers and the viewport stream's.
-fn targets() -> Vec<&'static Target> {
-    rt::fuzz::targets().iter().chain([&rt_watch::stream::FUZZ_TARGET]).collect()
-}
-
 fn write_seeds() {
-    for target in targets() {
+    for target in rt_watch::stream::fuzz_targets() {
         let dir = repo().join("fuzz/corpus").join(target.name);
         std::fs::create_dir_all(&dir).expect("corpus folder");
         for (i, seed) in seeds::of(target.name).iter().enumerate() {
@@ -186,7 +181,7 @@ fn main() {
     // SAFETY: no other thread exists yet.
     unsafe { std::env::set_var(rt::files::image::MAX_MEGAPIXELS_VARIABLE, MEGAPIXELS) };
     if std::env::args().any(|a| a == "--list") {
-        targets().iter().for_each(|t| println!("{}: test", t.name));
+        rt_watch::stream::fuzz_targets().iter().for_each(|t| println!("{}: test", t.name));
         return;
     }
     if std::env::var_os("RT_FUZZ_WRITE_SEEDS").is_some() {
@@ -196,7 +191,7 @@ fn main() {
     let seconds = number("RT_FUZZ_SECONDS", 30.0);
     let seed = number("RT_FUZZ_SEED", 1.0) as u64;
     let chosen = std::env::var("RT_FUZZ_TARGETS").ok();
-    let picked: Vec<&'static Target> = targets()
+    let picked: Vec<&'static Target> = rt_watch::stream::fuzz_targets()
         .into_iter()
         .filter(|t| chosen.as_deref().is_none_or(|c| c.split(',').any(|n| n.trim() == t.name)))
         .collect();

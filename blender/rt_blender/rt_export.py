@@ -2197,13 +2197,15 @@ def render_modifiers(scene):
             levels = getattr(modifier, "render_levels", None)
             if modifier.show_viewport == modifier.show_render and getattr(modifier, "levels", levels) == levels:
                 continue
+            state = (modifier, modifier.show_viewport, getattr(modifier, "levels", None))
             try:
-                saved.append((modifier, modifier.show_viewport, getattr(modifier, "levels", None)))
                 modifier.show_viewport = modifier.show_render
                 if levels is not None:
                     modifier.levels = levels
             except (AttributeError, TypeError, RuntimeError) as e:
                 log(f"{obj.name}: modifier {modifier.name} keeps its viewport settings ({e})")
+                continue
+            saved.append(state)
 
     def restore():
         for modifier, shown, levels in saved:
@@ -2246,9 +2248,9 @@ def export_scene(scene, out_dir, scene_path=None, only=None, previous=None, bake
     current = (scene.frame_current, scene.frame_subframe)
     shutter = (shutter_centre(scene), frame_set) if blur else None
     restore = render_modifiers(scene) if depsgraph is None and as_rendered else (lambda: None)
-    if depsgraph is None:
-        depsgraph = bpy.context.evaluated_depsgraph_get()
     try:
+        if depsgraph is None:
+            depsgraph = bpy.context.evaluated_depsgraph_get()
         if blur and shutter[0] != current[0] + current[1]:
             frame_set(*split_time(shutter[0]))
         return _export_scene(scene, out_dir, scene_path, (only, previous, carry), bake_size, depsgraph, shutter)

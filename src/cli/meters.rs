@@ -9,13 +9,12 @@ pub(crate) struct TerminalBars;
 
 impl Meters for TerminalBars {
     fn meter(&self, spec: &MeterSpec) -> Box<dyn Meter> {
-        let (unit, label) = (spec.unit, spec.label);
-        let template = match (label.is_empty(), spec.time_left) {
-            (true, true) => format!("{{bar:40}} {{pos}}/{{len}} {unit}  {{msg}}  ETA {{eta}}"),
-            (false, true) => format!("{label} {{bar:30}} {{pos}}/{{len}} {unit}  {{msg}}  ETA {{eta}}"),
-            (true, false) => format!("{{bar:40}} {{pos}}/{{len}} {unit}  {{msg}}  {{elapsed}}"),
-            (false, false) => format!("{label} {{bar:30}} {{pos}}/{{len}} {unit}  {{elapsed}}"),
+        let head = match spec.label {
+            "" => "{bar:40}".to_owned(),
+            label => format!("{label} {{bar:30}}"),
         };
+        let tail = if spec.time_left { "{msg}  ETA {eta}" } else { "{elapsed}" };
+        let template = format!("{head} {{pos}}/{{len}} {}  {tail}", spec.unit);
         let bar = ProgressBar::new(spec.total);
         bar.set_style(ProgressStyle::with_template(&template).unwrap_or_else(|_| ProgressStyle::default_bar()));
         Box::new(TerminalBar(bar))

@@ -50,6 +50,11 @@ pub fn read_commands(input: &[u8]) -> Vec<Result<Command, String>> {
 /// rt reads them, each parsed as a command.
 pub const FUZZ_TARGET: rt::fuzz::Target = rt::fuzz::Target::new("stream", true, 0, fuzz_commands);
 
+/// Every fuzz target the harnesses run: the renderer's parsers and this protocol's.
+pub fn fuzz_targets() -> Vec<&'static rt::fuzz::Target> {
+    rt::fuzz::targets().iter().chain([&FUZZ_TARGET]).collect()
+}
+
 fn fuzz_commands(_: &rt::fuzz::Workspace, input: &[u8]) -> Result<(), String> {
     let errors = read_commands(input).into_iter().filter_map(Result::err).count();
     if errors == 0 { Ok(()) } else { Err(format!("{errors} refused lines")) }

@@ -254,6 +254,7 @@ def volume_emission(volume):
 # warning and the socket's own value is used.
 
 GLTF_WRAP = {"REPEAT": 10497, "EXTEND": 33071, "CLIP": 33071, "MIRROR": 33648}
+GLTF_NEAREST = 9728  # a sampler filter: an Image Texture's Closest interpolation
 LUMA = np.array([0.2126, 0.7152, 0.0722])
 
 
@@ -389,6 +390,8 @@ def texture_channel(material, node, socket_name, baker=None):
             log(f"{material.name}: {socket_name}'s image coordinates come from {mapping.type}; using the uvs as they are")
     if source.extension == "CLIP":
         log(f"{material.name}: image {source.image.name} clips; rt clamps it to its edge")
+    if source.interpolation in {"Cubic", "Smart"}:
+        log(f"{material.name}: image {source.image.name}: {source.interpolation} interpolation; rt interpolates linearly")
     return Channel(source, output, component, transform, image_uv_map(source))
 
 
@@ -411,9 +414,10 @@ class Textures:
         self.images = {}  # file name -> PNG bytes
         self.gltf_images, self.gltf_textures, self.samplers = [], [], []
 
-    def add(self, channels, srgb, wrap):
+    def add(self, channels, srgb, image_node):
         """A glTF texture index for an image made of `channels` ([r, g, b, a], each a
-        Channel, a (Channel of colour, index) pair or a constant)."""
+        Channel, a (Channel of colour, index) pair or a constant), read as `image_node`
+        (an Image Texture node) reads its image: its Extension and its Interpolation."""
         sized = [c[0] if isinstance(c, tuple) else c for c in channels if not isinstance(c, (int, float))]
         h, w = max((c.values().shape[:2] for c in sized), key=lambda s: s[0] * s[1])
         planes = []
@@ -439,7 +443,10 @@ class Textures:
         if name not in [i["uri"] for i in self.gltf_images]:
             self.gltf_images.append({"uri": name})
         image = [i["uri"] for i in self.gltf_images].index(name)
+        wrap = image_node.extension
         sampler = {"wrapS": GLTF_WRAP[wrap], "wrapT": GLTF_WRAP[wrap]}
+        if image_node.interpolation == "Closest":
+            sampler["magFilter"], sampler["minFilter"] = GLTF_NEAREST, GLTF_NEAREST
         if sampler not in self.samplers:
             self.samplers.append(sampler)
         texture = {"source": image, "sampler": self.samplers.index(sampler)}
@@ -476,7 +483,7 @@ class BakedImage:
     """Stands for an Image Texture node in a Channel: the baked image's name and edge mode."""
 
     def __init__(self, name):
-        self.name, self.extension = name, "EXTEND"
+        self.name, self.extension, self.interpolation = name, "EXTEND", "Linear"
 
 
 class BakedChannel(Channel):
@@ -631,13 +638,12 @@ def material_textures(material, surface, out, textures, factors, found):
     to glTF material `out`, each with its own Mapping node as its KHR_texture_transform."""
     pbr = out["pbrMetallicRoughness"]
     transformed = lambda info, key, *channels: with_uv_transform(info, material.name, key, channels)  # noqa: E731
-    wrap_of = lambda c: c.node.extension  # noqa: E731
     base, alpha = found["Base Color"], found["Alpha"]
     if base is not None or alpha is not None:
         rgb_source = [(base, i) for i in range(3)] if base is not None else [float(v) for v in factors["base"]]
         pbr["baseColorFactor"] = [1.0, 1.0, 1.0, 1.0]
         channels = rgb_source + [alpha if alpha is not None else 1.0]
-        info = {"index": textures.add(channels, True, wrap_of(base or alpha)), UV_MAP_KEY: (base or alpha).uv_map}
+        info = {"index": textures.add(channels, True, (base or alpha).node), UV_MAP_KEY: (base or alpha).uv_map}
         pbr["baseColorTexture"] = transformed(info, "base colour", base, alpha)
         if alpha is not None:
             # Cycles blends by alpha (stochastically): so does rt with glTF's BLEND.
@@ -647,7 +653,7 @@ def material_textures(material, surface, out, textures, factors, found):
     if rough is not None or metal is not None:
         pbr["metallicRoughnessTexture"] = transformed({"index": textures.add(
             [0.0, rough if rough is not None else factors["roughness"],
-             metal if metal is not None else factors["metallic"], 1.0], False, wrap_of(rough or metal)),
+             metal if metal is not None else factors["metallic"], 1.0], False, (rough or metal).node),
             UV_MAP_KEY: (rough or metal).uv_map}, "roughness and metallic", rough, metal)
         pbr["roughnessFactor"], pbr["metallicFactor"] = 1.0, 1.0
     if found["Normal"] is not None:
@@ -662,7 +668,7 @@ def material_textures(material, surface, out, textures, factors, found):
             strength = float(strength_map.values().max())
             colour = [ScaledChannel(c, strength_map, strength) for c in colour]
         first = emission or strength_map
-        info = {"index": textures.add(colour + [1.0], True, wrap_of(first)), UV_MAP_KEY: first.uv_map}
+        info = {"index": textures.add(colour + [1.0], True, first.node), UV_MAP_KEY: first.uv_map}
         out["emissiveTexture"] = transformed(info, "emission", emission, strength_map)
         if strength > 0.0:
             out["emissiveFactor"] = [1.0, 1.0, 1.0]
@@ -700,7 +706,7 @@ def normal_map_info(material, surface, socket_name, normal, textures):
         log(f"{material.name}: its {socket_name} map's image reads uv map {normal.uv_map!r} but its Normal Map node "
             f"names {uv_map!r}; rt reads both with {uv_map!r}")
     # Its tangents are the uv map's, whatever the Mapping node does (as in Cycles).
-    info = {"index": textures.add([(normal, i) for i in range(3)] + [1.0], False, normal.node.extension),
+    info = {"index": textures.add([(normal, i) for i in range(3)] + [1.0], False, normal.node),
             "scale": strength, UV_MAP_KEY: uv_map}
     return with_uv_transform(info, material.name, f"{socket_name} map", [normal])
 
@@ -991,7 +997,7 @@ def layer_textures(out, textures, found):
     extensions, extras = out["extensions"], out["extras"]
 
     def info(channels, srgb, first):
-        return with_uv_transform({"index": textures.add(channels, srgb, first.node.extension),
+        return with_uv_transform({"index": textures.add(channels, srgb, first.node),
                                   UV_MAP_KEY: first.uv_map}, out["name"], "layer", channels)
 
     def rgb_of(c):
@@ -1053,7 +1059,7 @@ def ior_texture(out, textures, ranges):
         return
     first = next(iter(driven.values()))[0]
     channels = [driven[name][0] if name in driven else 1.0 for name in IOR_SOCKETS] + [1.0]
-    extras["rt_ior_texture"] = with_uv_transform({"index": textures.add(channels, False, first.node.extension),
+    extras["rt_ior_texture"] = with_uv_transform({"index": textures.add(channels, False, first.node),
                                                   UV_MAP_KEY: first.uv_map}, out["name"], "index",
                                                  [c for c in channels if isinstance(c, Channel)])
     keys = {"IOR": "rt_ior_minimum", "Coat IOR": "rt_coat_ior_minimum", "Thin Film IOR": "rt_thin_film_ior_minimum"}

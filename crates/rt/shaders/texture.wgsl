@@ -15,7 +15,8 @@
 //#include "reflectance.wgsl"
 //#include "srgb.wgsl"
 
-// TEXTURE_SRGB, TEXTURE_WRAP_*, WRAP_* and UV1_* are shared constants (src/shared_constants.rs).
+// TEXTURE_SRGB, TEXTURE_CLOSEST, TEXTURE_WRAP_*, WRAP_* and UV1_* are shared constants
+// (src/shared_constants.rs).
 
 struct TexturePoint {
     uv: vec2f,
@@ -179,6 +180,17 @@ fn filter_level(t: Texture, level: u32, uv: vec2f) -> vec4f {
     return mix(top, bottom, f.y);
 }
 
+// The texel of the full-size image that `uv` falls in (Blender's Closest interpolation,
+// Cycles' `interp_closest`): no filtering, no mip level.
+fn closest_texel(t: Texture, uv: vec2f) -> vec4f {
+    let wrap_u = (t.flags >> TEXTURE_WRAP_U_SHIFT) & TEXTURE_WRAP_MASK;
+    let wrap_v = (t.flags >> TEXTURE_WRAP_V_SHIFT) & TEXTURE_WRAP_MASK;
+    let x = floor(wrap_coordinate(uv.x, wrap_u) * f32(t.width));
+    let y = floor((1.0 - wrap_coordinate(uv.y, wrap_v)) * f32(t.height));
+    let size = vec2i(i32(t.width), i32(t.height));
+    return fetch_texel(t.offset, t.width, wrap_texel(i32(x), size.x, wrap_u), wrap_texel(i32(y), size.y, wrap_v));
+}
+
 // Where texture `t` reads its image at the uv set's coordinates `uv`: its own uv transform
 // (a texture reference's KHR_texture_transform, a Blender Mapping node) applied.
 fn texture_uv(t: Texture, uv: vec2f) -> vec2f {
@@ -186,8 +198,11 @@ fn texture_uv(t: Texture, uv: vec2f) -> vec2f {
     return vec2f(dot(t.u_row.xyz, p), dot(t.v_row.xyz, p));
 }
 
-// One mip level, bilinear, decoded, at the uv set's coordinates `uv`.
+// One mip level, bilinear (or the closest texel), decoded, at the uv set's coordinates `uv`.
 fn sample_level(t: Texture, level: u32, uv: vec2f) -> vec4f {
+    if (t.flags & TEXTURE_CLOSEST) != 0u {
+        return decoded(t, closest_texel(t, texture_uv(t, uv)));
+    }
     return decoded(t, filter_level(t, level, texture_uv(t, uv)));
 }
 
@@ -196,6 +211,9 @@ fn sample_level(t: Texture, level: u32, uv: vec2f) -> vec4f {
 fn sample_texture(index: u32, set_uv: vec2f, lod: f32) -> vec4f {
     let t = textures[index];
     let uv = texture_uv(t, set_uv);
+    if (t.flags & TEXTURE_CLOSEST) != 0u {
+        return decoded(t, closest_texel(t, uv));
+    }
     var lambda = min(lod + t.transform_lod + 0.5 * log2(f32(t.width) * f32(t.height)), f32(t.levels - 1u));
     // Also catches a NaN level, from a triangle whose texture coordinates are all alike.
     if !(lambda > 0.0) {

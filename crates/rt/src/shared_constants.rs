@@ -149,6 +149,8 @@ shared_constants! { TEXTURES;
     TEXTURE_WRAP_U_SHIFT: u32 = 1;
     TEXTURE_WRAP_V_SHIFT: u32 = 3;
     TEXTURE_WRAP_MASK: u32 = 3;
+    /// `GpuTexture::flags` bit 5: read the closest texel of the full-size image.
+    TEXTURE_CLOSEST: u32 = 1 << 5;
     /// How a texture wraps.
     WRAP_REPEAT: u32 = 0;
     WRAP_CLAMP: u32 = 1;

@@ -1,11 +1,11 @@
 //! The image textures of a glTF file's materials: images embedded in a buffer view
 //! (`.glb`), in data URIs, or in PNG/JPEG files beside the glTF, with their samplers'
-//! wrap modes. Each (image, colour space or re-encoding, wrap modes, uv transform) becomes one
+//! wrap modes and filters. Each (image, colour space or re-encoding, wrap modes, filter, uv transform) becomes one
 //! [`TextureImage`], however many materials use it; those of one image with other uv
 //! transforms share its texels.
 
-use super::texture::{TextureImage, UvTransform, Wrap, decode};
-use gltf::texture::WrappingMode;
+use super::texture::{Filter, TextureImage, UvTransform, Wrap, decode};
+use gltf::texture::{MagFilter, WrappingMode};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -30,11 +30,15 @@ pub struct TextureLoader<'a> {
     buffers: &'a [gltf::buffer::Data],
     /// The glTF's folder, where relative image URIs point.
     dir: &'a Path,
-    /// The first texture of each (image, reading, wraps), and each texture by its uv transform too.
-    decoded: HashMap<(usize, Reading, [u32; 2]), u32>,
-    loaded: HashMap<(usize, Reading, [u32; 2], [u32; 6]), u32>,
+    /// The first texture of each (image, reading, wraps), and each texture by its filter and
+    /// uv transform too.
+    decoded: HashMap<ImageKey, u32>,
+    loaded: HashMap<(ImageKey, Filter, [u32; 6]), u32>,
     pub textures: Vec<TextureImage>,
 }
+
+/// An image as decoded for a reading: its index, the reading, its wrap codes.
+type ImageKey = (usize, Reading, [u32; 2]);
 
 fn wrap(mode: WrappingMode) -> Wrap {
     match mode {
@@ -64,10 +68,15 @@ impl<'a> TextureLoader<'a> {
     ) -> Result<u32, String> {
         let sampler = texture.sampler();
         let wraps = [wrap(sampler.wrap_s()), wrap(sampler.wrap_t())];
+        // What a texel covering many pixels shows: Blender's Closest is written as NEAREST.
+        let filter = match sampler.mag_filter() {
+            Some(MagFilter::Nearest) => Filter::Closest,
+            _ => Filter::Linear,
+        };
         let image = texture.source();
         let key = (image.index(), reading, wraps.map(Wrap::code));
         let transform_bits: [u32; 6] = bytemuck::cast(transform);
-        if let Some(&index) = self.loaded.get(&(key.0, key.1, key.2, transform_bits)) {
+        if let Some(&index) = self.loaded.get(&(key, filter, transform_bits)) {
             return Ok(index);
         }
         let reference = match self.decoded.get(&key) {
@@ -86,9 +95,9 @@ impl<'a> TextureLoader<'a> {
                 TextureImage::new(width, height, &rgba, wraps, srgb).with_uv_transform(transform)
             }
         };
-        self.textures.push(reference);
+        self.textures.push(reference.with_filter(filter));
         let index = (self.textures.len() - 1) as u32;
-        self.loaded.insert((key.0, key.1, key.2, transform_bits), index);
+        self.loaded.insert((key, filter, transform_bits), index);
         Ok(index)
     }
 

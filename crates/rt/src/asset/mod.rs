@@ -25,7 +25,7 @@ mod tangents;
 pub mod texture;
 
 pub use source::{AssetFiles, AssetKind};
-pub use texture::{IDENTITY_UV_TRANSFORM, TextureImage, UvTransform, Wrap};
+pub use texture::{Filter, IDENTITY_UV_TRANSFORM, TextureImage, UvTransform, Wrap};
 
 use crate::scene::{Material, UvSet, slots};
 use std::path::{Path, PathBuf};

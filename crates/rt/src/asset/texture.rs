@@ -39,6 +39,18 @@ impl Wrap {
     }
 }
 
+/// How a texture reads between texels: Blender's Image Texture Interpolation, glTF's
+/// sampler filters.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Filter {
+    /// Bilinear within a mip level, linear between the two levels the footprint falls in.
+    #[default]
+    Linear,
+    /// The texel the point falls in, of the full-size image (Blender's Closest, glTF's
+    /// NEAREST): pixel art stays sharp however far away, as in Cycles.
+    Closest,
+}
+
 /// A 2×3 affine map of rt's texture coordinates (v from the bottom), rows `[a, b, c]`:
 /// `u' = a₀u + b₀v + c₀`, `v' = a₁u + b₁v + c₁`. A texture reads its image at the map of
 /// the uv set's coordinates (glTF's `KHR_texture_transform`, Blender's Mapping node).
@@ -61,6 +73,7 @@ pub struct TextureImage {
     /// references to one image.
     pub texels: Arc<[u32]>,
     pub uv_transform: UvTransform,
+    pub filter: Filter,
 }
 
 /// The size of mip level `level` of a `width × height` image.
@@ -152,7 +165,13 @@ impl TextureImage {
             }
             (w, h, floats) = (nw, nh, next);
         }
-        Self { width, height, wrap, srgb, texels: texels.into(), uv_transform: IDENTITY_UV_TRANSFORM }
+        let uv_transform = IDENTITY_UV_TRANSFORM;
+        Self { width, height, wrap, srgb, texels: texels.into(), uv_transform, filter: Filter::Linear }
+    }
+
+    /// The same image (its texels shared) read with `filter`.
+    pub fn with_filter(self, filter: Filter) -> Self {
+        Self { filter, ..self }
     }
 
     /// The same image (its texels shared) read through `uv_transform`.

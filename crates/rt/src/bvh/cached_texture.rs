@@ -2,7 +2,7 @@
 //! transforms, and one section of every image's texels (mip chains included, in table
 //! order). Texture references to one image point at one range of texels.
 
-use crate::asset::texture::{TextureImage, Wrap, level_count, texels_in_levels};
+use crate::asset::texture::{Filter, TextureImage, Wrap, level_count, texels_in_levels};
 use bytemuck::{Pod, Zeroable};
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -16,7 +16,8 @@ pub struct CachedTexture {
     pub wrap_v: u32,
     /// 1: sRGB colour, 0: linear data.
     pub srgb: u32,
-    pub _pad: u32,
+    /// 1: the closest texel (`Filter::Closest`), 0: linear; from format version 15 on.
+    pub closest: u32,
     /// Where its texels start in the texel section, and how many (every level).
     pub texel_offset: u64,
     pub texel_count: u64,
@@ -43,7 +44,7 @@ pub fn encode(textures: &[TextureImage]) -> (Vec<CachedTexture>, Vec<u32>) {
             wrap_u: t.wrap[0].code(),
             wrap_v: t.wrap[1].code(),
             srgb: t.srgb as u32,
-            _pad: 0,
+            closest: (t.filter == Filter::Closest) as u32,
             texel_offset,
             texel_count: t.texels.len() as u64,
             uv_transform: t.uv_transform,
@@ -70,6 +71,9 @@ pub fn decode(table: &[CachedTexture], texels: &[u32]) -> Result<Vec<TextureImag
         };
         if t.srgb > 1 {
             return bad("unknown colour space");
+        }
+        if t.closest > 1 {
+            return bad("unknown filter");
         }
         if !t.uv_transform.iter().flatten().all(|c| c.is_finite()) {
             return bad("its uv transform is not finite");
@@ -104,6 +108,7 @@ pub fn decode(table: &[CachedTexture], texels: &[u32]) -> Result<Vec<TextureImag
             srgb: t.srgb == 1,
             texels,
             uv_transform: t.uv_transform,
+            filter: if t.closest == 1 { Filter::Closest } else { Filter::Linear },
         });
     }
     if next != texels.len() as u64 {
@@ -119,7 +124,7 @@ mod tests {
     #[test]
     fn references_to_one_image_round_trip_with_one_copy_of_its_texels() {
         let image = TextureImage::new(4, 2, &[7; 32], [Wrap::Repeat, Wrap::Clamp], true);
-        let tiled = image.with_uv_transform([[8.0, 0.0, 0.0], [0.0, 8.0, -7.0]]);
+        let tiled = image.with_uv_transform([[8.0, 0.0, 0.0], [0.0, 8.0, -7.0]]).with_filter(Filter::Closest);
         let other = TextureImage::new(2, 2, &[3; 16], [Wrap::Mirror; 2], false);
         let (table, texels) = encode(&[image.clone(), other.clone(), tiled.clone()]);
         assert_eq!(texels.len(), image.texels.len() + other.texels.len(), "the tiled reference adds no texels");
@@ -127,6 +132,7 @@ mod tests {
         let decoded = decode(&table, &texels).expect("decodes");
         assert_eq!(decoded, [image, other, tiled]);
         assert_eq!(decoded[0].texels_id(), decoded[2].texels_id(), "shared again after decoding");
+        assert_eq!((decoded[0].filter, decoded[2].filter), (Filter::Linear, Filter::Closest));
 
         // A range that repeats an earlier one with another size, or that skips texels, is refused.
         let mut resized = table.clone();
@@ -135,8 +141,11 @@ mod tests {
         let mut gap = table.clone();
         gap[1].texel_offset += 1;
         assert!(decode(&gap, &texels).unwrap_err().contains("neither follows"));
-        let mut bad = table;
+        let mut bad = table.clone();
         bad[2].uv_transform[0][0] = f32::NAN;
         assert!(decode(&bad, &texels).unwrap_err().contains("not finite"));
+        let mut filter = table;
+        filter[1].closest = 2;
+        assert!(decode(&filter, &texels).unwrap_err().contains("unknown filter"));
     }
 }

@@ -7,9 +7,9 @@
 //! its width and height) until the set fits, with a warning naming the sizes. The mip
 //! chains are already built, so this costs no filtering.
 
-use crate::asset::TextureImage;
+use crate::asset::{Filter, TextureImage};
 use crate::layout::GpuTexture;
-use crate::shared_constants::{TEXTURE_SRGB, TEXTURE_WRAP_U_SHIFT, TEXTURE_WRAP_V_SHIFT};
+use crate::shared_constants::{TEXTURE_CLOSEST, TEXTURE_SRGB, TEXTURE_WRAP_U_SHIFT, TEXTURE_WRAP_V_SHIFT};
 use std::borrow::Cow;
 use std::collections::HashMap;
 
@@ -78,6 +78,7 @@ impl TextureStore {
                     height: t.height,
                     levels: t.levels(),
                     flags: (reference.srgb as u32 * TEXTURE_SRGB)
+                        | ((reference.filter == Filter::Closest) as u32 * TEXTURE_CLOSEST)
                         | (reference.wrap[0].code() << TEXTURE_WRAP_U_SHIFT)
                         | (reference.wrap[1].code() << TEXTURE_WRAP_V_SHIFT),
                     // A degenerate transform reads one texel: the coarsest level, as a footprint of all of it.

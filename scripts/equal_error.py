@@ -42,7 +42,7 @@ import time
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "src", "bench"))
+sys.path.insert(0, os.path.join(HERE, "..", "crates", "rt-bench", "src"))
 
 import drjit as dr  # noqa: E402
 import mitsuba as mi  # noqa: E402

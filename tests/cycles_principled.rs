@@ -11,6 +11,7 @@
 
 use crate::common;
 
+use common::measured::{Measured, render_measured};
 use common::reference::{self, Noiseless};
 use common::{luminance, render, repo};
 
@@ -38,7 +39,8 @@ pub(crate) fn check_row(name: &str) -> (rt::render::Image, image::Rgb32FImage) {
 
 /// [`check_row`] with blocks allowed `relative` of Cycles' block mean beside their noise,
 /// and the global mean `mean_relative` of Cycles': for the rows that differ from Cycles by
-/// a residual measured over many seeds.
+/// a residual measured over many seeds. Luminance and each colour channel (a thin film is
+/// colour, which luminance alone would not see), each held to its own measured noise.
 pub(crate) fn check_row_within(
     name: &str,
     relative: f64,
@@ -47,43 +49,32 @@ pub(crate) fn check_row_within(
     let dir = repo().join(format!("tests/cycles/scenes/{name}"));
     let scene = rt::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
     let (w, h) = (scene.render.width as usize, scene.render.height as usize);
-    let ours = render(scene, w as u32, h as u32, SPP, MAX_BOUNCES);
+    let (ours, _) = render_measured(scene, |r| (r.spp, r.max_bounces) = (SPP, MAX_BOUNCES));
     let file = repo().join(format!("tests/cycles/{name}.exr"));
     let theirs = image::open(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display())).into_rgb32f();
-    let noise_scale = (1.0 + SPP as f64 / REFERENCE_SPP).sqrt();
+    let sums = |xs: std::ops::Range<usize>, ys: std::ops::Range<usize>| {
+        let pixels = ys.flat_map(|y| xs.clone().map(move |x| (x, y)));
+        Sums::of(&ours, &theirs, pixels.collect())
+    };
     let mut worst: f64 = 0.0;
     for sphere in 0..w / COLUMN {
-        let (mut a, mut b, mut var) = (0.0, 0.0, 0.0);
-        for y in 0..h {
-            for x in sphere * COLUMN..(sphere + 1) * COLUMN {
-                let i = y * w + x;
-                a += luminance(ours.pixels[i]);
-                b += luminance(theirs.get_pixel(x as u32, y as u32).0);
-                var += (ours.std_error[i] as f64).powi(2);
-            }
-        }
-        let n = (COLUMN * h) as f64;
-        let z = (a - b).abs() / (var.sqrt() * noise_scale).max(1e-9);
-        println!("{name} sphere {sphere}: rt {:.5} vs Cycles {:.5}, {z:.2} σ", a / n, b / n);
+        let column = sums(sphere * COLUMN..(sphere + 1) * COLUMN, 0..h);
+        let z = column.worst_z(0.0);
+        println!(
+            "{name} sphere {sphere}: rt {:.5?} vs Cycles {:.5?}, {z:.2} σ",
+            column.ours_mean(),
+            column.theirs_mean()
+        );
         worst = worst.max(z);
     }
     let mut worst_block: f64 = 0.0;
     for by in 0..h / BLOCK {
         for bx in 0..w / BLOCK {
-            let (mut a, mut b, mut var) = (0.0, 0.0, 0.0);
-            for y in by * BLOCK..(by + 1) * BLOCK {
-                for x in bx * BLOCK..(bx + 1) * BLOCK {
-                    a += luminance(ours.pixels[y * w + x]);
-                    b += luminance(theirs.get_pixel(x as u32, y as u32).0);
-                    var += (ours.std_error[y * w + x] as f64).powi(2);
-                }
-            }
-            let n = (BLOCK * BLOCK) as f64;
-            let sigma = (var * noise_scale * noise_scale / (n * n) + (relative * b / n).powi(2)).sqrt();
-            worst_block = worst_block.max((a - b).abs() / n / sigma.max(1e-9));
+            worst_block =
+                worst_block.max(sums(bx * BLOCK..(bx + 1) * BLOCK, by * BLOCK..(by + 1) * BLOCK).worst_z(relative));
         }
     }
-    let global = reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4));
+    let global = reference::compare_measured(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4));
     if mean_relative == 0.0 {
         global.check_mean(name, "Cycles");
     } else {
@@ -99,55 +90,67 @@ pub(crate) fn check_row_within(
     println!("{name}: worst 8x8 block {worst_block:.2} σ (with {relative} relative)");
     assert!(worst <= 4.0, "{name}: a sphere is {worst:.2} σ from Cycles'");
     assert!(worst_block <= 5.0, "{name}: a block is {worst_block:.2} σ from Cycles'");
-    (ours, theirs)
+    (ours.image, theirs)
 }
 
-/// [`check_row`], then each sphere's mean per channel within 4 σ: a thin film is colour,
-/// which luminance alone would not see. rt's standard errors are of the luminance; a
-/// channel's is taken as the same relative error.
+/// Sums of luminance, red, green and blue over some pixels, rt's and Cycles', and the
+/// variance of their difference: rt's measured errors, Cycles' noise taken as rt's at its
+/// sample count.
+struct Sums {
+    ours: [f64; 4],
+    theirs: [f64; 4],
+    variance: [f64; 4],
+    n: f64,
+}
+
+impl Sums {
+    fn of(ours: &Measured, theirs: &image::Rgb32FImage, pixels: Vec<(usize, usize)>) -> Self {
+        let noise_scale = 1.0 + SPP as f64 / REFERENCE_SPP;
+        let w = ours.image.width as usize;
+        let mut sums = Sums { ours: [0.0; 4], theirs: [0.0; 4], variance: [0.0; 4], n: pixels.len() as f64 };
+        for &(x, y) in &pixels {
+            let i = y * w + x;
+            let (a, b) = (ours.image.pixels[i], theirs.get_pixel(x as u32, y as u32).0);
+            let e = ours.channel_error[i];
+            let values = |p: [f32; 3]| [luminance(p), p[0] as f64, p[1] as f64, p[2] as f64];
+            let variance = [ours.image.std_error[i], e[0], e[1], e[2]].map(|v| (v as f64).powi(2) * noise_scale);
+            let (a, b) = (values(a), values(b));
+            for (c, v) in variance.into_iter().enumerate() {
+                sums.ours[c] += a[c];
+                sums.theirs[c] += b[c];
+                sums.variance[c] += v;
+            }
+        }
+        sums
+    }
+
+    fn ours_mean(&self) -> [f64; 4] {
+        self.ours.map(|v| v / self.n)
+    }
+
+    fn theirs_mean(&self) -> [f64; 4] {
+        self.theirs.map(|v| v / self.n)
+    }
+
+    /// The largest difference over its standard error, each channel allowed `relative` of
+    /// Cycles' value besides its noise.
+    fn worst_z(&self, relative: f64) -> f64 {
+        let z = |c: usize| {
+            let sigma = self.variance[c].sqrt().hypot(relative * self.theirs[c]);
+            (self.ours[c] - self.theirs[c]).abs() / sigma.max(1e-9)
+        };
+        (0..4).map(z).fold(0.0, f64::max)
+    }
+}
+
+/// [`check_row`]: kept as its own name for the rows of thin films, whose colour is the point.
 fn check_colours(name: &str) {
-    check_colours_within(name, TABLE_PRECISION, 0.0);
+    check(name);
 }
 
 /// [`check_colours`] with [`check_row_within`]'s allowances.
 fn check_colours_within(name: &str, relative: f64, mean_relative: f64) {
-    let name = format!("principled_{name}");
-    let (ours, theirs) = check_row_within(&name, relative, mean_relative);
-    let (w, h) = (ours.width as usize, ours.height as usize);
-    let noise_scale = (1.0 + SPP as f64 / REFERENCE_SPP).sqrt();
-    let mut worst: f64 = 0.0;
-    for sphere in 0..w / COLUMN {
-        let (mut a, mut b, mut lum, mut var) = ([0.0f64; 3], [0.0f64; 3], 0.0, 0.0);
-        for y in 0..h {
-            for x in sphere * COLUMN..(sphere + 1) * COLUMN {
-                let i = y * w + x;
-                let theirs = theirs.get_pixel(x as u32, y as u32).0;
-                for c in 0..3 {
-                    a[c] += ours.pixels[i][c] as f64;
-                    b[c] += theirs[c] as f64;
-                }
-                lum += luminance(ours.pixels[i]);
-                var += (ours.std_error[i] as f64).powi(2);
-            }
-        }
-        let relative = var.sqrt() * noise_scale / lum.max(1e-9);
-        let z = [0, 1, 2].map(|c| (a[c] - b[c]).abs() / (relative * a[c]).max(1e-9));
-        let n = (COLUMN * h) as f64;
-        println!(
-            "{name} sphere {sphere}: rt rgb {:.4} {:.4} {:.4} vs Cycles {:.4} {:.4} {:.4}, {:.2} {:.2} {:.2} σ",
-            a[0] / n,
-            a[1] / n,
-            a[2] / n,
-            b[0] / n,
-            b[1] / n,
-            b[2] / n,
-            z[0],
-            z[1],
-            z[2]
-        );
-        worst = z.iter().fold(worst, |w, &z| w.max(z));
-    }
-    assert!(worst <= 4.0, "{name}: a sphere's channel is {worst:.2} σ from Cycles'");
+    check_row_within(&format!("principled_{name}"), relative, mean_relative);
 }
 
 #[test]
@@ -201,9 +204,12 @@ fn dielectric_roughness_under_a_sun_matches_cycles() {
     check("dielectric_roughness_sun");
 }
 
+/// Under a sun, the metals' glints are rare bright samples that 128 spp leave heavy-tailed:
+/// a block's measured error comes out low in one channel (red 5.7 σ at 128 spp is −0.26 %
+/// at 2048), so the sunlit rows' residual is allowed.
 #[test]
 fn metal_roughness_under_a_sun_matches_cycles() {
-    check("metal_roughness_sun");
+    check_row_within("principled_metal_roughness_sun", SUNLIT_RESIDUAL, 0.0);
 }
 
 #[test]
@@ -367,10 +373,12 @@ fn exporter_writes_the_tangent_node() {
     }
 }
 
-/// A Tangent node radial about X into the Tangent input (`tangent = "radial_x"`).
+/// A Tangent node radial about X into the Tangent input (`tangent = "radial_x"`). Sunlit
+/// glints, as `metal_roughness_under_a_sun_matches_cycles` (a dim edge block's blue 5.7 σ at
+/// 128 spp is −0.4 % at 2048).
 #[test]
 fn anisotropy_along_a_radial_x_tangent_matches_cycles() {
-    check("anisotropy_radial_x_sun");
+    check_row_within("principled_anisotropy_radial_x_sun", SUNLIT_RESIDUAL, 0.0);
 }
 
 /// Thin film 0…1000 nm (index 1.33) on a dark rough dielectric: Cycles 5.0's Airy sum in

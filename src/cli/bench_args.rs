@@ -64,7 +64,7 @@ pub(crate) enum BenchCommand {
         variant: Option<String>,
     },
     /// Writes the Mitsuba 3 scene that `rt bench compare` renders for SCENE: OUT/scene.json
-    /// (a dictionary for `mi.load_dict`, loaded by `src/bench/mitsuba_scene.py`) and its
+    /// (a dictionary for `mi.load_dict`, loaded by `crates/rt-bench/src/mitsuba_scene.py`) and its
     /// meshes as PLY files. The Mitsuba references of the tests are rendered from it.
     MitsubaScene {
         scene: PathBuf,

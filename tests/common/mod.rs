@@ -3,6 +3,7 @@
 
 pub mod bounded;
 pub mod layers;
+pub mod measured;
 pub mod paired;
 pub mod quad_gltf;
 pub mod reference;

@@ -4,6 +4,7 @@
 //! too ([`Comparison::check`]: a hue error cannot pass for a right luminance).
 
 use super::luminance;
+use super::measured::Measured;
 use rt::render::Image;
 use std::path::Path;
 
@@ -39,10 +40,11 @@ pub struct Comparison {
     pub worst_block: (usize, usize, f64, f64),
     /// The same of the colour channels, each on its own.
     pub channels: Channels,
-    /// Every block's mean luminance in rt and in the reference, and the standard error of
-    /// their difference.
-    pub blocks: Vec<(f64, f64, f64)>,
-    /// The standard error of the difference of the global means.
+    /// Every block's means in rt and in the reference, and the standard errors of their
+    /// differences.
+    blocks: Vec<Region>,
+    global: Region,
+    /// The standard error of the difference of the global means of luminance.
     pub global_sigma: f64,
 }
 
@@ -55,14 +57,32 @@ pub fn compare(ours: &Image, reference: &Path, reference_spp: f64) -> Comparison
 
 /// [`compare`], with its own bound for blocks without noise.
 pub fn compare_with(ours: &Image, reference: &Path, reference_spp: f64, noiseless: Noiseless) -> Comparison {
-    let image = image::open(reference).unwrap_or_else(|e| panic!("{}: {e}", reference.display())).into_rgb32f();
+    compare_noise(ours, None, reference, reference_spp, noiseless)
+}
+
+/// [`compare_with`] for an image whose colour channels' noise was measured: each channel
+/// is held to its own standard error instead of one inferred from luminance's.
+pub fn compare_measured(ours: &Measured, reference: &Path, reference_spp: f64, noiseless: Noiseless) -> Comparison {
+    compare_noise(&ours.image, Some(&ours.channel_error), reference, reference_spp, noiseless)
+}
+
+fn compare_noise(
+    ours: &Image,
+    channel_error: Option<&[[f32; 3]]>,
+    reference: &Path,
+    reference_spp: f64,
+    noiseless: Noiseless,
+) -> Comparison {
     let (w, h) = (ours.width as usize, ours.height as usize);
-    assert_eq!((image.width() as usize, image.height() as usize), (w, h), "{}: size", reference.display());
-    let reference: Vec<[f32; 3]> = image.pixels().map(|p| p.0).collect();
-    let noise_scale = (1.0 + ours.samples as f64 / reference_spp).sqrt();
+    let noise = Noise {
+        channels: channel_error,
+        reference: reference_error(reference, (w, h)),
+        reference_share: ours.samples as f64 / reference_spp,
+    };
+    let reference = read_rgb(reference, (w, h));
 
     let everything: Vec<usize> = (0..ours.pixels.len()).collect();
-    let global = Region::of(ours, &reference, &everything, noise_scale);
+    let global = Region::of(ours, &noise, &reference, &everything);
     let global_z = |channels: std::ops::Range<usize>| {
         channels.map(|c| (global.ours[c] - global.reference[c]).abs() / global.sigma[c].max(1e-12)).fold(0.0, f64::max)
     };
@@ -74,10 +94,10 @@ pub fn compare_with(ours: &Image, reference: &Path, reference_spp: f64, noiseles
             let pixels: Vec<usize> = (by * BLOCK..(by + 1) * BLOCK)
                 .flat_map(|y| (bx * BLOCK..(bx + 1) * BLOCK).map(move |x| y * w + x))
                 .collect();
-            let block = Region::of(ours, &reference, &pixels, noise_scale);
-            blocks.push((block.ours[0], block.reference[0], block.sigma[0]));
+            let block = Region::of(ours, &noise, &reference, &pixels);
             luminance.take(&block, block.worst_z(noiseless, 0..1), (bx, by));
             colour.take(&block, block.worst_z(noiseless, 1..4), (bx, by));
+            blocks.push(block);
         }
     }
     Comparison {
@@ -94,6 +114,56 @@ pub fn compare_with(ours: &Image, reference: &Path, reference_spp: f64, noiseles
         },
         blocks,
         global_sigma: global.sigma[0],
+        global,
+    }
+}
+
+/// An EXR of linear RGB of `size`.
+fn read_rgb(path: &Path, size: (usize, usize)) -> Vec<[f32; 3]> {
+    let image = image::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())).into_rgb32f();
+    assert_eq!((image.width() as usize, image.height() as usize), size, "{}: size", path.display());
+    image.pixels().map(|p| p.0).collect()
+}
+
+/// The reference's own standard error of each channel, `NAME.error.exr` beside `NAME.exr`,
+/// where its script measured it: a reference whose estimator is noisier than rt's (Mitsuba's
+/// volumetric path tracer samples absorption by one channel) is not held to rt's noise.
+fn reference_error(reference: &Path, size: (usize, usize)) -> Option<Vec<[f32; 3]>> {
+    let path = reference.with_extension("error.exr");
+    path.exists().then(|| read_rgb(&path, size))
+}
+
+/// Where a comparison's standard errors come from.
+struct Noise<'a> {
+    /// rt's measured error of each channel ([`Measured`]); without it, rt's error of
+    /// luminance scaled to the channel by its share of the pixel's luminance (at least 1).
+    channels: Option<&'a [[f32; 3]]>,
+    /// The reference's measured error of each channel ([`reference_error`]); without it,
+    /// rt's scaled by `reference_share`.
+    reference: Option<Vec<[f32; 3]>>,
+    /// rt's samples over the reference's.
+    reference_share: f64,
+}
+
+impl Noise<'_> {
+    /// The variance of pixel `i`'s difference, luminance then R, G, B.
+    fn variance(&self, ours: &Image, reference: &[[f32; 3]], i: usize) -> [f64; 4] {
+        let error = (ours.std_error[i] as f64).powi(2);
+        let lum = luminance(reference[i]).max(1e-12);
+        let channel = |c: usize| match self.channels {
+            Some(measured) => (measured[i][c] as f64).powi(2),
+            None => error * (reference[i][c] as f64 / lum).max(1.0).powi(2),
+        };
+        let ours = [error, channel(0), channel(1), channel(2)];
+        match &self.reference {
+            // Luminance's error at most the sum of the channels' (they may go together).
+            Some(r) => {
+                let e = r[i].map(|v| v as f64);
+                let lum = luminance(r[i]);
+                [ours[0] + lum * lum, ours[1] + e[0] * e[0], ours[2] + e[1] * e[1], ours[3] + e[2] * e[2]]
+            }
+            None => ours.map(|v| v * (1.0 + self.reference_share)),
+        }
     }
 }
 
@@ -126,9 +196,8 @@ const CHANNEL_FLOOR: f64 = 1e-5;
 const CHANNELS: [&str; 4] = ["luminance", "red", "green", "blue"];
 
 /// The means of a set of pixels in rt and in the reference, luminance then R, G, B, and
-/// the standard error of each difference: rt's error of luminance (rt measures no other),
-/// scaled to a channel pixel by pixel by the channel's share of the reference pixel's
-/// luminance (at least 1: a channel is never held closer than luminance is).
+/// the standard error of each difference ([`Noise`]), each channel's no closer than its
+/// precision.
 struct Region {
     ours: [f64; 4],
     reference: [f64; 4],
@@ -136,7 +205,7 @@ struct Region {
 }
 
 impl Region {
-    fn of(ours: &Image, reference: &[[f32; 3]], pixels: &[usize], noise_scale: f64) -> Self {
+    fn of(ours: &Image, noise: &Noise, reference: &[[f32; 3]], pixels: &[usize]) -> Self {
         let n = pixels.len() as f64;
         let mean = |image: &dyn Fn(usize) -> [f32; 3]| {
             let mut m = [0.0f64; 4];
@@ -151,18 +220,12 @@ impl Region {
         };
         let ours_mean = mean(&|i| ours.pixels[i]);
         let reference_mean = mean(&|i| reference[i]);
-        // Each pixel's error of luminance, scaled to a channel by that channel's share of the
-        // reference pixel's luminance (at least 1).
         let mut variance = [0.0f64; 4];
         for &i in pixels {
-            let error = (ours.std_error[i] as f64).powi(2);
-            let lum = luminance(reference[i]).max(1e-12);
-            variance[0] += error;
-            for c in 0..3 {
-                variance[1 + c] += error * (reference[i][c] as f64 / lum).max(1.0).powi(2);
-            }
+            let v = noise.variance(ours, reference, i);
+            (0..4).for_each(|c| variance[c] += v[c]);
         }
-        let sigma = variance.map(|v| v.sqrt() / n * noise_scale);
+        let sigma = variance.map(|v| v.sqrt() / n);
         let sigma = [0, 1, 2, 3].map(|c| match c {
             0 => sigma[0],
             _ => sigma[c].hypot(CHANNEL_PRECISION * reference_mean[c].abs()).hypot(CHANNEL_FLOOR),
@@ -221,33 +284,40 @@ impl Comparison {
         );
     }
 
-    /// Prints the figures, then fails if the global mean is more than 4 σ off (for
-    /// heavy-tailed noise whose blocks' standard errors are estimated low).
+    /// Prints the figures, then fails if the global mean of luminance or of a colour channel
+    /// is more than 4 σ off (for heavy-tailed noise whose blocks' standard errors are
+    /// estimated low).
     pub fn check_mean(&self, name: &str, against: &str) {
         self.print(name, against);
         assert!(self.global_z <= 4.0, "{name}: global mean is {:.2} σ from {against}'s", self.global_z);
+        let channels = self.channels.global_z;
+        assert!(channels <= 4.0, "{name}: a channel's global mean is {channels:.2} σ from {against}'s");
     }
 
     /// [`Self::check`] for an image whose content rt reconstructs within `fraction`
     /// rather than exactly (a texture baked from what the reference computes per sample):
-    /// the global mean may be off by 4 σ plus a fifth of `fraction`, each block by 5 σ
-    /// plus `fraction` of the reference's block mean.
+    /// in luminance and in each colour channel, the global mean may be off by 4 σ plus a
+    /// fifth of `fraction`, each block by 5 σ plus `fraction` of the reference's block mean.
     pub fn check_within(&self, name: &str, against: &str, fraction: f64) {
         self.print(name, against);
-        let worst = self.blocks.iter().map(|&(a, b, sigma)| (a - b).abs() / (5.0 * sigma + fraction * b.abs()));
-        let worst = worst.fold(0.0, f64::max);
-        let global = (self.ours_mean - self.reference_mean).abs()
-            / (4.0 * self.global_sigma + 0.2 * fraction * self.reference_mean.abs());
-        println!("{name:22} worst block at {:.2} of its bound, global mean at {global:.2} of its bound", worst);
-        assert!(global <= 1.0, "{name}: the global mean is {global:.2} times its bound from {against}'s");
-        assert!(worst <= 1.0, "{name}: a block is {worst:.2} times its bound from {against}'s");
+        let off = |r: &Region, c: usize, sigmas: f64, share: f64| {
+            (r.ours[c] - r.reference[c]).abs() / (sigmas * r.sigma[c] + share * fraction * r.reference[c].abs())
+        };
+        let each = self.blocks.iter().flat_map(|b| (0..4).map(move |c| (off(b, c, 5.0, 1.0), c)));
+        let (worst, channel) = each.fold((0.0, 0), |worst, this| if this.0 > worst.0 { this } else { worst });
+        let global = (0..4).map(|c| off(&self.global, c, 4.0, 0.2)).fold(0.0, f64::max);
+        println!(
+            "{name:22} worst block at {worst:.2} of its bound (in {}), global mean at {global:.2} of its bound",
+            CHANNELS[channel]
+        );
+        assert!(global <= 1.0, "{name}: a global mean is {global:.2} times its bound from {against}'s");
+        assert!(worst <= 1.0, "{name}: a block's {} is {worst:.2} times its bound from {against}'s", CHANNELS[channel]);
     }
 
     /// Prints the figures, then fails if the global mean of luminance is more than 4 σ off
     /// or a block more than 5 σ (with 48–64 blocks per image, a block fails by chance with
-    /// probability ~6e-7 at 5 σ). Only for images whose colour noise rt's luminance error
-    /// does not bound (see [`Self::check`]'s callers that use this, each saying why).
-    pub fn check_luminance(&self, name: &str, against: &str) {
+    /// probability ~6e-7 at 5 σ).
+    fn check_luminance(&self, name: &str, against: &str) {
         self.print(name, against);
         assert!(self.global_z <= 4.0, "{name}: global mean is {:.2} σ from {against}'s", self.global_z);
         assert!(self.worst_block_z <= 5.0, "{name}: a block is {:.2} σ from {against}'s", self.worst_block_z);

@@ -9,8 +9,10 @@
 Each `tests/refs/scenes/NAME.toml` (an rt scene) is translated by rt itself
 (`rt bench mitsuba-scene`: the one translation, which `rt bench compare` renders too;
 crates/rt-bench/src/mitsuba_scene.rs says how each part maps) and rendered to
-`tests/refs/NAME.exr`. `tests/mitsuba_validation.rs` renders the same TOML with rt and
-compares.
+`tests/refs/NAME.exr`, in PARTS renders of other seeds whose spread gives each pixel's
+standard error per channel, `tests/refs/NAME.error.exr`: Mitsuba's noise is not rt's
+(its volumetric path tracer samples an absorbing medium by one channel at a time).
+`tests/mitsuba_validation.rs` renders the same TOML with rt and compares.
 """
 
 import argparse
@@ -21,10 +23,13 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
-sys.path.insert(0, os.path.join(ROOT, "src", "bench"))
+sys.path.insert(0, os.path.join(ROOT, "crates", "rt-bench", "src"))
 
+import drjit as dr  # noqa: E402
 import mitsuba as mi  # noqa: E402
 from mitsuba_scene import load  # noqa: E402
+
+PARTS = 8
 
 
 def translate(rt, scene_path, folder):
@@ -33,6 +38,15 @@ def translate(rt, scene_path, folder):
     if result.returncode != 0:
         raise SystemExit(f"translating {scene_path}: {result.stderr.strip()}")
     return os.path.join(folder, "scene.json")
+
+
+def render_in_parts(scene, spp):
+    """The mean of PARTS renders of spp / PARTS samples (seeds 1 to PARTS), and each
+    pixel's standard error of that mean per channel from the renders' spread."""
+    parts = [mi.render(scene, spp=spp // PARTS, seed=seed) for seed in range(1, PARTS + 1)]
+    mean = sum(parts[1:], parts[0]) / PARTS
+    spread = sum(dr.square(p - mean) for p in parts)
+    return mean, dr.sqrt(spread / (PARTS * (PARTS - 1)))
 
 
 def main():
@@ -49,9 +63,10 @@ def main():
     for name in names:
         folder = tempfile.mkdtemp(prefix=f"rt-refs-{name}-")
         scene = load(translate(args.rt, os.path.join(scenes, f"{name}.toml"), folder), spp=args.spp)
-        image = mi.render(scene, spp=args.spp, seed=1)
+        mean, error = render_in_parts(scene, args.spp)
         out = os.path.join(args.out, f"{name}.exr")
-        mi.util.write_bitmap(out, image, write_async=False)
+        mi.util.write_bitmap(out, mean, write_async=False)
+        mi.util.write_bitmap(os.path.join(args.out, f"{name}.error.exr"), error, write_async=False)
         print(f"{name}: {out}", file=sys.stderr, flush=True)
     # Dr.Jit's threads can keep the interpreter from ending: everything is written.
     os._exit(0)

@@ -1,6 +1,6 @@
 """Loads a scene that rt translated for Mitsuba 3 (`rt bench mitsuba-scene`, or `rt bench
 compare` itself): a Mitsuba scene dictionary as JSON, beside its PLY meshes. The one
-translation is rt's (src/bench/mitsuba_scene.rs); this only turns the parts JSON cannot
+translation is rt's (crates/rt-bench/src/mitsuba_scene.rs); this only turns the parts JSON cannot
 hold into Mitsuba's objects (a sensor's look-at into a transform) and sets the sampler.
 """
 

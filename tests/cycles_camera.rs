@@ -10,8 +10,9 @@
 
 use crate::common;
 
+use common::measured::render_measured;
 use common::reference::Noiseless;
-use common::{reference, render, repo};
+use common::{reference, repo};
 
 /// Samples per pixel of the committed references (`make_camera_refs.py --spp`).
 const REFERENCE_SPP: f64 = 8192.0;
@@ -32,11 +33,10 @@ fn check_panorama(name: &str) {
 fn check_with(name: &str, noiseless: Noiseless) {
     let dir = repo().join(format!("tests/cycles/scenes/camera_{name}"));
     let scene = rt::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
-    let (w, h) = (scene.render.width, scene.render.height);
     // Surfaces only emit: one bounce finds nothing more.
-    let ours = render(scene, w, h, SPP, 1);
+    let (ours, _) = render_measured(scene, |r| (r.spp, r.max_bounces) = (SPP, 1));
     let reference_file = repo().join(format!("tests/cycles/camera_{name}.exr"));
-    reference::compare_with(&ours, &reference_file, REFERENCE_SPP, noiseless)
+    reference::compare_measured(&ours, &reference_file, REFERENCE_SPP, noiseless)
         .check(&format!("camera_{name}"), "Cycles");
 }
 

@@ -8,8 +8,9 @@
 
 use crate::common;
 
-use common::{reference, render_request, repo};
-use rt::render::Image;
+use common::measured::{Measured, render_measured};
+use common::reference::{self, Noiseless};
+use common::repo;
 use rt::scene::{Sampling, SkyFeature};
 
 /// Samples per pixel of the committed references (`make_environment_refs.py --spp`).
@@ -17,18 +18,19 @@ const REFERENCE_SPP: f64 = 2048.0;
 /// Cycles' `max_bounces` in `make_refs.py` plus one: rt counts the first hit.
 const MAX_BOUNCES: u32 = 5;
 
-fn render(name: &str, sampling: Sampling, spp: u32) -> Image {
+fn render(name: &str, sampling: Sampling, spp: u32) -> Measured {
     let path = repo().join(format!("tests/cycles/scenes/{name}/{name}.toml"));
     let mut scene = rt::scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
     scene.render.sampling = sampling;
-    let (image, features) = render_request(scene, |r| (r.spp, r.max_bounces) = (spp, MAX_BOUNCES));
+    let (image, features) = render_measured(scene, |r| (r.spp, r.max_bounces) = (spp, MAX_BOUNCES));
     assert_eq!(features.sky, SkyFeature::Environment, "{name}");
     image
 }
 
 fn check(name: &str, sampling: Sampling, spp: u32) {
     let ours = render(name, sampling, spp);
-    let comparison = reference::compare(&ours, &repo().join(format!("tests/cycles/{name}.exr")), REFERENCE_SPP);
+    let file = repo().join(format!("tests/cycles/{name}.exr"));
+    let comparison = reference::compare_measured(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-5));
     comparison.check(&format!("{name} {sampling:?} {spp} spp"), "Cycles");
 }
 

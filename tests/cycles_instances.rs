@@ -7,8 +7,9 @@
 
 use crate::common;
 
+use common::measured::render_measured;
 use common::reference::{self, Noiseless};
-use common::{render, repo};
+use common::repo;
 
 /// Samples per pixel of the committed references (`make_instance_refs.py --spp`).
 const REFERENCE_SPP: f64 = 8192.0;
@@ -26,12 +27,11 @@ fn check(name: &str) {
         .iter()
         .map(|s| rt::asset::rtinst::read(&s.file).unwrap_or_else(|e| panic!("{e}")).records.len())
         .sum();
-    let (w, h) = (scene.render.width, scene.render.height);
-    let ours = render(scene, w, h, SPP, MAX_BOUNCES);
+    let (ours, _) = render_measured(scene, |r| (r.spp, r.max_bounces) = (SPP, MAX_BOUNCES));
     // Blocks with no noise in rt (sky seen directly) must match to rounding: Cycles' f32
     // sums of 8192 samples leave it a few parts in 10⁴ (measured: up to 1.9e-4).
     let file = repo().join(format!("tests/cycles/instances_{name}.exr"));
-    let comparison = reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Relative(5e-4));
+    let comparison = reference::compare_measured(&ours, &file, REFERENCE_SPP, Noiseless::Relative(5e-4));
     comparison.check(&format!("instances_{name} ({instances} instances)"), "Cycles");
 }
 

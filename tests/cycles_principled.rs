@@ -448,3 +448,18 @@ fn diffuse_roughness_matches_cycles() {
 fn diffuse_roughness_under_a_sun_matches_cycles() {
     check("diffuse_roughness_sun");
 }
+
+/// Blender's Metallic BSDF in F82 Tint mode: Cycles' closure of the Principled BSDF's metal,
+/// Base Color its F0 and Edge Tint its F82 tint (exported as that metal).
+#[test]
+fn metallic_bsdfs_of_f82_tint_match_cycles() {
+    check("metallic_f82");
+}
+
+/// The Metallic BSDF as a Physical Conductor (copper, gold, aluminium, silver, chromium by
+/// their complex indices): rendered as the F82-tint metal of the conductor's reflectance at 0°
+/// and 82°, which Cycles evaluates exactly. Allowed 1% of Cycles' blocks beside the noise.
+#[test]
+fn metallic_bsdfs_of_physical_conductors_match_cycles_closely() {
+    check_row_within("principled_metallic_conductor", 0.01, 0.0);
+}

@@ -8,6 +8,7 @@
 
 use crate::common;
 
+use common::measured::render_measured;
 use common::reference::{self, Noiseless};
 use common::{luminance, render, repo};
 
@@ -35,10 +36,9 @@ fn check_within(name: &str, fraction: f64) {
 fn compared(name: &str, toml: &str) -> reference::Comparison {
     let dir = repo().join(format!("tests/cycles/scenes/texture_{name}"));
     let scene = rt::scene::load(&dir.join(toml)).unwrap_or_else(|e| panic!("{e}"));
-    let (w, h) = (scene.render.width, scene.render.height);
-    let ours = render(scene, w, h, SPP, MAX_BOUNCES);
+    let (ours, _) = render_measured(scene, |r| (r.spp, r.max_bounces) = (SPP, MAX_BOUNCES));
     let file = repo().join(format!("tests/cycles/texture_{name}.exr"));
-    reference::compare_with(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4))
+    reference::compare_measured(&ours, &file, REFERENCE_SPP, Noiseless::Absolute(1e-4))
 }
 
 /// Whether the JSON number `v` is `x`, to within rounding.

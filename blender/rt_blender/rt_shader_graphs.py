@@ -16,7 +16,7 @@ TARGETS = {
 TARGET_TYPES = {"base_color": "RGBA", "roughness": "VALUE", "metallic": "VALUE", "emission": "RGBA",
                 "mix_factor": "VALUE", "normal": "VECTOR"}
 # Shaders a Mix Shader with a graph-driven factor may mix: each becomes a material of its own.
-MIXABLE = {"BSDF_PRINCIPLED", "BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS", "HOLDOUT", "EMISSION"}
+MIXABLE = {"BSDF_PRINCIPLED", "BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_METALLIC", "BSDF_GLASS", "HOLDOUT", "EMISSION"}
 # What a driven socket's own value becomes in the glTF factors: the part the graph scales.
 NEUTRAL = {"Metallic": 0.0, "Emission Color": (1.0, 1.0, 1.0, 1.0), "Color": (1.0, 1.0, 1.0, 1.0),
            "Emission Strength": 1.0, "Strength": 1.0}
@@ -78,13 +78,18 @@ def emits(part):
 
 
 def mix_parts(shader):
-    """(first, second, swapped) shaders of a Mix Shader whose Fac a graph drives and whose
+    """(first, second, swapped) shaders of a Mix Shader whose Fac a graph drives, or whose
+    constant Fac mixes shaders that no one parameter set holds (`exactly_mixed`), and whose
     shaders rt renders one by one (none with a Normal input linked, at most one emitting),
-    or None. The emitting one comes first, so that the material its triangles name is the
-    one light sampling finds (`swapped`: it was the second, and the factor is 1 − Fac)."""
-    if shader is None or shader.type != "MIX_SHADER" or not evaluated(shader.inputs["Fac"]):
+    or None. Each shading point is then one of the two, picked by the factor: Cycles' closures
+    weighted by it. The emitting one comes first, so that the material its triangles name is
+    the one light sampling finds (`swapped`: it was the second, and the factor is 1 − Fac)."""
+    if shader is None or shader.type != "MIX_SHADER":
         return None
     parts = (shader_of(shader.inputs[1]), shader_of(shader.inputs[2]))
+    fac = shader.inputs["Fac"]
+    if not (evaluated(fac) or (not fac.is_linked and 0.0 < fac.default_value < 1.0 and not exactly_mixed(parts))):
+        return None
     for part in parts:
         if part is None or part.type not in MIXABLE or part.mute:
             return None
@@ -96,6 +101,13 @@ def mix_parts(shader):
     if emits(parts[1]):
         return parts[1], parts[0], True
     return parts[0], parts[1], False
+
+
+def exactly_mixed(parts):
+    """Whether rt_shader_nodes.mixed mixes shaders `parts` into one parameter set exactly:
+    a holdout, a transparent or an emission beside another shader, or two diffuse ones."""
+    kinds = {p.type if p is not None else None for p in parts}
+    return bool(kinds & {"HOLDOUT", "BSDF_TRANSPARENT", "EMISSION", None}) or kinds == {"BSDF_DIFFUSE"}
 
 
 def material_graph(shader, mix_factor=None, swapped=False):

@@ -216,6 +216,70 @@ def glossy(material, node):
                    roughness=float(socket_value(node, "Roughness", 0.5)), specular_level=0.0)
 
 
+def conductor_fresnel(cos_i, n, k):
+    """The unpolarised Fresnel reflectance of a conductor of complex index n + ik (pbrt-v4's
+    FrComplex), per channel."""
+    def one(eta, kappa):
+        c = complex(cos_i, 0.0)
+        sin2 = 1.0 - cos_i * cos_i
+        e = complex(eta, kappa)
+        t = (1.0 - sin2 / (e * e)) ** 0.5
+        parallel = (e * c - t) / (e * c + t)
+        perpendicular = (c - e * t) / (c + e * t)
+        return 0.5 * (abs(parallel) ** 2 + abs(perpendicular) ** 2)
+    return [one(eta, kappa) for eta, kappa in zip(n, k)]
+
+
+def f82_tint_fit(n, k):
+    """(F0, F82 tint) of the F82-tint metal nearest a conductor of complex index n + ik, per
+    channel: the least-squares fit over the cosine μ, weighted by μ, of Cycles' model
+    F(μ) = Schlick(μ; F0) − b·μ(1 − μ)⁶ (b linear in the tint, Cycles'
+    `bsdf_microfacet_setup_fresnel_f82_tint`) to the conductor's exact Fresnel, F0 searched
+    within 0.05 of the conductor's own (the tint, at most 1, cannot lift the model above
+    Schlick's curve, where gold's blue lies: F0 takes up that part)."""
+    mu = (np.arange(256) + 0.5) / 256.0
+    exact = np.array([conductor_fresnel(m, n, k) for m in mu])  # (256, 3)
+    f = 6.0 / 7.0
+    shape = mu * (1.0 - mu) ** 6
+    fit_f0, fit_tint = [], []
+    for channel, own in enumerate(conductor_fresnel(1.0, n, k)):
+        best = None
+        for f0 in np.clip(own + np.linspace(-0.05, 0.05, 101), 0.0, 1.0):
+            schlick = f0 + (1.0 - f0) * (1.0 - mu) ** 5
+            # The model's b for tint t is K (1 − t), K = Schlick(1/7) · 7 / f⁶.
+            g = (f0 + (1.0 - f0) * f ** 5) * 7.0 / f ** 6 * shape
+            t = float(np.clip((mu * g * (exact[:, channel] - schlick + g)).sum() / max((mu * g * g).sum(), 1e-12),
+                              0.0, 1.0))
+            error = (mu * (schlick - g * (1.0 - t) - exact[:, channel]) ** 2).sum()
+            if best is None or error < best[0]:
+                best = (error, float(f0), t)
+        fit_f0.append(best[1])
+        fit_tint.append(best[2])
+    return fit_f0, fit_tint
+
+
+def metallic(material, node):
+    """Blender's Metallic BSDF: Cycles' F82-tint conductor, the very closure of the Principled
+    BSDF's metal (Base Color its F0, Edge Tint its F82 tint). A Physical Conductor (an IOR and
+    an extinction per channel) becomes the F82-tint metal nearest it (`f82_tint_fit`: close,
+    not exact)."""
+    distribution_note(material, node)
+    for name in ("Anisotropy", "Thin Film Thickness"):
+        if float(socket_value(node, name, 0.0)) != 0.0:
+            warn(material, node, f"its {name} is not rendered by rt on a Metallic BSDF (a Principled BSDF's is)")
+    clamp = lambda v: [min(max(c, 0.0), 1.0) for c in v]  # noqa: E731
+    base = clamp(rgb(socket_value(node, "Base Color", (0.617, 0.577, 0.54))))
+    tint = clamp(rgb(socket_value(node, "Edge Tint", (0.695, 0.726, 0.77))))
+    if node.fresnel_type == "PHYSICAL_CONDUCTOR":
+        n = [max(c, 0.0) for c in rgb(socket_value(node, "IOR", (2.757, 2.513, 2.231)))]
+        k = [max(c, 0.0) for c in rgb(socket_value(node, "Extinction", (3.867, 3.404, 3.009)))]
+        base, tint = f82_tint_fit(n, k)
+        base = clamp(base)
+        warn(material, node, "its Physical Conductor is rendered as the F82-tint metal nearest it (close, not exact)")
+    return Surface(kind="metallic", base=base, metallic=1.0, specular_tint=tint,
+                   roughness=float(socket_value(node, "Roughness", 0.5)))
+
+
 def glass(material, node):
     distribution_note(material, node)
     color = [min(max(c, 0.0), 1.0) for c in rgb(socket_value(node, "Color", (1, 1, 1)))]
@@ -331,6 +395,7 @@ MAPPINGS = {
     "BSDF_PRINCIPLED": principled,
     "BSDF_DIFFUSE": diffuse,
     "BSDF_GLOSSY": glossy,
+    "BSDF_METALLIC": metallic,
     "BSDF_GLASS": glass,
     "BSDF_REFRACTION": glass,
     "EMISSION": emission,

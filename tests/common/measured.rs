@@ -43,12 +43,11 @@ pub fn render_measured(scene: Scene, adjust: impl FnOnce(&mut RenderRequest)) ->
     (merge(&parts), session.features())
 }
 
-/// The parts' mean (they have equal sample counts: no adaptive sampling), its error of
-/// luminance from the parts' own, and each channel's from the parts' spread.
+/// The parts' mean (they have equal sample counts: no adaptive sampling), alpha too, its
+/// error of luminance from the parts' own, and each channel's from the parts' spread.
 fn merge(parts: &[Image]) -> Measured {
     let k = parts.len() as f64;
     let first = &parts[0];
-    assert!(first.alpha.is_none(), "a transparent film's alpha is not merged here");
     let n = first.pixels.len();
     let mut pixels = Vec::with_capacity(n);
     let mut std_error = Vec::with_capacity(n);
@@ -62,7 +61,10 @@ fn merge(parts: &[Image]) -> Measured {
     }
     let sample_counts = (0..n).map(|i| parts.iter().map(|p| p.sample_counts[i]).sum()).collect();
     let samples = parts.iter().map(|p| p.samples).sum();
-    let image =
-        Image { width: first.width, height: first.height, samples, pixels, std_error, sample_counts, alpha: None };
+    let alpha = first.alpha.as_ref().map(|_| {
+        let alpha = |p: &Image, i: usize| p.alpha.as_ref().map_or(1.0, |a| a[i] as f64);
+        (0..n).map(|i| (parts.iter().map(|p| alpha(p, i)).sum::<f64>() / k) as f32).collect()
+    });
+    let image = Image { width: first.width, height: first.height, samples, pixels, std_error, sample_counts, alpha };
     Measured { image, channel_error }
 }

@@ -345,8 +345,10 @@ pub fn check_against_cycles(name: &str, spp: u32, max_bounces: u32, reference_sp
     let repo = super::repo();
     let scene = rt::scene::load(&repo.join(format!("tests/cycles/scenes/{name}/scene.toml"))).unwrap();
     let (w, h) = (scene.render.width, scene.render.height);
-    let ours = super::render(scene, w, h, spp, max_bounces);
+    let adjust =
+        |r: &mut rt::render::RenderRequest| (r.width, r.height, r.spp, r.max_bounces) = (w, h, spp, max_bounces);
+    let (ours, _) = super::measured::render_measured(scene, adjust);
     let file = repo.join(format!("tests/cycles/{name}.exr"));
-    compare_with(&ours, &file, reference_spp, Noiseless::Absolute(1e-4)).check(name, "Cycles");
-    ours
+    compare_measured(&ours, &file, reference_spp, Noiseless::Absolute(1e-4)).check(name, "Cycles");
+    ours.image
 }

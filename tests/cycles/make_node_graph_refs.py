@@ -987,13 +987,16 @@ def bump_scene():
 
 def mix_material(name, fac, first, second):
     """A Mix Shader of `first` and `second` (functions of the tree giving a shader node), its
-    factor from `fac` (a function of the tree giving a socket)."""
+    factor from `fac` (a function of the tree giving a socket, or a number)."""
     material = bpy.data.materials.new(name)
     tree = material.node_tree
     tree.nodes.clear()
     out = tree.nodes.new("ShaderNodeOutputMaterial")
     mix = tree.nodes.new("ShaderNodeMixShader")
-    tree.links.new(fac(tree), mix.inputs["Fac"])
+    if isinstance(fac, float):
+        mix.inputs["Fac"].default_value = fac
+    else:
+        tree.links.new(fac(tree), mix.inputs["Fac"])
     tree.links.new(first(tree).outputs[0], mix.inputs[1])
     tree.links.new(second(tree).outputs[0], mix.inputs[2])
     tree.links.new(mix.outputs[0], out.inputs["Surface"])
@@ -1019,6 +1022,39 @@ def mix_scene():
         "patchy", lambda t: noise(t, Scale=3.0, Detail=2.0).outputs["Fac"],
         lambda t: new(t, "ShaderNodeBsdfDiffuse", {"Color": (0.8, 0.8, 0.75, 1.0)}),
         lambda t: new(t, "ShaderNodeBsdfDiffuse", {"Color": (0.1, 0.2, 0.5, 1.0)}))
+    bpy.context.active_object.data.materials.append(floor)
+    cycles.camera(scene, (0.0, -5.5, 2.6), 72.0)
+    return scene
+
+
+def constant_mix_scene():
+    """Mix Shaders of a constant factor of shaders no one parameter set holds: a diffuse and
+    a glossy, a gold metal and a blue plastic, a glass and a diffuse; and a floor of a
+    diffuse and a rough glossy. Cycles weighs both closures by the factor."""
+    scene = cycles.new_scene()
+    cycles.set_up(scene, 64, bounces=8)
+    cycles.uniform_world(scene, (0.8, 0.85, 1.0))
+    spheres = [
+        ("diffuse and glossy", 0.3, lambda t: new(t, "ShaderNodeBsdfDiffuse", {"Color": (0.7, 0.15, 0.1, 1.0)}),
+         lambda t: new(t, "ShaderNodeBsdfGlossy", {"Color": (0.9, 0.9, 0.9, 1.0), "Roughness": 0.15},
+                       distribution="MULTI_GGX")),
+        ("metal and plastic", 0.5,
+         lambda t: new(t, "ShaderNodeBsdfPrincipled", {"Base Color": (1.0, 0.7, 0.3, 1.0), "Metallic": 1.0,
+                                                        "Roughness": 0.3}),
+         lambda t: new(t, "ShaderNodeBsdfPrincipled", {"Base Color": (0.1, 0.2, 0.8, 1.0), "Roughness": 0.4})),
+        ("glass and diffuse", 0.4, lambda t: new(t, "ShaderNodeBsdfGlass", {"Roughness": 0.0, "IOR": 1.45}),
+         lambda t: new(t, "ShaderNodeBsdfDiffuse", {"Color": (0.2, 0.7, 0.3, 1.0)})),
+    ]
+    for i, (name, fac, first, second) in enumerate(spheres):
+        bpy.ops.mesh.primitive_uv_sphere_add(radius=0.7, segments=48, ring_count=24,
+                                             location=(1.6 * (i - 1), 0.0, 0.7))
+        bpy.ops.object.shade_smooth()
+        bpy.context.active_object.data.materials.append(mix_material(name, fac, first, second))
+    bpy.ops.mesh.primitive_plane_add(size=8.0)
+    floor = mix_material(
+        "satin floor", 0.25, lambda t: new(t, "ShaderNodeBsdfDiffuse", {"Color": (0.8, 0.8, 0.75, 1.0)}),
+        lambda t: new(t, "ShaderNodeBsdfGlossy", {"Color": (0.8, 0.8, 0.8, 1.0), "Roughness": 0.35},
+                      distribution="MULTI_GGX"))
     bpy.context.active_object.data.materials.append(floor)
     cycles.camera(scene, (0.0, -5.5, 2.6), 72.0)
     return scene
@@ -1089,6 +1125,7 @@ SCENES = {
     "graph_shading": lambda: grid_scene("shading", SHADING, shape="sphere"),
     "graph_material": material_scene,
     "graph_mix": mix_scene,
+    "graph_mix_constant": constant_mix_scene,
     "graph_light_path": light_path_scene,
     "graph_bump": bump_scene,
     "graph_map_range": lambda: grid_scene("map_range", MAP_RANGE),

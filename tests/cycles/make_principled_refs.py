@@ -82,6 +82,23 @@ METAL_TINT_ROW = ({"Base Color": (0.9, 0.85, 0.8), "Metallic": 1.0, "Roughness":
 GLASS = {"Base Color": (0.9, 0.95, 1.0), "Transmission Weight": 1.0, "IOR": 1.45}
 COATED = {"Base Color": (0.1, 0.3, 0.8), "Roughness": 0.6, "Coat Weight": 1.0, "Coat Tint": (0.9, 0.7, 0.5)}
 
+# Blender's Metallic BSDF: F82 tint (the Principled's metal) and physical conductors of
+# measured complex indices (copper, gold, aluminium, silver, chromium).
+METALLIC_F82 = [
+    {"Base Color": (0.95, 0.64, 0.54), "Edge Tint": (1.0, 0.9, 0.8), "Roughness": 0.1},
+    {"Base Color": (1.0, 0.78, 0.34), "Edge Tint": (0.9, 0.7, 0.4), "Roughness": 0.3},
+    {"Base Color": (0.91, 0.92, 0.92), "Edge Tint": (0.3, 0.5, 0.9), "Roughness": 0.5},
+    {"Base Color": (0.55, 0.56, 0.55), "Edge Tint": (0.6, 0.6, 0.6), "Roughness": 0.7},
+    {"Base Color": (0.8, 0.3, 0.2), "Edge Tint": (1.0, 1.0, 1.0), "Roughness": 1.0},
+]
+CONDUCTORS = [
+    {"IOR": (0.27, 0.68, 1.22), "Extinction": (3.61, 2.63, 2.29)},
+    {"IOR": (0.18, 0.42, 1.37), "Extinction": (3.42, 2.35, 1.77)},
+    {"IOR": (1.50, 0.98, 0.62), "Extinction": (7.60, 6.60, 5.40)},
+    {"IOR": (0.16, 0.14, 0.13), "Extinction": (4.00, 3.20, 2.40)},
+    {"IOR": (3.20, 3.10, 2.30), "Extinction": (3.30, 3.30, 3.10)},
+]
+
 # Per row: the inputs every sphere shares, and per sphere the inputs that change.
 ROWS = {
     "dielectric_roughness": (DIELECTRIC, [{"Roughness": r} for r in STEPS]),
@@ -204,6 +221,14 @@ ROWS = {
     # Glossy lobes on coarse spheres with the material's Bump Map Correction off (see
     # NO_BUMP_MAP_CORRECTION), under the white world that their silhouettes mirror.
     "coarse_no_correction": ({"Base Color": (0.8, 0.5, 0.3)}, GLOSSY_TERMINATOR),
+    "metallic_f82": ({}, METALLIC_F82),
+    "metallic_conductor": ({"Roughness": 0.3}, CONDUCTORS),
+}
+
+# Rows of another shader node than the Principled BSDF: its type and its settings.
+SHADER_NODES = {
+    "metallic_f82": ("ShaderNodeBsdfMetallic", {"fresnel_type": "F82"}),
+    "metallic_conductor": ("ShaderNodeBsdfMetallic", {"fresnel_type": "PHYSICAL_CONDUCTOR"}),
 }
 
 # Rows whose Principled BSDF's Tangent input is linked to a Tangent node: "UV_MAP" or a radial axis.
@@ -324,7 +349,7 @@ def build(scene, name):
             bpy.data.objects["sun"].data.angle = math.radians(WIDE_SUNS[name])
     else:
         cycles.uniform_world(scene, (1.0, 1.0, 1.0))
-    materials = [principled(f"{name}_{i}", {**shared, **own}) for i, own in enumerate(spheres)]
+    materials = [principled(f"{name}_{i}", {**shared, **own}, SHADER_NODES.get(name)) for i, own in enumerate(spheres)]
     objects = sphere_row(scene, materials, COARSE.get(name, 48))
     for material, sphere in zip(materials, objects):
         if name in TANGENT_NODES:
@@ -338,9 +363,17 @@ def build(scene, name):
             setattr(sphere, key, value)
 
 
-def principled(name, inputs):
+def principled(name, inputs, node=None):
+    """A material of a Principled BSDF, or of the shader `node` ((type, settings)) in its place."""
     material = bpy.data.materials.new(name)
     bsdf = material.node_tree.nodes["Principled BSDF"]
+    if node is not None:
+        tree = material.node_tree
+        tree.nodes.remove(bsdf)
+        bsdf = tree.nodes.new(node[0])
+        for key, value in node[1].items():
+            setattr(bsdf, key, value)
+        tree.links.new(bsdf.outputs[0], tree.nodes["Material Output"].inputs["Surface"])
     for key, value in inputs.items():
         set_input(bsdf, key, value)
     return material

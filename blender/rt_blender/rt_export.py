@@ -771,6 +771,13 @@ def gltf_texture_transform(transform, material_name, what):
     return ext
 
 
+def sheen_layer(out, extensions, weight, roughness, tint):
+    """The Principled's sheen layer in glTF material `out`: glTF's sheen has no weight, so
+    other readers get Blender's exporter's colour and roughness; rt reads its own keys first."""
+    extensions["KHR_materials_sheen"] = {"sheenColorFactor": tint, "sheenRoughnessFactor": roughness}
+    out["extras"].update({"rt_sheen": weight, "rt_sheen_roughness": roughness, "rt_sheen_tint": tint})
+
+
 def gltf_material(material, thickness, textures=None, shader=None):
     """One glTF material (with KHR extensions) from a Blender material; every factor is written, since rt's importer
     applies glTF's defaults to absent ones. Its textures go into `textures`. The surface
@@ -886,14 +893,7 @@ def gltf_material(material, thickness, textures=None, shader=None):
         if sheen > 0.0:
             sheen_roughness = min(max(float(value("Sheen Roughness", 0.5)), 0.0), 1.0)
             sheen_tint = [min(max(c, 0.0), 1.0) for c in rgb(colour("Sheen Tint"))]
-            # glTF's sheen has no weight: for other readers, Blender's exporter's colour and roughness;
-            # rt reads its own keys first.
-            extensions["KHR_materials_sheen"] = {"sheenColorFactor": sheen_tint, "sheenRoughnessFactor": sheen_roughness}
-            out["extras"].update({
-                "rt_sheen": min(sheen, 1.0),
-                "rt_sheen_roughness": sheen_roughness,
-                "rt_sheen_tint": sheen_tint,
-            })
+            sheen_layer(out, extensions, min(sheen, 1.0), sheen_roughness, sheen_tint)
         anisotropy = float(value("Anisotropic", 0.0))
         if anisotropy > 0.0:
             rotation = 0.0 if found.get("Anisotropic Rotation") else socket_value(surface, "Anisotropic Rotation", 0.0)
@@ -920,6 +920,8 @@ def gltf_material(material, thickness, textures=None, shader=None):
                 "iridescenceThicknessMinimum": low,
                 "iridescenceThicknessMaximum": high,
             }
+    if s.sheen is not None and surface is None:
+        sheen_layer(out, extensions, *s.sheen)
     if transmission > 0.0:
         extensions["KHR_materials_transmission"] = {"transmissionFactor": transmission}
     peak = max(emission)

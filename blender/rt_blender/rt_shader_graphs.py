@@ -16,7 +16,8 @@ TARGETS = {
 TARGET_TYPES = {"base_color": "RGBA", "roughness": "VALUE", "metallic": "VALUE", "emission": "RGBA",
                 "mix_factor": "VALUE", "normal": "VECTOR"}
 # Shaders a Mix Shader with a graph-driven factor may mix: each becomes a material of its own.
-MIXABLE = {"BSDF_PRINCIPLED", "BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_METALLIC", "BSDF_GLASS", "HOLDOUT", "EMISSION"}
+MIXABLE = {"BSDF_PRINCIPLED", "BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_METALLIC", "BSDF_SHEEN", "BSDF_GLASS", "HOLDOUT",
+           "EMISSION"}
 # What a driven socket's own value becomes in the glTF factors: the part the graph scales.
 NEUTRAL = {"Metallic": 0.0, "Emission Color": (1.0, 1.0, 1.0, 1.0), "Color": (1.0, 1.0, 1.0, 1.0),
            "Emission Strength": 1.0, "Strength": 1.0}

@@ -138,6 +138,8 @@ class Surface:
         self.emission_strength = 0.0
         # The share of the surface that is a Holdout shader.
         self.holdout = 0.0
+        # A Sheen BSDF's (weight, roughness, colour), written as the Principled's sheen layer.
+        self.sheen = None
         self.kind = "principled"
         for key, value in fields.items():
             setattr(self, key, value)
@@ -280,6 +282,19 @@ def metallic(material, node):
                    roughness=float(socket_value(node, "Roughness", 0.5)))
 
 
+def sheen(material, node):
+    """Blender's Sheen BSDF (Microfiber): Cycles' sheen closure alone, which is the Principled's
+    sheen layer of weight 1 tinted by its Color over nothing (a black base, no specular layer)."""
+    if node.distribution != "MICROFIBER":
+        warn(material, node, f"the {node.distribution} sheen is rendered as Cycles' Microfiber sheen")
+    color = rgb(socket_value(node, "Color", (0.8, 0.8, 0.8)))
+    if any(c > 1.0 for c in color):
+        warn(material, node, "its Color is clamped to 1 (the Principled's Sheen Tint)")
+    roughness = min(max(float(socket_value(node, "Roughness", 0.5)), 0.0), 1.0)
+    return Surface(kind="sheen", base=[0.0, 0.0, 0.0], roughness=1.0, specular_level=0.0,
+                   sheen=(1.0, roughness, [min(max(c, 0.0), 1.0) for c in color]))
+
+
 def glass(material, node):
     distribution_note(material, node)
     color = [min(max(c, 0.0), 1.0) for c in rgb(socket_value(node, "Color", (1, 1, 1)))]
@@ -396,6 +411,7 @@ MAPPINGS = {
     "BSDF_DIFFUSE": diffuse,
     "BSDF_GLOSSY": glossy,
     "BSDF_METALLIC": metallic,
+    "BSDF_SHEEN": sheen,
     "BSDF_GLASS": glass,
     "BSDF_REFRACTION": glass,
     "EMISSION": emission,

@@ -99,6 +99,14 @@ CONDUCTORS = [
     {"IOR": (3.20, 3.10, 2.30), "Extinction": (3.30, 3.30, 3.10)},
 ]
 
+SHEEN_BSDF = [
+    {"Color": (1.0, 1.0, 1.0), "Roughness": 0.1},
+    {"Color": (1.0, 0.6, 0.3), "Roughness": 0.3},
+    {"Color": (0.4, 0.7, 1.0), "Roughness": 0.5},
+    {"Color": (0.9, 0.9, 0.5), "Roughness": 0.7},
+    {"Color": (0.8, 0.3, 0.6), "Roughness": 1.0},
+]
+
 # Per row: the inputs every sphere shares, and per sphere the inputs that change.
 ROWS = {
     "dielectric_roughness": (DIELECTRIC, [{"Roughness": r} for r in STEPS]),
@@ -223,12 +231,18 @@ ROWS = {
     "coarse_no_correction": ({"Base Color": (0.8, 0.5, 0.3)}, GLOSSY_TERMINATOR),
     "metallic_f82": ({}, METALLIC_F82),
     "metallic_conductor": ({"Roughness": 0.3}, CONDUCTORS),
+    # Blender's Sheen BSDF alone (Microfiber), its Color and Roughness, in the white world and
+    # lit from the side in a black one.
+    "sheen_bsdf": ({}, SHEEN_BSDF),
+    "sheen_bsdf_sun": ({}, SHEEN_BSDF),
 }
 
 # Rows of another shader node than the Principled BSDF: its type and its settings.
 SHADER_NODES = {
     "metallic_f82": ("ShaderNodeBsdfMetallic", {"fresnel_type": "F82"}),
     "metallic_conductor": ("ShaderNodeBsdfMetallic", {"fresnel_type": "PHYSICAL_CONDUCTOR"}),
+    "sheen_bsdf": ("ShaderNodeBsdfSheen", {}),
+    "sheen_bsdf_sun": ("ShaderNodeBsdfSheen", {}),
 }
 
 # Rows whose Principled BSDF's Tangent input is linked to a Tangent node: "UV_MAP" or a radial axis.
@@ -262,6 +276,7 @@ SUNLIT = {
     "terminator_offsets_sun": SIDE_SUN,
     "sheen_weight_sun": SHEEN_SUN,
     "sheen_roughness_sun": SHEEN_SUN,
+    "sheen_bsdf_sun": SHEEN_SUN,
     "anisotropy_sun": FRONT_SUN,
     "anisotropy_rotation_sun": FRONT_SUN,
     "anisotropy_dielectric_sun": FRONT_SUN,

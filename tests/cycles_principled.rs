@@ -281,47 +281,52 @@ fn exporter_writes_the_coat_as_clearcoat() {
     assert!(json["extensionsUsed"].as_array().expect("a list").iter().any(|e| e == "KHR_materials_clearcoat"));
 }
 
-/// Subsurface scattering is rendered as the diffuse base (README: "Subsurface"): not a match
-/// within the noise, but within the bounds the README gives. Cycles' random walk (radius
-/// scale 1 mm to 10 cm on a 0.45 m sphere) comes out 2.0–2.4% darker per sphere, up to 9.3% on an
-/// 8×8 block.
+/// Subsurface scattering is rendered as the diffuse base (docs/materials.md, "Subsurface"): not
+/// a match within the noise, but within documented bounds, in each colour channel. Against
+/// Cycles' random walk (radius scale 1 mm to 10 cm on a 0.45 m sphere) a channel is up to 3.1%
+/// off per sphere and 15% on an 8×8 block; the same bounds hold Blender's Subsurface
+/// Scattering node.
 #[test]
 fn subsurface_is_the_diffuse_base_within_its_documented_bounds() {
-    const SPHERE_BOUND: f64 = 0.03;
-    const BLOCK_BOUND: f64 = 0.12;
-    let name = "principled_subsurface";
+    check_subsurface("principled_subsurface", 0.04, 0.16);
+    check_subsurface("principled_subsurface_node", 0.04, 0.16);
+}
+
+fn check_subsurface(name: &str, sphere_bound: f64, block_bound: f64) {
     let dir = repo().join(format!("tests/cycles/scenes/{name}"));
     let scene = rt::scene::load(&dir.join("scene.toml")).unwrap_or_else(|e| panic!("{e}"));
     let (w, h) = (scene.render.width as usize, scene.render.height as usize);
     let ours = render(scene, w as u32, h as u32, 32, MAX_BOUNCES);
     let file = repo().join(format!("tests/cycles/{name}.exr"));
     let theirs = image::open(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display())).into_rgb32f();
-    let mean = |x0: usize, x1: usize, y0: usize, y1: usize| {
-        let (mut a, mut b) = (0.0, 0.0);
+    // The largest relative difference of a channel's mean over a rectangle.
+    let off = |x0: usize, x1: usize, y0: usize, y1: usize| {
+        let (mut a, mut b) = ([0.0f64; 3], [0.0f64; 3]);
         for y in y0..y1 {
             for x in x0..x1 {
-                a += luminance(ours.pixels[y * w + x]);
-                b += luminance(theirs.get_pixel(x as u32, y as u32).0);
+                let (p, q) = (ours.pixels[y * w + x], theirs.get_pixel(x as u32, y as u32).0);
+                for c in 0..3 {
+                    (a[c], b[c]) = (a[c] + p[c] as f64, b[c] + q[c] as f64);
+                }
             }
         }
-        a / b - 1.0
+        (0..3).map(|c| (a[c] / b[c] - 1.0).abs()).fold(0.0, f64::max)
     };
     let (mut worst_sphere, mut worst_block): (f64, f64) = (0.0, 0.0);
     for sphere in 0..w / COLUMN {
-        let d = mean(sphere * COLUMN, (sphere + 1) * COLUMN, 0, h);
-        println!("{name} sphere {sphere}: rt / Cycles - 1 = {:+.2}%", 100.0 * d);
-        worst_sphere = worst_sphere.max(d.abs());
+        let d = off(sphere * COLUMN, (sphere + 1) * COLUMN, 0, h);
+        println!("{name} sphere {sphere}: |rt / Cycles - 1| of its worst channel {:.2}%", 100.0 * d);
+        worst_sphere = worst_sphere.max(d);
     }
     // Blocks on the spheres (the middle rows), where the background does not dilute the difference.
     for bx in 0..w / BLOCK {
         for by in 1..h / BLOCK - 1 {
-            let d = mean(bx * BLOCK, (bx + 1) * BLOCK, by * BLOCK, (by + 1) * BLOCK);
-            worst_block = worst_block.max(d.abs());
+            worst_block = worst_block.max(off(bx * BLOCK, (bx + 1) * BLOCK, by * BLOCK, (by + 1) * BLOCK));
         }
     }
     println!("{name}: worst sphere {:.2}%, worst 8x8 block {:.2}%", 100.0 * worst_sphere, 100.0 * worst_block);
-    assert!(worst_sphere <= SPHERE_BOUND, "{name}: a sphere is {:.2}% from Cycles'", 100.0 * worst_sphere);
-    assert!(worst_block <= BLOCK_BOUND, "{name}: a block is {:.2}% from Cycles'", 100.0 * worst_block);
+    assert!(worst_sphere <= sphere_bound, "{name}: a sphere is {:.2}% from Cycles'", 100.0 * worst_sphere);
+    assert!(worst_block <= block_bound, "{name}: a block is {:.2}% from Cycles'", 100.0 * worst_block);
 }
 
 #[test]

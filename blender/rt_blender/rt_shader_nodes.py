@@ -295,6 +295,17 @@ def sheen(material, node):
                    sheen=(1.0, roughness, [min(max(c, 0.0), 1.0) for c in color]))
 
 
+def subsurface(material, node):
+    """Blender's Subsurface Scattering: rendered as the Principled's subsurface is, a diffuse
+    base of its Color (close for a small radius; warned)."""
+    radius = max(rgb(socket_value(node, "Radius", (1, 1, 1))))
+    scale = float(socket_value(node, "Scale", 0.05))
+    warn(material, node, f"rendered as a diffuse surface of its Color (no light travels under the surface: "
+         f"radius {radius * scale:g} m)")
+    return Surface(kind="diffuse", base=rgb(socket_value(node, "Color", (0.8, 0.8, 0.8))), roughness=1.0,
+                   specular_level=0.0)
+
+
 def glass(material, node):
     distribution_note(material, node)
     color = [min(max(c, 0.0), 1.0) for c in rgb(socket_value(node, "Color", (1, 1, 1)))]
@@ -412,6 +423,7 @@ MAPPINGS = {
     "BSDF_GLOSSY": glossy,
     "BSDF_METALLIC": metallic,
     "BSDF_SHEEN": sheen,
+    "SUBSURFACE_SCATTERING": subsurface,
     "BSDF_GLASS": glass,
     "BSDF_REFRACTION": glass,
     "EMISSION": emission,

@@ -233,6 +233,11 @@ ROWS = {
     "metallic_conductor": ({"Roughness": 0.3}, CONDUCTORS),
     # Blender's Sheen BSDF alone (Microfiber), its Color and Roughness, in the white world and
     # lit from the side in a black one.
+    # Blender's Subsurface Scattering node, which rt renders as a diffuse surface of its Color.
+    "subsurface_node": (
+        {"Color": (0.8, 0.4, 0.3)},
+        [{"Scale": r} for r in (0.001, 0.003, 0.01, 0.03, 0.1)],
+    ),
     "sheen_bsdf": ({}, SHEEN_BSDF),
     "sheen_bsdf_sun": ({}, SHEEN_BSDF),
 }
@@ -241,6 +246,7 @@ ROWS = {
 SHADER_NODES = {
     "metallic_f82": ("ShaderNodeBsdfMetallic", {"fresnel_type": "F82"}),
     "metallic_conductor": ("ShaderNodeBsdfMetallic", {"fresnel_type": "PHYSICAL_CONDUCTOR"}),
+    "subsurface_node": ("ShaderNodeSubsurfaceScattering", {}),
     "sheen_bsdf": ("ShaderNodeBsdfSheen", {}),
     "sheen_bsdf_sun": ("ShaderNodeBsdfSheen", {}),
 }

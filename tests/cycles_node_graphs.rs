@@ -113,6 +113,14 @@ fn bump_nodes_match_cycles() {
     check_channels_of("graph_bump", 1e-3, 2);
 }
 
+/// Geometry's Tangent: the radial tangent about each object's Z axis through its Generated
+/// coordinates, as Cycles' `primitive_tangent`, on turned and stretched spheres; crossed with
+/// the normal and against the view.
+#[test]
+fn geometry_tangent_matches_cycles() {
+    check_channels("graph_tangent", 1e-3);
+}
+
 #[test]
 fn every_math_operation_matches_cycles() {
     check_channels("graph_math", 1e-3);

@@ -261,6 +261,35 @@ class GraphWriter:
                                {"link": [direction, "Vector"], "from": "VECTOR", "to": "VECTOR"})
         return {"link": [dot, "Value"], "from": "VALUE", "to": to_type}
 
+    def own_node(self, kind, settings, inputs):
+        """A node of rt's own (not in the Blender tree); its index."""
+        self.nodes.append({"name": f"rt {kind.lower()} {len(self.nodes)}", "type": kind, "settings": settings,
+                           "inputs": inputs})
+        return len(self.nodes) - 1
+
+    def tangent(self, to_type):
+        """Geometry's Tangent as Cycles' `primitive_tangent` makes it on a mesh: the tangent of
+        circles about the object's Z axis through the Generated coordinates, (−(y − ½), x − ½, 0),
+        taken to the world as a normal is, then made perpendicular to the shading normal N as
+        N × normalize(that × N)."""
+        key = ((), "rt tangent")
+        if key not in self.index:
+            link = lambda index, output, kind: {"link": [index, output], "from": kind, "to": kind}  # noqa: E731
+            coords = self.own_node("TEX_COORD", {}, {})
+            xyz = self.own_node("SEPXYZ", {}, {"Vector": link(coords, "Generated", "VECTOR")})
+            minus = {"operation": "SUBTRACT", "use_clamp": False}
+            x = self.own_node("MATH", minus, {"Value": link(xyz, "X", "VALUE"), "Value_001": {"value": 0.5}})
+            y = self.own_node("MATH", minus, {"Value": {"value": 0.5}, "Value_001": link(xyz, "Y", "VALUE")})
+            about_z = self.own_node("COMBXYZ", {}, {"X": link(y, "Value", "VALUE"), "Y": link(x, "Value", "VALUE"),
+                                                    "Z": {"value": 0.0}})
+            world = self.own_node("VECT_TRANSFORM", {"vector_type": "NORMAL", "convert_from": "OBJECT",
+                                                     "convert_to": "WORLD"}, {"Vector": link(about_z, "Vector", "VECTOR")})
+            normal = link(self.own_node("NEW_GEOMETRY", {}, {}), "Normal", "VECTOR")
+            across = self.vector_math("CROSS_PRODUCT", link(world, "Vector", "VECTOR"), normal)
+            unit = self.vector_math("NORMALIZE", link(across, "Vector", "VECTOR"))
+            self.index[key] = self.vector_math("CROSS_PRODUCT", normal, link(unit, "Vector", "VECTOR"))
+        return {"link": [self.index[key], "Vector"], "from": "VECTOR", "to": to_type}
+
     def made_attribute(self, what, name, output, from_type, to_type):
         """Geometry's Random Per Island, Parametric or Pointiness (`what`): an Attribute node of
         rt's own reading attribute `name`, which the exporter computes per face, corner or
@@ -301,6 +330,8 @@ class GraphWriter:
             return self.input(groups[-1].inputs[index], groups[:-1], to_type)
         if node.type == "NORMAL":
             return self.normal_node(node, socket, groups, to_type)
+        if node.type == "NEW_GEOMETRY" and socket.identifier == "Tangent":
+            return self.tangent(to_type)
         if node.type == "NEW_GEOMETRY" and socket.identifier in MADE_ATTRIBUTES:
             return self.made_attribute(socket.identifier, *MADE_ATTRIBUTES[socket.identifier], to_type)
         if node.type in EVALUATED and socket_key(socket) not in EVALUATED[node.type]:

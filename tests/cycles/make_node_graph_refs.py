@@ -830,6 +830,32 @@ NORMAL_NODE = [
 ]
 
 
+TANGENT = [
+    lambda t: vector_shown(t, geometry(t, "Tangent")),
+    lambda t: vector_shown(t, geometry(t, "Tangent")),
+    lambda t: vector_shown(t, geometry(t, "Tangent")),
+    lambda t: vector_shown(t, vector_op(t, "CROSS_PRODUCT", geometry(t, "Tangent"), geometry(t, "Normal"))),
+    lambda t: ramp(t, new(t, "ShaderNodeVectorMath", {"Vector": geometry(t, "Tangent"),
+                                                       "Vector_001": geometry(t, "Incoming")},
+                          operation="DOT_PRODUCT").outputs["Value"], "LINEAR", STOPS),
+    lambda t: vector_shown(t, geometry(t, "Tangent")),
+]
+# Each tile's rotation (radians about X, Y, Z) and scale: the tangent turns with the object's Z axis.
+TANGENT_PLACES = [((0.0, 0.0, 0.0), (1.0, 1.0, 1.0)), ((0.9, 0.0, 0.3), (1.0, 1.0, 1.0)),
+                  ((0.0, -1.2, 0.0), (1.0, 0.6, 1.0)), ((0.5, 0.4, 0.0), (1.0, 1.0, 1.0)),
+                  ((-0.7, 0.0, 1.1), (1.0, 1.0, 1.0)), ((1.57, 0.0, 0.0), (1.3, 1.0, 0.7))]
+
+
+def tangent_scene():
+    """Geometry's Tangent on spheres turned and stretched (the radial tangent about each
+    object's Z axis), crossed with the normal, against the view, seen in perspective."""
+    scene = camera_scene_of("tangent", TANGENT)
+    for i, (rotation, scale) in enumerate(TANGENT_PLACES):
+        tile = bpy.data.objects[f"tile_{i}"]
+        tile.rotation_euler, tile.scale = rotation, scale
+    return scene
+
+
 def object_info(t, which):
     return new(t, "ShaderNodeObjectInfo").outputs[which]
 
@@ -1134,6 +1160,7 @@ SCENES = {
     "graph_camera_data": camera_data_scene,
     "graph_vector_transform": vector_transform_scene,
     "graph_normal_node": lambda: camera_scene_of("normal_node", NORMAL_NODE),
+    "graph_tangent": tangent_scene,
 }
 
 

@@ -121,6 +121,13 @@ fn geometry_tangent_matches_cycles() {
     check_channels("graph_tangent", 1e-3);
 }
 
+/// Object Info's Material Index: the Pass Index of each tile's material (0 to 7, one shared by
+/// two tiles), as a value and through a ramp; the exporter writes it as a constant.
+#[test]
+fn material_index_matches_cycles() {
+    check_channels("graph_material_index", 1e-3);
+}
+
 #[test]
 fn every_math_operation_matches_cycles() {
     check_channels("graph_math", 1e-3);

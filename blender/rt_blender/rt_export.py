@@ -837,7 +837,8 @@ def gltf_material(material, thickness, textures=None, shader=None):
         # (its factors above describe a metal of that colour for other readers).
         out["extras"]["rt_glossy_color"] = [max(c, 0.0) for c in s.glossy]
     swapped = bool(parts) and parts[2]
-    graph = rt_shader_graphs.material_graph(shader, top.inputs["Fac"] if parts else None, swapped) if material else None
+    graph = rt_shader_graphs.material_graph(material, shader, top.inputs["Fac"] if parts else None,
+                                            swapped) if material else None
     if graph is not None:
         out["extras"]["rt_node_graph"] = graph
     if parts:

@@ -193,7 +193,9 @@ def curve_settings(node):
 class GraphWriter:
     """The graph feeding some sockets, as rt reads it; raises Unevaluated."""
 
-    def __init__(self):
+    def __init__(self, material=None):
+        # Object Info's Material Index: the Pass Index of the material whose graph this is.
+        self.material_index = float(material.pass_index) if material is not None else 0.0
         self.nodes = []
         self.index = {}
         self.heights = 0  # how many Bump nodes' Height the node being added feeds
@@ -330,6 +332,8 @@ class GraphWriter:
             return self.input(groups[-1].inputs[index], groups[:-1], to_type)
         if node.type == "NORMAL":
             return self.normal_node(node, socket, groups, to_type)
+        if node.type == "OBJECT_INFO" and socket.identifier == "Material Index":
+            return {"value": self.material_index}
         if node.type == "NEW_GEOMETRY" and socket.identifier == "Tangent":
             return self.tangent(to_type)
         if node.type == "NEW_GEOMETRY" and socket.identifier in MADE_ATTRIBUTES:

@@ -111,13 +111,13 @@ def exactly_mixed(parts):
     return bool(kinds & {"HOLDOUT", "BSDF_TRANSPARENT", "EMISSION", None}) or kinds == {"BSDF_DIFFUSE"}
 
 
-def material_graph(shader, mix_factor=None, swapped=False):
-    """`extras.rt_node_graph` for the shader linked to a material's output (or one of a Mix
+def material_graph(material, shader, mix_factor=None, swapped=False):
+    """`extras.rt_node_graph` for the shader linked to `material`'s output (or one of a Mix
     Shader's, whose factor socket `mix_factor` drives the choice between them, 1 − it when
     its shaders are `swapped`), or None."""
     if shader is None or (shader.type not in TARGETS and mix_factor is None):
         return None
-    writer = GraphWriter()
+    writer = GraphWriter(material)
     outputs = {}
     for name, target in TARGETS.get(shader.type, {}).items():
         if target is not None and drives(shader, name):

@@ -869,6 +869,26 @@ OBJECT_INFO = (
 )
 
 
+def material_index_scene():
+    """Object Info's Material Index: tiles of materials of Pass Index 0 to 7, through a ramp
+    and as a value, two tiles sharing one material."""
+    scene = dark_grid()
+    for i in range(9):
+        obj = add_tile(i, "plane")
+        obj.name = f"tile_{i}"
+        index = min(i, 7)
+        name = f"material_index_{index}"
+        material = bpy.data.materials.get(name)
+        if material is None:
+            show = (lambda t: ramp(t, math_node(t, "MULTIPLY", object_info(t, "Material Index"), 0.125), "LINEAR",
+                                   STOPS)) if index % 2 else (lambda t: math_node(t, "MULTIPLY",
+                                                                                  object_info(t, "Material Index"), 0.1))
+            material = emission_material(name, show)
+            material.pass_index = index
+        obj.data.materials.append(material)
+    return scene
+
+
 def object_info_scene():
     """Object Info: Random of differently named tiles (plain and through a ramp), their
     Object Colors and Alpha, and their Locations."""
@@ -1161,6 +1181,7 @@ SCENES = {
     "graph_vector_transform": vector_transform_scene,
     "graph_normal_node": lambda: camera_scene_of("normal_node", NORMAL_NODE),
     "graph_tangent": tangent_scene,
+    "graph_material_index": material_index_scene,
 }
 
 

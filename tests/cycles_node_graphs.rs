@@ -284,19 +284,20 @@ fn nodes_that_read_the_normal_and_the_view_match_cycles() {
     check_channels("graph_shading", 1e-3);
 }
 
+/// `tests/cycles/scenes/NAME/` at 64×64, 256 spp and `max_bounces` against Cycles' image,
+/// every block and channel within its noise.
+fn check_scene(name: &str, max_bounces: u32) {
+    let scene = rt::scene::load(&repo().join(format!("tests/cycles/scenes/{name}/scene.toml"))).unwrap();
+    let (ours, _) = render_measured(scene, |r| (r.width, r.height, r.spp, r.max_bounces) = (64, 64, 256, max_bounces));
+    let reference = repo().join(format!("tests/cycles/{name}.exr"));
+    reference::compare_measured(&ours, &reference, REFERENCE_SPP, Noiseless::Absolute(1e-4)).check(name, "Cycles");
+}
+
 /// A Mix Shader whose factor is a graph (Layer Weight on a sphere, noise on the floor):
 /// each shading point is one of its two shaders, picked by the factor.
 #[test]
 fn mix_shaders_by_a_graph_match_cycles() {
-    let scene = rt::scene::load(&repo().join("tests/cycles/scenes/graph_mix/scene.toml")).unwrap();
-    let (ours, _) = render_measured(scene, |r| (r.width, r.height, r.spp, r.max_bounces) = (64, 64, 256, 8));
-    reference::compare_measured(
-        &ours,
-        &repo().join("tests/cycles/graph_mix.exr"),
-        REFERENCE_SPP,
-        Noiseless::Absolute(1e-4),
-    )
-    .check("graph_mix", "Cycles");
+    check_scene("graph_mix", 8);
 }
 
 /// Mix Shaders of a constant factor of shaders no one parameter set holds (a diffuse and a
@@ -305,35 +306,19 @@ fn mix_shaders_by_a_graph_match_cycles() {
 /// alone, with a warning.
 #[test]
 fn mix_shaders_of_a_constant_factor_match_cycles() {
-    let scene = rt::scene::load(&repo().join("tests/cycles/scenes/graph_mix_constant/scene.toml")).unwrap();
-    let (ours, _) = render_measured(scene, |r| (r.width, r.height, r.spp, r.max_bounces) = (64, 64, 256, 8));
-    let reference = repo().join("tests/cycles/graph_mix_constant.exr");
-    reference::compare_measured(&ours, &reference, REFERENCE_SPP, Noiseless::Absolute(1e-4))
-        .check("graph_mix_constant", "Cycles");
+    check_scene("graph_mix_constant", 8);
 }
 
 /// Light Path tricks: an emitter red to the camera and green to everything else (light
 /// samples and bounces alike), a floor coloured by Is Diffuse Ray, a metal by Ray Length.
 #[test]
 fn light_path_tricks_match_cycles() {
-    let scene = rt::scene::load(&repo().join("tests/cycles/scenes/graph_light_path/scene.toml")).unwrap();
-    let (ours, _) = render_measured(scene, |r| (r.width, r.height, r.spp, r.max_bounces) = (64, 64, 256, 6));
-    let reference = repo().join("tests/cycles/graph_light_path.exr");
-    reference::compare_measured(&ours, &reference, REFERENCE_SPP, Noiseless::Absolute(1e-4))
-        .check("graph_light_path", "Cycles");
+    check_scene("graph_light_path", 6);
 }
 
 #[test]
 fn a_procedural_principled_material_matches_cycles() {
-    let scene = rt::scene::load(&repo().join("tests/cycles/scenes/graph_material/scene.toml")).unwrap();
-    let (ours, _) = render_measured(scene, |r| (r.width, r.height, r.spp, r.max_bounces) = (64, 64, 256, 8));
-    reference::compare_measured(
-        &ours,
-        &repo().join("tests/cycles/graph_material.exr"),
-        REFERENCE_SPP,
-        Noiseless::Absolute(1e-4),
-    )
-    .check("graph_material", "Cycles");
+    check_scene("graph_material", 8);
 }
 
 /// A scene's node shapes run as specialised code, and the interpreter (which runs scenes

@@ -235,6 +235,9 @@ fn world_graphs_match_cycles() {
 #[test]
 fn a_world_of_window_and_camera_coordinates_matches_cycles() {
     check_channels_of("graph_world_camera", 1e-3, 5);
+    // Through an orthographic camera: Window at a camera ray's origin, at the direction
+    // itself as a point for the reflections.
+    check_channels_of("graph_world_ortho", 1e-3, 5);
 }
 
 /// Mix Shaders of an emitting shader and a BSDF by a noise's or a gradient's factor

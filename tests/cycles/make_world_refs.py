@@ -9,7 +9,8 @@ another colour where the world is seen directly (Light Path's Is Camera Ray), as
 light with one sky and show another. `graph_world_sun` is the same gradient beside a sun
 lamp, so that light samples share between the two. `graph_world_camera` is a World of
 Texture Coordinate's Window (a checker) and Camera (a ramp of its x), seen directly and in a
-metal sphere, which Cycles places at the camera. Each scene is exported with
+metal sphere, which Cycles places at the camera; `graph_world_ortho` the same through an
+orthographic camera. Each scene is exported with
 blender/rt_export.py into tests/cycles/scenes/NAME/ and rendered into tests/cycles/NAME.exr.
 CI does not run Cycles: commit both.
 """
@@ -70,6 +71,15 @@ def camera_scene():
     return scene
 
 
+def ortho_camera_scene():
+    """`camera_scene` through an orthographic camera: Cycles reads Window at a camera ray's
+    origin there, and at the direction itself for other rays."""
+    scene = camera_scene()
+    camera = scene.camera.data
+    camera.type, camera.ortho_scale, camera.shift_x = "ORTHO", 5.0, 0.05
+    return scene
+
+
 def objects():
     bpy.ops.mesh.primitive_uv_sphere_add(radius=0.8, segments=48, ring_count=24, location=(-0.9, 0.0, 0.8))
     bpy.ops.object.shade_smooth()
@@ -99,6 +109,7 @@ SCENES = {
     "graph_world": world_scene,
     "graph_world_sun": lambda: world_scene(sun=True),
     "graph_world_camera": camera_scene,
+    "graph_world_ortho": ortho_camera_scene,
 }
 
 

@@ -178,8 +178,8 @@ fn uniform_sky_seen(bsdf_pdf: f32) -> vec3f {
 //#if node_graphs
 // The world seen by a ray that leaves the scene, MIS-weighted against light sampling after
 // a BSDF sample (the world is light-sampled uniformly over the sphere).
-fn graph_sky_seen(direction: vec3f, bsdf_pdf: f32, ray_from: u32, singular: bool, depth: u32) -> vec3f {
-    return graph_sky_radiance(direction, ray_from, singular, depth) * uniform_sky_weight(bsdf_pdf);
+fn graph_sky_seen(origin: vec3f, direction: vec3f, bsdf_pdf: f32, ray_from: u32, singular: bool, depth: u32) -> vec3f {
+    return graph_sky_radiance(direction, origin, ray_from, singular, depth) * uniform_sky_weight(bsdf_pdf);
 }
 //#endif
 //#endif
@@ -370,7 +370,7 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
             //#endif
             //#if sky_graph
             //#if node_graphs
-            gather(&radiance, throughput * graph_sky_seen(direction, bsdf_pdf, ray_from, ray_singular, bounce), EVENT_SKY);
+            gather(&radiance, throughput * graph_sky_seen(origin, direction, bsdf_pdf, ray_from, ray_singular, bounce), EVENT_SKY);
             //#endif
             //#endif
             background_seen(&radiance, throughput, origin, direction, bsdf_pdf);

@@ -24,7 +24,7 @@ fn node_coordinate(mode: u32, p: NodePoint, extra: u32) -> vec4f {
         case 1u: { return vec4f(p.object_normal, 0.0); }
         case 2u: { return vec4f(p.uv, 0.0, 0.0); }
         case 3u: { return vec4f(p.object, 0.0); }
-        case 4u, 5u: { return vec4f(node_camera_coordinates(mode == 5u, node_texture_point(p)), 0.0); }
+        case 4u, 5u: { return vec4f(node_camera_coordinates(mode == 5u, node_texture_point(p, mode == 5u)), 0.0); }
         // Reflection: the direction towards the viewer mirrored about the normal.
         case 6u: { return vec4f(2.0 * dot(p.normal, p.incoming) * p.normal - p.incoming, 0.0); }
         case 7u: { return vec4f(p.position, 0.0); }
@@ -42,12 +42,17 @@ fn node_coordinate(mode: u32, p: NodePoint, extra: u32) -> vec4f {
     }
 }
 
-// The point Texture Coordinate's Camera and Window see (rt's axes): the World's direction
-// placed at the camera, as Cycles does (Camera Data takes the direction as a point).
-fn node_texture_point(p: NodePoint) -> vec3f {
+// The point Texture Coordinate's Camera and (with `window`) Window see (rt's axes). In the
+// World, as Cycles' camera_world_to_ndc: the direction placed at the camera, but for an
+// orthographic camera's Window the origin of a camera ray and the direction itself as a
+// point for other rays (Camera Data takes the direction as a point).
+fn node_texture_point(p: NodePoint, window: bool) -> vec3f {
     var point = rt_axes(p.position);
     //#if sky_graph
     if p.background {
+        if window && frame.orthographic != 0u {
+            return select(point, p.ray_origin, p.ray_from == NODE_RAY_CAMERA);
+        }
         point += frame.camera_position;
     }
     //#endif

@@ -58,8 +58,10 @@ struct NodePoint {
     barycentric_step_y: vec2f,
     //#endif
     //#if sky_graph
-    // The World's point: `position` is a direction, seen from the camera (Cycles' P + camera).
+    // The World's point: `position` is a direction, seen from the camera (Cycles' P + camera),
+    // along a ray from `ray_origin` (rt's axes; an orthographic camera's Window reads it).
     background: bool,
+    ray_origin: vec3f,
     //#endif
 }
 

@@ -8,9 +8,9 @@
 //#include "common.wgsl"
 //#include "node_program.wgsl"
 
-// The Background's radiance along `direction` (rt's axes) for a ray that came from
-// `ray_from` (NODE_RAY_*; NODE_RAY_NONE for a light sample) after `depth` bounces.
-fn graph_sky_radiance(direction: vec3f, ray_from: u32, singular: bool, depth: u32) -> vec3f {
+// The Background's radiance along `direction` (rt's axes) for a ray from `origin` that came
+// from `ray_from` (NODE_RAY_*; NODE_RAY_NONE for a light sample) after `depth` bounces.
+fn graph_sky_radiance(direction: vec3f, origin: vec3f, ray_from: u32, singular: bool, depth: u32) -> vec3f {
     let d = blender_axes(direction);
     var p: NodePoint;
     p.position = d;
@@ -25,6 +25,7 @@ fn graph_sky_radiance(direction: vec3f, ray_from: u32, singular: bool, depth: u3
     p.ray_depth = f32(depth);
     p.instance = NODE_NO_OBJECT;
     p.background = true;
+    p.ray_origin = origin;
     let out = run_node_program(materials[arrayLength(&materials) - 1u].node_program, p);
     return select(vec3f(0.0), out.emission, (out.driven & 8u) != 0u);
 }

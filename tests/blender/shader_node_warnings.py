@@ -51,7 +51,10 @@ def linked_fac(tree):
 
 
 def glossy_glass(tree):
-    return mix(tree, "Both", node(tree, "ShaderNodeBsdfGlossy", "Shine"), node(tree, "ShaderNodeBsdfGlass", "Pane"), 0.7)
+    """A Glossy and a Refraction BSDF (a pair rt does not mix per shading point, as it does a
+    Glossy and a Glass): the heavier one, warned."""
+    return mix(tree, "Both", node(tree, "ShaderNodeBsdfGlossy", "Shine"), node(tree, "ShaderNodeBsdfRefraction", "Pane"),
+               0.7)
 
 
 def subsurface(tree):

@@ -373,3 +373,11 @@ fn a_live_session_keeps_only_the_node_code_it_renders() {
         assert_eq!(session.pipeline_cache().sizes(), (1, built), "after {name}: one code, as many pipelines");
     }
 }
+
+/// Cel shading with the Toon BSDF, an rt lobe module: a Toon Diffuse of noise colours under a
+/// Toon Glossy rim mixed by Layer Weight per shading point, a Toon Diffuse and a Diffuse BSDF
+/// mixed by a constant, a soft-edged Toon Diffuse of noise colours, under a low sun.
+#[test]
+fn toon_shading_matches_cycles() {
+    check_scene("graph_toon", 6);
+}

@@ -485,3 +485,12 @@ fn sheen_bsdfs_match_cycles() {
     check("sheen_bsdf");
     check("sheen_bsdf_sun");
 }
+
+/// Blender's Toon BSDF, an rt lobe module (`crates/rt/src/scene/lobe/toon.rs`): Diffuse and
+/// Glossy of five sizes and smooths, in a white world and under a sun, as Cycles' toon closures.
+#[test]
+fn toon_bsdfs_match_cycles() {
+    for row in ["toon_diffuse", "toon_diffuse_sun", "toon_glossy", "toon_glossy_sun"] {
+        check(row);
+    }
+}

@@ -32,8 +32,8 @@ fn unmappable_nodes_warn_naming_material_and_node() {
     let out = common::empty_temp_dir("shader-node-warnings");
     let stderr = common::run_bpy_script("shader_node_warnings.py", &out);
     for needle in [
-        "toon_mat: 'Cartoon' (ShaderNodeBsdfToon): this shader node is not supported by rt",
-        "toon_mat: its surface is rendered with the material's viewport colour",
+        "hair_mat: 'Strands' (ShaderNodeBsdfHair): this shader node is not supported by rt",
+        "hair_mat: its surface is rendered with the material's viewport colour",
         "noisy_mix: 'Blend' (ShaderNodeMixShader): its Fac is linked",
         "glossy_glass: 'Both' (ShaderNodeMixShader): rt cannot mix a glossy and a glass surface: using the glass one",
         "skin_mat: 'Skin' (ShaderNodeBsdfPrincipled): Subsurface Weight 0.5 is rendered as the diffuse base",
@@ -43,6 +43,11 @@ fn unmappable_nodes_warn_naming_material_and_node() {
     ] {
         assert!(stderr.contains(needle), "{needle:?} missing from:\n{stderr}");
     }
+    // A Toon BSDF is a lobe module of rt: no warning, its settings exported as its parameters.
+    assert!(!stderr.contains("toon_mat"), "a Toon BSDF is warned about:\n{stderr}");
+    let toon = rt::asset::load_mesh(&out.join("assets/Cube_008")).expect("loads");
+    let lobe = toon.materials[0].1.lobe.expect("a lobe module");
+    assert_eq!((lobe.declaration().name, lobe.params), ("toon", [0.3, 0.0, 0.0, 0.0]), "{lobe:?}");
     // A rough Diffuse BSDF is Cycles' Oren-Nayar, which rt renders: no warning, its roughness exported.
     assert!(!stderr.contains("felt_mat"), "a rough Diffuse BSDF is warned about:\n{stderr}");
     let rough = std::fs::read_dir(out.join("assets"))
@@ -70,7 +75,7 @@ fn unmappable_nodes_warn_naming_material_and_node() {
         .expect("rt info runs");
     let listed = String::from_utf8_lossy(&info.stdout);
     for needle in [
-        "material `toon_mat`: Cartoon: this shader node is not supported by rt",
+        "material `hair_mat`: Strands: this shader node is not supported by rt",
         "material `leaf_mat`: Leaf: rt has no diffuse transmission",
     ] {
         assert!(listed.contains(needle), "{needle:?} missing from rt info:\n{listed}");

@@ -832,6 +832,9 @@ def gltf_material(material, thickness, textures=None, shader=None):
     if s.holdout > 0.0:
         # Blender's Holdout shader, or a Mix Shader's share of one.
         out["extras"]["rt_holdout"] = min(s.holdout, 1.0)
+    if s.module is not None:
+        # A lobe module of rt (the Toon BSDF, ...): its BSDF, weighted by the base colour.
+        out["extras"]["rt_lobe"] = s.module
     if s.glossy is not None:
         # Cycles' Glossy BSDF: GGX without Fresnel, tinted by its colour; glTF has no such lobe
         # (its factors above describe a metal of that colour for other readers).

@@ -4,7 +4,15 @@ inputs, an Emission's, a Mix Shader's factor with its two shaders, a Background'
 strength. The graphs themselves are written by rt_node_graph.GraphWriter.
 """
 
+import json
+import os
+
 from .rt_node_graph import FORMAT_VERSION, GraphWriter, Unevaluated
+
+# rt's lobe modules (crates/rt/src/scene/lobe), by the Blender node type each renders: the
+# registry's table, which a test of rt keeps equal to it.
+with open(os.path.join(os.path.dirname(__file__), "rt_lobes.json"), encoding="utf-8") as table:
+    LOBES = {lobe["node"]: lobe for lobe in json.load(table)["lobes"]}
 
 # Shader inputs a graph can drive: rt's material input, the socket's type there.
 TARGETS = {
@@ -12,12 +20,14 @@ TARGETS = {
                         "Emission Color": "emission", "Emission Strength": "emission", "Normal": "normal"},
     "BSDF_DIFFUSE": {"Color": "base_color", "Roughness": None, "Normal": "normal"},
     "EMISSION": {"Color": "emission", "Strength": "emission"},
+    # A lobe module's colour is the material's base colour.
+    **{node: {lobe["color"]: "base_color", "Normal": "normal"} for node, lobe in LOBES.items()},
 }
 TARGET_TYPES = {"base_color": "RGBA", "roughness": "VALUE", "metallic": "VALUE", "emission": "RGBA",
                 "mix_factor": "VALUE", "normal": "VECTOR"}
 # Shaders a Mix Shader with a graph-driven factor may mix: each becomes a material of its own.
 MIXABLE = {"BSDF_PRINCIPLED", "BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_METALLIC", "BSDF_SHEEN", "BSDF_GLASS", "HOLDOUT",
-           "EMISSION"}
+           "EMISSION", *LOBES}
 # What a driven socket's own value becomes in the glTF factors: the part the graph scales.
 NEUTRAL = {"Metallic": 0.0, "Emission Color": (1.0, 1.0, 1.0, 1.0), "Color": (1.0, 1.0, 1.0, 1.0),
            "Emission Strength": 1.0, "Strength": 1.0}

@@ -23,6 +23,8 @@ that names the material and the node). What each node becomes:
                      mean roughness: exact for Lambertian ones, else warned);
                      otherwise the dominant shader, warned
   Add Shader         Emission + X is X with the emission added; otherwise warned
+  Toon BSDF, …       a lobe module of rt (rt_lobes.json: crates/rt/src/scene/lobe), its
+                     colour the base colour, its inputs and settings its parameters
 
 Anything else is a warning naming the material and the node; the material then keeps
 its viewport colour (inside a Mix or Add Shader, the node is black, as an empty input is).
@@ -140,6 +142,8 @@ class Surface:
         self.holdout = 0.0
         # A Sheen BSDF's (weight, roughness, colour), written as the Principled's sheen layer.
         self.sheen = None
+        # A lobe module's `extras.rt_lobe` ({"module": name, parameter: value, ...}).
+        self.module = None
         self.kind = "principled"
         for key, value in fields.items():
             setattr(self, key, value)
@@ -147,7 +151,7 @@ class Surface:
     def scaled_lobes(self, w):
         """This surface with its lobes and emission scaled by w, when that is exact."""
         # Not a Glossy BSDF's colour: Cycles compensates its lost energy by the unscaled colour.
-        if self.kind == "diffuse":
+        if self.kind == "diffuse" or self.module is not None:
             self.base = [c * w for c in self.base]
         elif self.kind != "emission":
             return False
@@ -341,6 +345,16 @@ def holdout(material, node):
     return Surface(kind="holdout", base=[0.0, 0.0, 0.0], roughness=1.0, specular_level=0.0, holdout=1.0)
 
 
+def module_lobe(material, node):
+    """A lobe module of rt (rt_shader_graphs.LOBES): its colour socket the base colour, its
+    sockets' and settings' values (an enum's identifier lower-cased) its parameters."""
+    lobe = rt_shader_graphs.LOBES[node.type]
+    params = {param: float(socket_value(node, socket, 0.0)) for socket, param in lobe["inputs"]}
+    params.update({param: str(getattr(node, prop)).lower() for prop, param in lobe["properties"]})
+    return Surface(kind=lobe["module"], base=rgb(socket_value(node, lobe["color"], (0.8, 0.8, 0.8))), roughness=1.0,
+                   specular_level=0.0, module={"module": lobe["module"], **params})
+
+
 def shader_inputs(node):
     return [s for s in node.inputs if s.type == "SHADER"]
 
@@ -432,6 +446,7 @@ MAPPINGS = {
     "HOLDOUT": holdout,
     "MIX_SHADER": mix,
     "ADD_SHADER": add,
+    **{node: module_lobe for node in rt_shader_graphs.LOBES},
 }
 
 

@@ -39,8 +39,12 @@ def mix(tree, name, a, b, fac=0.5):
     return n
 
 
+def hair(tree):
+    return node(tree, "ShaderNodeBsdfHair", "Strands")
+
+
 def toon(tree):
-    return node(tree, "ShaderNodeBsdfToon", "Cartoon")
+    return node(tree, "ShaderNodeBsdfToon", "Cartoon", Size=0.3)
 
 
 def linked_fac(tree):
@@ -93,9 +97,9 @@ def main():
     out = sys.argv[1]
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
-    builds = {"toon_mat": toon, "noisy_mix": linked_fac, "glossy_glass": glossy_glass,
+    builds = {"hair_mat": hair, "noisy_mix": linked_fac, "glossy_glass": glossy_glass,
               "skin_mat": subsurface, "felt_mat": rough_diffuse, "leaf_mat": translucent,
-              "half_empty": half_empty, "lens_mat": image_ior}
+              "half_empty": half_empty, "lens_mat": image_ior, "toon_mat": toon}
     for i, (name, build) in enumerate(builds.items()):
         bpy.ops.mesh.primitive_cube_add(location=(3.0 * i, 0.0, 0.0))
         obj = bpy.context.active_object

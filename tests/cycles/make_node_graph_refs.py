@@ -1106,6 +1106,44 @@ def constant_mix_scene():
     return scene
 
 
+def toon(t, colour, size, smooth, component="DIFFUSE"):
+    return new(t, "ShaderNodeBsdfToon", {"Color": colour, "Size": size, "Smooth": smooth}, component=component)
+
+
+def noisy_toon(t, size, smooth):
+    """A Toon Diffuse whose Color is a noise texture's."""
+    shader = toon(t, (1.0, 1.0, 1.0, 1.0), size, smooth)
+    t.links.new(noise(t, Scale=3.0, Detail=2.0).outputs["Color"], shader.inputs["Color"])
+    return shader
+
+
+def toon_scene():
+    """Cel shading with the Toon BSDF (an rt lobe module) under a low sun: a Toon Diffuse of
+    noise colours under a Toon Glossy rim by Layer Weight's Fresnel (a mix per shading point
+    by a graph), a Toon Diffuse and a Diffuse BSDF mixed by a constant, and a Toon Diffuse of
+    a soft edge whose colour is noise, on a diffuse floor."""
+    scene = cycles.new_scene()
+    cycles.set_up(scene, 64, bounces=6)
+    cycles.uniform_world(scene, (0.1, 0.1, 0.12))
+    spheres = [
+        mix_material("cel", lambda t: layer_weight(t, 0.3, "Fresnel"), lambda t: noisy_toon(t, 0.45, 0.05),
+                     lambda t: toon(t, (1.0, 1.0, 1.0, 1.0), 0.15, 0.05, "GLOSSY")),
+        mix_material("half toon", 0.5, lambda t: toon(t, (1.0, 0.5, 0.1, 1.0), 0.5, 0.1),
+                     lambda t: new(t, "ShaderNodeBsdfDiffuse", {"Color": (0.1, 0.3, 0.8, 1.0)})),
+        shader_material("soft toon", lambda t: noisy_toon(t, 0.7, 0.3).outputs[0]),
+    ]
+    for i, material in enumerate(spheres):
+        bpy.ops.mesh.primitive_uv_sphere_add(radius=0.7, segments=48, ring_count=24,
+                                             location=(1.6 * (i - 1), 0.0, 0.7))
+        bpy.ops.object.shade_smooth()
+        bpy.context.active_object.data.materials.append(material)
+    bpy.ops.mesh.primitive_plane_add(size=8.0)
+    bpy.context.active_object.data.materials.append(cycles.diffuse("floor", (0.6, 0.6, 0.6)))
+    cycles.sun(scene, 3.0, (50.0, 0.0, 40.0), angle=math.radians(1.0))
+    cycles.camera(scene, (0.0, -5.5, 2.6), 72.0)
+    return scene
+
+
 def light_path_scene():
     """Light Path tricks: a lamp sphere that shows red to the camera but lights the world
     green (Is Camera Ray into a Mix), above a floor whose colour is bright only where a
@@ -1182,6 +1220,7 @@ SCENES = {
     "graph_normal_node": lambda: camera_scene_of("normal_node", NORMAL_NODE),
     "graph_tangent": tangent_scene,
     "graph_material_index": material_index_scene,
+    "graph_toon": toon_scene,
 }
 
 

@@ -107,6 +107,22 @@ SHEEN_BSDF = [
     {"Color": (0.8, 0.3, 0.6), "Roughness": 1.0},
 ]
 
+# Toon BSDFs (an rt lobe module): per sphere its Size, Smooth and Color.
+TOON_DIFFUSE = [
+    {"Size": 0.2, "Smooth": 0.0, "Color": (0.9, 0.9, 0.9)},
+    {"Size": 0.5, "Smooth": 0.0, "Color": (1.0, 0.5, 0.2)},
+    {"Size": 0.5, "Smooth": 0.2, "Color": (0.3, 0.7, 1.0)},
+    {"Size": 0.8, "Smooth": 0.1, "Color": (0.8, 0.8, 0.3)},
+    {"Size": 1.0, "Smooth": 0.5, "Color": (0.7, 0.3, 0.6)},
+]
+TOON_GLOSSY = [
+    {"Size": 0.05, "Smooth": 0.0, "Color": (0.9, 0.9, 0.9)},
+    {"Size": 0.1, "Smooth": 0.05, "Color": (1.0, 0.5, 0.2)},
+    {"Size": 0.2, "Smooth": 0.0, "Color": (0.3, 0.7, 1.0)},
+    {"Size": 0.3, "Smooth": 0.3, "Color": (0.8, 0.8, 0.3)},
+    {"Size": 0.6, "Smooth": 0.1, "Color": (0.7, 0.3, 0.6)},
+]
+
 # Per row: the inputs every sphere shares, and per sphere the inputs that change.
 ROWS = {
     "dielectric_roughness": (DIELECTRIC, [{"Roughness": r} for r in STEPS]),
@@ -240,6 +256,10 @@ ROWS = {
     ),
     "sheen_bsdf": ({}, SHEEN_BSDF),
     "sheen_bsdf_sun": ({}, SHEEN_BSDF),
+    "toon_diffuse": ({}, TOON_DIFFUSE),
+    "toon_diffuse_sun": ({}, TOON_DIFFUSE),
+    "toon_glossy": ({}, TOON_GLOSSY),
+    "toon_glossy_sun": ({}, TOON_GLOSSY),
 }
 
 # Rows of another shader node than the Principled BSDF: its type and its settings.
@@ -249,6 +269,10 @@ SHADER_NODES = {
     "subsurface_node": ("ShaderNodeSubsurfaceScattering", {}),
     "sheen_bsdf": ("ShaderNodeBsdfSheen", {}),
     "sheen_bsdf_sun": ("ShaderNodeBsdfSheen", {}),
+    "toon_diffuse": ("ShaderNodeBsdfToon", {"component": "DIFFUSE"}),
+    "toon_diffuse_sun": ("ShaderNodeBsdfToon", {"component": "DIFFUSE"}),
+    "toon_glossy": ("ShaderNodeBsdfToon", {"component": "GLOSSY"}),
+    "toon_glossy_sun": ("ShaderNodeBsdfToon", {"component": "GLOSSY"}),
 }
 
 # Rows whose Principled BSDF's Tangent input is linked to a Tangent node: "UV_MAP" or a radial axis.
@@ -283,6 +307,8 @@ SUNLIT = {
     "sheen_weight_sun": SHEEN_SUN,
     "sheen_roughness_sun": SHEEN_SUN,
     "sheen_bsdf_sun": SHEEN_SUN,
+    "toon_diffuse_sun": SIDE_SUN,
+    "toon_glossy_sun": FRONT_SUN,
     "anisotropy_sun": FRONT_SUN,
     "anisotropy_rotation_sun": FRONT_SUN,
     "anisotropy_dielectric_sun": FRONT_SUN,

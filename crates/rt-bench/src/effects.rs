@@ -108,6 +108,13 @@ pub fn variants(own: FeatureSet, rough: RoughTransmission) -> Vec<(String, Featu
         forced.complete();
         v.push((format!("+{}", flag.words()), forced));
     }
+    // Each lobe module the scene's materials do not use: its code behind its flag, untaken.
+    for (i, lobe) in rt::scene::lobe::LOBES.iter().enumerate() {
+        let bit = rt::scene::lobe::bit(i);
+        if own.lobe_modules & bit == 0 {
+            v.push((format!("+{} lobe", lobe.name), FeatureSet { lobe_modules: own.lobe_modules | bit, ..own }));
+        }
+    }
     v
 }
 
@@ -196,5 +203,11 @@ mod tests {
             assert!(variants(with, RoughTransmission::Ggx).iter().all(|(n, _)| *n != name), "{name}");
         }
         assert!(FLAGS.iter().filter(|flag| flag.priced()).count() > 20);
+        // And every lobe module: forced where no material uses it, not where one does.
+        let plain = FeatureSet { lobe_modules: 0, ..all };
+        let forced: Vec<_> =
+            variants(plain, RoughTransmission::Ggx).into_iter().filter(|(n, _)| n == "+toon lobe").collect();
+        assert!(matches!(&forced[..], [(_, f)] if f.lobe_modules == 1), "{forced:?}");
+        assert!(variants(all, RoughTransmission::Ggx).iter().all(|(n, _)| n != "+toon lobe"));
     }
 }

@@ -4,7 +4,7 @@
 use super::plan::AssetPrints;
 use rt::asset::AssetFiles;
 use rt::bvh::{asset_paths, cache};
-use rt::gpu::shader::ALL_PARTS;
+use rt::gpu::shader::built_in_files;
 use rt::scene::Scene;
 use std::path::{Path, PathBuf};
 
@@ -33,7 +33,7 @@ pub fn watched_files(scene_path: &Path, scene: &Scene, shaders: Option<&Path>) -
     }
     files.extend(scene.instance_sets.iter().map(|s| s.file.clone()));
     if let Some(dir) = shaders {
-        files.extend(ALL_PARTS.iter().map(|(name, _)| dir.join(name)));
+        files.extend(built_in_files().map(|(name, _)| dir.join(name)));
         files.push(dir.join(DISPLAY_SHADER));
     }
     files

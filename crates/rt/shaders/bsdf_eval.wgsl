@@ -18,6 +18,9 @@
 //#if terminator_offset
 //#include "terminator_offset.wgsl"
 //#endif
+//#if lobe_modules
+//#include "lobe_modules.wgsl"
+//#endif
 
 
 // f·|cos θi| of one reflection lobe, before folding.
@@ -76,6 +79,11 @@ fn reflection_lobe_pdf(ctx: ShadingContext, lobe: u32, wi: vec3f) -> f32 {
 
 // f·|cos θi| of all lobes that have a density, at wi.
 fn bsdf_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
+    //#if lobe_modules
+    if ctx.m.lobe_module != 0u {
+        return module_lobe_eval(ctx, wi);
+    }
+    //#endif
     var f = vec3f(0.0);
     if reaches_reflection_lobes(ctx, wi) {
         let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;
@@ -107,6 +115,11 @@ fn bsdf_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
 
 // Density with which `bsdf_sample` produces wi (delta lobes aside).
 fn bsdf_pdf(ctx: ShadingContext, wi: vec3f) -> f32 {
+    //#if lobe_modules
+    if ctx.m.lobe_module != 0u {
+        return module_lobe_pdf(ctx, wi);
+    }
+    //#endif
     var pdf = 0.0;
     if reaches_reflection_lobes(ctx, wi) {
         let mirrored = wi - 2.0 * dot(wi, ctx.n_geometric) * ctx.n_geometric;

@@ -88,6 +88,14 @@ fn pick_lobe(ctx: ShadingContext, u: ptr<function, f32>) -> u32 {
 }
 
 fn bsdf_sample(ctx: ShadingContext, rng: ptr<function, Rng>) -> BsdfSample {
+    //#if lobe_modules
+    if ctx.m.lobe_module != 0u {
+        let u = vec2f(rng_next(rng), rng_next(rng));
+        var s = module_lobe_sample(ctx, u);
+        s.direction = ctx.basis * s.direction;
+        return s;
+    }
+    //#endif
     //#if sheen
     if ctx.sheen_probability > 0.0 && rng_next(rng) < ctx.sheen_probability {
         var s = sample_smooth_part(ctx, LOBE_SHEEN, rng);

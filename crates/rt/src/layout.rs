@@ -437,6 +437,11 @@ gpu_struct! {
         pub ior_minimum: f32,
         pub coat_ior_minimum: f32,
         pub thin_film_ior_minimum: f32,
+        /// A lobe module's parameters (`scene::lobe`; read by the accessors its declaration
+        /// makes) and its number, 1 + its place among `LOBES` (0: none, the lobes above).
+        pub lobe_params: [f32; 4],
+        pub lobe_module: u32,
+        pub _pad_lobe: [u32; 3],
     }
 }
 
@@ -736,6 +741,9 @@ impl From<&crate::scene::Material> for GpuMaterial {
             ior_minimum: m.textures.ior_minimum[0],
             coat_ior_minimum: m.textures.ior_minimum[1],
             thin_film_ior_minimum: m.textures.ior_minimum[2],
+            lobe_params: m.lobe.map_or([0.0; 4], |l| l.params),
+            lobe_module: crate::scene::lobe::ModuleLobe::number(m.lobe.as_ref()),
+            _pad_lobe: [0; 3],
         }
     }
 }

@@ -33,6 +33,7 @@
 //! | `extras.rt_bump_map_correction` (true)                    | `bump_map_correction` (Blender's material setting; glTF has none) |
 //! | `KHR_materials_volume` colour `c` (1), distance `d` (∞)   | `absorption = -ln(c) / d`; 0 if `d = ∞` |
 //! | `extras.rt_volume_emission` `[r, g, b]` (0)               | `volume_emission`              |
+//! | `extras.rt_lobe` `{"module": NAME, PARAM: value, …}` (absent) | `lobe`: a lobe module's BSDF, weighted by the base colour (`scene::lobe`) |
 //!
 //! The specular layer is a dielectric coating of the diffuse part (Cycles' Principled
 //! specular layer; glTF's default F0 of 0.04 is level 0.5 at index 1.5).
@@ -49,6 +50,7 @@ use super::gltf_texture_transform::{of_info, of_normal};
 use super::gltf_textures::{ColorSpace, TextureLoader};
 use super::material_extras as extras;
 use super::{AssetError, MeshData};
+use crate::scene::lobe::ModuleLobe;
 use crate::scene::{Material, MaterialTextures, Tangent, slots};
 use gltf::json::Value;
 use gltf::material::AlphaMode;
@@ -276,6 +278,7 @@ fn map_material_with(m: &gltf::Material, metallic: f32, transmission: f32) -> Re
         },
         mix_material: extra::<u32>(m.extras(), extras::MIX_MATERIAL)?,
         holdout: extra::<f32>(m.extras(), extras::HOLDOUT)?.unwrap_or(0.0).clamp(0.0, 1.0),
+        lobe: extra::<ModuleLobe>(m.extras(), extras::LOBE)?,
         ..Material::default()
     };
     Ok(match extra::<[f32; 3]>(m.extras(), extras::GLOSSY_COLOR)? {
@@ -479,6 +482,7 @@ mod tests {
                 textures: Default::default(),
                 node_program: Vec::new(),
                 mix_material: None,
+                lobe: None,
             }
         );
     }

@@ -56,6 +56,7 @@ use crate::layout::{
     GpuTriangle, GpuTriangleAttribute, GpuTriangleShading, GpuTriangleTangents, GpuTriangleUvs, GpuWideNode,
 };
 use crate::scene::Material;
+use crate::scene::lobe::LOBES;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use std::io::Read;
@@ -64,7 +65,7 @@ use std::path::Path;
 use std::time::Duration;
 
 pub const MAGIC: [u8; 8] = *b"RTBVH\0\0\0";
-pub const FORMAT_VERSION: u32 = 15;
+pub const FORMAT_VERSION: u32 = 16;
 const ALIGN: u64 = 16;
 
 #[repr(C)]
@@ -450,6 +451,9 @@ fn check_material_links(materials: &[CachedMaterial], textures: usize) -> Result
     }
     if let Some(i) = materials.iter().position(|m| !m.tangent_known()) {
         return Err(format!("material {i} has an unknown tangent kind"));
+    }
+    if let Some(i) = materials.iter().position(|m| !m.lobe_known()) {
+        return Err(format!("material {i} names lobe module {} of {}", materials[i].lobe_module, LOBES.len()));
     }
     Ok(())
 }

@@ -1,6 +1,7 @@
 //! Materials as a cache file stores them: every field of [`Material`], as
 //! written, so that loading a cache gives exactly what importing the source gives.
 
+use crate::scene::lobe::{MAX_PARAMS, ModuleLobe};
 use crate::scene::{LAYER_COUNT, LayerTextures, Material, MaterialTextures, Tangent};
 
 /// A texture slot left empty.
@@ -79,6 +80,10 @@ pub struct CachedMaterial {
     pub mix_material: u32,
     /// `Material::holdout` (version 13 on).
     pub holdout: f32,
+    /// `Material::lobe`: its module's number (`ModuleLobe::number`, 0: none) and its
+    /// parameters (version 16 on).
+    pub lobe_module: u32,
+    pub lobe_params: [f32; MAX_PARAMS],
 }
 
 const TANGENTS: [Tangent; 4] = [Tangent::RadialZ, Tangent::RadialX, Tangent::RadialY, Tangent::Uv];
@@ -133,6 +138,8 @@ impl From<&Material> for CachedMaterial {
             ior_minimum: m.textures.ior_minimum,
             mix_material: slot(m.mix_material),
             holdout: m.holdout,
+            lobe_module: ModuleLobe::number(m.lobe.as_ref()),
+            lobe_params: m.lobe.map_or([0.0; MAX_PARAMS], |l| l.params),
         }
     }
 }
@@ -190,6 +197,7 @@ impl From<&CachedMaterial> for Material {
             node_program: Vec::new(),
             mix_material: unslot(m.mix_material),
             holdout: m.holdout,
+            lobe: ModuleLobe::from_number(m.lobe_module, m.lobe_params),
         }
     }
 }
@@ -206,6 +214,7 @@ impl CachedMaterial {
             self.sheen_tint,
             self.ior_minimum,
         ];
+        let lobe = self.lobe_params;
         let scalars = [
             self.diffuse,
             self.specular,
@@ -234,12 +243,17 @@ impl CachedMaterial {
             self.normal_scale,
             self.coat_normal_scale,
         ];
-        vectors.into_iter().flatten().chain(scalars).all(f32::is_finite)
+        vectors.into_iter().flatten().chain(scalars).chain(lobe).all(f32::is_finite)
     }
 
     /// Whether `tangent` names a [`Tangent`].
     pub fn tangent_known(&self) -> bool {
         (self.tangent as usize) < TANGENTS.len()
+    }
+
+    /// Whether `lobe_module` names one of this build's lobe modules, or none.
+    pub fn lobe_known(&self) -> bool {
+        self.lobe_module == 0 || ModuleLobe::from_number(self.lobe_module, self.lobe_params).is_some()
     }
 
     /// The texture slots that are filled.

@@ -36,7 +36,7 @@ macro_rules! shader {
     };
 }
 
-type Part = (&'static str, &'static str);
+pub type Part = (&'static str, &'static str);
 
 /// Every shader file compiled into the binary, by name (in no particular order: the
 /// includes decide it): the built-in copies the assembler reads, and with `--dev` the
@@ -119,6 +119,11 @@ pub const ALL_PARTS: &[Part] = &[
     shader!("wide_bvh.wgsl"),
 ];
 
+/// Every built-in file: [`ALL_PARTS`] and the lobe modules' own (`scene::lobe`).
+pub fn built_in_files() -> impl Iterator<Item = Part> {
+    ALL_PARTS.iter().copied().chain(crate::scene::lobe::LOBES.iter().map(|l| l.wgsl))
+}
+
 /// Which entry points a module carries.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Program {
@@ -142,6 +147,10 @@ impl Program {
 /// shaders share with the host.
 const SHARED_CONSTANTS: &str = "shared_constants.wgsl";
 
+/// The file generated from [`crate::scene::lobe`]'s registry, in no folder: each lobe
+/// module's file behind its flag, its parameters' accessors and the calls of its functions.
+const LOBE_MODULES: &str = "lobe_modules.wgsl";
+
 /// The ending of the files generated from [`crate::layout`]'s GPU structs, in no folder:
 /// `Frame.struct.wgsl` declares the struct `Frame`.
 const STRUCT_FILE: &str = ".struct.wgsl";
@@ -154,6 +163,9 @@ const BINDINGS_FILE: &str = ".bindings.wgsl";
 fn generated(name: &str) -> Option<Result<String, String>> {
     if name == SHARED_CONSTANTS {
         return Some(Ok(crate::shared_constants::wgsl()));
+    }
+    if name == LOBE_MODULES {
+        return Some(Ok(crate::scene::lobe::wgsl()));
     }
     if let Some(file) = name.strip_suffix(BINDINGS_FILE) {
         return Some(
@@ -188,8 +200,7 @@ impl ShaderFiles {
             return text;
         }
         match self {
-            ShaderFiles::BuiltIn => ALL_PARTS
-                .iter()
+            ShaderFiles::BuiltIn => built_in_files()
                 .find(|(part, _)| *part == name)
                 .map(|(_, text)| text.to_string())
                 .ok_or_else(|| format!("shaders/{name}: no such file among the built-in shaders")),

@@ -1,6 +1,7 @@
 //! Feature analysis: which effects a scene needs, so that the GPU runs only their code.
 
 use super::feature_flags::{self, Flag};
+use super::lobe;
 use super::{
     Light, LightSampler, LightShape, Material, Microfacet, Projection, RoughTransmission, Sampling, Scene, Sky,
 };
@@ -100,6 +101,9 @@ feature_flags::feature_set! {
         /// Names the node programs' shapes whose code the pipeline specialises (the scene
         /// geometry's `node_code`); 0: the node programs are interpreted.
         pub node_code: u64,
+        /// The lobe modules some material uses (`lobe::bit`), each one's code behind its
+        /// flag `lobe_NAME`.
+        pub lobe_modules: u32,
     }
     flags {
         triangles: Effect;
@@ -246,6 +250,7 @@ impl FeatureSet {
                 || materials_in_use.iter().any(|m| !m.node_program.is_empty()),
             node_graphs: materials_in_use.iter().any(|m| !m.node_program.is_empty()),
             node_code: geometry.node_code,
+            lobe_modules: materials_in_use.iter().filter_map(|m| m.lobe).fold(0, |bits, l| bits | lobe::bit(l.module)),
             alpha_mask: materials_in_use.iter().any(|m| m.textures.has_alpha()),
             alpha_blend: materials_in_use.iter().any(|m| m.textures.alpha_blend),
             normal_maps: materials_in_use.iter().any(|m| m.textures.has_normal_map()) || geometry.graph_normals,
@@ -292,7 +297,8 @@ impl FeatureSet {
 
     /// Every effect on: the pipeline a scene would run without specialisation.
     pub fn all(sky: SkyFeature, sampling: Sampling, rough: RoughTransmission) -> Self {
-        let mut set = Self::with_flags_off(sky, Transmission::Rough(rough), LampKinds::ALL, sampling, 0);
+        let mut set =
+            Self::with_flags_off(sky, Transmission::Rough(rough), LampKinds::ALL, sampling, 0, lobe::all_bits());
         for flag in FLAGS.iter().filter(|f| f.in_all_features()) {
             (flag.set)(&mut set, true);
         }
@@ -383,7 +389,9 @@ impl FeatureSet {
             // what Object Info nodes read.
             "object_settings" => self.smooth_normals || self.terminator_offset || self.holdout || self.node_graphs,
             "microfacet_tables" => self.multiscatter || self.coating || self.coat || self.sheen || self.thin_film,
-            _ => return None,
+            // Lobe modules (`scene::lobe`), any and each.
+            "lobe_modules" => self.lobe_modules != 0,
+            _ => return lobe::flag_index(name).map(|i| self.lobe_modules & lobe::bit(i) != 0),
         })
     }
 }
@@ -418,6 +426,13 @@ impl fmt::Display for FeatureSet {
         }
         parts.push(format!("sky={}", format!("{:?}", self.sky).to_lowercase()));
         parts.push(format!("sampling={}", format!("{:?}", self.sampling).to_lowercase()));
+        let lobes: Vec<&str> = (lobe::LOBES.iter().enumerate())
+            .filter(|(i, _)| self.lobe_modules & lobe::bit(*i) != 0)
+            .map(|(_, l)| l.name)
+            .collect();
+        if !lobes.is_empty() {
+            parts.push(format!("lobes={}", lobes.join(",")));
+        }
         f.write_str(&parts.join(" "))
     }
 }

@@ -35,7 +35,14 @@ fn the_coat_normal_is_on_where_the_coats_normal_differs() {
 #[test]
 fn every_need_can_be_turned_on() {
     let none = || {
-        FeatureSet::with_flags_off(SkyFeature::Black, Transmission::None, LampKinds::default(), Sampling::Resampled, 0)
+        FeatureSet::with_flags_off(
+            SkyFeature::Black,
+            Transmission::None,
+            LampKinds::default(),
+            Sampling::Resampled,
+            0,
+            0,
+        )
     };
     for flag in FLAGS {
         for need in flag.needs {

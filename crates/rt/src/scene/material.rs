@@ -1,5 +1,6 @@
 //! The rt material: weights of the lobes plus the optical constants they need.
 
+use super::lobe::ModuleLobe;
 use super::material_textures::MaterialTextures;
 use serde::Deserialize;
 
@@ -81,6 +82,9 @@ pub struct Material {
     /// once placed). Each shading point is this material or that one, by the factor.
     #[serde(skip)]
     pub mix_material: Option<u32>,
+    /// A lobe module's BSDF in place of the lobes above (`scene::lobe`: Blender's Toon BSDF,
+    /// …), weighted by `base_color`; emission, alpha and holdout stay the material's.
+    pub lobe: Option<ModuleLobe>,
 }
 
 /// Which tangent the anisotropic lobes follow, in Blender's axes (rt's Y is Blender's Z).
@@ -132,6 +136,7 @@ impl Default for Material {
             textures: MaterialTextures::default(),
             node_program: Vec::new(),
             mix_material: None,
+            lobe: None,
         }
     }
 }

@@ -8,6 +8,7 @@ mod environment;
 pub mod feature_flags;
 mod features;
 mod light;
+pub mod lobe;
 mod material;
 mod material_textures;
 mod motion;

@@ -72,7 +72,21 @@ fn factors() -> Vec<Factor> {
         lamp!(sun),
     ];
     factors.extend(FLAGS.iter().map(flag));
+    factors.extend((0..crate::scene::lobe::LOBES.len()).map(lobe_module));
     factors
+}
+
+/// A lobe module (`scene::lobe`) as a factor of two levels: absent or used.
+fn lobe_module(index: usize) -> Factor {
+    let bit = crate::scene::lobe::bit(index);
+    let level = |name, on: bool| Level {
+        name,
+        set: Box::new(move |f: &mut FeatureSet| {
+            f.lobe_modules = if on { f.lobe_modules | bit } else { f.lobe_modules & !bit }
+        }),
+        holds: Box::new(move |f: &FeatureSet| (f.lobe_modules & bit != 0) == on),
+    };
+    Factor { name: crate::scene::lobe::LOBES[index].name, levels: vec![level("off", false), level("on", true)] }
 }
 
 /// What a scene can ask for together: every flag with what it needs, and some geometry.

@@ -26,7 +26,7 @@ fn feature_sets() -> Vec<FeatureSet> {
         let lamps =
             LampKinds { point: bits % 3 == 1, spot: bits % 5 == 2, area: bits % 7 >= 5, sun: (bits / 8) % 3 == 1 };
         let sampling = if on(0) { Sampling::Nee } else { Sampling::Resampled };
-        let mut set = FeatureSet::with_flags_off(sky, transmission, lamps, sampling, 0);
+        let mut set = FeatureSet::with_flags_off(sky, transmission, lamps, sampling, 0, 0);
         for (i, flag) in FLAGS.iter().enumerate() {
             let hash =
                 (bits.wrapping_mul(0x9e37_79b9) ^ (i as u32).wrapping_mul(0x85eb_ca6b)).wrapping_mul(0xc2b2_ae35);
@@ -46,7 +46,7 @@ fn all_on() -> FeatureSet {
 /// Triangles and nothing else.
 fn plain() -> FeatureSet {
     let none =
-        FeatureSet::with_flags_off(SkyFeature::Black, Transmission::None, LampKinds::default(), Sampling::Nee, 0);
+        FeatureSet::with_flags_off(SkyFeature::Black, Transmission::None, LampKinds::default(), Sampling::Nee, 0, 0);
     FeatureSet { triangles: true, ..none }
 }
 
@@ -134,7 +134,7 @@ fn atmosphere_tables_program_is_valid_wgsl() {
 #[test]
 fn every_directive_names_a_known_flag() {
     let any = all_on();
-    for (name, text) in ALL_PARTS {
+    for (name, text) in built_in_files() {
         kept_lines(name, text, &|flag| any.flag(flag)).unwrap_or_else(|e| panic!("{e}"));
     }
 }
@@ -172,7 +172,7 @@ fn every_shader_file_is_built_in_and_used_by_a_program() {
         .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
         .filter(|name| name != "display.wgsl")
         .collect();
-    let built_in: BTreeSet<String> = ALL_PARTS.iter().map(|(name, _)| name.to_string()).collect();
+    let built_in: BTreeSet<String> = built_in_files().map(|(name, _)| name.to_string()).collect();
     assert_eq!(on_disk, built_in, "the files of shaders/ and the built-in ones differ");
     let mut used = BTreeSet::new();
     for sky in [SkyFeature::Uniform, SkyFeature::Atmosphere, SkyFeature::Environment, SkyFeature::Graph] {
@@ -201,11 +201,11 @@ fn no_private_variable_is_shared_between_files() {
     let words = |text: &str| -> HashSet<String> {
         text.split(|c: char| !(c.is_alphanumeric() || c == '_')).map(str::to_owned).collect()
     };
-    for (name, text) in ALL_PARTS {
+    for (name, text) in built_in_files() {
         for line in text.lines() {
             let Some(rest) = line.trim().strip_prefix("var<private> ") else { continue };
             let variable: String = rest.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
-            for (other, other_text) in ALL_PARTS.iter().filter(|(other, _)| other != name) {
+            for (other, other_text) in built_in_files().filter(|(other, _)| *other != name) {
                 assert!(
                     !words(other_text).contains(&variable),
                     "{other} uses `{variable}`, a private variable of {name}"
@@ -311,10 +311,9 @@ fn shaders_on_disk_assemble_like_the_built_in_ones_and_errors_name_the_file() {
     let missing = ShaderFiles::Dir(PathBuf::from("/nonexistent/shaders"));
     let error = assemble_from(&missing, Program::Trace, &all).expect_err("no files");
     assert!(error.starts_with("/nonexistent/shaders/trace_kernel.wgsl: cannot read"), "{error}");
-    let copies: Vec<(&str, String)> = ALL_PARTS
-        .iter()
+    let copies: Vec<(&str, String)> = built_in_files()
         .map(|(name, text)| {
-            (*name, if *name == "sky.wgsl" { format!("{text}\nfn oops( {{\n") } else { text.to_string() })
+            (name, if name == "sky.wgsl" { format!("{text}\nfn oops( {{\n") } else { text.to_string() })
         })
         .collect();
     let copies: Vec<(&str, &str)> = copies.iter().map(|(name, text)| (*name, text.as_str())).collect();

@@ -381,3 +381,20 @@ fn a_live_session_keeps_only_the_node_code_it_renders() {
 fn toon_shading_matches_cycles() {
     check_scene("graph_toon", 6);
 }
+
+/// Shaders inside node groups: a metal group whose colour a noise outside drives through its
+/// input, a Diffuse and a Glossy mixed by Layer Weight inside a group, a group inside a group
+/// (checker colours made inside, the roughness passed through both), a floor of a group left at
+/// its input's default.
+#[test]
+fn shaders_inside_node_groups_match_cycles() {
+    check_scene("graph_node_groups", 6);
+}
+
+/// Object Info's Object Index: Blender's Pass Index of twelve tiles sharing one material (as a
+/// value and, by its parity, through a ramp), and of a collection's tile instanced four times
+/// (the instanced object's, as Cycles reads it, from the instance file).
+#[test]
+fn object_index_matches_cycles() {
+    check_channels("graph_object_index", 1e-3);
+}

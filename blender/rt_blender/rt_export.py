@@ -37,7 +37,7 @@ import numpy as np
 from bpy.app.handlers import persistent
 from mathutils import Matrix, Vector
 
-from . import rt_attributes, rt_shader_graphs, rt_shader_nodes
+from . import rt_attributes, rt_node_groups, rt_shader_graphs, rt_shader_nodes
 from .rt_hash import instance_random, lookup3_final
 TEXTURE_SOCKETS = rt_shader_nodes.TEXTURE_SOCKETS
 linked_node, rgb, socket_value = rt_shader_nodes.linked_node, rt_shader_nodes.rgb, rt_shader_nodes.socket_value
@@ -46,7 +46,7 @@ owner_name = rt_shader_nodes.owner_name
 RTMESH_MAGIC = b"RTMESH\0\0"
 RTMESH_VERSION = 4
 RTINST_MAGIC = b"RTINST\0\0"
-RTINST_VERSION = 4
+RTINST_VERSION = 5
 RTINST_OWN_MATERIALS = 0xFFFFFFFF
 RTINST_MATERIAL_SET = 0x80000000
 
@@ -542,6 +542,10 @@ class Baker:
                     self.bake(material, surface.inputs[name])
 
     def bake(self, material, socket):
+        if rt_node_groups.in_group(socket):
+            # A bake links the socket's source to an Emission in the material's own tree.
+            log(f"{material.name}: {socket.name} cannot be baked inside node group {socket.groups[-1].name!r}")
+            return None
         key = (material.name, socket.name)
         if key not in self.baked and self.obj is not None:
             self.baked[key] = self._bake(material, socket)
@@ -1418,7 +1422,7 @@ class InstancedMesh:
         self.rows = None  # their rt matrix rows, an (n, 12) array, once invertible ones are kept
         self.codes = []  # each instance's .rtinst material
         self.terminators = []  # each instance's shadow_terminator(object)
-        self.infos = []  # each instance's Object Info: (random, r, g, b, a)
+        self.infos = []  # each instance's Object Info: (random, r, g, b, a, object index)
 
     def material(self, m):
         key = m.name if m else ""
@@ -1549,7 +1553,8 @@ def add_instances(export, depsgraph):
         entry.codes.append(code)
         # Cycles takes an instance's holdout from what instances it.
         entry.terminators.append(object_settings(inst.parent or obj, depsgraph.view_layer, obj))
-        entry.infos.append((instance_random(inst.random_id),) + tuple(float(c) for c in obj.color))
+        entry.infos.append((instance_random(inst.random_id),) + tuple(float(c) for c in obj.color)
+                           + (int(obj.pass_index),))
     for entry in meshes.values():
         if entry is None or not entry.matrices:
             continue
@@ -1597,16 +1602,18 @@ class Placements:
 
 
 def rtinst_bytes(placements):
-    """The instance file (version 4): magic, version, instance, slot and set counts, no
+    """The instance file (version 5): magic, version, instance, slot and set counts, no
     motion keys and each instance's Object Info, the material sets, (12 f32, u32) per
-    instance, then (random, r, g, b, a) per instance."""
+    instance, then (random, r, g, b, a as f32, Object Index as u32) per instance."""
     records = np.zeros(len(placements), dtype=[("rows", "<f4", 12), ("material", "<u4")])
     records["rows"] = np.concatenate(placements.rows).astype(np.float32)
     records["material"] = np.asarray(placements.codes, dtype=np.uint32)
     slots = placements.slots if placements.sets else 0
     header = struct.pack("<6I", RTINST_VERSION, len(placements), slots, len(placements.sets), 0, 1)
     sets = np.asarray(placements.sets, dtype="<u4").tobytes()
-    infos = np.asarray(placements.infos, dtype="<f4").reshape(len(placements), 5)
+    infos = np.zeros(len(placements), dtype=[("info", "<f4", 5), ("index", "<u4")])
+    infos["info"] = np.asarray([i[:5] for i in placements.infos], dtype=np.float32).reshape(len(placements), 5)
+    infos["index"] = np.asarray([i[5] for i in placements.infos], dtype=np.uint32)
     return RTINST_MAGIC + header + sets + records.tobytes() + infos.tobytes()
 
 
@@ -1667,11 +1674,12 @@ def object_random(name):
 
 
 def object_info_toml(obj):
-    """The scene-file keys of what Object Info reads of `obj`: its Random, and its Object
-    Color when not Blender's white."""
+    """The scene-file keys of what Object Info reads of `obj`: its Random, its Object Color
+    when not Blender's white and its Object Index (Pass Index) when not 0."""
     color = [float(c) for c in obj.color]
     text = f"random = {fmt(object_random(obj.name))}\n"
-    return text + (f"object_color = {vec(color)}\n" if color != [1.0, 1.0, 1.0, 1.0] else "")
+    text += f"object_color = {vec(color)}\n" if color != [1.0, 1.0, 1.0, 1.0] else ""
+    return text + (f"object_index = {int(obj.pass_index)}\n" if obj.pass_index else "")
 
 
 def shadow_terminator_toml(terminator):

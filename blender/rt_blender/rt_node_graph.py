@@ -10,6 +10,8 @@ rt_export's own path (followed into texture slots, or baked). Anything else stay
 that path too, which warns and names the node.
 """
 
+from .rt_node_groups import unwrap
+
 FORMAT_VERSION = 1
 # The attributes the exporter makes of Geometry's Random Per Island, Parametric and
 # Pointiness (rt_attributes), and the output of the Attribute node each is read through.
@@ -60,7 +62,7 @@ EVALUATED = {
     "TEX_WAVE": ("Color", "Fac"),
     "TEX_MAGIC": ("Color", "Fac"),
     "TEX_BRICK": ("Color", "Fac"),
-    "OBJECT_INFO": ("Location", "Color", "Alpha", "Random"),
+    "OBJECT_INFO": ("Location", "Color", "Alpha", "Random", "Object Index"),
     "CAMERA": ("View Vector", "View Z Depth", "View Distance"),
     "VECT_TRANSFORM": ("Vector",),
     "BLACKBODY": ("Color",),
@@ -234,7 +236,9 @@ class GraphWriter:
         return self.index[key]
 
     def input(self, socket, groups, to_type=None):
-        """What feeds input `socket`: its value, a link, or None (an unlinked hidden vector)."""
+        """What feeds input `socket`: its value, a link, or None (an unlinked hidden vector).
+        A socket of a node inside a group (rt_node_groups) carries the groups around it."""
+        socket, groups = unwrap(socket, groups)
         to_type = to_type or socket_type(socket)
         links = [link for link in socket.links if not link.is_muted]
         if not links:

@@ -8,6 +8,7 @@ import json
 import os
 
 from .rt_node_graph import FORMAT_VERSION, GraphWriter, Unevaluated
+from .rt_node_groups import linked_node
 
 # rt's lobe modules (crates/rt/src/scene/lobe), by the Blender node type each renders: the
 # registry's table, which a test of rt keeps equal to it.
@@ -75,10 +76,10 @@ def evaluated(socket):
 
 
 def shader_of(socket):
-    """The shader node linked to a shader socket, through reroutes."""
-    node = socket.links[0].from_node if socket.is_linked else None
+    """The shader node linked to a shader socket, through reroutes and node groups."""
+    node = linked_node(socket)
     while node is not None and node.type == "REROUTE":
-        node = node.inputs[0].links[0].from_node if node.inputs[0].is_linked else None
+        node = linked_node(node.inputs[0])
     return node
 
 

@@ -26,6 +26,9 @@ that names the material and the node). What each node becomes:
   Toon BSDF, …       a lobe module of rt (rt_lobes.json: crates/rt/src/scene/lobe), its
                      colour the base colour, its inputs and settings its parameters
 
+A node group is followed in: the shader its output gives is read as above, its inputs
+taking the values and links of the group node's (rt_node_groups).
+
 Anything else is a warning naming the material and the node; the material then keeps
 its viewport colour (inside a Mix or Add Shader, the node is black, as an empty input is).
 """
@@ -34,7 +37,7 @@ import sys
 
 import numpy as np
 
-from . import rt_shader_graphs
+from . import rt_node_groups, rt_shader_graphs
 
 # Inputs of a Principled BSDF that rt_export.py follows into textures: the base ones and
 # the layered lobes' (LAYER_SOCKETS).
@@ -65,8 +68,8 @@ def owner_name(node):
     return tree.name
 
 
-def linked_node(socket):
-    return socket.links[0].from_node if socket.is_linked else None
+# Through node groups: a node inside one is a GroupNode (rt_node_groups), read as any node.
+linked_node = rt_node_groups.linked_node
 
 
 # The Principled BSDF's inputs that Blender 4.0 renamed, under their 3.x names (rt

@@ -889,6 +889,52 @@ def material_index_scene():
     return scene
 
 
+def object_index_material():
+    """One material for every tile: its Object Index × 0.03, through a ramp on the odd ones
+    (by the index's parity, read in the graph)."""
+    def show(t):
+        scaled = math_node(t, "MULTIPLY", object_info(t, "Object Index"), 0.03)
+        odd = math_node(t, "FLOORED_MODULO", object_info(t, "Object Index"), 2.0)
+        mix = new(t, "ShaderNodeMix", data_type="RGBA")
+        t.links.new(odd, mix.inputs["Factor"])
+        t.links.new(scaled, mix.inputs[6])
+        t.links.new(ramp(t, scaled, "LINEAR", STOPS), mix.inputs[7])
+        return mix.outputs[2]
+    return emission_material("object_index", show)
+
+
+def object_index_scene():
+    """Object Info's Object Index (Pass Index): twelve tiles of indices 0 to 33 sharing one
+    material, and four instances of a collection whose tile has index 20 (Cycles reads the
+    instanced object's)."""
+    scene = dark_grid()
+    material = object_index_material()
+    for i in range(12):
+        obj = add_tile(i, "plane")
+        obj.name = f"tile_{i}"
+        obj.pass_index = 3 * i
+        obj.data.materials.append(material)
+    stamp = bpy.data.collections.new("stamp")
+    scene.collection.children.link(stamp)
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(0.0, 0.0, 0.0))
+    tile = bpy.context.active_object
+    for collection in tile.users_collection:
+        collection.objects.unlink(tile)
+    stamp.objects.link(tile)
+    tile.pass_index = 20
+    tile.data.materials.append(material)
+    bpy.context.view_layer.layer_collection.children["stamp"].exclude = True
+    for i in range(12, 16):
+        x = (i % GRID - (GRID - 1) / 2) * PITCH
+        y = ((GRID - 1) / 2 - i // GRID) * PITCH
+        empty = bpy.data.objects.new(f"stamp_{i}", None)
+        empty.instance_type = "COLLECTION"
+        empty.instance_collection = stamp
+        empty.location = (x, y, 0.0)
+        scene.collection.objects.link(empty)
+    return scene
+
+
 def object_info_scene():
     """Object Info: Random of differently named tiles (plain and through a ramp), their
     Object Colors and Alpha, and their Locations."""
@@ -1144,6 +1190,99 @@ def toon_scene():
     return scene
 
 
+def node_group(name, inputs, build):
+    """A shader node group of inputs `inputs` ((name, socket type, default)) and one Shader
+    output, which `build(tree, group_input)` gives."""
+    group = bpy.data.node_groups.new(name, "ShaderNodeTree")
+    for key, kind, default in inputs:
+        socket = group.interface.new_socket(key, in_out="INPUT", socket_type=kind)
+        socket.default_value = default
+    group.interface.new_socket("Shader", in_out="OUTPUT", socket_type="NodeSocketShader")
+    group_input = group.nodes.new("NodeGroupInput")
+    group_output = group.nodes.new("NodeGroupOutput")
+    group.links.new(build(group, group_input), group_output.inputs["Shader"])
+    return group
+
+
+def grouped(t, group, **values):
+    """A Group node of `group` in tree `t`, its inputs' values set."""
+    node = t.nodes.new("ShaderNodeGroup")
+    node.node_tree = group
+    for key, value in values.items():
+        node.inputs[key.replace("_", " ")].default_value = value
+    return node
+
+
+def painted_metal(t, gi):
+    bsdf = new(t, "ShaderNodeBsdfPrincipled", {"Metallic": 1.0}, distribution="MULTI_GGX")
+    t.links.new(gi.outputs["Base Color"], bsdf.inputs["Base Color"])
+    t.links.new(gi.outputs["Roughness"], bsdf.inputs["Roughness"])
+    return bsdf.outputs[0]
+
+
+def cel_mix(t, gi):
+    diffuse = new(t, "ShaderNodeBsdfDiffuse")
+    t.links.new(gi.outputs["Color"], diffuse.inputs["Color"])
+    glossy = new(t, "ShaderNodeBsdfGlossy", {"Color": (0.9, 0.9, 0.9, 1.0), "Roughness": 0.15},
+                 distribution="MULTI_GGX")
+    mix = t.nodes.new("ShaderNodeMixShader")
+    t.links.new(layer_weight(t, 0.35, "Facing"), mix.inputs["Fac"])
+    t.links.new(diffuse.outputs[0], mix.inputs[1])
+    t.links.new(glossy.outputs[0], mix.inputs[2])
+    return mix.outputs[0]
+
+
+def checkered(t, gi):
+    """A Principled BSDF of checker colours made inside the group, its Roughness the group's input."""
+    bsdf = new(t, "ShaderNodeBsdfPrincipled", distribution="MULTI_GGX")
+    checker = new(t, "ShaderNodeTexChecker", {"Scale": 4.0, "Color1": (0.8, 0.7, 0.2, 1.0),
+                                              "Color2": (0.1, 0.3, 0.6, 1.0)})
+    t.links.new(checker.outputs["Color"], bsdf.inputs["Base Color"])
+    t.links.new(gi.outputs["Roughness"], bsdf.inputs["Roughness"])
+    return bsdf.outputs[0]
+
+
+def node_groups_scene():
+    """Shaders inside node groups, as asset libraries ship them: a metal group whose colour a
+    noise outside drives through its input, a group of a Diffuse and a Glossy mixed by Layer
+    Weight inside it, a group holding another (checker colours made inside, the roughness
+    passed through both), and a floor of a Diffuse BSDF group left at its input's default."""
+    scene = cycles.new_scene()
+    cycles.set_up(scene, 64, bounces=6)
+    cycles.uniform_world(scene, (0.8, 0.85, 1.0))
+    metal = node_group("painted metal", [("Base Color", "NodeSocketColor", (0.5, 0.5, 0.5, 1.0)),
+                                         ("Roughness", "NodeSocketFloat", 0.5)], painted_metal)
+    cel = node_group("cel", [("Color", "NodeSocketColor", (0.8, 0.8, 0.8, 1.0))], cel_mix)
+    checker = node_group("checkered", [("Roughness", "NodeSocketFloat", 0.5)], checkered)
+    wrapper = node_group("wrapper", [("Roughness", "NodeSocketFloat", 0.5)],
+                         lambda t, gi: t.links.new(gi.outputs["Roughness"], grouped(t, checker).inputs["Roughness"])
+                         .to_node.outputs[0])
+    matte = node_group("matte", [("Color", "NodeSocketColor", (0.2, 0.6, 0.3, 1.0))],
+                       lambda t, gi: t.links.new(gi.outputs["Color"], new(t, "ShaderNodeBsdfDiffuse").inputs["Color"])
+                       .to_node.outputs[0])
+
+    def metal_of_noise(t):
+        node = grouped(t, metal, Roughness=0.3)
+        t.links.new(noise(t, Scale=3.0, Detail=2.0).outputs["Color"], node.inputs["Base Color"])
+        return node.outputs[0]
+
+    spheres = [
+        shader_material("grouped metal", metal_of_noise),
+        shader_material("grouped mix", lambda t: grouped(t, cel, Color=(0.7, 0.15, 0.1, 1.0)).outputs[0]),
+        shader_material("nested groups", lambda t: grouped(t, wrapper, Roughness=0.2).outputs[0]),
+    ]
+    for i, material in enumerate(spheres):
+        bpy.ops.mesh.primitive_uv_sphere_add(radius=0.7, segments=48, ring_count=24,
+                                             location=(1.6 * (i - 1), 0.0, 0.7))
+        bpy.ops.object.shade_smooth()
+        bpy.context.active_object.data.materials.append(material)
+    bpy.ops.mesh.primitive_plane_add(size=8.0)
+    bpy.context.active_object.data.materials.append(shader_material("grouped floor",
+                                                                    lambda t: grouped(t, matte).outputs[0]))
+    cycles.camera(scene, (0.0, -5.5, 2.6), 72.0)
+    return scene
+
+
 def light_path_scene():
     """Light Path tricks: a lamp sphere that shows red to the camera but lights the world
     green (Is Camera Ray into a Mix), above a floor whose colour is bright only where a
@@ -1221,6 +1360,8 @@ SCENES = {
     "graph_tangent": tangent_scene,
     "graph_material_index": material_index_scene,
     "graph_toon": toon_scene,
+    "graph_node_groups": node_groups_scene,
+    "graph_object_index": object_index_scene,
 }
 
 

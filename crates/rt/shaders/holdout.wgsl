@@ -13,7 +13,7 @@
 // for a path that has (`camera_path`) or has not yet scattered but through what lets the
 // background through.
 fn held_out_share(m: Material, hit: Hit, camera_path: bool) -> f32 {
-    if camera_path && hit.kind == HIT_TRIANGLE && object_settings[hit.instance].holdout != 0u {
+    if camera_path && hit.kind == HIT_TRIANGLE && (object_settings[hit.instance].holdout_and_index & 1u) != 0u {
         return 1.0;
     }
     return m.holdout;

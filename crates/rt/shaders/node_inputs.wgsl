@@ -32,12 +32,12 @@ fn node_coordinate(mode: u32, p: NodePoint, extra: u32) -> vec4f {
         case 9u: { return vec4f(p.true_normal, 0.0); }
         case 10u: { return vec4f(p.incoming, 0.0); }
         case 11u: { return vec4f(select(0.0, 1.0, p.backfacing)); }
-        case 22u, 23u, 24u, 25u: { return node_object_info(mode - 22u, p); }
+        case 22u, 23u, 24u, 25u, 26u: { return node_object_info(mode - 22u, p); }
         // Camera Data: the direction from the camera to the point (in camera space), its
         // depth along the view and its distance.
-        case 26u: { return vec4f(normalize(node_camera_coordinates(false, rt_axes(p.position))), 0.0); }
-        case 27u: { return vec4f(node_camera_coordinates(false, rt_axes(p.position)).z); }
-        case 28u: { return vec4f(length(node_camera_coordinates(false, rt_axes(p.position)))); }
+        case 27u: { return vec4f(normalize(node_camera_coordinates(false, rt_axes(p.position))), 0.0); }
+        case 28u: { return vec4f(node_camera_coordinates(false, rt_axes(p.position)).z); }
+        case 29u: { return vec4f(length(node_camera_coordinates(false, rt_axes(p.position)))); }
         default: { return vec4f(node_light_path(mode - 12u, p)); }
     }
 }
@@ -124,11 +124,11 @@ fn node_from_world(kind: u32, space_to: u32, w: vec3f, p: NodePoint) -> vec3f {
     return blender_axes(select(transform_point(world_to_object, w), transform_vector(world_to_object, w), kind == 1u));
 }
 
-// Object Info's Location, Color, Alpha and Random (node_kinds' order) of the point's
-// object: a sphere's are those of an object at the origin with the defaults.
+// Object Info's Location, Color, Alpha, Random and Object Index (node_kinds' order) of the
+// point's object: a sphere's are those of an object at the origin with the defaults.
 fn node_object_info(output: u32, p: NodePoint) -> vec4f {
     if p.instance == NODE_NO_OBJECT {
-        return select(vec4f(1.0), vec4f(0.0), output == 0u || output == 3u);
+        return select(vec4f(1.0), vec4f(0.0), output == 0u || output >= 3u);
     }
     switch output {
         case 0u: {
@@ -140,11 +140,13 @@ fn node_object_info(output: u32, p: NodePoint) -> vec4f {
             //#if object_colors
             // The colours follow the settings (SceneGeometry::object_settings).
             let c = object_settings[arrayLength(&object_settings) / 2u + p.instance];
-            color = vec4f(c.geometry_offset, c.frequency_multiplier, bitcast<f32>(c.holdout), c.random);
+            color = vec4f(c.geometry_offset, c.frequency_multiplier, bitcast<f32>(c.holdout_and_index), c.random);
             //#endif
             return select(vec4f(color.xyz, 1.0), vec4f(color.w), output == 2u);
         }
-        default: { return vec4f(object_settings[p.instance].random); }
+        case 3u: { return vec4f(object_settings[p.instance].random); }
+        // Object Index: Blender's Pass Index, above the holdout's bit.
+        default: { return vec4f(f32(object_settings[p.instance].holdout_and_index >> 1u)); }
     }
 }
 

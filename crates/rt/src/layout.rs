@@ -281,9 +281,10 @@ gpu_struct! {
         pub geometry_offset: f32,
         /// 1 / (1 - Shading Offset / 2): 1 leaves the lobes' cosines alone.
         pub frequency_multiplier: f32,
-        /// 1: Blender's Holdout (the object's or its collection's): the camera sees through
-        /// it to nothing, and the pixel's alpha loses what it covers; other rays see it as it is.
-        pub holdout: u32,
+        /// Bit 0, 1: Blender's Holdout (the object's or its collection's): the camera sees
+        /// through it to nothing, and the pixel's alpha loses what it covers; other rays see it
+        /// as it is. The bits above: Object Info's Object Index (Blender's Pass Index).
+        pub holdout_and_index: u32,
         /// Object Info's Random, in [0, 1] (its Color follows the settings in the same
         /// buffer when some object is coloured, see `SceneGeometry::object_settings`).
         pub random: f32,
@@ -301,7 +302,7 @@ impl GpuObjectSettings {
         Self {
             geometry_offset: t.geometry_offset,
             frequency_multiplier: t.frequency_multiplier(),
-            holdout: u32::from(holdout),
+            holdout_and_index: u32::from(holdout) | info.index.min(crate::scene::MAX_OBJECT_INDEX) << 1,
             random: info.random,
         }
     }

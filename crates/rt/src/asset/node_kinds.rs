@@ -205,11 +205,11 @@ pub const KINDS: [Kind; 43] = [
         name: "OBJECT_INFO",
         emit: Emit::Coordinates(22),
         inputs: &[],
-        outputs: &["Location", "Color", "Alpha", "Random"],
+        outputs: &["Location", "Color", "Alpha", "Random", "Object Index"],
     },
     Kind {
         name: "CAMERA",
-        emit: Emit::Coordinates(26),
+        emit: Emit::Coordinates(27),
         inputs: &[],
         outputs: &["View Vector", "View Z Depth", "View Distance"],
     },

@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! bytes 0..8   magic b"RTINST\0\0"
-//! u32 version (=4) · u32 instance_count · u32 slot_count · u32 set_count · u32 motion_keys
+//! u32 version (=5) · u32 instance_count · u32 slot_count · u32 set_count · u32 motion_keys
 //! · u32 object_info
 //! set_count × slot_count × u32   material sets: for each slot (the material index that
 //!                                the asset's triangles carry), an index into the asset's
@@ -22,12 +22,14 @@
 //! object_info (0 or 1) × instance_count × {
 //!     f32      Object Info's Random, in [0, 1]
 //!     f32[4]   Object Info's Color and Alpha
-//! }            (without them, every instance has its scene entry's `random` and
-//!              `object_color`)
+//!     u32      Object Info's Object Index (Blender's Pass Index), at most 32767
+//! }            (without them, every instance has its scene entry's `random`,
+//!              `object_color` and `object_index`)
 //! ```
 //!
 //! Little-endian, no padding: 32 + 4 × slot_count × set_count + (52 + 48 × motion_keys +
-//! 20 × object_info) × instance_count bytes exactly. Version 3 files (a 28-byte header
+//! 24 × object_info) × instance_count bytes exactly. Version 4 files (each instance's info
+//! 20 bytes, without the Object Index: 0) are read too, as are version 3 files (a 28-byte header
 //! without object_info), version 2 files (24 bytes, without motion_keys either) and version
 //! 1 files (a 16-byte header: magic, version, instance_count; no sets) are read too. The size is checked against the header before anything is allocated,
 //! and every matrix must be finite and invertible (an error names the file and the
@@ -40,8 +42,8 @@ use glam::{Mat3, Mat4, Vec3, Vec4};
 use std::path::Path;
 
 pub const MAGIC: [u8; 8] = *b"RTINST\0\0";
-pub const VERSION: u32 = 4;
-/// The header of version 4; version 3's is 28 bytes (no object_info), version 2's 24 (no
+pub const VERSION: u32 = 5;
+/// The header of versions 4 and 5; version 3's is 28 bytes (no object_info), version 2's 24 (no
 /// motion_keys), version 1's 16 (no slot and set counts either).
 pub const HEADER_BYTES: u64 = 32;
 const HEADER_BYTES_V3: u64 = 28;
@@ -50,8 +52,9 @@ const HEADER_BYTES_V1: u64 = 16;
 pub const RECORD_BYTES: u64 = 52;
 /// One motion key: the top three rows of a matrix.
 const KEY_BYTES: u64 = 48;
-/// One instance's Object Info: Random and Color (RGBA).
-const INFO_BYTES: u64 = 20;
+/// One instance's Object Info: Random, Color (RGBA) and Object Index; version 4's has no index.
+const INFO_BYTES: u64 = 24;
+const INFO_BYTES_V4: u64 = 20;
 /// The material of an instance that keeps its asset's own materials.
 pub const OWN_MATERIALS: u32 = u32::MAX;
 /// Marks a record's material as `MATERIAL_SET | k`: material set `k` of its file.
@@ -188,7 +191,7 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<InstanceFile, AssetError> {
         1 => HEADER_BYTES_V1,
         2 => HEADER_BYTES_V2,
         3 => HEADER_BYTES_V3,
-        VERSION => HEADER_BYTES,
+        4 | VERSION => HEADER_BYTES,
         _ => return fail(format!("unsupported .rtinst version {version} (this rt reads versions 1 to {VERSION})")),
     };
     if bytes.len() < header as usize {
@@ -206,7 +209,8 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<InstanceFile, AssetError> {
     // Checked before anything is allocated: a header cannot make rt reserve memory the
     // file does not back (in u128: the counts' product can pass u64).
     let set_bytes = 4 * slot_count as u128 * set_count as u128;
-    let record_bytes = (RECORD_BYTES + KEY_BYTES * motion_keys as u64 + INFO_BYTES * object_info as u64) as u128;
+    let info_bytes = if version == VERSION { INFO_BYTES } else { INFO_BYTES_V4 };
+    let record_bytes = (RECORD_BYTES + KEY_BYTES * motion_keys as u64 + info_bytes * object_info as u64) as u128;
     let expected = header as u128 + set_bytes + record_bytes * count as u128;
     if bytes.len() as u128 != expected {
         return fail(format!(
@@ -221,8 +225,8 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<InstanceFile, AssetError> {
     let indices: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes[header as usize..records_at]);
     let records: Vec<InstanceRecord> = bytemuck::pod_collect_to_vec(&bytes[records_at..motion_at]);
     let motion: Vec<[f32; 12]> = bytemuck::pod_collect_to_vec(&bytes[motion_at..info_at]);
-    let info = object_infos(&bytemuck::pod_collect_to_vec::<u8, [f32; 5]>(&bytes[info_at..]))
-        .map_err(|m| AssetError::new(path, m))?;
+    let words: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes[info_at..]);
+    let info = object_infos(&words, info_bytes as usize / 4).map_err(|m| AssetError::new(path, m))?;
     for (index, r) in records.iter().enumerate() {
         if let Some(problem) = matrix_problem(&r.object_to_world()) {
             return fail(format!("instance {index}: its matrix {problem}: {:?}", r.rows));
@@ -238,16 +242,23 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<InstanceFile, AssetError> {
     Ok(InstanceFile { records, material_sets: MaterialSets { slot_count, indices }, motion_keys, motion, info })
 }
 
-/// The instances' Object Info from (random, r, g, b, a) each, checked.
-fn object_infos(words: &[[f32; 5]]) -> Result<Vec<ObjectInfo>, String> {
-    let mut infos = Vec::with_capacity(words.len());
-    for (index, w) in words.iter().enumerate() {
-        if !w.iter().all(|v| v.is_finite()) || !(0.0..=1.0).contains(&w[0]) {
+/// The instances' Object Info from (random, r, g, b, a[, object index]) each, `stride` words
+/// a record, checked.
+fn object_infos(words: &[u32], stride: usize) -> Result<Vec<ObjectInfo>, String> {
+    let mut infos = Vec::with_capacity(words.len() / stride);
+    for (index, w) in words.chunks_exact(stride).enumerate() {
+        let f = w[..5].iter().map(|&b| f32::from_bits(b)).collect::<Vec<_>>();
+        if !f.iter().all(|v| v.is_finite()) || !(0.0..=1.0).contains(&f[0]) {
             return Err(format!(
-                "instance {index}: its object info {w:?} is not a random in [0, 1] and a finite colour"
+                "instance {index}: its object info {f:?} is not a random in [0, 1] and a finite colour"
             ));
         }
-        infos.push(ObjectInfo { random: w[0], color: [w[1], w[2], w[3], w[4]] });
+        let object_index = w.get(5).copied().unwrap_or(0);
+        if object_index > crate::scene::MAX_OBJECT_INDEX {
+            let most = crate::scene::MAX_OBJECT_INDEX;
+            return Err(format!("instance {index}: its object index {object_index} is above {most}"));
+        }
+        infos.push(ObjectInfo { random: f[0], color: [f[1], f[2], f[3], f[4]], index: object_index });
     }
     Ok(infos)
 }
@@ -283,8 +294,13 @@ pub fn encode_moving(
 /// The bytes of `file` as a `.rtinst` (its `info` empty or one per record).
 pub fn encode_file(file: &InstanceFile) -> Vec<u8> {
     let sets = &file.material_sets;
-    let info: Vec<[f32; 5]> =
-        file.info.iter().map(|i| [i.random, i.color[0], i.color[1], i.color[2], i.color[3]]).collect();
+    let info: Vec<[u32; 6]> = file
+        .info
+        .iter()
+        .map(|i| [i.random, i.color[0], i.color[1], i.color[2], i.color[3]].map(f32::to_bits))
+        .zip(&file.info)
+        .map(|(f, i)| [f[0], f[1], f[2], f[3], f[4], i.index])
+        .collect();
     let mut out = Vec::with_capacity(
         HEADER_BYTES as usize
             + 4 * sets.indices.len()

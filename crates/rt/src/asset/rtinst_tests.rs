@@ -112,23 +112,45 @@ fn version_3_files_are_read_as_they_were() {
 #[test]
 fn object_info_round_trips_and_bad_values_are_refused() {
     let info = vec![
-        ObjectInfo { random: 0.25, color: [1.0, 0.5, 0.0, 1.0] },
-        ObjectInfo { random: 1.0, color: [0.0, 0.0, 2.0, 0.5] },
+        ObjectInfo { random: 0.25, color: [1.0, 0.5, 0.0, 1.0], index: 7 },
+        ObjectInfo { random: 1.0, color: [0.0, 0.0, 2.0, 0.5], index: 32767 },
     ];
     let file = InstanceFile { records: two(), info: info.clone(), ..Default::default() };
     let bytes = encode_file(&file);
-    assert_eq!(bytes.len(), 32 + 2 * (52 + 20));
+    assert_eq!(bytes.len(), 32 + 2 * (52 + 24));
     assert_eq!(parse(Path::new("t.rtinst"), &bytes).expect("parses"), file);
     let mut bad = file.clone();
     bad.info[1].random = 1.5;
     let message = error(&encode_file(&bad));
     assert!(message.contains("instance 1: its object info [1.5, 0.0, 0.0, 2.0, 0.5] is not"), "{message}");
+    let mut bad = file.clone();
+    bad.info[0].index = 32768;
+    let message = error(&encode_file(&bad));
+    assert!(message.contains("instance 0: its object index 32768 is above 32767"), "{message}");
     let mut flag = bytes.clone();
     flag[28] = 2;
     assert!(error(&flag).contains("object_info must be 0 (none) or 1 (each instance's), got 2"));
     let mut cut = bytes;
     cut.pop();
-    assert!(error(&cut).contains("object info 1) implies 176"), "{}", error(&cut));
+    assert!(error(&cut).contains("object info 1) implies 184"), "{}", error(&cut));
+}
+
+/// Version 4 wrote each instance's info without its Object Index (20 bytes): read as index 0.
+#[test]
+fn version_4_object_info_is_read_without_an_index() {
+    let info = vec![
+        ObjectInfo { random: 0.25, color: [1.0, 0.5, 0.0, 1.0], index: 0 },
+        ObjectInfo { random: 1.0, color: [0.0, 0.0, 2.0, 0.5], index: 0 },
+    ];
+    let file = InstanceFile { records: two(), info, ..Default::default() };
+    let v5 = encode_file(&file);
+    let records_end = v5.len() - 2 * 24;
+    let mut v4 = v5[..records_end].to_vec();
+    v4[8] = 4;
+    for chunk in v5[records_end..].chunks(24) {
+        v4.extend_from_slice(&chunk[..20]);
+    }
+    assert_eq!(parse(Path::new("t.rtinst"), &v4).expect("parses"), file);
 }
 
 #[test]
@@ -156,7 +178,7 @@ fn a_header_that_lies_about_its_size_is_refused_before_allocating() {
     bytes[16..24].copy_from_slice(&[0xff; 8]);
     let message = error(&bytes);
     assert!(message.contains("4294967295 material sets of 4294967295 slots"), "{message}");
-    // A version 4 header cut short.
+    // A version 5 header cut short.
     assert!(error(&plain(&[])[..20]).contains("shorter than the 32-byte"));
 }
 
@@ -168,8 +190,8 @@ fn bad_magic_version_and_matrices_are_named() {
     bytes[0] = b'X';
     assert!(error(&bytes).contains("bad magic"));
     let mut bytes = good.clone();
-    bytes[8] = 5;
-    assert!(error(&bytes).contains("unsupported .rtinst version 5"));
+    bytes[8] = 6;
+    assert!(error(&bytes).contains("unsupported .rtinst version 6"));
 
     let mut records = two();
     records[1].rows[5] = f32::NAN;

@@ -156,7 +156,7 @@ impl<'m> Placement<'m> {
         self.object_settings.push(settings);
         self.object_colors.push(color);
         self.shading_offsets |= settings.frequency_multiplier > 1.0;
-        self.held_out |= settings.holdout != 0;
+        self.held_out |= settings.holdout_and_index & 1 != 0;
         true
     }
 
@@ -176,7 +176,6 @@ impl<'m> Placement<'m> {
         let records = &file.records;
         self.instances.reserve(records.len());
         self.object_settings.reserve(records.len());
-        let settings = GpuObjectSettings::new(set.shadow_terminator, set.holdout, set.info);
         self.boxes.reserve(records.len());
         self.instance_mesh.reserve(records.len());
         for (index, r) in records.iter().enumerate() {
@@ -207,7 +206,7 @@ impl<'m> Placement<'m> {
                 },
             };
             let info = file.info.get(index).copied().unwrap_or(set.info);
-            let settings = GpuObjectSettings { random: info.random, ..settings };
+            let settings = GpuObjectSettings::new(set.shadow_terminator, set.holdout, info);
             if self.place_with_base(mesh_index, &r.object_to_world(), material, base, (settings, info.color))
                 && let Some(motion) = file.motion_of(index)
             {

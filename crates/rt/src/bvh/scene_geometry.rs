@@ -470,7 +470,7 @@ fn with_colors(mut settings: Vec<GpuObjectSettings>, colors: &[[f32; 4]]) -> Vec
         settings.push(GpuObjectSettings {
             geometry_offset: c[0],
             frequency_multiplier: c[1],
-            holdout: c[2].to_bits(),
+            holdout_and_index: c[2].to_bits(),
             random: c[3],
         });
     }

@@ -31,7 +31,7 @@ pub use light::{AreaShape, Light, LightShape};
 pub use material::{Material, Tangent, luminance, srgb_decode, srgb_encode};
 pub use material_textures::{LAYER_COUNT, LayerTextures, MaterialTextures, UvSet, slots};
 pub use motion::{Decomposed, MAX_CAMERA_MOTION_KEYS, MAX_MOTION_KEYS, Motion, interpolate};
-pub use object_info::ObjectInfo;
+pub use object_info::{MAX_OBJECT_INDEX, ObjectInfo};
 pub use panorama::Panorama;
 pub use parse::{SceneError, hint as did_you_mean, load, parse};
 pub use shadow_terminator::ShadowTerminator;

@@ -208,9 +208,10 @@ pub(super) struct Mesh {
     pub shadow_terminator_shading_offset: Option<f32>,
     #[serde(default)]
     pub holdout: bool,
-    /// Object Info's Color (RGBA) and Random.
+    /// Object Info's Color (RGBA), Random and Object Index (Blender's Pass Index).
     pub object_color: Option<[f32; 4]>,
     pub random: Option<f32>,
+    pub object_index: Option<u32>,
 }
 
 /// One asset placed by an instance file (`.rtinst`).
@@ -227,9 +228,10 @@ pub(super) struct Instances {
     pub shadow_terminator_shading_offset: Option<f32>,
     #[serde(default)]
     pub holdout: bool,
-    /// Object Info's Color (RGBA) and Random.
+    /// Object Info's Color (RGBA), Random and Object Index (Blender's Pass Index).
     pub object_color: Option<[f32; 4]>,
     pub random: Option<f32>,
+    pub object_index: Option<u32>,
 }
 
 #[derive(Clone, Copy, Deserialize)]

@@ -102,7 +102,7 @@ fn mesh(
             m.shadow_terminator_shading_offset,
         )?,
         holdout: m.holdout,
-        info: ObjectInfo::validate(src, &p, m.object_color, m.random)?,
+        info: ObjectInfo::validate(src, &p, m.object_color, m.random, m.object_index)?,
         motion: m.motion.as_deref().map(|keys| super::motion::validate_keys(src, &p, keys)).transpose()?,
     })
 }
@@ -147,7 +147,7 @@ fn instance_set(
         file: base_dir.join(&set.file),
         materials: set.materials,
         holdout: set.holdout,
-        info: ObjectInfo::validate(src, &p, set.object_color, set.random)?,
+        info: ObjectInfo::validate(src, &p, set.object_color, set.random, set.object_index)?,
     })
 }
 

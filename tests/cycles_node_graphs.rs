@@ -379,7 +379,7 @@ fn a_live_session_keeps_only_the_node_code_it_renders() {
 /// mixed by a constant, a soft-edged Toon Diffuse of noise colours, under a low sun.
 #[test]
 fn toon_shading_matches_cycles() {
-    check_scene("graph_toon", 6);
+    check_scene("graph_toon", 7);
 }
 
 /// Shaders inside node groups: a metal group whose colour a noise outside drives through its
@@ -388,7 +388,7 @@ fn toon_shading_matches_cycles() {
 /// its input's default.
 #[test]
 fn shaders_inside_node_groups_match_cycles() {
-    check_scene("graph_node_groups", 6);
+    check_scene("graph_node_groups", 7);
 }
 
 /// Object Info's Object Index: Blender's Pass Index of twelve tiles sharing one material (as a
@@ -397,4 +397,12 @@ fn shaders_inside_node_groups_match_cycles() {
 #[test]
 fn object_index_matches_cycles() {
     check_channels("graph_object_index", 1e-3);
+}
+
+/// Add Shaders of two BSDFs (a Diffuse and a Glossy, a Toon Diffuse and a Toon Glossy, a
+/// Principled and a Sheen, a floor of a Diffuse and a rough Glossy) under a sun: each shading
+/// point is one of the two at weight 2, as Cycles adds the closures.
+#[test]
+fn add_shaders_of_two_bsdfs_match_cycles() {
+    check_scene("graph_add_shader", 7);
 }

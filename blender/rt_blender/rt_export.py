@@ -782,24 +782,29 @@ def sheen_layer(out, extensions, weight, roughness, tint):
     out["extras"].update({"rt_sheen": weight, "rt_sheen_roughness": roughness, "rt_sheen_tint": tint})
 
 
-def gltf_material(material, thickness, textures=None, shader=None):
+def gltf_material(material, thickness, textures=None, shader=None, weight=1.0):
     """One glTF material (with KHR extensions) from a Blender material; every factor is written, since rt's importer
     applies glTF's defaults to absent ones. Its textures go into `textures`. The surface
     shader is mapped onto rt's model by rt_shader_nodes (which warns about what it cannot
     map). A Mix Shader whose factor a node graph drives is its first shader, with the second
-    as another material (`_rt_mix`, see rt_shader_graphs.finish_materials); `shader` is the
-    shader to read instead of the output's."""
+    as another material (`_rt_mix`, see rt_shader_graphs.finish_materials); so is an Add
+    Shader of two BSDFs, each of `weight` 2 (its BSDF and emission scaled by it); `shader`
+    is the shader to read instead of the output's."""
     name = material.name if material else "default"
     output = active_output(material.node_tree, "OUTPUT_MATERIAL") if material and material.node_tree else None
     top = linked_node(output.inputs["Surface"]) if output else None
     parts = rt_shader_graphs.mix_parts(top) if shader is None else None
     shader = shader or (parts[0] if parts else top)
+    weight = rt_shader_graphs.part_weight(top) if parts else weight
     if material is None:
         s = rt_shader_nodes.Surface()
     else:
         if top is shader or parts:
             rt_shader_nodes.NOTES[material.name] = []
         s = rt_shader_nodes.surface(material, shader)
+    if weight != 1.0:
+        s.emission = [e * weight for e in s.emission]
+        s.emission_strength *= weight
     base, metallic, roughness, ior, transmission = s.base, s.metallic, s.roughness, s.ior, s.transmission
     specular_level, specular_tint, alpha = s.specular_level, s.specular_tint, s.alpha
     surface = s.principled
@@ -843,13 +848,16 @@ def gltf_material(material, thickness, textures=None, shader=None):
         # Cycles' Glossy BSDF: GGX without Fresnel, tinted by its colour; glTF has no such lobe
         # (its factors above describe a metal of that colour for other readers).
         out["extras"]["rt_glossy_color"] = [max(c, 0.0) for c in s.glossy]
+    if weight != 1.0:
+        # An Add Shader's BSDF, rendered at half the points: Cycles' closures add past 1.
+        out["extras"]["rt_closure_weight"] = weight
     swapped = bool(parts) and parts[2]
-    graph = rt_shader_graphs.material_graph(material, shader, top.inputs["Fac"] if parts else None,
+    graph = rt_shader_graphs.material_graph(material, shader, rt_shader_graphs.factor_of(top) if parts else None,
                                             swapped) if material else None
     if graph is not None:
         out["extras"]["rt_node_graph"] = graph
     if parts:
-        out["_rt_mix"] = gltf_material(material, thickness, textures, shader=parts[1])
+        out["_rt_mix"] = gltf_material(material, thickness, textures, shader=parts[1], weight=weight)
         out["_rt_mix"]["name"] = f"{name} (mixed)"
     found, film_range, ior_ranges = {}, None, {}
     if textures is not None and surface is not None:

@@ -29,6 +29,9 @@ TARGET_TYPES = {"base_color": "RGBA", "roughness": "VALUE", "metallic": "VALUE",
 # Shaders a Mix Shader with a graph-driven factor may mix: each becomes a material of its own.
 MIXABLE = {"BSDF_PRINCIPLED", "BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_METALLIC", "BSDF_SHEEN", "BSDF_GLASS", "HOLDOUT",
            "EMISSION", *LOBES}
+# Shaders an Add Shader may add, each a material of its own of twice its weight: BSDFs (an
+# Emission added is exact in one material, rt_shader_nodes.add).
+ADDABLE = MIXABLE - {"HOLDOUT", "EMISSION"}
 # What a driven socket's own value becomes in the glTF factors: the part the graph scales.
 NEUTRAL = {"Metallic": 0.0, "Emission Color": (1.0, 1.0, 1.0, 1.0), "Color": (1.0, 1.0, 1.0, 1.0),
            "Emission Strength": 1.0, "Strength": 1.0}
@@ -91,17 +94,24 @@ def emits(part):
 
 def mix_parts(shader):
     """(first, second, swapped) shaders of a Mix Shader whose Fac a graph drives, or whose
-    constant Fac mixes shaders that no one parameter set holds (`exactly_mixed`), and whose
-    shaders rt renders one by one (none with a Normal input linked, at most one emitting),
-    or None. Each shading point is then one of the two, picked by the factor: Cycles' closures
-    weighted by it. The emitting one comes first, so that the material its triangles name is
-    the one light sampling finds (`swapped`: it was the second, and the factor is 1 − Fac)."""
-    if shader is None or shader.type != "MIX_SHADER":
+    constant Fac mixes shaders that no one parameter set holds (`exactly_mixed`), or of an
+    Add Shader of two BSDFs (`ADDABLE`), whose shaders rt renders one by one (none with a
+    Normal input linked, at most one emitting), or None. Each shading point is then one of
+    the two, picked by the factor: Cycles' closures weighted by it; an Add Shader's are a Mix
+    of factor ½, each of weight 2 (`factor_of`, `part_weight`). The emitting one comes
+    first, so that the material its triangles name is the one light sampling finds
+    (`swapped`: it was the second, and the factor is 1 − Fac)."""
+    if shader is None or shader.type not in {"MIX_SHADER", "ADD_SHADER"}:
         return None
-    parts = (shader_of(shader.inputs[1]), shader_of(shader.inputs[2]))
-    fac = shader.inputs["Fac"]
-    if not (evaluated(fac) or (not fac.is_linked and 0.0 < fac.default_value < 1.0 and not exactly_mixed(parts))):
-        return None
+    if shader.type == "ADD_SHADER":
+        parts = tuple(shader_of(s) for s in shader.inputs if s.type == "SHADER")
+        if any(part is None or part.type not in ADDABLE for part in parts):
+            return None
+    else:
+        parts = (shader_of(shader.inputs[1]), shader_of(shader.inputs[2]))
+        fac = shader.inputs["Fac"]
+        if not (evaluated(fac) or (not fac.is_linked and 0.0 < fac.default_value < 1.0 and not exactly_mixed(parts))):
+            return None
     for part in parts:
         if part is None or part.type not in MIXABLE or part.mute:
             return None
@@ -113,6 +123,18 @@ def mix_parts(shader):
     if emits(parts[1]):
         return parts[1], parts[0], True
     return parts[0], parts[1], False
+
+
+def factor_of(shader):
+    """What picks a mixed shader's second part (`mix_parts`): a Mix Shader's Fac socket, ½
+    for an Add Shader."""
+    return shader.inputs["Fac"] if shader.type == "MIX_SHADER" else 0.5
+
+
+def part_weight(shader):
+    """What each part of a mixed shader is scaled by: 2 for an Add Shader's (each is picked at
+    half the points), 1 for a Mix Shader's (its factor weighs them)."""
+    return 2.0 if shader.type == "ADD_SHADER" else 1.0
 
 
 def exactly_mixed(parts):
@@ -137,7 +159,9 @@ def material_graph(material, shader, mix_factor=None, swapped=False):
             # are their product, a strength alone scales the colour there.
             outputs[target] = writer.product(outputs[target], value) if target in outputs else value
     if mix_factor is not None:
-        outputs["mix_factor"] = writer.input(mix_factor, (), "VALUE")
+        # A number: an Add Shader's ½.
+        outputs["mix_factor"] = ({"value": mix_factor} if isinstance(mix_factor, float)
+                                 else writer.input(mix_factor, (), "VALUE"))
         if swapped:
             writer.nodes.append({"name": f"rt one minus {len(writer.nodes)}", "type": "MATH",
                                  "settings": {"operation": "SUBTRACT", "use_clamp": False},

@@ -1283,6 +1283,53 @@ def node_groups_scene():
     return scene
 
 
+def add_material(name, first, second):
+    """An Add Shader of `first` and `second` (functions of the tree giving a shader node)."""
+    material = bpy.data.materials.new(name)
+    tree = material.node_tree
+    tree.nodes.clear()
+    out = tree.nodes.new("ShaderNodeOutputMaterial")
+    add = tree.nodes.new("ShaderNodeAddShader")
+    tree.links.new(first(tree).outputs[0], add.inputs[0])
+    tree.links.new(second(tree).outputs[0], add.inputs[1])
+    tree.links.new(add.outputs[0], out.inputs["Surface"])
+    return material
+
+
+def add_shader_scene():
+    """Add Shaders of two BSDFs, as older tutorials build materials: a Diffuse and a Glossy, a
+    Toon Diffuse and a Toon Glossy (cel shading's classic), a Principled plastic and a Sheen,
+    and a floor of a dim Diffuse and a dim rough Glossy, under a sun and a dim sky. Cycles adds
+    the closures (past 1 where they sum so)."""
+    scene = cycles.new_scene()
+    cycles.set_up(scene, 64, bounces=6)
+    cycles.uniform_world(scene, (0.25, 0.27, 0.3))
+    spheres = [
+        add_material("diffuse plus glossy", lambda t: new(t, "ShaderNodeBsdfDiffuse", {"Color": (0.6, 0.1, 0.05, 1.0)}),
+                     lambda t: new(t, "ShaderNodeBsdfGlossy", {"Color": (0.5, 0.5, 0.5, 1.0), "Roughness": 0.2},
+                                   distribution="MULTI_GGX")),
+        add_material("toon plus toon", lambda t: toon(t, (0.2, 0.4, 0.9, 1.0), 0.5, 0.05),
+                     lambda t: toon(t, (0.8, 0.8, 0.8, 1.0), 0.1, 0.02, "GLOSSY")),
+        add_material("plastic plus sheen",
+                     lambda t: new(t, "ShaderNodeBsdfPrincipled", {"Base Color": (0.1, 0.5, 0.2, 1.0), "Roughness": 0.4},
+                                   distribution="MULTI_GGX"),
+                     lambda t: new(t, "ShaderNodeBsdfSheen", {"Color": (0.9, 0.8, 0.6, 1.0), "Roughness": 0.3})),
+    ]
+    for i, material in enumerate(spheres):
+        bpy.ops.mesh.primitive_uv_sphere_add(radius=0.7, segments=48, ring_count=24,
+                                             location=(1.6 * (i - 1), 0.0, 0.7))
+        bpy.ops.object.shade_smooth()
+        bpy.context.active_object.data.materials.append(material)
+    bpy.ops.mesh.primitive_plane_add(size=8.0)
+    floor = add_material("satin floor", lambda t: new(t, "ShaderNodeBsdfDiffuse", {"Color": (0.4, 0.4, 0.38, 1.0)}),
+                         lambda t: new(t, "ShaderNodeBsdfGlossy", {"Color": (0.3, 0.3, 0.3, 1.0), "Roughness": 0.35},
+                                       distribution="MULTI_GGX"))
+    bpy.context.active_object.data.materials.append(floor)
+    cycles.sun(scene, 2.0, (50.0, 0.0, 40.0), angle=math.radians(1.0))
+    cycles.camera(scene, (0.0, -5.5, 2.6), 72.0)
+    return scene
+
+
 def light_path_scene():
     """Light Path tricks: a lamp sphere that shows red to the camera but lights the world
     green (Is Camera Ray into a Mix), above a floor whose colour is bright only where a
@@ -1362,6 +1409,7 @@ SCENES = {
     "graph_toon": toon_scene,
     "graph_node_groups": node_groups_scene,
     "graph_object_index": object_index_scene,
+    "graph_add_shader": add_shader_scene,
 }
 
 

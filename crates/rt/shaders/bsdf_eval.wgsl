@@ -77,7 +77,8 @@ fn reflection_lobe_pdf(ctx: ShadingContext, lobe: u32, wi: vec3f) -> f32 {
     //#endif
 }
 
-// f·|cos θi| of all lobes that have a density, at wi.
+// f·|cos θi| of all lobes that have a density, at wi (before the material's closure
+// weight, which `bsdf_sample` and the light sample apply).
 fn bsdf_eval(ctx: ShadingContext, wi: vec3f) -> vec3f {
     //#if lobe_modules
     if ctx.m.lobe_module != 0u {

@@ -484,6 +484,9 @@ fn direct_light(ctx: ShadingContext, surface: Surface, n_geometric: vec3f, mediu
         transmittance *= atmosphere_transmittance_along(origin, light.direction, light.distance);
     }
     //#endif
-    let weight = select(power_heuristic(light.pdf, bsdf_pdf(ctx, wi)), 1.0, light.delta);
+    var weight = select(power_heuristic(light.pdf, bsdf_pdf(ctx, wi)), 1.0, light.delta);
+    //#if closure_weights
+    weight *= ctx.m.closure_weight;
+    //#endif
     return ShadowRay(origin, t_max, direction, f * light.radiance * transmittance * (weight / light.pdf));
 }

@@ -442,7 +442,9 @@ gpu_struct! {
         /// makes) and its number, 1 + its place among `LOBES` (0: none, the lobes above).
         pub lobe_params: [f32; 4],
         pub lobe_module: u32,
-        pub _pad_lobe: [u32; 3],
+        /// What the BSDF is scaled by (`Material::closure_weight`; its emission is not).
+        pub closure_weight: f32,
+        pub _pad_lobe: [u32; 2],
     }
 }
 
@@ -744,7 +746,8 @@ impl From<&crate::scene::Material> for GpuMaterial {
             thin_film_ior_minimum: m.textures.ior_minimum[2],
             lobe_params: m.lobe.map_or([0.0; 4], |l| l.params),
             lobe_module: crate::scene::lobe::ModuleLobe::number(m.lobe.as_ref()),
-            _pad_lobe: [0; 3],
+            closure_weight: m.closure_weight,
+            _pad_lobe: [0; 2],
         }
     }
 }

@@ -33,6 +33,7 @@
 //! | `extras.rt_bump_map_correction` (true)                    | `bump_map_correction` (Blender's material setting; glTF has none) |
 //! | `KHR_materials_volume` colour `c` (1), distance `d` (∞)   | `absorption = -ln(c) / d`; 0 if `d = ∞` |
 //! | `extras.rt_volume_emission` `[r, g, b]` (0)               | `volume_emission`              |
+//! | `extras.rt_closure_weight` (1)                         | `closure_weight` (an Add Shader's halves: 2) |
 //! | `extras.rt_lobe` `{"module": NAME, PARAM: value, …}` (absent) | `lobe`: a lobe module's BSDF, weighted by the base colour (`scene::lobe`) |
 //!
 //! The specular layer is a dielectric coating of the diffuse part (Cycles' Principled
@@ -279,6 +280,7 @@ fn map_material_with(m: &gltf::Material, metallic: f32, transmission: f32) -> Re
         mix_material: extra::<u32>(m.extras(), extras::MIX_MATERIAL)?,
         holdout: extra::<f32>(m.extras(), extras::HOLDOUT)?.unwrap_or(0.0).clamp(0.0, 1.0),
         lobe: extra::<ModuleLobe>(m.extras(), extras::LOBE)?,
+        closure_weight: extra::<f32>(m.extras(), extras::CLOSURE_WEIGHT)?.unwrap_or(1.0).clamp(0.0, 16.0),
         ..Material::default()
     };
     Ok(match extra::<[f32; 3]>(m.extras(), extras::GLOSSY_COLOR)? {
@@ -482,6 +484,7 @@ mod tests {
                 textures: Default::default(),
                 node_program: Vec::new(),
                 mix_material: None,
+                closure_weight: 1.0,
                 lobe: None,
             }
         );

@@ -44,6 +44,8 @@ material_extras! {
     NODE_GRAPH = "rt_node_graph";
     /// The material a node graph's Mix Shader mixes in, by index.
     MIX_MATERIAL = "rt_mix_material";
+    /// What the material's BSDF is scaled by (an Add Shader's halves: 2).
+    CLOSURE_WEIGHT = "rt_closure_weight";
     /// A lobe module's BSDF (`scene::lobe`): `{"module": "toon", "size": 0.5, …}`.
     LOBE = "rt_lobe";
     /// Textures of the layers glTF has no texture for: the coat's tint, the sheen (weight

@@ -84,6 +84,8 @@ pub struct CachedMaterial {
     /// parameters (version 16 on).
     pub lobe_module: u32,
     pub lobe_params: [f32; MAX_PARAMS],
+    /// `Material::closure_weight` (version 16 on).
+    pub closure_weight: f32,
 }
 
 const TANGENTS: [Tangent; 4] = [Tangent::RadialZ, Tangent::RadialX, Tangent::RadialY, Tangent::Uv];
@@ -140,6 +142,7 @@ impl From<&Material> for CachedMaterial {
             holdout: m.holdout,
             lobe_module: ModuleLobe::number(m.lobe.as_ref()),
             lobe_params: m.lobe.map_or([0.0; MAX_PARAMS], |l| l.params),
+            closure_weight: m.closure_weight,
         }
     }
 }
@@ -198,6 +201,7 @@ impl From<&CachedMaterial> for Material {
             mix_material: unslot(m.mix_material),
             holdout: m.holdout,
             lobe: ModuleLobe::from_number(m.lobe_module, m.lobe_params),
+            closure_weight: m.closure_weight,
         }
     }
 }
@@ -242,6 +246,7 @@ impl CachedMaterial {
             self.alpha_cutoff,
             self.normal_scale,
             self.coat_normal_scale,
+            self.closure_weight,
         ];
         vectors.into_iter().flatten().chain(scalars).chain(lobe).all(f32::is_finite)
     }

@@ -174,6 +174,8 @@ feature_flags::feature_set! {
         /// Some object has a Shadow Terminator Shading Offset: its lobes' cosines are shifted
         /// towards the light (Cycles' `shift_cos_in`).
         terminator_offset: Effect needs triangles;
+        /// Some material's BSDF is scaled (`closure_weight`: an Add Shader's halves).
+        closure_weights: Effect;
         /// Some material is (partly) a Holdout shader, or some object a holdout: the pixels'
         /// alpha is counted, and held-out surfaces take from it.
         holdout: Effect;
@@ -288,6 +290,7 @@ impl FeatureSet {
             // Mitsuba's material model (`single`) folds leaking directions above the surface.
             smooth_normals: geometry.smooth_normals && settings.microfacet == Microfacet::Multiscatter,
             terminator_offset: geometry.shading_offsets,
+            closure_weights: materials_in_use.iter().any(|m| m.closure_weight != 1.0),
             holdout: geometry.held_out || materials_in_use.iter().any(|m| m.holdout > 0.0),
             object_colors: geometry.object_colors && materials_in_use.iter().any(|m| !m.node_program.is_empty()),
             camera_motion: scene.camera.motion.is_some(),

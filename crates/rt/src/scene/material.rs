@@ -82,6 +82,9 @@ pub struct Material {
     /// once placed). Each shading point is this material or that one, by the factor.
     #[serde(skip)]
     pub mix_material: Option<u32>,
+    /// What the material's BSDF is scaled by (its emission is not): an Add Shader's two BSDFs
+    /// are each one of a Mix of factor ½ and weight 2. Cycles' closures add up past 1 there.
+    pub closure_weight: f32,
     /// A lobe module's BSDF in place of the lobes above (`scene::lobe`: Blender's Toon BSDF,
     /// …), weighted by `base_color`; emission, alpha and holdout stay the material's.
     pub lobe: Option<ModuleLobe>,
@@ -136,6 +139,7 @@ impl Default for Material {
             textures: MaterialTextures::default(),
             node_program: Vec::new(),
             mix_material: None,
+            closure_weight: 1.0,
             lobe: None,
         }
     }

@@ -246,6 +246,7 @@ fn material(src: &Source, p: &[Seg], m: &Material) -> Result<(), SceneError> {
     src.check(p, "thin_film_ior", &[m.thin_film_ior], "at least 1", |ior| ior >= 1.0)?;
     src.check(p, "thin_film_weight", &[m.thin_film_weight], "in [0, 1]", |w| (0.0..=1.0).contains(&w))?;
     src.check(p, "holdout", &[m.holdout], "in [0, 1]", |h| (0.0..=1.0).contains(&h))?;
+    src.check(p, "closure_weight", &[m.closure_weight], "in [0, 16]", |w| (0.0..=16.0).contains(&w))?;
     if m.specular_ior_level > 0.0 && m.specular > 0.0 {
         return Err(src.error(
             p,

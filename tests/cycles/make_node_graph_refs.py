@@ -1152,6 +1152,17 @@ def constant_mix_scene():
     return scene
 
 
+def spheres_on_a_floor(spheres, floor):
+    """Three smooth spheres of `spheres`' materials side by side on a floor of `floor`'s."""
+    for i, material in enumerate(spheres):
+        bpy.ops.mesh.primitive_uv_sphere_add(radius=0.7, segments=48, ring_count=24,
+                                             location=(1.6 * (i - 1), 0.0, 0.7))
+        bpy.ops.object.shade_smooth()
+        bpy.context.active_object.data.materials.append(material)
+    bpy.ops.mesh.primitive_plane_add(size=8.0)
+    bpy.context.active_object.data.materials.append(floor)
+
+
 def toon(t, colour, size, smooth, component="DIFFUSE"):
     return new(t, "ShaderNodeBsdfToon", {"Color": colour, "Size": size, "Smooth": smooth}, component=component)
 
@@ -1178,13 +1189,7 @@ def toon_scene():
                      lambda t: new(t, "ShaderNodeBsdfDiffuse", {"Color": (0.1, 0.3, 0.8, 1.0)})),
         shader_material("soft toon", lambda t: noisy_toon(t, 0.7, 0.3).outputs[0]),
     ]
-    for i, material in enumerate(spheres):
-        bpy.ops.mesh.primitive_uv_sphere_add(radius=0.7, segments=48, ring_count=24,
-                                             location=(1.6 * (i - 1), 0.0, 0.7))
-        bpy.ops.object.shade_smooth()
-        bpy.context.active_object.data.materials.append(material)
-    bpy.ops.mesh.primitive_plane_add(size=8.0)
-    bpy.context.active_object.data.materials.append(cycles.diffuse("floor", (0.6, 0.6, 0.6)))
+    spheres_on_a_floor(spheres, cycles.diffuse("floor", (0.6, 0.6, 0.6)))
     cycles.sun(scene, 3.0, (50.0, 0.0, 40.0), angle=math.radians(1.0))
     cycles.camera(scene, (0.0, -5.5, 2.6), 72.0)
     return scene
@@ -1271,14 +1276,7 @@ def node_groups_scene():
         shader_material("grouped mix", lambda t: grouped(t, cel, Color=(0.7, 0.15, 0.1, 1.0)).outputs[0]),
         shader_material("nested groups", lambda t: grouped(t, wrapper, Roughness=0.2).outputs[0]),
     ]
-    for i, material in enumerate(spheres):
-        bpy.ops.mesh.primitive_uv_sphere_add(radius=0.7, segments=48, ring_count=24,
-                                             location=(1.6 * (i - 1), 0.0, 0.7))
-        bpy.ops.object.shade_smooth()
-        bpy.context.active_object.data.materials.append(material)
-    bpy.ops.mesh.primitive_plane_add(size=8.0)
-    bpy.context.active_object.data.materials.append(shader_material("grouped floor",
-                                                                    lambda t: grouped(t, matte).outputs[0]))
+    spheres_on_a_floor(spheres, shader_material("grouped floor", lambda t: grouped(t, matte).outputs[0]))
     cycles.camera(scene, (0.0, -5.5, 2.6), 72.0)
     return scene
 
@@ -1315,16 +1313,10 @@ def add_shader_scene():
                                    distribution="MULTI_GGX"),
                      lambda t: new(t, "ShaderNodeBsdfSheen", {"Color": (0.9, 0.8, 0.6, 1.0), "Roughness": 0.3})),
     ]
-    for i, material in enumerate(spheres):
-        bpy.ops.mesh.primitive_uv_sphere_add(radius=0.7, segments=48, ring_count=24,
-                                             location=(1.6 * (i - 1), 0.0, 0.7))
-        bpy.ops.object.shade_smooth()
-        bpy.context.active_object.data.materials.append(material)
-    bpy.ops.mesh.primitive_plane_add(size=8.0)
     floor = add_material("satin floor", lambda t: new(t, "ShaderNodeBsdfDiffuse", {"Color": (0.4, 0.4, 0.38, 1.0)}),
                          lambda t: new(t, "ShaderNodeBsdfGlossy", {"Color": (0.3, 0.3, 0.3, 1.0), "Roughness": 0.35},
                                        distribution="MULTI_GGX"))
-    bpy.context.active_object.data.materials.append(floor)
+    spheres_on_a_floor(spheres, floor)
     cycles.sun(scene, 2.0, (50.0, 0.0, 40.0), angle=math.radians(1.0))
     cycles.camera(scene, (0.0, -5.5, 2.6), 72.0)
     return scene

@@ -440,6 +440,10 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         shadow_pending = any(shadow.contribution != vec3f(0.0));
         //#endif
         var s = bsdf_sample(ctx, &rng);
+        //#if closure_weights
+        // The BSDF scaled by its material's closure weight (an Add Shader's halves), as the light sample is.
+        s.weight *= m.closure_weight;
+        //#endif
         //#if terminator_offset
         // Delta reflections (the other lobes' samples are weighed by `bsdf_eval`).
         if s.pdf == 0.0 && !s.transmitted {

@@ -87,19 +87,7 @@ fn pick_lobe(ctx: ShadingContext, u: ptr<function, f32>) -> u32 {
     return LOBE_TRANSMISSION;
 }
 
-//#if closure_weights
-// A material's BSDF scaled by its closure weight (an Add Shader's halves; `bsdf_eval` is
-// the BSDF before it, which the smooth parts' weights are made of).
 fn bsdf_sample(ctx: ShadingContext, rng: ptr<function, Rng>) -> BsdfSample {
-    var s = bsdf_sample_closures(ctx, rng);
-    s.weight *= ctx.m.closure_weight;
-    return s;
-}
-
-fn bsdf_sample_closures(ctx: ShadingContext, rng: ptr<function, Rng>) -> BsdfSample {
-//#else
-fn bsdf_sample(ctx: ShadingContext, rng: ptr<function, Rng>) -> BsdfSample {
-//#endif
     //#if lobe_modules
     if ctx.m.lobe_module != 0u {
         let u = vec2f(rng_next(rng), rng_next(rng));

@@ -668,6 +668,16 @@ gpu_struct! {
 
 use crate::scene::Tangent;
 
+/// The shaders' TANGENT_* of the tangent anisotropy follows.
+fn tangent_mode(tangent: Tangent) -> u32 {
+    match tangent {
+        Tangent::RadialZ => TANGENT_RADIAL_Z,
+        Tangent::RadialX => TANGENT_RADIAL_X,
+        Tangent::RadialY => TANGENT_RADIAL_Y,
+        Tangent::Uv => TANGENT_UV,
+    }
+}
+
 impl From<&crate::scene::Material> for GpuMaterial {
     fn from(m: &crate::scene::Material) -> Self {
         let [diffuse, specular, reflection, transmission] = m.lobe_weights();
@@ -722,12 +732,7 @@ impl From<&crate::scene::Material> for GpuMaterial {
             sheen_tint_texture: slot(l.sheen_tint),
             anisotropy_texture: slot(l.anisotropy),
             specular_tint_texture: slot(l.specular_tint),
-            tangent: match m.tangent {
-                Tangent::RadialZ => TANGENT_RADIAL_Z,
-                Tangent::RadialX => TANGENT_RADIAL_X,
-                Tangent::RadialY => TANGENT_RADIAL_Y,
-                Tangent::Uv => TANGENT_UV,
-            },
+            tangent: tangent_mode(m.tangent),
             diffuse_roughness_texture: slot(l.diffuse_roughness),
             thin_film_texture: slot(l.thin_film_thickness),
             thin_film_minimum: m.textures.thin_film_minimum,

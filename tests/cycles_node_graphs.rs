@@ -406,3 +406,11 @@ fn object_index_matches_cycles() {
 fn add_shaders_of_two_bsdfs_match_cycles() {
     check_scene("graph_add_shader", 7);
 }
+
+/// Attribute nodes of the View Layer type, folded to constants at export as Cycles folds
+/// them: the view layer's custom properties, then the scene's, then the World's, or an RNA
+/// path; a number, a boolean, arrays of three and four, a string (none), a missing name.
+#[test]
+fn view_layer_attributes_match_cycles() {
+    check_channels("graph_view_layer_attributes", 1e-3);
+}

@@ -37,7 +37,7 @@ import numpy as np
 from bpy.app.handlers import persistent
 from mathutils import Matrix, Vector
 
-from . import rt_attributes, rt_node_groups, rt_shader_graphs, rt_shader_nodes
+from . import rt_attributes, rt_node_graph, rt_node_groups, rt_shader_graphs, rt_shader_nodes
 from .rt_hash import instance_random, lookup3_final
 TEXTURE_SOCKETS = rt_shader_nodes.TEXTURE_SOCKETS
 linked_node, rgb, socket_value = rt_shader_nodes.linked_node, rt_shader_nodes.rgb, rt_shader_nodes.socket_value
@@ -2300,6 +2300,7 @@ def _export_scene(scene, out_dir, scene_path, earlier, bake_size, depsgraph, shu
         export.content, export.images, export.triangles = dict(carry.content), dict(carry.images), dict(carry.triangles)
     export.bake_size = bake_size
     export.view_layer = depsgraph.view_layer
+    rt_node_graph.VIEW_LAYER.update(scene=scene, layer=depsgraph.view_layer)
     objects = exported_objects(scene)
     for obj in objects:
         if only is not None and previous is not None and obj.name not in only and obj.name in previous.folder_of:

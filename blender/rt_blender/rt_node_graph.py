@@ -123,6 +123,63 @@ class Unevaluated(Exception):
     """A node, or a setting of one, that rt does not evaluate."""
 
 
+# The scene and view layer whose View Layer attributes graphs read (rt_export sets them for
+# each export): Cycles folds those attributes to constants when it syncs a shader.
+VIEW_LAYER = {"scene": None, "layer": None}
+
+
+def rgba_of(value):
+    """A property's value as RGBA, as Blender's `find_property_rgba` converts it: a number or
+    boolean v is (v, v, v, 1), an array of 1 to 4 numbers fills (0, 0, 0, 1); else None."""
+    if isinstance(value, (bool, int, float)):
+        v = float(value)
+        return [v, v, v, 1.0]
+    try:
+        items = list(value)
+    except TypeError:
+        return None
+    if not 1 <= len(items) <= 4 or not all(isinstance(i, (bool, int, float)) for i in items):
+        return None
+    return [float(i) for i in items] + [0.0, 0.0, 0.0, 1.0][len(items):]
+
+
+def property_rgba(owner, name):
+    """`owner`'s custom property `name`, else the property at RNA path `name`, as RGBA."""
+    if owner is None:
+        return None
+    try:
+        return rgba_of(owner[name])
+    except (KeyError, TypeError):
+        pass
+    try:
+        return rgba_of(owner.path_resolve(name))
+    except (ValueError, TypeError):
+        return None
+
+
+def view_layer_attribute(name):
+    """An Attribute node's View Layer attribute `name` as Blender looks it up: the view layer,
+    then the scene, then its World; (0, 0, 0, 0) where none has it."""
+    scene, layer = VIEW_LAYER["scene"], VIEW_LAYER["layer"]
+    for owner in (layer, scene, scene.world if scene is not None else None):
+        found = property_rgba(owner, name)
+        if found is not None:
+            return found
+    return [0.0, 0.0, 0.0, 0.0]
+
+
+def view_layer_constant(node, socket, to_type):
+    """What an Attribute node of the View Layer type gives socket `to_type` through output
+    `socket`, as Cycles' resolve_view_layer_attributes folds it: Fac the mean of R, G and B,
+    Alpha the fourth value, Color and Vector the first three (their mean into a value)."""
+    x, y, z, w = view_layer_attribute(node.attribute_name)
+    scalar = w if socket.identifier == "Alpha" else (x + y + z) / 3.0
+    triple = [x, y, z] if socket.identifier in {"Color", "Vector"} else [scalar] * 3
+    if to_type == "VALUE":
+        return {"value": scalar}
+    return {"value": triple + [1.0] if to_type == "RGBA" else triple}
+
+
 def socket_type(socket):
     return socket.type if socket.type in {"VECTOR", "RGBA"} else "VALUE"
 
@@ -336,6 +393,8 @@ class GraphWriter:
             return self.input(groups[-1].inputs[index], groups[:-1], to_type)
         if node.type == "NORMAL":
             return self.normal_node(node, socket, groups, to_type)
+        if node.type == "ATTRIBUTE" and node.attribute_type == "VIEW_LAYER":
+            return view_layer_constant(node, socket, to_type)
         if node.type == "OBJECT_INFO" and socket.identifier == "Material Index":
             return {"value": self.material_index}
         if node.type == "NEW_GEOMETRY" and socket.identifier == "Tangent":

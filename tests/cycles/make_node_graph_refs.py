@@ -889,6 +889,49 @@ def material_index_scene():
     return scene
 
 
+def view_layer_attribute(t, name, which="Color"):
+    node = new(t, "ShaderNodeAttribute", attribute_type="VIEW_LAYER", attribute_name=name)
+    return node.outputs[which]
+
+
+VIEW_LAYER_ATTRIBUTES = [
+    lambda t: view_layer_attribute(t, "tint"),
+    lambda t: view_layer_attribute(t, "tint", "Fac"),
+    lambda t: vector_shown(t, view_layer_attribute(t, "tint", "Vector")),
+    lambda t: view_layer_attribute(t, "gain"),
+    lambda t: view_layer_attribute(t, "haze"),
+    lambda t: view_layer_attribute(t, "haze", "Alpha"),
+    lambda t: view_layer_attribute(t, "shadowed"),
+    lambda t: math_node(t, "MULTIPLY", view_layer_attribute(t, "render.resolution_x", "Fac"), 0.004),
+    lambda t: view_layer_attribute(t, "missing"),
+    lambda t: math_node(t, "ADD", view_layer_attribute(t, "missing", "Alpha"), 0.3),
+    lambda t: view_layer_attribute(t, "flag", "Fac"),
+    lambda t: math_node(t, "MULTIPLY", view_layer_attribute(t, "counts", "Fac"), 0.3),
+    lambda t: view_layer_attribute(t, "counts"),
+    lambda t: view_layer_attribute(t, "gain", "Alpha"),
+    lambda t: view_layer_attribute(t, "name"),
+    lambda t: ramp(t, view_layer_attribute(t, "gain", "Fac"), "LINEAR", STOPS),
+]
+
+
+def view_layer_attributes_scene():
+    """Attribute nodes of the View Layer type: custom properties of the view layer (a colour,
+    one that shadows the scene's), of the scene (a value, an integer array, a string, which
+    is no attribute), of the World (four values: Alpha the fourth), a boolean, an RNA path
+    (the scene's render.resolution_x), a name none has (zero, Alpha too); each output."""
+    scene = grid_scene("view_layer_attributes", VIEW_LAYER_ATTRIBUTES)
+    layer = scene.view_layers[0]
+    layer["tint"] = (0.8, 0.3, 0.1)
+    layer["shadowed"] = 0.9
+    layer["flag"] = True
+    scene["shadowed"] = 0.1
+    scene["gain"] = 0.7
+    scene["counts"] = [1, 0, 2]
+    scene["name"] = "not a number"
+    scene.world["haze"] = (0.2, 0.4, 0.6, 0.5)
+    return scene
+
+
 def object_index_material():
     """One material for every tile: its Object Index × 0.03, through a ramp on the odd ones
     (by the index's parity, read in the graph)."""
@@ -1402,6 +1445,7 @@ SCENES = {
     "graph_node_groups": node_groups_scene,
     "graph_object_index": object_index_scene,
     "graph_add_shader": add_shader_scene,
+    "graph_view_layer_attributes": view_layer_attributes_scene,
 }
 
 

@@ -76,6 +76,14 @@ fn lamps_of_a_blackbody_temperature_match_cycles() {
     compare(name, Sampling::Nee, 128, LightSampler::Power).check(&format!("{name} Nee 128 spp"), "Cycles");
 }
 
+/// Lamps of constant node trees, folded as Cycles folds them: an Emission coloured by a
+/// Blackbody node and one by an RGB node at a Value node's strength.
+#[test]
+fn lamps_of_constant_node_trees_match_cycles() {
+    let name = "lamp_nodes";
+    compare(name, Sampling::Nee, 128, LightSampler::Power).check(&format!("{name} Nee 128 spp"), "Cycles");
+}
+
 // Without light sampling only lamps with a shape light anything: BSDF rays must find
 // them (the point, spot and sun here have a radius or an angle).
 

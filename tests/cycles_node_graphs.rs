@@ -300,7 +300,7 @@ fn check_scene(name: &str, max_bounces: u32) {
 /// each shading point is one of its two shaders, picked by the factor.
 #[test]
 fn mix_shaders_by_a_graph_match_cycles() {
-    check_scene("graph_mix", 8);
+    check_scene("graph_mix", 9);
 }
 
 /// Mix Shaders of a constant factor of shaders no one parameter set holds (a diffuse and a
@@ -309,19 +309,19 @@ fn mix_shaders_by_a_graph_match_cycles() {
 /// alone, with a warning.
 #[test]
 fn mix_shaders_of_a_constant_factor_match_cycles() {
-    check_scene("graph_mix_constant", 8);
+    check_scene("graph_mix_constant", 9);
 }
 
 /// Light Path tricks: an emitter red to the camera and green to everything else (light
 /// samples and bounces alike), a floor coloured by Is Diffuse Ray, a metal by Ray Length.
 #[test]
 fn light_path_tricks_match_cycles() {
-    check_scene("graph_light_path", 6);
+    check_scene("graph_light_path", 7);
 }
 
 #[test]
 fn a_procedural_principled_material_matches_cycles() {
-    check_scene("graph_material", 8);
+    check_scene("graph_material", 9);
 }
 
 /// A scene's node shapes run as specialised code, and the interpreter (which runs scenes

@@ -1877,13 +1877,65 @@ def lamp_area(obj):
     return math.pi * math.sin(half) ** 2 if half > 0.0 else 1.0
 
 
-def lamp_color(data):
+def lamp_color(obj):
     """A lamp's colour as Cycles lights with it: times its blackbody Temperature's colour
-    (Blender's `temperature_color`, linear) when that is on."""
+    (Blender's `temperature_color`, linear) when that is on, and times what its node tree's
+    Emission gives when that is constant (`lamp_nodes_factor`)."""
+    data = obj.data
     color = list(data.color)
     if getattr(data, "use_temperature", False):
         color = [c * t for c, t in zip(color, data.temperature_color)]
-    return color
+    return [c * f for c, f in zip(color, lamp_nodes_factor(obj))]
+
+
+def blackbody_color(temperature):
+    """Cycles' Blackbody node's colour at `temperature` (K): Blender's own blackbody colour,
+    read through a scratch lamp's Temperature."""
+    scratch = bpy.data.lights.new("rt blackbody", "POINT")
+    try:
+        scratch.use_temperature, scratch.temperature = True, temperature
+        return [float(c) for c in scratch.temperature_color]
+    finally:
+        bpy.data.lights.remove(scratch)
+
+
+def constant_input(socket, colour):
+    """The constant an input of a lamp's Emission takes (its own value, or an RGB, Value or
+    Blackbody node of constant temperature linked to it), or None when a graph varies it."""
+    source = linked_node(socket)
+    if source is None:
+        value = socket.default_value
+    elif source.type in {"RGB", "VALUE"}:
+        value = source.outputs[0].default_value
+    elif source.type == "BLACKBODY" and not source.inputs["Temperature"].is_linked:
+        value = blackbody_color(source.inputs["Temperature"].default_value)
+    else:
+        return None
+    try:
+        values = [float(v) for v in value][:3]
+    except TypeError:
+        values = [float(value)] * 3
+    return values if colour else sum(values) / 3.0
+
+
+def lamp_nodes_factor(obj):
+    """What a lamp's node tree multiplies its light by, as Cycles evaluates it: the Emission
+    at its Light Output, Color x Strength, where both are constant; 1 (warned) for a tree rt
+    cannot fold (a texture, a falloff, Light Path), 0 for an output left empty."""
+    data = obj.data
+    if not getattr(data, "use_nodes", False) or data.node_tree is None:
+        return [1.0, 1.0, 1.0]
+    output = active_output(data.node_tree, "OUTPUT_LIGHT")
+    shader = linked_node(output.inputs["Surface"]) if output is not None else None
+    if output is not None and shader is None:
+        return [0.0, 0.0, 0.0]
+    color = constant_input(shader.inputs["Color"], True) if shader and shader.type == "EMISSION" else None
+    strength = constant_input(shader.inputs["Strength"], False) if color is not None else None
+    if strength is None:
+        log(f"light {obj.name}: rt does not render its node tree's graph (only an Emission of constant Color and "
+            f"Strength, a Blackbody's or an RGB's): the lamp's own colour and power")
+        return [1.0, 1.0, 1.0]
+    return [c * strength for c in color]
 
 
 def light_toml(obj):
@@ -1892,7 +1944,6 @@ def light_toml(obj):
     data = obj.data
     kind = LAMP_TYPES[data.type]
     for unsupported, what in (
-        (getattr(data, "use_nodes", False), "a node tree (its emission nodes are ignored)"),
         (not getattr(data, "use_shadow", True), "shadows off"),
         (data.type == "AREA" and data.spread < math.pi - 1e-6, "a spread under 180 degrees"),
     ):
@@ -1901,7 +1952,7 @@ def light_toml(obj):
     power = data.energy * 2.0 ** getattr(data, "exposure", 0.0)
     if not getattr(data, "normalize", True):
         power *= lamp_area(obj)
-    lines = [f"# {obj.name}", "[[light]]", f'type = "{kind}"', f"color = {vec(lamp_color(data))}"]
+    lines = [f"# {obj.name}", "[[light]]", f'type = "{kind}"', f"color = {vec(lamp_color(obj))}"]
     lines.append(f"{'strength' if kind == 'sun' else 'power'} = {fmt(power)}")
     if kind in ("point", "spot"):
         lines.append(f"radius = {fmt(data.shadow_soft_size)}")

@@ -108,7 +108,40 @@ def temperature():
          use_temperature=True, temperature=6500.0, color=(1.0, 0.85, 0.85))
 
 
-SCENES = {"point": point, "spot": spot, "area": area, "sun": sun, "several": several, "temperature": temperature}
+def emission_of(light, colour_node, strength_node=None):
+    """The lamp's node tree: its Emission's Color from `colour_node` ((type, settings, inputs)),
+    its Strength from a Value node of `strength_node` when given."""
+    light.data.use_nodes = True
+    tree = light.data.node_tree
+    emission = tree.nodes["Emission"]
+    kind, settings, inputs = colour_node
+    node = tree.nodes.new(kind)
+    for key, value in settings.items():
+        setattr(node, key, value)
+    for key, value in inputs.items():
+        node.inputs[key].default_value = value
+    tree.links.new(node.outputs[0], emission.inputs["Color"])
+    if strength_node is not None:
+        value = tree.nodes.new("ShaderNodeValue")
+        value.outputs[0].default_value = strength_node
+        tree.links.new(value.outputs[0], emission.inputs["Strength"])
+    return node
+
+
+def lamp_nodes():
+    """Lamps of constant node trees, which Cycles folds: a bulb's Emission coloured by a
+    Blackbody node (3200 K) at Strength 1.5, a panel's by an RGB node at a Value node's 2."""
+    room((0.0, 0.0, 0.0))
+    bulb = lamp("POINT", "bulb", (-0.6, -0.9, 1.8), energy=80.0, shadow_soft_size=0.1)
+    emission_of(bulb, ("ShaderNodeBlackbody", {}, {"Temperature": 3200.0}))
+    bulb.data.node_tree.nodes["Emission"].inputs["Strength"].default_value = 1.5
+    panel = lamp("AREA", "panel", (0.8, -0.4, 2.3), (0.5, 0.2, 0.0), energy=60.0, shape="SQUARE", size=0.7)
+    rgb = emission_of(panel, ("ShaderNodeRGB", {}, {}), 2.0)
+    rgb.outputs[0].default_value = (0.3, 0.6, 1.0, 1.0)
+
+
+SCENES = {"point": point, "spot": spot, "area": area, "sun": sun, "several": several, "temperature": temperature,
+          "lamp_nodes": lamp_nodes}
 
 
 def set_up(scene):

@@ -383,3 +383,10 @@ fn blender_gltf_export_with_textures_renders_like_rts_own_export() {
     println!("Blender's glTF export vs rt_export.py, both in rt: worst 8x8 block {worst:.2} σ");
     assert!(worst <= 5.0, "a block differs by {worst:.2} σ");
 }
+
+/// The checker scene's texture, Mapping and coordinates inside a node group (a texture set),
+/// its Scale the group's input: followed into the group as an image texture and its transform.
+#[test]
+fn an_image_texture_inside_a_node_group_matches_cycles() {
+    check("grouped_checker");
+}

@@ -351,7 +351,11 @@ def texture_channel(material, node, socket_name, baker=None):
     socket = node.inputs.get(socket_name)
     if socket is None or not socket.is_linked:
         return None
-    link = socket.links[0]
+    # Followed through node groups (a texture set's group); a bake reads the socket itself.
+    links = rt_node_groups.followed(socket).links
+    if not links:
+        return None
+    link = links[0]
     source, output, component = link.from_node, link.from_socket.name, None
     if source.type == "NORMAL_MAP" and socket_name in NORMAL_SOCKETS:
         inner = source.inputs["Color"]
@@ -360,7 +364,7 @@ def texture_channel(material, node, socket_name, baker=None):
         source, output = inner.links[0].from_node, inner.links[0].from_socket.name
         if source.type != "TEX_IMAGE" or source.image is None:
             # A procedural colour into the Normal Map node: the whole normal is what a bake can give.
-            source = socket.links[0].from_node
+            source = link.from_node
     if source.type == "SEPARATE_COLOR" and source.mode == "RGB":
         component = {"Red": 0, "Green": 1, "Blue": 2}[output]
         inner = source.inputs["Color"]

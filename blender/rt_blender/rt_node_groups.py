@@ -2,9 +2,9 @@
 a `GroupNode` that remembers the group nodes it was reached through, and its sockets'
 links and values are those of the tree around the group where they come from its Group
 Input (a value the group node's socket holds, or whatever is linked into it there), and
-those of the nodes inside where they come from another group's output. Muted links are
-not followed; reroutes and muted nodes are left to the code that reads the links, as in a
-tree without groups.
+those of the nodes inside where they come from another group's output. Reroutes are
+passed through and muted links not followed, as Blender evaluates them; muted nodes are
+left to the code that reads the links.
 
 rt_shader_nodes, rt_shader_graphs and rt_export read a `GroupNode` as they read a node
 (`type`, `inputs["Base Color"]`, `default_value`, `links[0].from_node`, …): the export
@@ -42,6 +42,8 @@ def resolve(socket, groups):
         return "value", socket
     link = links[0]
     node = link.from_node
+    if node.type == "REROUTE":
+        return resolve(node.inputs[0], groups)
     if node.type == "GROUP_INPUT" and groups:
         outer = groups[-1].inputs[_output_index(node, link.from_socket)]
         return resolve(outer, groups[:-1])
@@ -146,6 +148,13 @@ def linked_node(socket):
         return links[0].from_node if links else None
     kind, what = resolve(socket, ())
     return what.from_node if kind == "link" else None
+
+
+def followed(socket):
+    """Input `socket` with its links followed through node groups (itself if it already is)."""
+    if isinstance(socket, GroupSocket):
+        return socket
+    return GroupSocket(socket, (), socket.node)
 
 
 def unwrap(socket, groups=()):

@@ -78,14 +78,6 @@ def evaluated(socket):
     return True
 
 
-def shader_of(socket):
-    """The shader node linked to a shader socket, through reroutes and node groups."""
-    node = linked_node(socket)
-    while node is not None and node.type == "REROUTE":
-        node = linked_node(node.inputs[0])
-    return node
-
-
 def emits(part):
     """Whether shader `part` emits (an Emission shader, a Principled BSDF's emission)."""
     strength = part.inputs.get("Strength" if part.type == "EMISSION" else "Emission Strength")
@@ -104,11 +96,11 @@ def mix_parts(shader):
     if shader is None or shader.type not in {"MIX_SHADER", "ADD_SHADER"}:
         return None
     if shader.type == "ADD_SHADER":
-        parts = tuple(shader_of(s) for s in shader.inputs if s.type == "SHADER")
+        parts = tuple(linked_node(s) for s in shader.inputs if s.type == "SHADER")
         if any(part is None or part.type not in ADDABLE for part in parts):
             return None
     else:
-        parts = (shader_of(shader.inputs[1]), shader_of(shader.inputs[2]))
+        parts = (linked_node(shader.inputs[1]), linked_node(shader.inputs[2]))
         fac = shader.inputs["Fac"]
         if not (evaluated(fac) or (not fac.is_linked and 0.0 < fac.default_value < 1.0 and not exactly_mixed(parts))):
             return None

@@ -458,8 +458,6 @@ def shader(material, node):
     cannot render. An unsupported node gives None."""
     if node is None:
         return None
-    if node.type == "REROUTE":
-        return shader(material, linked_node(node.inputs[0]))
     mapping = MAPPINGS.get(node.type)
     if mapping is None:
         warn(material, node, "this shader node is not supported by rt (inside a Mix or Add Shader: black)")

@@ -205,12 +205,7 @@ def rtmesh_bytes(arrays):
 # --- materials --------------------------------------------------------------------
 
 
-def active_output(tree, kind):
-    outputs = [n for n in tree.nodes if n.type == kind]
-    for node in outputs:
-        if getattr(node, "is_active_output", False):
-            return node
-    return outputs[0] if outputs else None
+active_output = rt_node_groups.active_output
 
 
 def cycles_absorption(volume):
@@ -1909,8 +1904,8 @@ def constant_input(socket, colour):
     source = linked_node(socket)
     if source is None:
         value = socket.default_value
-    elif source.type in {"RGB", "VALUE"}:
-        value = source.outputs[0].default_value
+    elif rt_shader_nodes.constant_node_value(source) is not None:
+        value = rt_shader_nodes.constant_node_value(source)
     elif source.type == "BLACKBODY" and not source.inputs["Temperature"].is_linked:
         value = blackbody_color(source.inputs["Temperature"].default_value)
     else:

@@ -10,7 +10,7 @@ rt_export's own path (followed into texture slots, or baked). Anything else stay
 that path too, which warns and names the node.
 """
 
-from .rt_node_groups import unwrap
+from .rt_node_groups import resolve, unwrap
 
 FORMAT_VERSION = 1
 # The attributes the exporter makes of Geometry's Random Per Island, Parametric and
@@ -297,12 +297,15 @@ class GraphWriter:
         A socket of a node inside a group (rt_node_groups) carries the groups around it."""
         socket, groups = unwrap(socket, groups)
         to_type = to_type or socket_type(socket)
-        links = [link for link in socket.links if not link.is_muted]
-        if not links:
-            if socket.hide_value or not hasattr(socket, "default_value"):
-                return None
-            return {"value": numbers(socket.default_value)}
-        return self.output(links[0].from_socket, groups, to_type)
+        kind, found = resolve(socket, groups)
+        if kind == "link":
+            return self.output(found.from_socket.socket, found.from_socket.groups, to_type)
+        if found is None:
+            # A group with no Group Output gives nothing.
+            return {"value": 0.0}
+        if found.hide_value or not hasattr(found, "default_value"):
+            return None
+        return {"value": numbers(found.default_value)}
 
     def vector_math(self, operation, a, b=None):
         """A Vector Math node of rt's own on what feeds `a` (and `b`); its index."""
@@ -371,26 +374,16 @@ class GraphWriter:
         return {"link": [self.vector_math("MULTIPLY", *vector), "Vector"], "from": "VECTOR", "to": "RGBA"}
 
     def output(self, socket, groups, to_type):
+        """What output `socket` (reached through `groups`, past reroutes and into and out of
+        groups by rt_node_groups.resolve) gives."""
         node = socket.node
-        if node.type == "REROUTE":
-            return self.input(node.inputs[0], groups, to_type)
         if node.mute:
             for link in node.internal_links:
                 if link.to_socket == socket:
                     return self.input(link.from_socket, groups, to_type)
             return {"value": 0.0}
-        if node.type == "GROUP":
-            inner = next((n for n in node.node_tree.nodes if n.type == "GROUP_OUTPUT" and n.is_active_output), None)
-            if inner is None:
-                return {"value": 0.0}
-            index = list(node.outputs).index(socket)
-            return self.input(inner.inputs[index], groups + (node,), to_type)
         if node.type == "GROUP_INPUT":
-            # The group node's input of the same place, in the tree around the group.
-            if not groups:
-                raise Unevaluated(f"{node.name} (GROUP_INPUT) outside a group")
-            index = list(node.outputs).index(socket)
-            return self.input(groups[-1].inputs[index], groups[:-1], to_type)
+            raise Unevaluated(f"{node.name} (GROUP_INPUT) outside a group")
         if node.type == "NORMAL":
             return self.normal_node(node, socket, groups, to_type)
         if node.type == "ATTRIBUTE" and node.attribute_type == "VIEW_LAYER":

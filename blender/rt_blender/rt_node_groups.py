@@ -18,9 +18,10 @@ def _output_index(node, socket):
     return next(i for i, s in enumerate(node.outputs) if s == socket)
 
 
-def _active_output(tree):
-    outputs = [n for n in tree.nodes if n.type == "GROUP_OUTPUT"]
-    return next((n for n in outputs if n.is_active_output), outputs[0] if outputs else None)
+def active_output(tree, kind="GROUP_OUTPUT"):
+    """A tree's active output node of type `kind` (its first if none is marked), or None."""
+    outputs = [n for n in tree.nodes if n.type == kind]
+    return next((n for n in outputs if getattr(n, "is_active_output", False)), outputs[0] if outputs else None)
 
 
 class Link:
@@ -48,7 +49,7 @@ def resolve(socket, groups):
         outer = groups[-1].inputs[_output_index(node, link.from_socket)]
         return resolve(outer, groups[:-1])
     if node.type == "GROUP" and node.node_tree is not None:
-        inner = _active_output(node.node_tree)
+        inner = active_output(node.node_tree)
         if inner is None:
             return "value", None
         return resolve(inner.inputs[_output_index(node, link.from_socket)], groups + (node,))

@@ -84,6 +84,11 @@ PRE_4_0_SOCKETS = {
 }
 
 
+def constant_node_value(source):
+    """The value an RGB or Value node gives, or None for any other node."""
+    return source.outputs[0].default_value if source.type in {"RGB", "VALUE"} else None
+
+
 def socket_value(node, name, default):
     """A node input's value; a texture or other link stands for what it would give
     on average, which rt cannot know, so the socket's own value is used and noted."""
@@ -99,8 +104,8 @@ def socket_value(node, name, default):
         return rt_shader_graphs.NEUTRAL.get(name, socket.default_value)
     source = linked_node(socket)
     if source is not None:
-        if source.type in {"RGB", "VALUE"}:
-            return source.outputs[0].default_value
+        if constant_node_value(source) is not None:
+            return constant_node_value(source)
         if node.type == "BSDF_PRINCIPLED" and name in TEXTURE_SOCKETS:
             # Followed, or warned about, by rt_export's `texture_channel`.
             return socket.default_value

@@ -240,6 +240,19 @@ fn a_world_of_window_and_camera_coordinates_matches_cycles() {
     check_channels_of("graph_world_ortho", 1e-3, 5);
 }
 
+/// The same World through panoramic cameras (equirectangular of a partial range with a
+/// shifted lens, equisolid and equidistant fisheyes, a mirror ball), a floor of Window
+/// beside it: Window is where the direction to a point (or the World's direction) falls on
+/// the panorama's image, Camera is in the panoramic camera's space, as Cycles maps them.
+#[test]
+fn window_and_camera_coordinates_of_panoramic_cameras_match_cycles() {
+    for name in
+        ["graph_world_equirect", "graph_world_fisheye", "graph_world_fisheye_equidistant", "graph_world_mirror_ball"]
+    {
+        check_channels_of(name, 1e-3, 5);
+    }
+}
+
 /// Mix Shaders of an emitting shader and a BSDF by a noise's or a gradient's factor
 /// (`make_emitting_mix_refs.py`), the emitting one first or second, lighting a floor and
 /// each other: light samples weigh the emission by the first shader's share.
@@ -317,6 +330,14 @@ fn mix_shaders_of_a_constant_factor_match_cycles() {
 #[test]
 fn light_path_tricks_match_cycles() {
     check_scene("graph_light_path", 7);
+}
+
+/// Light Path's Diffuse, Glossy and Transmission Depth, each a colour: a floor by its
+/// diffuse bounces, two mirror balls facing each other by their glossy ones (each
+/// reflection in the other one more), a glass ball by its transmissions.
+#[test]
+fn light_path_depths_of_each_kind_match_cycles() {
+    check_scene("graph_light_path_depths", 7);
 }
 
 #[test]

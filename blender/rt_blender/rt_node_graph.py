@@ -31,7 +31,7 @@ EVALUATED = {
     "RGB": ("Color",),
     "TEX_COORD": ("Generated", "Normal", "UV", "Object", "Camera", "Window", "Reflection"),
     "NEW_GEOMETRY": ("Position", "Normal", "True Normal", "Incoming", "Backfacing"),
-    "LIGHT_PATH": ("Is Camera Ray", "Is Shadow Ray", "Is Diffuse Ray", "Is Glossy Ray", "Is Singular Ray", "Is Reflection Ray", "Is Transmission Ray", "Is Volume Scatter Ray", "Ray Length", "Ray Depth"),  # noqa: E501
+    "LIGHT_PATH": ("Is Camera Ray", "Is Shadow Ray", "Is Diffuse Ray", "Is Glossy Ray", "Is Singular Ray", "Is Reflection Ray", "Is Transmission Ray", "Is Volume Scatter Ray", "Ray Length", "Ray Depth", "Diffuse Depth", "Glossy Depth", "Transmission Depth"),  # noqa: E501
     "MATH": ("Value",),
     "VECT_MATH": ("Vector", "Value"),
     "MIX": ("Result",),

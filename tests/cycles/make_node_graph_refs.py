@@ -1399,6 +1399,47 @@ def light_path_scene():
     return scene
 
 
+def depth_colour(tree, depth):
+    """A colour of Light Path's depth output `depth`: 0 light grey, 1 pink, 2 and more red
+    (a Map Range of the depth into each channel)."""
+    count = new(tree, "ShaderNodeLightPath").outputs[depth]
+    channel = [new(tree, "ShaderNodeMapRange", {"Value": count, "From Min": 0.0, "From Max": 2.0,
+                                                "To Min": low, "To Max": high}).outputs["Result"]
+               for low, high in ((0.8, 0.9), (0.8, 0.2), (0.8, 0.05))]
+    return rgb(tree, *channel)
+
+
+def light_path_depths_scene():
+    """Light Path's per-kind depths (Diffuse, Glossy, Transmission Depth), each a colour: a
+    diffuse floor coloured by its Diffuse Depth, two mirror balls facing each other coloured
+    by their Glossy Depth (their reflections in each other count up), and a glass ball in
+    front whose colour and the floor's seen through it follow Transmission Depth."""
+    scene = cycles.new_scene()
+    cycles.set_up(scene, 64, bounces=6)
+    cycles.uniform_world(scene, (1.0, 1.0, 1.0))
+    bpy.ops.mesh.primitive_plane_add(size=10.0)
+    floor = procedural_material("by diffuse depth", lambda t, b: t.links.new(
+        depth_colour(t, "Diffuse Depth"), b.inputs["Base Color"]))
+    bpy.context.active_object.data.materials.append(floor)
+    for x in (-1.1, 1.1):
+        bpy.ops.mesh.primitive_uv_sphere_add(radius=0.8, segments=48, ring_count=24, location=(x, 0.6, 0.8))
+        bpy.ops.object.shade_smooth()
+        mirror = procedural_material(f"by glossy depth {x}", lambda t, b: (
+            t.links.new(depth_colour(t, "Glossy Depth"), b.inputs["Base Color"]),
+            setattr(b.inputs["Metallic"], "default_value", 1.0),
+            setattr(b.inputs["Roughness"], "default_value", 0.05)))
+        bpy.context.active_object.data.materials.append(mirror)
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=0.55, segments=48, ring_count=24, location=(0.0, -1.0, 0.55))
+    bpy.ops.object.shade_smooth()
+    glass = procedural_material("by transmission depth", lambda t, b: (
+        t.links.new(depth_colour(t, "Transmission Depth"), b.inputs["Base Color"]),
+        setattr(b.inputs["Transmission Weight"], "default_value", 1.0),
+        setattr(b.inputs["Roughness"], "default_value", 0.15)))
+    bpy.context.active_object.data.materials.append(glass)
+    cycles.camera(scene, (0.0, -5.5, 2.2), 74.0)
+    return scene
+
+
 def material_scene():
     scene = cycles.new_scene()
     cycles.set_up(scene, 64, bounces=8)
@@ -1432,6 +1473,7 @@ SCENES = {
     "graph_mix": mix_scene,
     "graph_mix_constant": constant_mix_scene,
     "graph_light_path": light_path_scene,
+    "graph_light_path_depths": light_path_depths_scene,
     "graph_bump": bump_scene,
     "graph_map_range": lambda: grid_scene("map_range", MAP_RANGE),
     "graph_voronoi_dimensions": lambda: grid_scene("voronoi_dimensions", VORONOI_DIMENSIONS),

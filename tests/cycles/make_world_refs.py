@@ -10,11 +10,15 @@ light with one sky and show another. `graph_world_sun` is the same gradient besi
 lamp, so that light samples share between the two. `graph_world_camera` is a World of
 Texture Coordinate's Window (a checker) and Camera (a ramp of its x), seen directly and in a
 metal sphere, which Cycles places at the camera; `graph_world_ortho` the same through an
-orthographic camera. Each scene is exported with
+orthographic camera; `graph_world_equirect`, `graph_world_fisheye`,
+`graph_world_fisheye_equidistant` and `graph_world_mirror_ball` through panoramic cameras,
+a floor of Window beside them. Each scene is exported with
 blender/rt_export.py into tests/cycles/scenes/NAME/ and rendered into tests/cycles/NAME.exr.
 CI does not run Cycles: commit both.
 """
 
+
+import math
 
 import bpy
 
@@ -80,6 +84,23 @@ def ortho_camera_scene():
     return scene
 
 
+def panorama_scene(kind, **settings):
+    """`camera_scene` through a panoramic camera of type `kind` (its settings by name), the
+    floor's colour a checker of Window too: Cycles maps a direction through the panorama's
+    inverse (`direction_to_panorama`), and reads Camera in the panoramic camera's space."""
+    scene = camera_scene()
+    camera = scene.camera.data
+    camera.type, camera.panorama_type = "PANO", kind
+    for key, value in settings.items():
+        setattr(camera, key, value)
+    tree = bpy.data.materials["floor"].node_tree
+    checker = new(tree, "ShaderNodeTexChecker", {"Vector": new(tree, "ShaderNodeTexCoord").outputs["Window"],
+                                                  "Scale": 10.0, "Color1": (0.8, 0.3, 0.2, 1.0),
+                                                  "Color2": (0.3, 0.6, 0.8, 1.0)})
+    tree.links.new(output(checker, "Color"), tree.nodes["Principled BSDF"].inputs["Base Color"])
+    return scene
+
+
 def objects():
     bpy.ops.mesh.primitive_uv_sphere_add(radius=0.8, segments=48, ring_count=24, location=(-0.9, 0.0, 0.8))
     bpy.ops.object.shade_smooth()
@@ -110,6 +131,14 @@ SCENES = {
     "graph_world_sun": lambda: world_scene(sun=True),
     "graph_world_camera": camera_scene,
     "graph_world_ortho": ortho_camera_scene,
+    "graph_world_equirect": lambda: panorama_scene(
+        "EQUIRECTANGULAR", latitude_min=math.radians(-60.0), latitude_max=math.radians(80.0),
+        longitude_min=math.radians(-150.0), longitude_max=math.radians(120.0), shift_x=0.05),
+    "graph_world_fisheye": lambda: panorama_scene(
+        "FISHEYE_EQUISOLID", fisheye_fov=math.radians(190.0), fisheye_lens=7.0, shift_y=0.03),
+    "graph_world_fisheye_equidistant": lambda: panorama_scene(
+        "FISHEYE_EQUIDISTANT", fisheye_fov=math.radians(200.0)),
+    "graph_world_mirror_ball": lambda: panorama_scene("MIRRORBALL"),
 }
 
 

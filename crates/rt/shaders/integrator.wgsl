@@ -178,8 +178,8 @@ fn uniform_sky_seen(bsdf_pdf: f32) -> vec3f {
 //#if node_graphs
 // The world seen by a ray that leaves the scene, MIS-weighted against light sampling after
 // a BSDF sample (the world is light-sampled uniformly over the sphere).
-fn graph_sky_seen(origin: vec3f, direction: vec3f, bsdf_pdf: f32, ray_from: u32, singular: bool, depth: u32) -> vec3f {
-    return graph_sky_radiance(direction, origin, ray_from, singular, depth) * uniform_sky_weight(bsdf_pdf);
+fn graph_sky_seen(origin: vec3f, direction: vec3f, bsdf_pdf: f32, ray_from: u32, singular: bool, depth: u32, depths: u32) -> vec3f {
+    return graph_sky_radiance(direction, origin, ray_from, singular, depth, depths) * uniform_sky_weight(bsdf_pdf);
 }
 //#endif
 //#endif
@@ -289,6 +289,8 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
     // What the path's last ray came from, for the Light Path node (NODE_RAY_*).
     var ray_from: u32;
     var ray_singular: bool;
+    // Its bounces of each kind (NodePoint::ray_depths).
+    var kind_depths: u32;
     loop {
         if starting {
             starting = false;
@@ -301,6 +303,7 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
             //#if node_graphs
             ray_from = NODE_RAY_CAMERA;
             ray_singular = false;
+            kind_depths = 0u;
             //#endif
             let camera = camera_ray(pixel, &rng);
             origin = camera.origin;
@@ -370,7 +373,7 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
             //#endif
             //#if sky_graph
             //#if node_graphs
-            gather(&radiance, throughput * graph_sky_seen(origin, direction, bsdf_pdf, ray_from, ray_singular, bounce), EVENT_SKY);
+            gather(&radiance, throughput * graph_sky_seen(origin, direction, bsdf_pdf, ray_from, ray_singular, bounce, kind_depths), EVENT_SKY);
             //#endif
             //#endif
             background_seen(&radiance, throughput, origin, direction, bsdf_pdf);
@@ -387,7 +390,7 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
         cone_width += cone_spread * hit.t;
         //#endif
         var m = materials[surface.material];
-        let seen = material_seen(&m, hit, surface, direction, cone_width, path_key, bounce, ray_from, ray_singular);
+        let seen = material_seen(&m, hit, surface, direction, cone_width, path_key, bounce, ray_from, ray_singular, kind_depths);
         surface.shading_normal = seen.shading_normal;
         //#if holdout
         let held_out = held_out_share(m, hit, transparent_background);
@@ -462,6 +465,7 @@ fn trace_samples(pixel: vec2u, pixel_index: u32, sample_base: u32, first: u32, l
             //#if node_graphs
             ray_from = s.lobe + 1u;
             ray_singular = s.pdf == 0.0;
+            kind_depths += node_depth_step(s.lobe, s.transmitted);
             //#endif
             //#if media
             // Crossing into a material adds its medium, leaving subtracts it: nested media add up.

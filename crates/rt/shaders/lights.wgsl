@@ -368,7 +368,7 @@ fn sample_light(p: vec3f, rng: ptr<function, Rng>) -> LightSample {
         let d = uniform_sphere_direction(rng_next2(rng));
         var radiance = vec3f(0.0);
         //#if node_graphs
-        radiance = graph_sky_radiance(d, vec3f(0.0), NODE_RAY_NONE, false, 0u);
+        radiance = graph_sky_radiance(d, vec3f(0.0), NODE_RAY_NONE, false, 0u, 0u);
         //#endif
         return LightSample(d, INFINITY, radiance, uniform_sky_light_pdf(), false);
     }

@@ -10,6 +10,9 @@
 //#include "node_math.wgsl"
 //#include "node_voronoi_dimensions.wgsl"
 //#include "node_spectrum.wgsl"
+//#if panorama
+//#include "panorama.wgsl"
+//#endif
 
 // Texture Coordinate (modes 0-3: Generated, Normal, UV, Object) and Geometry (4-8:
 // Position, Normal, True Normal, Incoming, Backfacing). Generated's texture space is in
@@ -32,12 +35,12 @@ fn node_coordinate(mode: u32, p: NodePoint, extra: u32) -> vec4f {
         case 9u: { return vec4f(p.true_normal, 0.0); }
         case 10u: { return vec4f(p.incoming, 0.0); }
         case 11u: { return vec4f(select(0.0, 1.0, p.backfacing)); }
-        case 22u, 23u, 24u, 25u, 26u: { return node_object_info(mode - 22u, p); }
+        case 25u, 26u, 27u, 28u, 29u: { return node_object_info(mode - 25u, p); }
         // Camera Data: the direction from the camera to the point (in camera space), its
         // depth along the view and its distance.
-        case 27u: { return vec4f(normalize(node_camera_coordinates(false, rt_axes(p.position))), 0.0); }
-        case 28u: { return vec4f(node_camera_coordinates(false, rt_axes(p.position)).z); }
-        case 29u: { return vec4f(length(node_camera_coordinates(false, rt_axes(p.position)))); }
+        case 30u: { return vec4f(normalize(node_camera_coordinates(false, rt_axes(p.position))), 0.0); }
+        case 31u: { return vec4f(node_camera_coordinates(false, rt_axes(p.position)).z); }
+        case 32u: { return vec4f(length(node_camera_coordinates(false, rt_axes(p.position)))); }
         default: { return vec4f(node_light_path(mode - 12u, p)); }
     }
 }
@@ -60,10 +63,17 @@ fn node_texture_point(p: NodePoint, window: bool) -> vec3f {
 }
 
 // Texture Coordinate's Camera (`point` in Cycles' camera space: x right, y up, z along
-// the view, metres) or, with `window`, Window (where the point is on the image, 0 to 1
-// from the bottom left; z 0).
+// the view, metres; a panoramic camera's: x along the view, y left, z up) or, with
+// `window`, Window (where the point is on the image, 0 to 1 from the bottom left; z 0; a
+// panorama's: where the direction to it falls on its image, as Cycles' camera_world_to_ndc).
 fn node_camera_coordinates(window: bool, point: vec3f) -> vec3f {
     let camera = camera_space(point - frame.camera_position);
+    //#if panorama
+    if frame.panorama != PANORAMA_NONE {
+        let panoramic = camera_to_panorama(camera);
+        return select(panoramic, vec3f(panorama_uv(normalize(panoramic)), 0.0), window);
+    }
+    //#endif
     if !window {
         return camera;
     }
@@ -151,13 +161,13 @@ fn node_object_info(output: u32, p: NodePoint) -> vec4f {
 }
 
 // Light Path's outputs in node_kinds' order: Is Camera, Shadow, Diffuse, Glossy, Singular,
-// Reflection, Transmission, Volume Scatter Ray, Ray Length, Ray Depth. A lobe's bounce is
-// diffuse (diffuse, sheen) or glossy (the others, singular ones too, as in Cycles),
-// transmission for the glass lobe.
+// Reflection, Transmission, Volume Scatter Ray, Ray Length, Ray Depth, Diffuse, Glossy and
+// Transmission Depth. A lobe's bounce is diffuse (diffuse, sheen) or glossy (the others,
+// singular ones too, as in Cycles), transmission for the glass lobe.
 fn node_light_path(output: u32, p: NodePoint) -> f32 {
     let bounced = p.ray_from != NODE_RAY_CAMERA && p.ray_from != NODE_RAY_NONE;
     let lobe = p.ray_from - 1u;
-    let diffuse = bounced && (lobe == 0u || lobe == 5u);
+    let diffuse = bounced && node_diffuse_lobe(lobe);
     let transmission = bounced && lobe == 3u;
     var on = false;
     switch output {
@@ -169,9 +179,23 @@ fn node_light_path(output: u32, p: NodePoint) -> f32 {
         case 6u: { on = transmission; }
         case 8u: { return p.ray_length; }
         case 9u: { return p.ray_depth; }
+        case 10u, 11u, 12u: { return f32((p.ray_depths >> (10u * (output - 10u))) & 1023u); }
         default: {}
     }
     return select(0.0, 1.0, on);
+}
+
+fn node_diffuse_lobe(lobe: u32) -> bool {
+    return lobe == LOBE_DIFFUSE || lobe == LOBE_SHEEN;
+}
+
+// What a bounce by lobe `lobe` adds to NodePoint::ray_depths, as Cycles' path_state_next
+// counts it: a transmission bounce (any lobe), else a diffuse or a glossy reflection.
+fn node_depth_step(lobe: u32, transmitted: bool) -> u32 {
+    if transmitted {
+        return NODE_TRANSMISSION_DEPTH;
+    }
+    return select(NODE_GLOSSY_DEPTH, NODE_DIFFUSE_DEPTH, node_diffuse_lobe(lobe));
 }
 
 // Cycles' ramp lookup in a table of RAMP_TABLE_SIZE RGBA entries at `table`.

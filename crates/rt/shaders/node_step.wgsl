@@ -31,11 +31,14 @@ struct NodePoint {
     uv: vec2f,
     backfacing: bool,
     // The ray that found the point (Light Path): NODE_RAY_* and whether its bounce was
-    // singular (a mirror or clear glass), its length and the bounces before it.
+    // singular (a mirror or clear glass), its length, the bounces before it, and those of
+    // them that were diffuse, glossy and transmission bounces (ten bits each, from bit 0,
+    // NODE_GLOSSY_DEPTH and NODE_TRANSMISSION_DEPTH).
     ray_from: u32,
     singular: bool,
     ray_length: f32,
     ray_depth: f32,
+    ray_depths: u32,
     // The instance the point is on (Object Info), or NODE_NO_OBJECT (a sphere).
     instance: u32,
     // Where a Bump reads its height (node_surface_steps): two orthogonal unit directions
@@ -71,6 +74,10 @@ const NODE_NO_OBJECT: u32 = 0xffffffffu;
 // these (a light sample's point: every Light Path flag off, as Cycles evaluates emission).
 const NODE_RAY_CAMERA: u32 = 0u;
 const NODE_RAY_NONE: u32 = 255u;
+// One bounce of each kind in NodePoint::ray_depths.
+const NODE_DIFFUSE_DEPTH: u32 = 1u;
+const NODE_GLOSSY_DEPTH: u32 = 1u << 10u;
+const NODE_TRANSMISSION_DEPTH: u32 = 1u << 20u;
 
 // What a program sets: `driven` bit i for target i (node_kinds::TARGETS).
 const NODE_DRIVES_NORMAL: u32 = 32u;

@@ -64,3 +64,50 @@ fn panorama_to_camera(d: vec3f) -> vec3f {
     }
     return vec3f(-d.y, d.z, d.x);
 }
+
+// rt's camera frame to Cycles' panoramic camera space: `panorama_to_camera` undone.
+fn camera_to_panorama(c: vec3f) -> vec3f {
+    if frame.panorama == PANORAMA_MIRROR_BALL {
+        return vec3f(c.x, -c.z, c.y);
+    }
+    return vec3f(c.z, -c.x, c.y);
+}
+
+// Cycles' `direction_to_panorama`: where unit direction `d` of Cycles' panoramic camera
+// space falls on the image, in the screen `panorama_direction` reads (the lens shift
+// included); outside a fisheye's circle too.
+fn panorama_uv(d: vec3f) -> vec2f {
+    switch frame.panorama {
+        case PANORAMA_EQUIRECTANGULAR: {
+            let range = frame.equirectangular_range;
+            if all(d == vec3f(0.0)) {
+                return vec2f(0.0);
+            }
+            return vec2f((atan2(d.y, d.x) - range.y) / range.x, (acos(d.z / length(d)) - range.w) / range.z);
+        }
+        case PANORAMA_FISHEYE_EQUIDISTANT: {
+            let uv = atan2(length(d.yz), d.x) / frame.fisheye_fov * safe_normalize2(d.yz);
+            return vec2f(0.5 - uv.x, uv.y + 0.5);
+        }
+        case PANORAMA_FISHEYE_EQUISOLID: {
+            let r = 2.0 * frame.fisheye_lens * sin(acos(clamp(d.x, -1.0, 1.0)) * 0.5);
+            let uv = r * safe_normalize2(d.yz);
+            return vec2f(0.5 - uv.x / frame.fisheye_sensor.x, uv.y / frame.fisheye_sensor.y + 0.5);
+        }
+        default: {
+            // The mirror ball: the normal halfway between the view (+y) and `d`.
+            var h = d - vec3f(0.0, 1.0, 0.0);
+            let div = 2.0 * sqrt(max(-0.5 * h.y, 0.0));
+            if div > 0.0 {
+                h /= div;
+            }
+            return vec2f(0.5 * (h.x + 1.0), 0.5 * (h.z + 1.0));
+        }
+    }
+}
+
+// `v` normalised, or zero.
+fn safe_normalize2(v: vec2f) -> vec2f {
+    let l = length(v);
+    return select(vec2f(0.0), v / l, l > 0.0);
+}

@@ -60,9 +60,9 @@ struct SeenNormals {
 
 // The material seen at `hit` by a ray along `direction` whose cone is `cone_width` wide
 // there: `m`, the material the surface names, made what its textures and node graph make
-// it, and the normals its maps give. `path_key`, `bounce`, `ray_from` and `ray_singular`
-// are what a node graph's coins and Light Path node read.
-fn material_seen(m: ptr<function, Material>, hit: Hit, surface: Surface, direction: vec3f, cone_width: f32, path_key: u32, bounce: u32, ray_from: u32, ray_singular: bool) -> SeenNormals {
+// it, and the normals its maps give. `path_key`, `bounce`, `ray_from`, `ray_singular` and
+// `kind_depths` are what a node graph's coins and Light Path node read.
+fn material_seen(m: ptr<function, Material>, hit: Hit, surface: Surface, direction: vec3f, cone_width: f32, path_key: u32, bounce: u32, ray_from: u32, ray_singular: bool, kind_depths: u32) -> SeenNormals {
     var seen = SeenNormals(surface.shading_normal, surface.shading_normal, surface.shading_normal, false);
     //#if textures
     let cos_hit = max(abs(dot(surface.geometric_normal, direction)), 1e-4);
@@ -87,6 +87,7 @@ fn material_seen(m: ptr<function, Material>, hit: Hit, surface: Surface, directi
         point.singular = ray_singular;
         point.ray_length = hit.t;
         point.ray_depth = f32(bounce);
+        point.ray_depths = kind_depths;
         point.footprint = cone_width;
         let graph = run_node_program((*m).node_program, point);
         *m = node_graph_applied(*m, graph);

@@ -9,8 +9,9 @@
 //#include "node_program.wgsl"
 
 // The Background's radiance along `direction` (rt's axes) for a ray from `origin` that came
-// from `ray_from` (NODE_RAY_*; NODE_RAY_NONE for a light sample) after `depth` bounces.
-fn graph_sky_radiance(direction: vec3f, origin: vec3f, ray_from: u32, singular: bool, depth: u32) -> vec3f {
+// from `ray_from` (NODE_RAY_*; NODE_RAY_NONE for a light sample) after `depth` bounces,
+// `depths` of each kind (NodePoint::ray_depths).
+fn graph_sky_radiance(direction: vec3f, origin: vec3f, ray_from: u32, singular: bool, depth: u32, depths: u32) -> vec3f {
     let d = blender_axes(direction);
     var p: NodePoint;
     p.position = d;
@@ -23,6 +24,7 @@ fn graph_sky_radiance(direction: vec3f, origin: vec3f, ray_from: u32, singular: 
     p.singular = singular;
     p.ray_length = 3.4e38;
     p.ray_depth = f32(depth);
+    p.ray_depths = depths;
     p.instance = NODE_NO_OBJECT;
     p.background = true;
     p.ray_origin = origin;

@@ -22,7 +22,7 @@ use std::collections::{BTreeMap, HashMap};
 
 pub const FORMAT_VERSION: u32 = 1;
 /// The compiler's own version: caches of programs an earlier compiler wrote are rebuilt.
-pub const COMPILER_VERSION: u32 = 6;
+pub const COMPILER_VERSION: u32 = 7;
 /// An operand that reads a constant, not a register.
 pub const CONSTANT: u32 = 0x8000_0000;
 /// Registers of the interpreter (`NODE_REGISTERS` in the shader).

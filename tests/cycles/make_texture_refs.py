@@ -101,50 +101,53 @@ def checker(n, a, b):
     return np.where(on, np.array([*a, 1.0]), np.array([*b, 1.0]))
 
 
-def scene_checker(scene):
-    """A checker base colour through a Mapping node (scale, rotation, offset) on a tilted plane."""
-    uniform_world(scene, (1.0, 1.0, 1.0))
-    m, tree, bsdf = principled("checker")
+def mapped_checker(tree):
+    """In `tree`: the checker image through a Mapping node (rotation, offset; its Scale left
+    to the caller) of the UV coordinates; (the image node, the Mapping node)."""
     tex = image_node(tree, image("checker", checker(8, (0.9, 0.1, 0.05), (0.95, 0.95, 0.9))))
     mapping = tree.nodes.new("ShaderNodeMapping")
-    mapping.inputs["Scale"].default_value = (2.0, 1.5, 1.0)
     mapping.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(20.0))
     mapping.inputs["Location"].default_value = (0.1, 0.25, 0.0)
     coords = tree.nodes.new("ShaderNodeTexCoord")
     tree.links.new(coords.outputs["UV"], mapping.inputs["Vector"])
     tree.links.new(mapping.outputs["Vector"], tex.inputs["Vector"])
-    tree.links.new(tex.outputs["Color"], bsdf.inputs["Base Color"])
+    return tex, mapping
+
+
+def checker_plane(scene, m, bsdf):
+    """The checker scenes' rough tilted plane of material `m` under a white world, and their camera."""
+    uniform_world(scene, (1.0, 1.0, 1.0))
     bsdf.inputs["Roughness"].default_value = 1.0
     add_object(scene, "plane", bpy.ops.mesh.primitive_plane_add, m, size=2.0, rotation=(math.radians(60), 0, 0))
     camera(scene, (0.0, -3.0, 1.2), (0.0, 0.0, 0.0), 40.0)
+
+
+def scene_checker(scene):
+    """A checker base colour through a Mapping node (scale, rotation, offset) on a tilted plane."""
+    m, tree, bsdf = principled("checker")
+    tex, mapping = mapped_checker(tree)
+    mapping.inputs["Scale"].default_value = (2.0, 1.5, 1.0)
+    tree.links.new(tex.outputs["Color"], bsdf.inputs["Base Color"])
+    checker_plane(scene, m, bsdf)
 
 
 def scene_grouped_checker(scene):
     """`scene_checker`'s plane, its checker, Mapping and coordinates inside a node group (as
     texture sets from asset libraries come), whose Color output feeds the Base Color and
     whose Scale input sets the Mapping's."""
-    uniform_world(scene, (1.0, 1.0, 1.0))
     m, tree, bsdf = principled("grouped checker")
     group = bpy.data.node_groups.new("texture set", "ShaderNodeTree")
     group.interface.new_socket("Scale", in_out="INPUT", socket_type="NodeSocketVector")
     group.interface.new_socket("Color", in_out="OUTPUT", socket_type="NodeSocketColor")
     inner_in, inner_out = group.nodes.new("NodeGroupInput"), group.nodes.new("NodeGroupOutput")
-    tex = image_node(group, image("checker", checker(8, (0.9, 0.1, 0.05), (0.95, 0.95, 0.9))))
-    mapping = group.nodes.new("ShaderNodeMapping")
-    mapping.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(20.0))
-    mapping.inputs["Location"].default_value = (0.1, 0.25, 0.0)
-    coords = group.nodes.new("ShaderNodeTexCoord")
-    group.links.new(coords.outputs["UV"], mapping.inputs["Vector"])
+    tex, mapping = mapped_checker(group)
     group.links.new(inner_in.outputs["Scale"], mapping.inputs["Scale"])
-    group.links.new(mapping.outputs["Vector"], tex.inputs["Vector"])
     group.links.new(tex.outputs["Color"], inner_out.inputs["Color"])
     node = tree.nodes.new("ShaderNodeGroup")
     node.node_tree = group
     node.inputs["Scale"].default_value = (2.0, 1.5, 1.0)
     tree.links.new(node.outputs["Color"], bsdf.inputs["Base Color"])
-    bsdf.inputs["Roughness"].default_value = 1.0
-    add_object(scene, "plane", bpy.ops.mesh.primitive_plane_add, m, size=2.0, rotation=(math.radians(60), 0, 0))
-    camera(scene, (0.0, -3.0, 1.2), (0.0, 0.0, 0.0), 40.0)
+    checker_plane(scene, m, bsdf)
 
 
 def sun(scene, rotation):

@@ -1904,8 +1904,8 @@ def constant_input(socket, colour):
     source = linked_node(socket)
     if source is None:
         value = socket.default_value
-    elif rt_shader_nodes.constant_node_value(source) is not None:
-        value = rt_shader_nodes.constant_node_value(source)
+    elif (constant := rt_shader_nodes.constant_node_value(source)) is not None:
+        value = constant
     elif source.type == "BLACKBODY" and not source.inputs["Temperature"].is_linked:
         value = blackbody_color(source.inputs["Temperature"].default_value)
     else:

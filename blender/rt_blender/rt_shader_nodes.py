@@ -104,8 +104,8 @@ def socket_value(node, name, default):
         return rt_shader_graphs.NEUTRAL.get(name, socket.default_value)
     source = linked_node(socket)
     if source is not None:
-        if constant_node_value(source) is not None:
-            return constant_node_value(source)
+        if (constant := constant_node_value(source)) is not None:
+            return constant
         if node.type == "BSDF_PRINCIPLED" and name in TEXTURE_SOCKETS:
             # Followed, or warned about, by rt_export's `texture_channel`.
             return socket.default_value

@@ -71,7 +71,10 @@ fn node_camera_coordinates(window: bool, point: vec3f) -> vec3f {
     //#if panorama
     if frame.panorama != PANORAMA_NONE {
         let panoramic = camera_to_panorama(camera);
-        return select(panoramic, vec3f(panorama_uv(normalize(panoramic)), 0.0), window);
+        if window {
+            return vec3f(panorama_uv(normalize(panoramic)), 0.0);
+        }
+        return panoramic;
     }
     //#endif
     if !window {
@@ -168,7 +171,7 @@ fn node_light_path(output: u32, p: NodePoint) -> f32 {
     let bounced = p.ray_from != NODE_RAY_CAMERA && p.ray_from != NODE_RAY_NONE;
     let lobe = p.ray_from - 1u;
     let diffuse = bounced && node_diffuse_lobe(lobe);
-    let transmission = bounced && lobe == 3u;
+    let transmission = bounced && lobe == LOBE_TRANSMISSION;
     var on = false;
     switch output {
         case 0u: { on = p.ray_from == NODE_RAY_CAMERA; }
@@ -179,7 +182,7 @@ fn node_light_path(output: u32, p: NodePoint) -> f32 {
         case 6u: { on = transmission; }
         case 8u: { return p.ray_length; }
         case 9u: { return p.ray_depth; }
-        case 10u, 11u, 12u: { return f32((p.ray_depths >> (10u * (output - 10u))) & 1023u); }
+        case 10u, 11u, 12u: { return f32(extractBits(p.ray_depths, NODE_DEPTH_BITS * (output - 10u), NODE_DEPTH_BITS)); }
         default: {}
     }
     return select(0.0, 1.0, on);

@@ -32,8 +32,8 @@ struct NodePoint {
     backfacing: bool,
     // The ray that found the point (Light Path): NODE_RAY_* and whether its bounce was
     // singular (a mirror or clear glass), its length, the bounces before it, and those of
-    // them that were diffuse, glossy and transmission bounces (ten bits each, from bit 0,
-    // NODE_GLOSSY_DEPTH and NODE_TRANSMISSION_DEPTH).
+    // them that were diffuse, glossy and transmission bounces (NODE_DEPTH_BITS each, from
+    // bit 0, NODE_GLOSSY_DEPTH and NODE_TRANSMISSION_DEPTH).
     ray_from: u32,
     singular: bool,
     ray_length: f32,
@@ -74,10 +74,11 @@ const NODE_NO_OBJECT: u32 = 0xffffffffu;
 // these (a light sample's point: every Light Path flag off, as Cycles evaluates emission).
 const NODE_RAY_CAMERA: u32 = 0u;
 const NODE_RAY_NONE: u32 = 255u;
-// One bounce of each kind in NodePoint::ray_depths.
+// One bounce of each kind in NodePoint::ray_depths, a field of NODE_DEPTH_BITS each.
+const NODE_DEPTH_BITS: u32 = 10u;
 const NODE_DIFFUSE_DEPTH: u32 = 1u;
-const NODE_GLOSSY_DEPTH: u32 = 1u << 10u;
-const NODE_TRANSMISSION_DEPTH: u32 = 1u << 20u;
+const NODE_GLOSSY_DEPTH: u32 = 1u << NODE_DEPTH_BITS;
+const NODE_TRANSMISSION_DEPTH: u32 = 1u << (2u * NODE_DEPTH_BITS);
 
 // What a program sets: `driven` bit i for target i (node_kinds::TARGETS).
 const NODE_DRIVES_NORMAL: u32 = 32u;
